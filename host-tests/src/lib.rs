@@ -1,0 +1,1 @@
+//! Host harness for raymip: f64 references, scene loaders, renderer.
