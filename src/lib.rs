@@ -17,5 +17,5 @@
     rustdoc::broken_intra_doc_links
 )]
 
-pub mod log2;
 pub mod lod;
+pub mod log2;

@@ -137,10 +137,7 @@ pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
         let lz = clz32(hi);
         // Bring `lz` bits of `lo` up below `hi`; `(lo >> 1) >> (31 − lz)`
         // avoids a shift by 32 when `lz = 0`.
-        (
-            (hi << lz) | ((lo >> 1) >> (31 - lz)),
-            63 - lz as i32,
-        )
+        ((hi << lz) | ((lo >> 1) >> (31 - lz)), 63 - lz as i32)
     } else if lo != 0 {
         let lz = clz32(lo);
         (lo << lz, 31 - lz as i32)
@@ -275,7 +272,9 @@ mod tests {
                 worst = worst.max(check(bits, 32));
             }
         }
-        std::println!("log2: max |error| over the octave sweep = {worst:.3e} (limit {LOG2_MAX_ERROR:.3e})");
+        std::println!(
+            "log2: max |error| over the octave sweep = {worst:.3e} (limit {LOG2_MAX_ERROR:.3e})"
+        );
     }
 
     #[test]

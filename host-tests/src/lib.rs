@@ -1,1 +1,3 @@
 //! Host harness for raymip: f64 references, scene loaders, renderer.
+#![warn(missing_docs)]
+pub mod ppm;
