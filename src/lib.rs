@@ -19,3 +19,5 @@
 
 pub mod lod;
 pub mod log2;
+pub mod raystack;
+pub mod table;

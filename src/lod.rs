@@ -1,7 +1,296 @@
 //! Level of detail per ray hit.
+//!
+//! * Table method (Park et al. 2011): `lod = log2 Pl − log2 Pb`, one
+//!   logarithm and one subtraction: [`table_lod`].
+//! * Ray cones (Akenine-Möller et al., RTG ch. 20):
+//!   `λ = Δ + log2|w| − log2|n·d|`: [`cone_lod`]. With zero surface spread
+//!   (`β = 0`) a primary cone has `w = γ·Pl`, so `λ = Δ + log2 γ + log2 Pl`
+//!   `= log2 Pl − log2 Pb`: without the normal term both methods agree (a
+//!   tested identity, within 1/256 level).
+//!
+//! Results are [`Lod`] (I8F8, rounded to nearest 1/256 level, saturating at
+//! ±128). [`clamp_lod`] limits a value to a texture's stored levels.
+//!
+//! # Error bound
+//!
+//! A table lod is within [`LOD_MAX_ERROR`] `= 2⁻⁸` level of the exact
+//! `log2(Pl/Pb)` for `Pl ∈ [2⁻¹⁶, 2¹⁶]` scene units, also after ten
+//! accumulated bounces (log2 error ≤ 2⁻¹³, entry error ≤ 2⁻¹⁰, output
+//! rounding ≤ 2⁻⁹). It is monotonic non-decreasing in `Pl`.
+//!
+//! # Grazing angles
+//!
+//! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
+//! `[`[`MIN_COS`]` = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
 
-use fixed::types::I8F8;
+use fixed::types::{I8F8, I16F16, U1F31};
+
+use crate::log2::{log2_bits, log2_u32f32};
+use crate::raystack::{PathLength, Width};
+use crate::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
 /// (range `[−128, 128)`, step 1/256 level).
 pub type Lod = I8F8;
+
+/// Documented error bound of [`table_lod`] and [`cone_lod`] against f64, in
+/// levels: 2⁻⁸.
+pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
+
+/// Smallest `|n·d|` used by the normal term: 2⁻¹⁶ (U1F31 raw `1 << 15`).
+pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
+
+/// Rounds an I16F16 level to [`Lod`] (nearest, ties up), saturating.
+#[inline(always)]
+fn to_lod(x: I16F16) -> Lod {
+    let r = x.to_bits().saturating_add(0x80) >> 8;
+    Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+}
+
+/// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
+/// `pl` (scene units) and the hit triangle's table entry. `None` for an
+/// untextured triangle (nothing to fetch). `Pl = 0` gives `Lod::MIN`.
+#[inline]
+#[must_use]
+pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    if pb.is_untextured() {
+        return None;
+    }
+    Some(to_lod(log2_u32f32(pl).saturating_sub(pb.to_i16f16())))
+}
+
+/// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
+/// (scene units), triangle constant `delta` (`Δ`, from
+/// [`Log2Pb::delta`]) and, optionally, `|n·d|` (clamped to
+/// `[MIN_COS, 1]`). `w = 0` gives `Lod::MIN`.
+#[inline]
+#[must_use]
+pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+    let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
+    let mut l = delta.saturating_add(lw);
+    if let Some(c) = n_dot_d {
+        let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+        l = l.saturating_sub(log2_bits(u64::from(c), 31));
+    }
+    to_lod(l)
+}
+
+/// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
+/// (`levels = 0` is treated as 1).
+#[inline]
+#[must_use]
+pub fn clamp_lod(lod: Lod, levels: u8) -> Lod {
+    let top = Lod::from_bits(i16::from(levels.saturating_sub(1)) << 8);
+    lod.clamp(Lod::ZERO, top)
+}
+
+/// Convenience: a table lod clamped to a texture's stored levels.
+#[inline]
+#[must_use]
+pub fn table_lod_clamped(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> {
+    table_lod(pl, pb).map(|l| clamp_lod(l, levels))
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::raystack::{PathState, Spread};
+    use crate::table::{Coord, PixelSpread, TexTriangle};
+    use fixed::types::I2F30;
+    use proptest::prelude::*;
+
+    /// Independent f64 reference of log2 Pb (see module docs of `table`).
+    fn ref_log2_pb(p: &[[f64; 3]; 3], uv: &[[f64; 2]; 3], w: f64, h: f64, gamma: f64) -> f64 {
+        let e1: std::vec::Vec<f64> = (0..3).map(|k| p[1][k] - p[0][k]).collect();
+        let e2: std::vec::Vec<f64> = (0..3).map(|k| p[2][k] - p[0][k]).collect();
+        let cx = e1[1] * e2[2] - e1[2] * e2[1];
+        let cy = e1[2] * e2[0] - e1[0] * e2[2];
+        let cz = e1[0] * e2[1] - e1[1] * e2[0];
+        let a = 0.5 * (cx * cx + cy * cy + cz * cz).sqrt();
+        let n = 0.5
+            * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
+                - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]))
+                .abs()
+            * w
+            * h;
+        0.5 * (a / n).log2() - gamma.log2()
+    }
+
+    fn q(x: f64) -> f64 {
+        Coord::from_num(x).to_num()
+    }
+
+    fn make(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
+        TexTriangle::new(
+            p.map(|v| v.map(Coord::from_num)),
+            uv.map(|v| v.map(Coord::from_num)),
+            w,
+            h,
+        )
+        .unwrap()
+    }
+
+    /// A fronto-parallel square of side `s` (two triangles; one is enough)
+    /// mapped to the whole `w × h` texture, seen by a camera with vertical
+    /// field of view `fov` and image height `hgt`.
+    #[test]
+    fn fronto_parallel_one_texel_per_pixel_is_lod_zero() {
+        for &(s, w, fov_deg, hgt) in &[
+            (1.0f64, 256u32, 60.0f64, 480u32),
+            (0.01, 1024, 40.0, 600),
+            (250.0, 64, 90.0, 1080),
+            (3.7, 512, 36.87, 600),
+        ] {
+            let fov = fov_deg.to_radians();
+            let spread = PixelSpread::from_fov_y(fov, hgt).unwrap();
+            let tri = make(
+                [[0.0, 0.0, 0.0], [s, 0.0, 0.0], [0.0, s, 0.0]],
+                [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+                w,
+                w,
+            );
+            let pb = Log2Pb::compute(&tri, &spread);
+            // On the axis a pixel at distance d is d·2·tan(fov/2)/H wide; one
+            // texel is s/w wide: they are equal at
+            let d = (s / f64::from(w)) * f64::from(hgt) / (2.0 * (fov / 2.0).tan());
+            for (mult, want) in [(1.0, 0.0), (2.0, 1.0), (4.0, 2.0), (0.5, -1.0)] {
+                let lod = table_lod(PathLength::from_num(d * mult), pb).unwrap();
+                let err = (lod.to_num::<f64>() - want).abs();
+                assert!(
+                    err <= LOD_MAX_ERROR,
+                    "side {s}, {w} texels, fov {fov_deg}, H {hgt}: lod at {mult}·d = {lod}, want {want}"
+                );
+                // The same through a primary ray cone.
+                let st = PathState::primary(&spread, 0).advance(PathLength::from_num(d * mult));
+                let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                assert!(
+                    (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
+                    "cone {c} want {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn untextured_zero_and_degenerate() {
+        assert_eq!(table_lod(PathLength::from_num(3), Log2Pb::UNTEXTURED), None);
+        let pb = Log2Pb::from_log2(I16F16::from_num(2));
+        assert_eq!(table_lod(PathLength::ZERO, pb), Some(Lod::MIN));
+        assert_eq!(
+            table_lod(PathLength::from_num(1), Log2Pb::DEGENERATE_GEOMETRY),
+            Some(Lod::MAX)
+        );
+        assert_eq!(
+            table_lod(PathLength::MAX, Log2Pb::DEGENERATE_UV),
+            Some(Lod::MIN)
+        );
+        assert_eq!(cone_lod(Width::ZERO, I16F16::from_num(3), None), Lod::MIN);
+        assert_eq!(clamp_lod(Lod::MIN, 5), Lod::ZERO);
+        assert_eq!(clamp_lod(Lod::MAX, 5), Lod::from_num(4));
+        assert_eq!(clamp_lod(Lod::MAX, 0), Lod::ZERO);
+        assert_eq!(clamp_lod(Lod::from_num(2.5), 5), Lod::from_num(2.5));
+        assert_eq!(
+            table_lod_clamped(PathLength::MAX, Log2Pb::DEGENERATE_GEOMETRY, 11),
+            Some(Lod::from_num(10))
+        );
+    }
+
+    #[test]
+    fn normal_term_and_grazing_clamp() {
+        let w = Width::from_num(1);
+        let d = I16F16::ZERO;
+        assert_eq!(cone_lod(w, d, Some(U1F31::from_num(1))), Lod::ZERO);
+        let half = cone_lod(w, d, Some(U1F31::from_num(0.5)));
+        assert_eq!(half, Lod::from_num(1));
+        // Grazing: n·d = 0 and tiny values clamp to 16 levels.
+        assert_eq!(cone_lod(w, d, Some(U1F31::ZERO)), Lod::from_num(16));
+        assert_eq!(cone_lod(w, d, Some(U1F31::DELTA)), Lod::from_num(16));
+        // |n·d| > 1 (not physical) clamps to 1.
+        assert_eq!(cone_lod(w, d, Some(U1F31::from_num(1.9))), Lod::ZERO);
+        // Negative width uses |w|.
+        assert_eq!(cone_lod(-Width::from_num(4), d, None), Lod::from_num(2));
+    }
+
+    fn coord() -> impl Strategy<Value = f64> {
+        prop_oneof![-1.0e3..1.0e3f64, -10.0..10.0f64]
+    }
+
+    fn tri_strategy() -> impl Strategy<Value = ([[f64; 3]; 3], [[f64; 2]; 3], u32, u32)> {
+        (
+            [
+                [coord(), coord(), coord()],
+                [coord(), coord(), coord()],
+                [coord(), coord(), coord()],
+            ],
+            [
+                [-50.0..50.0f64, -50.0..50.0f64],
+                [-50.0..50.0f64, -50.0..50.0f64],
+                [-50.0..50.0f64, -50.0..50.0f64],
+            ],
+            1u32..4096,
+            1u32..4096,
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4_000))]
+
+        /// Per-hit lod against f64 for Pl in [2^-16, 2^16] reached by up to
+        /// ten accumulated segments.
+        #[test]
+        fn table_lod_matches_f64_after_bounces(
+            (p, uv, w, h) in tri_strategy(),
+            g in 1.0e-4..0.05f64,
+            segs in proptest::collection::vec(-16.0..16.0f64, 1..=10),
+        ) {
+            let p = p.map(|v| v.map(q));
+            let uv = uv.map(|v| v.map(q));
+            let gq = I2F30::from_num(g);
+            let spread = PixelSpread::from_angle(gq).unwrap();
+            let pb = Log2Pb::compute(&make(p, uv, w, h), &spread);
+            let want_pb = ref_log2_pb(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
+            prop_assume!(want_pb.is_finite() && want_pb.abs() < 100.0);
+            // Segments whose sum lies in [2^-16, 2^16].
+            let n = segs.len() as f64;
+            let mut st = PathState::primary(&spread, 0);
+            let mut pl = 0.0;
+            for &e in &segs {
+                let t = PathLength::from_num(2f64.powf(e) / n);
+                st = st.advance(t).bounce(Spread::ZERO);
+                pl += t.to_num::<f64>();
+            }
+            prop_assume!((2f64.powi(-16)..=2f64.powi(16)).contains(&pl));
+            let want = pl.log2() - want_pb;
+            prop_assume!(want.abs() < 120.0);
+            let got = table_lod(st.pl, pb).unwrap().to_num::<f64>();
+            prop_assert!((got - want).abs() <= LOD_MAX_ERROR,
+                "table lod {} vs f64 {} (Pl {}, log2 Pb {})", got, want, pl, want_pb);
+            // Identity: cone with β = 0 and no normal term equals the table.
+            let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+            prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
+                "cone {} vs table {}", cone, got);
+        }
+
+        #[test]
+        fn table_lod_is_monotonic_in_pl(a in any::<u64>(), b in any::<u64>(), e in any::<i32>()) {
+            let pb = Log2Pb::from_log2(I16F16::from_bits(e));
+            prop_assume!(!pb.is_untextured());
+            let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+            let l0 = table_lod(PathLength::from_bits(lo), pb);
+            let l1 = table_lod(PathLength::from_bits(hi), pb);
+            prop_assert!(l0 <= l1);
+            // Neighbours too (the interesting case for table interpolation).
+            let l2 = table_lod(PathLength::from_bits(lo.saturating_add(1)), pb);
+            prop_assert!(l0 <= l2);
+        }
+
+        #[test]
+        fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
+            let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            prop_assert!(l >= Lod::MIN && l <= Lod::MAX);
+            let c2 = clamp_lod(l, 13);
+            prop_assert!(c2 >= Lod::ZERO && c2 <= Lod::from_num(12));
+        }
+    }
+}
