@@ -49,20 +49,24 @@ fn to_lod(x: I16F16) -> Lod {
 
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
 /// `pl` (scene units) and the hit triangle's table entry. `None` for an
-/// untextured triangle (nothing to fetch). `Pl = 0` gives `Lod::MIN`.
+/// untextured triangle (nothing to fetch). `Pl = 0` is read as 2⁻³².
+///
+/// No saturation is needed: `log2 Pl ∈ [−32, 32)` and every entry lies in
+/// `[−95, 95]`, so the difference lies in `(−127, 127)`, inside [`Lod`].
 #[inline]
 #[must_use]
 pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     if pb.is_untextured() {
         return None;
     }
-    Some(to_lod(log2_u32f32(pl).saturating_sub(pb.to_i16f16())))
+    let d = log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
+    Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
 }
 
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
 /// (scene units), triangle constant `delta` (`Δ`, from
 /// [`Log2Pb::delta`]) and, optionally, `|n·d|` (clamped to
-/// `[MIN_COS, 1]`). `w = 0` gives `Lod::MIN`.
+/// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
 #[inline]
 #[must_use]
 pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
@@ -176,16 +180,21 @@ mod tests {
     fn untextured_zero_and_degenerate() {
         assert_eq!(table_lod(PathLength::from_num(3), Log2Pb::UNTEXTURED), None);
         let pb = Log2Pb::from_log2(I16F16::from_num(2));
-        assert_eq!(table_lod(PathLength::ZERO, pb), Some(Lod::MIN));
+        assert_eq!(table_lod(PathLength::ZERO, pb), Some(Lod::from_num(-34)));
+        // Degenerate markers: every Pl gives lod ≥ 63 (coarsest) or ≤ −63 (level 0).
+        for pl in [
+            PathLength::ZERO,
+            PathLength::DELTA,
+            PathLength::from_num(1),
+            PathLength::MAX,
+        ] {
+            assert!(table_lod(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
+            assert!(table_lod(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
+        }
         assert_eq!(
-            table_lod(PathLength::from_num(1), Log2Pb::DEGENERATE_GEOMETRY),
-            Some(Lod::MAX)
+            cone_lod(Width::ZERO, I16F16::from_num(3), None),
+            Lod::from_num(-29)
         );
-        assert_eq!(
-            table_lod(PathLength::MAX, Log2Pb::DEGENERATE_UV),
-            Some(Lod::MIN)
-        );
-        assert_eq!(cone_lod(Width::ZERO, I16F16::from_num(3), None), Lod::MIN);
         assert_eq!(clamp_lod(Lod::MIN, 5), Lod::ZERO);
         assert_eq!(clamp_lod(Lod::MAX, 5), Lod::from_num(4));
         assert_eq!(clamp_lod(Lod::MAX, 0), Lod::ZERO);
@@ -193,6 +202,10 @@ mod tests {
         assert_eq!(
             table_lod_clamped(PathLength::MAX, Log2Pb::DEGENERATE_GEOMETRY, 11),
             Some(Lod::from_num(10))
+        );
+        assert_eq!(
+            table_lod_clamped(PathLength::ZERO, Log2Pb::DEGENERATE_UV, 11),
+            Some(Lod::ZERO)
         );
     }
 
@@ -266,7 +279,10 @@ mod tests {
             let got = table_lod(st.pl, pb).unwrap().to_num::<f64>();
             prop_assert!((got - want).abs() <= LOD_MAX_ERROR,
                 "table lod {} vs f64 {} (Pl {}, log2 Pb {})", got, want, pl, want_pb);
-            // Identity: cone with β = 0 and no normal term equals the table.
+            // Identity: cone with β = 0 and no normal term equals the table,
+            // where the cone width is resolved (w ≥ 2^-20 scene units; its
+            // step is 2^-32, see the module docs).
+            prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
             let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
             prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
                 "cone {} vs table {}", cone, got);
@@ -275,7 +291,6 @@ mod tests {
         #[test]
         fn table_lod_is_monotonic_in_pl(a in any::<u64>(), b in any::<u64>(), e in any::<i32>()) {
             let pb = Log2Pb::from_log2(I16F16::from_bits(e));
-            prop_assume!(!pb.is_untextured());
             let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
             let l0 = table_lod(PathLength::from_bits(lo), pb);
             let l1 = table_lod(PathLength::from_bits(hi), pb);

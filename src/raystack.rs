@@ -87,7 +87,8 @@ impl RayCone {
 }
 
 /// `γ·t` as I32F32 with two 32×32→64 multiplications (no 128-bit product);
-/// saturates (flag true) beyond the I32F32 range. Truncation error < 2⁻³².
+/// saturates (flag true) beyond the I32F32 range. Rounded to nearest:
+/// error ≤ 2⁻³³.
 #[inline]
 fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
     let g = i64::from(g.to_bits());
@@ -95,7 +96,10 @@ fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
     let hi = g * ((t >> 32) as i64); // |.| < 2^31 · 2^32
     let lo = g * i64::from(t as u32); // |.| < 2^31 · 2^32
     // γ·t in 2^-62 units = hi·2^32 + lo; in 2^-32 units: hi·4 + lo/2^30.
-    match hi.checked_mul(4).and_then(|h| h.checked_add(lo >> 30)) {
+    match hi
+        .checked_mul(4)
+        .and_then(|h| h.checked_add((lo + (1 << 29)) >> 30))
+    {
         Some(v) => (Width::from_bits(v), false),
         None if g < 0 => (Width::MIN, true),
         None => (Width::MAX, true),
