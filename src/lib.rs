@@ -1,12 +1,56 @@
 //! # raymip
 //!
 //! Texture level-of-detail, MIP fetch and filtering for the texture unit of a
-//! ray-tracing accelerator, in fixed point, for `no_std` controllers.
+//! ray-tracing accelerator, in fixed point, for `no_std` controllers
+//! (Cortex-M4F, RV32IMAC soft cores).
 //!
-//! Design principle: everything a scene fixes is computed once at set-up
+//! **Design principle:** everything a scene fixes is computed once at set-up
 //! (one `log2 Pb` per textured triangle, the MIP pyramid), so that each ray
 //! hit costs one logarithm and one subtraction, then a fetch and a filter,
-//! all in integer arithmetic that is bit-identical on every target.
+//! all in integer arithmetic that is bit-identical on every target. No heap,
+//! no floats on the per-hit path, no panics: saturating arithmetic with
+//! documented ranges and small error enums at the API edges.
+//!
+//! Data flows one way, one module per stage:
+//!
+//! | stage | module | per hit |
+//! |---|---|---|
+//! | fixed-point logarithm | [`log2`] | leading zeros + 64-entry table |
+//! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
+//! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
+//! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
+//!
+//! ```
+//! use fixed::types::U32F32;
+//! use raymip::lod::{table_lod, Lod};
+//! use raymip::raystack::{PathState, RayStack, Spread};
+//! use raymip::table::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+//!
+//! // Set-up: camera with 60° vertical field of view, 480 rows.
+//! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
+//! // A 1×1 square (two triangles) mapped once onto a 256×256 texture, and
+//! // an untextured triangle.
+//! let a = TexTriangle::from_f32(
+//!     [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+//!     [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], 256, 256)?;
+//! let mut storage = [Log2Pb::UNTEXTURED; 3];
+//! let mut table = PbTable::new(&mut storage);
+//! table.build([Some(a), Some(a), None], &spread)?;
+//!
+//! // Per hit: the primary ray hits triangle 0 at t = 1.2 scene units, a
+//! // mirror bounce adds 0.8 more.
+//! let mut stack: RayStack = RayStack::new();
+//! let hit = PathState::primary(&spread, 0xFF).advance(U32F32::from_num(1.2));
+//! stack.push(hit.bounce(Spread::ZERO))?;
+//! let lod0 = table_lod(hit.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
+//! let next = stack.pop().ok_or("empty")?.advance(U32F32::from_num(0.8));
+//! let lod1 = table_lod(next.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
+//! // Pl went from 1.2 to 2.0: log2(2.0/1.2) ≈ 0.74 levels coarser.
+//! assert!((lod1 - lod0 - Lod::from_num(0.737)).abs() < Lod::from_num(0.01));
+//! // Untextured triangles skip the texture path.
+//! assert_eq!(table_lod(next.pl, table.get(2).ok_or("index")?), None);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(

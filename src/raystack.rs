@@ -178,6 +178,8 @@ impl PathState {
 #[non_exhaustive]
 pub struct StackFull(pub PathState);
 
+impl core::error::Error for StackFull {}
+
 impl fmt::Display for StackFull {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "ray stack full (path depth {})", self.0.depth)

@@ -82,6 +82,8 @@ pub enum TableError {
     TableFull,
 }
 
+impl core::error::Error for TableError {}
+
 impl fmt::Display for TableError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
