@@ -1,0 +1,51 @@
+//! The raymip bare-metal demo: renders the built-in scene tile through the
+//! firmware path, prints the pixel checksum and the per-stage counters over
+//! semihosting and exits with code 0 (1 if the generated data is invalid or
+//! the rebuilt Pb table differs from the static one).
+//!
+//! Run from `demo/`: `cargo run --release --target thumbv7em-none-eabihf`
+//! (QEMU mps2-an386, Cortex-M4) or `--target riscv32imac-unknown-none-elf`
+//! (QEMU virt).
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+
+use raymip_demo_scene::{Fnv1a, HEIGHT, Renderer, WIDTH};
+use semihosting::{println, process};
+
+#[cfg(target_arch = "arm")]
+use cortex_m_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
+
+#[entry]
+fn main() -> ! {
+    let code = run();
+    process::exit(code)
+}
+
+fn run() -> i32 {
+    let target = if cfg!(target_arch = "arm") {
+        "thumbv7em-none-eabihf (Cortex-M4)"
+    } else {
+        "riscv32imac-unknown-none-elf"
+    };
+    println!("raymip demo on {target}");
+    let Some(mut r) = Renderer::new() else {
+        println!("error: demo data invalid");
+        return 1;
+    };
+    let mut h = Fnv1a::default();
+    r.render(|_, _, rgb| h.write(&rgb));
+    println!(
+        "checksum: {:#010x} ({}x{} RGB, FNV-1a)",
+        h.finish(),
+        WIDTH,
+        HEIGHT
+    );
+    println!("counters: {}", r.counters);
+    if r.counters.table_mismatches != 0 {
+        return 1;
+    }
+    0
+}
