@@ -27,12 +27,15 @@ pub fn checksum_line(checksum: u32) -> String {
 pub enum DataError {
     /// The Pb table could not be built.
     Table(raymip::table::TableError),
+    /// A texture pyramid could not be built.
+    Mip(raymip::mip::MipError),
 }
 
 impl std::fmt::Display for DataError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Table(e) => write!(f, "demo Pb table: {e}"),
+            Self::Mip(e) => write!(f, "demo texture pyramid: {e}"),
         }
     }
 }
@@ -82,5 +85,31 @@ pub fn generate_data_rs() -> Result<String, DataError> {
         }
     }
     s.push_str("];\n");
+    let g =
+        raymip_demo_scene::tex_geometry().ok_or(DataError::Mip(raymip::mip::MipError::ZeroSize))?;
+    for tex in 0..2u8 {
+        let mut buf = vec![0u32; g.len()];
+        let size = raymip_demo_scene::TEX_SIZE;
+        for y in 0..size {
+            for x in 0..size {
+                buf[(y * size + x) as usize] = raymip_demo_scene::texture_level0(tex, x, y);
+            }
+        }
+        raymip::mip::generate(&g, &mut buf).map_err(DataError::Mip)?;
+        let _ = writeln!(
+            s,
+            "/// Texture {tex}: {size}×{size} RGBA8888 MIP pyramid ({} levels, level 0 first), generated on the host.",
+            g.levels()
+        );
+        let _ = writeln!(s, "pub static TEX{tex}: [u32; {}] = [", buf.len());
+        for chunk in buf.chunks(8) {
+            s.push_str("   ");
+            for t in chunk {
+                let _ = write!(s, " {t:#010x},");
+            }
+            s.push('\n');
+        }
+        s.push_str("];\n");
+    }
     Ok(s)
 }

@@ -34,12 +34,15 @@
 use core::fmt;
 
 use fixed::types::{I2F30, I16F16};
-use raymip::lod::{Lod, clamp_lod, table_lod};
+use raymip::cache::TexelCache;
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::lod::{clamp_lod, table_lod};
+use raymip::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
 use raymip::table::{Coord, Log2Pb, PbTable, PixelSpread, TexTriangle};
 
 mod data;
-pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS};
+pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};
 
 /// Tile width in pixels.
 pub const WIDTH: u32 = 64;
@@ -55,6 +58,10 @@ pub const STACK: usize = 10;
 pub const TEX_SIZE: u32 = 32;
 /// Number of MIP levels of the demo textures (32 → 1).
 pub const TEX_LEVELS: u8 = 6;
+/// Texels of one demo pyramid (32² + 16² + … + 1).
+pub const TEX_LEN: usize = raymip::mip::pyramid_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS);
+/// Cache of texture 0 (sets × ways of 4×4-texel blocks).
+pub type Tex0Cache = TexelCache<Pyramid<'static>, 8, 2>;
 
 /// One in Q16.16.
 const ONE: i32 = 1 << 16;
@@ -276,8 +283,16 @@ pub struct Counters {
     pub untextured: u32,
     /// Sum of the clamped LODs of all textured hits (I8F8 raw units).
     pub lod_sum: u64,
-    /// Texture samples taken.
+    /// Texture samples taken (trilinear).
     pub samples: u32,
+    /// Texels read by the samplers.
+    pub texels_fetched: u64,
+    /// Texel reads skipped (second level with blend weight 0).
+    pub texels_skipped: u64,
+    /// Block-cache hits of texture 0 (4×4-texel blocks).
+    pub cache_hits: u64,
+    /// Block-cache misses of texture 0.
+    pub cache_misses: u64,
     /// Ray stack pushes (reflection continuations).
     pub pushes: u32,
     /// Ray stack pops.
@@ -290,6 +305,8 @@ pub struct Counters {
     pub max_depth: u8,
     /// Pb table entries rebuilt at start-up that differ from the static table.
     pub table_mismatches: u32,
+    /// Pyramid texels regenerated at start-up that differ from the static pyramids.
+    pub pyramid_mismatches: u32,
 }
 
 impl fmt::Display for Counters {
@@ -297,7 +314,9 @@ impl fmt::Display for Counters {
         write!(
             f,
             "pixels={} segments={} hits={} misses={} lod_evals={} untextured={} lod_sum={} \
-             samples={} pushes={} pops={} stack_full={} cutoffs={} max_depth={} table_mismatches={}",
+             samples={} texels_fetched={} texels_skipped={} cache_hits={} cache_misses={} \
+             pushes={} pops={} stack_full={} cutoffs={} max_depth={} table_mismatches={} \
+             pyramid_mismatches={}",
             self.pixels,
             self.segments,
             self.hits,
@@ -306,12 +325,17 @@ impl fmt::Display for Counters {
             self.untextured,
             self.lod_sum,
             self.samples,
+            self.texels_fetched,
+            self.texels_skipped,
+            self.cache_hits,
+            self.cache_misses,
             self.pushes,
             self.pops,
             self.stack_full,
             self.cutoffs,
             self.max_depth,
-            self.table_mismatches
+            self.table_mismatches,
+            self.pyramid_mismatches
         )
     }
 }
@@ -394,47 +418,61 @@ fn primary_dir(px: u32, py: u32) -> [i32; 3] {
     [n(x), n(y), n(z)]
 }
 
-/// Shading of a textured hit at in-plane `(a, b)` with the clamped `lod`.
-///
-/// LOD visualisation: a checkerboard of [`TEX_SIZE`]² texels per repeat,
-/// whose cells at level `L` are `2^L` texels wide, tinted per level and
-/// blended between the two levels around `lod` (a MIP pyramid of a
-/// checkerboard, filtered linearly between levels).
-fn shade_textured(tex: u8, scale: i32, a: i32, b: i32, lod: Lod) -> [u32; 3] {
-    // Texel coordinates (Q16.16 texels) at level 0.
-    let tu = ((i64::from(a) * i64::from(scale)) >> 16) * i64::from(TEX_SIZE);
-    let tv = ((i64::from(b) * i64::from(scale)) >> 16) * i64::from(TEX_SIZE);
-    let bits = lod.to_bits();
-    let level = (bits >> 8).clamp(0, i16::from(TEX_LEVELS) - 1) as u32;
-    let frac = (bits & 0xFF) as u32;
-    let at_level = |l: u32| -> [u32; 3] {
-        // Cells of 4·2^l texels, 16.16 → integer cell index.
-        let cu = (tu >> (16 + 2 + l)) as u32;
-        let cv = (tv >> (16 + 2 + l)) as u32;
-        let on = (cu ^ cv) & 1 == 1;
-        let tint = PALETTE[(l as usize + usize::from(tex)) % PALETTE.len()];
-        if on {
-            tint
+/// The level-0 texels of demo texture `tex` (0 or 1) as the host
+/// generator draws them: RGBA8888, `TEX_SIZE`² texels, row-major. Texture 0
+/// is a tile floor (4×4-texel cells in two tones with dark grout lines),
+/// texture 1 a brick wall (8×4-texel bricks, offset every other row).
+#[must_use]
+pub fn texture_level0(tex: u8, x: u32, y: u32) -> Texel {
+    let rgb: [u8; 3] = if tex == 0 {
+        if x.is_multiple_of(4) || y.is_multiple_of(4) {
+            [40, 36, 30]
+        } else if ((x / 4) ^ (y / 4)) & 1 == 0 {
+            [230, 200, 150]
         } else {
-            [tint[0] / 4, tint[1] / 4, tint[2] / 4]
+            [150, 90, 60]
+        }
+    } else {
+        let row = y / 4;
+        let shift = if row.is_multiple_of(2) { 0 } else { 4 };
+        let bx = (x + shift) / 8;
+        if y % 4 == 3 || (x + shift) % 8 == 7 {
+            [200, 200, 190]
+        } else {
+            let k = (bx * 7 + row * 3) % 5;
+            [150 + 15 * k as u8, 60 + 8 * k as u8, 40]
         }
     };
-    let c0 = at_level(level);
-    let c1 = at_level((level + 1).min(u32::from(TEX_LEVELS) - 1));
-    let mix = |x: u32, y: u32| (x * (256 - frac) + y * frac) >> 8;
-    [mix(c0[0], c1[0]), mix(c0[1], c1[1]), mix(c0[2], c1[2])]
+    u32::from_le_bytes([rgb[0], rgb[1], rgb[2], 255])
 }
 
-/// Per-level tints of the LOD visualisation.
-const PALETTE: [[u32; 3]; 7] = [
-    [250, 240, 220],
-    [230, 120, 60],
-    [90, 200, 90],
-    [80, 140, 240],
-    [220, 80, 200],
-    [240, 220, 60],
-    [120, 220, 220],
-];
+/// Geometry of both demo pyramids.
+#[must_use]
+pub fn tex_geometry() -> Option<Geometry> {
+    Geometry::new(TEX_SIZE, TEX_SIZE, TEX_LEVELS).ok()
+}
+
+/// Pyramid texels that differ between `stored` and a pyramid regenerated
+/// from its level 0 with [`raymip::mip::generate`] (run at start-up on
+/// each target: MIP generation must be bit-identical too).
+#[must_use]
+pub fn regenerate_mismatches(stored: &[Texel; TEX_LEN]) -> u32 {
+    let Some(g) = tex_geometry() else {
+        return u32::MAX;
+    };
+    let mut buf = [0; TEX_LEN];
+    let n0 = (TEX_SIZE * TEX_SIZE) as usize;
+    if let (Some(dst), Some(src)) = (buf.get_mut(..n0), stored.get(..n0)) {
+        dst.copy_from_slice(src);
+    }
+    if generate(&g, &mut buf).is_err() {
+        return u32::MAX;
+    }
+    buf.iter()
+        .zip(stored.iter())
+        .filter(|(a, b)| a != b)
+        .count() as u32
+}
 
 /// Sky colour (rays that leave the scene).
 const SKY: [u32; 3] = [30, 30, 60];
@@ -444,6 +482,8 @@ const SKY: [u32; 3] = [30, 30, 60];
 pub struct Renderer {
     table: [Log2Pb; TRIANGLES],
     spread: PixelSpread,
+    tex0: Sampler<Tex0Cache>,
+    tex1: Sampler<Pyramid<'static>>,
     /// Counters so far.
     pub counters: Counters,
 }
@@ -463,12 +503,19 @@ impl Renderer {
                 .zip(static_table().iter())
                 .filter(|(a, b)| a != b)
                 .count() as u32,
+            pyramid_mismatches: regenerate_mismatches(&TEX0)
+                .saturating_add(regenerate_mismatches(&TEX1)),
             ..Counters::default()
         };
+        let g = tex_geometry()?;
+        let p0 = Pyramid::new(g, &TEX0).ok()?;
+        let p1 = Pyramid::new(g, &TEX1).ok()?;
         Some(Self {
             // The static table is what the firmware uses (flash data).
             table: static_table(),
             spread,
+            tex0: Sampler::new(TexelCache::new(p0), Address::Wrap),
+            tex1: Sampler::new(p1, Address::Wrap),
             counters,
         })
     }
@@ -514,7 +561,17 @@ impl Renderer {
                                 c.lod_evals += 1;
                                 let lod = clamp_lod(lod, TEX_LEVELS);
                                 c.lod_sum += lod.to_bits() as u64;
-                                (shade_textured(tex, scale, hit.a, hit.b, lod), reflect)
+                                // Q16.16 · Q16.16 = Q32.32: the TexCoord bits.
+                                let u = TexCoord::from_bits(i64::from(hit.a) * i64::from(scale));
+                                let v = TexCoord::from_bits(i64::from(hit.b) * i64::from(scale));
+                                c.samples += 1;
+                                let t = if tex == 0 {
+                                    self.tex0.sample(u, v, lod, Mode::Trilinear)
+                                } else {
+                                    self.tex1.sample(u, v, lod, Mode::Trilinear)
+                                };
+                                let [r, g, b, _] = t.to_le_bytes();
+                                ([r, g, b].map(u32::from), reflect)
                             }
                             None => {
                                 c.untextured += 1;
@@ -589,6 +646,12 @@ impl Renderer {
                 sink(px, py, rgb);
             }
         }
+        let (a, b) = (self.tex0.stats(), self.tex1.stats());
+        self.counters.texels_fetched = a.fetched + b.fetched;
+        self.counters.texels_skipped = a.skipped + b.skipped;
+        let cache = self.tex0.source().stats();
+        self.counters.cache_hits = cache.hits;
+        self.counters.cache_misses = cache.misses;
     }
 }
 
