@@ -11,8 +11,12 @@
 #![no_main]
 #![forbid(unsafe_code)]
 
+use raymip_demo_firmware::stack;
 use raymip_demo_scene::{Fnv1a, HEIGHT, Renderer, WIDTH};
 use semihosting::{println, process};
+
+/// Stack bytes painted below the render's caller.
+const PAINT_BYTES: usize = 16 * 1024;
 
 #[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;
@@ -23,6 +27,13 @@ use riscv_rt::entry;
 fn main() -> ! {
     let code = run();
     process::exit(code)
+}
+
+/// The render behind a call boundary, so that its whole frame lies in the
+/// painted stack (an inlined callee's locals would sit in the caller's frame).
+#[inline(never)]
+fn render(r: &mut Renderer, h: &mut Fnv1a) {
+    r.render(|_, _, rgb| h.write(&rgb));
 }
 
 fn run() -> i32 {
@@ -37,7 +48,11 @@ fn run() -> i32 {
         return 1;
     };
     let mut h = Fnv1a::default();
-    r.render(|_, _, rgb| h.write(&rgb));
+    // Worst-case stack of the render (stack painting, see the lib docs).
+    let top = stack::sp();
+    stack::paint(top, PAINT_BYTES);
+    render(&mut r, &mut h);
+    let used = stack::used(top, PAINT_BYTES);
     println!(
         "checksum: {:#010x} ({}x{} RGB, FNV-1a)",
         h.finish(),
@@ -45,6 +60,7 @@ fn run() -> i32 {
         HEIGHT
     );
     println!("counters: {}", r.counters);
+    println!("stack: {used} bytes used by the render (painted {PAINT_BYTES})");
     if r.counters.table_mismatches != 0 || r.counters.pyramid_mismatches != 0 {
         return 1;
     }
