@@ -1,3 +1,4 @@
 //! Host harness for raymip: f64 references, scene loaders, renderer.
 #![warn(missing_docs)]
+pub mod aff;
 pub mod ppm;
