@@ -717,24 +717,28 @@ impl Parser {
                     })
                 })?;
             }
-            let check = |ids: &[usize], len: usize, what: &str| -> Result<(), AffError> {
+            let check = |ids: &[usize],
+                         len: usize,
+                         what: &str,
+                         plural: &str|
+             -> Result<(), AffError> {
                 match ids.iter().find(|&&v| v >= len) {
                     Some(bad) => Err(src.syntax(
                         line,
                         format!(
-                            "mesh triangle {} of {nt}: {what} index {bad} out of range (mesh has {len} {what}s)",
+                            "mesh triangle {} of {nt}: {what} index {bad} out of range (mesh has {len} {plural})",
                             i + 1
                         ),
                     )),
                     None => Ok(()),
                 }
             };
-            check(&idx[0..3], verts.len(), "vertex")?;
+            check(&idx[0..3], verts.len(), "vertex", "vertices")?;
             let p = [verts[idx[0]], verts[idx[1]], verts[idx[2]]];
             let mut next = 3;
             let n = match &normals {
                 Some(nv) => {
-                    check(&idx[next..next + 3], nv.len(), "normal")?;
+                    check(&idx[next..next + 3], nv.len(), "normal", "normals")?;
                     let n = [nv[idx[next]], nv[idx[next + 1]], nv[idx[next + 2]]];
                     next += 3;
                     Some(n)
@@ -743,7 +747,12 @@ impl Parser {
             };
             let (uv, tex) = match &uvs {
                 Some((tv, tex)) => {
-                    check(&idx[next..next + 3], tv.len(), "texture coordinate")?;
+                    check(
+                        &idx[next..next + 3],
+                        tv.len(),
+                        "texture coordinate",
+                        "texture coordinates",
+                    )?;
                     (
                         Some([tv[idx[next]], tv[idx[next + 1]], tv[idx[next + 2]]]),
                         Some(*tex),
