@@ -61,6 +61,16 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// Number of lines in the file, once [`next_token`](Self::next_token)
+    /// has returned `None` (cheaper than [`line_count`](Self::line_count)).
+    pub fn line_count_at_end(&self) -> usize {
+        match self.bytes.last() {
+            None => 0,
+            Some(b'\n') => self.line - 1,
+            Some(_) => self.line,
+        }
+    }
+
     fn skip_space(&mut self) {
         while let Some(&c) = self.bytes.get(self.pos) {
             if !is_space(c) {
@@ -115,9 +125,50 @@ impl<'a> Lexer<'a> {
     }
 }
 
+/// Exact powers of ten up to 10^22 (all representable in f64).
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// Fast path for plain decimals (`[+-]digits[.digits]`, at most 15 digits,
+/// no exponent): the mantissa (< 10^15 < 2^53) and 10^k (k ≤ 22) are exact
+/// in f64, so one IEEE division gives the correctly rounded value — the
+/// same as the full parser. `None` hands the token to the full parser.
+fn parse_plain_decimal(text: &[u8]) -> Option<f64> {
+    let (neg, digits) = match text.first()? {
+        b'-' => (true, &text[1..]),
+        b'+' => (false, &text[1..]),
+        _ => (false, text),
+    };
+    let (mut mant, mut ndig, mut frac, mut dot) = (0u64, 0usize, 0usize, false);
+    for &c in digits {
+        match c {
+            b'0'..=b'9' => {
+                mant = mant * 10 + u64::from(c - b'0');
+                ndig += 1;
+                frac += usize::from(dot);
+                if ndig > 15 {
+                    return None;
+                }
+            }
+            b'.' if !dot => dot = true,
+            _ => return None,
+        }
+    }
+    if ndig == 0 {
+        return None;
+    }
+    let v = mant as f64 / POW10[frac];
+    Some(if neg { -v } else { v })
+}
+
 /// Parses a C-style float (`3.`, `-2.18557e-07`, `1.85E-4`, `255`, `.5`).
 /// Rejects anything else, including `nan` and `inf`.
 pub(crate) fn parse_f64(text: &[u8]) -> Option<f64> {
+    if let Some(v) = parse_plain_decimal(text) {
+        return Some(v);
+    }
     // Only the characters a C float literal can hold; this also rejects
     // `inf`/`nan`, which str::parse would accept.
     if text.is_empty()
@@ -174,6 +225,10 @@ mod tests {
         let want: Vec<_> = want.iter().map(|(s, l)| (s.to_string(), *l)).collect();
         assert_eq!(out, want);
         assert_eq!(lx.line_count(), 3);
+        assert_eq!(lx.line_count_at_end(), 3);
+        let mut lx = Lexer::new(b"a\nb");
+        while lx.next_token().is_some() {}
+        assert_eq!((lx.line_count(), lx.line_count_at_end()), (2, 2));
     }
 
     #[test]
@@ -190,5 +245,52 @@ mod tests {
         assert_eq!(parse_usize(b"-1"), None);
         assert_eq!(parse_usize(b"4.0"), None);
         assert_eq!(parse_i64(b"-3"), Some(-3));
+    }
+
+    #[test]
+    fn fast_path_agrees_with_std_parser() {
+        let cases = [
+            "0",
+            "-0.0",
+            "3.",
+            ".5",
+            "0.1",
+            "0.3",
+            "-31.77348",
+            "0.000425",
+            "123456789012345",
+            "1234567890123456",
+            "0.1234567890123456789",
+            "4.6799998",
+            "-2.18557e-07",
+            "255",
+            "1e5",
+            "+7.25",
+            "0.0000000000000000000001",
+            "00000000000000001.5",
+        ];
+        for c in cases {
+            let want: f64 = c.parse().unwrap();
+            let got = parse_f64(c.as_bytes()).unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "{c}");
+        }
+        // Pseudo-random decimals of up to 15 digits.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let digits = (x % 1_000_000_000_000_000) as i64;
+            let frac = ((x >> 50) % 16) as usize;
+            let s = format!("{digits:016}");
+            let s = format!("{}.{}", &s[..16 - frac], &s[16 - frac..]);
+            let s = if x & 1 == 1 { format!("-{s}") } else { s };
+            let want: f64 = s.parse().unwrap();
+            assert_eq!(
+                parse_f64(s.as_bytes()).unwrap().to_bits(),
+                want.to_bits(),
+                "{s}"
+            );
+        }
     }
 }

@@ -248,10 +248,11 @@ impl Parser {
             path,
             lx: Lexer::new(bytes),
         };
-        self.stats.lines += src.lx.line_count();
         while let Some(t) = src.lx.next_token() {
             self.command(&mut src, t)?;
         }
+        // After the last token the lexer stands at the end of the file.
+        self.stats.lines += src.lx.line_count_at_end();
         Ok(())
     }
 
