@@ -51,18 +51,8 @@ impl<'a> Lexer<'a> {
         self.line
     }
 
-    /// Number of lines in the file (counting a last line without newline).
-    pub fn line_count(&self) -> usize {
-        let nl = self.bytes.iter().filter(|&&c| c == b'\n').count();
-        if self.bytes.last().is_some_and(|&c| c != b'\n') {
-            nl + 1
-        } else {
-            nl
-        }
-    }
-
     /// Number of lines in the file, once [`next_token`](Self::next_token)
-    /// has returned `None` (cheaper than [`line_count`](Self::line_count)).
+    /// has returned `None` (a last line without newline counts).
     pub fn line_count_at_end(&self) -> usize {
         match self.bytes.last() {
             None => 0,
@@ -224,11 +214,13 @@ mod tests {
         let want = [("xs", 1), ("1", 1), ("2", 1), ("{", 1), ("}", 3), ("x", 3)];
         let want: Vec<_> = want.iter().map(|(s, l)| (s.to_string(), *l)).collect();
         assert_eq!(out, want);
-        assert_eq!(lx.line_count(), 3);
         assert_eq!(lx.line_count_at_end(), 3);
         let mut lx = Lexer::new(b"a\nb");
         while lx.next_token().is_some() {}
-        assert_eq!((lx.line_count(), lx.line_count_at_end()), (2, 2));
+        assert_eq!(lx.line_count_at_end(), 2);
+        let mut lx = Lexer::new(b"");
+        assert!(lx.next_token().is_none());
+        assert_eq!(lx.line_count_at_end(), 0);
     }
 
     #[test]
