@@ -76,7 +76,6 @@ pub(crate) struct Parser {
     tris: Vec<RawTri>,
     tracks: HashMap<Rc<[u8]>, Track>,
     view: Option<Camera>,
-    view_at: Option<(PathBuf, usize)>,
     background: V3,
     ambient: V3,
     lights: Vec<RawLight>,
@@ -205,7 +204,6 @@ impl Parser {
             tris: Vec::new(),
             tracks: HashMap::new(),
             view: None,
-            view_at: None,
             background: [0.0; 3],
             ambient: [1.0; 3],
             lights: Vec::new(),
@@ -438,7 +436,6 @@ impl Parser {
             width,
             height,
         });
-        self.view_at = Some((src.path.to_path_buf(), t.line));
         Ok(())
     }
 
@@ -969,7 +966,6 @@ impl Parser {
                 color: l.color,
             });
         }
-        let _ = &self.view_at;
         Ok(Scene {
             camera,
             background: self.background,
