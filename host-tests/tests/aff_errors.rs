@@ -111,6 +111,16 @@ fn wrong_polygon_and_triangle_counts() {
 }
 
 #[test]
+fn huge_counts_are_errors_not_allocation_failures() {
+    let top = format!("{VIEW}m\nvertices 999999999999999999\n0 0 0\n");
+    let (msg, _) = load_err("huge", &[("top.aff", top.as_bytes())]);
+    assert_at(&msg, "top.aff", 11, "mesh vertex 2 of 999999999999999999");
+    let top = format!("{VIEW}p 99999999999\n");
+    let (msg, _) = load_err("hugep", &[("top.aff", top.as_bytes())]);
+    assert_at(&msg, "top.aff", 9, "unexpected end of file");
+}
+
+#[test]
 fn bad_number() {
     let top = format!("{VIEW}l 1 2 3x\n");
     let (msg, e) = load_err("num", &[("top.aff", top.as_bytes())]);

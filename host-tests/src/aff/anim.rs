@@ -106,6 +106,7 @@ impl Affine {
     }
 
     /// Transforms a direction (no translation).
+    #[cfg(test)]
     pub fn vector(&self, v: V3) -> V3 {
         let m = &self.0;
         [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])

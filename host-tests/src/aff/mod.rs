@@ -47,7 +47,6 @@ mod parser;
 
 use std::path::{Path, PathBuf};
 
-pub use anim::{Affine, RotChannel, RotKey, Tcb, Track, VecKey, eval_vec, segment};
 pub use error::{AffError, AffErrorKind};
 pub use parser::{DEFAULT_MATERIAL, MAX_INCLUDE_DEPTH};
 

@@ -154,6 +154,13 @@ impl<'a> Src<'a> {
     }
 }
 
+/// Capacity to reserve for `n` items announced by a count in the file: a
+/// malformed huge count must give an "unexpected end of file" error, not an
+/// allocation failure, so at most 2^16 items are reserved up front.
+fn reserve(n: usize) -> usize {
+    n.min(1 << 16)
+}
+
 fn bad_number(path: &Path, t: &Token<'_>, what: &str) -> AffError {
     AffError::new(
         path,
@@ -560,8 +567,8 @@ impl Parser {
             let line = nt.map_or(src.lx.line(), |t| t.line);
             return Err(src.syntax(line, format!("polygon with {n} vertices (need ≥ 3)")));
         }
-        let mut p = Vec::with_capacity(n);
-        let mut nn = Vec::with_capacity(n);
+        let mut p = Vec::with_capacity(reserve(n));
+        let mut nn = Vec::with_capacity(reserve(n));
         for i in 0..n {
             let ctx = || format!("polygon vertex {} of {n}", i + 1);
             p.push(src.v3("vertex coordinate").map_err(|e| context(e, ctx))?);
@@ -606,7 +613,7 @@ impl Parser {
         if n == 0 {
             return Err(src.syntax(src.lx.line(), "`tpa` with 0 key poses".into()));
         }
-        let mut keys: Vec<(f64, [V3; 3], [V3; 3])> = Vec::with_capacity(n);
+        let mut keys: Vec<(f64, [V3; 3], [V3; 3])> = Vec::with_capacity(reserve(n));
         for k in 0..n {
             let ctx = || format!("`tpa` key {} of {n}", k + 1);
             let time = src.f64("key time").map_err(|e| context(e, ctx))?;
@@ -645,7 +652,7 @@ impl Parser {
     fn mesh(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
         src.keyword("vertices")?;
         let nv = src.count("vertex count")?;
-        let mut verts = Vec::with_capacity(nv);
+        let mut verts = Vec::with_capacity(reserve(nv));
         for i in 0..nv {
             verts.push(
                 src.v3("vertex coordinate")
@@ -656,7 +663,7 @@ impl Parser {
         let mut normals = None;
         if kw.text == b"normals" {
             let nn = src.count("normal count")?;
-            let mut v = Vec::with_capacity(nn);
+            let mut v = Vec::with_capacity(reserve(nn));
             for i in 0..nn {
                 v.push(
                     src.v3("normal component")
@@ -671,7 +678,7 @@ impl Parser {
             let nt = src.count("texture coordinate count")?;
             let name = src.name("texture name")?;
             let tex = self.texture(src, &name)?;
-            let mut v = Vec::with_capacity(nt);
+            let mut v = Vec::with_capacity(reserve(nt));
             for i in 0..nt {
                 let ctx = || format!("mesh texture coordinate {} of {nt}", i + 1);
                 v.push([
@@ -801,7 +808,7 @@ impl Parser {
             };
             match chan {
                 b"transl" | b"scale" => {
-                    let mut keys = Vec::with_capacity(n);
+                    let mut keys = Vec::with_capacity(reserve(n));
                     for k in 0..n {
                         let c = ctx(k);
                         let time = src.f64("key time").map_err(|e| context(e, c))?;
@@ -822,7 +829,7 @@ impl Parser {
                     }
                 }
                 b"rot" => {
-                    let mut keys = Vec::with_capacity(n);
+                    let mut keys = Vec::with_capacity(reserve(n));
                     for k in 0..n {
                         let c = ctx(k);
                         let time = src.f64("key time").map_err(|e| context(e, c))?;
@@ -846,7 +853,7 @@ impl Parser {
                     }
                 }
                 b"visibility" => {
-                    let mut keys = Vec::with_capacity(n);
+                    let mut keys = Vec::with_capacity(reserve(n));
                     for k in 0..n {
                         let c = ctx(k);
                         let time = src.f64("key time").map_err(|e| context(e, c))?;
