@@ -334,3 +334,66 @@ fn top_level_detection() {
     let e = aff::find_top_level(&d).unwrap_err().to_string();
     assert!(e.contains("cannot read"), "{e}");
 }
+
+mod mutations {
+    use super::*;
+    use proptest::prelude::*;
+
+    const SCENE: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n\
+fm 0.1 0.1 0.1 0.5 0.5 0.5 0 0 0 10 0 1\nxs 1 1 1 0 1 0 30 0 0 0 {\nx anim {\n\
+m\nvertices 3\n0 0 0\n1 0 0\n0 1 0\nnormals 1\n0 0 1\ntexturecoords 3 t.ppm\n0 0\n1 0\n0 1\n\
+triangles 1\n0 1 2 0 0 0 0 1 2\n}\n}\np 4 0 0 0 1 0 0 1 1 0 0 1 0\ntpa 2 0 0 0 0 0 0 1 1 0 0 0 0 1 0 1 0 0 0 1\n\
+1 0 0 0 0 0 1 1 0 0 0 0 1 0 1 0 0 0 1\n\
+k anim {\ntransl 4\n0 0 0 0 0 0 0\n1 1 0 0 0 0 0\n2 2 0 0 0 0 0\n3 3 0 0 0 0 0\n\
+rot 4\n0 0 1 0 0 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 180 0 0 0\n3 0 1 0 270 0 0 0\n}\n";
+
+    #[test]
+    fn unedited_scene_loads() {
+        let d = dir("mutations-base");
+        std::fs::write(d.join("t.ppm"), ppm()).unwrap();
+        let top = write(&d, "top.aff", SCENE.as_bytes());
+        let s = aff::load(&top, 1.5).unwrap_or_else(|e| panic!("{e}"));
+        // mesh 1 + quad 2 + tpa 1
+        assert_eq!(s.triangles.len(), 4);
+        std::fs::remove_dir_all(&d).ok();
+    }
+
+    const ALPHABET: &[u8] = b" \n0123456789.-e{}%#xmkvpi";
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+        /// Random byte edits of a valid scene load or fail with a located
+        /// message; never panic.
+        #[test]
+        fn edited_scenes_never_panic(
+            edits in proptest::collection::vec((0usize..2000, 0usize..ALPHABET.len(), 0u8..3), 1..6),
+            time in -2.0f64..5.0,
+        ) {
+            let d = dir("mutations");
+            std::fs::write(d.join("t.ppm"), ppm()).unwrap();
+            let mut bytes = SCENE.as_bytes().to_vec();
+            for (pos, ch, op) in edits {
+                let pos = pos % (bytes.len() + 1);
+                match op {
+                    0 if pos < bytes.len() => { bytes[pos] = ALPHABET[ch]; }
+                    1 => bytes.insert(pos, ALPHABET[ch]),
+                    _ if pos < bytes.len() => { bytes.remove(pos); }
+                    _ => {}
+                }
+            }
+            let top = d.join("top.aff");
+            std::fs::write(&top, &bytes).unwrap();
+            match aff::load(&top, time) {
+                Ok(s) => {
+                    for t in &s.triangles {
+                        prop_assert!(t.p.iter().flatten().all(|v| v.is_finite()));
+                    }
+                }
+                Err(e) => {
+                    let msg = e.to_string();
+                    prop_assert!(msg.contains("top.aff") || msg.contains("t.ppm"), "{}", msg);
+                }
+            }
+        }
+    }
+}

@@ -33,7 +33,8 @@
 //! expanding includes and triangulating, **before** zero-area triangles are
 //! dropped: [`LoadStats::triangles_read`] and [`LoadStats::textured_read`].
 //! `Scene::triangles.len()` is `triangles_read − skipped_degenerate −
-//! hidden` (kitchen 110,520, robots 71,580 at [`DEFAULT_TIME`]).
+//! hidden − skipped_non_finite` (kitchen 110,520, robots 71,580 at
+//! [`DEFAULT_TIME`]; hidden and non-finite are 0 there).
 //!
 //! Performance: tokens are slices of the file bytes (no allocation per
 //! token), each distinct file is read from disk once however often it is
@@ -180,6 +181,9 @@ pub struct LoadStats {
     pub skipped_degenerate_textured: usize,
     /// Textured triangles read whose UV area is exactly zero (kept).
     pub zero_uv_area: usize,
+    /// Triangles dropped because a world coordinate overflowed to ±inf
+    /// (absurd scales only; 0 in BART).
+    pub skipped_non_finite: usize,
     /// Triangles hidden by a visibility channel at the load time.
     pub hidden: usize,
     /// Kept triangles whose normals were dropped (singular transform or a

@@ -434,6 +434,12 @@ impl Parser {
         if width == 0 || height == 0 {
             return Err(src.syntax(kw.line, format!("resolution {w}x{h} is empty")));
         }
+        if from == at || up == [0.0; 3] {
+            return Err(src.syntax(
+                t.line,
+                "degenerate view: `from` equals `at` or `up` is zero".into(),
+            ));
+        }
         self.view = Some(Camera {
             from,
             at,
@@ -921,6 +927,11 @@ impl Parser {
                 continue;
             }
             let p = r.p.map(|v| m.point(v));
+            if !p.iter().flatten().all(|v| v.is_finite()) {
+                // Only reachable with absurd scales (e.g. 1e300 · 1e300).
+                self.stats.skipped_non_finite += 1;
+                continue;
+            }
             let n = match (r.n, &normal_mats[r.node as usize]) {
                 (Some(n), Some(nm)) => {
                     let w = n.map(|v| normalize([0, 1, 2].map(|i| dot(nm[i], v))));
@@ -956,6 +967,17 @@ impl Parser {
         if let Some(cam) = self.tracks.get(&b"camera"[..]) {
             self.stats.camera_from_track = true;
             apply_camera_track(&mut camera, cam, t);
+        }
+        let finite = |v: [f64; 3]| v.iter().all(|x| x.is_finite());
+        if !(finite(camera.from) && finite(camera.at) && finite(camera.up)) {
+            return Err(AffError::new(
+                top,
+                0,
+                AffErrorKind::Syntax(format!(
+                    "camera at time {t} is not finite (from {:?}, at {:?}, up {:?})",
+                    camera.from, camera.at, camera.up
+                )),
+            ));
         }
         let mut lights = Vec::with_capacity(self.lights.len());
         for l in &self.lights {
