@@ -202,19 +202,27 @@ fn vpart(q: Quat) -> V3 {
     [q[1], q[2], q[3]]
 }
 
-/// `log(w, v) = (0, φ v/|v|)`, φ = acos w; `(0, v)` unchanged when
-/// `|w| ≥ 1` or `sin φ < 1e-3` (or `v = 0`).
+/// `log(w, v) = (0, φ · v / sin φ)`, φ = acos w; `(0, v)` unchanged when
+/// `|w| ≥ 1` or `sin φ < 1e-3`.
+///
+/// For a unit quaternion `sin φ = |v|`, which is how FORMAT.md §6.3 writes
+/// it (`φ v/|v|`). The key quaternions with non-unit axes are not unit,
+/// and there the two differ: dividing by `sin φ` reproduces the reference's
+/// NaN window on robots `grip_rot2` exactly (w > 1 for t in [5.888, 6.0)
+/// and (42.0, 42.182], as FORMAT.md reports), dividing by `|v|` does not
+/// ([5.911, 6.0) and (42.0, 42.143]); so the reference divides by `sin φ`
+/// (test `grip_rot2_window_where_w_exceeds_one_matches_reference`).
 fn qlog(q: Quat) -> Quat {
     let v = vpart(q);
     if q[0].abs() >= 1.0 {
         return [0.0, v[0], v[1], v[2]];
     }
     let phi = q[0].acos();
-    let len = norm(v);
-    if phi.sin() < 1e-3 || len == 0.0 {
+    let sin_phi = phi.sin();
+    if sin_phi < 1e-3 {
         return [0.0, v[0], v[1], v[2]];
     }
-    let s = phi / len;
+    let s = phi / sin_phi;
     [0.0, v[0] * s, v[1] * s, v[2] * s]
 }
 
@@ -671,6 +679,48 @@ mod tests {
             for j in 0..3 {
                 assert!((norm(m.column(j)) - 1.0).abs() < 1e-9);
             }
+        }
+    }
+
+    /// Robots `grip_rot2` (Robot2.aff): axis length 1.077, 90° steps. FORMAT.md
+    /// §6.3 reports that the reference's interpolated `w` exceeds 1 (acos →
+    /// NaN) exactly for t in [5.888, 6.0) and (42.0, 42.182]: the spline
+    /// here must put the same window there (to the 3 printed digits), and
+    /// the clamp must turn it into the identity.
+    #[test]
+    fn grip_rot2_window_where_w_exceeds_one_matches_reference() {
+        let times = [
+            0., 0., 0.75, 1.5, 2.25, 3., 3.75, 4.5, 5.25, 6., 42., 43.25, 44.5, 45.75, 47., 48.25,
+            49.5, 50.75, 52., 52.,
+        ];
+        let degs = [
+            0., 0., 90., 180., 270., 360., 450., 540., 630., 720., 0., 90., 180., 270., 360., 450.,
+            540., 630., 720., 720.,
+        ];
+        let keys: Vec<RotKey> = times
+            .iter()
+            .zip(degs)
+            .map(|(&t, d)| rk(t, [0.76, -0.62, -0.445], d))
+            .collect();
+        let ch = RotChannel::new(&keys);
+        let over = |t: f64| ch.eval_quat(t)[0] > 1.0;
+        // Scan in steps of 1e-4 and find the window edges; the reference's
+        // are given to 1e-3 (first 5.888, last 42.182).
+        let first = (58_000..60_000)
+            .map(|i| i as f64 * 1e-4)
+            .find(|&t| over(t))
+            .unwrap();
+        assert!((5.887..=5.888).contains(&first), "{first}");
+        assert!(over(5.9999) && !over(6.0));
+        let last = (420_001..423_000)
+            .map(|i| i as f64 * 1e-4)
+            .filter(|&t| over(t))
+            .last()
+            .unwrap();
+        assert!((42.182..42.183).contains(&last), "{last}");
+        assert!(over(42.0001));
+        for t in [5.9, 5.95, 42.1] {
+            assert_eq!(ch.eval(t), Affine::IDENTITY, "t = {t}");
         }
     }
 
