@@ -20,7 +20,10 @@
 //! * **CRLF and Latin-1 bytes** — the lexer works on bytes;
 //! * **backwards and repeated key times** — first-match segment rule;
 //! * **non-unit rotation axes** — used as written in the quaternion spline,
-//!   `w` clamped before `acos` (no NaN at robots `grip_rot2`);
+//!   `w` clamped before `acos` (no NaN at robots `grip_rot2`); the
+//!   quaternion log divides by `sin φ` as the reference does (FORMAT.md
+//!   writes `|v|`, which differs for non-unit quaternions; the documented
+//!   NaN window of the reference is reproduced only with `sin φ`);
 //! * **unwelded meshes** — nothing assumes shared vertices;
 //! * **zero-area triangles** — dropped and counted (see [`LoadStats`]);
 //! * non-uniform `xs` scales — normals use the inverse transpose;
@@ -36,9 +39,12 @@
 //! hidden − skipped_non_finite` (kitchen 110,520, robots 71,580 at
 //! [`DEFAULT_TIME`]; hidden and non-finite are 0 there).
 //!
-//! Performance: tokens are slices of the file bytes (no allocation per
-//! token), each distinct file is read from disk once however often it is
-//! included.
+//! # Performance
+//! Tokens are slices of the file bytes (no allocation per token), plain
+//! decimals take an exact fast path, each distinct file is read from disk
+//! once however often it is included, each texture once however often it
+//! is named. Release build on the shared 2-vCPU EPYC (load average ≈ 5):
+//! kitchen ≈ 80–130 ms, robots ≈ 100–145 ms per load, textures included.
 
 mod anim;
 mod error;
