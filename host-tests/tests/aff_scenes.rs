@@ -185,3 +185,38 @@ fn primitives_before_any_material_use_the_default() {
     assert!(s.stats.used_default_material);
     assert_eq!(s.materials[0], aff::DEFAULT_MATERIAL);
 }
+
+#[test]
+fn classic_material_pp_and_ttp() {
+    // `f R G B Kd Ks shine T ior`: diffuse = Kd·RGB, specular = Ks white,
+    // ambient = diffuse (this loader's reading), ior −1 → 1.
+    // `pp 4`: quad with normals, fan → 2 triangles; `ttp`: textured
+    // triangle with normals (here deliberately non-unit: normalised).
+    let top = format!(
+        "{VIEW}f 1 0.5 0 0.8 0.3 20 0.1 -1\n\
+pp 4 0 0 0 0 0 1  1 0 0 0 0 1  1 1 0 0 0 1  0 1 0 0 0 1\n\
+ttp t.ppm 0 0 0 0 0 2 0.1 0.2  1 0 0 0 0 2 0.3 0.4  0 1 0 0 0 2 0.5 0.6\n"
+    );
+    let d: PathBuf = std::env::temp_dir().join(format!("raymip-affs-{}-ttp", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let mut ppm = b"P6 1 1 255\n".to_vec();
+    ppm.extend([9, 9, 9]);
+    std::fs::write(d.join("t.ppm"), ppm).unwrap();
+    std::fs::write(d.join("top.aff"), top).unwrap();
+    let s = aff::load(&d.join("top.aff"), 0.0).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&d).ok();
+    let m = s.materials[0];
+    assert_eq!(m.diffuse, [0.8, 0.4, 0.0]);
+    assert_eq!(m.ambient, m.diffuse);
+    assert_eq!(m.specular, [0.3; 3]);
+    assert_eq!((m.shine, m.transmission, m.ior), (20.0, [0.1; 3], 1.0));
+    assert_eq!(s.triangles.len(), 3);
+    assert_eq!(
+        s.triangles[1].p,
+        [[0.0; 3], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
+    );
+    let t = s.triangles[2];
+    assert_eq!(t.n.unwrap()[0], [0.0, 0.0, 1.0]);
+    assert_eq!(t.uv.unwrap(), [[0.1, 0.2], [0.3, 0.4], [0.5, 0.6]]);
+    assert_eq!(t.texture, Some(0));
+}
