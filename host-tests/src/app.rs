@@ -1,0 +1,195 @@
+//! The CLI commands (`render`, `compare`, `table1`) as library functions.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde_json::json;
+
+use crate::builtin;
+use crate::compare::{compare, markdown};
+use crate::output::{level_image, write_json, write_png, write_text};
+use crate::render::{Method, Options, Prepared, render};
+use crate::scene::Scene;
+
+/// Loads `builtin:NAME` or an `.aff` file at animation time `time`.
+pub fn load_scene(spec: &str, time: f64) -> Result<Scene, String> {
+    if let Some(name) = spec.strip_prefix("builtin:") {
+        return builtin::by_name(name);
+    }
+    load_aff(Path::new(spec), time)
+}
+
+/// Loads an AFF scene file.
+pub fn load_aff(path: &Path, time: f64) -> Result<Scene, String> {
+    let _ = time;
+    Err(format!(
+        "{}: the AFF loader is not available in this build",
+        path.display()
+    ))
+}
+
+/// Parses `WxH`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size `{s}`: expected WxH, e.g. 800x480"))?;
+    let p = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| n > 0 && n <= 16384)
+            .ok_or_else(|| format!("size `{s}`: `{t}` is not a number in 1..=16384"))
+    };
+    Ok((p(w)?, p(h)?))
+}
+
+fn scene_label(spec: &str) -> String {
+    spec.strip_prefix("builtin:").map_or_else(
+        || {
+            Path::new(spec)
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+        },
+        str::to_string,
+    )
+}
+
+/// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
+pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let t0 = Instant::now();
+    let scene = load_scene(spec, time)?;
+    let load_s = t0.elapsed().as_secs_f64();
+    let size = opts.size.or_else(|| {
+        spec.starts_with("builtin:")
+            .then_some(builtin::DEFAULT_SIZE)
+    });
+    let prep = Prepared::new(scene, size)?;
+    let img = render(&prep, opts);
+    let total_s = t0.elapsed().as_secs_f64();
+    write_png(
+        &out.join("image.png"),
+        img.width,
+        img.height,
+        &img.to_rgb8(),
+    )?;
+    write_png(
+        &out.join("levels.png"),
+        img.width,
+        img.height,
+        &level_image(&img.lod),
+    )?;
+    let c = &img.counters;
+    let report = json!({
+        "scene": spec, "time": time, "method": opts.method, "precision": opts.precision,
+        "width": img.width, "height": img.height, "bounces": opts.bounces,
+        "spp": if opts.method == Method::Truth { opts.spp } else { 1 },
+        "triangles": prep.scene.triangles.len(), "textured_triangles": prep.scene.textured_count(),
+        "textures": prep.textures.iter().map(|t| json!({"name": t.name, "width": t.width, "height": t.height, "levels": t.levels})).collect::<Vec<_>>(),
+        "threads": rayon::current_num_threads(),
+        "timings_s": { "load": load_s, "bvh": prep.times.bvh_s, "pyramids": prep.times.pyramids_s, "table": prep.times.table_s, "render": img.render_s, "total": total_s },
+        "counters": c, "max_depth": c.max_depth(),
+    });
+    write_json(&out.join("report.json"), &report)?;
+    let tex = c.textured_hits.max(1) as f64;
+    let mut md = format!(
+        "# raymip render: {}\n\n| | |\n|---|---|\n| method / precision | {} / {} |\n| size | {}×{} |\n| bounces (max) | {} |\n| triangles (textured) | {} ({}) |\n| threads | {} |\n| load / BVH / pyramids / table (s) | {:.3} / {:.3} / {:.3} / {:.3} |\n| render (s) | {:.3} |\n| total (s) | {:.3} |\n| paths / rays / hits | {} / {} / {} |\n| textured hits / untextured skipped | {} / {} |\n| bounces pushed / stack full | {} / {} |\n| deepest hit (bounces) | {} |\n| saturations | {} |\n| shadow rays | {} |\n| texels fetched / skipped | {} / {} |\n\nTextured hits per mip level:\n\n| level | share |\n|---|---|\n",
+        spec,
+        opts.method.name(),
+        opts.precision.name(),
+        img.width,
+        img.height,
+        opts.bounces,
+        prep.scene.triangles.len(),
+        prep.scene.textured_count(),
+        rayon::current_num_threads(),
+        load_s,
+        prep.times.bvh_s,
+        prep.times.pyramids_s,
+        prep.times.table_s,
+        img.render_s,
+        total_s,
+        c.paths,
+        c.rays,
+        c.hits,
+        c.textured_hits,
+        c.untextured_skipped,
+        c.bounces,
+        c.stack_full,
+        c.max_depth(),
+        c.saturations,
+        c.shadow_rays,
+        c.fetched,
+        c.fetch_skipped
+    );
+    for (l, n) in c.level_hist.iter().enumerate().filter(|(_, n)| **n > 0) {
+        md += &format!("| {l} | {:.1} % |\n", 100.0 * *n as f64 / tex);
+    }
+    md += "\nHits per path depth: ";
+    md += &c
+        .depth_hist
+        .iter()
+        .map(u64::to_string)
+        .collect::<Vec<_>>()
+        .join(" / ");
+    md += "\n";
+    write_text(&out.join("report.md"), &md)?;
+    println!(
+        "{} {} {}: {}x{} in {:.2} s (render {:.2} s), {} textured hits, deepest path {} bounces -> {}",
+        scene_label(spec),
+        opts.method.name(),
+        opts.precision.name(),
+        img.width,
+        img.height,
+        total_s,
+        img.render_s,
+        c.textured_hits,
+        c.max_depth(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// `compare`: truth and every method in both precisions; writes images,
+/// heat-maps and `compare.json` / `compare.md` into `out`.
+pub fn cmd_compare(
+    spec: &str,
+    time: f64,
+    opts: &Options,
+    methods: &[Method],
+    out: &Path,
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let scene = load_scene(spec, time)?;
+    let size = opts.size.or_else(|| {
+        spec.starts_with("builtin:")
+            .then_some(builtin::DEFAULT_SIZE)
+    });
+    let prep = Prepared::new(scene, size)?;
+    let c = compare(&prep, opts, methods, Some(out))?;
+    let md = format!(
+        "# raymip compare: {spec} ({}×{}, {} bounces)\n\n{}",
+        prep.width,
+        prep.height,
+        opts.bounces,
+        markdown(&c)
+    );
+    write_text(&out.join("compare.md"), &md)?;
+    write_json(
+        &out.join("compare.json"),
+        &json!({"scene": spec, "width": prep.width, "height": prep.height, "bounces": opts.bounces, "comparison": c}),
+    )?;
+    println!("{md}");
+    Ok(())
+}
+
+/// The default BART folder: `../shared/scenes/bart` relative to the current
+/// directory, else relative to the repository root.
+#[must_use]
+pub fn default_bart_dir() -> PathBuf {
+    let cwd = PathBuf::from("../shared/scenes/bart");
+    if cwd.is_dir() {
+        return cwd;
+    }
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/bart")
+}

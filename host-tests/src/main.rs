@@ -1,0 +1,112 @@
+//! `raymip-host`: render scenes through the firmware texture path, compare
+//! against float references and ground truth, reproduce Table I.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use raymip_host::app::{cmd_compare, cmd_render, parse_size};
+use raymip_host::render::{Method, Options, Precision};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raymip-host",
+    version,
+    about = "Host harness for the raymip texture unit"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Debug)]
+struct RenderArgs {
+    /// `builtin:hall|mirrors|glass` or a path to an `.aff` file.
+    #[arg(long)]
+    scene: String,
+    /// Image size WxH (default: 800x480 for built-in scenes, the camera's for AFF).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Animation time (AFF scenes).
+    #[arg(long, default_value_t = 0.0)]
+    time: f64,
+    /// Maximum reflection/refraction bounces.
+    #[arg(long, default_value_t = 10)]
+    bounces: u8,
+    /// Samples per pixel of the ground truth.
+    #[arg(long, default_value_t = 256)]
+    spp: u32,
+    /// Output directory.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render one image: image.png, levels.png (mip level per pixel), report.json/md.
+    Render {
+        #[command(flatten)]
+        args: RenderArgs,
+        /// Texture LOD method.
+        #[arg(long, value_enum, default_value_t = Method::Table)]
+        method: Method,
+        /// Fixed point (firmware) or f64 reference.
+        #[arg(long, value_enum, default_value_t = Precision::Fixed)]
+        precision: Precision,
+    },
+    /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
+    Compare {
+        #[command(flatten)]
+        args: RenderArgs,
+        /// Methods to compare (truth is always rendered).
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "table,cone,raydiff,mip0"
+        )]
+        methods: Vec<Method>,
+    },
+}
+
+fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
+    Options {
+        method,
+        precision,
+        size: a.size,
+        bounces: a.bounces,
+        spp: a.spp,
+        record_blocks: false,
+        progress: true,
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let r = match &cli.command {
+        Command::Render {
+            args,
+            method,
+            precision,
+        } => cmd_render(
+            &args.scene,
+            args.time,
+            &options(args, *method, *precision),
+            &args.out,
+        ),
+        Command::Compare { args, methods } => cmd_compare(
+            &args.scene,
+            args.time,
+            &options(args, Method::Table, Precision::Fixed),
+            methods,
+            &args.out,
+        ),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
