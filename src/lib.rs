@@ -19,6 +19,10 @@
 //! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
 //! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
 //! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
+//! | MIP pyramid in caller memory (set-up) | [`mip`] | level offset + texel index |
+//! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
+//! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
+//! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
 //!
 //! ```
 //! use fixed::types::U32F32;
@@ -51,6 +55,42 @@
 //! assert_eq!(table_lod(next.pl, table.get(2).ok_or("index")?), None);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! The texture half: a pyramid in a caller-provided buffer sized at compile
+//! time by [`mip::pyramid_len`], generated in place, then sampled per hit
+//! with a fixed-point [`lod::Lod`]:
+//!
+//! ```
+//! use raymip::filter::{Address, Mode, Sampler, TexCoord};
+//! use raymip::lod::Lod;
+//! use raymip::mip::{generate, pyramid_len, Geometry, Pyramid, Texel};
+//!
+//! const W: u32 = 8;
+//! const H: u32 = 8;
+//! const LEVELS: u8 = 4; // 8×8, 4×4, 2×2, 1×1
+//! let mut texels: [Texel; pyramid_len(W, H, LEVELS)] = [0; pyramid_len(W, H, LEVELS)];
+//! // Level 0: a black/white checkerboard of single texels (alpha 255).
+//! for y in 0..H {
+//!     for x in 0..W {
+//!         let v = if (x + y) % 2 == 0 { 255 } else { 0 };
+//!         texels[(y * W + x) as usize] = u32::from_le_bytes([v, v, v, 255]);
+//!     }
+//! }
+//! let geometry = Geometry::new(W, H, LEVELS)?;
+//! generate(&geometry, &mut texels)?; // every coarser level is mid-gray
+//! let mut sampler = Sampler::new(Pyramid::new(geometry, &texels)?, Address::Wrap);
+//!
+//! // Centre of texel (0, 0) at lod 0: exactly that texel.
+//! let c = TexCoord::from_num(0.5 / 8.0);
+//! assert_eq!(sampler.sample(c, c, Lod::ZERO, Mode::Trilinear), 0xFFFF_FFFF);
+//! // Halfway to level 1 (lod 0.5): white blended with gray 128 → 191.5 → 192.
+//! let t = sampler.sample(c, c, Lod::from_num(0.5), Mode::Trilinear);
+//! assert_eq!(t.to_le_bytes(), [192, 192, 192, 255]);
+//! // The first sample needed only one level; the second read two.
+//! assert_eq!(sampler.stats().fetched, 4 + 8);
+//! assert_eq!(sampler.stats().skipped, 4);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(
@@ -61,7 +101,11 @@
     rustdoc::broken_intra_doc_links
 )]
 
+pub mod bilerp;
+pub mod cache;
+pub mod filter;
 pub mod lod;
 pub mod log2;
+pub mod mip;
 pub mod raystack;
 pub mod table;

@@ -80,12 +80,14 @@ pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
 }
 
 /// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
-/// (`levels = 0` is treated as 1).
+/// (`levels = 0` is treated as 1). [`Lod`] cannot exceed 127 + 255/256, so
+/// `levels > 128` behaves as 128 (top level 127). Never panics.
 #[inline]
 #[must_use]
 pub fn clamp_lod(lod: Lod, levels: u8) -> Lod {
-    let top = Lod::from_bits(i16::from(levels.saturating_sub(1)) << 8);
-    lod.clamp(Lod::ZERO, top)
+    // levels − 1 ≤ 127 keeps the shift inside i16 (127 << 8 = 32512).
+    let top = Lod::from_bits(i16::from(levels.saturating_sub(1).min(127)) << 8);
+    lod.max(Lod::ZERO).min(top)
 }
 
 /// Convenience: a table lod clamped to a texture's stored levels.
@@ -199,6 +201,11 @@ mod tests {
         assert_eq!(clamp_lod(Lod::MAX, 5), Lod::from_num(4));
         assert_eq!(clamp_lod(Lod::MAX, 0), Lod::ZERO);
         assert_eq!(clamp_lod(Lod::from_num(2.5), 5), Lod::from_num(2.5));
+        // Level counts past what Lod can name: top level 127, no panic.
+        assert_eq!(clamp_lod(Lod::MAX, 129), Lod::from_num(127));
+        assert_eq!(clamp_lod(Lod::MAX, 255), Lod::from_num(127));
+        assert_eq!(clamp_lod(Lod::from_num(3.25), 255), Lod::from_num(3.25));
+        assert_eq!(clamp_lod(Lod::MIN, 255), Lod::ZERO);
         assert_eq!(
             table_lod_clamped(PathLength::MAX, Log2Pb::DEGENERATE_GEOMETRY, 11),
             Some(Lod::from_num(10))
@@ -306,6 +313,18 @@ mod tests {
             prop_assert!(l >= Lod::MIN && l <= Lod::MAX);
             let c2 = clamp_lod(l, 13);
             prop_assert!(c2 >= Lod::ZERO && c2 <= Lod::from_num(12));
+        }
+
+        #[test]
+        fn clamp_lod_stays_in_stored_levels(bits in any::<i16>(), levels in any::<u8>()) {
+            let lod = Lod::from_bits(bits);
+            let c = clamp_lod(lod, levels);
+            let top = f64::from(levels.clamp(1, 128) - 1);
+            prop_assert!(c.to_num::<f64>() >= 0.0 && c.to_num::<f64>() <= top);
+            // Inside the range it is the identity.
+            if lod.to_num::<f64>() >= 0.0 && lod.to_num::<f64>() <= top {
+                prop_assert_eq!(c, lod);
+            }
         }
     }
 }

@@ -1,0 +1,216 @@
+//! Fixed-point bilinear kernel (Bilerp) and the level blend of trilinear
+//! filtering, per RGBA8 channel, in 32-bit integer arithmetic.
+//!
+//! Weights have [`WEIGHT_BITS`] = 12 fractional bits (`fx, fy ∈ [0, 4096]`).
+//! For channel values `a, b` (top row) and `c, d` (bottom row):
+//!
+//! ```text
+//! top  = a·(4096 − fx) + b·fx                      ≤ 255·2¹²   (8.12)
+//! bot  = c·(4096 − fx) + d·fx
+//! wide = (top·(4096 − fy) + bot·fy + 2⁷) >> 8      ≤ 255·2¹⁶   (8.16)
+//! ```
+//!
+//! `top·(4096 − fy) + bot·fy ≤ 255·2²⁴ < 2³²`, so nothing overflows `u32`.
+//! A [`Wide`] value keeps 16 fractional bits for the level blend of
+//! trilinear filtering, whose weight `t ∈ [0, 256]` (8 fractional bits, the
+//! fraction of an I8F8 lod) is exact:
+//! `out = (wide₀·(256 − t) + wide₁·t + 2²³) >> 24`, again `≤ 255·2²⁴ + 2²³`.
+//! Outputs are rounded to nearest (ties up) per channel.
+//!
+//! # Error bound
+//!
+//! Against the exact real-valued filter at the exact sample position, per
+//! channel, in 8-bit LSB: final rounding ½, the 8.16 intermediate 2⁻¹⁷, and
+//! the texel position rounded to 1/4096 texel per axis (done by the caller,
+//! [`crate::filter`]), at most `255 · 2⁻¹³` per axis. Total
+//! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`MAX_ERROR_LSB`] `= 0.5625`, for
+//! bilinear and trilinear alike (the blend of two values each within
+//! `0.0623` stays within it).
+
+use crate::mip::Texel;
+
+/// Fractional bits of the bilinear weights.
+pub const WEIGHT_BITS: u32 = 12;
+
+/// Weight 1.0 in [`WEIGHT_BITS`] format (4096).
+pub const WEIGHT_ONE: u32 = 1 << WEIGHT_BITS;
+
+/// Fractional bits of the trilinear blend weight (an I8F8 lod fraction).
+pub const BLEND_BITS: u32 = 8;
+
+/// Documented error bound of bilinear and trilinear filtering against the
+/// exact f64 filter, in 8-bit LSB per channel: 0.5625.
+pub const MAX_ERROR_LSB: f64 = 0.5625;
+
+/// Four channels (r, g, b, a) in 8.16 unsigned fixed point, each in
+/// `[0, 255·2¹⁶]`.
+pub type Wide = [u32; 4];
+
+/// Channel `c` (0 = r … 3 = a) of a texel, 0..=255.
+#[inline(always)]
+fn ch(t: Texel, c: usize) -> u32 {
+    (t >> (8 * c)) & 0xFF
+}
+
+/// Bilinear interpolation of the 2×2 footprint `t00` (x0, y0), `t10`
+/// (x1, y0), `t01` (x0, y1), `t11` (x1, y1) with weights `fx, fy` in
+/// `[0, 4096]` (values above 4096 are clamped); result in 8.16 per channel.
+#[inline]
+#[must_use]
+pub fn bilerp(t00: Texel, t10: Texel, t01: Texel, t11: Texel, fx: u32, fy: u32) -> Wide {
+    let fx = fx.min(WEIGHT_ONE);
+    let fy = fy.min(WEIGHT_ONE);
+    let gx = WEIGHT_ONE - fx;
+    let gy = WEIGHT_ONE - fy;
+    let mut out = [0u32; 4];
+    for (c, o) in out.iter_mut().enumerate() {
+        let top = ch(t00, c) * gx + ch(t10, c) * fx;
+        let bot = ch(t01, c) * gx + ch(t11, c) * fx;
+        *o = (top * gy + bot * fy + (1 << 7)) >> 8;
+    }
+    out
+}
+
+/// A texel widened to 8.16 per channel (exact).
+#[inline]
+#[must_use]
+pub fn widen(t: Texel) -> Wide {
+    [
+        ch(t, 0) << 16,
+        ch(t, 1) << 16,
+        ch(t, 2) << 16,
+        ch(t, 3) << 16,
+    ]
+}
+
+/// Rounds an 8.16 value to a texel (nearest, ties up; saturates at 255).
+#[inline]
+#[must_use]
+pub fn round_wide(w: Wide) -> Texel {
+    let mut out = 0u32;
+    for (c, &v) in w.iter().enumerate() {
+        let r = (v.saturating_add(1 << 15) >> 16).min(255);
+        out |= r << (8 * c);
+    }
+    out
+}
+
+/// Level blend `a·(1 − t/256) + b·t/256` of two 8.16 values, rounded to a
+/// texel (nearest, ties up). `t` in `[0, 256]` (clamped).
+#[inline]
+#[must_use]
+pub fn blend_wide(a: Wide, b: Wide, t: u32) -> Texel {
+    let t = t.min(1 << BLEND_BITS);
+    let s = (1 << BLEND_BITS) - t;
+    let mut out = 0u32;
+    for c in 0..4 {
+        let va = a[c].min(255 << 16);
+        let vb = b[c].min(255 << 16);
+        let r = (va * s + vb * t + (1 << 23)) >> 24;
+        out |= r.min(255) << (8 * c);
+    }
+    out
+}
+
+/// Level blend of two texels (nearest texel, linear between levels),
+/// rounded to nearest (ties up). `t` in `[0, 256]` (clamped).
+#[inline]
+#[must_use]
+pub fn blend_texels(a: Texel, b: Texel, t: u32) -> Texel {
+    let t = t.min(1 << BLEND_BITS);
+    let s = (1 << BLEND_BITS) - t;
+    let mut out = 0u32;
+    for c in 0..4 {
+        let r = (ch(a, c) * s + ch(b, c) * t + (1 << 7)) >> 8;
+        out |= r << (8 * c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texel(r: u8, g: u8, b: u8, a: u8) -> Texel {
+        u32::from_le_bytes([r, g, b, a])
+    }
+
+    /// Reference vectors: (t00, t10, t01, t11, fx/4096, fy/4096, exact
+    /// real-valued red channel, worked out by hand).
+    #[allow(clippy::type_complexity)]
+    const BILERP_VECTORS: [(u8, u8, u8, u8, u32, u32, f64); 8] = [
+        (0, 255, 0, 255, 2048, 0, 127.5),
+        (0, 255, 0, 255, 2048, 2048, 127.5),
+        (0, 0, 0, 255, 2048, 2048, 63.75),
+        (10, 20, 30, 40, 0, 0, 10.0),
+        (10, 20, 30, 40, 4096, 4096, 40.0),
+        (10, 20, 30, 40, 1024, 3072, 10.0 + 2.5 + 15.0),
+        (255, 255, 255, 255, 1, 4095, 255.0),
+        (
+            0,
+            255,
+            255,
+            0,
+            1024,
+            1024,
+            255.0 * (3.0 / 16.0 + 3.0 / 16.0),
+        ),
+    ];
+
+    #[test]
+    fn reference_vectors_within_limit() {
+        for &(a, b, c, d, fx, fy, exact) in &BILERP_VECTORS {
+            let w = bilerp(
+                texel(a, 0, 0, 255),
+                texel(b, 0, 0, 255),
+                texel(c, 0, 0, 255),
+                texel(d, 0, 0, 255),
+                fx,
+                fy,
+            );
+            let out = round_wide(w);
+            let r = f64::from(out & 0xFF);
+            assert!(
+                (r - exact).abs() <= MAX_ERROR_LSB,
+                "{a},{b},{c},{d} @ {fx},{fy}: {r} vs {exact}"
+            );
+            // The 8.16 value is within 2^-17 LSB of exact.
+            assert!((f64::from(w[0]) / 65536.0 - exact).abs() <= 1.0 / 131072.0);
+            assert_eq!(out >> 24, 255, "alpha");
+        }
+    }
+
+    /// Reference vectors of the level blend: (a, b, t/256, exact).
+    const BLEND_VECTORS: [(u8, u8, u32, f64); 6] = [
+        (0, 255, 128, 127.5),
+        (0, 255, 1, 255.0 / 256.0),
+        (100, 200, 64, 125.0),
+        (200, 100, 192, 125.0),
+        (7, 7, 77, 7.0),
+        (255, 0, 256, 0.0),
+    ];
+
+    #[test]
+    fn blend_vectors_within_limit() {
+        for &(a, b, t, exact) in &BLEND_VECTORS {
+            let wa = widen(texel(a, a, a, a));
+            let wb = widen(texel(b, b, b, b));
+            let out = blend_wide(wa, wb, t);
+            let out2 = blend_texels(texel(a, a, a, a), texel(b, b, b, b), t);
+            assert_eq!(out, out2);
+            for c in 0..4 {
+                let v = f64::from((out >> (8 * c)) & 0xFF);
+                assert!((v - exact).abs() <= 0.5, "{a},{b},{t}: {v} vs {exact}");
+            }
+        }
+    }
+
+    #[test]
+    fn extremes_do_not_overflow() {
+        let w = bilerp(u32::MAX, u32::MAX, u32::MAX, u32::MAX, 5000, 9999);
+        assert_eq!(w, [255 << 16; 4]);
+        assert_eq!(round_wide(w), u32::MAX);
+        assert_eq!(blend_wide([u32::MAX; 4], [u32::MAX; 4], 999), u32::MAX);
+        assert_eq!(blend_texels(u32::MAX, u32::MAX, 999), u32::MAX);
+    }
+}

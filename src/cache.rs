@@ -1,0 +1,478 @@
+//! Texel cache: a const-generic set-associative LRU cache of 4×4-texel
+//! blocks in front of slow texel memory.
+//!
+//! # Layout: 4×4 blocks in Morton order
+//!
+//! A block of [`BLOCK`]` × `[`BLOCK`] RGBA8 texels is 64 bytes, one cache
+//! line of the external memory. A bilinear footprint (2×2 texels) touches
+//! one block in 9 of 16 positions and at most four neighbouring blocks, and
+//! a square block serves a ray's footprint equally in every direction (rays
+//! hit textures at arbitrary orientation, unlike a rasterizer's scanlines).
+//!
+//! Blocks are numbered ([`block_index`]) level by level, and within a level
+//! in Morton (Z) order: the bits of the block column and row are
+//! interleaved, so blocks that are close in 2-D get close numbers. With the
+//! set index `block % SETS`, a 2×2 group of blocks around any even-aligned
+//! position falls into four *different* consecutive sets, and a whole
+//! `2^k × 2^k` neighbourhood spreads over `4^k` sets before any set repeats.
+//! Row-major numbering would instead map vertically adjacent blocks to sets
+//! one row pitch apart, which for power-of-two pitches are the same set, so
+//! a 2×2 footprint straddling a row of blocks would contend for one set.
+//!
+//! Non-square levels use the rectangular Morton order: the low
+//! `min(log2 bw, log2 bh)` bits of column and row are interleaved and the
+//! remaining high bits of the longer side are placed above them. Block
+//! counts per side are padded to powers of two, so numbers are dense for
+//! power-of-two textures and at most 4× sparse otherwise
+//! ([`BlockLayout::len`]).
+//!
+//! # Replacement
+//!
+//! True LRU per set: every way holds the value of a 64-bit access clock at
+//! its last use; a miss replaces an empty way, else the way with the
+//! smallest stamp. Counters: [`CacheStats`].
+
+use crate::mip::{Geometry, MAX_LEVELS, Pyramid, Texel, TexelSource};
+
+/// Side of a cache block in texels (4 × 4 RGBA8 texels = 64 bytes).
+pub const BLOCK: u32 = 4;
+
+/// `log2(BLOCK)`.
+const BLOCK_SHIFT: u32 = 2;
+
+/// Texels per block (16).
+pub const BLOCK_TEXELS: usize = (BLOCK * BLOCK) as usize;
+
+/// Spreads the low 16 bits of `x` to the even bit positions.
+#[inline(always)]
+const fn part1by1(x: u32) -> u32 {
+    let mut x = x & 0xFFFF;
+    x = (x | (x << 8)) & 0x00FF_00FF;
+    x = (x | (x << 4)) & 0x0F0F_0F0F;
+    x = (x | (x << 2)) & 0x3333_3333;
+    (x | (x << 1)) & 0x5555_5555
+}
+
+/// Morton (Z-order) code of `(x, y)` for `x, y < 2¹⁶`: bit `i` of `x` goes
+/// to bit `2i`, bit `i` of `y` to bit `2i + 1`.
+#[inline]
+#[must_use]
+pub const fn morton2(x: u32, y: u32) -> u32 {
+    part1by1(x) | (part1by1(y) << 1)
+}
+
+/// Block numbering of one pyramid (see module docs): per-level offsets and
+/// padded block-grid sizes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BlockLayout {
+    geometry: Geometry,
+    /// Block offset of each level; entry `levels` and above hold the total.
+    offsets: [u32; MAX_LEVELS as usize + 1],
+    /// `log2` of the padded block columns and rows of each level.
+    log2_dims: [(u8, u8); MAX_LEVELS as usize],
+}
+
+/// `ceil(n / BLOCK)` rounded up to a power of two, as its `log2`.
+const fn padded_log2(texels: u32) -> u8 {
+    let blocks = texels.div_ceil(BLOCK);
+    blocks.next_power_of_two().trailing_zeros() as u8
+}
+
+impl BlockLayout {
+    /// The block layout of `geometry`.
+    #[must_use]
+    pub const fn new(geometry: &Geometry) -> Self {
+        let mut offsets = [0u32; MAX_LEVELS as usize + 1];
+        let mut log2_dims = [(0u8, 0u8); MAX_LEVELS as usize];
+        let mut total = 0u32;
+        let mut k = 0u8;
+        while k < MAX_LEVELS {
+            offsets[k as usize] = total;
+            if k < geometry.levels() {
+                let kk = k as u32;
+                let w = geometry.width() >> kk;
+                let h = geometry.height() >> kk;
+                let lx = padded_log2(if w == 0 { 1 } else { w });
+                let ly = padded_log2(if h == 0 { 1 } else { h });
+                log2_dims[k as usize] = (lx, ly);
+                // Sides ≤ 2¹⁵ texels: ≤ 2²⁶ blocks in level 0, sum < 2²⁸.
+                total += 1 << (lx as u32 + ly as u32);
+            }
+            k += 1;
+        }
+        offsets[MAX_LEVELS as usize] = total;
+        Self {
+            geometry: *geometry,
+            offsets,
+            log2_dims,
+        }
+    }
+
+    /// Number of block numbers used (every [`index`](Self::index) is below
+    /// it).
+    #[must_use]
+    pub const fn len(&self) -> u32 {
+        self.offsets[MAX_LEVELS as usize]
+    }
+
+    /// Always `false` (a pyramid has at least one block).
+    #[must_use]
+    pub const fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Block number of block `(bx, by)` of `level` (level clamped to the
+    /// top stored level, `bx`/`by` to the level's padded block grid).
+    #[inline]
+    #[must_use]
+    pub fn index_of_block(&self, level: u8, bx: u32, by: u32) -> u32 {
+        let k = usize::from(level.min(self.geometry.top_level()));
+        let (lx, ly) = self.log2_dims.get(k).copied().unwrap_or((0, 0));
+        let (lx, ly) = (u32::from(lx), u32::from(ly));
+        let bx = bx.min((1 << lx) - 1);
+        let by = by.min((1 << ly) - 1);
+        let low = lx.min(ly);
+        let mask = (1u32 << low) - 1;
+        let high = (bx >> low) | (by >> low);
+        let local = morton2(bx & mask, by & mask) | (high << (2 * low));
+        self.offsets.get(k).copied().unwrap_or(0) + local
+    }
+
+    /// Block number of the block holding texel `(x, y)` of `level`
+    /// (clamped like [`Geometry::texel_index`]).
+    #[inline]
+    #[must_use]
+    pub fn index(&self, level: u8, x: u32, y: u32) -> u32 {
+        let (w, h) = self.geometry.level_size(level);
+        self.index_of_block(
+            level,
+            x.min(w - 1) >> BLOCK_SHIFT,
+            y.min(h - 1) >> BLOCK_SHIFT,
+        )
+    }
+}
+
+/// Block number of the 4×4 block holding texel `(x, y)` of `level`, unique
+/// within one pyramid: level block offset plus Morton order within the
+/// level (see module docs; in `[0, `[`block_count`]`)`). Level and
+/// coordinates are clamped to the stored range. Computes the level offsets
+/// each call (≤ 16 steps); keep a [`BlockLayout`] for repeated use.
+#[must_use]
+pub fn block_index(geometry: &Geometry, level: u8, x: u32, y: u32) -> u32 {
+    BlockLayout::new(geometry).index(level, x, y)
+}
+
+/// Number of block numbers [`block_index`] uses for `geometry`: a base
+/// stride for giving several pyramids disjoint global block addresses.
+#[must_use]
+pub const fn block_count(geometry: &Geometry) -> u32 {
+    BlockLayout::new(geometry).len()
+}
+
+/// Hit and miss counters.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CacheStats {
+    /// Accesses that found their block.
+    pub hits: u64,
+    /// Accesses that had to load their block.
+    pub misses: u64,
+}
+
+impl CacheStats {
+    /// `hits / (hits + misses)` in `[0, 1]`; 0 with no accesses. Reporting
+    /// only (uses a float division).
+    #[must_use]
+    pub fn hit_rate(&self) -> f64 {
+        let total = self.hits.saturating_add(self.misses);
+        if total == 0 {
+            0.0
+        } else {
+            self.hits as f64 / total as f64
+        }
+    }
+}
+
+/// Tags of a `SETS`-set, `WAYS`-way set-associative cache with true LRU
+/// replacement, for any `u32` block address (set = `address % SETS`).
+/// Holds no data: use it alone to model a cache (hit rates), or through
+/// [`TexelCache`]. `SETS` and `WAYS` must be ≥ 1 (checked at compile
+/// time); power-of-two `SETS` make the set index a mask.
+#[derive(Clone, Debug)]
+pub struct BlockCache<const SETS: usize, const WAYS: usize> {
+    tags: [[u32; WAYS]; SETS],
+    /// Access clock at last use; 0 = empty way.
+    stamps: [[u64; WAYS]; SETS],
+    clock: u64,
+    stats: CacheStats,
+}
+
+impl<const SETS: usize, const WAYS: usize> Default for BlockCache<SETS, WAYS> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
+    const VALID_SHAPE: () = assert!(SETS > 0 && WAYS > 0, "SETS and WAYS must be at least 1");
+
+    /// An empty cache.
+    #[must_use]
+    pub const fn new() -> Self {
+        let () = Self::VALID_SHAPE;
+        Self {
+            tags: [[0; WAYS]; SETS],
+            stamps: [[0; WAYS]; SETS],
+            clock: 0,
+            stats: CacheStats { hits: 0, misses: 0 },
+        }
+    }
+
+    /// Capacity in blocks (`SETS · WAYS`).
+    #[must_use]
+    pub const fn capacity(&self) -> usize {
+        SETS * WAYS
+    }
+
+    /// Looks up `block_address`, counts a hit or miss and, on a miss,
+    /// allocates the least recently used way. Returns `(hit, set, way)`.
+    #[inline]
+    fn lookup(&mut self, block_address: u32) -> (bool, usize, usize) {
+        self.clock = self.clock.saturating_add(1);
+        let set = block_address as usize % SETS;
+        let (Some(tags), Some(stamps)) = (self.tags.get_mut(set), self.stamps.get_mut(set)) else {
+            return (false, 0, 0);
+        };
+        let mut victim = 0;
+        let mut oldest = u64::MAX;
+        for (way, (tag, stamp)) in tags.iter().zip(stamps.iter_mut()).enumerate() {
+            if *stamp != 0 && *tag == block_address {
+                *stamp = self.clock;
+                self.stats.hits += 1;
+                return (true, set, way);
+            }
+            if *stamp < oldest {
+                oldest = *stamp;
+                victim = way;
+            }
+        }
+        if let (Some(t), Some(s)) = (tags.get_mut(victim), stamps.get_mut(victim)) {
+            *t = block_address;
+            *s = self.clock;
+        }
+        self.stats.misses += 1;
+        (false, set, victim)
+    }
+
+    /// Accesses `block_address`: `true` on a hit; on a miss the block
+    /// replaces the set's least recently used way.
+    #[inline]
+    pub fn access(&mut self, block_address: u32) -> bool {
+        self.lookup(block_address).0
+    }
+
+    /// Counters since construction or the last [`reset_stats`](Self::reset_stats).
+    #[must_use]
+    pub fn stats(&self) -> CacheStats {
+        self.stats
+    }
+
+    /// Zeroes the counters (contents stay).
+    pub fn reset_stats(&mut self) {
+        self.stats = CacheStats::default();
+    }
+
+    /// Empties the cache (counters stay).
+    pub fn invalidate(&mut self) {
+        self.stamps = [[0; WAYS]; SETS];
+    }
+}
+
+/// Slow texel memory, read in whole blocks (the cache's backing store).
+pub trait TexelMemory {
+    /// The pyramid's geometry.
+    fn geometry(&self) -> Geometry;
+    /// Reads block `(bx, by)` of `level` (texels `4bx .. 4bx+4` ×
+    /// `4by .. 4by+4`, row-major into `out`). Texels beyond the level's
+    /// edge are filled with the nearest edge texel. Never panics.
+    fn read_block(&mut self, level: u8, bx: u32, by: u32, out: &mut [Texel; BLOCK_TEXELS]);
+}
+
+impl TexelMemory for Pyramid<'_> {
+    fn geometry(&self) -> Geometry {
+        TexelSource::geometry(self)
+    }
+
+    fn read_block(&mut self, level: u8, bx: u32, by: u32, out: &mut [Texel; BLOCK_TEXELS]) {
+        let x0 = bx.saturating_mul(BLOCK);
+        let y0 = by.saturating_mul(BLOCK);
+        for (i, t) in out.iter_mut().enumerate() {
+            let (dx, dy) = ((i % 4) as u32, (i / 4) as u32);
+            *t = self.get(level, x0.saturating_add(dx), y0.saturating_add(dy));
+        }
+    }
+}
+
+/// A texel cache (tags and data) of `SETS × WAYS` blocks of 4×4 texels in
+/// front of a [`TexelMemory`]; itself a [`TexelSource`], returning exactly
+/// what the memory holds. One access per texel read. Size of the data:
+/// `SETS · WAYS · 64` bytes (e.g. 64 × 4 = 16 KiB).
+#[derive(Debug)]
+pub struct TexelCache<M: TexelMemory, const SETS: usize, const WAYS: usize> {
+    memory: M,
+    layout: BlockLayout,
+    tags: BlockCache<SETS, WAYS>,
+    data: [[[Texel; BLOCK_TEXELS]; WAYS]; SETS],
+}
+
+impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, WAYS> {
+    /// An empty cache in front of `memory`.
+    pub fn new(memory: M) -> Self {
+        let geometry = memory.geometry();
+        Self {
+            memory,
+            layout: BlockLayout::new(&geometry),
+            tags: BlockCache::new(),
+            data: [[[0; BLOCK_TEXELS]; WAYS]; SETS],
+        }
+    }
+
+    /// Hit and miss counters.
+    #[must_use]
+    pub fn stats(&self) -> CacheStats {
+        self.tags.stats()
+    }
+
+    /// Zeroes the counters (contents stay).
+    pub fn reset_stats(&mut self) {
+        self.tags.reset_stats();
+    }
+
+    /// Empties the cache (counters stay).
+    pub fn invalidate(&mut self) {
+        self.tags.invalidate();
+    }
+
+    /// The backing memory.
+    #[must_use]
+    pub fn memory(&self) -> &M {
+        &self.memory
+    }
+
+    /// Gives the backing memory back.
+    #[must_use]
+    pub fn into_memory(self) -> M {
+        self.memory
+    }
+}
+
+impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
+    for TexelCache<M, SETS, WAYS>
+{
+    fn geometry(&self) -> Geometry {
+        self.layout.geometry
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        let (w, h) = self.layout.geometry.level_size(level);
+        let level = level.min(self.layout.geometry.top_level());
+        let (x, y) = (x.min(w - 1), y.min(h - 1));
+        let (bx, by) = (x >> BLOCK_SHIFT, y >> BLOCK_SHIFT);
+        let address = self.layout.index_of_block(level, bx, by);
+        let (hit, set, way) = self.tags.lookup(address);
+        let Some(block) = self.data.get_mut(set).and_then(|s| s.get_mut(way)) else {
+            return 0;
+        };
+        if !hit {
+            self.memory.read_block(level, bx, by, block);
+        }
+        let i = ((y & (BLOCK - 1)) * BLOCK + (x & (BLOCK - 1))) as usize;
+        block.get(i).copied().unwrap_or(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec::Vec;
+
+    #[test]
+    fn morton_interleaves() {
+        assert_eq!(morton2(0, 0), 0);
+        assert_eq!(morton2(1, 0), 1);
+        assert_eq!(morton2(0, 1), 2);
+        assert_eq!(morton2(3, 3), 15);
+        assert_eq!(morton2(0xFFFF, 0), 0x5555_5555);
+    }
+
+    #[test]
+    fn block_numbers_unique_and_bounded() {
+        for (w, h, l) in [
+            (64, 64, 7),
+            (16, 256, 9),
+            (1044 / 4, 13, 9),
+            (1, 1, 1),
+            (37, 5, 6),
+        ] {
+            let g = Geometry::new(w, h, l).unwrap();
+            let layout = BlockLayout::new(&g);
+            let mut seen = Vec::new();
+            for k in 0..l {
+                let (lw, lh) = g.level_size(k);
+                for by in 0..lh.div_ceil(4) {
+                    for bx in 0..lw.div_ceil(4) {
+                        let i = layout.index(k, bx * 4, by * 4);
+                        assert!(i < layout.len());
+                        assert_eq!(i, block_index(&g, k, bx * 4 + 1, by * 4));
+                        seen.push(i);
+                    }
+                }
+            }
+            let n = seen.len();
+            seen.sort_unstable();
+            seen.dedup();
+            assert_eq!(seen.len(), n, "{w}x{h}");
+            if w.is_power_of_two() && h.is_power_of_two() && w >= 4 && h >= 4 && l == 1 {
+                assert_eq!(n as u32, layout.len());
+            }
+        }
+        let g = Geometry::new(64, 64, 1).unwrap();
+        assert_eq!(block_count(&g), 256);
+    }
+
+    #[test]
+    fn lru_replacement() {
+        let mut c: BlockCache<1, 2> = BlockCache::new();
+        assert!(!c.access(7));
+        assert!(!c.access(u32::MAX));
+        assert!(c.access(7));
+        assert!(!c.access(0)); // evicts u32::MAX (least recently used)
+        assert!(c.access(7));
+        assert!(!c.access(u32::MAX));
+        assert_eq!(c.stats(), CacheStats { hits: 2, misses: 4 });
+        assert!((c.stats().hit_rate() - 1.0 / 3.0).abs() < 1e-12);
+        c.reset_stats();
+        assert_eq!(c.stats().hit_rate(), 0.0);
+        c.invalidate();
+        assert!(!c.access(7));
+    }
+
+    #[test]
+    fn cache_returns_memory_contents() {
+        let g = Geometry::new(9, 6, 4).unwrap();
+        let buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(2_654_435_761))
+            .collect();
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        let mut c: TexelCache<Pyramid<'_>, 2, 2> = TexelCache::new(p);
+        for k in 0..5u8 {
+            for y in 0..8 {
+                for x in 0..11 {
+                    assert_eq!(c.texel(k, x, y), p.texel(k, x, y), "{k} {x} {y}");
+                }
+            }
+        }
+        assert!(c.stats().hits > 0 && c.stats().misses > 0);
+    }
+}

@@ -1,0 +1,458 @@
+//! Texel addressing and filtering: nearest, bilinear, trilinear.
+//!
+//! Coordinates are normalized [`TexCoord`]s (I32F32): `u = 0` is the left
+//! edge, `u = 1` the right edge of every level; texel `i` of a level of
+//! width `w` has its centre at `(i + 0.5)/w`. The same holds for `v` and
+//! rows.
+//!
+//! * **Addressing** ([`Address`]): `Wrap` repeats the texture (only the
+//!   fractional part of `u` matters, taken exactly from the fixed-point
+//!   bits); `Clamp` clamps texel indices to the edge (`u` outside
+//!   `[−1, 2]` is first clamped to it, which changes nothing).
+//! * **Nearest texel**: `i = floor(u·w)` (wrapped or clamped).
+//! * **Bilinear**: `x = u·w − ½` rounded to 1/4096 texel, `i₀ = floor(x)`,
+//!   `i₁ = i₀ + 1` (wrapped or clamped), weight `fx = x − i₀` with 12
+//!   fractional bits; the kernel is [`crate::bilerp`].
+//! * **Levels**: lod (I8F8) is clamped to `[0, levels − 1]`. Nearest-level
+//!   modes use level `floor(lod + ½)`. Linear-level modes use levels
+//!   `floor(lod)` and `floor(lod) + 1` with blend weight `frac(lod)`
+//!   (8 fractional bits, exact). When the weight is 0 (lod integral,
+//!   lod ≤ 0, or lod at the top stored level) only one level is fetched and
+//!   the avoided texel reads are counted in [`FetchStats::skipped`].
+//!
+//! Output is RGBA8, rounded to nearest per channel; error bound
+//! [`MAX_ERROR_LSB`](crate::bilerp::MAX_ERROR_LSB) = 0.5625 LSB for
+//! bilinear and trilinear, exact for the nearest-texel modes.
+//!
+//! # Precision for large coordinates
+//!
+//! [`TexCoord`] has 32 fractional bits at every magnitude and covers
+//! `|u| < 2³¹`; wrapping takes the fractional part of the bits exactly, so
+//! the firmware path is exact for every representable coordinate (a level
+//! side of at most 2¹⁵ texels with 12-bit weights needs 27 fractional bits).
+//! Precision is lost only where floats come in: an `f64` has a 53-bit
+//! significand, so a coordinate `|u| ≥ 2²¹` (≈ 2.1·10⁶) is itself quantized
+//! more coarsely than 2⁻³², and beyond `|u| ≈ 2^(40 − s)` for a `2^s`-texel
+//! side (2²⁸ for 4096 texels) the quantization exceeds 1/4096 texel.
+//! ±10⁶ is exact. [`Sampler::sample_f64`] reduces wrapped coordinates in
+//! f64 (exactly) before converting, so it accepts any finite value;
+//! [`tex_coord_from_f64`] rejects values outside the [`TexCoord`] range.
+
+use core::fmt;
+
+use fixed::types::I32F32;
+
+use crate::bilerp::{self, WEIGHT_BITS, Wide};
+use crate::lod::{Lod, clamp_lod};
+use crate::mip::{Geometry, Texel, TexelSource};
+
+/// A normalized texture coordinate (I32F32: range `[−2³¹, 2³¹)`, step 2⁻³²).
+pub type TexCoord = I32F32;
+
+/// Addressing outside `[0, 1)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Address {
+    /// Repeat: only the fractional part of the coordinate is used.
+    Wrap,
+    /// Clamp to edge: texel indices are clamped to `[0, size − 1]`.
+    Clamp,
+}
+
+/// Filter mode, numbered as in the `sample` command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Bilinear within a level, linear between levels.
+    Trilinear = 0,
+    /// Bilinear within the nearest level `floor(lod + ½)`.
+    BilinearNearestLevel = 1,
+    /// Nearest texel of the nearest level.
+    Nearest = 2,
+    /// Nearest texel in each of two levels, linear between levels.
+    NearestTexelLinearLevel = 3,
+}
+
+impl Mode {
+    /// The mode numbered `n` (0..=3), `None` otherwise.
+    #[must_use]
+    pub const fn from_index(n: u8) -> Option<Self> {
+        match n {
+            0 => Some(Self::Trilinear),
+            1 => Some(Self::BilinearNearestLevel),
+            2 => Some(Self::Nearest),
+            3 => Some(Self::NearestTexelLinearLevel),
+            _ => None,
+        }
+    }
+}
+
+/// Texel-read counters of a [`Sampler`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FetchStats {
+    /// Texels read from the source (4 per bilinear level, 1 per
+    /// nearest-texel level).
+    pub fetched: u64,
+    /// Texel reads avoided because the second level of a linear-level mode
+    /// could not change the result (blend weight 0): 4 per skipped
+    /// bilinear level, 1 per skipped nearest-texel level.
+    pub skipped: u64,
+}
+
+/// Errors at the float edge of the sampler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FilterError {
+    /// A coordinate or lod is NaN or infinite.
+    NonFinite,
+    /// A coordinate lies outside the [`TexCoord`] range `[−2³¹, 2³¹)`.
+    OutOfRange,
+}
+
+impl fmt::Display for FilterError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite => f.write_str("texture coordinate or lod is NaN or infinite"),
+            Self::OutOfRange => f.write_str("texture coordinate outside [-2^31, 2^31)"),
+        }
+    }
+}
+
+impl core::error::Error for FilterError {}
+
+/// Converts a float coordinate to a [`TexCoord`] (rounded to nearest 2⁻³²).
+/// Set-up/host convenience (uses floats).
+///
+/// # Errors
+/// [`FilterError::NonFinite`] for NaN/±inf, [`FilterError::OutOfRange`]
+/// for `|x| ≥ 2³¹`.
+pub fn tex_coord_from_f64(x: f64) -> Result<TexCoord, FilterError> {
+    if !x.is_finite() {
+        return Err(FilterError::NonFinite);
+    }
+    TexCoord::checked_from_num(x).ok_or(FilterError::OutOfRange)
+}
+
+/// Samples a [`TexelSource`] (a [`Pyramid`](crate::mip::Pyramid) or a
+/// [`TexelCache`](crate::cache::TexelCache)) with one addressing mode.
+#[derive(Debug)]
+pub struct Sampler<S: TexelSource> {
+    source: S,
+    geometry: Geometry,
+    address: Address,
+    stats: FetchStats,
+}
+
+/// Rounding offset that turns the truncation to 12 fractional bits into
+/// round-to-nearest: 2⁻¹³ in 32-fractional-bit units.
+const ROUND_WEIGHT: i64 = 1 << (31 - WEIGHT_BITS);
+
+/// Coordinate clamp for [`Address::Clamp`]: `[−1, 2]` in I32F32 bits.
+const CLAMP_LO: i64 = -(1 << 32);
+const CLAMP_HI: i64 = 2 << 32;
+
+/// `u · size` in 32-fractional-bit units after addressing: for `Wrap` the
+/// fractional part of `u` (in `[0, size)`), for `Clamp` `u` clamped to
+/// `[−1, 2]` (in `[−size, 2·size]`). `|result| < 2⁴⁹`.
+#[inline(always)]
+fn scaled(coord: TexCoord, size: u32, address: Address) -> i64 {
+    let c = match address {
+        Address::Wrap => coord.to_bits() & 0xFFFF_FFFF,
+        Address::Clamp => coord.to_bits().clamp(CLAMP_LO, CLAMP_HI),
+    };
+    c * i64::from(size)
+}
+
+/// Fixes an index in `[−size, 2·size]` into `[0, size − 1]` by the
+/// addressing mode.
+#[inline(always)]
+fn fix_index(i: i64, size: u32, address: Address) -> u32 {
+    let s = i64::from(size);
+    let r = match address {
+        Address::Wrap => {
+            if i < 0 {
+                i + s
+            } else if i >= s {
+                i - s
+            } else {
+                i
+            }
+        }
+        Address::Clamp => i,
+    };
+    // In range for Wrap already; the clamp is the Clamp mode and a guard.
+    u32::try_from(r.clamp(0, s - 1)).unwrap_or(0)
+}
+
+/// Nearest texel index `floor(u·size)`, addressed.
+#[inline(always)]
+fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
+    fix_index(scaled(coord, size, address) >> 32, size, address)
+}
+
+/// Bilinear footprint on one axis: `(i₀, i₁, weight of i₁ in 1/4096)`.
+#[inline(always)]
+fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
+    let x = scaled(coord, size, address) - (1 << 31) + ROUND_WEIGHT;
+    let i = x >> 32;
+    let f = ((x >> (32 - WEIGHT_BITS)) & ((1 << WEIGHT_BITS) - 1)) as u32;
+    (
+        fix_index(i, size, address),
+        fix_index(i + 1, size, address),
+        f,
+    )
+}
+
+impl<S: TexelSource> Sampler<S> {
+    /// A sampler over `source` with addressing `address`.
+    pub fn new(source: S, address: Address) -> Self {
+        let geometry = source.geometry();
+        Self {
+            source,
+            geometry,
+            address,
+            stats: FetchStats::default(),
+        }
+    }
+
+    /// Filtered texel at `(u, v)` and level of detail `lod` (clamped to
+    /// `[0, levels − 1]`) with filter `mode`. Never panics.
+    #[inline]
+    pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
+        let lod = clamp_lod(lod, self.geometry.levels());
+        // lod ∈ [0, 15]: bits ∈ [0, 3840].
+        let bits = u16::try_from(lod.to_bits()).unwrap_or(0);
+        let lower = (bits >> 8) as u8;
+        let t = u32::from(bits & 0xFF);
+        let nearest_level = (((bits + 0x80) >> 8) as u8).min(self.geometry.top_level());
+        match mode {
+            Mode::Trilinear => {
+                let a = self.bilinear(u, v, lower);
+                if t == 0 {
+                    self.stats.skipped += 4;
+                    bilerp::round_wide(a)
+                } else {
+                    let b = self.bilinear(u, v, lower + 1);
+                    bilerp::blend_wide(a, b, t)
+                }
+            }
+            Mode::BilinearNearestLevel => bilerp::round_wide(self.bilinear(u, v, nearest_level)),
+            Mode::Nearest => self.nearest(u, v, nearest_level),
+            Mode::NearestTexelLinearLevel => {
+                let a = self.nearest(u, v, lower);
+                if t == 0 {
+                    self.stats.skipped += 1;
+                    a
+                } else {
+                    let b = self.nearest(u, v, lower + 1);
+                    bilerp::blend_texels(a, b, t)
+                }
+            }
+        }
+    }
+
+    /// [`sample`](Self::sample) with float inputs: a set-up/host
+    /// convenience, not for the per-hit path (it uses floats). Wrapped
+    /// coordinates are reduced to `[0, 1)` in f64 first (exact), so any
+    /// finite value works; clamped ones are clamped to `[−1, 2]`. `lod` is
+    /// rounded to 1/256 and clamped like [`sample`](Self::sample).
+    ///
+    /// # Errors
+    /// [`FilterError::NonFinite`] when `u`, `v` or `lod` is NaN or ±inf.
+    pub fn sample_f64(
+        &mut self,
+        u: f64,
+        v: f64,
+        lod: f64,
+        mode: Mode,
+    ) -> Result<Texel, FilterError> {
+        if !(u.is_finite() && v.is_finite() && lod.is_finite()) {
+            return Err(FilterError::NonFinite);
+        }
+        let reduce = |x: f64| match self.address {
+            Address::Wrap => x - libm::floor(x),
+            Address::Clamp => x.clamp(-1.0, 2.0),
+        };
+        let u = tex_coord_from_f64(reduce(u))?;
+        let v = tex_coord_from_f64(reduce(v))?;
+        let lod = Lod::saturating_from_num(lod);
+        Ok(self.sample(u, v, lod, mode))
+    }
+
+    /// Bilinear value at `level` in 8.16 per channel.
+    #[inline(always)]
+    fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
+        let (w, h) = self.geometry.level_size(level);
+        let (x0, x1, fx) = linear_taps(u, w, self.address);
+        let (y0, y1, fy) = linear_taps(v, h, self.address);
+        let s = &mut self.source;
+        let t00 = s.texel(level, x0, y0);
+        let t10 = s.texel(level, x1, y0);
+        let t01 = s.texel(level, x0, y1);
+        let t11 = s.texel(level, x1, y1);
+        self.stats.fetched += 4;
+        bilerp::bilerp(t00, t10, t01, t11, fx, fy)
+    }
+
+    /// Nearest texel at `level`.
+    #[inline(always)]
+    fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Texel {
+        let (w, h) = self.geometry.level_size(level);
+        let x = nearest_index(u, w, self.address);
+        let y = nearest_index(v, h, self.address);
+        self.stats.fetched += 1;
+        self.source.texel(level, x, y)
+    }
+
+    /// The addressing mode.
+    #[must_use]
+    pub fn address(&self) -> Address {
+        self.address
+    }
+
+    /// The source's geometry (read once at construction).
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// Fetch counters since construction or the last
+    /// [`reset_stats`](Self::reset_stats).
+    #[must_use]
+    pub fn stats(&self) -> FetchStats {
+        self.stats
+    }
+
+    /// Zeroes the fetch counters.
+    pub fn reset_stats(&mut self) {
+        self.stats = FetchStats::default();
+    }
+
+    /// The texel source.
+    #[must_use]
+    pub fn source(&self) -> &S {
+        &self.source
+    }
+
+    /// The texel source, mutable (e.g. to read cache counters).
+    #[must_use]
+    pub fn source_mut(&mut self) -> &mut S {
+        &mut self.source
+    }
+
+    /// Gives the texel source back.
+    #[must_use]
+    pub fn into_source(self) -> S {
+        self.source
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::mip::{Pyramid, generate};
+    use std::vec;
+    use std::vec::Vec;
+
+    fn c(x: f64) -> TexCoord {
+        TexCoord::from_num(x)
+    }
+
+    fn gray(v: u8) -> Texel {
+        u32::from_le_bytes([v, v, v, 255])
+    }
+
+    #[test]
+    fn centres_return_texels() {
+        let g = Geometry::new(4, 2, 3).unwrap();
+        let mut buf: Vec<Texel> = (0..g.len() as u32).map(|i| gray((i * 20) as u8)).collect();
+        generate(&g, &mut buf).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Sampler::new(p, Address::Wrap);
+        for y in 0..2u32 {
+            for x in 0..4u32 {
+                let u = c((f64::from(x) + 0.5) / 4.0);
+                let v = c((f64::from(y) + 0.5) / 2.0);
+                let want = p.get(0, x, y);
+                for mode in [Mode::Trilinear, Mode::BilinearNearestLevel, Mode::Nearest] {
+                    assert_eq!(s.sample(u, v, Lod::ZERO, mode), want, "{x},{y} {mode:?}");
+                }
+            }
+        }
+        assert_eq!(s.stats().skipped, 8 * 4);
+    }
+
+    #[test]
+    fn wrap_seam_and_clamp_edge() {
+        let g = Geometry::new(2, 1, 1).unwrap();
+        let buf = [gray(0), gray(200)];
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut w = Sampler::new(p, Address::Wrap);
+        let mut k = Sampler::new(p, Address::Clamp);
+        // u = 0: halfway between texel 1 (wrapped) and texel 0.
+        assert_eq!(
+            w.sample(c(0.0), c(0.5), Lod::ZERO, Mode::Trilinear),
+            gray(100)
+        );
+        assert_eq!(
+            k.sample(c(0.0), c(0.5), Lod::ZERO, Mode::Trilinear),
+            gray(0)
+        );
+        assert_eq!(
+            k.sample(c(1e6), c(-1e6), Lod::ZERO, Mode::Trilinear),
+            gray(200)
+        );
+        assert_eq!(
+            w.sample(c(-1e6 + 0.75), c(0.5), Lod::ZERO, Mode::Nearest),
+            gray(200)
+        );
+        assert_eq!(
+            w.sample(TexCoord::MIN, TexCoord::MAX, Lod::MAX, Mode::Trilinear),
+            w.sample(c(0.0), c(1.0 - 1e-9), Lod::ZERO, Mode::Trilinear)
+        );
+    }
+
+    #[test]
+    fn trilinear_blends_levels() {
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let buf = vec![gray(0), gray(0), gray(0), gray(0), gray(100)];
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Sampler::new(p, Address::Clamp);
+        let half = Lod::from_num(0.5);
+        assert_eq!(s.sample(c(0.25), c(0.25), half, Mode::Trilinear), gray(50));
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), half, Mode::NearestTexelLinearLevel),
+            gray(50)
+        );
+        assert_eq!(s.sample(c(0.25), c(0.25), half, Mode::Nearest), gray(100));
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), Lod::from_num(0.49), Mode::Nearest),
+            gray(0)
+        );
+        assert_eq!(
+            s.stats(),
+            FetchStats {
+                fetched: 8 + 2 + 1 + 1,
+                skipped: 0
+            }
+        );
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), Lod::from_num(9), Mode::Trilinear),
+            gray(100)
+        );
+        assert_eq!(s.stats().skipped, 4);
+        assert_eq!(
+            s.sample_f64(f64::NAN, 0.0, 0.0, Mode::Trilinear),
+            Err(FilterError::NonFinite)
+        );
+        assert_eq!(
+            s.sample_f64(0.0, 0.0, f64::INFINITY, Mode::Trilinear),
+            Err(FilterError::NonFinite)
+        );
+        assert_eq!(
+            s.sample_f64(1e300, -1e300, 1e300, Mode::Nearest),
+            Ok(gray(100))
+        );
+        assert_eq!(tex_coord_from_f64(3e9), Err(FilterError::OutOfRange));
+        assert_eq!(tex_coord_from_f64(-0.25), Ok(c(-0.25)));
+    }
+}

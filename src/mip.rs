@@ -1,0 +1,491 @@
+//! MIP pyramid in caller memory: geometry, in-place generation, texel fetch.
+//!
+//! A texture of `w × h` texels (RGBA8888, one [`Texel`] each) stores levels
+//! `0 .. levels`; level `k` has `max(1, w >> k) × max(1, h >> k)` texels,
+//! row-major, and the levels follow each other in one slice (level 0 first).
+//! Level offsets are computed once by [`Geometry::new`], never stored per
+//! texel. [`pyramid_len`] is a `const fn`, so storage can be a `static`:
+//!
+//! ```
+//! use raymip::mip::{pyramid_len, Texel};
+//! // 256×128 texels with all 9 levels: 32768 + 8192 + … + 2 + 1 texels.
+//! const LEN: usize = pyramid_len(256, 128, 9);
+//! assert_eq!(LEN, 43_691);
+//! static PYRAMID: [Texel; LEN] = [0; LEN];
+//! # let _ = &PYRAMID;
+//! ```
+//!
+//! # Generation filter ([`generate`])
+//!
+//! Each level is made from the one below, per axis and per channel, with one
+//! rounding at the end (round half up):
+//!
+//! * source extent even (`2n → n`): 2-tap box, weights `½, ½`;
+//! * source extent 1 (`1 → 1`): copied;
+//! * source extent odd (`2n + 1 → n`, non-power-of-two textures): the exact
+//!   box of width `(2n+1)/n` source texels (a polyphase box). Output `i`
+//!   covers source texels `2i, 2i+1, 2i+2` with weights
+//!   `(n − i, n, i + 1) / (2n + 1)`: the area of each source texel inside
+//!   the output texel's footprint. Unlike a fixed `¼, ½, ¼` tent it keeps
+//!   every output centred on its footprint and preserves the mean exactly.
+//!
+//! The 2-D weights are the products of the axis weights, so a power-of-two
+//! level is `(a + b + c + d + 2) >> 2`, a 1-wide one `(a + b + 1) >> 1`, and
+//! every level is the box average rounded to nearest (ties up): error
+//! ≤ ½ LSB per channel against the exact f64 box of the level below
+//! (tested; exact for power-of-two sizes).
+//!
+//! Generation is set-up work (64-bit integer arithmetic, no floats); the
+//! per-hit path is [`TexelSource::texel`].
+
+use core::fmt;
+
+/// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
+pub type Texel = u32;
+
+/// Largest number of stored levels (a 32768-texel side has 16).
+pub const MAX_LEVELS: u8 = 16;
+
+/// Largest texture side in texels: 2¹⁵ = 32768 (keeps every offset and
+/// block number inside `u32` on 32-bit targets).
+pub const MAX_SIZE: u32 = 1 << 15;
+
+/// Number of levels of the full chain down to 1×1:
+/// `1 + floor(log2(max(w, h)))`; 0 when a side is 0.
+#[must_use]
+pub const fn full_levels(width: u32, height: u32) -> u8 {
+    let m = if width > height { width } else { height };
+    if width == 0 || height == 0 {
+        0
+    } else {
+        (32 - m.leading_zeros()) as u8
+    }
+}
+
+/// Total texels of levels `0 .. levels` of a `width × height` texture
+/// (`levels` is limited to [`full_levels`]); 0 when a side is 0. Saturates
+/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]).
+#[must_use]
+pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
+    let full = full_levels(width, height);
+    let n = if levels < full { levels } else { full };
+    let mut total: u64 = 0;
+    let mut k = 0;
+    while k < n {
+        let (w, h) = level_dims(width, height, k);
+        total += w as u64 * h as u64;
+        k += 1;
+    }
+    if total > usize::MAX as u64 {
+        usize::MAX
+    } else {
+        total as usize
+    }
+}
+
+/// `max(1, w >> k) × max(1, h >> k)` (`k < 32`).
+#[inline(always)]
+const fn level_dims(width: u32, height: u32, k: u8) -> (u32, u32) {
+    let k = (k & 31) as u32;
+    let w = width >> k;
+    let h = height >> k;
+    (if w == 0 { 1 } else { w }, if h == 0 { 1 } else { h })
+}
+
+/// Errors of pyramid set-up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MipError {
+    /// Width or height is 0.
+    ZeroSize,
+    /// Width or height exceeds [`MAX_SIZE`].
+    TooLarge,
+    /// `levels` is 0 or more than [`full_levels`] of the size.
+    BadLevels,
+    /// The texel slice is shorter than [`Geometry::len`].
+    BufferTooShort {
+        /// Texels needed.
+        needed: usize,
+        /// Texels given.
+        got: usize,
+    },
+}
+
+impl fmt::Display for MipError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::ZeroSize => f.write_str("texture width or height is 0"),
+            Self::TooLarge => write!(f, "texture side exceeds {MAX_SIZE} texels"),
+            Self::BadLevels => f.write_str("levels must be in 1..=full_levels(width, height)"),
+            Self::BufferTooShort { needed, got } => {
+                write!(f, "texel buffer holds {got} texels, pyramid needs {needed}")
+            }
+        }
+    }
+}
+
+impl core::error::Error for MipError {}
+
+/// Size and level layout of a pyramid: width, height (1 ..= [`MAX_SIZE`])
+/// and stored levels (1 ..= [`full_levels`]), with precomputed level offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Geometry {
+    width: u32,
+    height: u32,
+    levels: u8,
+    /// Offset of level k in texels; entries past `levels` hold the total.
+    offsets: [u32; MAX_LEVELS as usize + 1],
+}
+
+impl Geometry {
+    /// Geometry of a `width × height` texture storing `levels` levels.
+    ///
+    /// # Errors
+    /// [`MipError::ZeroSize`], [`MipError::TooLarge`] (a side above
+    /// [`MAX_SIZE`]), [`MipError::BadLevels`] (`levels` 0 or above
+    /// [`full_levels`]).
+    pub const fn new(width: u32, height: u32, levels: u8) -> Result<Self, MipError> {
+        if width == 0 || height == 0 {
+            return Err(MipError::ZeroSize);
+        }
+        if width > MAX_SIZE || height > MAX_SIZE {
+            return Err(MipError::TooLarge);
+        }
+        if levels == 0 || levels > full_levels(width, height) {
+            return Err(MipError::BadLevels);
+        }
+        let mut offsets = [0u32; MAX_LEVELS as usize + 1];
+        let mut total: u32 = 0;
+        let mut k = 0u8;
+        while k < MAX_LEVELS {
+            offsets[k as usize] = total;
+            if k < levels {
+                let (w, h) = level_dims(width, height, k);
+                // ≤ 4/3 · 2³⁰ < 2³¹: no overflow for sides ≤ MAX_SIZE.
+                total += w * h;
+            }
+            k += 1;
+        }
+        offsets[MAX_LEVELS as usize] = total;
+        Ok(Self {
+            width,
+            height,
+            levels,
+            offsets,
+        })
+    }
+
+    /// Width of level 0 in texels.
+    #[inline]
+    #[must_use]
+    pub const fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height of level 0 in texels.
+    #[inline]
+    #[must_use]
+    pub const fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Number of stored levels (≥ 1).
+    #[inline]
+    #[must_use]
+    pub const fn levels(&self) -> u8 {
+        self.levels
+    }
+
+    /// Index of the top (coarsest) stored level, `levels − 1`.
+    #[inline]
+    #[must_use]
+    pub const fn top_level(&self) -> u8 {
+        self.levels.saturating_sub(1)
+    }
+
+    /// Size of `level` in texels: `(max(1, w >> k), max(1, h >> k))`, with
+    /// `k = min(level, levels − 1)` (levels above the top are clamped).
+    #[inline]
+    #[must_use]
+    pub const fn level_size(&self, level: u8) -> (u32, u32) {
+        let top = self.top_level();
+        level_dims(
+            self.width,
+            self.height,
+            if level < top { level } else { top },
+        )
+    }
+
+    /// Offset of `level` in texels from the start of the pyramid (level
+    /// clamped to the top stored level).
+    #[inline]
+    #[must_use]
+    pub fn level_offset(&self, level: u8) -> usize {
+        let k = usize::from(level.min(self.top_level()));
+        self.offsets.get(k).copied().unwrap_or(0) as usize
+    }
+
+    /// Total stored texels (= [`pyramid_len`]`(w, h, levels)`).
+    #[inline]
+    #[must_use]
+    pub const fn len(&self) -> usize {
+        self.offsets[MAX_LEVELS as usize] as usize
+    }
+
+    /// Always `false`: a geometry has at least one texel.
+    #[inline]
+    #[must_use]
+    pub const fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Index of texel `(x, y)` of `level` in the pyramid slice. Level,
+    /// `x` and `y` are clamped to the stored range (clamp to edge).
+    #[inline]
+    #[must_use]
+    pub fn texel_index(&self, level: u8, x: u32, y: u32) -> usize {
+        let (w, h) = self.level_size(level);
+        let x = x.min(w - 1) as usize;
+        let y = y.min(h - 1) as usize;
+        self.level_offset(level) + y * w as usize + x
+    }
+}
+
+/// One axis of the generation filter: up to 3 source taps with integer
+/// weights summing to `den`.
+#[derive(Clone, Copy)]
+struct Taps {
+    first: u32,
+    weights: [u64; 3],
+    count: usize,
+    den: u64,
+}
+
+/// Taps of output texel `i` for a source extent `src` (see module docs).
+fn axis_taps(src: u32, i: u32) -> Taps {
+    if src == 1 {
+        Taps {
+            first: 0,
+            weights: [1, 0, 0],
+            count: 1,
+            den: 1,
+        }
+    } else if src % 2 == 0 {
+        Taps {
+            first: 2 * i,
+            weights: [1, 1, 0],
+            count: 2,
+            den: 2,
+        }
+    } else {
+        let n = u64::from(src / 2);
+        let i64_ = u64::from(i);
+        Taps {
+            first: 2 * i,
+            weights: [n - i64_, n, i64_ + 1],
+            count: 3,
+            den: 2 * n + 1,
+        }
+    }
+}
+
+/// Fills levels `1 .. levels` from level 0 (already in `buf[..w*h]`), in
+/// place, with the filter of the module docs.
+///
+/// # Errors
+/// [`MipError::BufferTooShort`] when `buf` is shorter than
+/// [`Geometry::len`] (nothing is written).
+pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
+    let needed = geometry.len();
+    if buf.len() < needed {
+        return Err(MipError::BufferTooShort {
+            needed,
+            got: buf.len(),
+        });
+    }
+    for k in 1..geometry.levels() {
+        let (sw, sh) = geometry.level_size(k - 1);
+        let (dw, dh) = geometry.level_size(k);
+        let (lower, upper) = buf.split_at_mut(geometry.level_offset(k));
+        let src = &lower[geometry.level_offset(k - 1)..];
+        let dst = &mut upper[..(dw * dh) as usize];
+        for y in 0..dh {
+            let ty = axis_taps(sh, y);
+            for x in 0..dw {
+                let tx = axis_taps(sw, x);
+                let den = tx.den * ty.den;
+                let mut sum = [0u64; 4];
+                for (j, &wy) in ty.weights[..ty.count].iter().enumerate() {
+                    let row = (ty.first as usize + j) * sw as usize;
+                    for (i, &wx) in tx.weights[..tx.count].iter().enumerate() {
+                        let t = src[row + tx.first as usize + i];
+                        let w = wx * wy;
+                        for (c, s) in sum.iter_mut().enumerate() {
+                            *s += w * u64::from((t >> (8 * c)) & 0xFF);
+                        }
+                    }
+                }
+                // Round half up: floor(S/D + ½) = floor((2S + D) / 2D).
+                let mut out = 0u32;
+                for (c, s) in sum.iter().enumerate() {
+                    let v = (2 * s + den) / (2 * den);
+                    out |= (v.min(255) as u32) << (8 * c);
+                }
+                dst[(y * dw + x) as usize] = out;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Read access to stored texels: the fetch stage's view of a pyramid
+/// (directly in memory, or through a [`TexelCache`](crate::cache::TexelCache)).
+pub trait TexelSource {
+    /// The pyramid's geometry.
+    fn geometry(&self) -> Geometry;
+    /// Texel `(x, y)` of `level`. Out-of-range level or coordinates are
+    /// clamped to the stored range (never a panic).
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel;
+}
+
+/// A pyramid: geometry plus a borrowed texel slice laid out as in the
+/// module docs.
+#[derive(Clone, Copy, Debug)]
+pub struct Pyramid<'a> {
+    geometry: Geometry,
+    texels: &'a [Texel],
+}
+
+impl<'a> Pyramid<'a> {
+    /// Wraps `texels` (at least [`Geometry::len`] long; extra texels are
+    /// ignored).
+    ///
+    /// # Errors
+    /// [`MipError::BufferTooShort`].
+    pub fn new(geometry: Geometry, texels: &'a [Texel]) -> Result<Self, MipError> {
+        if texels.len() < geometry.len() {
+            return Err(MipError::BufferTooShort {
+                needed: geometry.len(),
+                got: texels.len(),
+            });
+        }
+        Ok(Self { geometry, texels })
+    }
+
+    /// The texel slice.
+    #[must_use]
+    pub fn texels(&self) -> &'a [Texel] {
+        self.texels
+    }
+
+    /// Texel `(x, y)` of `level`, clamped as in [`TexelSource::texel`].
+    #[inline]
+    #[must_use]
+    pub fn get(&self, level: u8, x: u32, y: u32) -> Texel {
+        self.texels
+            .get(self.geometry.texel_index(level, x, y))
+            .copied()
+            .unwrap_or(0)
+    }
+}
+
+impl TexelSource for Pyramid<'_> {
+    #[inline]
+    fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        self.get(level, x, y)
+    }
+}
+
+impl<T: TexelSource + ?Sized> TexelSource for &mut T {
+    #[inline]
+    fn geometry(&self) -> Geometry {
+        (**self).geometry()
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        (**self).texel(level, x, y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec;
+
+    #[test]
+    fn levels_and_lengths() {
+        assert_eq!(full_levels(1, 1), 1);
+        assert_eq!(full_levels(256, 256), 9);
+        assert_eq!(full_levels(1044, 1044), 11);
+        assert_eq!(full_levels(128, 512), 10);
+        assert_eq!(full_levels(0, 5), 0);
+        assert_eq!(pyramid_len(4, 4, 3), 16 + 4 + 1);
+        assert_eq!(pyramid_len(4, 1, 3), 4 + 2 + 1);
+        assert_eq!(pyramid_len(4, 4, 99), 21);
+        assert_eq!(pyramid_len(0, 4, 3), 0);
+        let g = Geometry::new(128, 512, 10).unwrap();
+        assert_eq!(g.len(), pyramid_len(128, 512, 10));
+        assert_eq!(g.level_size(7), (1, 4));
+        assert_eq!(g.level_size(9), (1, 1));
+        assert_eq!(g.level_size(200), (1, 1));
+        assert_eq!(g.level_offset(1), 128 * 512);
+        assert_eq!(Geometry::new(0, 1, 1), Err(MipError::ZeroSize));
+        assert_eq!(Geometry::new(1 << 16, 1, 1), Err(MipError::TooLarge));
+        assert_eq!(Geometry::new(4, 4, 4), Err(MipError::BadLevels));
+        assert_eq!(Geometry::new(4, 4, 0), Err(MipError::BadLevels));
+        let g = Geometry::new(MAX_SIZE, MAX_SIZE, 16).unwrap();
+        assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
+    }
+
+    #[test]
+    fn pot_box_and_one_wide() {
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let mut buf = vec![0u32; g.len()];
+        buf[..4].copy_from_slice(&[0x0000_0001, 0x0000_0002, 0x0000_0000, 0x0000_00FF]);
+        generate(&g, &mut buf).unwrap();
+        // (1 + 2 + 0 + 255 + 2) >> 2 = 65
+        assert_eq!(buf[4], 65);
+        let g = Geometry::new(2, 1, 2).unwrap();
+        let mut buf = vec![0x0000_0003u32, 0x0000_0004, 0];
+        generate(&g, &mut buf).unwrap();
+        assert_eq!(buf[2], 4); // (3 + 4 + 1) >> 1
+        assert_eq!(
+            generate(&g, &mut [0u32; 2]),
+            Err(MipError::BufferTooShort { needed: 3, got: 2 })
+        );
+    }
+
+    #[test]
+    fn odd_extent_polyphase_box() {
+        // 3 → 1: weights (1, 1, 1)/3.
+        let g = Geometry::new(3, 1, 2).unwrap();
+        let mut buf = vec![0u32, 1, 1, 0];
+        generate(&g, &mut buf).unwrap();
+        assert_eq!(buf[3], 1); // 2/3 → 1
+        // 5 → 2: output 0 = (2·a + 2·b + 1·c)/5, output 1 = (1·c + 2·d + 2·e)/5.
+        let g = Geometry::new(5, 1, 2).unwrap();
+        let mut buf = vec![10u32, 20, 30, 40, 50, 0, 0];
+        generate(&g, &mut buf).unwrap();
+        assert_eq!(buf[5], 18); // 90/5
+        assert_eq!(buf[6], 42); // 210/5
+    }
+
+    #[test]
+    fn pyramid_fetch_clamps() {
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let buf = [1u32, 2, 3, 4, 5];
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        assert_eq!(p.texel(0, 1, 1), 4);
+        assert_eq!(p.texel(0, 9, 0), 2);
+        assert_eq!(p.texel(1, 0, 0), 5);
+        assert_eq!(p.texel(7, 3, 3), 5);
+        assert!(Pyramid::new(g, &buf[..4]).is_err());
+    }
+}
