@@ -7,7 +7,10 @@
 //! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
 //!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
 
+use raymip::cache::{BlockLayout, block_count};
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
+use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 
 use crate::scene::TextureImage;
 
@@ -32,7 +35,8 @@ pub struct FetchLog {
     pub blocks: Option<Vec<u32>>,
 }
 
-/// A MIP pyramid in one buffer (level 0 first).
+/// A MIP pyramid in one buffer (level 0 first), built by the firmware's
+/// `mip::generate`.
 #[derive(Clone, Debug)]
 pub struct MipTexture {
     /// Name.
@@ -44,38 +48,25 @@ pub struct MipTexture {
     /// Number of levels (full chain down to 1×1).
     pub levels: u8,
     /// All levels' texels.
-    pub texels: Vec<u32>,
+    pub texels: Vec<Texel>,
     /// First 4×4-block address of this texture in the global texel memory.
     pub block_base: u32,
-    /// Number of block addresses this texture spans.
+    /// Number of block addresses this texture spans (`cache::block_count`).
     pub block_span: u32,
-    sizes: Vec<(u32, u32)>,
-    offsets: Vec<usize>,
-    geometry: Geo,
+    geometry: Geometry,
+    layout: BlockLayout,
 }
-
-#[derive(Clone, Copy, Debug)]
-struct Geo;
 
 impl MipTexture {
     /// Builds the full pyramid of `img` with the firmware generator.
     pub fn new(img: &TextureImage) -> Result<Self, String> {
-        if img.width == 0 || img.height == 0 {
-            return Err(format!("texture {}: zero size", img.name));
-        }
-        let levels = (32 - img.width.max(img.height).leading_zeros()) as u8;
-        let mut sizes = Vec::new();
-        let mut offsets = Vec::new();
-        let mut off = 0usize;
-        for k in 0..levels {
-            let s = ((img.width >> k).max(1), (img.height >> k).max(1));
-            sizes.push(s);
-            offsets.push(off);
-            off += s.0 as usize * s.1 as usize;
-        }
-        let mut texels = vec![0u32; off];
-        texels[..img.texels.len()].copy_from_slice(&img.texels);
-        generate(&sizes, &offsets, &mut texels);
+        let levels = full_levels(img.width, img.height);
+        let geometry = Geometry::new(img.width, img.height, levels)
+            .map_err(|e| format!("texture {} ({}x{}): {e}", img.name, img.width, img.height))?;
+        let mut texels = vec![0u32; geometry.len()];
+        let n = img.texels.len().min(texels.len());
+        texels[..n].copy_from_slice(&img.texels[..n]);
+        generate(&geometry, &mut texels).map_err(|e| format!("texture {}: {e}", img.name))?;
         Ok(Self {
             name: img.name.clone(),
             width: img.width,
@@ -83,58 +74,30 @@ impl MipTexture {
             levels,
             texels,
             block_base: 0,
-            block_span: blocks_spanned(&sizes),
-            sizes,
-            offsets,
-            geometry: Geo,
+            block_span: block_count(&geometry),
+            geometry,
+            layout: BlockLayout::new(&geometry),
         })
     }
 
     /// Size of `level`.
     #[must_use]
     pub fn level_size(&self, level: u8) -> (u32, u32) {
-        self.sizes[usize::from(level.min(self.levels - 1))]
+        self.geometry.level_size(level)
+    }
+
+    /// The firmware geometry.
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
     }
 
     fn texel(&self, level: u8, x: u32, y: u32) -> u32 {
-        let l = usize::from(level);
-        self.texels[self.offsets[l] + y as usize * self.sizes[l].0 as usize + x as usize]
+        self.texels
+            .get(self.geometry.texel_index(level, x, y))
+            .copied()
+            .unwrap_or(0)
     }
-}
-
-/// Interim pyramid generator (2×2 box, rounded; odd sizes clamp).
-fn generate(sizes: &[(u32, u32)], offsets: &[usize], buf: &mut [u32]) {
-    for k in 1..sizes.len() {
-        let (pw, ph) = sizes[k - 1];
-        let (w, h) = sizes[k];
-        for y in 0..h {
-            for x in 0..w {
-                let mut acc = [0u32; 4];
-                for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                    let sx = (2 * x + dx).min(pw - 1);
-                    let sy = (2 * y + dy).min(ph - 1);
-                    let t = buf[offsets[k - 1] + (sy * pw + sx) as usize].to_le_bytes();
-                    for c in 0..4 {
-                        acc[c] += u32::from(t[c]);
-                    }
-                }
-                let b = acc.map(|a| ((a + 2) / 4) as u8);
-                buf[offsets[k] + (y * w + x) as usize] = u32::from_le_bytes(b);
-            }
-        }
-    }
-}
-
-fn blocks_spanned(sizes: &[(u32, u32)]) -> u32 {
-    sizes
-        .iter()
-        .map(|&(w, h)| {
-            w.div_ceil(4)
-                .next_power_of_two()
-                .pow(2)
-                .max(h.div_ceil(4).next_power_of_two().pow(2))
-        })
-        .sum()
 }
 
 /// Assigns consecutive block bases to the textures.
@@ -210,10 +173,11 @@ impl TextureUnit for FloatUnit {
                 let l0 = l.floor();
                 let f = l - l0;
                 let a = bilinear_f64(tex, l0 as u8, u, v, log);
-                if f > 0.0 {
+                if f > 0.0 && l0 < top {
                     let b = bilinear_f64(tex, l0 as u8 + 1, u, v, log);
                     std::array::from_fn(|k| a[k] + f * (b[k] - a[k]))
                 } else {
+                    log.skipped += 4;
                     a
                 }
             }
@@ -226,6 +190,37 @@ impl TextureUnit for FloatUnit {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FirmwareUnit;
 
+/// A [`TexelSource`] over a pyramid that logs the global block address of
+/// every fetch.
+struct Recorder<'a> {
+    pyramid: Pyramid<'a>,
+    layout: &'a BlockLayout,
+    base: u32,
+    blocks: Option<&'a mut Vec<u32>>,
+}
+
+impl TexelSource for Recorder<'_> {
+    fn geometry(&self) -> Geometry {
+        self.pyramid.geometry()
+    }
+
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        if let Some(b) = self.blocks.as_mut() {
+            b.push(self.base.wrapping_add(self.layout.index(level, x, y)));
+        }
+        self.pyramid.get(level, x, y)
+    }
+}
+
+/// `u` reduced to `[0, 1)` (wrap addressing, exact in f64) as a [`TexCoord`].
+fn wrap_coord(u: f64) -> TexCoord {
+    if u.is_finite() {
+        TexCoord::saturating_from_num(u - u.floor())
+    } else {
+        TexCoord::ZERO
+    }
+}
+
 impl TextureUnit for FirmwareUnit {
     fn sample(
         &self,
@@ -236,10 +231,30 @@ impl TextureUnit for FirmwareUnit {
         filter: Filter,
         log: &mut FetchLog,
     ) -> [f64; 3] {
-        // Interim until the firmware filter lands: quantise the lod as the
-        // firmware would and use the f64 filter.
-        let l = Lod::saturating_from_num(lod).to_num::<f64>();
-        let _ = tex.geometry;
-        FloatUnit.sample(tex, u, v, l, filter, log)
+        let Ok(pyramid) = Pyramid::new(tex.geometry, &tex.texels) else {
+            return [0.0; 3];
+        };
+        let source = Recorder {
+            pyramid,
+            layout: &tex.layout,
+            base: tex.block_base,
+            blocks: log.blocks.as_mut(),
+        };
+        let mut sampler = Sampler::new(source, Address::Wrap);
+        // `lod` comes from an I8F8 value: the conversion is exact.
+        let (lod, mode) = match filter {
+            Filter::Trilinear => (Lod::saturating_from_num(lod), Mode::Trilinear),
+            Filter::BilinearLevel0 => (Lod::ZERO, Mode::BilinearNearestLevel),
+        };
+        let t = sampler.sample(wrap_coord(u), wrap_coord(v), lod, mode);
+        let st = sampler.stats();
+        log.fetched += st.fetched;
+        log.skipped += st.skipped;
+        let c = t.to_le_bytes();
+        [
+            f64::from(c[0]) / 255.0,
+            f64::from(c[1]) / 255.0,
+            f64::from(c[2]) / 255.0,
+        ]
     }
 }
