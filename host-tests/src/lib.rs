@@ -10,4 +10,5 @@ pub mod output;
 pub mod ppm;
 pub mod render;
 pub mod scene;
+pub mod table1;
 pub mod texunit;

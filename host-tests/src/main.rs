@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use raymip_host::app::{cmd_compare, cmd_render, parse_size};
+use raymip_host::app::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::{Method, Options, Precision};
 
 #[derive(Parser, Debug)]
@@ -67,6 +67,27 @@ enum Command {
         )]
         methods: Vec<Method>,
     },
+    /// Table I: mip-level shares and texel-cache hit rates (mip mapping off/on) per BART scene.
+    Table1 {
+        /// Folder with one sub-folder per scene (default ../shared/scenes/bart).
+        #[arg(long)]
+        scenes: Option<PathBuf>,
+        /// Image size WxH.
+        #[arg(long, value_parser = parse_size, default_value = "800x480")]
+        size: (u32, u32),
+        /// Maximum reflection/refraction bounces.
+        #[arg(long, default_value_t = 10)]
+        bounces: u8,
+        /// Animation time.
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        /// Also measure the built-in scenes.
+        #[arg(long)]
+        builtin: bool,
+        /// Write table1.md and table1.json here.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
@@ -100,6 +121,21 @@ fn main() -> ExitCode {
             &options(args, Method::Table, Precision::Fixed),
             methods,
             &args.out,
+        ),
+        Command::Table1 {
+            scenes,
+            size,
+            bounces,
+            time,
+            builtin,
+            out,
+        } => cmd_table1(
+            scenes.as_deref(),
+            *size,
+            *bounces,
+            *time,
+            *builtin,
+            out.as_deref(),
         ),
     };
     match r {
