@@ -194,6 +194,9 @@ pub fn default_bart_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/bart")
 }
 
+/// A deferred scene load.
+type SceneLoader = Box<dyn Fn() -> Result<Scene, String>>;
+
 /// Loads the scene in a BART folder (its top-level `.aff` file).
 pub fn load_scene_dir(dir: &Path, time: f64) -> Result<Scene, String> {
     let _ = time;
@@ -214,7 +217,7 @@ pub fn cmd_table1(
     builtin_too: bool,
     out: Option<&Path>,
 ) -> Result<(), String> {
-    let mut jobs: Vec<(String, Box<dyn Fn() -> Result<Scene, String>>)> = Vec::new();
+    let mut jobs: Vec<(String, SceneLoader)> = Vec::new();
     let dir = scenes.map_or_else(default_bart_dir, Path::to_path_buf);
     if dir.is_dir() {
         let mut subs: Vec<PathBuf> = std::fs::read_dir(&dir)
