@@ -847,7 +847,12 @@ impl Ctx<'_> {
         }
         let refl = (v::max_c(refl_w) > 1e-3).then(|| {
             let dn_ = v::dot(ray.d, ns);
-            let dir = v::norm(v::madd(ray.d, ns, -2.0 * dn_));
+            let mut dir = v::norm(v::madd(ray.d, ns, -2.0 * dn_));
+            if v::dot(dir, face_ng) <= 0.0 {
+                // Interpolated normal sends the ray below the surface:
+                // reflect about the geometric normal instead.
+                dir = v::norm(v::madd(ray.d, face_ng, -2.0 * v::dot(ray.d, face_ng)));
+            }
             let drf = |dd: V3, dn: V3| {
                 let ddn = v::dot(dd, ns) + v::dot(ray.d, dn);
                 v::sub(
