@@ -293,3 +293,24 @@ pub fn cmd_table1(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_and_scene_errors() {
+        assert_eq!(parse_size("800x480"), Ok((800, 480)));
+        assert_eq!(parse_size("64X48"), Ok((64, 48)));
+        for bad in ["800", "0x10", "ax4", "10x", "99999x2"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+        let e = load_scene("builtin:nope", 0.0).unwrap_err();
+        assert!(e.contains("nope") && e.contains("hall"), "{e}");
+        assert!(
+            load_scene("/no/such/file.aff", 0.0)
+                .unwrap_err()
+                .contains("/no/such/file.aff")
+        );
+    }
+}

@@ -142,3 +142,49 @@ pub fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), String> 
 pub fn write_text(path: &Path, text: &str) -> Result<(), String> {
     fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn psnr_of_known_error() {
+        // Every channel off by 1: MSE 1 → 20·log10(255) dB.
+        let a = vec![[10u8, 20, 30]; 50];
+        let b = vec![[11u8, 19, 31]; 50];
+        assert!((psnr(&a, &b) - 20.0 * 255f64.log10()).abs() < 1e-9);
+        assert!(psnr(&a, &a).is_infinite());
+        assert_eq!(max_diff(&a, &b), 1);
+        // Off by 16 in one channel of every pixel: MSE 256/3.
+        let c = vec![[26u8, 20, 30]; 50];
+        let want = 10.0 * (255.0f64 * 255.0 / (256.0 / 3.0)).log10();
+        assert!((psnr(&a, &c) - want).abs() < 1e-9);
+    }
+
+    #[test]
+    fn palette_and_heat_map() {
+        assert_eq!(level_color(0.0), PALETTE[0]);
+        assert_eq!(level_color(3.0), PALETTE[3]);
+        assert_eq!(level_color(f32::NAN), [0, 0, 0]);
+        assert_eq!(level_color(99.0), PALETTE[PALETTE.len() - 1]);
+        let a = [[0u8; 3], [0; 3]];
+        let b = [[0u8; 3], [200; 3]];
+        assert_eq!(heat_map(&a, &b, 16), vec![[0, 0, 0], [255, 255, 255]]);
+    }
+
+    #[test]
+    fn png_round_trip() {
+        let dir = std::env::temp_dir().join(format!("raymip-png-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("t.png");
+        let px: Vec<[u8; 3]> = (0..12u8).map(|i| [i, i * 2, 255 - i]).collect();
+        write_png(&p, 4, 3, &px).unwrap();
+        assert_eq!(read_png(&p).unwrap(), (4, 3, px));
+        assert!(
+            read_png(&dir.join("missing.png"))
+                .unwrap_err()
+                .contains("missing.png")
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
