@@ -50,13 +50,13 @@ static void test_table_and_lod(void) {
     int32_t entries[3] = {0, 0, 0};
     RmBuildStats st;
     CHECK(rm_table_build(entries, 3, tris, 3, spread, &st) == RM_STATUS_OK, "build");
-    CHECK(st.textured == 2 && st.untextured == 1, "stats %u %u", st.textured, st.untextured);
+    CHECK(st.textured == 2 && st.untextured == 1, "stats %u %u", (unsigned)st.textured, (unsigned)st.untextured);
     /* Texel width sqrt(A/N): A = side^2/2, N = w*h/2 texels. */
     const double want0 = log2(sqrt(0.5 / (0.5 * 256.0 * 256.0)) / gamma);
     const double want1 = log2(sqrt(8.0 / (0.5 * 64.0 * 64.0)) / gamma);
     CHECK(fabs(i16f16(entries[0]) - want0) <= 1.0 / 1024, "entry0 %f want %f", i16f16(entries[0]), want0);
     CHECK(fabs(i16f16(entries[1]) - want1) <= 1.0 / 1024, "entry1 %f want %f", i16f16(entries[1]), want1);
-    CHECK(entries[2] == RM_UNTEXTURED, "untextured marker %d", entries[2]);
+    CHECK(entries[2] == RM_UNTEXTURED, "untextured marker %ld", (long)entries[2]);
 
     for (double pl = 0.01; pl < 5000.0; pl *= 1.7) {
         int16_t lod = 0;
@@ -105,7 +105,7 @@ static void test_ray_stack(void) {
     CHECK(rm_ray_stack_push(&stack, &s) == RM_STATUS_STACK_FULL && stack.len == RM_RAY_STACK_CAPACITY, "full");
     for (int i = RM_RAY_STACK_CAPACITY - 1; i >= 0; i--) {
         CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_OK, "pop");
-        CHECK(out.cone_spread == (1 << 20) + i, "LIFO order: spread %d", out.cone_spread);
+        CHECK(out.cone_spread == (1 << 20) + i, "LIFO order: spread %ld", (long)out.cone_spread);
     }
     CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_STACK_EMPTY, "empty");
     CHECK(rm_ray_stack_push(NULL, &s) == RM_STATUS_NULL_POINTER, "null stack");
@@ -139,17 +139,17 @@ static void test_sampling(void) {
     /* Centre of texel (0,0) at level 0, nearest and bilinear: colour a. */
     int64_t u = fx32(0.125), v = fx32(0.125);
     for (uint8_t mode = 0; mode < 4; mode++) {
-        CHECK(rm_sample(&tex, u, v, 0, mode, 0, &out) == RM_STATUS_OK && out == a, "mode %u at level 0: %08x", mode, out);
+        CHECK(rm_sample(&tex, u, v, 0, mode, 0, &out) == RM_STATUS_OK && out == a, "mode %u at level 0: %08lx", (unsigned)mode, (unsigned long)out);
     }
     /* Coarsest level: the mean everywhere (lod clamped to 2). */
-    CHECK(rm_sample(&tex, fx32(0.3), fx32(0.9), 10 * 256, 0, 1, &out) == RM_STATUS_OK && out == texels[20], "top %08x", out);
+    CHECK(rm_sample(&tex, fx32(0.3), fx32(0.9), 10 * 256, 0, 1, &out) == RM_STATUS_OK && out == texels[20], "top %08lx", (unsigned long)out);
     /* Trilinear halfway between level 0 (a at this texel centre) and
      * level 1 (clamped addressing: u = 0.125 is below the first level-1
      * texel centre 0.25, so only that texel, a): a. */
-    CHECK(rm_sample(&tex, u, v, 128, 0, 1, &out) == RM_STATUS_OK && out == a, "trilinear %08x", out);
+    CHECK(rm_sample(&tex, u, v, 128, 0, 1, &out) == RM_STATUS_OK && out == a, "trilinear %08lx", (unsigned long)out);
     /* With wrapping, level 1 mixes in the wrapped neighbours (b): neither
      * pure colour. */
-    CHECK(rm_sample(&tex, u, v, 128, 0, 0, &out) == RM_STATUS_OK && out != a && out != b, "trilinear wrap %08x", out);
+    CHECK(rm_sample(&tex, u, v, 128, 0, 0, &out) == RM_STATUS_OK && out != a && out != b, "trilinear wrap %08lx", (unsigned long)out);
     /* Bilinear on the edge between a and b at level 0: channel means. */
     rm_sample(&tex, fx32(0.5), fx32(0.125), 0, 1, 1, &out);
     for (int c = 0; c < 4; c++) {
