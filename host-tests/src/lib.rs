@@ -2,6 +2,7 @@
 #![warn(missing_docs)]
 #![allow(clippy::needless_range_loop)]
 
+pub mod aff;
 pub mod app;
 pub mod builtin;
 pub mod bvh;
@@ -9,6 +10,8 @@ pub mod compare;
 pub mod output;
 pub mod ppm;
 pub mod render;
+pub mod sample;
 pub mod scene;
 pub mod table1;
+pub mod texf32;
 pub mod texunit;

@@ -1,12 +1,14 @@
 //! `raymip-host`: render scenes through the firmware texture path, compare
 //! against float references and ground truth, reproduce Table I.
 
+use std::io::{self, BufWriter};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use raymip_host::app::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::{Method, Options, Precision};
+use raymip_host::sample::{self, SampleArgs};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -43,6 +45,11 @@ struct RenderArgs {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Read `u,v,lod,mode` lines from stdin and print filtered `r,g,b,a`
+    /// lines (firmware fixed-point path). Modes: 0 trilinear, 1 bilinear +
+    /// nearest level, 2 nearest texel + nearest level, 3 nearest texel +
+    /// linear between levels.
+    Sample(SampleArgs),
     /// Render one image: image.png, levels.png (mip level per pixel), report.json/md.
     Render {
         #[command(flatten)]
@@ -105,6 +112,12 @@ fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let r = match &cli.command {
+        Command::Sample(args) => {
+            let out = BufWriter::new(io::stdout().lock());
+            sample::run(args, io::stdin().lock(), out)
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        }
         Command::Render {
             args,
             method,

@@ -1,0 +1,136 @@
+//! ns per bilinear and trilinear sample: firmware fixed point against the
+//! f32 implementation (`raymip_host::texf32`), one run, same pyramid and
+//! inputs; then texel-cache hit rates for a scanline walk at lod 0 and 2
+//! (printed).
+//!
+//! Run: `cargo bench -p raymip-host --bench texture`.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group};
+use raymip::cache::TexelCache;
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::lod::Lod;
+use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip_host::texf32::SamplerF32;
+
+const N: usize = 1024;
+const SIZE: u32 = 1024;
+
+fn xorshift(s: &mut u64) -> u64 {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    *s
+}
+
+fn texture() -> (Geometry, Vec<Texel>) {
+    let g = Geometry::new(SIZE, SIZE, full_levels(SIZE, SIZE)).expect("geometry");
+    let mut buf = vec![0; g.len()];
+    let mut s = 0x9E37_79B9_7F4A_7C15u64;
+    for t in &mut buf[..(SIZE * SIZE) as usize] {
+        *t = xorshift(&mut s) as u32;
+    }
+    generate(&g, &mut buf).expect("generate");
+    (g, buf)
+}
+
+/// Random (u, v, lod) with lod in [0, 6) and a non-zero fraction, so
+/// trilinear always reads two levels.
+fn inputs() -> Vec<(f32, f32, f32)> {
+    let mut s = 0x2545_F491_4F6C_DD1Du64;
+    let mut unit = move || (xorshift(&mut s) >> 40) as f32 / (1u64 << 24) as f32;
+    (0..N)
+        .map(|_| {
+            let lod = (unit() * 6.0).floor() + 0.125 + 0.75 * unit();
+            (unit() * 4.0 - 2.0, unit() * 4.0 - 2.0, lod)
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let (g, buf) = texture();
+    let inp = inputs();
+    let fixed_in: Vec<(TexCoord, TexCoord, Lod)> = inp
+        .iter()
+        .map(|&(u, v, l)| {
+            (
+                TexCoord::from_num(u),
+                TexCoord::from_num(v),
+                Lod::from_num(l),
+            )
+        })
+        .collect();
+    let pyramid = Pyramid::new(g, &buf).expect("pyramid");
+    let mut fixed = Sampler::new(pyramid, Address::Wrap);
+    let float = SamplerF32::new(g, &buf, Address::Wrap).expect("f32 sampler");
+
+    let mut grp = c.benchmark_group("texture");
+    grp.throughput(Throughput::Elements(N as u64));
+    for (name, mode) in [
+        ("bilinear", Mode::BilinearNearestLevel),
+        ("trilinear", Mode::Trilinear),
+    ] {
+        grp.bench_function(format!("{name}/fixed"), |b| {
+            b.iter(|| {
+                for &(u, v, l) in black_box(&fixed_in) {
+                    black_box(fixed.sample(u, v, l, mode));
+                }
+            })
+        });
+        grp.bench_function(format!("{name}/f32"), |b| {
+            b.iter(|| {
+                for &(u, v, l) in black_box(&inp) {
+                    black_box(float.sample(u, v, l, mode));
+                }
+            })
+        });
+    }
+    grp.finish();
+}
+
+/// Hit rate of a 16 KiB, 4-way cache (64 sets × 4 ways of 4×4 RGBA8
+/// blocks) for a row-by-row walk over a screen that shows the whole
+/// texture once, one pixel per `2^lod` texels of level 0, bilinear at level
+/// `level` (`level = lod`: mip-mapped; `level = 0`: mip mapping off).
+fn scanline_hit_rate(g: Geometry, buf: &[Texel], lod: u32, level: u8) -> (f64, u64, u64) {
+    let pyramid = Pyramid::new(g, buf).expect("pyramid");
+    let cache: TexelCache<Pyramid<'_>, 64, 4> = TexelCache::new(pyramid);
+    let mut s = Sampler::new(cache, Address::Wrap);
+    let pixels = SIZE >> lod;
+    let l = Lod::from_num(level);
+    for y in 0..pixels {
+        for x in 0..pixels {
+            let u = TexCoord::from_num((f64::from(x) + 0.5) / f64::from(pixels));
+            let v = TexCoord::from_num((f64::from(y) + 0.5) / f64::from(pixels));
+            black_box(s.sample(u, v, l, Mode::BilinearNearestLevel));
+        }
+    }
+    let st = s.source().stats();
+    (st.hit_rate(), st.hits, st.misses)
+}
+
+fn cache_report() {
+    let (g, buf) = texture();
+    println!("texel cache: 16 KiB, 64 sets x 4 ways, 4x4 RGBA8 blocks (64 B), LRU, Morton order");
+    println!("scanline walk over a {SIZE}x{SIZE} texture, bilinear, one access per texel read:");
+    for (lod, level, what) in [
+        (0, 0, "lod 0 (level 0)"),
+        (2, 2, "lod 2 (level 2, mip-mapped)"),
+        (2, 0, "lod 2 minification with mip mapping off (level 0)"),
+    ] {
+        let (rate, hits, misses) = scanline_hit_rate(g, &buf, lod, level);
+        println!(
+            "  {what:<52} hit rate {:6.2} %  ({hits} hits, {misses} misses)",
+            100.0 * rate
+        );
+    }
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    cache_report();
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

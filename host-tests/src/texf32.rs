@@ -1,0 +1,135 @@
+//! An f32 implementation of the firmware's texture filters (same
+//! definitions as `raymip::filter`: texel centres at (i + ½)/size, wrap or
+//! clamp to edge, lod clamped to the stored levels, nearest level
+//! floor(lod + ½), blend weight frac(lod)), for the fixed-vs-float bench.
+//! Reads the same pyramid memory.
+
+use raymip::filter::{Address, Mode};
+use raymip::mip::{Geometry, Texel};
+
+/// A pyramid sampled in f32.
+#[derive(Clone, Copy, Debug)]
+pub struct SamplerF32<'a> {
+    geometry: Geometry,
+    texels: &'a [Texel],
+    address: Address,
+}
+
+#[inline(always)]
+fn channels(t: Texel) -> [f32; 4] {
+    let b = t.to_le_bytes();
+    [
+        f32::from(b[0]),
+        f32::from(b[1]),
+        f32::from(b[2]),
+        f32::from(b[3]),
+    ]
+}
+
+#[inline(always)]
+fn pack(c: [f32; 4]) -> Texel {
+    // Round to nearest; `as u8` saturates (values are in [0, 255]).
+    u32::from_le_bytes(c.map(|x| (x + 0.5) as u8))
+}
+
+impl<'a> SamplerF32<'a> {
+    /// A sampler over `texels` laid out as `geometry` describes. `None`
+    /// when the slice is too short.
+    pub fn new(geometry: Geometry, texels: &'a [Texel], address: Address) -> Option<Self> {
+        (texels.len() >= geometry.len()).then_some(Self {
+            geometry,
+            texels,
+            address,
+        })
+    }
+
+    #[inline(always)]
+    fn fix(&self, i: i32, n: u32) -> u32 {
+        let n = n as i32;
+        match self.address {
+            Address::Wrap => i.rem_euclid(n) as u32,
+            Address::Clamp => i.clamp(0, n - 1) as u32,
+        }
+    }
+
+    #[inline(always)]
+    fn reduce(&self, u: f32) -> f32 {
+        match self.address {
+            Address::Wrap => u - u.floor(),
+            Address::Clamp => u.clamp(-1.0, 2.0),
+        }
+    }
+
+    #[inline(always)]
+    fn texel(&self, level: u8, x: u32, y: u32) -> Texel {
+        let (w, _) = self.geometry.level_size(level);
+        let i = self.geometry.level_offset(level) + (y * w + x) as usize;
+        self.texels.get(i).copied().unwrap_or(0)
+    }
+
+    #[inline(always)]
+    fn bilinear(&self, u: f32, v: f32, level: u8) -> [f32; 4] {
+        let (w, h) = self.geometry.level_size(level);
+        let x = u * w as f32 - 0.5;
+        let y = v * h as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i32, y0 as i32);
+        let (xa, xb) = (self.fix(x0, w), self.fix(x0 + 1, w));
+        let (ya, yb) = (self.fix(y0, h), self.fix(y0 + 1, h));
+        let p = channels(self.texel(level, xa, ya));
+        let q = channels(self.texel(level, xb, ya));
+        let r = channels(self.texel(level, xa, yb));
+        let s = channels(self.texel(level, xb, yb));
+        let mut out = [0.0; 4];
+        for c in 0..4 {
+            let top = p[c] + (q[c] - p[c]) * fx;
+            let bot = r[c] + (s[c] - r[c]) * fx;
+            out[c] = top + (bot - top) * fy;
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn nearest(&self, u: f32, v: f32, level: u8) -> Texel {
+        let (w, h) = self.geometry.level_size(level);
+        let x = self.fix((u * w as f32).floor() as i32, w);
+        let y = self.fix((v * h as f32).floor() as i32, h);
+        self.texel(level, x, y)
+    }
+
+    /// Filtered texel at `(u, v)`, level of detail `lod`, in f32. Non-finite
+    /// inputs give an unspecified texel (no panic).
+    #[inline]
+    pub fn sample(&self, u: f32, v: f32, lod: f32, mode: Mode) -> Texel {
+        let (u, v) = (self.reduce(u), self.reduce(v));
+        let top = f32::from(self.geometry.levels() - 1);
+        let lod = lod.clamp(0.0, top);
+        let lower = lod.floor();
+        let t = lod - lower;
+        let l0 = lower as u8;
+        let nearest_level = ((lod + 0.5).floor().min(top)) as u8;
+        match mode {
+            Mode::Trilinear => {
+                let a = self.bilinear(u, v, l0);
+                if t == 0.0 {
+                    pack(a)
+                } else {
+                    let b = self.bilinear(u, v, l0 + 1);
+                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                }
+            }
+            Mode::BilinearNearestLevel => pack(self.bilinear(u, v, nearest_level)),
+            Mode::Nearest => self.nearest(u, v, nearest_level),
+            Mode::NearestTexelLinearLevel => {
+                let a = channels(self.nearest(u, v, l0));
+                if t == 0.0 {
+                    pack(a)
+                } else {
+                    let b = channels(self.nearest(u, v, l0 + 1));
+                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                }
+            }
+        }
+    }
+}
