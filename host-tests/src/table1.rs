@@ -171,3 +171,34 @@ pub fn markdown(rows: &[Row], bounces: u8) -> String {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hit_rate_of_known_streams() {
+        // One block n times: one cold miss.
+        assert!((hit_rate(&[7; 100]) - 99.0).abs() < 1e-9);
+        // WAYS + 1 blocks of one set in a cycle: LRU misses every time.
+        let thrash: Vec<u32> = (0..40)
+            .map(|i| (i % (WAYS as u32 + 1)) * SETS as u32)
+            .collect();
+        assert_eq!(hit_rate(&thrash), 0.0);
+        // WAYS blocks of one set in a cycle: only the cold misses.
+        let fit: Vec<u32> = (0..40).map(|i| (i % WAYS as u32) * SETS as u32).collect();
+        assert!((hit_rate(&fit) - 90.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn level_shares_fold_three_and_up() {
+        let mut h = [0u64; 16];
+        h[0] = 1;
+        h[1] = 2;
+        h[2] = 3;
+        h[3] = 2;
+        h[9] = 2;
+        assert_eq!(level_shares(&h), [10.0, 20.0, 30.0, 40.0]);
+        assert_eq!(level_shares(&[0; 16]), [0.0; 4]);
+    }
+}
