@@ -169,6 +169,11 @@ pub fn markdown(rows: &[Row], bounces: u8) -> String {
             r.frame_s[1]
         );
     }
+    s += "\nNotes: level = floor of the table lod clamped to the texture's levels, at every textured hit of every path (primary and secondary). \
+Differences from the paper have known sources: the camera frame (ours: the animation at `--time`, default 0, and 800×480 with the file's vertical angle, \
+while the files say 800×600; one level is one halving of the image size, so the level shares move by about one level per factor 2 in resolution), \
+the lod itself (the table method has no |n·d| term), the filter (trilinear: up to 8 texel fetches per hit with mip mapping on, 4 bilinear level-0 fetches off), \
+and the cache (a 16 KiB 4-way LRU block cache with Morton-ordered 4×4 blocks; the paper's cache organisation and traversal order may differ).\n";
     s
 }
 
