@@ -7,6 +7,7 @@ pub mod app;
 pub mod builtin;
 pub mod bvh;
 pub mod compare;
+pub mod demo_data;
 pub mod output;
 pub mod ppm;
 pub mod render;

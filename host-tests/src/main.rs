@@ -1,5 +1,7 @@
-//! `raymip-host`: render scenes through the firmware texture path, compare
-//! against float references and ground truth, reproduce Table I.
+//! `raymip-host`: command-line front end of the host harness (a thin
+//! dispatcher; each subcommand's logic lives in the library): sample the
+//! firmware texture unit, render scenes through the firmware texture path,
+//! compare against float references and ground truth, reproduce Table I.
 
 use std::io::{self, BufWriter};
 use std::path::PathBuf;
