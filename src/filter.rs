@@ -178,8 +178,10 @@ fn fix_index(i: i64, size: u32, address: Address) -> u32 {
         }
         Address::Clamp => i,
     };
-    // In range for Wrap already; the clamp is the Clamp mode and a guard.
-    u32::try_from(r.clamp(0, s - 1)).unwrap_or(0)
+    // In range for Wrap already; this is the Clamp mode and a guard
+    // (`max`/`min`, not `clamp`, which would keep a panic branch for
+    // bounds the compiler cannot order).
+    u32::try_from(r.min(s - 1).max(0)).unwrap_or(0)
 }
 
 /// Nearest texel index `floor(u·size)`, addressed.
