@@ -285,11 +285,7 @@ impl<S: TexelSource> Sampler<S> {
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
-        let s = &mut self.source;
-        let t00 = s.texel(level, x0, y0);
-        let t10 = s.texel(level, x1, y0);
-        let t01 = s.texel(level, x0, y1);
-        let t11 = s.texel(level, x1, y1);
+        let [t00, t10, t01, t11] = self.source.footprint(level, [x0, x1], [y0, y1]);
         self.stats.fetched += 4;
         bilerp::bilerp(t00, t10, t01, t11, fx, fy)
     }
