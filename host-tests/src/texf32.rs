@@ -56,13 +56,16 @@ impl<'a> SamplerF32<'a> {
         })
     }
 
+    /// Index in `[−n, 2n]` (coordinates are reduced first) into `[0, n)`.
     #[inline(always)]
     fn fix(&self, i: i32, n: u32) -> u32 {
         let n = n as i32;
-        match self.address {
-            Address::Wrap => i.rem_euclid(n) as u32,
-            Address::Clamp => i.clamp(0, n - 1) as u32,
-        }
+        let i = match self.address {
+            Address::Wrap if i < 0 => i + n,
+            Address::Wrap if i >= n => i - n,
+            _ => i,
+        };
+        i.clamp(0, n - 1) as u32
     }
 
     #[inline(always)]
