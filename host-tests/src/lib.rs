@@ -1,5 +1,18 @@
-//! Host harness for raymip: f64 references, scene loaders, renderer.
+//! Host harness for raymip: f64 references, scene loaders, renderer, CLI.
 #![warn(missing_docs)]
+#![allow(clippy::needless_range_loop)]
+
+pub mod aff;
+pub mod app;
+pub mod builtin;
+pub mod bvh;
+pub mod compare;
+pub mod demo_data;
+pub mod output;
 pub mod ppm;
+pub mod render;
 pub mod sample;
+pub mod scene;
+pub mod table1;
 pub mod texf32;
+pub mod texunit;

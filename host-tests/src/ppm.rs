@@ -149,9 +149,14 @@ pub fn parse_ppm(bytes: &[u8], path: &Path) -> Result<RgbImage, PpmError> {
             scale(u32::from(raster[2 * i]) << 8 | u32::from(raster[2 * i + 1]))
         }
     };
-    let pixels = (0..n)
-        .map(|p| [sample(3 * p), sample(3 * p + 1), sample(3 * p + 2)])
-        .collect();
+    let pixels = if maxval == 255 {
+        // 8-bit samples need no rescaling (the common case; fast path).
+        raster.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    } else {
+        (0..n)
+            .map(|p| [sample(3 * p), sample(3 * p + 1), sample(3 * p + 2)])
+            .collect()
+    };
     Ok(RgbImage {
         width,
         height,

@@ -1,0 +1,29 @@
+//! Linker set-up for the demo binaries: the layout is the repository root's
+//! `memory.x` (one file for both targets, see its comments). The `-T`
+//! arguments are given here rather than as `rustflags`, because a
+//! `RUSTFLAGS` variable would replace the config's `rustflags`.
+
+use std::env;
+use std::path::PathBuf;
+
+fn main() {
+    let manifest =
+        PathBuf::from(env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let root = manifest
+        .join("../..")
+        .canonicalize()
+        .expect("repository root exists");
+    println!("cargo:rustc-link-search={}", root.display());
+    println!("cargo:rerun-if-changed={}", root.join("memory.x").display());
+    let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
+    match arch.as_str() {
+        // cortex-m-rt's link.x INCLUDEs memory.x.
+        "arm" => println!("cargo:rustc-link-arg-bins=-Tlink.x"),
+        // riscv-rt wants memory.x first (its link.x does not include it).
+        "riscv32" => {
+            println!("cargo:rustc-link-arg-bins=-Tmemory.x");
+            println!("cargo:rustc-link-arg-bins=-Tlink.x");
+        }
+        _ => {}
+    }
+}

@@ -1,0 +1,68 @@
+//! The raymip bare-metal demo: renders the built-in scene tile through the
+//! firmware path, prints the pixel checksum and the per-stage counters over
+//! semihosting and exits with code 0 (1 if the generated data is invalid or
+//! the Pb table or a MIP pyramid rebuilt at start-up differs from the
+//! static data).
+//!
+//! Run from `demo/`: `cargo run --release --target thumbv7em-none-eabihf`
+//! (QEMU mps2-an386, Cortex-M4) or `--target riscv32imac-unknown-none-elf`
+//! (QEMU virt).
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+
+use raymip_demo_firmware::stack;
+use raymip_demo_scene::{Fnv1a, HEIGHT, Renderer, WIDTH};
+use semihosting::{println, process};
+
+/// Stack bytes painted below the render's caller.
+const PAINT_BYTES: usize = 16 * 1024;
+
+#[cfg(target_arch = "arm")]
+use cortex_m_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
+
+#[entry]
+fn main() -> ! {
+    let code = run();
+    process::exit(code)
+}
+
+/// The render behind a call boundary, so that its whole frame lies in the
+/// painted stack (an inlined callee's locals would sit in the caller's frame).
+#[inline(never)]
+fn render(r: &mut Renderer, h: &mut Fnv1a) {
+    r.render(|_, _, rgb| h.write(&rgb));
+}
+
+fn run() -> i32 {
+    let target = if cfg!(target_arch = "arm") {
+        "thumbv7em-none-eabihf (Cortex-M4)"
+    } else {
+        "riscv32imac-unknown-none-elf"
+    };
+    println!("raymip demo on {target}");
+    let Some(mut r) = Renderer::new() else {
+        println!("error: demo data invalid");
+        return 1;
+    };
+    let mut h = Fnv1a::default();
+    // Worst-case stack of the render (stack painting, see the lib docs).
+    let top = stack::sp();
+    stack::paint(top, PAINT_BYTES);
+    render(&mut r, &mut h);
+    let used = stack::used(top, PAINT_BYTES);
+    println!(
+        "checksum: {:#010x} ({}x{} RGB, FNV-1a)",
+        h.finish(),
+        WIDTH,
+        HEIGHT
+    );
+    println!("counters: {}", r.counters);
+    println!("stack: {used} bytes used by the render (painted {PAINT_BYTES})");
+    if r.counters.table_mismatches != 0 || r.counters.pyramid_mismatches != 0 {
+        return 1;
+    }
+    0
+}

@@ -1,0 +1,93 @@
+//! Panic-freedom check of the per-hit path (`scripts/link-checks`).
+//!
+//! Calls every per-hit function of raymip with inputs the optimiser cannot
+//! see (`core::hint::black_box`) and links with `panic-never`, whose panic
+//! handler references an undefined symbol: this binary links at the
+//! release opt-level only if no panicking branch survives in any of them.
+//! Built for `thumbv7em-none-eabihf`; never run.
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+// Never run: a failed set-up just parks the core.
+#![allow(clippy::empty_loop)]
+
+use core::hint::black_box as bb;
+
+use cortex_m_rt::entry;
+use panic_never as _;
+use raymip::cache::{BlockCache, TexelCache, block_index};
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
+use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
+use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
+use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::table::{Log2Pb, PbTable, PixelSpread};
+
+static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
+
+#[entry]
+fn main() -> ! {
+    let mut stack: RayStack = RayStack::new();
+    let mut entries = [Log2Pb::UNTEXTURED; 4];
+    let table = PbTable::new(&mut entries);
+    let Ok(spread) = PixelSpread::from_angle(bb(fixed::types::I2F30::from_bits(1 << 20))) else {
+        loop {}
+    };
+    let Ok(geometry) = Geometry::new(bb(32), bb(32), bb(6)) else {
+        loop {}
+    };
+    let Ok(pyramid) = Pyramid::new(geometry, &TEXELS) else {
+        loop {}
+    };
+    let mut direct = Sampler::new(pyramid, Address::Wrap);
+    let mut cached = Sampler::new(TexelCache::<_, 16, 2>::new(pyramid), Address::Clamp);
+    let mut tags: BlockCache<32, 4> = BlockCache::new();
+    let modes = [
+        Mode::Trilinear,
+        Mode::BilinearNearestLevel,
+        Mode::Nearest,
+        Mode::NearestTexelLinearLevel,
+    ];
+    loop {
+        // log2
+        bb(clz32(bb(0x1234)));
+        bb(log2_bits(bb(12345), bb(32)));
+        bb(log2_u32f32(bb(PathLength::from_bits(99))));
+        bb(log2_u16f16(bb(fixed::types::U16F16::from_bits(99))));
+        bb(log2_u32(bb(99)));
+        // Pb table lookup and lod
+        let pb = table.get(bb(3)).unwrap_or(Log2Pb::UNTEXTURED);
+        let pl = bb(PathLength::from_bits(0x1_2345_6789));
+        bb(table_lod(pl, pb));
+        bb(table_lod_clamped(pl, pb, bb(7)));
+        bb(clamp_lod(bb(Lod::from_bits(1000)), bb(200)));
+        bb(pb.delta(&spread));
+        bb(cone_lod(
+            bb(Width::from_bits(77)),
+            bb(fixed::types::I16F16::from_bits(5)),
+            bb(Some(fixed::types::U1F31::from_bits(3))),
+        ));
+        // ray stack and path state
+        let st = PathState::primary(&spread, bb(0xFF))
+            .advance(pl)
+            .bounce(bb(Spread::from_bits(9)));
+        bb(stack.push(bb(st)).is_ok());
+        bb(stack.pop());
+        bb(stack.peek());
+        // fetch, filter, cache
+        let (u, v) = (
+            bb(TexCoord::from_bits(0x1234_5678)),
+            bb(TexCoord::from_bits(-77)),
+        );
+        let lod = bb(Lod::from_bits(300));
+        for &m in &modes {
+            bb(direct.sample(u, v, lod, bb(m)));
+            bb(cached.sample(u, v, lod, bb(m)));
+        }
+        bb(cached.source_mut().texel(bb(2), bb(5), bb(6)));
+        bb(tags.access(bb(1234)));
+        bb(block_index(&geometry, bb(3), bb(1), bb(2)));
+        bb(geometry.level_size(bb(9)));
+        bb(geometry.texel_index(bb(9), bb(100), bb(3)));
+    }
+}

@@ -1,0 +1,90 @@
+//! Code-size probe of the full float-free firmware API: Pb table build and
+//! update (fixed-point set-up), table and cone LOD, ray stack, MIP
+//! generation, all four filter modes from memory and through the block
+//! cache. (The float set-up helpers `PixelSpread::from_fov_y`,
+//! `TexTriangle::from_f32` and `Sampler::sample_f64` are excluded: they are
+//! for hosts.)
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+
+use core::hint::black_box as bb;
+use raymip_size_probe as _;
+
+use fixed::types::{I2F30, I16F16, U1F31};
+use raymip::cache::TexelCache;
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::lod::{Lod, cone_lod, table_lod_clamped};
+use raymip::mip::{Geometry, Pyramid, generate};
+use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::table::{Coord, Log2Pb, PbTable, PixelSpread, TexTriangle};
+
+#[cfg(target_arch = "arm")]
+use cortex_m_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
+
+fn exit(code: i32) -> ! {
+    semihosting::process::exit(code)
+}
+
+#[entry]
+fn main() -> ! {
+    let Ok(spread) = PixelSpread::from_angle(bb(I2F30::from_bits(1 << 20))) else {
+        exit(1)
+    };
+    let c = |x: i64| Coord::from_bits(bb(x));
+    let Ok(tri) = TexTriangle::new(
+        [[c(0), c(1), c(2)], [c(3), c(4), c(5)], [c(6), c(7), c(8)]],
+        [[c(9), c(10)], [c(11), c(12)], [c(13), c(14)]],
+        bb(32),
+        bb(32),
+    ) else {
+        exit(1)
+    };
+    let mut entries = [Log2Pb::UNTEXTURED; 4];
+    let mut table = PbTable::new(&mut entries);
+    let _ = bb(table.build([Some(tri), None], &spread));
+    let _ = bb(table.update(bb(1), [Some(tri)], &spread));
+    let Ok(g) = Geometry::new(bb(32), bb(32), bb(6)) else {
+        exit(1)
+    };
+    let mut buf = [0u32; raymip_demo_scene::TEX_LEN];
+    buf.copy_from_slice(bb(&raymip_demo_scene::TEX0));
+    let _ = bb(generate(&g, &mut buf));
+    let Ok(p) = Pyramid::new(g, &buf) else {
+        exit(1)
+    };
+    let mut direct = Sampler::new(p, Address::Wrap);
+    let mut cached = Sampler::new(TexelCache::<_, 8, 2>::new(p), Address::Clamp);
+    let mut stack: RayStack = RayStack::new();
+    let st = PathState::primary(&spread, bb(0xFF))
+        .advance(bb(PathLength::from_bits(1 << 33)))
+        .bounce(bb(Spread::ZERO));
+    let _ = bb(stack.push(st));
+    let st = stack.pop().unwrap_or(st);
+    let pb = table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
+    let l1 = table_lod_clamped(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
+    let l2 = cone_lod(
+        st.cone.width,
+        pb.delta(&spread).unwrap_or(I16F16::ZERO),
+        bb(Some(U1F31::from_bits(1 << 30))),
+    );
+    let (u, v) = (
+        bb(TexCoord::from_bits(1 << 30)),
+        bb(TexCoord::from_bits(3 << 29)),
+    );
+    let mut acc = 0u32;
+    for m in [
+        Mode::Trilinear,
+        Mode::BilinearNearestLevel,
+        Mode::Nearest,
+        Mode::NearestTexelLinearLevel,
+    ] {
+        acc ^= direct.sample(u, v, l1, bb(m));
+        acc ^= cached.sample(u, v, l2, bb(m));
+    }
+    bb(Width::ZERO);
+    bb(acc);
+    exit(0)
+}

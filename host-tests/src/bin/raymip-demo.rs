@@ -1,0 +1,93 @@
+//! Host side of the bare-metal demos.
+//!
+//! * `raymip-demo gen-data [--check]`: writes `demo/scene/src/data.rs` (the
+//!   camera's pixel spread, the Pb table and the textures as `static` data,
+//!   computed on the host with floats at set-up); `--check` only compares and
+//!   fails when the file is stale.
+//! * `raymip-demo render [--ppm FILE]`: renders the demo tile with the same
+//!   fixed-point code the firmware runs and prints the checksum and counter
+//!   lines the QEMU demos print (`scripts/test-all` compares them).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use raymip_host::demo_data::{DATA_PATH, generate_data_rs};
+
+fn usage() -> ExitCode {
+    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE]");
+    ExitCode::from(2)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    match args.first().map(String::as_str) {
+        Some("gen-data") => {
+            let check = args.get(1).map(String::as_str) == Some("--check");
+            let text = match generate_data_rs() {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            let path = root.join(DATA_PATH);
+            if check {
+                match std::fs::read_to_string(&path) {
+                    Ok(old) if old == text => {
+                        println!("{} is up to date", path.display());
+                        ExitCode::SUCCESS
+                    }
+                    Ok(_) => {
+                        eprintln!(
+                            "error: {} is stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`",
+                            path.display()
+                        );
+                        ExitCode::FAILURE
+                    }
+                    Err(e) => {
+                        eprintln!("error: {}: {e}", path.display());
+                        ExitCode::FAILURE
+                    }
+                }
+            } else if let Err(e) = std::fs::write(&path, text) {
+                eprintln!("error: {}: {e}", path.display());
+                ExitCode::FAILURE
+            } else {
+                println!("wrote {}", path.display());
+                ExitCode::SUCCESS
+            }
+        }
+        Some("render") => {
+            let ppm = match (args.get(1).map(String::as_str), args.get(2)) {
+                (Some("--ppm"), Some(p)) => Some(PathBuf::from(p)),
+                (None, _) => None,
+                _ => return usage(),
+            };
+            let Some(mut r) = raymip_demo_scene::Renderer::new() else {
+                eprintln!("error: demo data invalid (pixel spread)");
+                return ExitCode::FAILURE;
+            };
+            let mut h = raymip_demo_scene::Fnv1a::default();
+            let mut img = raymip_host::ppm::RgbImage {
+                width: raymip_demo_scene::WIDTH,
+                height: raymip_demo_scene::HEIGHT,
+                pixels: Vec::new(),
+            };
+            r.render(|_, _, rgb| {
+                h.write(&rgb);
+                img.pixels.push(rgb);
+            });
+            println!("{}", raymip_host::demo_data::checksum_line(h.finish()));
+            println!("counters: {}", r.counters);
+            if let Some(p) = ppm
+                && let Err(e) = raymip_host::ppm::write_ppm(&p, &img)
+            {
+                eprintln!("error: {}: {e}", p.display());
+                return ExitCode::FAILURE;
+            }
+            ExitCode::SUCCESS
+        }
+        _ => usage(),
+    }
+}

@@ -1,0 +1,173 @@
+//! The renderer's scene: triangles only (spheres are tessellated), with
+//! per-vertex normals and UVs, materials, point lights and a pinhole camera.
+//! [`aff_adapter`] converts a loaded AFF scene.
+
+/// A 3-vector of scene units.
+pub type V3 = [f64; 3];
+
+/// Pinhole camera.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub from: V3,
+    /// Point looked at.
+    pub at: V3,
+    /// Up hint.
+    pub up: V3,
+    /// Full vertical field of view in degrees, in (0, 180).
+    pub fov_y_deg: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+/// Whitted material (all colours linear, 0..1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Ambient reflectance.
+    pub ambient: V3,
+    /// Diffuse reflectance (multiplied by the texture colour when textured).
+    pub diffuse: V3,
+    /// Specular reflectance: highlight and mirror reflection weight.
+    pub specular: V3,
+    /// Phong exponent.
+    pub shine: f64,
+    /// Transmission weight (refraction).
+    pub transmission: V3,
+    /// Index of refraction of the inside.
+    pub ior: f64,
+}
+
+/// Point light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    /// Position.
+    pub position: V3,
+    /// Colour (intensity).
+    pub color: V3,
+}
+
+/// A texture's level 0: RGBA8888 texels (`u32::from_le_bytes([r,g,b,a])`),
+/// row-major, any size ≥ 1×1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    /// Name (file or procedural).
+    pub name: String,
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// `width·height` texels.
+    pub texels: Vec<u32>,
+}
+
+/// One triangle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Triangle {
+    /// Vertex positions.
+    pub p: [V3; 3],
+    /// Per-vertex normals (interpolated, Phong); `None` = flat.
+    pub n: Option<[V3; 3]>,
+    /// Per-vertex UVs in texture repeats; required for texturing.
+    pub uv: Option<[[f64; 2]; 3]>,
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    /// Index into [`Scene::textures`].
+    pub texture: Option<u32>,
+}
+
+impl Triangle {
+    /// True if the triangle is textured (texture and UVs present).
+    #[must_use]
+    pub fn is_textured(&self) -> bool {
+        self.texture.is_some() && self.uv.is_some()
+    }
+}
+
+/// A renderable scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Camera.
+    pub camera: Camera,
+    /// Colour of rays that hit nothing.
+    pub background: V3,
+    /// Global ambient light.
+    pub ambient: V3,
+    /// Point lights.
+    pub lights: Vec<Light>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Textures (level 0).
+    pub textures: Vec<TextureImage>,
+    /// Triangles.
+    pub triangles: Vec<Triangle>,
+}
+
+impl Scene {
+    /// Number of textured triangles.
+    #[must_use]
+    pub fn textured_count(&self) -> usize {
+        self.triangles.iter().filter(|t| t.is_textured()).count()
+    }
+}
+
+/// Vector helpers.
+pub mod v {
+    use super::V3;
+    /// a + b
+    #[must_use]
+    pub fn add(a: V3, b: V3) -> V3 {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+    /// a − b
+    #[must_use]
+    pub fn sub(a: V3, b: V3) -> V3 {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+    /// a·s
+    #[must_use]
+    pub fn scale(a: V3, s: f64) -> V3 {
+        [a[0] * s, a[1] * s, a[2] * s]
+    }
+    /// a ∘ b (component-wise)
+    #[must_use]
+    pub fn mul(a: V3, b: V3) -> V3 {
+        [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+    }
+    /// a·b
+    #[must_use]
+    pub fn dot(a: V3, b: V3) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+    /// a×b
+    #[must_use]
+    pub fn cross(a: V3, b: V3) -> V3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    /// |a|
+    #[must_use]
+    pub fn len(a: V3) -> f64 {
+        dot(a, a).sqrt()
+    }
+    /// a/|a| (zero stays zero)
+    #[must_use]
+    pub fn norm(a: V3) -> V3 {
+        let l = len(a);
+        if l > 0.0 { scale(a, 1.0 / l) } else { a }
+    }
+    /// a + b·s
+    #[must_use]
+    pub fn madd(a: V3, b: V3, s: f64) -> V3 {
+        [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s]
+    }
+    /// max component
+    #[must_use]
+    pub fn max_c(a: V3) -> f64 {
+        a[0].max(a[1]).max(a[2])
+    }
+}

@@ -1,0 +1,62 @@
+//! The bare-metal demo scene on the host.
+
+use std::path::Path;
+
+use raymip_host::demo_data::{DATA_PATH, generate_data_rs};
+
+/// `demo/scene/src/data.rs` equals what the generator writes now.
+#[test]
+fn demo_data_is_up_to_date() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(DATA_PATH);
+    let on_disk = std::fs::read_to_string(&path).unwrap();
+    let fresh = generate_data_rs().unwrap();
+    assert!(
+        on_disk == fresh,
+        "{} is stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`",
+        path.display()
+    );
+}
+
+/// The fixed-point set-up on the host rebuilds exactly the static table
+/// (what the firmware checks at start-up on each target).
+#[test]
+fn rebuilt_table_equals_static_table() {
+    let (_, counters) = raymip_demo_scene::render_checksum().unwrap();
+    assert_eq!(counters.table_mismatches, 0);
+    assert_eq!(
+        counters.pixels,
+        raymip_demo_scene::WIDTH * raymip_demo_scene::HEIGHT
+    );
+    assert_eq!(counters.segments, counters.hits + counters.misses);
+    assert_eq!(counters.pushes, counters.pops);
+}
+
+/// Every table LOD of the demo's textured hits is within the documented
+/// bound of an independent f64 evaluation `log2(Pl / Pb)` with `Pb` from the
+/// f64 geometry of the scene (triangle area / texel count / pixel angle).
+#[test]
+fn demo_table_entries_match_f64_geometry() {
+    use raymip_demo_scene::{Material, QUADS, TEX_SIZE};
+    let fov = raymip_demo_scene::FOV_Y_DEGREES.to_radians();
+    let gamma = (2.0 * (fov / 2.0).tan() / f64::from(raymip_demo_scene::HEIGHT)).atan();
+    let table = raymip_demo_scene::static_table();
+    for quad in &QUADS {
+        let Material::Textured { scale, .. } = quad.material else {
+            assert!(table[quad.tri].is_untextured());
+            continue;
+        };
+        // A texel is (1/scale)/TEX_SIZE scene units wide (isotropic mapping).
+        let texel = 65536.0 / f64::from(scale) / f64::from(TEX_SIZE);
+        let want = (texel / gamma).log2();
+        for k in 0..2 {
+            let got = table[quad.tri + k].to_i16f16().to_num::<f64>();
+            assert!(
+                (got - want).abs() <= raymip::table::TABLE_MAX_ERROR,
+                "triangle {}: log2 Pb {got} vs f64 {want}",
+                quad.tri + k
+            );
+        }
+    }
+}

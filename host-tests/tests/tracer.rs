@@ -1,0 +1,125 @@
+//! Renderer tests on the built-in scenes (reduced sizes to keep CI fast).
+
+use raymip_host::builtin::{self, NAMES, fronto_quad, one_texel_per_pixel_distance};
+use raymip_host::output::psnr;
+use raymip_host::render::{Image, Method, Options, Precision, Prepared, render};
+
+const SIZE: (u32, u32) = (200, 120);
+
+fn opts(method: Method, precision: Precision) -> Options {
+    Options {
+        method,
+        precision,
+        size: Some(SIZE),
+        bounces: 10,
+        spp: 64,
+        record_blocks: false,
+        progress: false,
+    }
+}
+
+fn prep(name: &str) -> Prepared {
+    Prepared::new(builtin::by_name(name).unwrap(), Some(SIZE)).unwrap()
+}
+
+#[test]
+fn fixed_vs_float_psnr_at_least_50_db() {
+    for name in NAMES {
+        let p = prep(name);
+        for m in [Method::Table, Method::Cone] {
+            let a = render(&p, &opts(m, Precision::Fixed)).to_rgb8();
+            let b = render(&p, &opts(m, Precision::Float)).to_rgb8();
+            let q = psnr(&a, &b);
+            println!("{name} {}: fixed vs float {q:.2} dB", m.name());
+            assert!(q >= 50.0, "{name} {}: {q:.2} dB < 50 dB", m.name());
+        }
+    }
+}
+
+/// Lod of the centre pixel of a fronto-parallel quad at `k` times the
+/// one-texel-per-pixel distance.
+fn centre_lod(k: f64, m: Method, p: Precision) -> f64 {
+    let (fov, tex, side) = (45.0, 256, 2.0);
+    let d = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
+    let scene = fronto_quad(side, tex, k * d, fov, SIZE.0, SIZE.1);
+    let prep = Prepared::new(scene, None).unwrap();
+    let img: Image = render(&prep, &opts(m, p));
+    let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
+    f64::from(img.lod[i])
+}
+
+#[test]
+fn fronto_parallel_quad_lod_zero_then_one() {
+    let tol = 1.0 / 256.0;
+    for m in [Method::Table, Method::Cone] {
+        for p in [Precision::Fixed, Precision::Float] {
+            let l1 = centre_lod(1.0, m, p);
+            let l2 = centre_lod(2.0, m, p);
+            println!(
+                "{} {}: lod {l1:.5} at Pb, {l2:.5} at 2·Pb",
+                m.name(),
+                p.name()
+            );
+            assert!(
+                l1.abs() <= tol,
+                "{} {}: lod {l1} at one texel per pixel",
+                m.name(),
+                p.name()
+            );
+            assert!(
+                (l2 - 1.0).abs() <= tol,
+                "{} {}: lod {l2} at twice the distance",
+                m.name(),
+                p.name()
+            );
+        }
+    }
+    // Ray differentials measure the same footprint.
+    let l1 = centre_lod(1.0, Method::Raydiff, Precision::Float);
+    let l2 = centre_lod(2.0, Method::Raydiff, Precision::Float);
+    assert!(
+        l1.abs() <= tol && (l2 - 1.0).abs() <= tol,
+        "raydiff {l1} {l2}"
+    );
+}
+
+#[test]
+fn hall_mip_mapped_closer_to_truth_than_mip0() {
+    let p = prep("hall");
+    let truth = render(&p, &opts(Method::Truth, Precision::Float)).to_rgb8();
+    let mip0 = psnr(
+        &render(&p, &opts(Method::Mip0, Precision::Fixed)).to_rgb8(),
+        &truth,
+    );
+    for m in [Method::Table, Method::Cone] {
+        for pr in [Precision::Fixed, Precision::Float] {
+            let q = psnr(&render(&p, &opts(m, pr)).to_rgb8(), &truth);
+            println!(
+                "hall {} {}: {q:.2} dB vs truth (mip0 {mip0:.2} dB)",
+                m.name(),
+                pr.name()
+            );
+            assert!(
+                q > mip0 + 1.0,
+                "{} {}: {q:.2} dB not above mip0 {mip0:.2} dB",
+                m.name(),
+                pr.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn mirror_room_has_deep_paths_and_glass_refracts() {
+    let img = render(&prep("mirrors"), &opts(Method::Table, Precision::Fixed));
+    let c = &img.counters;
+    println!("mirrors: hits per depth {:?}", c.depth_hist);
+    assert!(c.max_depth() >= 8, "deepest path {} bounces", c.max_depth());
+    assert!(c.depth_hist[8] > 0 && c.depth_hist[10] > 0);
+    assert_eq!(c.saturations, 0);
+    let g = render(&prep("glass"), &opts(Method::Cone, Precision::Fixed));
+    assert!(g.counters.bounces > 0 && g.counters.textured_hits > 0);
+    // Every textured hit lands in one histogram bin.
+    let sum: u64 = g.counters.level_hist.iter().sum();
+    assert_eq!(sum, g.counters.textured_hits);
+}
