@@ -819,7 +819,17 @@ impl Ctx<'_> {
             } else {
                 let sk = k.sqrt();
                 let mu = eta * cosi - sk;
-                let dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
+                let mut dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
+                if v::dot(dir, face_ng) >= 0.0 {
+                    // The interpolated normal bent the ray back out: refract
+                    // about the geometric normal instead.
+                    let c = -v::dot(ray.d, face_ng);
+                    let kg = (1.0 - eta * eta * (1.0 - c * c)).max(0.0);
+                    dir = v::norm(v::add(
+                        v::scale(ray.d, eta),
+                        v::scale(face_ng, eta * c - kg.sqrt()),
+                    ));
+                }
                 let dtr = |dd: V3, dn: V3| {
                     let dcos = -(v::dot(dd, ns) + v::dot(ray.d, dn));
                     let dmu = (eta - eta * eta * cosi / sk) * dcos;

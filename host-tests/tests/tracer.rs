@@ -123,3 +123,17 @@ fn mirror_room_has_deep_paths_and_glass_refracts() {
     let sum: u64 = g.counters.level_hist.iter().sum();
     assert_eq!(sum, g.counters.textured_hits);
 }
+
+#[test]
+fn table1_mip_mapping_raises_cache_hit_rate_on_hall() {
+    let row = raymip_host::table1::measure("hall", builtin::hall(), SIZE, 10, false).unwrap();
+    println!("{row:?}");
+    assert!(row.accesses[0] > 0 && row.accesses[1] > 0);
+    assert!((row.level_share.iter().sum::<f64>() - 100.0).abs() < 1e-6);
+    assert!(
+        row.cache_on > row.cache_off,
+        "{} vs {}",
+        row.cache_on,
+        row.cache_off
+    );
+}
