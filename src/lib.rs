@@ -92,7 +92,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![no_std]
-#![forbid(unsafe_code)]
+// Safe Rust only; with the `ffi` feature the C ABI module (and only it) may
+// use `unsafe` for caller pointers: `deny` there, `forbid` otherwise.
+#![cfg_attr(not(feature = "ffi"), forbid(unsafe_code))]
+#![cfg_attr(feature = "ffi", deny(unsafe_code))]
 #![deny(
     missing_docs,
     missing_debug_implementations,
@@ -103,6 +106,8 @@
 
 pub mod bilerp;
 pub mod cache;
+#[cfg(feature = "ffi")]
+pub mod ffi;
 pub mod filter;
 pub mod lod;
 pub mod log2;

@@ -4,10 +4,11 @@
 //! see (`core::hint::black_box`) and links with `panic-never`, whose panic
 //! handler references an undefined symbol: this binary links at the
 //! release opt-level only if no panicking branch survives in any of them.
-//! Built for `thumbv7em-none-eabihf`; never run.
+//! The C ABI (`raymip::ffi`, feature `ffi`) is checked the same way: no
+//! panic can cross the boundary. Built for `thumbv7em-none-eabihf`; never run.
 #![no_std]
 #![no_main]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 // Never run: a failed set-up just parks the core.
 #![allow(clippy::empty_loop)]
 
@@ -16,6 +17,11 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::cache::{BlockCache, TexelCache, block_index};
+use raymip::ffi::{
+    RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_path_advance,
+    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
+    rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
+};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
@@ -24,6 +30,74 @@ use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Log2Pb, PbTable, PixelSpread};
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
+
+/// Every function of the C ABI with opaque arguments.
+#[allow(unsafe_code)]
+fn c_abi() {
+    let mut entries = [0i32; 4];
+    let tri = bb(RmTriangle {
+        positions: [[0; 3]; 3],
+        uvs: [[0; 2]; 3],
+        tex_width: 1,
+        tex_height: 1,
+        textured: 1,
+    });
+    let mut stack = bb(RmRayStack {
+        entries: [RmPathState::default(); 10],
+        len: 0,
+    });
+    let mut st = RmPathState::default();
+    let mut lod = 0i16;
+    let mut out = 0u32;
+    let tex = bb(RmTexture {
+        texels: TEXELS.as_ptr(),
+        len: TEXELS.len(),
+        width: 32,
+        height: 32,
+        levels: 6,
+    });
+    // SAFETY: every pointer is valid for the stated lengths.
+    unsafe {
+        bb(rm_table_build(
+            bb(entries.as_mut_ptr()),
+            bb(4),
+            &tri,
+            bb(1),
+            bb(1 << 20),
+            core::ptr::null_mut(),
+        ));
+        bb(rm_table_update(
+            bb(entries.as_mut_ptr()),
+            bb(4),
+            bb(2),
+            &tri,
+            bb(1),
+            bb(1 << 20),
+            core::ptr::null_mut(),
+        ));
+        bb(rm_table_lod(bb(99), bb(entries[1]), &mut lod));
+        bb(rm_ray_stack_init(&mut stack));
+        bb(rm_path_primary(bb(1 << 20), bb(3), &mut st));
+        bb(rm_path_advance(&mut st, bb(12345)));
+        bb(rm_path_bounce(&mut st, bb(7)));
+        bb(rm_ray_stack_push(&mut stack, &st));
+        bb(rm_ray_stack_pop(&mut stack, &mut st));
+
+        bb(rm_sample(
+            &tex,
+            bb(5),
+            bb(6),
+            bb(lod),
+            bb(0),
+            bb(1),
+            &mut out,
+        ));
+    }
+    bb(rm_cone_lod(bb(1), bb(2), bb(3)));
+    bb(rm_clamp_lod(bb(1), bb(2)));
+    bb(rm_pyramid_len(bb(1), bb(2), bb(3)));
+    bb(out);
+}
 
 #[entry]
 fn main() -> ! {
@@ -49,6 +123,7 @@ fn main() -> ! {
         Mode::NearestTexelLinearLevel,
     ];
     loop {
+        c_abi();
         // log2
         bb(clz32(bb(0x1234)));
         bb(log2_bits(bb(12345), bb(32)));

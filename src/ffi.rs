@@ -1,0 +1,533 @@
+//! C ABI for soft-core firmware written in C (feature `ffi`).
+//!
+//! Every function is `extern "C"`, takes and returns plain `#[repr(C)]`
+//! types or fixed-point values as their raw integer bits, and reports
+//! errors as [`RmStatus`] codes. Nothing panics across the boundary: every
+//! pointer is checked for null, every length is checked, and the library
+//! code behind it is panic-free on these paths (machine-checked by
+//! `scripts/link-checks`). The header `include/raymip.h` is generated from
+//! this module by `cbindgen` (CI fails when it is stale); the static
+//! library is built by the `raymip-ffi` crate (`ffi/`).
+//!
+//! MIP generation (`raymip::mip::generate`) is not exposed yet: it still
+//! has panicking branches (bounds checks, a division) that the panic-never
+//! link check finds, so it cannot promise "no panic across the boundary".
+//! C callers store all levels (e.g. generated on the host).
+//!
+//! # Number formats (raw bits)
+//!
+//! | value | Rust type | C type |
+//! |---|---|---|
+//! | position, UV, texture coordinate | I32F32 | `int64_t` |
+//! | path length `Pl`, hit distance `t` | U32F32 | `uint64_t` |
+//! | cone width | I32F32 | `int64_t` |
+//! | spread angle (radians) | I2F30 | `int32_t` |
+//! | table entry `log2 Pb`, `Δ` | I16F16 | `int32_t` (`RM_UNTEXTURED` = `INT32_MIN`) |
+//! | level of detail | I8F8 | `int16_t` |
+//! | `|n·d|` | U1F31 | `uint32_t` |
+//! | texel | RGBA8888 | `uint32_t` (little-endian bytes r, g, b, a) |
+//!
+//! # Safety
+//!
+//! This is the crate's only module with `unsafe` code (the crate is
+//! `#![deny(unsafe_code)]` with the feature, `#![forbid(unsafe_code)]`
+//! without it): turning caller pointers into references and slices. Each
+//! function documents what the caller guarantees: non-null pointers (null
+//! is checked and reported), pointing to the stated number of valid,
+//! aligned, initialised elements that nothing else accesses during the call.
+#![allow(unsafe_code)]
+
+use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
+
+use crate::filter::{Address, Mode, Sampler};
+use crate::lod::{clamp_lod, cone_lod, table_lod};
+use crate::mip::{Geometry, MipError, Pyramid, pyramid_len};
+use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
+use crate::table::{Log2Pb, PixelSpread, TableError, TexTriangle};
+
+/// Result codes of the C ABI (`0` = success, negative = error, positive =
+/// a documented non-error outcome).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmStatus {
+    /// Success.
+    Ok = 0,
+    /// The triangle is untextured: no lod (nothing to fetch).
+    Untextured = 1,
+    /// A required pointer was null.
+    NullPointer = -1,
+    /// A size, level count, mode or address value is out of range.
+    OutOfRange = -2,
+    /// Ray stack full: the state was not pushed.
+    StackFull = -3,
+    /// Ray stack empty: nothing popped.
+    StackEmpty = -4,
+    /// Texture width or height is zero.
+    ZeroSize = -5,
+    /// Spread angle outside `(0, 2)` radians.
+    BadAngle = -6,
+    /// More triangles than table entries (the ones that fit were written).
+    TableFull = -7,
+    /// The texel buffer is shorter than the pyramid.
+    BufferTooShort = -8,
+}
+
+/// Raw bits of the untextured table marker (`INT32_MIN`).
+pub const RM_UNTEXTURED: i32 = i32::MIN;
+/// Capacity of [`RmRayStack`] (10, as in the hardware paper).
+pub const RM_RAY_STACK_CAPACITY: usize = 10;
+const _: () = assert!(RM_RAY_STACK_CAPACITY == DEFAULT_CAPACITY);
+
+/// One triangle for the Pb table.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmTriangle {
+    /// Vertex positions, I32F32 bits (scene units).
+    pub positions: [[i64; 3]; 3],
+    /// Vertex UVs, I32F32 bits (texture repeats).
+    pub uvs: [[i64; 2]; 3],
+    /// Level-0 texture width in texels (≥ 1 when textured).
+    pub tex_width: u32,
+    /// Level-0 texture height in texels (≥ 1 when textured).
+    pub tex_height: u32,
+    /// 0 = untextured (gets [`RM_UNTEXTURED`], no table work), else textured.
+    pub textured: u8,
+}
+
+/// What a table build or update wrote.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RmBuildStats {
+    /// Entries computed for textured triangles.
+    pub textured: u32,
+    /// Untextured markers written.
+    pub untextured: u32,
+    /// Textured triangles with zero world area.
+    pub degenerate_geometry: u32,
+    /// Textured triangles with zero UV area.
+    pub degenerate_uv: u32,
+}
+
+/// One ray stack entry: the path state LOD needs across bounces.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RmPathState {
+    /// Accumulated path length `Pl`, U32F32 bits (scene units).
+    pub pl: u64,
+    /// Ray-cone width, I32F32 bits (scene units).
+    pub cone_width: i64,
+    /// Ray-cone spread angle, I2F30 bits (radians).
+    pub cone_spread: i32,
+    /// 8-bit ray mask of the path.
+    pub mask: u8,
+    /// Bounces so far (saturates at 255).
+    pub depth: u8,
+    /// Non-zero once any quantity saturated.
+    pub saturated: u8,
+}
+
+/// A fixed-capacity ray stack in caller memory (initialise with
+/// [`rm_ray_stack_init`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmRayStack {
+    /// Storage; entries `0 .. len` are valid.
+    pub entries: [RmPathState; RM_RAY_STACK_CAPACITY],
+    /// Number of valid entries (`0 ..= RM_RAY_STACK_CAPACITY`).
+    pub len: u32,
+}
+
+/// A MIP pyramid in caller memory: levels stored one after another, level 0
+/// first, each row-major (`rm_pyramid_len` texels in all).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RmTexture {
+    /// The texels (RGBA8888).
+    pub texels: *const u32,
+    /// Number of texels at `texels`.
+    pub len: usize,
+    /// Level-0 width in texels.
+    pub width: u32,
+    /// Level-0 height in texels.
+    pub height: u32,
+    /// Stored levels (1 ..= full chain).
+    pub levels: u8,
+}
+
+impl From<PathState> for RmPathState {
+    fn from(s: PathState) -> Self {
+        Self {
+            pl: s.pl.to_bits(),
+            cone_width: s.cone.width.to_bits(),
+            cone_spread: s.cone.spread.to_bits(),
+            mask: s.mask,
+            depth: s.depth,
+            saturated: u8::from(s.saturated),
+        }
+    }
+}
+
+impl From<RmPathState> for PathState {
+    fn from(s: RmPathState) -> Self {
+        Self {
+            pl: U32F32::from_bits(s.pl),
+            cone: RayCone {
+                width: I32F32::from_bits(s.cone_width),
+                spread: I2F30::from_bits(s.cone_spread),
+            },
+            mask: s.mask,
+            depth: s.depth,
+            saturated: s.saturated != 0,
+        }
+    }
+}
+
+fn table_status(e: TableError) -> RmStatus {
+    match e {
+        TableError::ZeroTextureSize => RmStatus::ZeroSize,
+        TableError::BadAngle | TableError::ZeroImageHeight => RmStatus::BadAngle,
+        TableError::TableFull => RmStatus::TableFull,
+        _ => RmStatus::OutOfRange,
+    }
+}
+
+fn mip_status(e: MipError) -> RmStatus {
+    match e {
+        MipError::ZeroSize => RmStatus::ZeroSize,
+        MipError::BufferTooShort { .. } => RmStatus::BufferTooShort,
+        _ => RmStatus::OutOfRange,
+    }
+}
+
+/// A table entry from raw bits (markers included).
+fn entry(bits: i32) -> Log2Pb {
+    [
+        Log2Pb::UNTEXTURED,
+        Log2Pb::DEGENERATE_GEOMETRY,
+        Log2Pb::DEGENERATE_UV,
+    ]
+    .into_iter()
+    .find(|m| m.to_i16f16().to_bits() == bits)
+    .unwrap_or_else(|| Log2Pb::from_log2(I16F16::from_bits(bits)))
+}
+
+/// Computes table entries `start .. start + count` of `entries` (length
+/// `len`) from `tris[0 .. count]` for a camera with pixel spread angle
+/// `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
+/// Returns `TableFull` when `start + count > len` (the entries that fit are
+/// written), `BadAngle`, `ZeroSize` (a textured triangle with a zero texture
+/// side; entries before it are written), `NullPointer`.
+///
+/// # Safety
+/// `entries` points to `len` writable `int32_t`, `tris` to `count`
+/// readable [`RmTriangle`]s (either may be null only when its length is 0),
+/// `stats` is null or points to a writable [`RmBuildStats`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_table_update(
+    entries: *mut i32,
+    len: usize,
+    start: usize,
+    tris: *const RmTriangle,
+    count: usize,
+    spread: i32,
+    stats: *mut RmBuildStats,
+) -> RmStatus {
+    if (entries.is_null() && len > 0) || (tris.is_null() && count > 0) {
+        return RmStatus::NullPointer;
+    }
+    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
+        return RmStatus::BadAngle;
+    };
+    let entries: &mut [i32] = if len == 0 {
+        &mut []
+    } else {
+        // SAFETY: non-null (checked), `len` writable elements (caller).
+        unsafe { core::slice::from_raw_parts_mut(entries, len) }
+    };
+    let tris: &[RmTriangle] = if count == 0 {
+        &[]
+    } else {
+        // SAFETY: non-null (checked), `count` readable elements (caller).
+        unsafe { core::slice::from_raw_parts(tris, count) }
+    };
+    let mut st = RmBuildStats::default();
+    let mut status = RmStatus::Ok;
+    let mut slots = entries.iter_mut().skip(start);
+    for t in tris {
+        let Some(slot) = slots.next() else {
+            status = RmStatus::TableFull;
+            break;
+        };
+        let e = if t.textured == 0 {
+            st.untextured += 1;
+            Log2Pb::UNTEXTURED
+        } else {
+            let tri = TexTriangle::new(
+                t.positions.map(|p| p.map(I32F32::from_bits)),
+                t.uvs.map(|p| p.map(I32F32::from_bits)),
+                t.tex_width,
+                t.tex_height,
+            );
+            match tri {
+                Ok(tri) => {
+                    let e = Log2Pb::compute(&tri, &spread);
+                    if e == Log2Pb::DEGENERATE_GEOMETRY {
+                        st.degenerate_geometry += 1;
+                    } else if e == Log2Pb::DEGENERATE_UV {
+                        st.degenerate_uv += 1;
+                    } else {
+                        st.textured += 1;
+                    }
+                    e
+                }
+                Err(e) => {
+                    status = table_status(e);
+                    break;
+                }
+            }
+        };
+        *slot = e.to_i16f16().to_bits();
+    }
+    if !stats.is_null() {
+        // SAFETY: non-null, writable (caller).
+        unsafe { *stats = st };
+    }
+    status
+}
+
+/// [`rm_table_update`] from entry 0 (a whole build).
+///
+/// # Safety
+/// As [`rm_table_update`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_table_build(
+    entries: *mut i32,
+    len: usize,
+    tris: *const RmTriangle,
+    count: usize,
+    spread: i32,
+    stats: *mut RmBuildStats,
+) -> RmStatus {
+    // SAFETY: same contract.
+    unsafe { rm_table_update(entries, len, 0, tris, count, spread, stats) }
+}
+
+/// Table lod `log2 Pl − log2 Pb` for path length `pl` (U32F32 bits) and
+/// table entry `entry` (I16F16 bits); writes the lod (I8F8 bits) to `out`.
+/// Returns `Untextured` (and writes nothing) for [`RM_UNTEXTURED`].
+///
+/// # Safety
+/// `out` is null (→ `NullPointer`) or points to a writable `int16_t`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_table_lod(pl: u64, entry_bits: i32, out: *mut i16) -> RmStatus {
+    if out.is_null() {
+        return RmStatus::NullPointer;
+    }
+    match table_lod(U32F32::from_bits(pl), entry(entry_bits)) {
+        Some(l) => {
+            // SAFETY: non-null, writable (caller).
+            unsafe { *out = l.to_bits() };
+            RmStatus::Ok
+        }
+        None => RmStatus::Untextured,
+    }
+}
+
+/// Ray-cone lod `Δ + log2|w| − log2|n·d|` (I8F8 bits) for cone width
+/// `width` (I32F32 bits), triangle constant `delta` (I16F16 bits) and
+/// `|n·d|` (U1F31 bits; `n_dot_d = 0` leaves the normal term out, as the
+/// grazing limit would be clamped anyway).
+#[unsafe(no_mangle)]
+pub extern "C" fn rm_cone_lod(width: i64, delta: i32, n_dot_d: u32) -> i16 {
+    let c = (n_dot_d != 0).then_some(U1F31::from_bits(n_dot_d));
+    cone_lod(I32F32::from_bits(width), I16F16::from_bits(delta), c).to_bits()
+}
+
+/// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
+#[unsafe(no_mangle)]
+pub extern "C" fn rm_clamp_lod(lod: i16, levels: u8) -> i16 {
+    clamp_lod(I8F8::from_bits(lod), levels).to_bits()
+}
+
+/// Empties `stack`.
+///
+/// # Safety
+/// `stack` is null (→ `NullPointer`) or points to a writable [`RmRayStack`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_ray_stack_init(stack: *mut RmRayStack) -> RmStatus {
+    if stack.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, writable (caller).
+    unsafe {
+        *stack = RmRayStack {
+            entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+            len: 0,
+        };
+    }
+    RmStatus::Ok
+}
+
+/// Pushes `state`; `StackFull` (stack unchanged) when full.
+///
+/// # Safety
+/// `stack` and `state` are null (→ `NullPointer`) or valid (`stack`
+/// initialised by [`rm_ray_stack_init`]; a corrupt `len` above the capacity
+/// is read as full).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_ray_stack_push(
+    stack: *mut RmRayStack,
+    state: *const RmPathState,
+) -> RmStatus {
+    if stack.is_null() || state.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, valid, not aliased during the call (caller).
+    let (stack, state) = unsafe { (&mut *stack, *state) };
+    let Some(slot) = stack.entries.get_mut(stack.len as usize) else {
+        return RmStatus::StackFull;
+    };
+    *slot = state;
+    stack.len += 1;
+    RmStatus::Ok
+}
+
+/// Pops the most recent state into `out`; `StackEmpty` when empty.
+///
+/// # Safety
+/// As [`rm_ray_stack_push`]; `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_ray_stack_pop(
+    stack: *mut RmRayStack,
+    out: *mut RmPathState,
+) -> RmStatus {
+    if stack.is_null() || out.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, valid, not aliased during the call (caller).
+    let stack = unsafe { &mut *stack };
+    let len = (stack.len as usize).min(RM_RAY_STACK_CAPACITY);
+    let Some(i) = len.checked_sub(1) else {
+        return RmStatus::StackEmpty;
+    };
+    let Some(&s) = stack.entries.get(i) else {
+        return RmStatus::StackEmpty;
+    };
+    // SAFETY: non-null, writable (caller).
+    unsafe { *out = s };
+    stack.len = i as u32;
+    RmStatus::Ok
+}
+
+/// A primary ray's state (`Pl = 0`, width 0, spread `spread` in I2F30
+/// bits) with ray mask `mask`.
+///
+/// # Safety
+/// `out` is null (→ `NullPointer`) or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPathState) -> RmStatus {
+    if out.is_null() {
+        return RmStatus::NullPointer;
+    }
+    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
+        return RmStatus::BadAngle;
+    };
+    // SAFETY: non-null, writable (caller).
+    unsafe { *out = PathState::primary(&spread, mask).into() };
+    RmStatus::Ok
+}
+
+/// After a hit at distance `t` (U32F32 bits): `Pl += t`, `w += γ·t`
+/// (saturating; sets `saturated`).
+///
+/// # Safety
+/// `state` is null (→ `NullPointer`) or valid and writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmStatus {
+    if state.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, valid, writable (caller).
+    let s = unsafe { &mut *state };
+    *s = PathState::from(*s).advance(U32F32::from_bits(t)).into();
+    RmStatus::Ok
+}
+
+/// A reflection/refraction continuation: spread `+= beta` (I2F30 bits,
+/// surface spread angle), depth + 1.
+///
+/// # Safety
+/// As [`rm_path_advance`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_path_bounce(state: *mut RmPathState, beta: i32) -> RmStatus {
+    if state.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, valid, writable (caller).
+    let s = unsafe { &mut *state };
+    *s = PathState::from(*s).bounce(I2F30::from_bits(beta)).into();
+    RmStatus::Ok
+}
+
+/// Texels of a pyramid of `levels` levels of a `width × height` texture
+/// (0 when a side is 0).
+#[unsafe(no_mangle)]
+pub extern "C" fn rm_pyramid_len(width: u32, height: u32, levels: u8) -> usize {
+    pyramid_len(width, height, levels)
+}
+
+/// Filtered texel of `tex` at `(u, v)` (I32F32 bits, normalised; texel
+/// centres at `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the
+/// stored levels) with filter `mode` (0 trilinear, 1 bilinear at the nearest
+/// level, 2 nearest, 3 nearest texel with linear level blend) and
+/// addressing `address` (0 wrap, 1 clamp); writes RGBA8888 to `out`.
+///
+/// # Safety
+/// `tex` and `out` are null (→ `NullPointer`) or valid; `tex->texels`
+/// points to `tex->len` readable texels.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sample(
+    tex: *const RmTexture,
+    u: i64,
+    v: i64,
+    lod: i16,
+    mode: u8,
+    address: u8,
+    out: *mut u32,
+) -> RmStatus {
+    if tex.is_null() || out.is_null() {
+        return RmStatus::NullPointer;
+    }
+    // SAFETY: non-null, valid (caller).
+    let t = unsafe { *tex };
+    if t.texels.is_null() {
+        return RmStatus::NullPointer;
+    }
+    let Some(mode) = Mode::from_index(mode) else {
+        return RmStatus::OutOfRange;
+    };
+    let address = match address {
+        0 => Address::Wrap,
+        1 => Address::Clamp,
+        _ => return RmStatus::OutOfRange,
+    };
+    let g = match Geometry::new(t.width, t.height, t.levels) {
+        Ok(g) => g,
+        Err(e) => return mip_status(e),
+    };
+    // SAFETY: non-null, `len` readable texels (caller).
+    let texels = unsafe { core::slice::from_raw_parts(t.texels, t.len) };
+    let p = match Pyramid::new(g, texels) {
+        Ok(p) => p,
+        Err(e) => return mip_status(e),
+    };
+    let texel = Sampler::new(p, address).sample(
+        I32F32::from_bits(u),
+        I32F32::from_bits(v),
+        I8F8::from_bits(lod),
+        mode,
+    );
+    // SAFETY: non-null, writable (caller).
+    unsafe { *out = texel };
+    RmStatus::Ok
+}

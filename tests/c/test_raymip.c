@@ -1,0 +1,175 @@
+/* C11 test of the raymip C ABI (include/raymip.h, libraymip_ffi.a).
+ * Expected values are computed here independently in double precision from
+ * the formulas (log2 Pb = log2(texel width / pixel angle), lod = log2 Pl -
+ * log2 Pb, ray-cone lod = log2 w - log2 |n.d|), not taken from the library.
+ * Build and run: scripts/c-abi. Prints "N passed, M failed". */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raymip.h"
+
+static int passed, failed;
+
+#define CHECK(cond, ...)                                                      \
+    do {                                                                      \
+        if (cond) {                                                           \
+            passed++;                                                         \
+        } else {                                                              \
+            failed++;                                                         \
+            fprintf(stderr, "%s:%d: FAIL %s: ", __FILE__, __LINE__, #cond);   \
+            fprintf(stderr, __VA_ARGS__);                                     \
+            fputc('\n', stderr);                                              \
+        }                                                                     \
+    } while (0)
+
+static int64_t fx32(double x) { return (int64_t)llround(x * 4294967296.0); }
+static double i16f16(int32_t b) { return b / 65536.0; }
+static double i8f8(int16_t b) { return b / 256.0; }
+
+static RmTriangle unit_triangle(double side, uint32_t tex) {
+    RmTriangle t;
+    memset(&t, 0, sizeof t);
+    t.positions[1][0] = fx32(side);
+    t.positions[2][1] = fx32(side);
+    t.uvs[1][0] = fx32(1.0);
+    t.uvs[2][1] = fx32(1.0);
+    t.tex_width = tex;
+    t.tex_height = tex;
+    t.textured = 1;
+    return t;
+}
+
+static void test_table_and_lod(void) {
+    const int32_t spread = 1 << 20; /* I2F30: 2^-10 rad */
+    const double gamma = ldexp(1.0, -10);
+    RmTriangle tris[3] = {unit_triangle(1.0, 256), unit_triangle(4.0, 64), unit_triangle(1.0, 256)};
+    tris[2].textured = 0;
+    int32_t entries[3] = {0, 0, 0};
+    RmBuildStats st;
+    CHECK(rm_table_build(entries, 3, tris, 3, spread, &st) == RM_STATUS_OK, "build");
+    CHECK(st.textured == 2 && st.untextured == 1, "stats %u %u", (unsigned)st.textured, (unsigned)st.untextured);
+    /* Texel width sqrt(A/N): A = side^2/2, N = w*h/2 texels. */
+    const double want0 = log2(sqrt(0.5 / (0.5 * 256.0 * 256.0)) / gamma);
+    const double want1 = log2(sqrt(8.0 / (0.5 * 64.0 * 64.0)) / gamma);
+    CHECK(fabs(i16f16(entries[0]) - want0) <= 1.0 / 1024, "entry0 %f want %f", i16f16(entries[0]), want0);
+    CHECK(fabs(i16f16(entries[1]) - want1) <= 1.0 / 1024, "entry1 %f want %f", i16f16(entries[1]), want1);
+    CHECK(entries[2] == RM_UNTEXTURED, "untextured marker %ld", (long)entries[2]);
+
+    for (double pl = 0.01; pl < 5000.0; pl *= 1.7) {
+        int16_t lod = 0;
+        uint64_t plb = (uint64_t)llround(pl * 4294967296.0);
+        CHECK(rm_table_lod(plb, entries[0], &lod) == RM_STATUS_OK, "lod status");
+        double want = log2(pl) - want0;
+        CHECK(fabs(i8f8(lod) - want) <= 1.0 / 256 + 1.0 / 1024, "lod %f want %f at Pl %f", i8f8(lod), want, pl);
+    }
+    int16_t lod = 77;
+    CHECK(rm_table_lod(1ull << 32, entries[2], &lod) == RM_STATUS_UNTEXTURED && lod == 77, "untextured lod");
+    CHECK(rm_table_lod(1ull << 32, entries[0], NULL) == RM_STATUS_NULL_POINTER, "null out");
+
+    /* Update one entry; table full past the end. */
+    RmTriangle big = unit_triangle(2.0, 256);
+    CHECK(rm_table_update(entries, 3, 2, &big, 1, spread, NULL) == RM_STATUS_OK, "update");
+    CHECK(fabs(i16f16(entries[2]) - (want0 + 1.0)) <= 1.0 / 1024, "updated entry %f", i16f16(entries[2]));
+    RmTriangle two[2] = {big, big};
+    CHECK(rm_table_update(entries, 3, 2, two, 2, spread, NULL) == RM_STATUS_TABLE_FULL, "table full");
+    CHECK(rm_table_build(entries, 3, tris, 3, 0, NULL) == RM_STATUS_BAD_ANGLE, "bad angle");
+    RmTriangle zero = unit_triangle(1.0, 0);
+    CHECK(rm_table_build(entries, 3, &zero, 1, spread, NULL) == RM_STATUS_ZERO_SIZE, "zero texture");
+    CHECK(rm_table_build(NULL, 3, tris, 3, spread, NULL) == RM_STATUS_NULL_POINTER, "null entries");
+
+    /* Cone lod: log2 w + delta - log2 |n.d|. */
+    CHECK(rm_cone_lod(fx32(1.0), 0, 0) == 0, "cone w=1");
+    CHECK(rm_cone_lod(fx32(1.0), 0, 1u << 30) == 256, "cone n.d=0.5: %d", rm_cone_lod(fx32(1.0), 0, 1u << 30));
+    CHECK(fabs(i8f8(rm_cone_lod(fx32(3.0), 2 << 16, 0)) - (log2(3.0) + 2.0)) <= 1.0 / 256, "cone w=3");
+    CHECK(rm_clamp_lod(1000, 3) == 512 && rm_clamp_lod(-5, 3) == 0 && rm_clamp_lod(300, 3) == 300, "clamp");
+}
+
+static void test_ray_stack(void) {
+    RmRayStack stack;
+    RmPathState s, out;
+    CHECK(rm_ray_stack_init(&stack) == RM_STATUS_OK && stack.len == 0, "init");
+    CHECK(rm_path_primary(1 << 20, 0xA5, &s) == RM_STATUS_OK, "primary");
+    CHECK(s.pl == 0 && s.cone_width == 0 && s.cone_spread == (1 << 20) && s.mask == 0xA5, "primary fields");
+    CHECK(rm_path_advance(&s, 3ull << 31) == RM_STATUS_OK, "advance"); /* t = 1.5 */
+    CHECK(s.pl == 3ull << 31, "pl %llu", (unsigned long long)s.pl);
+    /* w = gamma * t = 2^-10 * 1.5, within 2^-32. */
+    CHECK(llabs(s.cone_width - fx32(1.5 / 1024)) <= 1, "width %lld", (long long)s.cone_width);
+    for (int i = 0; i < RM_RAY_STACK_CAPACITY; i++) {
+        RmPathState b = s;
+        CHECK(rm_path_bounce(&b, i) == RM_STATUS_OK && b.depth == 1, "bounce");
+        CHECK(rm_ray_stack_push(&stack, &b) == RM_STATUS_OK, "push %d", i);
+    }
+    CHECK(rm_ray_stack_push(&stack, &s) == RM_STATUS_STACK_FULL && stack.len == RM_RAY_STACK_CAPACITY, "full");
+    for (int i = RM_RAY_STACK_CAPACITY - 1; i >= 0; i--) {
+        CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_OK, "pop");
+        CHECK(out.cone_spread == (1 << 20) + i, "LIFO order: spread %ld", (long)out.cone_spread);
+    }
+    CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_STACK_EMPTY, "empty");
+    CHECK(rm_ray_stack_push(NULL, &s) == RM_STATUS_NULL_POINTER, "null stack");
+    /* Saturation is flagged, never wraps. */
+    RmPathState far = s;
+    CHECK(rm_path_advance(&far, UINT64_MAX) == RM_STATUS_OK && far.saturated && far.pl == UINT64_MAX, "saturate");
+}
+
+static void test_sampling(void) {
+    /* 4x4 texture with 3 levels; level 0 a 2x2-texel checker of two colours. */
+    enum { W = 4, LEVELS = 3 };
+    const uint32_t a = 0xFF204080u, b = 0xFF60C000u;
+    size_t n = rm_pyramid_len(W, W, LEVELS);
+    CHECK(n == 16 + 4 + 1, "pyramid len %zu", n);
+    uint32_t texels[21] = {0};
+    for (int y = 0; y < W; y++)
+        for (int x = 0; x < W; x++) texels[y * W + x] = ((x / 2 + y / 2) % 2) ? b : a;
+    /* Level 1 (2x2): each texel the box of one colour; level 2 the mean
+     * (stored by the caller: MIP generation is not in the C ABI). */
+    texels[16] = a;
+    texels[17] = b;
+    texels[18] = b;
+    texels[19] = a;
+    texels[20] = 0;
+    for (int c = 0; c < 4; c++) {
+        uint32_t ca = (a >> (8 * c)) & 0xFF, cb = (b >> (8 * c)) & 0xFF;
+        texels[20] |= ((ca + cb + 1) / 2) << (8 * c);
+    }
+    RmTexture tex = {texels, n, W, W, LEVELS};
+    uint32_t out = 0;
+    /* Centre of texel (0,0) at level 0, nearest and bilinear: colour a. */
+    int64_t u = fx32(0.125), v = fx32(0.125);
+    for (uint8_t mode = 0; mode < 4; mode++) {
+        CHECK(rm_sample(&tex, u, v, 0, mode, 0, &out) == RM_STATUS_OK && out == a, "mode %u at level 0: %08lx", (unsigned)mode, (unsigned long)out);
+    }
+    /* Coarsest level: the mean everywhere (lod clamped to 2). */
+    CHECK(rm_sample(&tex, fx32(0.3), fx32(0.9), 10 * 256, 0, 1, &out) == RM_STATUS_OK && out == texels[20], "top %08lx", (unsigned long)out);
+    /* Trilinear halfway between level 0 (a at this texel centre) and
+     * level 1 (clamped addressing: u = 0.125 is below the first level-1
+     * texel centre 0.25, so only that texel, a): a. */
+    CHECK(rm_sample(&tex, u, v, 128, 0, 1, &out) == RM_STATUS_OK && out == a, "trilinear %08lx", (unsigned long)out);
+    /* With wrapping, level 1 mixes in the wrapped neighbours (b): neither
+     * pure colour. */
+    CHECK(rm_sample(&tex, u, v, 128, 0, 0, &out) == RM_STATUS_OK && out != a && out != b, "trilinear wrap %08lx", (unsigned long)out);
+    /* Bilinear on the edge between a and b at level 0: channel means. */
+    rm_sample(&tex, fx32(0.5), fx32(0.125), 0, 1, 1, &out);
+    for (int c = 0; c < 4; c++) {
+        int ca = (a >> (8 * c)) & 0xFF, cb = (b >> (8 * c)) & 0xFF;
+        int got = (out >> (8 * c)) & 0xFF;
+        CHECK(abs(got - (ca + cb) / 2) <= 1, "bilinear edge channel %d: %d", c, got);
+    }
+    CHECK(rm_sample(&tex, u, v, 0, 9, 0, &out) == RM_STATUS_OUT_OF_RANGE, "bad mode");
+    CHECK(rm_sample(&tex, u, v, 0, 0, 7, &out) == RM_STATUS_OUT_OF_RANGE, "bad address");
+    RmTexture short_tex = {texels, 5, W, W, LEVELS};
+    CHECK(rm_sample(&short_tex, u, v, 0, 0, 0, &out) == RM_STATUS_BUFFER_TOO_SHORT, "short buffer");
+    CHECK(rm_sample(NULL, u, v, 0, 0, 0, &out) == RM_STATUS_NULL_POINTER, "null texture");
+    RmTexture bad_levels = {texels, n, W, W, 9};
+    CHECK(rm_sample(&bad_levels, u, v, 0, 0, 0, &out) == RM_STATUS_OUT_OF_RANGE, "bad levels");
+}
+
+int main(void) {
+    test_table_and_lod();
+    test_ray_stack();
+    test_sampling();
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
