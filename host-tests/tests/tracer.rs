@@ -1,6 +1,6 @@
 //! Renderer tests on the built-in scenes (reduced sizes to keep CI fast).
 
-use raymip_host::builtin::{self, NAMES, fronto_quad, one_texel_per_pixel_distance};
+use raymip_host::builtin::{self, NAMES, fronto_quad, mirror_quad, one_texel_per_pixel_distance};
 use raymip_host::output::psnr;
 use raymip_host::render::{Image, Method, Options, Precision, Prepared, render};
 
@@ -136,4 +136,39 @@ fn table1_mip_mapping_raises_cache_hit_rate_on_hall() {
         row.cache_on,
         row.cache_off
     );
+}
+
+#[test]
+fn mirror_bounce_carries_path_length_into_the_lod() {
+    // The square seen through a flat 45° mirror: Pl = a + b, so the lod is
+    // log2((a + b)/Pb) at the centre pixel, for every method.
+    let (fov, tex, side) = (45.0, 256, 2.0);
+    let pb = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
+    let tol = 1.0 / 256.0;
+    for (k, want) in [(1.0, 0.0), (2.0, 1.0)] {
+        let scene = mirror_quad(side, tex, 0.3 * k * pb, 0.7 * k * pb, fov, SIZE.0, SIZE.1);
+        let prep = Prepared::new(scene, None).unwrap();
+        for (m, p) in [
+            (Method::Table, Precision::Fixed),
+            (Method::Table, Precision::Float),
+            (Method::Cone, Precision::Fixed),
+            (Method::Cone, Precision::Float),
+            (Method::Raydiff, Precision::Float),
+        ] {
+            let img = render(&prep, &opts(m, p));
+            let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
+            let l = f64::from(img.lod[i]);
+            println!("{} {} k={k}: lod {l:.5}", m.name(), p.name());
+            assert!(
+                (l - want).abs() <= tol,
+                "{} {}: lod {l}, want {want}",
+                m.name(),
+                p.name()
+            );
+            assert!(
+                img.counters.depth_hist[1] > 0,
+                "the square is seen after one bounce"
+            );
+        }
+    }
 }
