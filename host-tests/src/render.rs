@@ -1,6 +1,7 @@
 //! Whitted ray tracer: point lights with shadows, mirror reflection and
 //! refraction up to `bounces` levels, the firmware [`RayStack`] /
-//! [`PathState`] carrying `Pl` and the ray cone along each path, and a
+//! [`PathState`] carrying `Pl` and the ray cone (with the surface spread
+//! angle β of curved mirrors) along each path, and a
 //! texture LOD chosen per [`Method`] and [`Precision`].
 //!
 //! Pixels are traversed in 8×8 tiles in row-major tile order (the order the
