@@ -54,10 +54,10 @@ fn scene_label(spec: &str) -> String {
 
 /// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
 pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let t0 = Instant::now();
     let scene = load_scene(spec, time)?;
     let load_s = t0.elapsed().as_secs_f64();
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let size = opts.size.or_else(|| {
         spec.starts_with("builtin:")
             .then_some(builtin::DEFAULT_SIZE)
