@@ -58,15 +58,30 @@ fn ch(t: Texel, c: usize) -> u32 {
 #[inline]
 #[must_use]
 pub fn bilerp(t00: Texel, t10: Texel, t01: Texel, t11: Texel, fx: u32, fy: u32) -> Wide {
-    let fx = fx.min(WEIGHT_ONE);
-    let fy = fy.min(WEIGHT_ONE);
-    let gx = WEIGHT_ONE - fx;
-    let gy = WEIGHT_ONE - fy;
+    bilerp_in_range([t00, t10, t01, t11], fx.min(WEIGHT_ONE), fy.min(WEIGHT_ONE))
+}
+
+/// [`bilerp`] for `fx, fy ≤ 4096` (the sampler's weights are masked to 12
+/// bits). Every intermediate is `≤ 255·2²⁴ + 2⁷ < 2³²` for such weights;
+/// wrapping operations only avoid a debug overflow check on a path that
+/// cannot overflow.
+#[inline(always)]
+pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
+    let gx = WEIGHT_ONE.wrapping_sub(fx);
+    let gy = WEIGHT_ONE.wrapping_sub(fy);
     let mut out = [0u32; 4];
     for (c, o) in out.iter_mut().enumerate() {
-        let top = ch(t00, c) * gx + ch(t10, c) * fx;
-        let bot = ch(t01, c) * gx + ch(t11, c) * fx;
-        *o = (top * gy + bot * fy + (1 << 7)) >> 8;
+        let top = ch(t[0], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[1], c).wrapping_mul(fx));
+        let bot = ch(t[2], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+        *o = top
+            .wrapping_mul(gy)
+            .wrapping_add(bot.wrapping_mul(fy))
+            .wrapping_add(1 << 7)
+            >> 8;
     }
     out
 }
@@ -87,27 +102,46 @@ pub fn widen(t: Texel) -> Wide {
 #[inline]
 #[must_use]
 pub fn round_wide(w: Wide) -> Texel {
+    round_wide_in_range(w.map(|v| v.min(255 << 16)))
+}
+
+/// [`round_wide`] for channels `≤ 255·2¹⁶` (as [`bilerp`] returns them):
+/// `(v + 2¹⁵) >> 16 ≤ 255`; the mask keeps channels apart for any input.
+#[inline(always)]
+pub(crate) fn round_wide_in_range(w: Wide) -> Texel {
     let mut out = 0u32;
     for (c, &v) in w.iter().enumerate() {
-        let r = (v.saturating_add(1 << 15) >> 16).min(255);
-        out |= r << (8 * c);
+        out |= ((v.wrapping_add(1 << 15) >> 16) & 0xFF) << (8 * c);
     }
     out
 }
 
 /// Level blend `a·(1 − t/256) + b·t/256` of two 8.16 values, rounded to a
-/// texel (nearest, ties up). `t` in `[0, 256]` (clamped).
+/// texel (nearest, ties up). `t` in `[0, 256]` (clamped); channels above
+/// `255·2¹⁶` are clamped.
 #[inline]
 #[must_use]
 pub fn blend_wide(a: Wide, b: Wide, t: u32) -> Texel {
-    let t = t.min(1 << BLEND_BITS);
-    let s = (1 << BLEND_BITS) - t;
+    blend_wide_in_range(
+        a.map(|v| v.min(255 << 16)),
+        b.map(|v| v.min(255 << 16)),
+        t.min(1 << BLEND_BITS),
+    )
+}
+
+/// [`blend_wide`] for channels `≤ 255·2¹⁶` and `t ≤ 256`:
+/// `a·(256 − t) + b·t + 2²³ ≤ 255·2²⁴ + 2²³ < 2³²`, result `≤ 255`.
+#[inline(always)]
+pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32) -> Texel {
+    let s = (1u32 << BLEND_BITS).wrapping_sub(t);
     let mut out = 0u32;
     for c in 0..4 {
-        let va = a[c].min(255 << 16);
-        let vb = b[c].min(255 << 16);
-        let r = (va * s + vb * t + (1 << 23)) >> 24;
-        out |= r.min(255) << (8 * c);
+        let r = a[c]
+            .wrapping_mul(s)
+            .wrapping_add(b[c].wrapping_mul(t))
+            .wrapping_add(1 << 23)
+            >> 24;
+        out |= (r & 0xFF) << (8 * c);
     }
     out
 }

@@ -161,44 +161,57 @@ fn scaled(coord: TexCoord, size: u32, address: Address) -> i64 {
     c * i64::from(size)
 }
 
-/// Fixes an index in `[−size, 2·size]` into `[0, size − 1]` by the
-/// addressing mode.
+/// Integer part of a [`scaled`] value (`|x| < 2⁴⁹`, so `x >> 32` lies in
+/// `(−2¹⁷, 2¹⁷)` and the cast to `i32` is exact).
 #[inline(always)]
-fn fix_index(i: i64, size: u32, address: Address) -> u32 {
-    let s = i64::from(size);
-    let r = match address {
-        Address::Wrap => {
-            if i < 0 {
-                i + s
-            } else if i >= s {
-                i - s
-            } else {
-                i
-            }
-        }
-        Address::Clamp => i,
-    };
-    // In range for Wrap already; the clamp is the Clamp mode and a guard.
-    u32::try_from(r.clamp(0, s - 1)).unwrap_or(0)
+fn int_part(x: i64) -> i32 {
+    (x >> 32) as i32
 }
 
-/// Nearest texel index `floor(u·size)`, addressed.
+/// Clamps `i` into `[0, size − 1]` (`size ≥ 1`).
+#[inline(always)]
+fn clamp_index(i: i32, size: u32) -> u32 {
+    // `max`/`min`, not `clamp`: no panic branch for unordered bounds.
+    let top = i32::try_from(size).unwrap_or(i32::MAX).saturating_sub(1);
+    i.min(top).max(0).unsigned_abs()
+}
+
+/// Nearest texel index `floor(u·size)`, addressed. For `Wrap` the index is
+/// already in `[0, size)`; the clamp is the `Clamp` mode (and a guard).
 #[inline(always)]
 fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
-    fix_index(scaled(coord, size, address) >> 32, size, address)
+    clamp_index(int_part(scaled(coord, size, address)), size)
 }
 
 /// Bilinear footprint on one axis: `(i₀, i₁, weight of i₁ in 1/4096)`.
+///
+/// `x = u·size − ½ + 2⁻¹³` (the `+ 2⁻¹³` rounds the 12-bit weight to
+/// nearest); `i₀ = floor(x)`, `i₁ = i₀ + 1`. For `Wrap`, `u ∈ [0, 1)` so
+/// `i₀ ∈ [−1, size − 1]` and `i₁ ∈ [0, size]`: one compare each wraps
+/// them. Indices stay below `size` in every case (sources clamp again).
 #[inline(always)]
 fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
     let x = scaled(coord, size, address) - (1 << 31) + ROUND_WEIGHT;
-    let i = x >> 32;
-    let f = ((x >> (32 - WEIGHT_BITS)) & ((1 << WEIGHT_BITS) - 1)) as u32;
-    (
-        fix_index(i, size, address),
-        fix_index(i + 1, size, address),
-        f,
-    )
+    let i = int_part(x);
+    // Bits 20..32 of x: the fraction's top 12 bits (masking keeps the low
+    // 32 bits of the two's-complement value exactly).
+    let f = (((x & 0xFFFF_FFFF) as u32) >> (32 - WEIGHT_BITS)) & ((1 << WEIGHT_BITS) - 1);
+    match address {
+        Address::Wrap => {
+            let i0 = if i < 0 {
+                size.saturating_sub(1)
+            } else {
+                i.unsigned_abs()
+            };
+            let i1 = i.saturating_add(1).unsigned_abs();
+            (i0, if i1 >= size { 0 } else { i1 }, f)
+        }
+        Address::Clamp => (
+            clamp_index(i, size),
+            clamp_index(i.saturating_add(1), size),
+            f,
+        ),
+    }
 }
 
 impl<S: TexelSource> Sampler<S> {
@@ -228,13 +241,15 @@ impl<S: TexelSource> Sampler<S> {
                 let a = self.bilinear(u, v, lower);
                 if t == 0 {
                     self.stats.skipped += 4;
-                    bilerp::round_wide(a)
+                    bilerp::round_wide_in_range(a)
                 } else {
                     let b = self.bilinear(u, v, lower + 1);
-                    bilerp::blend_wide(a, b, t)
+                    bilerp::blend_wide_in_range(a, b, t)
                 }
             }
-            Mode::BilinearNearestLevel => bilerp::round_wide(self.bilinear(u, v, nearest_level)),
+            Mode::BilinearNearestLevel => {
+                bilerp::round_wide_in_range(self.bilinear(u, v, nearest_level))
+            }
             Mode::Nearest => self.nearest(u, v, nearest_level),
             Mode::NearestTexelLinearLevel => {
                 let a = self.nearest(u, v, lower);
@@ -283,13 +298,9 @@ impl<S: TexelSource> Sampler<S> {
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
-        let s = &mut self.source;
-        let t00 = s.texel(level, x0, y0);
-        let t10 = s.texel(level, x1, y0);
-        let t01 = s.texel(level, x0, y1);
-        let t11 = s.texel(level, x1, y1);
+        let [t00, t10, t01, t11] = self.source.footprint(level, [x0, x1], [y0, y1]);
         self.stats.fetched += 4;
-        bilerp::bilerp(t00, t10, t01, t11, fx, fy)
+        bilerp::bilerp_in_range([t00, t10, t01, t11], fx, fy)
     }
 
     /// Nearest texel at `level`.

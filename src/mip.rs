@@ -346,6 +346,19 @@ pub trait TexelSource {
     /// Texel `(x, y)` of `level`. Out-of-range level or coordinates are
     /// clamped to the stored range (never a panic).
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel;
+    /// The bilinear footprint of `level`: texels `(x[0], y[0])`,
+    /// `(x[1], y[0])`, `(x[0], y[1])`, `(x[1], y[1])`, clamped like
+    /// [`texel`](Self::texel). The default reads them one by one; a source
+    /// may override it to compute the level's address once.
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        [
+            self.texel(level, x[0], y[0]),
+            self.texel(level, x[1], y[0]),
+            self.texel(level, x[0], y[1]),
+            self.texel(level, x[1], y[1]),
+        ]
+    }
 }
 
 /// A pyramid: geometry plus a borrowed texel slice laid out as in the
@@ -399,6 +412,23 @@ impl TexelSource for Pyramid<'_> {
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
         self.get(level, x, y)
     }
+
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let (w, h) = self.geometry.level_size(level);
+        let base = self.geometry.level_offset(level);
+        let stride = w as usize;
+        let row0 = base + y[0].min(h - 1) as usize * stride;
+        let row1 = base + y[1].min(h - 1) as usize * stride;
+        let (x0, x1) = (x[0].min(w - 1) as usize, x[1].min(w - 1) as usize);
+        let get = |i: usize| self.texels.get(i).copied().unwrap_or(0);
+        [
+            get(row0 + x0),
+            get(row0 + x1),
+            get(row1 + x0),
+            get(row1 + x1),
+        ]
+    }
 }
 
 impl<T: TexelSource + ?Sized> TexelSource for &mut T {
@@ -410,6 +440,11 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
     #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
         (**self).texel(level, x, y)
+    }
+
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        (**self).footprint(level, x, y)
     }
 }
 
@@ -487,5 +522,23 @@ mod tests {
         assert_eq!(p.texel(1, 0, 0), 5);
         assert_eq!(p.texel(7, 3, 3), 5);
         assert!(Pyramid::new(g, &buf[..4]).is_err());
+    }
+
+    #[test]
+    fn footprint_equals_texel_reads() {
+        let g = Geometry::new(5, 3, 3).unwrap();
+        let buf: std::vec::Vec<Texel> = (0..g.len() as u32).collect();
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        for level in 0..5u8 {
+            for (x, y) in [([0, 1], [0, 1]), ([4, 0], [2, 0]), ([9, 99], [7, u32::MAX])] {
+                let want = [
+                    p.texel(level, x[0], y[0]),
+                    p.texel(level, x[1], y[0]),
+                    p.texel(level, x[0], y[1]),
+                    p.texel(level, x[1], y[1]),
+                ];
+                assert_eq!(p.footprint(level, x, y), want);
+            }
+        }
     }
 }

@@ -9,7 +9,7 @@ use crate::builtin;
 use crate::compare::{compare, markdown};
 use crate::output::{level_image, write_json, write_png, write_text};
 use crate::render::{Method, Options, Prepared, render};
-use crate::scene::Scene;
+use crate::scene::{Scene, aff_adapter};
 
 /// Loads `builtin:NAME` or an `.aff` file at animation time `time`.
 pub fn load_scene(spec: &str, time: f64) -> Result<Scene, String> {
@@ -21,11 +21,9 @@ pub fn load_scene(spec: &str, time: f64) -> Result<Scene, String> {
 
 /// Loads an AFF scene file.
 pub fn load_aff(path: &Path, time: f64) -> Result<Scene, String> {
-    let _ = time;
-    Err(format!(
-        "{}: the AFF loader is not available in this build",
-        path.display()
-    ))
+    crate::aff::load(path, time)
+        .map(aff_adapter)
+        .map_err(|e| e.to_string())
 }
 
 /// Parses `WxH`.
@@ -56,10 +54,10 @@ fn scene_label(spec: &str) -> String {
 
 /// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
 pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let t0 = Instant::now();
     let scene = load_scene(spec, time)?;
     let load_s = t0.elapsed().as_secs_f64();
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let size = opts.size.or_else(|| {
         spec.starts_with("builtin:")
             .then_some(builtin::DEFAULT_SIZE)
@@ -199,11 +197,8 @@ type SceneLoader = Box<dyn Fn() -> Result<Scene, String>>;
 
 /// Loads the scene in a BART folder (its top-level `.aff` file).
 pub fn load_scene_dir(dir: &Path, time: f64) -> Result<Scene, String> {
-    let _ = time;
-    Err(format!(
-        "{}: the AFF loader is not available in this build",
-        dir.display()
-    ))
+    let top = crate::aff::find_top_level(dir).map_err(|e| e.to_string())?;
+    load_aff(&top, time)
 }
 
 /// `table1`: every scene folder under `scenes` (and the built-in scenes if

@@ -495,3 +495,46 @@ pub fn fronto_quad(
         .to_vec(),
     }
 }
+
+/// The fronto-parallel quad of [`fronto_quad`] seen through a 45° flat
+/// mirror: the camera at the origin looks down −z at a large mirror whose
+/// centre is `a` away; the reflected axis goes up (+y) and meets the
+/// textured square (side `side`, whole `tex`×`tex` texture once, facing
+/// down) `b` further on. The path length at the square's centre is `a + b`.
+#[must_use]
+pub fn mirror_quad(
+    side: f64,
+    tex: u32,
+    a: f64,
+    b: f64,
+    fov_y_deg: f64,
+    width: u32,
+    height: u32,
+) -> Scene {
+    let mut s = fronto_quad(side, tex, 1.0, fov_y_deg, width, height);
+    s.materials.push(mirror(1.0, [1.0; 3]));
+    let h = side / 2.0;
+    let m = 4.0 * (a + b).max(side);
+    // Mirror plane through (0, 0, −a) with normal (0, 1, 1)/√2.
+    let mut t = quad(
+        [-m, -m, -a + m],
+        [2.0 * m, 0.0, 0.0],
+        [0.0, 2.0 * m, -2.0 * m],
+        1.0,
+        1.0,
+        1,
+        None,
+    )
+    .to_vec();
+    t.extend(quad(
+        [-h, b, -a - h],
+        [side, 0.0, 0.0],
+        [0.0, 0.0, side],
+        1.0,
+        1.0,
+        0,
+        Some(0),
+    ));
+    s.triangles = t;
+    s
+}

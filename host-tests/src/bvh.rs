@@ -187,7 +187,7 @@ impl Bvh {
         let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
         let mut best: Option<Hit> = None;
         let mut tbest = tmax;
-        let mut stack = [0u32; 64];
+        let mut stack = [0u32; 128];
         let mut sp = 0usize;
         let root = &self.nodes[0];
         root.bounds.hit(o, inv, tbest)?;

@@ -1,6 +1,7 @@
 //! Whitted ray tracer: point lights with shadows, mirror reflection and
 //! refraction up to `bounces` levels, the firmware [`RayStack`] /
-//! [`PathState`] carrying `Pl` and the ray cone along each path, and a
+//! [`PathState`] carrying `Pl` and the ray cone (with the surface spread
+//! angle β of curved mirrors) along each path, and a
 //! texture LOD chosen per [`Method`] and [`Precision`].
 //!
 //! Pixels are traversed in 8×8 tiles in row-major tile order (the order the
@@ -819,7 +820,17 @@ impl Ctx<'_> {
             } else {
                 let sk = k.sqrt();
                 let mu = eta * cosi - sk;
-                let dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
+                let mut dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
+                if v::dot(dir, face_ng) >= 0.0 {
+                    // The interpolated normal bent the ray back out: refract
+                    // about the geometric normal instead.
+                    let c = -v::dot(ray.d, face_ng);
+                    let kg = (1.0 - eta * eta * (1.0 - c * c)).max(0.0);
+                    dir = v::norm(v::add(
+                        v::scale(ray.d, eta),
+                        v::scale(face_ng, eta * c - kg.sqrt()),
+                    ));
+                }
                 let dtr = |dd: V3, dn: V3| {
                     let dcos = -(v::dot(dd, ns) + v::dot(ray.d, dn));
                     let dmu = (eta - eta * eta * cosi / sk) * dcos;
@@ -876,10 +887,36 @@ impl Ctx<'_> {
                 },
             }
         });
-        // Flat-surface cones: surface spread β = 0.
-        let next = state.bounce(raymip::raystack::Spread::ZERO);
-        for r in [refr, refl].into_iter().flatten() {
-            if stack.push(next).is_ok() {
+        // Surface spread angle β of the reflected cone (curved surfaces):
+        // across the cone's footprint (width |w|) the shading normal turns
+        // by κ·|w|, κ = |dn|/|dp| from the ray differentials, and the
+        // reflected direction by twice that; positive (spreading) on convex
+        // surfaces (dp·dn > 0), negative on concave ones. Flat: 0.
+        // Refracted cones keep β = 0.
+        let kappa = |dp: V3, dn: V3| {
+            let l = v::len(dp);
+            if l > 0.0 { v::len(dn) / l } else { 0.0 }
+        };
+        let k = kappa(dpx, dnx).max(kappa(dpy, dny));
+        let convex = v::dot(dpx, dnx) + v::dot(dpy, dny) >= 0.0;
+        let beta = if k.is_finite() {
+            let b = (2.0 * k * width.abs()).min(1.0);
+            if convex { b } else { -b }
+        } else {
+            0.0
+        };
+        let beta_fixed = raymip::raystack::Spread::saturating_from_num(beta);
+        let refl = refl.map(|mut r| {
+            r.spread += if self.opts.precision == Precision::Fixed {
+                beta_fixed.to_num::<f64>()
+            } else {
+                beta
+            };
+            (r, beta_fixed)
+        });
+        let refr = refr.map(|r| (r, raymip::raystack::Spread::ZERO));
+        for (r, b) in [refr, refl].into_iter().flatten() {
+            if stack.push(state.bounce(b)).is_ok() {
                 host.push(r);
                 self.counters.bounces += 1;
             } else {

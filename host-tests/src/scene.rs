@@ -171,3 +171,62 @@ pub mod v {
         a[0].max(a[1]).max(a[2])
     }
 }
+
+/// Converts a loaded AFF scene (textures to RGBA8888 level 0).
+#[must_use]
+pub fn aff_adapter(s: crate::aff::Scene) -> Scene {
+    let c = s.camera;
+    Scene {
+        camera: Camera {
+            from: c.from,
+            at: c.at,
+            up: c.up,
+            fov_y_deg: c.fov_y_deg,
+            width: c.width,
+            height: c.height,
+        },
+        background: s.background,
+        ambient: s.ambient,
+        lights: s
+            .lights
+            .into_iter()
+            .map(|l| Light {
+                position: l.position,
+                color: l.color,
+            })
+            .collect(),
+        materials: s
+            .materials
+            .into_iter()
+            .map(|m| Material {
+                ambient: m.ambient,
+                diffuse: m.diffuse,
+                specular: m.specular,
+                shine: m.shine,
+                transmission: m.transmission,
+                ior: m.ior,
+            })
+            .collect(),
+        textures: s
+            .textures
+            .into_iter()
+            .map(|t| TextureImage {
+                name: t.name,
+                width: t.image.width,
+                height: t.image.height,
+                texels: t.image.to_rgba8888(),
+            })
+            .collect(),
+        triangles: s
+            .triangles
+            .into_iter()
+            .map(|t| Triangle {
+                p: t.p,
+                n: t.n,
+                uv: t.uv,
+                material: t.material,
+                texture: t.texture,
+            })
+            .collect(),
+    }
+}

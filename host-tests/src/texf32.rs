@@ -15,6 +15,19 @@ pub struct SamplerF32<'a> {
     address: Address,
 }
 
+/// `floor` without a libm call (baseline x86-64 has no SSE4.1 `roundss`,
+/// so `f32::floor` would call `floorf`): exact for every f32, since values
+/// with `|x| ≥ 2²³` are integers already.
+#[inline(always)]
+fn floor(x: f32) -> f32 {
+    if x.abs() < 8_388_608.0 {
+        let t = x as i32 as f32;
+        if t > x { t - 1.0 } else { t }
+    } else {
+        x
+    }
+}
+
 #[inline(always)]
 fn channels(t: Texel) -> [f32; 4] {
     let b = t.to_le_bytes();
@@ -43,19 +56,22 @@ impl<'a> SamplerF32<'a> {
         })
     }
 
+    /// Index in `[−n, 2n]` (coordinates are reduced first) into `[0, n)`.
     #[inline(always)]
     fn fix(&self, i: i32, n: u32) -> u32 {
         let n = n as i32;
-        match self.address {
-            Address::Wrap => i.rem_euclid(n) as u32,
-            Address::Clamp => i.clamp(0, n - 1) as u32,
-        }
+        let i = match self.address {
+            Address::Wrap if i < 0 => i + n,
+            Address::Wrap if i >= n => i - n,
+            _ => i,
+        };
+        i.clamp(0, n - 1) as u32
     }
 
     #[inline(always)]
     fn reduce(&self, u: f32) -> f32 {
         match self.address {
-            Address::Wrap => u - u.floor(),
+            Address::Wrap => u - floor(u),
             Address::Clamp => u.clamp(-1.0, 2.0),
         }
     }
@@ -72,7 +88,7 @@ impl<'a> SamplerF32<'a> {
         let (w, h) = self.geometry.level_size(level);
         let x = u * w as f32 - 0.5;
         let y = v * h as f32 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor(x), floor(y));
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i32, y0 as i32);
         let (xa, xb) = (self.fix(x0, w), self.fix(x0 + 1, w));
@@ -93,8 +109,8 @@ impl<'a> SamplerF32<'a> {
     #[inline(always)]
     fn nearest(&self, u: f32, v: f32, level: u8) -> Texel {
         let (w, h) = self.geometry.level_size(level);
-        let x = self.fix((u * w as f32).floor() as i32, w);
-        let y = self.fix((v * h as f32).floor() as i32, h);
+        let x = self.fix(floor(u * w as f32) as i32, w);
+        let y = self.fix(floor(v * h as f32) as i32, h);
         self.texel(level, x, y)
     }
 
@@ -105,10 +121,10 @@ impl<'a> SamplerF32<'a> {
         let (u, v) = (self.reduce(u), self.reduce(v));
         let top = f32::from(self.geometry.levels() - 1);
         let lod = lod.clamp(0.0, top);
-        let lower = lod.floor();
+        let lower = floor(lod);
         let t = lod - lower;
         let l0 = lower as u8;
-        let nearest_level = ((lod + 0.5).floor().min(top)) as u8;
+        let nearest_level = floor(lod + 0.5).min(top) as u8;
         match mode {
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, l0);

@@ -210,6 +210,15 @@ impl TexelSource for Recorder<'_> {
         }
         self.pyramid.get(level, x, y)
     }
+
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        if let Some(b) = self.blocks.as_mut() {
+            for (xx, yy) in [(x[0], y[0]), (x[1], y[0]), (x[0], y[1]), (x[1], y[1])] {
+                b.push(self.base.wrapping_add(self.layout.index(level, xx, yy)));
+            }
+        }
+        self.pyramid.footprint(level, x, y)
+    }
 }
 
 /// `u` reduced to `[0, 1)` (wrap addressing, exact in f64) as a [`TexCoord`].

@@ -224,7 +224,11 @@ fn samples_for(g: &Geometry, n: usize, seed: u64) -> Vec<(TexCoord, TexCoord, Lo
 }
 
 fn run(w: u32, h: u32, n: usize) -> Worst {
-    let t = Tex::random(w, h, full_levels(w, h), u64::from(w) * 7919 + u64::from(h));
+    run_levels(w, h, full_levels(w, h), n)
+}
+
+fn run_levels(w: u32, h: u32, levels: u8, n: usize) -> Worst {
+    let t = Tex::random(w, h, levels, u64::from(w) * 7919 + u64::from(h));
     let mut worst = Worst::default();
     check_samples(
         &t,
@@ -232,7 +236,7 @@ fn run(w: u32, h: u32, n: usize) -> Worst {
         &mut worst,
     );
     println!(
-        "{w}x{h}: max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}",
+        "{w}x{h} ({levels} levels): max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}",
         worst.0[0], worst.0[1], worst.0[2], worst.0[3]
     );
     worst
@@ -251,6 +255,15 @@ fn tiny_and_one_wide_sizes() {
         (2, 2),
     ] {
         run(w, h, 300);
+    }
+}
+
+/// Pyramids storing fewer levels than the full chain: lod clamps to the
+/// top stored level.
+#[test]
+fn partial_chains_clamp_to_stored_levels() {
+    for (w, h, levels) in [(64, 64, 3), (1044, 1044, 4), (128, 512, 1), (1, 37, 2)] {
+        run_levels(w, h, levels, 500);
     }
 }
 

@@ -1,6 +1,6 @@
 //! Renderer tests on the built-in scenes (reduced sizes to keep CI fast).
 
-use raymip_host::builtin::{self, NAMES, fronto_quad, one_texel_per_pixel_distance};
+use raymip_host::builtin::{self, NAMES, fronto_quad, mirror_quad, one_texel_per_pixel_distance};
 use raymip_host::output::psnr;
 use raymip_host::render::{Image, Method, Options, Precision, Prepared, render};
 
@@ -122,4 +122,113 @@ fn mirror_room_has_deep_paths_and_glass_refracts() {
     // Every textured hit lands in one histogram bin.
     let sum: u64 = g.counters.level_hist.iter().sum();
     assert_eq!(sum, g.counters.textured_hits);
+}
+
+#[test]
+fn table1_mip_mapping_raises_cache_hit_rate_on_hall() {
+    let row = raymip_host::table1::measure("hall", builtin::hall(), SIZE, 10, false).unwrap();
+    println!("{row:?}");
+    assert!(row.accesses[0] > 0 && row.accesses[1] > 0);
+    assert!((row.level_share.iter().sum::<f64>() - 100.0).abs() < 1e-6);
+    assert!(
+        row.cache_on > row.cache_off,
+        "{} vs {}",
+        row.cache_on,
+        row.cache_off
+    );
+}
+
+#[test]
+fn mirror_bounce_carries_path_length_into_the_lod() {
+    // The square seen through a flat 45° mirror: Pl = a + b, so the lod is
+    // log2((a + b)/Pb) at the centre pixel, for every method.
+    let (fov, tex, side) = (45.0, 256, 2.0);
+    let pb = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
+    let tol = 1.0 / 256.0;
+    for (k, want) in [(1.0, 0.0), (2.0, 1.0)] {
+        let scene = mirror_quad(side, tex, 0.3 * k * pb, 0.7 * k * pb, fov, SIZE.0, SIZE.1);
+        let prep = Prepared::new(scene, None).unwrap();
+        for (m, p) in [
+            (Method::Table, Precision::Fixed),
+            (Method::Table, Precision::Float),
+            (Method::Cone, Precision::Fixed),
+            (Method::Cone, Precision::Float),
+            (Method::Raydiff, Precision::Float),
+        ] {
+            let img = render(&prep, &opts(m, p));
+            let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
+            let l = f64::from(img.lod[i]);
+            println!("{} {} k={k}: lod {l:.5}", m.name(), p.name());
+            assert!(
+                (l - want).abs() <= tol,
+                "{} {}: lod {l}, want {want}",
+                m.name(),
+                p.name()
+            );
+            assert!(
+                img.counters.depth_hist[1] > 0,
+                "the square is seen after one bounce"
+            );
+        }
+    }
+}
+
+#[test]
+fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
+    use raymip_host::builtin::{quad, sphere};
+    use raymip_host::scene::{Camera, Material, Scene};
+    // Camera at the origin looking down −z at a mirror sphere (r = 1, front
+    // 4 away); the centre ray comes straight back and meets a textured
+    // square 4 behind the camera. Paraxially a convex mirror adds 2·w/r to
+    // the cone angle: width at the square = 4γ + (γ + 8γ)·8 = 76γ, so the
+    // lod is log2(76/Pb), while the path length alone gives log2(12/Pb).
+    let (fov, tex, side) = (45.0, 256, 20.0);
+    let pb = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
+    let mat = |d: f64, s: f64| Material {
+        ambient: [d; 3],
+        diffuse: [d; 3],
+        specular: [s; 3],
+        shine: 10.0,
+        transmission: [0.0; 3],
+        ior: 1.0,
+    };
+    let mut triangles = sphere([0.013, 0.007, -5.0], 1.0, 256, 128, 1);
+    let h = side / 2.0;
+    triangles.extend(quad(
+        [-h, -h, 4.0],
+        [side, 0.0, 0.0],
+        [0.0, side, 0.0],
+        1.0,
+        1.0,
+        0,
+        Some(0),
+    ));
+    let mut scene: Scene = fronto_quad(side, tex, 1.0, fov, SIZE.0, SIZE.1);
+    scene.camera = Camera {
+        from: [0.0; 3],
+        at: [0.0, 0.0, -1.0],
+        up: [0.0, 1.0, 0.0],
+        fov_y_deg: fov,
+        width: SIZE.0,
+        height: SIZE.1,
+    };
+    scene.materials = vec![mat(1.0, 0.0), mat(0.0, 1.0)];
+    scene.triangles = triangles;
+    let prep = Prepared::new(scene, None).unwrap();
+    let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
+    let lod = |m: Method, p: Precision| f64::from(render(&prep, &opts(m, p)).lod[i]);
+    let (want_cone, want_table) = ((76.0 / pb).log2(), (12.0 / pb).log2());
+    for p in [Precision::Fixed, Precision::Float] {
+        let t = lod(Method::Table, p);
+        let c = lod(Method::Cone, p);
+        println!(
+            "{}: table {t:.4} (want {want_table:.4}), cone {c:.4} (want {want_cone:.4})",
+            p.name()
+        );
+        assert!((t - want_table).abs() < 0.01, "table {t} vs {want_table}");
+        assert!((c - want_cone).abs() < 0.1, "cone {c} vs {want_cone}");
+    }
+    let r = lod(Method::Raydiff, Precision::Float);
+    println!("raydiff {r:.4}");
+    assert!((r - want_cone).abs() < 0.1, "raydiff {r} vs {want_cone}");
 }

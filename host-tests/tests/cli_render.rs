@@ -1,0 +1,113 @@
+//! The CLI's render / compare / table1 commands end to end (small sizes).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("raymip-cli-{}-{name}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    d
+}
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_raymip-host"))
+        .args(args)
+        .output()
+        .expect("run raymip-host")
+}
+
+#[test]
+fn render_writes_image_levels_and_reports() {
+    let out = tmp("render");
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--size",
+        "80x48",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["image.png", "levels.png", "report.json", "report.md"] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["width"], 80);
+    assert_eq!(r["method"], "table");
+    assert_eq!(r["precision"], "fixed");
+    assert_eq!(r["counters"]["paths"], 80 * 48);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn compare_and_table1_run_on_builtin_scenes() {
+    let out = tmp("compare");
+    let o = run(&[
+        "compare",
+        "--scene",
+        "builtin:glass",
+        "--size",
+        "40x24",
+        "--spp",
+        "4",
+        "--methods",
+        "table,mip0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("diff_table_fixed_vs_float.png").is_file());
+    assert!(out.join("compare.json").is_file());
+    let o = run(&[
+        "table1",
+        "--scenes",
+        "/nonexistent-raymip",
+        "--builtin",
+        "--size",
+        "40x24",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(s.contains("SKIP") && s.contains("builtin:mirrors"), "{s}");
+    assert!(out.join("table1.md").is_file());
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn bad_inputs_are_clear_errors() {
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:nope",
+        "--out",
+        "/tmp/raymip-never",
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown built-in scene"));
+    let o = run(&[
+        "render",
+        "--scene",
+        "/no/such.aff",
+        "--out",
+        "/tmp/raymip-never",
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("/no/such.aff"));
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--size",
+        "0x3",
+        "--out",
+        "/tmp/raymip-never",
+    ]);
+    assert!(!o.status.success());
+    let o = run(&["table1", "--scenes", "/nonexistent-raymip"]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));
+}
