@@ -531,3 +531,117 @@ pub unsafe extern "C" fn rm_sample(
     unsafe { *out = texel };
     RmStatus::Ok
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use proptest::prelude::*;
+
+    fn ok_lod(pl: u64, e: i32) -> (RmStatus, i16) {
+        let mut out = i16::MIN;
+        // SAFETY: `out` is a valid local.
+        let s = unsafe { rm_table_lod(pl, e, &mut out) };
+        (s, out)
+    }
+
+    #[test]
+    fn null_pointers_are_reported() {
+        // SAFETY: null pointers are the inputs under test; nothing is dereferenced.
+        unsafe {
+            assert_eq!(
+                rm_table_lod(1, 0, core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_ray_stack_init(core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_ray_stack_push(core::ptr::null_mut(), core::ptr::null()),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_ray_stack_pop(core::ptr::null_mut(), core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_path_advance(core::ptr::null_mut(), 1),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_path_bounce(core::ptr::null_mut(), 1),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_path_primary(1 << 20, 0, core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_table_build(
+                    core::ptr::null_mut(),
+                    1,
+                    core::ptr::null(),
+                    0,
+                    1 << 20,
+                    core::ptr::null_mut()
+                ),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_sample(core::ptr::null(), 0, 0, 0, 0, 0, core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+        }
+    }
+
+    #[test]
+    fn corrupt_stack_length_is_read_as_full_and_pops_in_range() {
+        let mut st = RmRayStack {
+            entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+            len: 1000,
+        };
+        let s = RmPathState::default();
+        let mut out = RmPathState::default();
+        // SAFETY: valid locals.
+        unsafe {
+            assert_eq!(rm_ray_stack_push(&mut st, &s), RmStatus::StackFull);
+            assert_eq!(rm_ray_stack_pop(&mut st, &mut out), RmStatus::Ok);
+        }
+        assert_eq!(st.len as usize, RM_RAY_STACK_CAPACITY - 1);
+    }
+
+    proptest! {
+        /// The C entry points agree with the Rust API for every input.
+        #[test]
+        fn c_lod_equals_rust_lod(pl in any::<u64>(), e in any::<i32>(), w in any::<i64>(), d in any::<i32>(), c in any::<u32>(), lod in any::<i16>(), levels in any::<u8>()) {
+            let (s, out) = ok_lod(pl, e);
+            match table_lod(U32F32::from_bits(pl), entry(e)) {
+                Some(l) => prop_assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
+                None => prop_assert_eq!((s, e), (RmStatus::Untextured, RM_UNTEXTURED)),
+            }
+            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), (c != 0).then_some(U1F31::from_bits(c)));
+            prop_assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
+            prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
+        }
+
+        /// Path state round-trips and advances exactly as `PathState`.
+        #[test]
+        fn c_path_state_equals_rust(g in 1i32..i32::MAX, ts in proptest::collection::vec(any::<u64>(), 0..12), beta in any::<i32>()) {
+            let mut c = RmPathState::default();
+            // SAFETY: valid local.
+            prop_assert_eq!(unsafe { rm_path_primary(g, 7, &mut c) }, RmStatus::Ok);
+            let spread = PixelSpread::from_angle(I2F30::from_bits(g)).unwrap();
+            let mut r = PathState::primary(&spread, 7);
+            for &t in &ts {
+                // SAFETY: valid local.
+                unsafe {
+                    rm_path_advance(&mut c, t);
+                    rm_path_bounce(&mut c, beta);
+                }
+                r = r.advance(U32F32::from_bits(t)).bounce(I2F30::from_bits(beta));
+                prop_assert_eq!(PathState::from(c), r);
+            }
+        }
+    }
+}
