@@ -201,6 +201,23 @@ enum RmStatus rm_path_bounce(struct RmPathState *state, int32_t beta);
 // (0 when a side is 0).
 size_t rm_pyramid_len(uint32_t width, uint32_t height, uint8_t levels);
 
+// Generates levels `1 .. levels` of a `width × height` pyramid in place
+// from level 0 (the first `width·height` texels at `texels`), with the
+// filter of `mip::generate` (2×2 box, round half up; exact area box for odd
+// sides). Set-up time, not per hit.
+//
+// Returns `NullPointer`, `ZeroSize`, `OutOfRange` (bad level count or side
+// above 32768) or `BufferTooShort` (`len` < [`rm_pyramid_len`]; nothing is
+// written).
+//
+// # Safety
+// `texels` is null (→ `NullPointer`) or points to `len` writable texels.
+enum RmStatus rm_mip_generate(uint32_t *texels,
+                              size_t len,
+                              uint32_t width,
+                              uint32_t height,
+                              uint8_t levels);
+
 // Filtered texel of `tex` at `(u, v)` (I32F32 bits, normalised; texel
 // centres at `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the
 // stored levels) with filter `mode` (0 trilinear, 1 bilinear at the nearest

@@ -9,10 +9,10 @@
 //! this module by `cbindgen` (CI fails when it is stale); the static
 //! library is built by the `raymip-ffi` crate (`ffi/`).
 //!
-//! MIP generation (`raymip::mip::generate`) is not exposed yet: it still
-//! has panicking branches (bounds checks, a division) that the panic-never
-//! link check finds, so it cannot promise "no panic across the boundary".
-//! C callers store all levels (e.g. generated on the host).
+//! MIP generation ([`rm_mip_generate`]) runs in place in the caller's
+//! buffer, so a C controller can build its pyramids at start-up; it is
+//! panic-free like the rest (every access is checked), machine-checked by
+//! the same panic-never link.
 //!
 //! # Number formats (raw bits)
 //!
@@ -41,7 +41,7 @@ use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 
 use crate::filter::{Address, Mode, Sampler};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
-use crate::mip::{Geometry, MipError, Pyramid, pyramid_len};
+use crate::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
 use crate::table::{Log2Pb, PixelSpread, TableError, TexTriangle};
 
@@ -474,6 +474,40 @@ pub unsafe extern "C" fn rm_path_bounce(state: *mut RmPathState, beta: i32) -> R
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     pyramid_len(width, height, levels)
+}
+
+/// Generates levels `1 .. levels` of a `width × height` pyramid in place
+/// from level 0 (the first `width·height` texels at `texels`), with the
+/// filter of `mip::generate` (2×2 box, round half up; exact area box for odd
+/// sides). Set-up time, not per hit.
+///
+/// Returns `NullPointer`, `ZeroSize`, `OutOfRange` (bad level count or side
+/// above 32768) or `BufferTooShort` (`len` < [`rm_pyramid_len`]; nothing is
+/// written).
+///
+/// # Safety
+/// `texels` is null (→ `NullPointer`) or points to `len` writable texels.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_mip_generate(
+    texels: *mut u32,
+    len: usize,
+    width: u32,
+    height: u32,
+    levels: u8,
+) -> RmStatus {
+    if texels.is_null() {
+        return RmStatus::NullPointer;
+    }
+    let g = match Geometry::new(width, height, levels) {
+        Ok(g) => g,
+        Err(e) => return mip_status(e),
+    };
+    // SAFETY: non-null, `len` writable texels (caller).
+    let buf = unsafe { core::slice::from_raw_parts_mut(texels, len) };
+    match generate(&g, buf) {
+        Ok(()) => RmStatus::Ok,
+        Err(e) => mip_status(e),
+    }
 }
 
 /// Filtered texel of `tex` at `(u, v)` (I32F32 bits, normalised; texel

@@ -306,32 +306,42 @@ pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> 
     for k in 1..geometry.levels() {
         let (sw, sh) = geometry.level_size(k - 1);
         let (dw, dh) = geometry.level_size(k);
-        let (lower, upper) = buf.split_at_mut(geometry.level_offset(k));
-        let src = &lower[geometry.level_offset(k - 1)..];
-        let dst = &mut upper[..(dw * dh) as usize];
-        for y in 0..dh {
+        // Every access below is checked (`get`), so no input can panic; the
+        // length check above makes the `None` arms unreachable in practice.
+        let (lower, upper) = buf
+            .split_at_mut_checked(geometry.level_offset(k))
+            .ok_or(MipError::BufferTooShort { needed, got: 0 })?;
+        let src = lower
+            .get(geometry.level_offset(k - 1)..)
+            .ok_or(MipError::BufferTooShort { needed, got: 0 })?;
+        let dst = upper
+            .get_mut(..(dw as usize).saturating_mul(dh as usize))
+            .ok_or(MipError::BufferTooShort { needed, got: 0 })?;
+        for (y, dst_row) in (0..dh).zip(dst.chunks_exact_mut(dw.max(1) as usize)) {
             let ty = axis_taps(sh, y);
-            for x in 0..dw {
+            for (x, d) in (0..dw).zip(dst_row.iter_mut()) {
                 let tx = axis_taps(sw, x);
-                let den = tx.den * ty.den;
+                let den = tx.den.saturating_mul(ty.den);
                 let mut sum = [0u64; 4];
-                for (j, &wy) in ty.weights[..ty.count].iter().enumerate() {
-                    let row = (ty.first as usize + j) * sw as usize;
-                    for (i, &wx) in tx.weights[..tx.count].iter().enumerate() {
-                        let t = src[row + tx.first as usize + i];
+                for (j, &wy) in ty.weights.iter().take(ty.count).enumerate() {
+                    let row = (ty.first as usize + j).saturating_mul(sw as usize);
+                    let taps = src
+                        .get(row.saturating_add(tx.first as usize)..)
+                        .unwrap_or(&[]);
+                    for (&t, &wx) in taps.iter().zip(tx.weights.iter().take(tx.count)) {
                         let w = wx * wy;
                         for (c, s) in sum.iter_mut().enumerate() {
                             *s += w * u64::from((t >> (8 * c)) & 0xFF);
                         }
                     }
                 }
-                // Round half up: floor(S/D + ½) = floor((2S + D) / 2D).
+                // Round half up: floor(S/D + ½) = floor((2S + D) / 2D); D ≥ 1.
                 let mut out = 0u32;
                 for (c, s) in sum.iter().enumerate() {
-                    let v = (2 * s + den) / (2 * den);
+                    let v = (2 * s + den).checked_div(2 * den).unwrap_or(0);
                     out |= (v.min(255) as u32) << (8 * c);
                 }
-                dst[(y * dw + x) as usize] = out;
+                *d = out;
             }
         }
     }

@@ -124,7 +124,7 @@ static void test_sampling(void) {
     for (int y = 0; y < W; y++)
         for (int x = 0; x < W; x++) texels[y * W + x] = ((x / 2 + y / 2) % 2) ? b : a;
     /* Level 1 (2x2): each texel the box of one colour; level 2 the mean
-     * (stored by the caller: MIP generation is not in the C ABI). */
+     * (written out by hand here; rm_mip_generate must reproduce it). */
     texels[16] = a;
     texels[17] = b;
     texels[18] = b;
@@ -134,6 +134,15 @@ static void test_sampling(void) {
         uint32_t ca = (a >> (8 * c)) & 0xFF, cb = (b >> (8 * c)) & 0xFF;
         texels[20] |= ((ca + cb + 1) / 2) << (8 * c);
     }
+    /* rm_mip_generate rebuilds levels 1.. from level 0 exactly as above. */
+    uint32_t gen[21] = {0};
+    memcpy(gen, texels, 16 * sizeof gen[0]);
+    CHECK(rm_mip_generate(gen, n, W, W, LEVELS) == RM_STATUS_OK, "generate");
+    CHECK(memcmp(gen, texels, sizeof gen) == 0, "generated levels differ: %08lx %08lx", (unsigned long)gen[16], (unsigned long)gen[20]);
+    CHECK(rm_mip_generate(gen, n - 1, W, W, LEVELS) == RM_STATUS_BUFFER_TOO_SHORT, "generate short");
+    CHECK(rm_mip_generate(NULL, n, W, W, LEVELS) == RM_STATUS_NULL_POINTER, "generate null");
+    CHECK(rm_mip_generate(gen, n, 0, W, LEVELS) == RM_STATUS_ZERO_SIZE, "generate zero size");
+    CHECK(rm_mip_generate(gen, n, W, W, 9) == RM_STATUS_OUT_OF_RANGE, "generate too many levels");
     RmTexture tex = {texels, n, W, W, LEVELS};
     uint32_t out = 0;
     /* Centre of texel (0,0) at level 0, nearest and bilinear: colour a. */

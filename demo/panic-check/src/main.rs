@@ -18,9 +18,9 @@ use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::cache::{BlockCache, TexelCache, block_index};
 use raymip::ffi::{
-    RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_path_advance,
-    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
-    rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
+    RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
+    rm_path_advance, rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init,
+    rm_ray_stack_pop, rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
@@ -93,6 +93,18 @@ fn c_abi() {
             &mut out,
         ));
     }
+    let mut pyr = [0u32; 21];
+    // SAFETY: `pyr` holds 21 writable texels.
+    unsafe {
+        bb(rm_mip_generate(
+            bb(pyr.as_mut_ptr()),
+            bb(21),
+            bb(4),
+            bb(4),
+            bb(3),
+        ));
+    }
+    bb(pyr);
     bb(rm_cone_lod(bb(1), bb(2), bb(3)));
     bb(rm_clamp_lod(bb(1), bb(2)));
     bb(rm_pyramid_len(bb(1), bb(2), bb(3)));
