@@ -39,6 +39,7 @@ entry is unbounded or the input cannot be analysed. Standard library only.
 from __future__ import annotations
 
 import argparse
+import bisect
 import re
 import shutil
 import struct
@@ -313,7 +314,6 @@ def build_graph(arch, elf, objdump):
                          capture_output=True, text=True).stdout
     starts = sorted(funcs)
     body: dict[int, list] = {a: [] for a in starts}
-    import bisect
     for line in out.splitlines():
         m = INSN.match(line)
         if not m:
