@@ -13,20 +13,8 @@ use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 
-/// Deterministic xorshift64 generator.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    /// Uniform in [0, 1) with 53 bits.
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+mod common;
+use common::Rng;
 
 /// A generated pyramid with random level 0, owned.
 struct Tex {

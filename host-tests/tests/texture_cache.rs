@@ -11,15 +11,8 @@ use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
+mod common;
+use common::Rng;
 
 fn texture(w: u32, h: u32, seed: u64) -> (Geometry, Vec<Texel>) {
     let g = Geometry::new(w, h, full_levels(w, h)).unwrap();

@@ -7,16 +7,8 @@
 use proptest::prelude::*;
 use raymip::mip::{Geometry, MipError, Texel, full_levels, generate, pyramid_len};
 
-/// Deterministic xorshift64 generator.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
+mod common;
+use common::Rng;
 
 fn channel(t: Texel, c: usize) -> f64 {
     f64::from((t >> (8 * c)) & 0xFF)
