@@ -201,14 +201,7 @@ fn mip_status(e: MipError) -> RmStatus {
 
 /// A table entry from raw bits (markers included).
 fn entry(bits: i32) -> Log2Pb {
-    [
-        Log2Pb::UNTEXTURED,
-        Log2Pb::DEGENERATE_GEOMETRY,
-        Log2Pb::DEGENERATE_UV,
-    ]
-    .into_iter()
-    .find(|m| m.to_i16f16().to_bits() == bits)
-    .unwrap_or_else(|| Log2Pb::from_log2(I16F16::from_bits(bits)))
+    Log2Pb::from_bits(bits)
 }
 
 /// Computes table entries `start .. start + count` of `entries` (length

@@ -328,6 +328,30 @@ impl Log2Pb {
         Self(v.clamp(Self::MIN.0, Self::MAX.0))
     }
 
+    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_i16f16`]
+    /// (C tables, `static` data): the three markers are kept, any other
+    /// value is clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`]. Never panics.
+    #[must_use]
+    pub const fn from_bits(bits: i32) -> Self {
+        let markers = [
+            Self::UNTEXTURED.0.to_bits(),
+            Self::DEGENERATE_GEOMETRY.0.to_bits(),
+            Self::DEGENERATE_UV.0.to_bits(),
+        ];
+        if bits == markers[0] || bits == markers[1] || bits == markers[2] {
+            return Self(I16F16::from_bits(bits));
+        }
+        let (lo, hi) = (Self::MIN.0.to_bits(), Self::MAX.0.to_bits());
+        let v = if bits < lo {
+            lo
+        } else if bits > hi {
+            hi
+        } else {
+            bits
+        };
+        Self(I16F16::from_bits(v))
+    }
+
     /// The raw value (markers included).
     #[must_use]
     pub const fn to_i16f16(self) -> I16F16 {
@@ -649,6 +673,22 @@ mod tests {
 
     fn coord() -> impl Strategy<Value = f64> {
         prop_oneof![-1.0e4..1.0e4f64, -1.0..1.0f64, -1.0e-3..1.0e-3f64]
+    }
+
+    proptest! {
+        #[test]
+        fn from_bits_keeps_markers_and_clamps(bits in any::<i32>()) {
+            let e = Log2Pb::from_bits(bits);
+            let markers = [Log2Pb::UNTEXTURED, Log2Pb::DEGENERATE_GEOMETRY, Log2Pb::DEGENERATE_UV];
+            if markers.iter().any(|m| m.to_i16f16().to_bits() == bits) {
+                prop_assert_eq!(e.to_i16f16().to_bits(), bits);
+            } else {
+                let want = i64::from(bits).clamp(-64 << 16, 64 << 16);
+                prop_assert_eq!(i64::from(e.to_i16f16().to_bits()), want);
+            }
+            // Round trip of every stored value.
+            prop_assert_eq!(Log2Pb::from_bits(e.to_i16f16().to_bits()), e);
+        }
     }
 
     proptest! {

@@ -33,7 +33,7 @@
 
 use core::fmt;
 
-use fixed::types::{I2F30, I16F16};
+use fixed::types::I2F30;
 use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{clamp_lod, table_lod};
@@ -250,20 +250,7 @@ pub fn pixel_spread() -> Option<PixelSpread> {
 /// The generated Pb table (static data).
 #[must_use]
 pub fn static_table() -> [Log2Pb; TRIANGLES] {
-    PB_TABLE.map(entry_from_bits)
-}
-
-/// A table entry from its raw I16F16 bits, markers included.
-#[must_use]
-pub fn entry_from_bits(bits: i32) -> Log2Pb {
-    [
-        Log2Pb::UNTEXTURED,
-        Log2Pb::DEGENERATE_GEOMETRY,
-        Log2Pb::DEGENERATE_UV,
-    ]
-    .into_iter()
-    .find(|m| m.to_i16f16().to_bits() == bits)
-    .unwrap_or_else(|| Log2Pb::from_log2(I16F16::from_bits(bits)))
+    PB_TABLE.map(Log2Pb::from_bits)
 }
 
 /// Per-stage counters of one render (all must match across targets).
