@@ -11,8 +11,9 @@ use criterion::{Criterion, Throughput, criterion_group};
 use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::mip::{Geometry, Pyramid, Texel};
 use raymip_host::texf32::SamplerF32;
+use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
 
 const N: usize = 1024;
 /// Side of the texture of the timing runs: 256×256 RGBA8 plus levels
@@ -22,50 +23,10 @@ const BENCH_SIZE: u32 = 256;
 /// Side of the texture of the cache walk.
 const SIZE: u32 = 1024;
 
-fn xorshift(s: &mut u64) -> u64 {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    *s
-}
-
-fn texture(size: u32) -> (Geometry, Vec<Texel>) {
-    let g = Geometry::new(size, size, full_levels(size, size)).expect("geometry");
-    let mut buf = vec![0; g.len()];
-    let mut s = 0x9E37_79B9_7F4A_7C15u64;
-    for t in &mut buf[..(size * size) as usize] {
-        *t = xorshift(&mut s) as u32;
-    }
-    generate(&g, &mut buf).expect("generate");
-    (g, buf)
-}
-
-/// Random (u, v, lod) with lod in [0, 6) and a non-zero fraction, so
-/// trilinear always reads two levels.
-fn inputs() -> Vec<(f32, f32, f32)> {
-    let mut s = 0x2545_F491_4F6C_DD1Du64;
-    let mut unit = move || (xorshift(&mut s) >> 40) as f32 / (1u64 << 24) as f32;
-    (0..N)
-        .map(|_| {
-            let lod = (unit() * 6.0).floor() + 0.125 + 0.75 * unit();
-            (unit() * 4.0 - 2.0, unit() * 4.0 - 2.0, lod)
-        })
-        .collect()
-}
-
 fn bench(c: &mut Criterion) {
-    let (g, buf) = texture(BENCH_SIZE);
-    let inp = inputs();
-    let fixed_in: Vec<(TexCoord, TexCoord, Lod)> = inp
-        .iter()
-        .map(|&(u, v, l)| {
-            (
-                TexCoord::from_num(u),
-                TexCoord::from_num(v),
-                Lod::from_num(l),
-            )
-        })
-        .collect();
+    let (g, buf) = random_pyramid(BENCH_SIZE).expect("pyramid");
+    let inp = random_inputs(N);
+    let fixed_in = to_fixed(&inp);
     let pyramid = Pyramid::new(g, &buf).expect("pyramid");
     let mut fixed = Sampler::new(pyramid, Address::Wrap);
     let float = SamplerF32::new(g, &buf, Address::Wrap).expect("f32 sampler");
@@ -116,7 +77,7 @@ fn scanline_hit_rate(g: Geometry, buf: &[Texel], lod: u32, level: u8) -> (f64, u
 }
 
 fn cache_report() {
-    let (g, buf) = texture(SIZE);
+    let (g, buf) = random_pyramid(SIZE).expect("pyramid");
     println!("texel cache: 16 KiB, 64 sets x 4 ways, 4x4 RGBA8 blocks (64 B), LRU, Morton order");
     println!("scanline walk over a {SIZE}x{SIZE} texture, bilinear, one access per texel read:");
     for (lod, level, what) in [

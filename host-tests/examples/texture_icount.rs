@@ -12,51 +12,21 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, full_levels, generate};
+use raymip::filter::{Address, Mode, Sampler};
+use raymip::mip::Pyramid;
 use raymip_host::texf32::SamplerF32;
+use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
 
 /// Samples per run.
 const N: usize = 100_000;
 
 fn main() -> ExitCode {
     let variant = std::env::args().nth(1).unwrap_or_default();
-    let size = 256;
-    let Ok(g) = Geometry::new(size, size, full_levels(size, size)) else {
+    let Ok((g, buf)) = random_pyramid(256) else {
         return ExitCode::FAILURE;
     };
-    let mut buf = vec![0u32; g.len()];
-    let mut s = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        s
-    };
-    for t in &mut buf[..(size * size) as usize] {
-        *t = next() as u32;
-    }
-    if generate(&g, &mut buf).is_err() {
-        return ExitCode::FAILURE;
-    }
-    let mut unit = move || (next() >> 40) as f32 / (1u64 << 24) as f32;
-    let inp: Vec<(f32, f32, f32)> = (0..N)
-        .map(|_| {
-            let lod = (unit() * 6.0).floor() + 0.125 + 0.75 * unit();
-            (unit() * 4.0 - 2.0, unit() * 4.0 - 2.0, lod)
-        })
-        .collect();
-    let fin: Vec<(TexCoord, TexCoord, Lod)> = inp
-        .iter()
-        .map(|&(u, v, l)| {
-            (
-                TexCoord::from_num(u),
-                TexCoord::from_num(v),
-                Lod::from_num(l),
-            )
-        })
-        .collect();
+    let inp = random_inputs(N);
+    let fin = to_fixed(&inp);
     let Ok(p) = Pyramid::new(g, &buf) else {
         return ExitCode::FAILURE;
     };

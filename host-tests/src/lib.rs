@@ -16,3 +16,4 @@ pub mod scene;
 pub mod table1;
 pub mod texf32;
 pub mod texunit;
+pub mod workload;
