@@ -22,6 +22,7 @@
 //! | MIP pyramid in caller memory (set-up) | [`mip`] | level offset + texel index |
 //! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
+//! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
 //!
 //! ```
@@ -113,4 +114,5 @@ pub mod lod;
 pub mod log2;
 pub mod mip;
 pub mod raystack;
+pub mod stochastic;
 pub mod table;

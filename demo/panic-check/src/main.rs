@@ -27,6 +27,7 @@ use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::stochastic::StochasticMode;
 use raymip::table::{Log2Pb, PbTable, PixelSpread};
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
@@ -170,6 +171,14 @@ fn main() -> ! {
         for &m in &modes {
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
+        }
+        for m in [
+            StochasticMode::Trilinear,
+            StochasticMode::Bilinear,
+            StochasticMode::TrilinearBilinear,
+        ] {
+            bb(direct.sample_stochastic(u, v, lod, bb(m), bb(0x8765_4321)));
+            bb(cached.sample_stochastic(u, v, lod, bb(m), bb(0x1234_5678)));
         }
         bb(cached.source_mut().texel(bb(2), bb(5), bb(6)));
         bb(tags.access(bb(1234)));
