@@ -15,5 +15,6 @@ pub mod sample;
 pub mod scene;
 pub mod table1;
 pub mod texf32;
+pub mod texformat;
 pub mod texunit;
 pub mod workload;
