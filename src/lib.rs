@@ -22,6 +22,7 @@
 //! | MIP pyramid in caller memory (set-up) | [`mip`] | level offset + texel index |
 //! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
+//! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
 //!
 //! GPU-sampler parity (D3D11 / Vulkan sampler objects), one concept each:
@@ -133,5 +134,6 @@ pub mod mip;
 pub mod raystack;
 pub mod sampler_state;
 pub mod srgb;
+pub mod stochastic;
 pub mod table;
 pub mod texture_sampler;

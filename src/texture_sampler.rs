@@ -39,7 +39,7 @@
 
 use crate::address::AddressMode;
 use crate::aniso::{Footprint, probes};
-use crate::filter::{FetchStats, Mode, TexCoord};
+use crate::filter::{FetchStats, LevelSplit, Mode, TexCoord};
 use crate::format::ColorSpace;
 use crate::lod::Lod;
 use crate::mip::{Geometry, Texel, TexelSource};
@@ -125,11 +125,11 @@ impl<S: TexelSource> TextureSampler<S> {
     /// The filter at an already clamped lod, in 16.8 linear.
     #[inline]
     fn filter(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Lin {
-        // lod ∈ [0, 15]: bits ∈ [0, 3840].
-        let bits = u16::try_from(lod.to_bits()).unwrap_or(0);
-        let lower = (bits >> 8) as u8;
-        let t = u32::from(bits & 0xFF);
-        let nearest_level = (((bits + 0x80) >> 8) as u8).min(self.geometry.top_level());
+        let LevelSplit {
+            lower,
+            t,
+            nearest: nearest_level,
+        } = LevelSplit::new(lod, &self.geometry);
         match mode {
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, lower);

@@ -34,6 +34,7 @@ use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
+use raymip::stochastic::StochasticMode;
 use raymip::table::{Log2Pb, PbTable, PixelSpread};
 use raymip::texture_sampler::TextureSampler;
 
@@ -201,6 +202,14 @@ fn main() -> ! {
         for &m in &modes {
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
+        }
+        for m in [
+            StochasticMode::Trilinear,
+            StochasticMode::Bilinear,
+            StochasticMode::TrilinearBilinear,
+        ] {
+            bb(direct.sample_stochastic(u, v, lod, bb(m), bb(0x8765_4321)));
+            bb(cached.sample_stochastic(u, v, lod, bb(m), bb(0x1234_5678)));
         }
         bb(cached.source_mut().texel(bb(2), bb(5), bb(6)));
         let fp = bb(Footprint {
