@@ -12,6 +12,7 @@ pub mod output;
 pub mod ppm;
 pub mod render;
 pub mod sample;
+pub mod sampler_ref;
 pub mod scene;
 pub mod table1;
 pub mod texf32;
