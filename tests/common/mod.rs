@@ -1,20 +1,8 @@
-//! Helpers shared by the integration tests (`mod common;` in each).
+//! Helpers shared by the integration tests (`mod common;` in each): the
+//! harness's one test RNG, included from its home in `host-tests`.
 #![allow(dead_code)]
 
-/// Deterministic xorshift64 generator (seed must be non-zero).
-pub struct Rng(pub u64);
+#[path = "../../host-tests/src/reference/rng.rs"]
+mod rng;
 
-impl Rng {
-    /// Next 64 pseudo-random bits.
-    pub fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// Uniform in [0, 1) with 53 bits.
-    pub fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use rng::Rng;
