@@ -23,7 +23,7 @@
 //! channel, in 8-bit LSB: final rounding ½, the 8.16 intermediate 2⁻¹⁷, and
 //! the texel position rounded to 1/4096 texel per axis (done by the caller,
 //! [`crate::filter`]), at most `255 · 2⁻¹³` per axis. Total
-//! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`MAX_ERROR_LSB`] `= 0.5625`, for
+//! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`BILERP_MAX_ERROR_LSB`] `= 0.5625`, for
 //! bilinear and trilinear alike (the blend of two values each within
 //! `0.0623` stays within it).
 
@@ -40,7 +40,7 @@ pub const BLEND_BITS: u32 = 8;
 
 /// Documented error bound of bilinear and trilinear filtering against the
 /// exact f64 filter, in 8-bit LSB per channel: 0.5625.
-pub const MAX_ERROR_LSB: f64 = 0.5625;
+pub const BILERP_MAX_ERROR_LSB: f64 = 0.5625;
 
 /// Four channels (r, g, b, a) in 8.16 unsigned fixed point, each in
 /// `[0, 255·2¹⁶]`.
@@ -205,7 +205,7 @@ mod tests {
             let out = round_wide(w);
             let r = f64::from(out & 0xFF);
             assert!(
-                (r - exact).abs() <= MAX_ERROR_LSB,
+                (r - exact).abs() <= BILERP_MAX_ERROR_LSB,
                 "{a},{b},{c},{d} @ {fx},{fy}: {r} vs {exact}"
             );
             // The 8.16 value is within 2^-17 LSB of exact.

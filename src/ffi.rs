@@ -39,11 +39,12 @@
 
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 
+use crate::camera::PixelSpread;
 use crate::filter::{Address, Mode, Sampler};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
-use crate::table::{Log2Pb, PixelSpread, TableError, TexTriangle};
+use crate::table::{Log2Pb, TableError, TexTriangle};
 
 /// Result codes of the C ABI (`0` = success, negative = error, positive =
 /// a documented non-error outcome).
@@ -185,7 +186,6 @@ impl From<RmPathState> for PathState {
 fn table_status(e: TableError) -> RmStatus {
     match e {
         TableError::ZeroTextureSize => RmStatus::ZeroSize,
-        TableError::BadAngle | TableError::ZeroImageHeight => RmStatus::BadAngle,
         TableError::TableFull => RmStatus::TableFull,
         _ => RmStatus::OutOfRange,
     }

@@ -21,7 +21,7 @@
 //!   the avoided texel reads are counted in [`FetchStats::skipped`].
 //!
 //! Output is RGBA8, rounded to nearest per channel; error bound
-//! [`MAX_ERROR_LSB`](crate::bilerp::MAX_ERROR_LSB) = 0.5625 LSB for
+//! [`BILERP_MAX_ERROR_LSB`](crate::bilerp::BILERP_MAX_ERROR_LSB) = 0.5625 LSB for
 //! bilinear and trilinear, exact for the nearest-texel modes.
 //!
 //! # Precision for large coordinates

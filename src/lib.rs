@@ -16,6 +16,7 @@
 //! | stage | module | per hit |
 //! |---|---|---|
 //! | fixed-point logarithm | [`log2`] | leading zeros + 64-entry table |
+//! | camera pixel spread `γ` (set-up) | [`camera`] | – |
 //! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
 //! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
 //! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
@@ -42,7 +43,8 @@
 //! use fixed::types::U32F32;
 //! use raymip::lod::{table_lod, Lod};
 //! use raymip::raystack::{PathState, RayStack, Spread};
-//! use raymip::table::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+//! use raymip::camera::PixelSpread;
+//! use raymip::table::{Log2Pb, PbTable, TexTriangle};
 //!
 //! // Set-up: camera with 60° vertical field of view, 480 rows.
 //! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
@@ -123,6 +125,7 @@ pub mod aniso;
 pub mod bc;
 pub mod bilerp;
 pub mod cache;
+pub mod camera;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 pub mod filter;
@@ -137,3 +140,17 @@ pub mod srgb;
 pub mod stochastic;
 pub mod table;
 pub mod texture_sampler;
+
+// The harness's f64 reference of `log2 Pb`, shared by the unit tests.
+#[cfg(test)]
+#[path = "../host-tests/src/reference/pb.rs"]
+mod pb_reference;
+
+// The everyday types, re-exported at the crate root.
+pub use cache::{BlockCache, BlockLayout, TexelCache};
+pub use camera::{CameraError, PixelSpread};
+pub use filter::{Address, Mode, Sampler, TexCoord};
+pub use lod::Lod;
+pub use mip::{Geometry, MipError, Pyramid, Texel};
+pub use raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
+pub use table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};

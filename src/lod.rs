@@ -27,7 +27,7 @@ use fixed::types::{I8F8, I16F16, U1F31};
 
 use crate::log2::{log2_bits, log2_u32f32};
 use crate::raystack::{PathLength, Width};
-use crate::table::Log2Pb;
+use crate::table::{Delta, Log2Pb};
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
 /// (range `[−128, 128)`, step 1/256 level).
@@ -69,7 +69,7 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 /// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
 #[inline]
 #[must_use]
-pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
     let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
     let mut l = delta.saturating_add(lw);
     if let Some(c) = n_dot_d {
@@ -101,27 +101,11 @@ pub fn table_lod_clamped(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> 
 mod tests {
     extern crate std;
     use super::*;
+    use crate::camera::PixelSpread;
     use crate::raystack::{PathState, Spread};
-    use crate::table::{Coord, PixelSpread, TexTriangle};
+    use crate::table::{Coord, TexTriangle};
     use fixed::types::I2F30;
     use proptest::prelude::*;
-
-    /// Independent f64 reference of log2 Pb (see module docs of `table`).
-    fn ref_log2_pb(p: &[[f64; 3]; 3], uv: &[[f64; 2]; 3], w: f64, h: f64, gamma: f64) -> f64 {
-        let e1: std::vec::Vec<f64> = (0..3).map(|k| p[1][k] - p[0][k]).collect();
-        let e2: std::vec::Vec<f64> = (0..3).map(|k| p[2][k] - p[0][k]).collect();
-        let cx = e1[1] * e2[2] - e1[2] * e2[1];
-        let cy = e1[2] * e2[0] - e1[0] * e2[2];
-        let cz = e1[0] * e2[1] - e1[1] * e2[0];
-        let a = 0.5 * (cx * cx + cy * cy + cz * cz).sqrt();
-        let n = 0.5
-            * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
-                - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]))
-                .abs()
-            * w
-            * h;
-        0.5 * (a / n).log2() - gamma.log2()
-    }
 
     fn q(x: f64) -> f64 {
         Coord::from_num(x).to_num()
@@ -269,7 +253,7 @@ mod tests {
             let gq = I2F30::from_num(g);
             let spread = PixelSpread::from_angle(gq).unwrap();
             let pb = Log2Pb::compute(&make(p, uv, w, h), &spread);
-            let want_pb = ref_log2_pb(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
+            let want_pb = crate::pb_reference::log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
             prop_assume!(want_pb.is_finite() && want_pb.abs() < 100.0);
             // Segments whose sum lies in [2^-16, 2^16].
             let n = segs.len() as f64;

@@ -148,7 +148,7 @@ pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
 /// [`clz32_soft`] searches on RV32 without Zbb.
 #[inline(always)]
 #[must_use]
-pub fn clz64(x: u64) -> u32 {
+pub(crate) fn clz64(x: u64) -> u32 {
     #[cfg(target_pointer_width = "64")]
     {
         x.leading_zeros()
@@ -192,7 +192,7 @@ pub fn log2_u32(x: u32) -> I16F16 {
 /// areas). The top 64 significant bits are used. Zero gives [`LOG2_ZERO`];
 /// results below −32768 saturate to it. Error ≤ [`LOG2_MAX_ERROR`].
 #[must_use]
-pub fn log2_bits_u128(bits: u128, frac_bits: u32) -> I16F16 {
+pub(crate) fn log2_bits_u128(bits: u128, frac_bits: u32) -> I16F16 {
     if bits == 0 {
         return LOG2_ZERO;
     }

@@ -225,18 +225,12 @@ impl Geometry {
         self.offsets.get(k).copied().unwrap_or(0) as usize
     }
 
-    /// Total stored texels (= [`pyramid_len`]`(w, h, levels)`).
+    /// Total stored texels (= [`pyramid_len`]`(w, h, levels)`, at least 1).
     #[inline]
     #[must_use]
+    #[allow(clippy::len_without_is_empty)] // a geometry has at least one texel
     pub const fn len(&self) -> usize {
         self.offsets[MAX_LEVELS as usize] as usize
-    }
-
-    /// Always `false`: a geometry has at least one texel.
-    #[inline]
-    #[must_use]
-    pub const fn is_empty(&self) -> bool {
-        false
     }
 
     /// Index of texel `(x, y)` of `level` in the pyramid slice. Level,

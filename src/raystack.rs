@@ -21,7 +21,7 @@ use core::fmt;
 
 use fixed::types::{I2F30, I32F32, U32F32};
 
-use crate::table::PixelSpread;
+use crate::camera::PixelSpread;
 
 /// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units.
 pub type PathLength = U32F32;
@@ -172,29 +172,37 @@ impl PathState {
     }
 }
 
-/// A push onto a full stack: the rejected state is handed back; the stack is
-/// unchanged.
+/// A push onto a full stack: the rejected state and its caller payload are
+/// handed back; the stack is unchanged.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
-pub struct StackFull(pub PathState);
+pub struct StackFull<T = ()>(pub PathState, pub T);
 
-impl core::error::Error for StackFull {}
+impl<T: fmt::Debug> core::error::Error for StackFull<T> {}
 
-impl fmt::Display for StackFull {
+impl<T> fmt::Display for StackFull<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "ray stack full (path depth {})", self.0.depth)
     }
 }
 
-/// Fixed-capacity LIFO of [`PathState`]s (capacity `N`, default 10). At a
-/// hit push both the reflection and the refraction branch; `pop` continues
-/// the most recently pushed one, then the other.
-#[derive(Clone, Debug, Default)]
-pub struct RayStack<const N: usize = DEFAULT_CAPACITY> {
-    entries: heapless::Vec<PathState, N>,
+/// Fixed-capacity LIFO of [`PathState`]s (capacity `N`, default 10), each
+/// with a caller payload `T` (default `()`: none), e.g. the host side of a
+/// ray (origin, direction, weight) so that the caller keeps no second stack
+/// in lockstep. At a hit push both the reflection and the refraction
+/// branch; `pop` continues the most recently pushed one, then the other.
+#[derive(Clone, Debug)]
+pub struct RayStack<T = (), const N: usize = DEFAULT_CAPACITY> {
+    entries: heapless::Vec<(PathState, T), N>,
 }
 
-impl<const N: usize> RayStack<N> {
+impl<T, const N: usize> Default for RayStack<T, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T, const N: usize> RayStack<T, N> {
     /// An empty stack.
     #[must_use]
     pub const fn new() -> Self {
@@ -203,24 +211,26 @@ impl<const N: usize> RayStack<N> {
         }
     }
 
-    /// Pushes a state; on overflow returns it in [`StackFull`] and keeps
-    /// everything already on the stack.
+    /// Pushes a state with its payload; on overflow returns both in
+    /// [`StackFull`] and keeps everything already on the stack.
     #[inline]
-    pub fn push(&mut self, state: PathState) -> Result<(), StackFull> {
-        self.entries.push(state).map_err(StackFull)
+    pub fn push_with(&mut self, state: PathState, payload: T) -> Result<(), StackFull<T>> {
+        self.entries
+            .push((state, payload))
+            .map_err(|(s, p)| StackFull(s, p))
     }
 
-    /// Pops the most recent state.
+    /// Pops the most recent state with its payload.
     #[inline]
-    pub fn pop(&mut self) -> Option<PathState> {
+    pub fn pop_with(&mut self) -> Option<(PathState, T)> {
         self.entries.pop()
     }
 
-    /// The most recent state without removing it.
+    /// The most recent state and its payload without removing them.
     #[inline]
     #[must_use]
-    pub fn peek(&self) -> Option<&PathState> {
-        self.entries.last()
+    pub fn peek_with(&self) -> Option<(&PathState, &T)> {
+        self.entries.last().map(|(s, p)| (s, p))
     }
 
     /// Number of states on the stack.
@@ -247,6 +257,28 @@ impl<const N: usize> RayStack<N> {
     }
 }
 
+impl<const N: usize> RayStack<(), N> {
+    /// Pushes a state; on overflow returns it in [`StackFull`] and keeps
+    /// everything already on the stack.
+    #[inline]
+    pub fn push(&mut self, state: PathState) -> Result<(), StackFull> {
+        self.push_with(state, ())
+    }
+
+    /// Pops the most recent state.
+    #[inline]
+    pub fn pop(&mut self) -> Option<PathState> {
+        self.pop_with().map(|(s, ())| s)
+    }
+
+    /// The most recent state without removing it.
+    #[inline]
+    #[must_use]
+    pub fn peek(&self) -> Option<&PathState> {
+        self.peek_with().map(|(s, _)| s)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -259,21 +291,37 @@ mod tests {
 
     #[test]
     fn push_pop_order_and_overflow() {
-        let mut s: RayStack<3> = RayStack::new();
+        let mut s: RayStack<(), 3> = RayStack::new();
         let base = PathState::primary(&spread(0.001), 0b0000_0100);
         for d in 0..3u8 {
             s.push(PathState { depth: d, ..base }).unwrap();
         }
         let extra = PathState { depth: 9, ..base };
-        assert_eq!(s.push(extra), Err(StackFull(extra)));
+        assert_eq!(s.push(extra), Err(StackFull(extra, ())));
         assert_eq!(s.len(), 3, "overflow keeps the stack");
         assert_eq!(s.pop().map(|p| p.depth), Some(2));
         assert_eq!(s.pop().map(|p| p.depth), Some(1));
         assert_eq!(s.peek().map(|p| p.depth), Some(0));
         s.clear();
         assert!(s.is_empty() && s.pop().is_none());
-        assert_eq!(RayStack::<10>::new().capacity(), 10);
-        assert!(std::format!("{}", StackFull(extra)).contains("full"));
+        assert_eq!(RayStack::<(), 10>::new().capacity(), 10);
+        assert!(std::format!("{}", StackFull(extra, ())).contains("full"));
+    }
+
+    #[test]
+    fn payload_travels_with_its_state() {
+        let base = PathState::primary(&spread(0.001), 0xFF);
+        let mut s: RayStack<u32, 2> = RayStack::new();
+        s.push_with(base.bounce(Spread::ZERO), 7).unwrap();
+        s.push_with(base.bounce(Spread::ZERO).bounce(Spread::ZERO), 8)
+            .unwrap();
+        let extra = base;
+        assert_eq!(s.push_with(extra, 9), Err(StackFull(extra, 9)));
+        assert_eq!(s.peek_with().map(|(st, p)| (st.depth, *p)), Some((2, 8)));
+        assert_eq!(s.pop_with().map(|(st, p)| (st.depth, p)), Some((2, 8)));
+        assert_eq!(s.pop_with().map(|(st, p)| (st.depth, p)), Some((1, 7)));
+        assert_eq!(s.pop_with(), None);
+        assert!(s.is_empty());
     }
 
     #[test]

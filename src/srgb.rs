@@ -22,7 +22,7 @@
 //! # Error bound
 //!
 //! Decode is within 2⁻¹⁷ of the exact EOTF. An encoded result is within
-//! [`MAX_ENCODE_ERROR_LSB`] = 0.55 sRGB LSB of `255·OETF(exact linear)`:
+//! [`SRGB_ENCODE_MAX_ERROR_LSB`] = 0.55 sRGB LSB of `255·OETF(exact linear)`:
 //! ½ from rounding, plus the input's linear error times the OETF's
 //! steepest slope (12.92·255 LSB per unit, 0.05 LSB per L16 step).
 
@@ -84,7 +84,7 @@ pub const ENCODE_THRESHOLDS: [u32; 256] = [
 /// encoding of the exact linear filter, in 8-bit sRGB LSB (with
 /// 12-bit bilinear weights the position error adds to it; see
 /// `crate::texture_sampler`).
-pub const MAX_ENCODE_ERROR_LSB: f64 = 0.55;
+pub const SRGB_ENCODE_MAX_ERROR_LSB: f64 = 0.55;
 
 /// 8-bit sRGB code of a linear 16.8 value `x` (65535·256 = 1.0; larger
 /// values give 255): `round(255·OETF(x))` by binary search. Never panics.
@@ -217,7 +217,7 @@ mod tests {
                             acc += if c < 3 { eotf(v / 255.0) } else { v } / 4.0;
                         }
                         let exact = if c < 3 { 255.0 * oetf(acc) } else { acc };
-                        prop_assert!((f64::from(o) - exact).abs() <= MAX_ENCODE_ERROR_LSB,
+                        prop_assert!((f64::from(o) - exact).abs() <= SRGB_ENCODE_MAX_ERROR_LSB,
                             "channel {c}: {o} vs {exact}");
                     }
                 }

@@ -3,29 +3,14 @@
 //! maxima (quoted in the README) and checks the documented bounds.
 
 use fixed::types::{I32F32, U1F31};
+use raymip::camera::PixelSpread;
 use raymip::lod::{LOD_MAX_ERROR, cone_lod, table_lod};
 use raymip::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::raystack::{PathLength, PathState, Spread};
-use raymip::table::{Log2Pb, PixelSpread, TABLE_MAX_ERROR, TexTriangle};
+use raymip::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
 
 mod common;
-use common::Rng;
-
-fn ref_log2_pb(p: &[[f64; 3]; 3], uv: &[[f64; 2]; 3], w: f64, h: f64, g: f64) -> f64 {
-    let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-    let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-    let c = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let area = 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-    let uva = 0.5
-        * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
-            - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]))
-            .abs();
-    0.5 * (area / (uva * w * h)).log2() - g.log2()
-}
+use common::{Rng, log2_pb_f64};
 
 #[test]
 fn measured_error_of_every_lod_stage() {
@@ -63,7 +48,7 @@ fn measured_error_of_every_lod_stage() {
         )
         .unwrap();
         let pb = Log2Pb::compute(&tri, &spread);
-        let want_pb = ref_log2_pb(&p, &uv, f64::from(w), f64::from(h), g);
+        let want_pb = log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), g);
         if !(want_pb.is_finite() && want_pb.abs() < 60.0) {
             continue;
         }

@@ -4,11 +4,11 @@
 //!
 //! Bounds: nearest-texel modes exact (nearest texel, nearest level) or
 //! within ½ LSB (nearest texel, linear level: one rounding of an exact
-//! blend); bilinear and trilinear ≤ `MAX_ERROR_LSB` = 0.5625 LSB per
+//! blend); bilinear and trilinear ≤ `BILERP_MAX_ERROR_LSB` = 0.5625 LSB per
 //! channel (issue: ≤ 1, goal < 0.75).
 
 use proptest::prelude::*;
-use raymip::bilerp::MAX_ERROR_LSB;
+use raymip::bilerp::BILERP_MAX_ERROR_LSB;
 use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
@@ -124,7 +124,7 @@ fn bound(mode: Mode) -> f64 {
     match mode {
         Mode::Nearest => 0.0,
         Mode::NearestTexelLinearLevel => 0.5,
-        _ => MAX_ERROR_LSB,
+        _ => BILERP_MAX_ERROR_LSB,
     }
 }
 

@@ -6,7 +6,7 @@
 use std::collections::HashSet;
 
 use proptest::prelude::*;
-use raymip::cache::{BLOCK, BlockCache, BlockLayout, TexelCache, block_count, block_index};
+use raymip::cache::{BLOCK, BlockCache, BlockLayout, TexelCache};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
@@ -113,7 +113,7 @@ proptest! {
         prop_assert_eq!(c.stats().misses, addrs.len() as u64 - hits);
     }
 
-    /// Block numbers: below block_count, equal exactly for texels of one block.
+    /// Block numbers: below the layout length, equal exactly for texels of one block.
     #[test]
     fn block_index_unique_per_block(w in 1u32..300, h in 1u32..300, seed in any::<u64>()) {
         let g = Geometry::new(w, h, full_levels(w, h)).unwrap();
@@ -124,8 +124,8 @@ proptest! {
             let (lw, lh) = g.level_size(k);
             let (x1, y1) = ((rng.next_u64() % u64::from(lw)) as u32, (rng.next_u64() % u64::from(lh)) as u32);
             let (x2, y2) = ((rng.next_u64() % u64::from(lw)) as u32, (rng.next_u64() % u64::from(lh)) as u32);
-            let (a, b) = (block_index(&g, k, x1, y1), layout.index(k, x2, y2));
-            prop_assert!(a < block_count(&g) && b < layout.len());
+            let (a, b) = (layout.index(k, x1, y1), layout.index(k, x2, y2));
+            prop_assert!(a < layout.len() && b < layout.len());
             prop_assert_eq!(a == b, (x1 / BLOCK, y1 / BLOCK) == (x2 / BLOCK, y2 / BLOCK));
         }
     }
@@ -134,12 +134,13 @@ proptest! {
 #[test]
 fn block_index_dense_for_pot_and_bounded_for_npot() {
     let g = Geometry::new(256, 64, 1).unwrap();
+    let layout = BlockLayout::new(&g);
     let all: HashSet<u32> = (0..64)
         .flat_map(|y| (0..256).map(move |x| (x, y)))
-        .map(|(x, y)| block_index(&g, 0, x, y))
+        .map(|(x, y)| layout.index(0, x, y))
         .collect();
     assert_eq!(all.len() as u32, 64 * 16);
-    assert_eq!(block_count(&g), 64 * 16);
+    assert_eq!(layout.len(), 64 * 16);
     // NPOT: at most 4× the block count (padding to powers of two per side).
     let g = Geometry::new(1044, 1044, 11).unwrap();
     let blocks: u32 = (0..11)
@@ -148,12 +149,13 @@ fn block_index_dense_for_pot_and_bounded_for_npot() {
             w.div_ceil(4) * h.div_ceil(4)
         })
         .sum();
-    assert!(block_count(&g) >= blocks && block_count(&g) <= 4 * blocks);
+    let n = BlockLayout::new(&g).len();
+    assert!(n >= blocks && n <= 4 * blocks);
     // Morton: the 2×2 blocks of an aligned quad are 4 consecutive numbers.
-    let g = Geometry::new(64, 64, 1).unwrap();
+    let layout = BlockLayout::new(&Geometry::new(64, 64, 1).unwrap());
     let q: Vec<u32> = [(8, 8), (12, 8), (8, 12), (12, 12)]
         .iter()
-        .map(|&(x, y)| block_index(&g, 0, x, y))
+        .map(|&(x, y)| layout.index(0, x, y))
         .collect();
     assert_eq!(q[1], q[0] + 1);
     assert_eq!(q[2], q[0] + 2);

@@ -19,7 +19,7 @@ use panic_never as _;
 use raymip::address::AddressMode;
 use raymip::aniso::{Footprint, probes};
 use raymip::bc;
-use raymip::cache::{BlockCache, TexelCache, block_index};
+use raymip::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::ffi::{
     RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
     rm_path_advance, rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init,
@@ -35,7 +35,8 @@ use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
 use raymip::stochastic::StochasticMode;
-use raymip::table::{Log2Pb, PbTable, PixelSpread};
+use raymip::camera::PixelSpread;
+use raymip::table::{Log2Pb, PbTable};
 use raymip::texture_sampler::TextureSampler;
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
@@ -248,7 +249,7 @@ fn main() -> ! {
         bb(srgb::decode(bb(77)));
         bb(image.get(bb(3), bb(9), bb(1)));
         bb(tags.access(bb(1234)));
-        bb(block_index(&geometry, bb(3), bb(1), bb(2)));
+        bb(BlockLayout::new(&geometry).index(bb(3), bb(1), bb(2)));
         bb(geometry.level_size(bb(9)));
         bb(geometry.texel_index(bb(9), bb(100), bb(3)));
     }

@@ -4,7 +4,8 @@
 
 use std::fmt::Write as _;
 
-use raymip::table::{PbTable, PixelSpread};
+use raymip::camera::PixelSpread;
+use raymip::table::PbTable;
 use raymip_demo_scene::{FOV_Y_DEGREES, HEIGHT, TRIANGLES, triangles};
 
 /// Path of the generated file, relative to the repository root.
@@ -25,6 +26,8 @@ pub fn checksum_line(checksum: u32) -> String {
 #[derive(Debug)]
 #[non_exhaustive]
 pub enum DataError {
+    /// The camera's pixel spread is invalid.
+    Camera(raymip::camera::CameraError),
     /// The Pb table could not be built.
     Table(raymip::table::TableError),
     /// A texture pyramid could not be built.
@@ -34,6 +37,7 @@ pub enum DataError {
 impl std::fmt::Display for DataError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            Self::Camera(e) => write!(f, "demo camera: {e}"),
             Self::Table(e) => write!(f, "demo Pb table: {e}"),
             Self::Mip(e) => write!(f, "demo texture pyramid: {e}"),
         }
@@ -45,7 +49,7 @@ impl std::error::Error for DataError {}
 /// The text of `data.rs`.
 pub fn generate_data_rs() -> Result<String, DataError> {
     let fov = FOV_Y_DEGREES.to_radians();
-    let spread = PixelSpread::from_fov_y(fov, HEIGHT).map_err(DataError::Table)?;
+    let spread = PixelSpread::from_fov_y(fov, HEIGHT).map_err(DataError::Camera)?;
     let mut entries = [raymip::table::Log2Pb::UNTEXTURED; TRIANGLES];
     PbTable::new(&mut entries)
         .build(triangles(), &spread)

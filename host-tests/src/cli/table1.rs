@@ -5,7 +5,7 @@
 //!
 //! Cache model: the firmware [`BlockCache`]`<64, 4>` — 64 sets × 4 ways of
 //! 64-byte lines (one 4×4 block of RGBA8 texels) = 16 KiB, LRU — fed the
-//! global block address (per-texture base + `cache::block_index`) of every
+//! global block address (per-texture base + `cache::BlockLayout::index`) of every
 //! texel fetch, pixels in 8×8 tiles in row-major tile order, each pixel's
 //! whole path (primary + bounces + no texture fetch for shadows) before the
 //! next pixel. One cache, no per-thread split.

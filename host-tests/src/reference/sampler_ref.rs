@@ -358,7 +358,7 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
     use raymip::image::Image;
     use raymip::lod::Lod;
     use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-    use raymip::texture_sampler::{MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
+    use raymip::texture_sampler::{SAMPLER_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
 
     let mut rng = seed.max(1);
     let mut next = move || {
@@ -498,7 +498,7 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
                 let base = if encoded {
                     SRGB_MAX_ERROR_LSB
                 } else {
-                    MAX_ERROR_LSB
+                    SAMPLER_MAX_ERROR_LSB
                 };
                 let bound = match fi {
                     // sRGB: the decoded (or border) value is rounded once.

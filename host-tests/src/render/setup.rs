@@ -3,7 +3,8 @@
 
 use std::time::Instant;
 
-use raymip::table::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+use raymip::camera::PixelSpread;
+use raymip::table::{Log2Pb, PbTable, TexTriangle};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -108,7 +109,13 @@ impl Prepared {
                     let tt = TexTriangle::from_f32(p32, uv32, tex.width, tex.height)
                         .map_err(|e| format!("triangle {i}: {e}"))?;
                     tex_tris.push(Some(tt));
-                    pb_float.push(log2_pb_f64(&t.p, &uv, tex.width, tex.height, gamma));
+                    pb_float.push(log2_pb_f64(
+                        &t.p,
+                        &uv,
+                        f64::from(tex.width),
+                        f64::from(tex.height),
+                        gamma,
+                    ));
                 }
                 _ => {
                     tex_tris.push(None);

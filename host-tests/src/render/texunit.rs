@@ -8,7 +8,7 @@
 //! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
 //!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
 
-use raymip::cache::{BlockLayout, block_count};
+use raymip::cache::BlockLayout;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
@@ -66,7 +66,7 @@ pub struct MipTexture {
     pub texels: Vec<Texel>,
     /// First 4×4-block address of this texture in the global texel memory.
     pub block_base: u32,
-    /// Number of block addresses this texture spans (`cache::block_count`).
+    /// Number of block addresses this texture spans (`BlockLayout::len`).
     pub block_span: u32,
     geometry: Geometry,
     layout: BlockLayout,
@@ -89,7 +89,7 @@ impl MipTexture {
             levels,
             texels,
             block_base: 0,
-            block_span: block_count(&geometry),
+            block_span: BlockLayout::new(&geometry).len(),
             geometry,
             layout: BlockLayout::new(&geometry),
         })

@@ -19,8 +19,8 @@ struct Diff {
     ddy: V3,
 }
 
-/// Host side of one ray-stack entry (the firmware [`PathState`] carries the
-/// fixed-point Pl and cone).
+/// Host side of one ray (the payload of its ray-stack entry; the firmware
+/// [`PathState`] beside it carries the fixed-point Pl and cone).
 #[derive(Clone, Copy, Debug)]
 struct Ray {
     o: V3,
@@ -111,22 +111,13 @@ impl Ctx<'_> {
             },
         };
         self.counters.paths += 1;
-        let mut stack: RayStack = RayStack::new();
-        let mut host: Vec<Ray> = Vec::with_capacity(12);
+        let mut stack: RayStack<Ray> = RayStack::new();
         let mut color = [0.0; 3];
         let mut first_lod = f64::NAN;
-        if stack.push(PathState::primary(&prep.spread, 0xFF)).is_ok() {
-            host.push(ray);
-        }
-        while let (Some(state), Some(ray)) = (stack.pop(), host.pop()) {
-            self.segment(
-                state,
-                ray,
-                &mut stack,
-                &mut host,
-                &mut color,
-                &mut first_lod,
-            );
+        // The primary state always fits an empty stack.
+        let _ = stack.push_with(PathState::primary(&prep.spread, 0xFF), ray);
+        while let Some((state, ray)) = stack.pop_with() {
+            self.segment(state, ray, &mut stack, &mut color, &mut first_lod);
         }
         (color, first_lod)
     }
@@ -137,8 +128,7 @@ impl Ctx<'_> {
         &mut self,
         state: PathState,
         ray: Ray,
-        stack: &mut RayStack,
-        host: &mut Vec<Ray>,
+        stack: &mut RayStack<Ray>,
         color: &mut [f64; 3],
         first_lod: &mut f64,
     ) {
@@ -182,8 +172,7 @@ impl Ctx<'_> {
         });
         let refr = refr.map(|r| (r, Spread::ZERO));
         for (r, b) in [refr, refl].into_iter().flatten() {
-            if stack.push(state.bounce(b)).is_ok() {
-                host.push(r);
+            if stack.push_with(state.bounce(b), r).is_ok() {
                 self.counters.bounces += 1;
             } else {
                 self.counters.stack_full += 1;
