@@ -1,5 +1,5 @@
 //! Writes the README table of the GPU-style sampler's error per format and
-//! filter, measured against the f64 reference (`raymip_host::sampler_ref`).
+//! filter, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
 //!
 //! ```sh
 //! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write README.md]
@@ -11,7 +11,7 @@
 
 use std::fmt::Write as _;
 
-use raymip_host::sampler_ref::{FILTERS, measure};
+use raymip_host::reference::sampler_ref::{FILTERS, measure};
 
 const BEGIN: &str = "<!-- sampler-accuracy:begin -->";
 const END: &str = "<!-- sampler-accuracy:end -->";
