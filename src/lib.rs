@@ -24,6 +24,26 @@
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
 //!
+//! # Cargo features
+//!
+//! Each feature compiles a whole stage in; the defaults are what most
+//! users need (everything but the C ABI). A scene that needs less sets
+//! `default-features = false` and lists what it uses. Code a program does
+//! not call is not linked anyway; what a feature removes beyond that is
+//! the part every per-hit call carries (the cone update in
+//! [`PathState::advance`](raystack::PathState::advance), the linear-level
+//! arms of [`Sampler::sample`](filter::Sampler::sample)) and API surface.
+//! Linked `.text` / `.rodata` per feature set on both targets:
+//! `BUDGETS.md`, "Feature sets" (written by `scripts/features`).
+//!
+//! | feature | default | stage | left out |
+//! |---|---|---|---|
+//! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`raystack::PathState`] is 16 bytes instead of 32 ([`raystack::PATH_STATE_BYTES`]) |
+//! | `trilinear` | yes | linear-between-levels modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`) | nearest-level modes only |
+//! | `cache` | yes | texel cache (`cache`) | the sampler reads memory directly |
+//! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
+//! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
+//!
 //! ```
 //! use fixed::types::U32F32;
 //! use raymip::lod::{table_lod, Lod};
@@ -105,6 +125,7 @@
 )]
 
 pub mod bilerp;
+#[cfg(feature = "cache")]
 pub mod cache;
 #[cfg(feature = "ffi")]
 pub mod ffi;

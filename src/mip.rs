@@ -253,6 +253,7 @@ impl Geometry {
 
 /// One axis of the generation filter: up to 3 source taps with integer
 /// weights summing to `den`.
+#[cfg(feature = "mipgen")]
 #[derive(Clone, Copy)]
 struct Taps {
     first: u32,
@@ -262,6 +263,7 @@ struct Taps {
 }
 
 /// Taps of output texel `i` for a source extent `src` (see module docs).
+#[cfg(feature = "mipgen")]
 fn axis_taps(src: u32, i: u32) -> Taps {
     if src == 1 {
         Taps {
@@ -295,6 +297,9 @@ fn axis_taps(src: u32, i: u32) -> Taps {
 /// # Errors
 /// [`MipError::BufferTooShort`] when `buf` is shorter than
 /// [`Geometry::len`] (nothing is written).
+///
+/// Feature `mipgen`.
+#[cfg(feature = "mipgen")]
 pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
     let needed = geometry.len();
     if buf.len() < needed {
@@ -490,6 +495,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "mipgen")]
     fn pot_box_and_one_wide() {
         let g = Geometry::new(2, 2, 2).unwrap();
         let mut buf = vec![0u32; g.len()];
@@ -508,6 +514,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "mipgen")]
     fn odd_extent_polyphase_box() {
         // 3 → 1: weights (1, 1, 1)/3.
         let g = Geometry::new(3, 1, 2).unwrap();
