@@ -115,7 +115,9 @@ mod tests {
     use crate::raystack::{PathState, Spread};
     use crate::table::{Coord, PixelSpread, TexTriangle};
     use fixed::types::I2F30;
-    use fixed::types::{I16F16, U1F31};
+    use fixed::types::I16F16;
+    #[cfg(feature = "cone")]
+    use fixed::types::U1F31;
     use proptest::prelude::*;
 
     /// Independent f64 reference of log2 Pb (see module docs of `table`).
