@@ -24,6 +24,7 @@
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
 //!
 //! # Cargo features
 //!
@@ -139,6 +140,7 @@
 )]
 
 pub mod address;
+pub mod analysis;
 pub mod aniso;
 pub mod bc;
 pub mod bilerp;
