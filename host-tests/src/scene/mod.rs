@@ -1,6 +1,14 @@
 //! The renderer's scene: triangles only (spheres are tessellated), with
 //! per-vertex normals and UVs, materials, point lights and a pinhole camera.
-//! [`aff_adapter`] converts a loaded AFF scene.
+//! [`aff_adapter`] converts a loaded AFF scene; [`load_scene`] loads
+//! `builtin:NAME` or an AFF file.
+
+pub mod aff;
+pub mod builtin;
+mod load;
+pub mod ppm;
+
+pub use load::{default_bart_dir, load_aff, load_scene, load_scene_dir};
 
 /// A 3-vector of scene units.
 pub type V3 = [f64; 3];
@@ -174,7 +182,7 @@ pub mod v {
 
 /// Converts a loaded AFF scene (textures to RGBA8888 level 0).
 #[must_use]
-pub fn aff_adapter(s: crate::aff::Scene) -> Scene {
+pub fn aff_adapter(s: aff::Scene) -> Scene {
     let c = s.camera;
     Scene {
         camera: Camera {

@@ -8,18 +8,8 @@ use raymip::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::raystack::{PathLength, PathState, Spread};
 use raymip::table::{Log2Pb, PixelSpread, TABLE_MAX_ERROR, TexTriangle};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
+mod common;
+use common::Rng;
 
 fn ref_log2_pb(p: &[[f64; 3]; 3], uv: &[[f64; 2]; 3], w: f64, h: f64, g: f64) -> f64 {
     let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
@@ -46,7 +36,7 @@ fn measured_error_of_every_lod_stage() {
     let mut n_lod = 0;
     for _ in 0..200_000 {
         // log2 over the whole U32F32 range.
-        let bits = (rng.next() * u64::MAX as f64) as u64 >> (rng.next() * 63.0) as u32;
+        let bits = (rng.unit() * u64::MAX as f64) as u64 >> (rng.unit() * 63.0) as u32;
         if bits > 0 {
             let got = log2_bits(bits, 32).to_num::<f64>();
             e_log2 = e_log2.max((got - ((bits as f64).log2() - 32.0)).abs());
@@ -58,11 +48,11 @@ fn measured_error_of_every_lod_stage() {
         let uvs = rng.range(0.01, 50.0);
         let uv = [[0.0; 2]; 3].map(|v: [f64; 2]| v.map(|_| q(rng.range(-1.0, 1.0) * uvs)));
         let (w, h) = (
-            1u32 << (rng.next() * 13.0) as u32,
-            1u32 << (rng.next() * 13.0) as u32,
+            1u32 << (rng.unit() * 13.0) as u32,
+            1u32 << (rng.unit() * 13.0) as u32,
         );
         let fov = rng.range(10.0, 120.0).to_radians();
-        let height = 100 + (rng.next() * 2000.0) as u32;
+        let height = 100 + (rng.unit() * 2000.0) as u32;
         let spread = PixelSpread::from_fov_y(fov, height).unwrap();
         let g = spread.angle().to_num::<f64>();
         let tri = TexTriangle::new(
@@ -79,7 +69,7 @@ fn measured_error_of_every_lod_stage() {
         }
         e_table = e_table.max((pb.to_i16f16().to_num::<f64>() - want_pb).abs());
         // A path of 1..=10 segments with Pl in [2^-16, 2^16].
-        let segs = 1 + (rng.next() * 10.0) as usize;
+        let segs = 1 + (rng.unit() * 10.0) as usize;
         let target = 2f64.powf(rng.range(-16.0, 16.0));
         let mut st = PathState::primary(&spread, 0);
         let mut pl = 0.0;

@@ -10,7 +10,7 @@
 //! (NPOT). Default image size 800×480. [`fronto_quad`] builds the
 //! fronto-parallel quad of the LOD tests.
 
-use crate::scene::{Camera, Light, Material, Scene, TextureImage, Triangle, V3, v};
+use super::{Camera, Light, Material, Scene, TextureImage, Triangle, V3, v};
 
 /// Names of the built-in scenes.
 pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];

@@ -28,7 +28,7 @@ impl Tex {
         let mut buf = vec![0; g.len()];
         let mut rng = Rng(seed | 1);
         for t in &mut buf[..(w * h) as usize] {
-            *t = rng.next() as u32;
+            *t = rng.next_u64() as u32;
         }
         generate(&g, &mut buf).unwrap();
         Tex { g, buf }
@@ -184,9 +184,9 @@ fn samples_for(g: &Geometry, n: usize, seed: u64) -> Vec<(TexCoord, TexCoord, Lo
     for k in 0..g.levels() {
         let (w, h) = g.level_size(k);
         for _ in 0..n / 8 + 4 {
-            let i = (rng.next() % u64::from(w)) as f64;
-            let j = (rng.next() % u64::from(h)) as f64;
-            let lod = Lod::from_num(lods[(rng.next() % lods.len() as u64) as usize]);
+            let i = (rng.next_u64() % u64::from(w)) as f64;
+            let j = (rng.next_u64() % u64::from(h)) as f64;
+            let lod = Lod::from_num(lods[(rng.next_u64() % lods.len() as u64) as usize]);
             let kl = Lod::from_num(f64::from(k));
             out.push((q((i + 0.5) / f64::from(w)), q((j + 0.5) / f64::from(h)), kl));
             out.push((q(i / f64::from(w)), q(j / f64::from(h)), kl));
@@ -296,9 +296,9 @@ fn high_contrast_edges() {
     let mut rng = Rng(99);
     let mut samples = Vec::new();
     for _ in 0..20_000 {
-        let u = TexCoord::from_bits((rng.next() >> 31) as i64);
-        let v = TexCoord::from_bits((rng.next() >> 31) as i64);
-        let lod = Lod::from_bits((rng.next() % 700) as i16 - 100);
+        let u = TexCoord::from_bits((rng.next_u64() >> 31) as i64);
+        let v = TexCoord::from_bits((rng.next_u64() >> 31) as i64);
+        let lod = Lod::from_bits((rng.next_u64() % 700) as i16 - 100);
         samples.push((u, v, lod));
     }
     let mut worst = Worst::default();

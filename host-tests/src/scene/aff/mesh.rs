@@ -145,7 +145,7 @@ pub(crate) fn cone(base: V3, rb: f64, apex: V3, ra: f64) -> Vec<([V3; 3], [V3; 3
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::aff::anim::norm;
+    use crate::scene::aff::anim::norm;
 
     #[test]
     fn sphere_tessellation_is_closed_and_outward() {

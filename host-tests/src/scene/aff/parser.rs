@@ -513,7 +513,7 @@ impl Parser {
         }
         let name_s = utf8_name(src, name)?;
         let path = self.dir.join(&name_s);
-        let image = crate::ppm::read_ppm(&path).map_err(|e| {
+        let image = crate::scene::ppm::read_ppm(&path).map_err(|e| {
             src.err(
                 name.line,
                 AffErrorKind::Texture {

@@ -28,7 +28,7 @@
 //! * **zero-area triangles** — dropped and counted (see [`LoadStats`]);
 //! * non-uniform `xs` scales — normals use the inverse transpose;
 //! * `ior <= 0` → 1; `hither < 1e-4` → 1 (as the reference parser);
-//! * PPM header comments and stray trailing bytes (read by [`crate::ppm`]).
+//! * PPM header comments and stray trailing bytes (read by [`crate::scene::ppm`]).
 //!
 //! # Counting definition
 //! BART's published counts (kitchen 110,561 triangles of which 5,328
@@ -145,7 +145,7 @@ pub struct Texture {
     /// Resolved file path.
     pub path: PathBuf,
     /// Pixels (any size, NPOT too); v = 0 is the first row of the file.
-    pub image: crate::ppm::RgbImage,
+    pub image: crate::scene::ppm::RgbImage,
 }
 
 /// World-space triangle.

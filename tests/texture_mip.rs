@@ -50,7 +50,7 @@ fn check(w: u32, h: u32, levels: u8, seed: u64) -> f64 {
     let mut rng = Rng(seed | 1);
     let mut buf: Vec<Texel> = vec![0; g.len()];
     for t in &mut buf[..(w * h) as usize] {
-        *t = rng.next() as u32;
+        *t = rng.next_u64() as u32;
     }
     generate(&g, &mut buf).unwrap();
     let mut worst: f64 = 0.0;

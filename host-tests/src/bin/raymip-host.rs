@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use raymip_host::app::{cmd_compare, cmd_render, cmd_table1, parse_size};
+use raymip_host::cli::sample::{self, SampleArgs};
+use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::{Method, Options, Precision};
-use raymip_host::sample::{self, SampleArgs};
 
 #[derive(Parser, Debug)]
 #[command(

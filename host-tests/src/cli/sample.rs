@@ -16,7 +16,7 @@ use clap::{Args, ValueEnum};
 use raymip::filter::{Address, Mode, Sampler};
 use raymip::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
 
-use crate::ppm::{PpmError, RgbImage, read_ppm};
+use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 
 /// Addressing mode on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

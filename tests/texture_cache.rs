@@ -19,7 +19,7 @@ fn texture(w: u32, h: u32, seed: u64) -> (Geometry, Vec<Texel>) {
     let mut buf = vec![0; g.len()];
     let mut rng = Rng(seed | 1);
     for t in &mut buf[..(w * h) as usize] {
-        *t = rng.next() as u32;
+        *t = rng.next_u64() as u32;
     }
     generate(&g, &mut buf).unwrap();
     (g, buf)
@@ -37,8 +37,8 @@ fn compare<const S: usize, const W: usize>(w: u32, h: u32) -> f64 {
             // Mix coherent walks and random jumps.
             let (u, v) = if i % 3 == 0 {
                 (
-                    TexCoord::from_bits((rng.next() >> 30) as i64 - (1 << 33)),
-                    TexCoord::from_bits((rng.next() >> 30) as i64 - (1 << 33)),
+                    TexCoord::from_bits((rng.next_u64() >> 30) as i64 - (1 << 33)),
+                    TexCoord::from_bits((rng.next_u64() >> 30) as i64 - (1 << 33)),
                 )
             } else {
                 (
@@ -46,7 +46,7 @@ fn compare<const S: usize, const W: usize>(w: u32, h: u32) -> f64 {
                     TexCoord::from_num(f64::from(i / 500) / 41.0),
                 )
             };
-            let lod = Lod::from_bits((rng.next() % 4000) as i16 - 500);
+            let lod = Lod::from_bits((rng.next_u64() % 4000) as i16 - 500);
             let mode = Mode::from_index((i % 4) as u8).unwrap();
             assert_eq!(
                 plain.sample(u, v, lod, mode),
@@ -120,10 +120,10 @@ proptest! {
         let layout = BlockLayout::new(&g);
         let mut rng = Rng(seed | 1);
         for _ in 0..50 {
-            let k = (rng.next() % u64::from(g.levels())) as u8;
+            let k = (rng.next_u64() % u64::from(g.levels())) as u8;
             let (lw, lh) = g.level_size(k);
-            let (x1, y1) = ((rng.next() % u64::from(lw)) as u32, (rng.next() % u64::from(lh)) as u32);
-            let (x2, y2) = ((rng.next() % u64::from(lw)) as u32, (rng.next() % u64::from(lh)) as u32);
+            let (x1, y1) = ((rng.next_u64() % u64::from(lw)) as u32, (rng.next_u64() % u64::from(lh)) as u32);
+            let (x2, y2) = ((rng.next_u64() % u64::from(lw)) as u32, (rng.next_u64() % u64::from(lh)) as u32);
             let (a, b) = (block_index(&g, k, x1, y1), layout.index(k, x2, y2));
             prop_assert!(a < block_count(&g) && b < layout.len());
             prop_assert_eq!(a == b, (x1 / BLOCK, y1 / BLOCK) == (x2 / BLOCK, y2 / BLOCK));

@@ -4,9 +4,11 @@
 use std::path::Path;
 
 use serde::Serialize;
+use serde_json::json;
 
-use crate::output::{heat_map, max_diff, psnr, write_png};
+use super::output::{heat_map, max_diff, psnr, write_json, write_png, write_text};
 use crate::render::{Image, Method, Options, Precision, Prepared, render};
+use crate::scene::{builtin, load_scene};
 
 /// One comparison row.
 #[derive(Clone, Debug, Serialize)]
@@ -135,4 +137,37 @@ pub fn markdown(c: &Comparison) -> String {
         c.spp, c.truth_s
     );
     s
+}
+
+/// `compare`: truth and every method in both precisions; writes images,
+/// heat-maps and `compare.json` / `compare.md` into `out`.
+pub fn cmd_compare(
+    spec: &str,
+    time: f64,
+    opts: &Options,
+    methods: &[Method],
+    out: &Path,
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let scene = load_scene(spec, time)?;
+    let size = opts.size.or_else(|| {
+        spec.starts_with("builtin:")
+            .then_some(builtin::DEFAULT_SIZE)
+    });
+    let prep = Prepared::new(scene, size)?;
+    let c = compare(&prep, opts, methods, Some(out))?;
+    let md = format!(
+        "# raymip compare: {spec} ({}×{}, {} bounces)\n\n{}",
+        prep.width,
+        prep.height,
+        opts.bounces,
+        markdown(&c)
+    );
+    write_text(&out.join("compare.md"), &md)?;
+    write_json(
+        &out.join("compare.json"),
+        &json!({"scene": spec, "width": prep.width, "height": prep.height, "bounces": opts.bounces, "comparison": c}),
+    )?;
+    println!("{md}");
+    Ok(())
 }

@@ -10,13 +10,17 @@
 //! whole path (primary + bounces + no texture fetch for shadows) before the
 //! next pixel. One cache, no per-thread split.
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use raymip::cache::BlockCache;
 use serde::Serialize;
+use serde_json::json;
 
+use super::output::{write_json, write_text};
 use crate::render::{Counters, Method, Options, Precision, Prepared, render};
 use crate::scene::Scene;
+use crate::scene::{builtin, default_bart_dir, load_scene_dir};
 
 /// Cache sets.
 pub const SETS: usize = 64;
@@ -175,6 +179,97 @@ while the files say 800×600; one level is one halving of the image size, so the
 the lod itself (the table method has no |n·d| term), the filter (trilinear: up to 8 texel fetches per hit with mip mapping on, 4 bilinear level-0 fetches off), \
 and the cache (a 16 KiB 4-way LRU block cache with Morton-ordered 4×4 blocks; the paper's cache organisation and traversal order may differ).\n";
     s
+}
+
+/// A deferred scene load.
+type SceneLoader = Box<dyn Fn() -> Result<Scene, String>>;
+
+/// `table1`: every scene folder under `scenes` (and the built-in scenes if
+/// `builtin`), printed beside the paper's values; `table1.md` / `table1.json`
+/// into `out` when given.
+pub fn cmd_table1(
+    scenes: Option<&Path>,
+    size: (u32, u32),
+    bounces: u8,
+    time: f64,
+    builtin_too: bool,
+    out: Option<&Path>,
+) -> Result<(), String> {
+    let mut jobs: Vec<(String, SceneLoader)> = Vec::new();
+    let dir = scenes.map_or_else(default_bart_dir, Path::to_path_buf);
+    if dir.is_dir() {
+        let mut subs: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .map_err(|e| format!("{}: {e}", dir.display()))?
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.is_dir())
+            .collect();
+        subs.sort();
+        for s in subs {
+            let name = s
+                .file_name()
+                .map_or("scene".into(), |n| n.to_string_lossy().into_owned());
+            jobs.push((name, Box::new(move || load_scene_dir(&s, time))));
+        }
+    } else if !builtin_too {
+        return Err(format!(
+            "{}: scene folder not found (pass --scenes DIR, or --builtin for the built-in scenes)",
+            dir.display()
+        ));
+    } else {
+        println!("SKIP: {} not found; built-in scenes only", dir.display());
+    }
+    if builtin_too {
+        for n in builtin::NAMES {
+            jobs.push((
+                format!("builtin:{n}"),
+                Box::new(move || builtin::by_name(n)),
+            ));
+        }
+    }
+    let mut rows = Vec::new();
+    for (name, load) in jobs {
+        let t0 = Instant::now();
+        let scene = match load() {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!("error: {name}: {e}");
+                continue;
+            }
+        };
+        println!(
+            "{name}: loaded {} triangles in {:.2} s",
+            scene.triangles.len(),
+            t0.elapsed().as_secs_f64()
+        );
+        let row = measure(&name, scene, size, bounces, true)?;
+        println!(
+            "{name}: levels {:.1}/{:.1}/{:.1}/{:.1} %, cache {:.1} -> {:.1} %, frame {:.2} / {:.2} s",
+            row.level_share[0],
+            row.level_share[1],
+            row.level_share[2],
+            row.level_share[3],
+            row.cache_off,
+            row.cache_on,
+            row.frame_s[0],
+            row.frame_s[1]
+        );
+        rows.push(row);
+    }
+    let md = markdown(&rows, bounces);
+    println!("\n{md}");
+    if let Some(out) = out {
+        std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+        write_text(&out.join("table1.md"), &md)?;
+        write_json(
+            &out.join("table1.json"),
+            &json!({"bounces": bounces, "width": size.0, "height": size.1, "cache": {"sets": SETS, "ways": WAYS, "line_bytes": LINE_BYTES}, "rows": rows}),
+        )?;
+    }
+    if rows.is_empty() {
+        return Err("no scene could be measured".into());
+    }
+    Ok(())
 }
 
 #[cfg(test)]

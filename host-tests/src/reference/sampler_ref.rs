@@ -343,7 +343,7 @@ pub const FILTERS: [&str; 5] = [
 /// format (linear, and sRGB re-encoded and linear where it exists) and
 /// filter, over `samples` random samples each: random 24×20 RGBA8 level 0
 /// (pyramid by `mip::generate`, or `srgb::generate` for sRGB), converted
-/// by [`crate::texformat::encode_pyramid`]; random address modes per axis,
+/// by [`crate::reference::texformat::encode_pyramid`]; random address modes per axis,
 /// border colour, bias in [−16, 16), lod clamps, coordinates in
 /// [−3, 3], lods in [−2, 8], anisotropic footprints with axes up to ±0.5
 /// (up to 12 texels), through the texel cache. The reference reads the
@@ -389,7 +389,7 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
             } else {
                 raymip::mip::generate(&geometry, &mut texels).expect("pyramid");
             }
-            let bytes = crate::texformat::encode_pyramid(&geometry, &texels, format);
+            let bytes = crate::reference::texformat::encode_pyramid(&geometry, &texels, format);
             let fmt = Format::new(format, space).expect("format");
             let image = Image::new(geometry, fmt, &bytes).expect("image");
             let reference = if format.is_block_compressed() {

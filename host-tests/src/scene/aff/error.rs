@@ -4,7 +4,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use crate::ppm::PpmError;
+use crate::scene::ppm::PpmError;
 
 /// What went wrong (the location is in [`AffError`]).
 #[derive(Debug)]

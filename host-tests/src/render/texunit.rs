@@ -1,9 +1,10 @@
 //! Textures as the renderer uses them: MIP pyramids of RGBA8888 texels and
-//! the two samplers, behind one trait [`TextureUnit`]:
+//! the two texture units of a render ([`Unit`]):
 //!
-//! * [`FirmwareUnit`]: the firmware texture unit (fixed point,
-//!   `raymip::filter::Sampler`, wrap addressing), which also records the
-//!   texel-block address of every fetch for the cache study;
+//! * [`FirmwareUnit`]: the firmware texture unit, one
+//!   `raymip::filter::Sampler` per texture (fixed point: [`TexCoord`],
+//!   [`Lod`], [`Mode`] in, a texel out; wrap addressing), which also records
+//!   the texel-block address of every fetch for the cache study;
 //! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
 //!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
 
@@ -12,6 +13,8 @@ use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 
+use super::Method;
+use super::lod::HitLod;
 use crate::scene::TextureImage;
 
 /// Which filter a sample uses.
@@ -21,6 +24,18 @@ pub enum Filter {
     Trilinear,
     /// Bilinear in level 0 only (mip mapping off, ground truth).
     BilinearLevel0,
+}
+
+impl Filter {
+    /// The filter of a LOD method: bilinear in level 0 without LOD (mip 0,
+    /// ground truth), trilinear otherwise.
+    #[must_use]
+    pub fn of(method: Method) -> Self {
+        match method {
+            Method::Mip0 | Method::Truth => Self::BilinearLevel0,
+            Method::Table | Method::Cone | Method::Raydiff => Self::Trilinear,
+        }
+    }
 }
 
 /// Fetch counters and, optionally, the log of fetched texel-block
@@ -109,24 +124,68 @@ pub fn assign_block_bases(textures: &mut [MipTexture]) {
     }
 }
 
-/// A texture unit: samples texture `tex` at normalized `(u, v)` (repeats;
-/// wrap addressing) with level of detail `lod`, returns linear RGB in 0..1.
-pub trait TextureUnit: Sync {
-    /// One filtered sample.
-    fn sample(
-        &self,
-        tex: &MipTexture,
-        u: f64,
-        v: f64,
-        lod: f64,
-        filter: Filter,
-        log: &mut FetchLog,
-    ) -> [f64; 3];
+/// The texture unit of one render (per tile: it holds the samplers' state).
+#[derive(Debug)]
+pub enum Unit<'a> {
+    /// The firmware unit (fixed-point renders).
+    Firmware(FirmwareUnit<'a>),
+    /// The f64 reference unit (float renders).
+    Float(FloatUnit<'a>),
 }
 
-/// The f64 reference sampler.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FloatUnit;
+impl<'a> Unit<'a> {
+    /// The unit for `textures`: the firmware one for fixed-point renders
+    /// (recording block addresses when `record`), else the f64 one.
+    #[must_use]
+    pub fn new(textures: &'a [MipTexture], fixed: bool, record: bool) -> Self {
+        if fixed {
+            Self::Firmware(FirmwareUnit::new(textures, record))
+        } else {
+            Self::Float(FloatUnit { textures })
+        }
+    }
+
+    /// One filtered sample of texture `tex` at `(u, v)` in texture repeats
+    /// (wrap addressing) as linear RGB in 0..1. A fixed-point lod goes to
+    /// the firmware unit unchanged; each unit is fed its own arithmetic.
+    pub fn sample(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        lod: HitLod,
+        filter: Filter,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        match self {
+            Self::Firmware(unit) => {
+                let lod = match lod {
+                    HitLod::Fixed(l) => l,
+                    HitLod::Float(l) => Lod::saturating_from_num(l),
+                };
+                let mode = match filter {
+                    Filter::Trilinear => Mode::Trilinear,
+                    Filter::BilinearLevel0 => Mode::BilinearNearestLevel,
+                };
+                let c = unit
+                    .sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log)
+                    .to_le_bytes();
+                [
+                    f64::from(c[0]) / 255.0,
+                    f64::from(c[1]) / 255.0,
+                    f64::from(c[2]) / 255.0,
+                ]
+            }
+            Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
+        }
+    }
+}
+
+/// The f64 reference sampler over the render's textures.
+#[derive(Clone, Copy, Debug)]
+pub struct FloatUnit<'a> {
+    textures: &'a [MipTexture],
+}
 
 fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
     let (w, h) = tex.level_size(level);
@@ -151,16 +210,21 @@ fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog)
     out
 }
 
-impl TextureUnit for FloatUnit {
-    fn sample(
+impl FloatUnit<'_> {
+    /// One sample of texture `tex` (f64 lod, clamped to the stored levels;
+    /// NaN = level 0), linear RGB in 0..1; black for an unknown texture.
+    pub fn sample(
         &self,
-        tex: &MipTexture,
+        tex: usize,
         u: f64,
         v: f64,
         lod: f64,
         filter: Filter,
         log: &mut FetchLog,
     ) -> [f64; 3] {
+        let Some(tex) = self.textures.get(tex) else {
+            return [0.0; 3];
+        };
         let top = f64::from(tex.levels - 1);
         let c = match filter {
             Filter::BilinearLevel0 => bilinear_f64(tex, 0, u, v, log),
@@ -186,17 +250,14 @@ impl TextureUnit for FloatUnit {
     }
 }
 
-/// The firmware texture unit (fixed point).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FirmwareUnit;
-
-/// A [`TexelSource`] over a pyramid that logs the global block address of
-/// every fetch.
+/// A [`TexelSource`] over one texture's pyramid that logs the global block
+/// address of every fetch (when recording).
+#[derive(Debug)]
 struct Recorder<'a> {
     pyramid: Pyramid<'a>,
     layout: &'a BlockLayout,
     base: u32,
-    blocks: Option<&'a mut Vec<u32>>,
+    blocks: Option<Vec<u32>>,
 }
 
 impl TexelSource for Recorder<'_> {
@@ -221,49 +282,65 @@ impl TexelSource for Recorder<'_> {
     }
 }
 
+/// The firmware texture unit: one [`Sampler`] per texture, built once.
+#[derive(Debug)]
+pub struct FirmwareUnit<'a> {
+    samplers: Vec<Option<Sampler<Recorder<'a>>>>,
+}
+
+impl<'a> FirmwareUnit<'a> {
+    /// One wrap-addressing sampler per texture; `record` logs the block
+    /// address of every fetch.
+    #[must_use]
+    pub fn new(textures: &'a [MipTexture], record: bool) -> Self {
+        let samplers = textures
+            .iter()
+            .map(|tex| {
+                let pyramid = Pyramid::new(tex.geometry, &tex.texels).ok()?;
+                let source = Recorder {
+                    pyramid,
+                    layout: &tex.layout,
+                    base: tex.block_base,
+                    blocks: record.then(Vec::new),
+                };
+                Some(Sampler::new(source, Address::Wrap))
+            })
+            .collect();
+        Self { samplers }
+    }
+
+    /// One sample of texture `tex` through the firmware sampler; fetch
+    /// counts (and block addresses) go to `log`. Texel 0 (black) for an
+    /// unknown texture.
+    pub fn sample(
+        &mut self,
+        tex: usize,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mode: Mode,
+        log: &mut FetchLog,
+    ) -> Texel {
+        let Some(Some(sampler)) = self.samplers.get_mut(tex) else {
+            return 0;
+        };
+        let t = sampler.sample(u, v, lod, mode);
+        let st = sampler.stats();
+        sampler.reset_stats();
+        log.fetched += st.fetched;
+        log.skipped += st.skipped;
+        if let (Some(all), Some(b)) = (log.blocks.as_mut(), sampler.source_mut().blocks.as_mut()) {
+            all.append(b);
+        }
+        t
+    }
+}
+
 /// `u` reduced to `[0, 1)` (wrap addressing, exact in f64) as a [`TexCoord`].
 fn wrap_coord(u: f64) -> TexCoord {
     if u.is_finite() {
         TexCoord::saturating_from_num(u - u.floor())
     } else {
         TexCoord::ZERO
-    }
-}
-
-impl TextureUnit for FirmwareUnit {
-    fn sample(
-        &self,
-        tex: &MipTexture,
-        u: f64,
-        v: f64,
-        lod: f64,
-        filter: Filter,
-        log: &mut FetchLog,
-    ) -> [f64; 3] {
-        let Ok(pyramid) = Pyramid::new(tex.geometry, &tex.texels) else {
-            return [0.0; 3];
-        };
-        let source = Recorder {
-            pyramid,
-            layout: &tex.layout,
-            base: tex.block_base,
-            blocks: log.blocks.as_mut(),
-        };
-        let mut sampler = Sampler::new(source, Address::Wrap);
-        // `lod` comes from an I8F8 value: the conversion is exact.
-        let (lod, mode) = match filter {
-            Filter::Trilinear => (Lod::saturating_from_num(lod), Mode::Trilinear),
-            Filter::BilinearLevel0 => (Lod::ZERO, Mode::BilinearNearestLevel),
-        };
-        let t = sampler.sample(wrap_coord(u), wrap_coord(v), lod, mode);
-        let st = sampler.stats();
-        log.fetched += st.fetched;
-        log.skipped += st.skipped;
-        let c = t.to_le_bytes();
-        [
-            f64::from(c[0]) / 255.0,
-            f64::from(c[1]) / 255.0,
-            f64::from(c[2]) / 255.0,
-        ]
     }
 }

@@ -6,13 +6,7 @@ use raymip::filter::TexCoord;
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, MipError, Texel, full_levels, generate};
 
-/// Deterministic xorshift64 step (state must be non-zero).
-pub fn xorshift(s: &mut u64) -> u64 {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    *s
-}
+use super::Rng;
 
 /// A `size × size` full-chain pyramid with random level-0 texels.
 ///
@@ -21,12 +15,12 @@ pub fn xorshift(s: &mut u64) -> u64 {
 pub fn random_pyramid(size: u32) -> Result<(Geometry, Vec<Texel>), MipError> {
     let g = Geometry::new(size, size, full_levels(size, size))?;
     let mut buf = vec![0; g.len()];
-    let mut s = 0x9E37_79B9_7F4A_7C15u64;
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for t in buf
         .iter_mut()
         .take(g.width() as usize * g.height() as usize)
     {
-        *t = xorshift(&mut s) as u32;
+        *t = rng.next_u64() as u32;
     }
     generate(&g, &mut buf)?;
     Ok((g, buf))
@@ -35,8 +29,8 @@ pub fn random_pyramid(size: u32) -> Result<(Geometry, Vec<Texel>), MipError> {
 /// `n` random `(u, v, lod)` with u, v in [−2, 2) and lod in [0, 6) with a
 /// fraction in [0.125, 0.875), so trilinear always reads two levels.
 pub fn random_inputs(n: usize) -> Vec<(f32, f32, f32)> {
-    let mut s = 0x2545_F491_4F6C_DD1Du64;
-    let mut unit = move || (xorshift(&mut s) >> 40) as f32 / (1u64 << 24) as f32;
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let mut unit = move || (rng.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
     (0..n)
         .map(|_| {
             let lod = (unit() * 6.0).floor() + 0.125 + 0.75 * unit();
