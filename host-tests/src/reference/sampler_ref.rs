@@ -13,9 +13,16 @@
 //! decoder bit for bit.
 
 use raymip::address::AddressMode;
-use raymip::filter::Mode;
-use raymip::format::TexelFormat;
+use raymip::cache::TexelCache;
+use raymip::filter::{Mode, TexCoord};
+use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::image::Image;
+use raymip::lod::Lod;
 use raymip::mip::{Geometry, Texel};
+use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture_sampler::{SAMPLER_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
+
+use super::Rng;
 
 /// sRGB EOTF (code fraction → linear).
 #[must_use]
@@ -352,22 +359,7 @@ pub const FILTERS: [&str; 5] = [
 /// bit-identical to an independent decoder.
 #[must_use]
 pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
-    use raymip::cache::TexelCache;
-    use raymip::filter::TexCoord;
-    use raymip::format::{ColorSpace, Format};
-    use raymip::image::Image;
-    use raymip::lod::Lod;
-    use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-    use raymip::texture_sampler::{SAMPLER_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
-
-    let mut rng = seed.max(1);
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        rng
-    };
-    let mut unit = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
+    let mut rng = Rng(seed.max(1));
     let geometry = Geometry::new(24, 20, 5).expect("geometry");
     let mut rows = Vec::new();
     for format in TexelFormat::ALL {
@@ -382,7 +374,7 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
         };
         for &(space, out, suffix) in spaces {
             let mut texels: Vec<Texel> = (0..geometry.len())
-                .map(|_| (unit() * 4_294_967_296.0) as u32)
+                .map(|_| (rng.unit() * 4_294_967_296.0) as u32)
                 .collect();
             if space == ColorSpace::Srgb {
                 raymip::srgb::generate(&geometry, &mut texels).expect("srgb pyramid");
@@ -392,133 +384,169 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
             let bytes = crate::reference::texformat::encode_pyramid(&geometry, &texels, format);
             let fmt = Format::new(format, space).expect("format");
             let image = Image::new(geometry, fmt, &bytes).expect("image");
-            let reference = if format.is_block_compressed() {
-                let decoded: Vec<Texel> = (0..geometry.levels())
-                    .flat_map(|k| {
-                        let (w, h) = geometry.level_size(k);
-                        (0..h).flat_map(move |y| (0..w).map(move |x| (k, x, y)))
-                    })
-                    .map(|(k, x, y)| image.get(k, x, y))
-                    .collect();
-                RefTexture::from_rgba8(&geometry, &decoded)
-            } else {
-                RefTexture::from_bytes(&geometry, format, &bytes)
-            };
+            let reference = reference_texture(&geometry, format, &image, &bytes);
             for (fi, &filter) in FILTERS.iter().enumerate() {
                 let mut max_error = 0.0f64;
                 let mut ties = 0;
                 for _ in 0..samples {
-                    let pick = |x: f64| AddressMode::ALL[((x * 5.0) as usize).min(4)];
-                    let address = [pick(unit()), pick(unit())];
-                    let border_bits = (unit() * 4_294_967_296.0) as u32;
-                    let bias = Lod::from_bits(((unit() * 8192.0) as i32 - 4096) as i16);
-                    let (a, b) = (
-                        Lod::from_bits(((unit() * 3072.0) as i32 - 512) as i16),
-                        Lod::from_bits(((unit() * 3072.0) as i32 - 512) as i16),
-                    );
-                    let (lo, hi) = if unit() < 0.5 {
-                        (a.min(b), a.max(b))
-                    } else {
-                        (Lod::MIN, Lod::MAX)
-                    };
-                    let state = SamplerState::new(SamplerDesc {
-                        address_u: address[0],
-                        address_v: address[1],
-                        border: border_bits,
-                        lod_bias: bias,
-                        min_lod: lo,
-                        max_lod: hi,
-                        max_anisotropy: 16,
-                        srgb_output: out,
-                    })
-                    .expect("state");
-                    let mut fw =
-                        TextureSampler::new(TexelCache::<_, 8, 2>::new(image), state, space);
-                    let rs = RefSampler {
-                        tex: &reference,
-                        state: RefState {
-                            address,
-                            border: border_bits.to_le_bytes().map(f64::from),
-                            bias: bias.to_num(),
-                            min_lod: lo.to_num(),
-                            max_lod: hi.to_num(),
-                            max_aniso: 16,
-                            srgb: space == ColorSpace::Srgb,
-                            encode_srgb: out == SrgbOutput::Encoded,
-                        },
-                    };
-                    let u = TexCoord::from_num(unit() * 6.0 - 3.0);
-                    let v = TexCoord::from_num(unit() * 6.0 - 3.0);
-                    let (uf, vf) = (u.to_num::<f64>(), v.to_num::<f64>());
-                    let (got, want) = if fi < 4 {
-                        let mode = [
-                            Mode::Nearest,
-                            Mode::NearestTexelLinearLevel,
-                            Mode::BilinearNearestLevel,
-                            Mode::Trilinear,
-                        ][fi];
-                        let lod = Lod::from_bits(((unit() * 2560.0) as i32 - 512) as i16);
-                        (
-                            fw.sample(u, v, lod, mode),
-                            rs.sample(uf, vf, lod.to_num(), mode),
-                        )
-                    } else {
-                        let axis = |x: f64| TexCoord::from_num(x);
-                        let ax = [axis(unit() - 0.5), axis(unit() - 0.5)];
-                        let s = unit() * unit();
-                        let ay = [axis((unit() - 0.5) * s), axis((unit() - 0.5) * s)];
-                        let axes = [
-                            [ax[0].to_num::<f64>(), ax[1].to_num::<f64>()],
-                            [ay[0].to_num::<f64>(), ay[1].to_num::<f64>()],
-                        ];
-                        let (w, h) = (24.0, 20.0);
-                        let len = |a: [f64; 2]| (a[0] * w).hypot(a[1] * h);
-                        let (l0, l1) = (len(axes[0]), len(axes[1]));
-                        // Above 16:1 the count is 16 whatever the rounding.
-                        let ratio = (l0.max(l1) / l0.min(l1)).log2();
-                        let tie = (1..=16)
-                            .any(|k| (ratio - f64::from(k).log2()).abs() < 1.0 / 4096.0)
-                            || (l0 - l1).abs() < 1e-9 * l0.max(l1)
-                            || l0.min(l1) < 1e-6;
-                        if tie {
-                            ties += 1;
-                            continue;
-                        }
-                        let fp = raymip::aniso::Footprint { x: ax, y: ay };
-                        (
-                            fw.sample_aniso(u, v, &fp, Mode::Trilinear),
-                            rs.sample_aniso(uf, vf, axes, Mode::Trilinear),
-                        )
+                    let Some((got, want)) =
+                        sample_pair(&mut rng, fi, image, &reference, space, out)
+                    else {
+                        ties += 1;
+                        continue;
                     };
                     for (g, w) in got.to_le_bytes().iter().zip(want) {
                         max_error = max_error.max((f64::from(*g) - w).abs());
                     }
                 }
-                let encoded = space == ColorSpace::Srgb && out == SrgbOutput::Encoded;
-                let base = if encoded {
-                    SRGB_MAX_ERROR_LSB
-                } else {
-                    SAMPLER_MAX_ERROR_LSB
-                };
-                let bound = match fi {
-                    // sRGB: the decoded (or border) value is rounded once.
-                    0 if space == ColorSpace::Srgb => 0.5,
-                    0 => 0.0,
-                    1..=3 => base,
-                    _ => base + ANISO_LOD_ERROR_LSB * if encoded { 2.0 } else { 1.0 },
-                };
                 rows.push(AccuracyRow {
                     format: format!("{format:?}{suffix}"),
                     filter,
                     samples,
                     ties,
                     max_error,
-                    bound,
+                    bound: error_bound(fi, space, out),
                 });
             }
         }
     }
     rows
+}
+
+/// The reference's view of `image`: its own decode of the stored bytes,
+/// or the firmware's BC decode (checked bit for bit elsewhere).
+fn reference_texture(
+    geometry: &Geometry,
+    format: TexelFormat,
+    image: &Image<'_>,
+    bytes: &[u8],
+) -> RefTexture {
+    if format.is_block_compressed() {
+        let decoded: Vec<Texel> = (0..geometry.levels())
+            .flat_map(|k| {
+                let (w, h) = geometry.level_size(k);
+                (0..h).flat_map(move |y| (0..w).map(move |x| (k, x, y)))
+            })
+            .map(|(k, x, y)| image.get(k, x, y))
+            .collect();
+        RefTexture::from_rgba8(geometry, &decoded)
+    } else {
+        RefTexture::from_bytes(geometry, format, bytes)
+    }
+}
+
+/// Documented bound of filter `fi` (index into [`FILTERS`]).
+fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput) -> f64 {
+    let encoded = space == ColorSpace::Srgb && out == SrgbOutput::Encoded;
+    let base = if encoded {
+        SRGB_MAX_ERROR_LSB
+    } else {
+        SAMPLER_MAX_ERROR_LSB
+    };
+    match fi {
+        // sRGB: the decoded (or border) value is rounded once.
+        0 if space == ColorSpace::Srgb => 0.5,
+        0 => 0.0,
+        1..=3 => base,
+        _ => base + ANISO_LOD_ERROR_LSB * if encoded { 2.0 } else { 1.0 },
+    }
+}
+
+/// A random sampler state (address modes, border, bias, lod clamps).
+fn random_state(rng: &mut Rng, out: SrgbOutput) -> (SamplerDesc, [AddressMode; 2]) {
+    let pick = |x: f64| AddressMode::ALL[((x * 5.0) as usize).min(4)];
+    let address = [pick(rng.unit()), pick(rng.unit())];
+    let border_bits = (rng.unit() * 4_294_967_296.0) as u32;
+    let bias = Lod::from_bits(((rng.unit() * 8192.0) as i32 - 4096) as i16);
+    let (a, b) = (
+        Lod::from_bits(((rng.unit() * 3072.0) as i32 - 512) as i16),
+        Lod::from_bits(((rng.unit() * 3072.0) as i32 - 512) as i16),
+    );
+    let (lo, hi) = if rng.unit() < 0.5 {
+        (a.min(b), a.max(b))
+    } else {
+        (Lod::MIN, Lod::MAX)
+    };
+    let desc = SamplerDesc {
+        address_u: address[0],
+        address_v: address[1],
+        border: border_bits,
+        lod_bias: bias,
+        min_lod: lo,
+        max_lod: hi,
+        max_anisotropy: 16,
+        srgb_output: out,
+    };
+    (desc, address)
+}
+
+/// One random sample of filter `fi` through the firmware and the
+/// reference: `(firmware texel, reference channels)`, or `None` for an
+/// anisotropic footprint whose probe count is a rounding tie.
+fn sample_pair(
+    rng: &mut Rng,
+    fi: usize,
+    image: Image<'_>,
+    reference: &RefTexture,
+    space: ColorSpace,
+    out: SrgbOutput,
+) -> Option<(Texel, [f64; 4])> {
+    let (desc, address) = random_state(rng, out);
+    let state = SamplerState::new(desc).expect("state");
+    let mut fw = TextureSampler::new(TexelCache::<_, 8, 2>::new(image), state, space);
+    let rs = RefSampler {
+        tex: reference,
+        state: RefState {
+            address,
+            border: desc.border.to_le_bytes().map(f64::from),
+            bias: desc.lod_bias.to_num(),
+            min_lod: desc.min_lod.to_num(),
+            max_lod: desc.max_lod.to_num(),
+            max_aniso: 16,
+            srgb: space == ColorSpace::Srgb,
+            encode_srgb: out == SrgbOutput::Encoded,
+        },
+    };
+    let u = TexCoord::from_num(rng.unit() * 6.0 - 3.0);
+    let v = TexCoord::from_num(rng.unit() * 6.0 - 3.0);
+    let (uf, vf) = (u.to_num::<f64>(), v.to_num::<f64>());
+    if fi < 4 {
+        let mode = [
+            Mode::Nearest,
+            Mode::NearestTexelLinearLevel,
+            Mode::BilinearNearestLevel,
+            Mode::Trilinear,
+        ][fi];
+        let lod = Lod::from_bits(((rng.unit() * 2560.0) as i32 - 512) as i16);
+        return Some((
+            fw.sample(u, v, lod, mode),
+            rs.sample(uf, vf, lod.to_num(), mode),
+        ));
+    }
+    let axis = |x: f64| TexCoord::from_num(x);
+    let ax = [axis(rng.unit() - 0.5), axis(rng.unit() - 0.5)];
+    let s = rng.unit() * rng.unit();
+    let ay = [axis((rng.unit() - 0.5) * s), axis((rng.unit() - 0.5) * s)];
+    let axes = [
+        [ax[0].to_num::<f64>(), ax[1].to_num::<f64>()],
+        [ay[0].to_num::<f64>(), ay[1].to_num::<f64>()],
+    ];
+    let (w, h) = (24.0, 20.0);
+    let len = |a: [f64; 2]| (a[0] * w).hypot(a[1] * h);
+    let (l0, l1) = (len(axes[0]), len(axes[1]));
+    // Above 16:1 the count is 16 whatever the rounding.
+    let ratio = (l0.max(l1) / l0.min(l1)).log2();
+    let tie = (1..=16).any(|k| (ratio - f64::from(k).log2()).abs() < 1.0 / 4096.0)
+        || (l0 - l1).abs() < 1e-9 * l0.max(l1)
+        || l0.min(l1) < 1e-6;
+    if tie {
+        return None;
+    }
+    let fp = raymip::aniso::Footprint { x: ax, y: ay };
+    Some((
+        fw.sample_aniso(u, v, &fp, Mode::Trilinear),
+        rs.sample_aniso(uf, vf, axes, Mode::Trilinear),
+    ))
 }
 
 /// Extra error of anisotropic samples against the exact-lod reference:

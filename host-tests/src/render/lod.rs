@@ -81,12 +81,12 @@ impl Ctx<'_> {
             Method::Mip0 | Method::Truth => Some(HitLod::Float(0.0)),
             Method::Table if fixed => table_lod(q.state.pl, pbx).map(HitLod::Fixed),
             Method::Table => Some(HitLod::Float(q.pl.log2() - pbf)),
-            Method::Cone if fixed => pbx.delta(&prep.spread).map(|delta| {
+            Method::Cone if fixed => pbx.delta(&prep.cam.spread).map(|delta| {
                 let nd = U1F31::saturating_from_num(q.n_dot_d);
                 HitLod::Fixed(cone_lod(q.state.cone.width, delta, Some(nd)))
             }),
             Method::Cone => {
-                let delta = -pbf - prep.gamma.log2();
+                let delta = -pbf - prep.cam.gamma.log2();
                 let w = if q.width == 0.0 {
                     2f64.powi(-32)
                 } else {

@@ -13,6 +13,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 pub mod bvh;
+pub mod camera;
 mod counters;
 pub mod lod;
 mod options;

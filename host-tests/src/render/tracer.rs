@@ -33,6 +33,38 @@ struct Ray {
     diff: Diff,
 }
 
+impl Ray {
+    /// A continuation of this ray from `o` in direction `d` with `weight`,
+    /// path length and cone width `(pl, width)` at the hit and this ray's
+    /// cone spread; `dd(ddir, dn)` maps a direction differential and the
+    /// matching shading-normal differential to the new ray's.
+    fn continued(
+        &self,
+        o: V3,
+        d: V3,
+        weight: V3,
+        (pl, width): (f64, f64),
+        f: &HitFrame,
+        dd: impl Fn(V3, V3) -> V3,
+    ) -> Self {
+        Self {
+            o,
+            d,
+            weight,
+            tmin: 0.0,
+            pl,
+            width,
+            spread: self.spread,
+            diff: Diff {
+                dpx: f.dpx,
+                dpy: f.dpy,
+                ddx: dd(self.diff.ddx, f.dnx),
+                ddy: dd(self.diff.ddy, f.dny),
+            },
+        }
+    }
+}
+
 pub(crate) struct Ctx<'a> {
     pub(crate) prep: &'a Prepared,
     pub(crate) opts: &'a Options,
@@ -88,7 +120,7 @@ impl Ctx<'_> {
     /// Traces one camera path; returns colour and the first textured lod.
     fn path(&mut self, fx: f64, fy: f64) -> ([f64; 3], f64) {
         let prep = self.prep;
-        let (dv, dxv, dyv) = prep.primary_dir(fx, fy);
+        let (dv, dxv, dyv) = prep.cam.primary_dir(fx, fy);
         let dd = v::dot(dv, dv);
         let ddir = |r: V3| {
             v::scale(
@@ -103,7 +135,7 @@ impl Ctx<'_> {
             tmin: 0.0,
             pl: 0.0,
             width: 0.0,
-            spread: prep.gamma,
+            spread: prep.cam.gamma,
             diff: Diff {
                 ddx: ddir(dxv),
                 ddy: ddir(dyv),
@@ -115,7 +147,7 @@ impl Ctx<'_> {
         let mut color = [0.0; 3];
         let mut first_lod = f64::NAN;
         // The primary state always fits an empty stack.
-        let _ = stack.push_with(PathState::primary(&prep.spread, 0xFF), ray);
+        let _ = stack.push_with(PathState::primary(&prep.cam.spread, 0xFF), ray);
         while let Some((state, ray)) = stack.pop_with() {
             self.segment(state, ray, &mut stack, &mut color, &mut first_lod);
         }
@@ -326,21 +358,14 @@ impl Ctx<'_> {
                         v::scale(dn, mu),
                     )
                 };
-                refr = Some(Ray {
-                    o: v::madd(f.p, face_ng, -eps),
-                    d: dir,
-                    weight: trans_w,
-                    tmin: 0.0,
-                    pl,
-                    width,
-                    spread: ray.spread,
-                    diff: Diff {
-                        dpx: f.dpx,
-                        dpy: f.dpy,
-                        ddx: dtr(ray.diff.ddx, f.dnx),
-                        ddy: dtr(ray.diff.ddy, f.dny),
-                    },
-                });
+                refr = Some(ray.continued(
+                    v::madd(f.p, face_ng, -eps),
+                    dir,
+                    trans_w,
+                    (pl, width),
+                    f,
+                    dtr,
+                ));
             }
         }
         let refl = (v::max_c(refl_w) > 1e-3).then(|| {
@@ -358,21 +383,7 @@ impl Ctx<'_> {
                     v::scale(v::add(v::scale(dn, dn_), v::scale(ns, ddn)), 2.0),
                 )
             };
-            Ray {
-                o: v::madd(f.p, face_ng, eps),
-                d: dir,
-                weight: refl_w,
-                tmin: 0.0,
-                pl,
-                width,
-                spread: ray.spread,
-                diff: Diff {
-                    dpx: f.dpx,
-                    dpy: f.dpy,
-                    ddx: drf(ray.diff.ddx, f.dnx),
-                    ddy: drf(ray.diff.ddy, f.dny),
-                },
-            }
+            ray.continued(v::madd(f.p, face_ng, eps), dir, refl_w, (pl, width), f, drf)
         });
         (refr, refl)
     }

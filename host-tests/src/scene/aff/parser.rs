@@ -267,25 +267,7 @@ impl Parser {
             b"v" => self.view(src, t)?,
             b"b" => self.background = src.v3("background colour")?,
             b"am" => self.ambient = src.v3("ambient intensity")?,
-            b"l" => {
-                let position = src.v3("light position")?;
-                let color = self.opt_color(src)?;
-                self.lights.push(RawLight {
-                    position,
-                    color,
-                    track: None,
-                });
-            }
-            b"la" => {
-                let name = src.name("animation name")?;
-                let position = src.v3("light position")?;
-                let color = self.opt_color(src)?;
-                self.lights.push(RawLight {
-                    position,
-                    color,
-                    track: Some(name.text.into()),
-                });
-            }
+            b"l" | b"la" => self.light(src, t.text == b"la")?,
             b"a" => {
                 let t0 = src.f64("clock start time")?;
                 let t1 = src.f64("clock end time")?;
@@ -294,61 +276,13 @@ impl Parser {
             }
             b"d" => self.detail = src.int("detail level")?,
             b"i" => self.include(src)?,
-            b"fm" => {
-                let mut v = [0.0; 12];
-                for (i, x) in v.iter_mut().enumerate() {
-                    *x = src
-                        .f64("material value")
-                        .map_err(|e| context(e, || format!("`fm` field {} of 12", i + 1)))?;
-                }
-                self.set_material(Material {
-                    ambient: [v[0], v[1], v[2]],
-                    diffuse: [v[3], v[4], v[5]],
-                    specular: [v[6], v[7], v[8]],
-                    shine: v[9],
-                    transmission: [v[10]; 3],
-                    ior: guard_ior(v[11]),
-                });
-            }
-            b"f" => {
-                let mut v = [0.0; 8];
-                for (i, x) in v.iter_mut().enumerate() {
-                    *x = src
-                        .f64("material value")
-                        .map_err(|e| context(e, || format!("`f` field {} of 8", i + 1)))?;
-                }
-                let rgb = [v[0], v[1], v[2]];
-                let diffuse = scale3(rgb, v[3]);
-                self.set_material(Material {
-                    ambient: diffuse,
-                    diffuse,
-                    specular: [v[4]; 3],
-                    shine: v[5],
-                    transmission: [v[6]; 3],
-                    ior: guard_ior(v[7]),
-                });
-            }
+            b"fm" => self.material_fm(src)?,
+            b"f" => self.material_f(src)?,
             b"p" | b"pp" => self.polygon(src, t.text == b"pp")?,
             b"tt" | b"ttp" => self.textured_triangle(src, t.text == b"ttp")?,
             b"tpa" => self.animated_triangles(src)?,
-            b"s" => {
-                let c = src.v3("sphere centre")?;
-                let r = src.f64("sphere radius")?;
-                self.stats.spheres += 1;
-                for (p, n) in sphere(c, r) {
-                    self.push_tri(p, Some(n), None, None);
-                }
-            }
-            b"c" => {
-                let b = src.v3("cone base point")?;
-                let rb = src.f64("cone base radius")?;
-                let a = src.v3("cone apex point")?;
-                let ra = src.f64("cone apex radius")?;
-                self.stats.cones += 1;
-                for (p, n) in cone(b, rb, a, ra) {
-                    self.push_tri(p, Some(n), None, None);
-                }
-            }
+            b"s" => self.sphere(src)?,
+            b"c" => self.cone(src)?,
             b"m" => self.mesh(src)?,
             b"xs" => {
                 let s = src.v3("scale")?;
@@ -377,6 +311,88 @@ impl Parser {
             _ => {
                 return Err(src.err(t.line, AffErrorKind::UnknownCommand(t.show())));
             }
+        }
+        Ok(())
+    }
+
+    /// `l` / `la NAME`: a point light, static or animated.
+    fn light(&mut self, src: &mut Src<'_>, animated: bool) -> Result<(), AffError> {
+        let track = if animated {
+            Some(src.name("animation name")?.text.into())
+        } else {
+            None
+        };
+        let position = src.v3("light position")?;
+        let color = self.opt_color(src)?;
+        self.lights.push(RawLight {
+            position,
+            color,
+            track,
+        });
+        Ok(())
+    }
+
+    /// `N` material values, each error naming the field of `cmd`.
+    fn material_values<const N: usize>(src: &mut Src<'_>, cmd: &str) -> Result<[f64; N], AffError> {
+        let mut v = [0.0; N];
+        for (i, x) in v.iter_mut().enumerate() {
+            *x = src
+                .f64("material value")
+                .map_err(|e| context(e, || format!("`{cmd}` field {} of {N}", i + 1)))?;
+        }
+        Ok(v)
+    }
+
+    /// `fm`: ambient, diffuse, specular RGB, shine, transmission, ior.
+    fn material_fm(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
+        let v: [f64; 12] = Self::material_values(src, "fm")?;
+        self.set_material(Material {
+            ambient: [v[0], v[1], v[2]],
+            diffuse: [v[3], v[4], v[5]],
+            specular: [v[6], v[7], v[8]],
+            shine: v[9],
+            transmission: [v[10]; 3],
+            ior: guard_ior(v[11]),
+        });
+        Ok(())
+    }
+
+    /// `f`: RGB, kd, ks, shine, transmission, ior (NFF).
+    fn material_f(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
+        let v: [f64; 8] = Self::material_values(src, "f")?;
+        let rgb = [v[0], v[1], v[2]];
+        let diffuse = scale3(rgb, v[3]);
+        self.set_material(Material {
+            ambient: diffuse,
+            diffuse,
+            specular: [v[4]; 3],
+            shine: v[5],
+            transmission: [v[6]; 3],
+            ior: guard_ior(v[7]),
+        });
+        Ok(())
+    }
+
+    /// `s`: a tessellated sphere.
+    fn sphere(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
+        let c = src.v3("sphere centre")?;
+        let r = src.f64("sphere radius")?;
+        self.stats.spheres += 1;
+        for (p, n) in sphere(c, r) {
+            self.push_tri(p, Some(n), None, None);
+        }
+        Ok(())
+    }
+
+    /// `c`: a tessellated cone (or cylinder).
+    fn cone(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
+        let b = src.v3("cone base point")?;
+        let rb = src.f64("cone base radius")?;
+        let a = src.v3("cone apex point")?;
+        let ra = src.f64("cone apex radius")?;
+        self.stats.cones += 1;
+        for (p, n) in cone(b, rb, a, ra) {
+            self.push_tri(p, Some(n), None, None);
         }
         Ok(())
     }
@@ -711,6 +727,19 @@ impl Parser {
         }
         let nt = src.count("triangle count")?;
         self.stats.meshes += 1;
+        self.mesh_triangles(src, nt, &verts, normals.as_deref(), uvs.as_ref())
+    }
+
+    /// The `triangles` block of a mesh: `nt` index triples (vertex, then
+    /// normal and texture-coordinate ones when the mesh has them).
+    fn mesh_triangles(
+        &mut self,
+        src: &mut Src<'_>,
+        nt: usize,
+        verts: &[V3],
+        normals: Option<&[V3]>,
+        uvs: Option<&(Vec<[f64; 2]>, u32)>,
+    ) -> Result<(), AffError> {
         let per = 3 + 3 * usize::from(normals.is_some()) + 3 * usize::from(uvs.is_some());
         let mut idx = [0usize; 9];
         for i in 0..nt {
@@ -747,7 +776,7 @@ impl Parser {
             check(&idx[0..3], verts.len(), "vertex", "vertices")?;
             let p = [verts[idx[0]], verts[idx[1]], verts[idx[2]]];
             let mut next = 3;
-            let n = match &normals {
+            let n = match normals {
                 Some(nv) => {
                     check(&idx[next..next + 3], nv.len(), "normal", "normals")?;
                     let n = [nv[idx[next]], nv[idx[next + 1]], nv[idx[next + 2]]];
@@ -756,7 +785,7 @@ impl Parser {
                 }
                 None => None,
             };
-            let (uv, tex) = match &uvs {
+            let (uv, tex) = match uvs {
                 Some((tv, tex)) => {
                     check(
                         &idx[next..next + 3],
@@ -796,32 +825,21 @@ impl Parser {
             let ctx = |k: usize| move || format!("`{cname}` key {} of {n}", k + 1);
             let path = src.path;
             let line = t.line;
-            let dup = || {
-                AffError::new(
-                    path,
-                    line,
-                    AffErrorKind::Syntax(format!("channel `{cname}` given twice in track")),
-                )
-            };
+            let syntax = |m: String| AffError::new(path, line, AffErrorKind::Syntax(m));
+            let dup = || syntax(format!("channel `{cname}` given twice in track"));
             let few = || {
-                AffError::new(
-                    path,
-                    line,
-                    AffErrorKind::Syntax(format!(
-                        "channel `{cname}` has {n} keys; splines need at least {MIN_KEYS}"
-                    )),
-                )
+                syntax(format!(
+                    "channel `{cname}` has {n} keys; splines need at least {MIN_KEYS}"
+                ))
             };
             match chan {
                 b"transl" | b"scale" => {
-                    let mut keys = Vec::with_capacity(reserve(n));
-                    for k in 0..n {
-                        let c = ctx(k);
-                        let time = src.f64("key time").map_err(|e| context(e, c))?;
-                        let value = src.v3("key value").map_err(|e| context(e, c))?;
-                        let tcb = read_tcb(src).map_err(|e| context(e, c))?;
-                        keys.push(VecKey { time, value, tcb });
-                    }
+                    let keys = read_keys(src, n, ctx, |src| {
+                        let time = src.f64("key time")?;
+                        let value = src.v3("key value")?;
+                        let tcb = read_tcb(src)?;
+                        Ok(VecKey { time, value, tcb })
+                    })?;
                     if n < MIN_KEYS {
                         return Err(few());
                     }
@@ -835,22 +853,18 @@ impl Parser {
                     }
                 }
                 b"rot" => {
-                    let mut keys = Vec::with_capacity(reserve(n));
-                    for k in 0..n {
-                        let c = ctx(k);
-                        let time = src.f64("key time").map_err(|e| context(e, c))?;
-                        let axis = src.v3("rotation axis").map_err(|e| context(e, c))?;
-                        let deg = src
-                            .f64("rotation angle (degrees)")
-                            .map_err(|e| context(e, c))?;
-                        let tcb = read_tcb(src).map_err(|e| context(e, c))?;
-                        keys.push(RotKey {
+                    let keys = read_keys(src, n, ctx, |src| {
+                        let time = src.f64("key time")?;
+                        let axis = src.v3("rotation axis")?;
+                        let deg = src.f64("rotation angle (degrees)")?;
+                        let tcb = read_tcb(src)?;
+                        Ok(RotKey {
                             time,
                             axis,
                             deg,
                             tcb,
-                        });
-                    }
+                        })
+                    })?;
                     if n < MIN_KEYS {
                         return Err(few());
                     }
@@ -859,16 +873,14 @@ impl Parser {
                     }
                 }
                 b"visibility" => {
-                    let mut keys = Vec::with_capacity(reserve(n));
-                    for k in 0..n {
-                        let c = ctx(k);
-                        let time = src.f64("key time").map_err(|e| context(e, c))?;
-                        let flag = src.f64("visibility flag").map_err(|e| context(e, c))?;
-                        keys.push(VisKey {
+                    let keys = read_keys(src, n, ctx, |src| {
+                        let time = src.f64("key time")?;
+                        let flag = src.f64("visibility flag")?;
+                        Ok(VisKey {
                             time,
                             visible: flag != 0.0,
-                        });
-                    }
+                        })
+                    })?;
                     if track.visibility.replace(keys).is_some() {
                         return Err(dup());
                     }
@@ -891,6 +903,25 @@ impl Parser {
 
     /// Evaluates transforms and camera at the load time; world-space scene.
     pub fn finish(mut self, top: &Path) -> Result<Scene, AffError> {
+        let world = self.world_nodes();
+        let triangles = self.world_triangles(&world);
+        let camera = self.camera_at_time(top)?;
+        let lights = self.lights_at_time();
+        Ok(Scene {
+            camera,
+            background: self.background,
+            ambient: self.ambient,
+            lights,
+            materials: self.materials,
+            textures: self.textures,
+            triangles,
+            stats: self.stats,
+        })
+    }
+
+    /// World matrix and visibility per node at the load time (parents
+    /// precede children); names of unbound tracks go to the stats.
+    fn world_nodes(&mut self) -> Vec<(Affine, bool)> {
         let t = self.time;
         // World matrix and visibility per node; parents precede children.
         let mut world: Vec<(Affine, bool)> = Vec::with_capacity(self.nodes.len());
@@ -917,6 +948,12 @@ impl Parser {
             }
         }
         self.stats.unbound_tracks = unbound;
+        world
+    }
+
+    /// Visible triangles in world space (normals by the inverse transpose,
+    /// dropped where it is singular).
+    fn world_triangles(&mut self, world: &[(Affine, bool)]) -> Vec<Triangle> {
         let normal_mats: Vec<Option<[[f64; 3]; 3]>> =
             world.iter().map(|(m, _)| m.normal_matrix()).collect();
         let mut triangles = Vec::with_capacity(self.tris.len());
@@ -957,6 +994,12 @@ impl Parser {
                 texture: r.texture,
             });
         }
+        triangles
+    }
+
+    /// The view at the load time (the `camera` track when present).
+    fn camera_at_time(&mut self, top: &Path) -> Result<Camera, AffError> {
+        let t = self.time;
         let Some(mut camera) = self.view else {
             return Err(AffError::new(
                 top,
@@ -979,6 +1022,12 @@ impl Parser {
                 )),
             ));
         }
+        Ok(camera)
+    }
+
+    /// Lights at the load time.
+    fn lights_at_time(&self) -> Vec<super::Light> {
+        let t = self.time;
         let mut lights = Vec::with_capacity(self.lights.len());
         for l in &self.lights {
             // `la`: the track's translation at t replaces the written
@@ -995,16 +1044,7 @@ impl Parser {
                 color: l.color,
             });
         }
-        Ok(Scene {
-            camera,
-            background: self.background,
-            ambient: self.ambient,
-            lights,
-            materials: self.materials,
-            textures: self.textures,
-            triangles,
-            stats: self.stats,
-        })
+        lights
     }
 }
 
@@ -1052,4 +1092,18 @@ fn material_key(m: &Material) -> [u64; 14] {
         *slot = v.to_bits();
     }
     k
+}
+
+/// `n` keys read by `key`, each error naming the key (`ctx(k)`).
+fn read_keys<T, C: FnOnce() -> String>(
+    src: &mut Src<'_>,
+    n: usize,
+    ctx: impl Fn(usize) -> C,
+    mut key: impl FnMut(&mut Src<'_>) -> Result<T, AffError>,
+) -> Result<Vec<T>, AffError> {
+    let mut keys = Vec::with_capacity(reserve(n));
+    for k in 0..n {
+        keys.push(key(src).map_err(|e| context(e, ctx(k)))?);
+    }
+    Ok(keys)
 }
