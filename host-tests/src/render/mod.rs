@@ -17,6 +17,7 @@ mod counters;
 pub mod lod;
 mod options;
 mod setup;
+pub mod skip;
 pub mod texunit;
 mod tracer;
 
