@@ -3,16 +3,17 @@
 //! (`raymip::analysis`) over the Pb table, pyramids trimmed to the levels
 //! any hit can select, and a render with them.
 //!
-//! Bounds ([`path_bounds`]), per texture, from the bounding box `B` of the
-//! triangles that use it and the box `S` of the whole scene:
+//! Bounds ([`path_bounds`]), per texture, from the triangles that use it
+//! and the bounding box `S` of the whole scene:
 //!
-//! * nearest: the distance from the eye to `B` (every path starts at the
-//!   eye, so its length to a point of `B` is at least the straight line),
-//!   less one ray offset per bounce (continuations start `eps` off the
-//!   surface);
-//! * farthest: the largest eye-to-corner distance of `B` without mirrors or
-//!   glass; with them, also the largest eye-to-corner distance of `S` plus
-//!   `bounces` segments of at most the diagonal of `S` (plus offsets);
+//! * nearest: the smallest distance from the eye to one of the triangles
+//!   (every path starts at the eye, so its length to a point on them is at
+//!   least the straight line), less one ray offset per bounce
+//!   (continuations start `eps` off the surface);
+//! * farthest: the largest eye-to-vertex distance of the triangles without
+//!   mirrors or glass; with them, also the largest eye-to-corner distance of
+//!   `S` plus `bounces` segments of at most the diagonal of `S` (plus
+//!   offsets);
 //!
 //! both widened by 10⁻⁶ relative and `10⁻⁶ · diagonal + 2⁻²⁰` absolute
 //! (float rounding of the distances, fixed-point rounding of each
@@ -96,10 +97,53 @@ fn box_of<'a>(points: impl Iterator<Item = &'a V3>) -> Option<(V3, V3)> {
     b
 }
 
-/// Distance from `p` to the box (0 inside).
-fn dist_to_box(p: V3, (lo, hi): (V3, V3)) -> f64 {
-    let d: V3 = std::array::from_fn(|k| (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0));
-    v::len(d)
+/// Distance from `p` to the triangle `t` (closest point by Voronoi
+/// regions, Ericson, Real-Time Collision Detection 5.1.5).
+fn dist_to_triangle(p: V3, [a, b, c]: [V3; 3]) -> f64 {
+    let (ab, ac, ap) = (v::sub(b, a), v::sub(c, a), v::sub(p, a));
+    let (d1, d2) = (v::dot(ab, ap), v::dot(ac, ap));
+    let closest = if d1 <= 0.0 && d2 <= 0.0 {
+        a
+    } else {
+        let bp = v::sub(p, b);
+        let (d3, d4) = (v::dot(ab, bp), v::dot(ac, bp));
+        let cp = v::sub(p, c);
+        let (d5, d6) = (v::dot(ab, cp), v::dot(ac, cp));
+        let (vc, vb, va) = (d1 * d4 - d3 * d2, d5 * d2 - d1 * d6, d3 * d6 - d5 * d4);
+        if d3 >= 0.0 && d4 <= d3 {
+            b
+        } else if d6 >= 0.0 && d5 <= d6 {
+            c
+        } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+            v::madd(a, ab, d1 / (d1 - d3))
+        } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+            v::madd(a, ac, d2 / (d2 - d6))
+        } else if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+            v::madd(b, v::sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))
+        } else {
+            let den = va + vb + vc;
+            if den.abs() < f64::MIN_POSITIVE {
+                // Degenerate (collinear) triangle: its nearest edge.
+                return dist_to_segment(p, a, b)
+                    .min(dist_to_segment(p, b, c))
+                    .min(dist_to_segment(p, a, c));
+            }
+            v::add(v::madd(a, ab, vb / den), v::scale(ac, vc / den))
+        }
+    };
+    v::len(v::sub(p, closest))
+}
+
+/// Distance from `p` to the segment `ab`.
+fn dist_to_segment(p: V3, a: V3, b: V3) -> f64 {
+    let ab = v::sub(b, a);
+    let l2 = v::dot(ab, ab);
+    let t = if l2 > 0.0 {
+        (v::dot(v::sub(p, a), ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    v::len(v::sub(p, v::madd(a, ab, t)))
 }
 
 /// Largest distance from `p` to a corner of the box.
@@ -126,13 +170,19 @@ pub fn path_bounds(prep: &Prepared, bounces: u8) -> Vec<Option<PathBounds>> {
     let n = f64::from(bounces);
     (0..scene.textures.len())
         .map(|x| {
-            let tris = scene
+            let mut tris = scene
                 .triangles
                 .iter()
-                .filter(|t| t.is_textured() && t.texture == Some(x as u32));
-            let b = box_of(tris.flat_map(|t| t.p.iter()))?;
-            let mut near = dist_to_box(eye, b);
-            let mut far = far_in_box(eye, b);
+                .filter(|t| t.is_textured() && t.texture == Some(x as u32))
+                .peekable();
+            tris.peek()?;
+            let (mut near, mut far) = (f64::INFINITY, 0.0f64);
+            for t in tris {
+                near = near.min(dist_to_triangle(eye, t.p));
+                for p in &t.p {
+                    far = far.max(v::len(v::sub(eye, *p)));
+                }
+            }
             if secondary {
                 near -= n * eps;
                 far = far.max(all.map_or(0.0, |s| far_in_box(eye, s)) + n * (diag + 2.0 * eps));
@@ -274,4 +324,44 @@ pub fn bit_identical(a: &Image, b: &Image) -> bool {
             cb.fetch_skipped,
         )
         && ca.level_hist == cb.level_hist
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::Rng;
+
+    /// The closest-point distance against a dense barycentric sampling of
+    /// the triangle: never larger than any sample's distance (a bound that
+    /// must not be too large), and within the sampling step of the best.
+    #[test]
+    fn triangle_distance_against_sampling() {
+        let mut rng = Rng(0x5EED);
+        let mut r = || rng.range(-2.0, 2.0);
+        for _ in 0..300 {
+            let tri: [V3; 3] = std::array::from_fn(|_| [r(), r(), r()]);
+            let p = [r() * 2.0, r() * 2.0, r() * 2.0];
+            let d = dist_to_triangle(p, tri);
+            let n = 60;
+            let mut best = f64::INFINITY;
+            for i in 0..=n {
+                for j in 0..=(n - i) {
+                    let (b1, b2) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+                    let q = v::add(
+                        v::madd(v::scale(tri[0], 1.0 - b1 - b2), tri[1], b1),
+                        v::scale(tri[2], b2),
+                    );
+                    best = best.min(v::len(v::sub(p, q)));
+                }
+            }
+            let edge = (0..3)
+                .map(|k| v::len(v::sub(tri[k], tri[(k + 1) % 3])))
+                .fold(0.0, f64::max);
+            assert!(d <= best + 1e-12, "{d} > sampled {best}");
+            assert!(
+                best - d <= edge / f64::from(n) + 1e-12,
+                "{d} vs sampled {best}"
+            );
+        }
+    }
 }
