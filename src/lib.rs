@@ -23,6 +23,8 @@
 //! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
+//! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
 //!
 //! ```
 //! use fixed::types::U32F32;
@@ -109,8 +111,10 @@ pub mod cache;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 pub mod filter;
+pub mod geomlod;
 pub mod lod;
 pub mod log2;
 pub mod mip;
 pub mod raystack;
+pub mod rng;
 pub mod table;
