@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use raymip_host::app::{cmd_compare, cmd_render, cmd_table1, parse_size};
+use raymip_host::instances::{self, GeomLodMode, View};
 use raymip_host::render::{Method, Options, Precision};
 use raymip_host::sample::{self, SampleArgs};
 
@@ -25,7 +26,7 @@ struct Cli {
 
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
-    /// `builtin:hall|mirrors|glass` or a path to an `.aff` file.
+    /// `builtin:hall|mirrors|glass|instances` or a path to an `.aff` file.
     #[arg(long)]
     scene: String,
     /// Image size WxH (default: 800x480 for built-in scenes, the camera's for AFF).
@@ -45,6 +46,30 @@ struct RenderArgs {
     out: PathBuf,
 }
 
+/// Options of `--scene builtin:instances` (stochastic geometric LOD).
+#[derive(clap::Args, Debug)]
+struct GeomArgs {
+    /// Geometric LOD (builtin:instances): none, discrete or stochastic.
+    #[arg(long, value_enum, default_value_t = GeomLodMode::Stochastic)]
+    geom_lod: GeomLodMode,
+    /// Transition interval t in [0, 1] of the stochastic mode.
+    #[arg(long, default_value_t = 0.5)]
+    transition: f64,
+    /// LOD bias in levels.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    lod_bias: f64,
+    /// Frames to accumulate (builtin:instances).
+    #[arg(long, default_value_t = 16)]
+    frames: u32,
+    /// Camera view of builtin:instances.
+    #[arg(long, value_enum, default_value_t = View::High)]
+    view: View,
+    /// Also render the exact blend (mean of the 8 single-bit ray masks) and
+    /// report the RMS of the accumulation against it.
+    #[arg(long)]
+    reference: bool,
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Read `u,v,lod,mode` lines from stdin and print filtered `r,g,b,a`
@@ -62,6 +87,25 @@ enum Command {
         /// Fixed point (firmware) or f64 reference.
         #[arg(long, value_enum, default_value_t = Precision::Fixed)]
         precision: Precision,
+        #[command(flatten)]
+        geom: GeomArgs,
+    },
+    /// Geometric-LOD benchmark of `builtin:instances`: every view with no
+    /// LOD, discrete and stochastic LOD (t = 0, 0.25, 0.5, 1); writes
+    /// bench.md and bench.json.
+    GeomlodBench {
+        /// Image size WxH.
+        #[arg(long, value_parser = parse_size, default_value = "400x240")]
+        size: (u32, u32),
+        /// Frames per configuration (the best time is kept).
+        #[arg(long, default_value_t = 3)]
+        repeats: u32,
+        /// Maximum reflection bounces.
+        #[arg(long, default_value_t = 2)]
+        bounces: u8,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
     },
     /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
     Compare {
@@ -120,10 +164,30 @@ fn main() -> ExitCode {
                 .map(|_| ())
                 .map_err(|e| e.to_string())
         }
+        Command::Render { args, geom, .. } if args.scene == "builtin:instances" => {
+            let cfg = instances::Config {
+                mode: geom.geom_lod,
+                transition: geom.transition,
+                bias: geom.lod_bias,
+                view: geom.view,
+                size: args.size.unwrap_or(instances::DEFAULT_SIZE),
+                frames: geom.frames.max(1),
+                bounces: args.bounces,
+                policy: instances::MaskPolicy::PerPath,
+            };
+            instances::cmd_render(&cfg, geom.reference, &args.out)
+        }
+        Command::GeomlodBench {
+            size,
+            repeats,
+            bounces,
+            out,
+        } => instances::cmd_bench(*size, *repeats, *bounces, out),
         Command::Render {
             args,
             method,
             precision,
+            ..
         } => cmd_render(
             &args.scene,
             args.time,
