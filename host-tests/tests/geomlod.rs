@@ -6,11 +6,12 @@
 use std::process::Command;
 use std::sync::OnceLock;
 
-use raymip_host::instances::{
-    Config, GeomLodMode, InstanceScene, MaskPolicy, Prepared, View, accumulate, blend,
-    lod_param_f64, mean,
-};
 use raymip_host::render::CameraFrame;
+use raymip_host::render::instances::{
+    Config, FrameStats, GeomLodMode, MaskPolicy, Prepared, accumulate, blend, lod_param_f64, mean,
+    rms,
+};
+use raymip_host::scene::instances::{InstanceScene, View};
 use raymip_host::scene::v;
 
 fn scene() -> &'static InstanceScene {
@@ -60,7 +61,7 @@ fn transition_zero_is_exactly_discrete() {
         );
         assert_eq!(fd.rgb, ft.rgb);
         assert_eq!(fd.lod, ft.lod);
-        let strip = |mut f: raymip_host::instances::FrameStats| {
+        let strip = |mut f: FrameStats| {
             f.render_s = 0.0;
             f
         };
@@ -147,8 +148,8 @@ fn accumulation_converges_to_the_blend() {
     );
     assert!(mse.sqrt() < 0.05, "rms {}", mse.sqrt());
     // And the error shrinks with the frame count.
-    let first = raymip_host::instances::rms(&acc.snapshots[0].1, &b.lod);
-    let last = raymip_host::instances::rms(&acc.snapshots.last().unwrap().1, &b.lod);
+    let first = rms(&acc.snapshots[0].1, &b.lod);
+    let last = rms(&acc.snapshots.last().unwrap().1, &b.lod);
     assert!(
         last < first / 4.0,
         "rms 1 frame {first}, {frames} frames {last}"

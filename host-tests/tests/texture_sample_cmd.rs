@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
 use raymip::filter::Address;
-use raymip_host::ppm::{RgbImage, write_ppm};
-use raymip_host::sample::{SampleError, build_pyramid, sample_lines};
+use raymip_host::cli::sample::{SampleError, build_pyramid, sample_lines};
+use raymip_host::scene::ppm::{RgbImage, write_ppm};
 
 /// 2×2 texture: red, green / blue, white. Level 1 (1×1) is the average
 /// (128, 128, 128) per channel: (255+0+0+255+2)>>2 = 128.

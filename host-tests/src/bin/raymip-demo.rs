@@ -11,7 +11,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use raymip_host::demo_data::{DATA_PATH, generate_data_rs};
+use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
 
 fn usage() -> ExitCode {
     eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE]");
@@ -69,7 +69,7 @@ fn main() -> ExitCode {
                 return ExitCode::FAILURE;
             };
             let mut h = raymip_demo_scene::Fnv1a::default();
-            let mut img = raymip_host::ppm::RgbImage {
+            let mut img = raymip_host::scene::ppm::RgbImage {
                 width: raymip_demo_scene::WIDTH,
                 height: raymip_demo_scene::HEIGHT,
                 pixels: Vec::new(),
@@ -78,10 +78,10 @@ fn main() -> ExitCode {
                 h.write(&rgb);
                 img.pixels.push(rgb);
             });
-            println!("{}", raymip_host::demo_data::checksum_line(h.finish()));
+            println!("{}", raymip_host::cli::demo_data::checksum_line(h.finish()));
             println!("counters: {}", r.counters);
             if let Some(p) = ppm
-                && let Err(e) = raymip_host::ppm::write_ppm(&p, &img)
+                && let Err(e) = raymip_host::scene::ppm::write_ppm(&p, &img)
             {
                 eprintln!("error: {}: {e}", p.display());
                 return ExitCode::FAILURE;
