@@ -7,6 +7,8 @@
 //! * `raymip-demo render [--ppm FILE]`: renders the demo tile with the same
 //!   fixed-point code the firmware runs and prints the checksum and counter
 //!   lines the QEMU demos print (`scripts/test-all` compares them).
+//! * `raymip-demo parity`: prints the GPU-style sampler's parity line (the
+//!   firmware `parity` binary prints the same on both targets).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -14,7 +16,7 @@ use std::process::ExitCode;
 use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
 
 fn usage() -> ExitCode {
-    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE]");
+    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity");
     ExitCode::from(2)
 }
 
@@ -88,6 +90,16 @@ fn main() -> ExitCode {
             }
             ExitCode::SUCCESS
         }
+        Some("parity") => match raymip_demo_scene::parity::checksum() {
+            Some(line) => {
+                println!("{line}");
+                ExitCode::SUCCESS
+            }
+            None => {
+                eprintln!("error: parity set-up failed");
+                ExitCode::FAILURE
+            }
+        },
         _ => usage(),
     }
 }

@@ -74,10 +74,11 @@ struct GeomArgs {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Read `u,v,lod,mode` lines from stdin and print filtered `r,g,b,a`
-    /// lines (firmware fixed-point path). Modes: 0 trilinear, 1 bilinear +
-    /// nearest level, 2 nearest texel + nearest level, 3 nearest texel +
-    /// linear between levels.
+    /// Read `u,v,lod,mode` (or anisotropic `u,v,mode,dudx,dvdx,dudy,dvdy`)
+    /// lines from stdin and print filtered `r,g,b,a` lines (firmware
+    /// fixed-point path; sampler state, formats, sRGB and anisotropy by
+    /// option). Modes: 0 trilinear, 1 bilinear + nearest level, 2 nearest
+    /// texel + nearest level, 3 nearest texel + linear between levels.
     Sample(SampleArgs),
     /// Render one image: image.png, levels.png (mip level per pixel), report.json/md.
     Render {
