@@ -99,7 +99,7 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
             let mut ctx = Ctx {
                 prep,
                 opts,
-                unit: Unit::new(&prep.textures, fixed, opts.record_blocks),
+                unit: Unit::new(&prep.textures, fixed, opts.record_blocks, opts.aniso),
                 counters: Counters {
                     depth_hist: vec![0; usize::from(opts.bounces) + 1],
                     ..Counters::default()
