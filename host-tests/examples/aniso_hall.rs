@@ -14,12 +14,9 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, write_png};
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::cli::output::{psnr, write_between_markers, write_png};
+use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
-
-const BEGIN: &str = "<!-- aniso-hall:begin -->";
-const END: &str = "<!-- aniso-hall:end -->";
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -40,15 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         progress: true,
         ..Options::default()
     };
-    let truth = render(
-        &prep,
-        &Options {
-            method: Method::Truth,
-            precision: Precision::Float,
-            ..base.clone()
-        },
-    )
-    .to_rgb8();
+    let truth = render_truth(&prep, &base).to_rgb8();
     let mut table = String::new();
     writeln!(
         table,
@@ -102,14 +91,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     print!("{table}");
     if let Some(path) = write {
-        let text = std::fs::read_to_string(path)?;
-        let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END)) else {
-            return Err(format!("{path}: markers {BEGIN} / {END} not found").into());
-        };
-        std::fs::write(
-            path,
-            format!("{}{BEGIN}\n{table}{}", &text[..b], &text[e..]),
-        )?;
+        write_between_markers(std::path::Path::new(path), "aniso-hall", &table)?;
         eprintln!("wrote {path}");
     }
     Ok(())

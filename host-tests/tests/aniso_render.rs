@@ -4,7 +4,7 @@
 //! fixed-point render must stay close to the f64 one.
 
 use raymip_host::cli::output::psnr;
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
 
 #[test]
@@ -17,15 +17,7 @@ fn aniso_beats_trilinear_on_the_hall() {
         spp: 32,
         ..Options::default()
     };
-    let truth = render(
-        &prep,
-        &Options {
-            method: Method::Truth,
-            precision: Precision::Float,
-            ..base.clone()
-        },
-    )
-    .to_rgb8();
+    let truth = render_truth(&prep, &base).to_rgb8();
     let img = |precision, aniso| {
         render(
             &prep,

@@ -63,6 +63,20 @@ impl Image {
     }
 }
 
+/// The ground truth: `base` rendered with [`Method::Truth`] in f64
+/// (jittered supersampling, `base.spp` samples per pixel).
+#[must_use]
+pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
+    render(
+        prep,
+        &Options {
+            method: Method::Truth,
+            precision: Precision::Float,
+            ..base.clone()
+        },
+    )
+}
+
 /// Renders an image.
 #[must_use]
 pub fn render(prep: &Prepared, opts: &Options) -> Image {

@@ -60,6 +60,28 @@ pub struct FetchLog {
     pub blocks: Option<Vec<u32>>,
 }
 
+impl FetchLog {
+    /// Adds a sampler's counters and moves the block addresses its
+    /// recorder logged.
+    fn take(&mut self, st: raymip::filter::FetchStats, source: &mut Recorder<'_>) {
+        self.fetched += st.fetched;
+        self.skipped += st.skipped;
+        if let (Some(all), Some(b)) = (self.blocks.as_mut(), source.blocks.as_mut()) {
+            all.append(b);
+        }
+    }
+}
+
+/// RGB of an RGBA8 texel in 0..1.
+fn texel_rgb(t: Texel) -> [f64; 3] {
+    let c = t.to_le_bytes();
+    [
+        f64::from(c[0]) / 255.0,
+        f64::from(c[1]) / 255.0,
+        f64::from(c[2]) / 255.0,
+    ]
+}
+
 /// A MIP pyramid in one buffer (level 0 first), built by the firmware's
 /// `mip::generate`.
 #[derive(Clone, Debug)]
@@ -183,14 +205,7 @@ impl<'a> Unit<'a> {
                     x: [a(axes[0][0]), a(axes[0][1])],
                     y: [a(axes[1][0]), a(axes[1][1])],
                 };
-                let c = unit
-                    .sample_aniso(tex, wrap_coord(u), wrap_coord(v), &fp, log)
-                    .to_le_bytes();
-                [
-                    f64::from(c[0]) / 255.0,
-                    f64::from(c[1]) / 255.0,
-                    f64::from(c[2]) / 255.0,
-                ]
+                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), &fp, log))
             }
             Self::Float(unit) => unit.sample_aniso(tex, u, v, axes, log),
         }
@@ -218,14 +233,7 @@ impl<'a> Unit<'a> {
                     Filter::Trilinear => Mode::Trilinear,
                     Filter::BilinearLevel0 => Mode::BilinearNearestLevel,
                 };
-                let c = unit
-                    .sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log)
-                    .to_le_bytes();
-                [
-                    f64::from(c[0]) / 255.0,
-                    f64::from(c[1]) / 255.0,
-                    f64::from(c[2]) / 255.0,
-                ]
+                texel_rgb(unit.sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log))
             }
             Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
         }
@@ -418,13 +426,8 @@ impl<'a> FirmwareUnit<'a> {
             return 0;
         };
         let t = sampler.sample_aniso(u, v, fp, Mode::Trilinear);
-        let st = sampler.stats();
+        log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
-        log.fetched += st.fetched;
-        log.skipped += st.skipped;
-        if let (Some(all), Some(b)) = (log.blocks.as_mut(), sampler.source_mut().blocks.as_mut()) {
-            all.append(b);
-        }
         t
     }
 
@@ -444,13 +447,8 @@ impl<'a> FirmwareUnit<'a> {
             return 0;
         };
         let t = sampler.sample(u, v, lod, mode);
-        let st = sampler.stats();
+        log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
-        log.fetched += st.fetched;
-        log.skipped += st.skipped;
-        if let (Some(all), Some(b)) = (log.blocks.as_mut(), sampler.source_mut().blocks.as_mut()) {
-            all.append(b);
-        }
         t
     }
 }
