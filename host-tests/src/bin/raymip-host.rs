@@ -26,6 +26,15 @@ struct Cli {
     command: Command,
 }
 
+/// Texture filter of `render`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FilterArg {
+    /// Trilinear at the LOD method's level of detail.
+    Trilinear,
+    /// Anisotropic (trilinear probes along the footprint's major axis).
+    Aniso,
+}
+
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
     /// `builtin:hall|mirrors|glass|instances` or a path to an `.aff` file.
@@ -90,6 +99,14 @@ enum Command {
         /// Fixed point (firmware) or f64 reference.
         #[arg(long, value_enum, default_value_t = Precision::Fixed)]
         precision: Precision,
+        /// Texture filter: trilinear at the method's lod, or anisotropic
+        /// over the pixel footprint from ray differentials (pbrt-style
+        /// axes; the method then only sets the level histogram).
+        #[arg(long, value_enum, default_value_t = FilterArg::Trilinear)]
+        filter: FilterArg,
+        /// Maximum anisotropy (probes) for `--filter aniso`, 1..=16.
+        #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u8).range(1..=16))]
+        max_aniso: u8,
         #[command(flatten)]
         geom: GeomArgs,
     },
@@ -155,6 +172,7 @@ fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
         spp: a.spp,
         record_blocks: false,
         progress: true,
+        aniso: None,
     }
 }
 
@@ -190,11 +208,16 @@ fn main() -> ExitCode {
             args,
             method,
             precision,
+            filter,
+            max_aniso,
             ..
         } => cmd_render(
             &args.scene,
             args.time,
-            &options(args, *method, *precision),
+            &Options {
+                aniso: (*filter == FilterArg::Aniso).then_some(*max_aniso),
+                ..options(args, *method, *precision)
+            },
             &args.out,
         ),
         Command::Compare { args, methods } => cmd_compare(
