@@ -42,7 +42,7 @@ pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(
     )?;
     let c = &img.counters;
     let report = json!({
-        "scene": spec, "time": time, "method": opts.method, "precision": opts.precision,
+        "scene": spec, "time": time, "method": opts.method, "precision": opts.precision, "max_aniso": opts.aniso,
         "width": img.width, "height": img.height, "bounces": opts.bounces,
         "spp": if opts.method == Method::Truth { opts.spp } else { 1 },
         "triangles": prep.scene.triangles.len(), "textured_triangles": prep.scene.textured_count(),
