@@ -88,6 +88,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         spp: 1,
         record_blocks: false,
         progress: false,
+        aniso: None,
     };
     let mut t = String::new();
     writeln!(

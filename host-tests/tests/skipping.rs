@@ -16,6 +16,7 @@ fn opts(method: Method, size: (u32, u32)) -> Options {
         spp: 2,
         record_blocks: false,
         progress: false,
+        aniso: None,
     }
 }
 

@@ -203,7 +203,10 @@ pub fn path_bounds(prep: &Prepared, bounces: u8) -> Vec<Option<PathBounds>> {
 #[must_use]
 pub fn plan(prep: &Prepared, opts: &Options) -> SkipPlan {
     let fixed = opts.precision == Precision::Fixed;
-    let applies = fixed && matches!(opts.method, Method::Table | Method::Mip0 | Method::Truth);
+    // Anisotropic probes choose their own lods: not bounded here.
+    let applies = fixed
+        && opts.aniso.is_none()
+        && matches!(opts.method, Method::Table | Method::Mip0 | Method::Truth);
     let texture_of: Vec<u16> = prep
         .scene
         .triangles
