@@ -638,6 +638,144 @@ mod tests {
         assert_eq!(st.len as usize, RM_RAY_STACK_CAPACITY - 1);
     }
 
+    /// Regression (issue 11, defect 1): a grazing hit (`|n·d| = 0`) through
+    /// C clamps like the Rust `cone_lod` (2⁻¹⁶, 16 levels coarser) instead
+    /// of dropping the normal term; `|n·d| = 1` is "no normal term".
+    #[test]
+    fn grazing_cone_lod_agrees_with_rust() {
+        let w = I32F32::ONE;
+        let grazing = cone_lod(w, I16F16::ZERO, Some(U1F31::ZERO));
+        assert_eq!(grazing, I8F8::from_num(16));
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 0), grazing.to_bits());
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 1), grazing.to_bits());
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 1 << 31), 0);
+        assert_eq!(
+            cone_lod(w, I16F16::ZERO, None),
+            cone_lod(w, I16F16::ZERO, Some(U1F31::from_bits(1 << 31)))
+        );
+    }
+
+    /// Regression (issue 11, defect 3): pushing an entry of the same stack
+    /// (`rm_ray_stack_push(&s, &s.entries[i])`) is a natural C idiom; the
+    /// state must be read before the stack is borrowed mutably (Miri reports
+    /// undefined behaviour otherwise).
+    #[test]
+    fn push_an_entry_of_the_same_stack() {
+        let mut st = RmRayStack {
+            entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+            len: 0,
+        };
+        let p: *mut RmRayStack = &mut st;
+        let first = RmPathState {
+            pl: 42,
+            depth: 3,
+            ..RmPathState::default()
+        };
+        // SAFETY: `p` points to a valid local stack; `entry` points into it
+        // (the aliasing under test).
+        unsafe {
+            assert_eq!(rm_ray_stack_push(p, &first), RmStatus::Ok);
+            let entry: *const RmPathState = core::ptr::addr_of!((*p).entries[0]);
+            assert_eq!(rm_ray_stack_push(p, entry), RmStatus::Ok);
+            assert_eq!((*p).len, 2);
+            assert_eq!((*p).entries[1], first);
+            // Pop into the slot being popped (out aliases the stack too).
+            let out: *mut RmPathState = core::ptr::addr_of_mut!((*p).entries[1]);
+            assert_eq!(rm_ray_stack_pop(p, out), RmStatus::Ok);
+            assert_eq!((*p).len, 1);
+            assert_eq!((*p).entries[1], first);
+        }
+    }
+
+    /// Regression (issue 11, defect 3): a misaligned caller pointer is an
+    /// error, never dereferenced (`from_raw_parts` and `*p` require
+    /// alignment; debug builds panic on it, release builds are UB).
+    #[test]
+    fn misaligned_pointers_are_rejected() {
+        let mut raw = [0u64; 64];
+        let base = raw.as_mut_ptr().cast::<u8>();
+        // SAFETY: offsets stay inside `raw`; the misaligned pointers are only
+        // handed to the entry points, which must not dereference them.
+        unsafe {
+            let mis = base.add(1);
+            assert_ne!(rm_table_lod(1 << 32, 0, mis.cast()), RmStatus::Ok);
+            assert_ne!(rm_ray_stack_init(base.add(4).cast()), RmStatus::Ok);
+            let good = RmPathState::default();
+            assert_ne!(rm_ray_stack_push(base.add(4).cast(), &good), RmStatus::Ok);
+            let mut st = RmRayStack {
+                entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+                len: 0,
+            };
+            assert_ne!(rm_ray_stack_push(&mut st, base.add(4).cast()), RmStatus::Ok);
+            assert_eq!(st.len, 0);
+            assert_ne!(rm_ray_stack_pop(&mut st, base.add(4).cast()), RmStatus::Ok);
+            assert_ne!(
+                rm_path_primary(1 << 20, 0, base.add(4).cast()),
+                RmStatus::Ok
+            );
+            assert_ne!(rm_path_advance(base.add(4).cast(), 1), RmStatus::Ok);
+            assert_ne!(rm_path_bounce(base.add(4).cast(), 1), RmStatus::Ok);
+            assert_ne!(
+                rm_mip_generate(base.add(2).cast(), 21, 4, 4, 3),
+                RmStatus::Ok
+            );
+            let tri = RmTriangle {
+                positions: [[0; 3]; 3],
+                uvs: [[0; 2]; 3],
+                tex_width: 1,
+                tex_height: 1,
+                textured: 0,
+            };
+            assert_ne!(
+                rm_table_build(mis.cast(), 1, &tri, 1, 1 << 20, core::ptr::null_mut()),
+                RmStatus::Ok
+            );
+            let mut e = [0i32; 1];
+            assert_ne!(
+                rm_table_build(
+                    e.as_mut_ptr(),
+                    1,
+                    base.add(4).cast(),
+                    1,
+                    1 << 20,
+                    core::ptr::null_mut()
+                ),
+                RmStatus::Ok
+            );
+            assert_ne!(
+                rm_table_build(e.as_mut_ptr(), 1, &tri, 1, 1 << 20, base.add(2).cast()),
+                RmStatus::Ok
+            );
+            let texels = [0u32; 1];
+            let tex = RmTexture {
+                texels: base.add(2).cast(),
+                len: 1,
+                width: 1,
+                height: 1,
+                levels: 1,
+            };
+            let mut out = 0u32;
+            assert_ne!(rm_sample(&tex, 0, 0, 0, 0, 0, &mut out), RmStatus::Ok);
+            let tex_ok = RmTexture {
+                texels: texels.as_ptr(),
+                ..tex
+            };
+            assert_ne!(
+                rm_sample(base.add(4).cast(), 0, 0, 0, 0, 0, &mut out),
+                RmStatus::Ok
+            );
+            assert_ne!(
+                rm_sample(&tex_ok, 0, 0, 0, 0, 0, base.add(2).cast()),
+                RmStatus::Ok
+            );
+            assert_eq!(rm_sample(&tex_ok, 0, 0, 0, 0, 0, &mut out), RmStatus::Ok);
+        }
+        assert!(
+            raw.iter().all(|&x| x == 0),
+            "a misaligned pointer was written through"
+        );
+    }
+
     proptest! {
         /// The C entry points agree with the Rust API for every input.
         #[test]
@@ -647,7 +785,7 @@ mod tests {
                 Some(l) => prop_assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
                 None => prop_assert_eq!((s, e), (RmStatus::Untextured, RM_UNTEXTURED)),
             }
-            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), (c != 0).then_some(U1F31::from_bits(c)));
+            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), Some(U1F31::from_bits(c)));
             prop_assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
             prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
         }

@@ -325,6 +325,61 @@ mod tests {
         assert_eq!(log2_bits_u128(0, 10), LOG2_ZERO);
     }
 
+    /// f64 reference of `log2_bits` for any `frac_bits`, saturated at the
+    /// bottom of I16F16 (the top, `64 − frac_bits < 64`, is never reached).
+    fn reference_saturated(bits: u64, frac: u32) -> f64 {
+        reference(bits.max(1), frac).max(I16F16::MIN.to_num::<f64>())
+    }
+
+    /// Regression (issue 11, defect 6): `frac_bits` above 64 is outside the
+    /// formats the crate uses but must still give `log2 x − frac_bits`,
+    /// saturated at `I16F16::MIN`, instead of wrapping (or, in debug,
+    /// panicking on the subtraction).
+    #[test]
+    fn frac_bits_beyond_64_saturate() {
+        assert_eq!(log2_bits(1 << 63, 100).to_num::<f64>(), -37.0);
+        assert_eq!(log2_bits(1, 32_768), I16F16::MIN);
+        assert_eq!(log2_bits(1, 40_000), I16F16::MIN);
+        assert_eq!(log2_bits(u64::MAX, u32::MAX), I16F16::MIN);
+        assert_eq!(log2_bits(0, 1 << 31), I16F16::MIN);
+        assert_eq!(log2_bits(1 << 20, (1 << 31) + 5), I16F16::MIN);
+        // Just above the bottom: still the true value.
+        assert_eq!(log2_bits(1 << 40, 32_768 + 40).to_num::<f64>(), -32_768.0);
+        let near = log2_bits(3 << 40, 32_768 + 40).to_num::<f64>();
+        assert!((near - reference(3 << 40, 32_768 + 40)).abs() <= LOG2_MAX_ERROR);
+    }
+
+    /// Neighbours `(x, x + 1)` at every place where the method changes
+    /// branch: each octave boundary and each table-segment boundary of every
+    /// octave (issue 11, defect 6: the old property drew far-apart pairs only).
+    #[test]
+    fn monotonic_at_every_octave_and_segment_boundary() {
+        for frac in [0, 16, 31, 32, 64] {
+            for n in 0..64u32 {
+                let base = 1u64 << n;
+                for i in 0..=64u64 {
+                    // Start of segment i of octave n (i = 64: the next octave).
+                    let b = base.saturating_add(((u128::from(base) * u128::from(i)) / 64) as u64);
+                    for x in [
+                        b.saturating_sub(2),
+                        b.saturating_sub(1),
+                        b,
+                        b.saturating_add(1),
+                    ] {
+                        if x == u64::MAX {
+                            continue;
+                        }
+                        assert!(
+                            log2_bits(x, frac) <= log2_bits(x + 1, frac),
+                            "log2({x:#x}) > log2({:#x}) with {frac} fractional bits",
+                            x + 1
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         #[test]
@@ -337,6 +392,25 @@ mod tests {
             let got = log2_bits_u128(bits, frac).to_num::<f64>();
             let want = (bits as f64).log2() - f64::from(frac);
             prop_assert!((got - want).abs() <= LOG2_MAX_ERROR, "{} vs {}", got, want);
+        }
+
+        /// Neighbours `(x, x + 1)` drawn uniformly over the octaves (a plain
+        /// `any::<u64>()` would put half the draws in the top octave), with
+        /// every format the crate uses.
+        #[test]
+        fn monotonic_neighbours_over_the_whole_range(n in 0u32..64, m in any::<u64>(), frac in 0u32..=64) {
+            let x = (1u64 << n) | (m & ((1u64 << n) - 1));
+            prop_assume!(x < u64::MAX);
+            prop_assert!(log2_bits(x, frac) <= log2_bits(x + 1, frac), "x = {:#x}", x);
+            prop_assert!(log2_bits(x - 1, frac) <= log2_bits(x, frac), "x = {:#x}", x);
+        }
+
+        /// Any `frac_bits`, saturated at the bottom, within the error bound.
+        #[test]
+        fn any_frac_bits_within_bound(bits in any::<u64>(), frac in any::<u32>()) {
+            let got = log2_bits(bits, frac).to_num::<f64>();
+            let want = reference_saturated(bits, frac);
+            prop_assert!((got - want).abs() <= LOG2_MAX_ERROR, "log2_bits({:#x}, {}) = {} vs {}", bits, frac, got, want);
         }
 
         #[test]

@@ -489,6 +489,32 @@ mod tests {
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
     }
 
+    /// Regression (issue 11, defect 2): sides near 2³² overflowed the
+    /// 64-bit sum (wrapped in release, panicked in debug) instead of
+    /// saturating as documented.
+    #[test]
+    fn pyramid_len_saturates_for_huge_sides() {
+        // Level 0 alone is (2³² − 1)² = 2⁶⁴ − 2³³ + 1 texels; level 1 adds ≈ 2⁶²:
+        // the exact total exceeds u64 (and usize).
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 32), usize::MAX);
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 2), usize::MAX);
+        // One level still fits u64 exactly (and saturates only on 32-bit targets).
+        let one = u64::from(u32::MAX) * u64::from(u32::MAX);
+        assert_eq!(
+            pyramid_len(u32::MAX, u32::MAX, 1),
+            usize::try_from(one).unwrap_or(usize::MAX)
+        );
+        // Monotonic in the level count over the whole u32 side range.
+        for side in [1u32 << 31, (1 << 31) + 1, u32::MAX - 1, u32::MAX] {
+            let mut last = 0;
+            for levels in 0..=33 {
+                let n = pyramid_len(side, side, levels);
+                assert!(n >= last, "{side}: {levels} levels {n} < {last}");
+                last = n;
+            }
+        }
+    }
+
     #[test]
     fn pot_box_and_one_wide() {
         let g = Geometry::new(2, 2, 2).unwrap();
