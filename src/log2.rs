@@ -127,13 +127,25 @@ fn mantissa_log2(m: u32) -> u32 {
 }
 
 /// log2 of an unsigned fixed-point number given as raw `bits` with
-/// `frac_bits` fractional bits (`0 ≤ frac_bits ≤ 64`), as I16F16.
+/// `frac_bits` fractional bits, as I16F16.
 ///
 /// Range: the result lies in `[−frac_bits, 64 − frac_bits)`; zero gives
-/// `−frac_bits` (see [Zero](self#zero)). Error ≤ [`LOG2_MAX_ERROR`].
+/// `−frac_bits` (see [Zero](self#zero)). Error ≤ [`LOG2_MAX_ERROR`]. The
+/// formats of this crate have `frac_bits ≤ 64`; any larger count is still
+/// `log2 x − frac_bits`, saturated at `I16F16::MIN` (a separate set-up
+/// path; a constant `frac_bits ≤ 64` compiles to the branch-free one).
 #[inline]
 #[must_use]
 pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
+    if frac_bits > 64 {
+        return log2_bits_wide(bits, frac_bits);
+    }
+    log2_bits_narrow(bits, frac_bits)
+}
+
+/// [`log2_bits`] for `frac_bits ≤ 64` (the result then fits I16F16).
+#[inline(always)]
+fn log2_bits_narrow(bits: u64, frac_bits: u32) -> I16F16 {
     // Zero is read as the smallest positive value (branch-free).
     let bits = if bits == 0 { 1 } else { bits };
     let lz = clz64(bits); // 0..=63
@@ -141,6 +153,14 @@ pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
     let m = ((bits << lz) >> 32) as u32;
     let int = 63 - lz as i32 - frac_bits as i32;
     I16F16::from_bits((int << 16) + mantissa_log2(m) as i32)
+}
+
+/// [`log2_bits`] for `frac_bits > 64`: `log2 x ∈ [0, 64)` minus
+/// `frac_bits` in 64-bit arithmetic (no overflow), saturated at `I16F16::MIN`.
+#[cold]
+fn log2_bits_wide(bits: u64, frac_bits: u32) -> I16F16 {
+    let l = i64::from(log2_bits_narrow(bits, 0).to_bits()) - (i64::from(frac_bits) << 16);
+    I16F16::from_bits(l.max(i64::from(i32::MIN)) as i32)
 }
 
 /// Count of leading zero bits of a 64-bit value (64 for zero): one

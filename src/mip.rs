@@ -64,7 +64,8 @@ pub const fn full_levels(width: u32, height: u32) -> u8 {
 
 /// Total texels of levels `0 .. levels` of a `width × height` texture
 /// (`levels` is limited to [`full_levels`]); 0 when a side is 0. Saturates
-/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]).
+/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]: for sides near 2³²
+/// the sum exceeds `u64`, so it saturates there too).
 #[must_use]
 pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let full = full_levels(width, height);
@@ -73,7 +74,8 @@ pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let mut k = 0;
     while k < n {
         let (w, h) = level_dims(width, height, k);
-        total += w as u64 * h as u64;
+        // One level is below 2⁶⁴; the sum of all of them need not be.
+        total = total.saturating_add(w as u64 * h as u64);
         k += 1;
     }
     if total > usize::MAX as u64 {
