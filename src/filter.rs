@@ -135,10 +135,10 @@ pub fn tex_coord_from_f64(x: f64) -> Result<TexCoord, FilterError> {
 /// [`TexelCache`](crate::cache::TexelCache)) with one addressing mode.
 #[derive(Debug)]
 pub struct Sampler<S: TexelSource> {
-    source: S,
-    geometry: Geometry,
-    address: Address,
-    stats: FetchStats,
+    pub(crate) source: S,
+    pub(crate) geometry: Geometry,
+    pub(crate) address: Address,
+    pub(crate) stats: FetchStats,
 }
 
 /// Rounding offset that turns the truncation to 12 fractional bits into
@@ -179,7 +179,7 @@ fn clamp_index(i: i32, size: u32) -> u32 {
 /// Nearest texel index `floor(u·size)`, addressed. For `Wrap` the index is
 /// already in `[0, size)`; the clamp is the `Clamp` mode (and a guard).
 #[inline(always)]
-fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
+pub(crate) fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
     clamp_index(int_part(scaled(coord, size, address)), size)
 }
 
@@ -190,7 +190,7 @@ fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
 /// `i₀ ∈ [−1, size − 1]` and `i₁ ∈ [0, size]`: one compare each wraps
 /// them. Indices stay below `size` in every case (sources clamp again).
 #[inline(always)]
-fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
+pub(crate) fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
     let x = scaled(coord, size, address) - (1 << 31) + ROUND_WEIGHT;
     let i = int_part(x);
     // Bits 20..32 of x: the fraction's top 12 bits (masking keeps the low
@@ -214,6 +214,30 @@ fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) 
     }
 }
 
+/// The levels a lod selects: `lower = floor(lod)`, blend weight
+/// `t = frac(lod)` (8 fractional bits, exact), `nearest = floor(lod + ½)`,
+/// after clamping lod to `[0, levels − 1]` (so `t = 0` at the top level).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LevelSplit {
+    pub(crate) lower: u8,
+    pub(crate) t: u32,
+    pub(crate) nearest: u8,
+}
+
+impl LevelSplit {
+    #[inline(always)]
+    pub(crate) fn new(lod: Lod, geometry: &Geometry) -> Self {
+        let lod = clamp_lod(lod, geometry.levels());
+        // lod ∈ [0, 15]: bits ∈ [0, 3840].
+        let bits = u16::try_from(lod.to_bits()).unwrap_or(0);
+        Self {
+            lower: (bits >> 8) as u8,
+            t: u32::from(bits & 0xFF),
+            nearest: (((bits + 0x80) >> 8) as u8).min(geometry.top_level()),
+        }
+    }
+}
+
 impl<S: TexelSource> Sampler<S> {
     /// A sampler over `source` with addressing `address`.
     pub fn new(source: S, address: Address) -> Self {
@@ -230,12 +254,11 @@ impl<S: TexelSource> Sampler<S> {
     /// `[0, levels − 1]`) with filter `mode`. Never panics.
     #[inline]
     pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
-        let lod = clamp_lod(lod, self.geometry.levels());
-        // lod ∈ [0, 15]: bits ∈ [0, 3840].
-        let bits = u16::try_from(lod.to_bits()).unwrap_or(0);
-        let lower = (bits >> 8) as u8;
-        let t = u32::from(bits & 0xFF);
-        let nearest_level = (((bits + 0x80) >> 8) as u8).min(self.geometry.top_level());
+        let LevelSplit {
+            lower,
+            t,
+            nearest: nearest_level,
+        } = LevelSplit::new(lod, &self.geometry);
         match mode {
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, lower);
@@ -294,7 +317,7 @@ impl<S: TexelSource> Sampler<S> {
 
     /// Bilinear value at `level` in 8.16 per channel.
     #[inline(always)]
-    fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
+    pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
@@ -305,7 +328,7 @@ impl<S: TexelSource> Sampler<S> {
 
     /// Nearest texel at `level`.
     #[inline(always)]
-    fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Texel {
+    pub(crate) fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Texel {
         let (w, h) = self.geometry.level_size(level);
         let x = nearest_index(u, w, self.address);
         let y = nearest_index(v, h, self.address);
