@@ -59,7 +59,12 @@ fn rm_triangle(u: &mut Unstructured) -> Result<RmTriangle> {
         tex_height: u.arbitrary()?,
         textured: u.arbitrary()?,
     };
-    for v in t.positions.iter_mut().flatten().chain(t.uvs.iter_mut().flatten()) {
+    for v in t
+        .positions
+        .iter_mut()
+        .flatten()
+        .chain(t.uvs.iter_mut().flatten())
+    {
         *v = if u.ratio(3, 4)? {
             i64::from(u.arbitrary::<i32>()?) << u.int_in_range(0..=24)?
         } else {
@@ -92,14 +97,24 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
             let start = u.int_in_range(0..=10usize)?;
             let count = u.int_in_range(0..=6usize)?;
             let spread = u.arbitrary::<i32>()?;
-            let tris = (0..count).map(|_| rm_triangle(u)).collect::<Result<Vec<_>>>()?;
+            let tris = (0..count)
+                .map(|_| rm_triangle(u))
+                .collect::<Result<Vec<_>>>()?;
             let mut entries = vec![0x5A5A_5A5Ai32; len];
             let mut stats = RmBuildStats::default();
             match u.int_in_range(0..=3u8)? {
                 0 if len > 0 => {
                     // SAFETY: misaligned pointer: must be refused unread.
                     let s = unsafe {
-                        rm_table_update(raw.misaligned(u)?, len, start, tris.as_ptr(), count, spread, &mut stats)
+                        rm_table_update(
+                            raw.misaligned(u)?,
+                            len,
+                            start,
+                            tris.as_ptr(),
+                            count,
+                            spread,
+                            &mut stats,
+                        )
                     };
                     assert_eq!(s, RmStatus::Misaligned);
                     assert!(raw.untouched());
@@ -108,7 +123,15 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                 1 if count > 0 => {
                     // SAFETY: null triangles with a count: must be refused.
                     let s = unsafe {
-                        rm_table_update(entries.as_mut_ptr(), len, start, core::ptr::null(), count, spread, &mut stats)
+                        rm_table_update(
+                            entries.as_mut_ptr(),
+                            len,
+                            start,
+                            core::ptr::null(),
+                            count,
+                            spread,
+                            &mut stats,
+                        )
                     };
                     assert_eq!(s, RmStatus::NullPointer);
                     return Ok(());
@@ -117,7 +140,15 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
             }
             // SAFETY: valid buffers of the stated lengths.
             let s = unsafe {
-                rm_table_update(entries.as_mut_ptr(), len, start, tris.as_ptr(), count, spread, &mut stats)
+                rm_table_update(
+                    entries.as_mut_ptr(),
+                    len,
+                    start,
+                    tris.as_ptr(),
+                    count,
+                    spread,
+                    &mut stats,
+                )
             };
             let Ok(sp) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
                 assert_eq!(s, RmStatus::BadAngle);
@@ -167,11 +198,21 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                 None => assert_eq!((s, out), (RmStatus::Untextured, 0x7777)),
             }
             // SAFETY: misaligned pointer: refused unwritten.
-            assert_eq!(unsafe { rm_table_lod(pl, e, raw.misaligned(u)?) }, RmStatus::Misaligned);
+            assert_eq!(
+                unsafe { rm_table_lod(pl, e, raw.misaligned(u)?) },
+                RmStatus::Misaligned
+            );
             assert!(raw.untouched());
-            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), Some(U1F31::from_bits(c)));
+            let want = cone_lod(
+                I32F32::from_bits(w),
+                I16F16::from_bits(d),
+                Some(U1F31::from_bits(c)),
+            );
             assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
-            assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
+            assert_eq!(
+                rm_clamp_lod(lod, levels),
+                clamp_lod(I8F8::from_bits(lod), levels).to_bits()
+            );
         }
         2 => {
             // Push: a fresh state, an entry of the same stack, null or misaligned.
@@ -194,7 +235,10 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                             assert_eq!(rm_path_advance(&mut st, t), RmStatus::Ok);
                             assert_eq!(rm_path_bounce(&mut st, b), RmStatus::Ok);
                         }
-                        assert_eq!(PathState::from(st), r.advance(U32F32::from_bits(t)).bounce(I2F30::from_bits(b)));
+                        assert_eq!(
+                            PathState::from(st),
+                            r.advance(U32F32::from_bits(t)).bounce(I2F30::from_bits(b))
+                        );
                     }
                     // SAFETY: valid locals.
                     (unsafe { rm_ray_stack_push(stack, &st) }, Some(st))
@@ -296,7 +340,9 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
         return Ok(());
     }
     let len = n.saturating_sub(u.int_in_range(0..=1usize)?);
-    let mut buf: Vec<u32> = (0..len).map(|i| (i as u32).wrapping_mul(0x9E37_79B9)).collect();
+    let mut buf: Vec<u32> = (0..len)
+        .map(|i| (i as u32).wrapping_mul(0x9E37_79B9))
+        .collect();
     for t in buf.iter_mut().take(32) {
         *t = u.arbitrary()?;
     }
@@ -311,17 +357,26 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
     };
     assert_eq!(s, RmStatus::Ok);
     // SAFETY: misaligned texels: refused unwritten.
-    assert_eq!(unsafe { rm_mip_generate(raw.misaligned(u)?, 4, 2, 2, 1) }, RmStatus::Misaligned);
+    assert_eq!(
+        unsafe { rm_mip_generate(raw.misaligned(u)?, 4, 2, 2, 1) },
+        RmStatus::Misaligned
+    );
     assert!(raw.untouched());
     let tex = RmTexture {
         texels: buf.as_ptr(),
-        len: u.int_in_range(0..=len)?.max(if u.ratio(7, 8)? { len } else { 0 }),
+        len: u
+            .int_in_range(0..=len)?
+            .max(if u.ratio(7, 8)? { len } else { 0 }),
         width: w,
         height: h,
         levels,
     };
     for _ in 0..u.int_in_range(1..=8)? {
-        let (uu, vv, lod) = (u.arbitrary::<i64>()?, u.arbitrary::<i64>()?, u.arbitrary::<i16>()?);
+        let (uu, vv, lod) = (
+            u.arbitrary::<i64>()?,
+            u.arbitrary::<i64>()?,
+            u.arbitrary::<i16>()?,
+        );
         let (mode, address) = (u.int_in_range(0..=4u8)?, u.int_in_range(0..=2u8)?);
         let mut out = 0xDEAD_BEEFu32;
         // SAFETY: valid texture and out.
@@ -334,7 +389,12 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
         };
         match (m, a, Pyramid::new(g, &buf[..tex.len])) {
             (Some(m), Some(a), Ok(p)) => {
-                let want = Sampler::new(p, a).sample(I32F32::from_bits(uu), I32F32::from_bits(vv), I8F8::from_bits(lod), m);
+                let want = Sampler::new(p, a).sample(
+                    I32F32::from_bits(uu),
+                    I32F32::from_bits(vv),
+                    I8F8::from_bits(lod),
+                    m,
+                );
                 assert_eq!((s, out), (RmStatus::Ok, want));
             }
             (_, _, Err(_)) if m.is_some() && a.is_some() => {

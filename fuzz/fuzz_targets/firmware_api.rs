@@ -8,15 +8,15 @@
 //! direct one, a short buffer left unwritten.
 #![no_main]
 
+use fixed::types::{I16F16, I32F32, U1F31};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
+use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
 use raymip::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Log2Pb, PbTable, PixelSpread, TableError, TexTriangle};
-use raymip::cache::TexelCache;
-use fixed::types::{I16F16, I32F32, U1F31};
 
 const TABLE: usize = 8;
 const STACK: usize = 4;
@@ -66,12 +66,16 @@ fn triangle(u: &mut Unstructured) -> Result<Option<core::result::Result<TexTrian
 }
 
 fn path_state(u: &mut Unstructured) -> Result<PathState> {
-    let spread = PixelSpread::from_angle(fixed::types::I2F30::from_bits(u.int_in_range(1..=i32::MAX)?))
-        .expect("positive angle");
+    let spread = PixelSpread::from_angle(fixed::types::I2F30::from_bits(
+        u.int_in_range(1..=i32::MAX)?,
+    ))
+    .expect("positive angle");
     let mut s = PathState::primary(&spread, u.arbitrary()?);
     for _ in 0..u.int_in_range(0..=12)? {
         let before = s;
-        s = s.advance(PathLength::from_bits(u.arbitrary()?)).bounce(Spread::from_bits(u.arbitrary()?));
+        s = s
+            .advance(PathLength::from_bits(u.arbitrary()?))
+            .bounce(Spread::from_bits(u.arbitrary()?));
         assert!(s.pl >= before.pl, "Pl never decreases");
         assert!(s.saturated >= before.saturated, "saturation is sticky");
         assert_eq!(s.depth, before.depth.saturating_add(1));
@@ -110,7 +114,8 @@ fn step(
             match r {
                 Ok(st) => {
                     assert!(fits);
-                    let total = st.textured + st.untextured + st.degenerate_geometry + st.degenerate_uv;
+                    let total =
+                        st.textured + st.untextured + st.degenerate_geometry + st.degenerate_uv;
                     assert_eq!(total as usize, tris.len());
                 }
                 Err(e) => assert!(e == TableError::TableFull && !fits, "{e:?}"),
@@ -121,14 +126,19 @@ fn step(
                 }
             }
             for (k, t) in tris.iter().enumerate() {
-                let Some(&e) = entries.get(start + k) else { break };
+                let Some(&e) = entries.get(start + k) else {
+                    break;
+                };
                 match t {
                     None => assert!(e.is_untextured()),
                     Some(t) => assert_eq!(e, Log2Pb::compute(t, &spread)),
                 }
                 if !e.is_untextured() {
                     let v = e.to_i16f16();
-                    assert!(v >= Log2Pb::DEGENERATE_GEOMETRY.to_i16f16() && v <= Log2Pb::DEGENERATE_UV.to_i16f16());
+                    assert!(
+                        v >= Log2Pb::DEGENERATE_GEOMETRY.to_i16f16()
+                            && v <= Log2Pb::DEGENERATE_UV.to_i16f16()
+                    );
                 }
             }
         }
@@ -159,7 +169,8 @@ fn step(
             match table_lod(pl, e) {
                 None => assert!(e.is_untextured()),
                 Some(l) => {
-                    let l2 = table_lod(PathLength::from_bits(pl.to_bits().saturating_add(1)), e).unwrap();
+                    let l2 = table_lod(PathLength::from_bits(pl.to_bits().saturating_add(1)), e)
+                        .unwrap();
                     assert!(l <= l2, "table lod monotonic in Pl");
                     check_clamped(l, levels);
                 }
@@ -207,7 +218,9 @@ fn pyramid(u: &mut Unstructured) -> Result<()> {
     // The buffer: the exact length, or one texel short (must be refused).
     let short = u.ratio(1, 8)?;
     let len = if short { want - 1 } else { want };
-    let mut buf: Vec<u32> = (0..len).map(|i| (i as u32).wrapping_mul(0x9E37_79B9)).collect();
+    let mut buf: Vec<u32> = (0..len)
+        .map(|i| (i as u32).wrapping_mul(0x9E37_79B9))
+        .collect();
     for t in buf.iter_mut().take(64) {
         *t = u.arbitrary()?;
     }
@@ -226,7 +239,11 @@ fn pyramid(u: &mut Unstructured) -> Result<()> {
     let mut direct = Sampler::new(pyr, Address::Wrap);
     let mut cached = Sampler::new(TexelCache::<_, 4, 2>::new(pyr), Address::Wrap);
     for _ in 0..u.int_in_range(1..=16)? {
-        let address = if u.arbitrary()? { Address::Wrap } else { Address::Clamp };
+        let address = if u.arbitrary()? {
+            Address::Wrap
+        } else {
+            Address::Clamp
+        };
         direct = Sampler::new(direct.into_source(), address);
         cached = Sampler::new(cached.into_source(), address);
         let uu = I32F32::from_bits(u.arbitrary()?);
@@ -237,7 +254,10 @@ fn pyramid(u: &mut Unstructured) -> Result<()> {
         };
         let a = direct.sample(uu, vv, lod, mode);
         let b = cached.sample(uu, vv, lod, mode);
-        assert_eq!(a, b, "cache changed a sample ({w}x{h}, {levels} levels, {mode:?})");
+        assert_eq!(
+            a, b,
+            "cache changed a sample ({w}x{h}, {levels} levels, {mode:?})"
+        );
         if mode == Mode::Nearest {
             assert!(buf.contains(&a), "a nearest sample is a stored texel");
         }
