@@ -241,6 +241,18 @@ mod tests {
         assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
     }
 
+    /// Like `mip::pyramid_len` (issue 11, defect 2): sides near 2³² must
+    /// saturate, not overflow the 64-bit byte count.
+    #[test]
+    fn image_len_saturates_for_huge_sides() {
+        for f in [TexelFormat::Rgba8, TexelFormat::L8, TexelFormat::Bc3] {
+            assert_eq!(image_len(u32::MAX, u32::MAX, 32, f), usize::MAX, "{f:?}");
+        }
+        assert_eq!(image_len(u32::MAX, u32::MAX, 1, TexelFormat::Rgba8), usize::MAX);
+        let one_row = usize::try_from(4 * u64::from(u32::MAX)).unwrap_or(usize::MAX);
+        assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
+    }
+
     /// Through the cache (block decode on fill) and directly (texel
     /// decode), every format reads the same texels.
     #[test]
