@@ -250,7 +250,10 @@ mod tests {
         for f in [TexelFormat::Rgba8, TexelFormat::L8, TexelFormat::Bc3] {
             assert_eq!(image_len(u32::MAX, u32::MAX, 32, f), usize::MAX, "{f:?}");
         }
-        assert_eq!(image_len(u32::MAX, u32::MAX, 1, TexelFormat::Rgba8), usize::MAX);
+        assert_eq!(
+            image_len(u32::MAX, u32::MAX, 1, TexelFormat::Rgba8),
+            usize::MAX
+        );
         let one_row = usize::try_from(4 * u64::from(u32::MAX)).unwrap_or(usize::MAX);
         assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
     }
