@@ -58,27 +58,33 @@ pub enum Address {
     Clamp,
 }
 
-/// Filter mode, numbered as in the `sample` command.
+/// Filter mode, numbered as in the `sample` command. The linear-level
+/// modes (0 and 3) need the `trilinear` feature.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
     /// Bilinear within a level, linear between levels.
+    #[cfg(feature = "trilinear")]
     Trilinear = 0,
     /// Bilinear within the nearest level `floor(lod + ½)`.
     BilinearNearestLevel = 1,
     /// Nearest texel of the nearest level.
     Nearest = 2,
     /// Nearest texel in each of two levels, linear between levels.
+    #[cfg(feature = "trilinear")]
     NearestTexelLinearLevel = 3,
 }
 
 impl Mode {
-    /// The mode numbered `n` (0..=3), `None` otherwise.
+    /// The mode numbered `n` (0..=3), `None` otherwise (and for 0 and 3
+    /// without the `trilinear` feature).
     #[must_use]
     pub const fn from_index(n: u8) -> Option<Self> {
         match n {
+            #[cfg(feature = "trilinear")]
             0 => Some(Self::Trilinear),
             1 => Some(Self::BilinearNearestLevel),
             2 => Some(Self::Nearest),
+            #[cfg(feature = "trilinear")]
             3 => Some(Self::NearestTexelLinearLevel),
             _ => None,
         }
@@ -259,7 +265,10 @@ impl<S: TexelSource> Sampler<S> {
             t,
             nearest: nearest_level,
         } = LevelSplit::new(lod, &self.geometry);
+        #[cfg(not(feature = "trilinear"))]
+        let _ = (lower, t);
         match mode {
+            #[cfg(feature = "trilinear")]
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, lower);
                 if t == 0 {
@@ -274,6 +283,7 @@ impl<S: TexelSource> Sampler<S> {
                 bilerp::round_wide_in_range(self.bilinear(u, v, nearest_level))
             }
             Mode::Nearest => self.nearest(u, v, nearest_level),
+            #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => {
                 let a = self.nearest(u, v, lower);
                 if t == 0 {
@@ -379,7 +389,7 @@ impl<S: TexelSource> Sampler<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;

@@ -21,12 +21,18 @@
 //! # Grazing angles
 //!
 //! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
-//! `[`[`MIN_COS`]` = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
+//! `[MIN_COS = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
 
-use fixed::types::{I8F8, I16F16, U1F31};
+use fixed::types::I8F8;
+#[cfg(feature = "cone")]
+use fixed::types::{I16F16, U1F31};
 
-use crate::log2::{log2_bits, log2_u32f32};
-use crate::raystack::{PathLength, Width};
+#[cfg(feature = "cone")]
+use crate::log2::log2_bits;
+use crate::log2::log2_u32f32;
+use crate::raystack::PathLength;
+#[cfg(feature = "cone")]
+use crate::raystack::Width;
 use crate::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
@@ -38,9 +44,12 @@ pub type Lod = I8F8;
 pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
 /// Smallest `|n·d|` used by the normal term: 2⁻¹⁶ (U1F31 raw `1 << 15`).
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
 /// Rounds an I16F16 level to [`Lod`] (nearest, ties up), saturating.
+#[cfg(feature = "cone")]
 #[inline(always)]
 fn to_lod(x: I16F16) -> Lod {
     let r = x.to_bits().saturating_add(0x80) >> 8;
@@ -65,8 +74,10 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
 /// (scene units), triangle constant `delta` (`Δ`, from
-/// [`Log2Pb::delta`]) and, optionally, `|n·d|` (clamped to
+/// `Log2Pb::delta`) and, optionally, `|n·d|` (clamped to
 /// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 #[inline]
 #[must_use]
 pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
@@ -104,6 +115,9 @@ mod tests {
     use crate::raystack::{PathState, Spread};
     use crate::table::{Coord, PixelSpread, TexTriangle};
     use fixed::types::I2F30;
+    use fixed::types::I16F16;
+    #[cfg(feature = "cone")]
+    use fixed::types::U1F31;
     use proptest::prelude::*;
 
     /// Independent f64 reference of log2 Pb (see module docs of `table`).
@@ -168,12 +182,16 @@ mod tests {
                     "side {s}, {w} texels, fov {fov_deg}, H {hgt}: lod at {mult}·d = {lod}, want {want}"
                 );
                 // The same through a primary ray cone.
+                #[cfg(feature = "cone")]
                 let st = PathState::primary(&spread, 0).advance(PathLength::from_num(d * mult));
-                let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-                assert!(
-                    (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
-                    "cone {c} want {want}"
-                );
+                #[cfg(feature = "cone")]
+                {
+                    let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                    assert!(
+                        (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
+                        "cone {c} want {want}"
+                    );
+                }
             }
         }
     }
@@ -193,6 +211,7 @@ mod tests {
             assert!(table_lod(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
             assert!(table_lod(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
         }
+        #[cfg(feature = "cone")]
         assert_eq!(
             cone_lod(Width::ZERO, I16F16::from_num(3), None),
             Lod::from_num(-29)
@@ -217,6 +236,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "cone")]
     fn normal_term_and_grazing_clamp() {
         let w = Width::from_num(1);
         let d = I16F16::ZERO;
@@ -289,10 +309,13 @@ mod tests {
             // Identity: cone with β = 0 and no normal term equals the table,
             // where the cone width is resolved (w ≥ 2^-20 scene units; its
             // step is 2^-32, see the module docs).
-            prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
-            let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-            prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
-                "cone {} vs table {}", cone, got);
+            #[cfg(feature = "cone")]
+            {
+                prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
+                let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
+                    "cone {} vs table {}", cone, got);
+            }
         }
 
         #[test]
@@ -308,6 +331,7 @@ mod tests {
         }
 
         #[test]
+        #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
             // f64 reference over the whole input range (issue 11, defect 6:
