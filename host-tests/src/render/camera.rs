@@ -1,7 +1,7 @@
 //! The camera of a render at one image size: the frame of the primary rays
 //! and the pixel spread angle `γ`, computed once (f64 for the float paths,
 //! the firmware's [`PixelSpread`] from the same field of view for the fixed
-//! path).
+//! path, [`CameraFrame::pixel_spread`]).
 
 use raymip::camera::PixelSpread;
 
@@ -22,21 +22,17 @@ pub struct CameraFrame {
     pub px: f64,
     /// f64 pixel spread angle `γ = atan(px)` (radians).
     pub gamma: f64,
-    /// The firmware's pixel spread (`PixelSpread::from_fov_y`).
-    pub spread: PixelSpread,
-    width: u32,
-    height: u32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
 }
 
 impl CameraFrame {
     /// The frame of `camera` for a `width × height` image (both ≥ 1).
-    ///
-    /// # Errors
-    /// When the firmware rejects the field of view.
-    pub fn new(camera: &Camera, width: u32, height: u32) -> Result<Self, String> {
+    #[must_use]
+    pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
         let fov = camera.fov_y_deg.to_radians();
-        let spread = PixelSpread::from_fov_y(fov, height)
-            .map_err(|e| format!("camera: {e} (fov_y {} deg)", camera.fov_y_deg))?;
         let px = 2.0 * (fov / 2.0).tan() / f64::from(height);
         let fwd = v::norm(v::sub(camera.at, camera.from));
         let mut right = v::norm(v::cross(fwd, camera.up));
@@ -46,17 +42,32 @@ impl CameraFrame {
                 right = v::norm(v::cross(fwd, [1.0, 0.0, 0.0]));
             }
         }
-        Ok(Self {
+        Self {
             eye: camera.from,
             fwd,
             right,
             up: v::cross(right, fwd),
             px,
             gamma: px.atan(),
-            spread,
             width,
             height,
-        })
+        }
+    }
+
+    /// The firmware's pixel spread for this camera (`PixelSpread::from_fov_y`).
+    ///
+    /// # Errors
+    /// When the firmware rejects the field of view.
+    pub fn pixel_spread(camera: &Camera, height: u32) -> Result<PixelSpread, String> {
+        PixelSpread::from_fov_y(camera.fov_y_deg.to_radians(), height)
+            .map_err(|e| format!("camera: {e} (fov_y {} deg)", camera.fov_y_deg))
+    }
+
+    /// Unnormalised direction through film point `(fx, fy)` (pixels from
+    /// the top-left corner; `x + 0.5` is a pixel centre).
+    #[must_use]
+    pub fn dir(&self, fx: f64, fy: f64) -> V3 {
+        self.primary_dir(fx, fy).0
     }
 
     /// Unnormalized primary direction through film point `(fx, fy)` (pixels,

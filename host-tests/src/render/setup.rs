@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use raymip::camera::PixelSpread;
 use raymip::table::{Log2Pb, PbTable, TexTriangle};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -45,8 +46,10 @@ pub struct Prepared {
     pub scale: f64,
     /// Set-up timings.
     pub times: SetupTimes,
-    /// Camera frame and pixel spread.
+    /// Camera frame (f64).
     pub cam: CameraFrame,
+    /// The firmware's pixel spread of the camera.
+    pub spread: PixelSpread,
 }
 
 impl Prepared {
@@ -61,7 +64,8 @@ impl Prepared {
         if width == 0 || height == 0 {
             return Err("image size must be at least 1x1".into());
         }
-        let cam = CameraFrame::new(&scene.camera, width, height)?;
+        let spread = CameraFrame::pixel_spread(&scene.camera, height)?;
+        let cam = CameraFrame::new(&scene.camera, width, height);
         check_references(&scene)?;
         let t0 = Instant::now();
         let bvh = Bvh::build(scene.triangles.iter().map(|t| t.p).collect());
@@ -75,7 +79,7 @@ impl Prepared {
         assign_block_bases(&mut textures);
         let pyramids_s = t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
-        let (pb_fixed, pb_float) = pb_tables(&scene, &cam)?;
+        let (pb_fixed, pb_float) = pb_tables(&scene, &cam, &spread)?;
         let table_s = t0.elapsed().as_secs_f64();
         let scale = scene_scale(&scene);
         Ok(Self {
@@ -93,7 +97,16 @@ impl Prepared {
                 table_s,
             },
             cam,
+            spread,
         })
+    }
+}
+
+impl Prepared {
+    /// Ray offset along the normal at continuation rays (scene units:
+    /// 10⁻⁷ of the scene diagonal).
+    pub(crate) fn eps(&self) -> f64 {
+        1e-7 * self.scale
     }
 }
 
@@ -117,7 +130,11 @@ fn check_references(scene: &Scene) -> Result<(), String> {
 
 /// The firmware Pb table (built by `PbTable::build` from the triangles in
 /// f32, as a controller receives them) and the f64 one (NaN = untextured).
-fn pb_tables(scene: &Scene, cam: &CameraFrame) -> Result<(Vec<Log2Pb>, Vec<f64>), String> {
+fn pb_tables(
+    scene: &Scene,
+    cam: &CameraFrame,
+    spread: &PixelSpread,
+) -> Result<(Vec<Log2Pb>, Vec<f64>), String> {
     let mut tex_tris = Vec::with_capacity(scene.triangles.len());
     let mut pb_float = Vec::with_capacity(scene.triangles.len());
     for (i, t) in scene.triangles.iter().enumerate() {
@@ -145,7 +162,7 @@ fn pb_tables(scene: &Scene, cam: &CameraFrame) -> Result<(Vec<Log2Pb>, Vec<f64>)
     }
     let mut pb_fixed = vec![Log2Pb::UNTEXTURED; scene.triangles.len()];
     PbTable::new(&mut pb_fixed)
-        .build(tex_tris, &cam.spread)
+        .build(tex_tris, spread)
         .map_err(|e| format!("Pb table: {e}"))?;
     Ok((pb_fixed, pb_float))
 }

@@ -18,7 +18,8 @@ use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, table_lod_clamped};
 use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
-use raymip::table::{Log2Pb, PbTable, PixelSpread};
+use raymip::camera::PixelSpread;
+use raymip::table::{Log2Pb, PbTable};
 
 #[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;
