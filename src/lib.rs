@@ -109,6 +109,8 @@ pub mod cache;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 pub mod filter;
+#[cfg(feature = "f32")]
+pub mod float;
 pub mod lod;
 pub mod log2;
 pub mod mip;

@@ -1,5 +1,7 @@
 //! Support code of the bare-metal demo binaries: stack painting (the
-//! worst-case stack measurement of the demos and budgets).
+//! worst-case stack measurement of the demos and budgets) and the
+//! pseudo-random inputs of the budget calls ([`inputs`], one home for every
+//! counter that times them: QEMU traces, `minstret`, a soft core's `rdcycle`).
 //!
 //! This crate denies `unsafe_code`; the [`stack`] module is the one
 //! exception (it reads the stack pointer and writes/reads memory below it).
@@ -66,5 +68,73 @@ pub mod stack {
             p += 4;
         }
         0
+    }
+}
+
+/// The inputs of the budget calls (`src/bin/budget.rs`): a deterministic
+/// xorshift generator and one draw per call kind, so every measurement of
+/// the same calls (QEMU instruction traces, `minstret`, cycle counters on
+/// a soft core) sees the same 64 inputs in the same order.
+pub mod inputs {
+    use fixed::types::{I16F16, U1F31};
+    use raymip::filter::TexCoord;
+    use raymip::lod::Lod;
+    use raymip::raystack::{PathLength, Width};
+    use raymip::table::Log2Pb;
+
+    /// Calls per measured function (and hits per batch).
+    pub const N: usize = 64;
+
+    /// Seed of the generator for the whole budget run.
+    pub const SEED: u32 = 0x2545_F491;
+
+    /// Deterministic xorshift32 generator.
+    #[derive(Clone, Debug)]
+    pub struct Rng(pub u32);
+
+    impl Rng {
+        /// The next 32 pseudo-random bits.
+        #[allow(clippy::should_implement_trait)]
+        pub fn next(&mut self) -> u32 {
+            let mut x = self.0;
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            self.0 = x;
+            x
+        }
+    }
+
+    /// Table lod: `Pl` over 2⁻¹⁶ .. 2¹⁶ scene units, `log2 Pb` over [−16, 16).
+    pub fn table_lod(r: &mut Rng) -> (PathLength, Log2Pb) {
+        let shift = 16 + r.next() % 32;
+        let pl = PathLength::from_bits((u64::from(r.next()) << (shift - 16)) | 1);
+        let pb = Log2Pb::from_log2(I16F16::from_bits((r.next() as i32) >> 11));
+        (pl, pb)
+    }
+
+    /// Cone lod: width up to 2⁸ scene units, Δ over [−64, 64), `|n·d|` ≥ 2⁻¹¹.
+    pub fn cone_lod(r: &mut Rng) -> (Width, I16F16, Option<U1F31>) {
+        let w = Width::from_bits(i64::from(r.next()) << (r.next() % 24));
+        let d = I16F16::from_bits((r.next() as i32) >> 10);
+        let c = Some(U1F31::from_bits(r.next() | (1 << 20)));
+        (w, d, c)
+    }
+
+    /// Bilinear sample: `u, v ∈ [0, 1)`, lod over [0, 5).
+    pub fn bilinear(r: &mut Rng) -> (TexCoord, TexCoord, Lod) {
+        let u = TexCoord::from_bits(i64::from(r.next()));
+        let v = TexCoord::from_bits(i64::from(r.next()));
+        let lod = Lod::from_bits((r.next() % (5 << 8)) as i16);
+        (u, v, lod)
+    }
+
+    /// Trilinear sample: as [`bilinear`], the lod's fraction never 0 (both
+    /// levels are filtered).
+    pub fn trilinear(r: &mut Rng) -> (TexCoord, TexCoord, Lod) {
+        let u = TexCoord::from_bits(i64::from(r.next()));
+        let v = TexCoord::from_bits(i64::from(r.next()));
+        let lod = Lod::from_bits((r.next() % (5 << 8)) as i16 | 1);
+        (u, v, lod)
     }
 }

@@ -23,7 +23,9 @@ use raymip::ffi::{
     rm_ray_stack_pop, rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
+use raymip::lod::{
+    Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
+};
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
@@ -170,6 +172,26 @@ fn main() -> ! {
         for &m in &modes {
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
+        }
+        // batch entry points (slices of opaque length)
+        let hits = bb([(pl, pb); 4]);
+        let mut lods = [None; 3];
+        bb(table_lod_batch(bb(&hits[..bb(4)]), bb(&mut lods[..bb(3)])));
+        let cones = bb([(
+            Width::from_bits(77),
+            fixed::types::I16F16::from_bits(5),
+            Some(fixed::types::U1F31::from_bits(3)),
+        ); 4]);
+        let mut cone_out = [Lod::ZERO; 4];
+        bb(cone_lod_batch(
+            bb(&cones[..bb(2)]),
+            bb(&mut cone_out[..bb(4)]),
+        ));
+        let samples = bb([(u, v, lod); 4]);
+        let mut texels = [0; 4];
+        for &m in &modes {
+            bb(direct.sample_batch(bb(&samples[..bb(4)]), bb(m), bb(&mut texels[..bb(3)])));
+            bb(cached.sample_batch(bb(&samples[..bb(3)]), bb(m), bb(&mut texels[..bb(4)])));
         }
         bb(cached.source_mut().texel(bb(2), bb(5), bb(6)));
         bb(tags.access(bb(1234)));
