@@ -135,10 +135,10 @@ pub fn tex_coord_from_f64(x: f64) -> Result<TexCoord, FilterError> {
 /// [`TexelCache`](crate::cache::TexelCache)) with one addressing mode.
 #[derive(Debug)]
 pub struct Sampler<S: TexelSource> {
-    source: S,
-    geometry: Geometry,
-    address: Address,
-    stats: FetchStats,
+    pub(crate) source: S,
+    pub(crate) geometry: Geometry,
+    pub(crate) address: Address,
+    pub(crate) stats: FetchStats,
     /// `clamp_lod(Lod::MAX, levels)` in I8F8 bits: the top stored level.
     top_lod: i16,
     /// Per-level addressing when every level side is a power of two and
@@ -244,7 +244,7 @@ fn clamp_index(i: i32, size: u32) -> u32 {
 /// Nearest texel index `floor(u·size)`, addressed. For `Wrap` the index is
 /// already in `[0, size)`; the clamp is the `Clamp` mode (and a guard).
 #[inline(always)]
-fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
+pub(crate) fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
     clamp_index(int_part(scaled(coord, size, address)), size)
 }
 
@@ -255,7 +255,7 @@ fn nearest_index(coord: TexCoord, size: u32, address: Address) -> u32 {
 /// `i₀ ∈ [−1, size − 1]` and `i₁ ∈ [0, size]`: one compare each wraps
 /// them. Indices stay below `size` in every case (sources clamp again).
 #[inline(always)]
-fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
+pub(crate) fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) {
     let x = scaled(coord, size, address) - (1 << 31) + ROUND_WEIGHT;
     let i = int_part(x);
     // Bits 20..32 of x: the fraction's top 12 bits (masking keeps the low
@@ -279,6 +279,30 @@ fn linear_taps(coord: TexCoord, size: u32, address: Address) -> (u32, u32, u32) 
     }
 }
 
+/// The levels a lod selects: `lower = floor(lod)`, blend weight
+/// `t = frac(lod)` (8 fractional bits, exact), `nearest = floor(lod + ½)`,
+/// after clamping lod to `[0, levels − 1]` (so `t = 0` at the top level).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LevelSplit {
+    pub(crate) lower: u8,
+    pub(crate) t: u32,
+    pub(crate) nearest: u8,
+}
+
+impl LevelSplit {
+    #[inline(always)]
+    pub(crate) fn new(lod: Lod, geometry: &Geometry) -> Self {
+        let lod = clamp_lod(lod, geometry.levels());
+        // lod ∈ [0, 15]: bits ∈ [0, 3840].
+        let bits = u16::try_from(lod.to_bits()).unwrap_or(0);
+        Self {
+            lower: (bits >> 8) as u8,
+            t: u32::from(bits & 0xFF),
+            nearest: (((bits + 0x80) >> 8) as u8).min(geometry.top_level()),
+        }
+    }
+}
+
 impl<S: TexelSource> Sampler<S> {
     /// A sampler over `source` with addressing `address`.
     pub fn new(source: S, address: Address) -> Self {
@@ -299,17 +323,18 @@ impl<S: TexelSource> Sampler<S> {
 
     /// Filtered texel at `(u, v)` and level of detail `lod` (clamped to
     /// `[0, levels − 1]`) with filter `mode`. Never panics. Dispatches to
-    /// [`trilinear`](Self::trilinear), [`bilinear`](Self::bilinear),
-    /// [`nearest`](Self::nearest) and
-    /// [`nearest_linear_level`](Self::nearest_linear_level) (always inlined,
+    /// [`sample_trilinear`](Self::sample_trilinear),
+    /// [`sample_bilinear`](Self::sample_bilinear),
+    /// [`sample_nearest`](Self::sample_nearest) and
+    /// [`sample_nearest_linear_level`](Self::sample_nearest_linear_level) (always inlined,
     /// so a constant `mode` costs no dispatch).
     #[inline(always)]
     pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
         match mode {
-            Mode::Trilinear => self.trilinear(u, v, lod),
-            Mode::BilinearNearestLevel => self.bilinear(u, v, lod),
-            Mode::Nearest => self.nearest(u, v, lod),
-            Mode::NearestTexelLinearLevel => self.nearest_linear_level(u, v, lod),
+            Mode::Trilinear => self.sample_trilinear(u, v, lod),
+            Mode::BilinearNearestLevel => self.sample_bilinear(u, v, lod),
+            Mode::Nearest => self.sample_nearest(u, v, lod),
+            Mode::NearestTexelLinearLevel => self.sample_nearest_linear_level(u, v, lod),
         }
     }
 
@@ -333,7 +358,7 @@ impl<S: TexelSource> Sampler<S> {
     /// `floor(lod) + 1`, blended by `frac(lod)` (one level when the
     /// fraction is 0).
     #[inline]
-    pub fn trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
         let lower = (bits >> 8) as u8;
         let t = u32::from(bits & 0xFF);
@@ -351,7 +376,7 @@ impl<S: TexelSource> Sampler<S> {
 
     /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
     #[inline]
-    pub fn bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let level = Self::nearest_level(self.lod_bits(lod));
         self.stats.fetched += 4;
         let (t, fx, fy) = self.footprint(u, v, level);
@@ -360,24 +385,24 @@ impl<S: TexelSource> Sampler<S> {
 
     /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
     #[inline]
-    pub fn nearest(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    pub fn sample_nearest(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let level = Self::nearest_level(self.lod_bits(lod));
-        self.nearest_texel(u, v, level)
+        self.nearest(u, v, level)
     }
 
     /// [`Mode::NearestTexelLinearLevel`]: nearest texel in levels
     /// `floor(lod)` and `floor(lod) + 1`, blended by `frac(lod)`.
     #[inline]
-    pub fn nearest_linear_level(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    pub fn sample_nearest_linear_level(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
         let lower = (bits >> 8) as u8;
         let t = u32::from(bits & 0xFF);
-        let a = self.nearest_texel(u, v, lower);
+        let a = self.nearest(u, v, lower);
         if t == 0 {
             self.stats.skipped += 1;
             a
         } else {
-            let b = self.nearest_texel(u, v, lower + 1);
+            let b = self.nearest(u, v, lower + 1);
             bilerp::blend_texels(a, b, t)
         }
     }
@@ -402,10 +427,10 @@ impl<S: TexelSource> Sampler<S> {
             };
         }
         match mode {
-            Mode::Trilinear => each!(trilinear),
-            Mode::BilinearNearestLevel => each!(bilinear),
-            Mode::Nearest => each!(nearest),
-            Mode::NearestTexelLinearLevel => each!(nearest_linear_level),
+            Mode::Trilinear => each!(sample_trilinear),
+            Mode::BilinearNearestLevel => each!(sample_bilinear),
+            Mode::Nearest => each!(sample_nearest),
+            Mode::NearestTexelLinearLevel => each!(sample_nearest_linear_level),
         }
         n
     }
@@ -468,16 +493,24 @@ impl<S: TexelSource> Sampler<S> {
         (self.source.footprint(level, [x0, x1], [y0, y1]), fx, fy)
     }
 
-    /// Bilinear value at `level` in 8.16 per channel.
+    /// Bilinear value at `level` in 8.16 per channel, not counted in the
+    /// fetch statistics (the caller counts).
     #[inline(always)]
     fn bilinear_wide(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
         let (t, fx, fy) = self.footprint(u, v, level);
         bilerp::bilerp_in_range(t, fx, fy)
     }
 
+    /// Bilinear value at `level` in 8.16 per channel (4 texels counted).
+    #[inline(always)]
+    pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
+        self.stats.fetched += 4;
+        self.bilinear_wide(u, v, level)
+    }
+
     /// Nearest texel at `level`.
     #[inline(always)]
-    fn nearest_texel(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Texel {
+    pub(crate) fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Texel {
         let (w, h) = self.geometry.level_size(level);
         let x = nearest_index(u, w, self.address);
         let y = nearest_index(v, h, self.address);

@@ -22,7 +22,21 @@
 //! | MIP pyramid in caller memory (set-up) | [`mip`] | level offset + texel index |
 //! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
+//! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//!
+//! GPU-sampler parity (D3D11 / Vulkan sampler objects), one concept each:
+//!
+//! | concept | module | per sample |
+//! |---|---|---|
+//! | address modes (wrap, mirror, clamp, mirror-once, border) | [`address`] | index mapping per tap |
+//! | sampler state (addressing, border, lod bias/clamp, anisotropy) | [`sampler_state`] | saturating add + clamps |
+//! | texel formats (RGBA8, 565, 5551, 4444, LA8, L8, A8; BC) | [`format`] | bit replication |
+//! | sRGB decode/encode, linear-space pyramids | [`srgb`] | table read / 8-step search |
+//! | BC1–BC4 block decoding (the cache's fill path) | [`bc`] | per block fill |
+//! | textures in any format in caller memory | [`image`] | level offset + decode |
+//! | anisotropic footprint → probes | [`aniso`] | two log2, ≤ 16 probes |
+//! | the sampler over all of them | [`texture_sampler`] | 16-bit linear filtering |
 //!
 //! ```
 //! use fixed::types::U32F32;
@@ -104,6 +118,9 @@
     rustdoc::broken_intra_doc_links
 )]
 
+pub mod address;
+pub mod aniso;
+pub mod bc;
 pub mod bilerp;
 pub mod cache;
 #[cfg(feature = "ffi")]
@@ -111,8 +128,14 @@ pub mod ffi;
 pub mod filter;
 #[cfg(feature = "f32")]
 pub mod float;
+pub mod format;
+pub mod image;
 pub mod lod;
 pub mod log2;
 pub mod mip;
 pub mod raystack;
+pub mod sampler_state;
+pub mod srgb;
+pub mod stochastic;
 pub mod table;
+pub mod texture_sampler;

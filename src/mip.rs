@@ -296,6 +296,34 @@ fn axis_taps(src: u32, i: u32) -> Taps {
 /// [`MipError::BufferTooShort`] when `buf` is shorter than
 /// [`Geometry::len`] (nothing is written).
 pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
+    generate_mapped(
+        geometry,
+        buf,
+        |t| [0, 1, 2, 3].map(|c| (t >> (8 * c)) & 0xFF),
+        |sum, den| {
+            // Round half up: floor(S/D + ½) = floor((2S + D) / 2D); D ≥ 1.
+            let mut out = 0u32;
+            for (c, s) in sum.iter().enumerate() {
+                let v = (2 * s + den).checked_div(2 * den).unwrap_or(0);
+                out |= (v.min(255) as u32) << (8 * c);
+            }
+            out
+        },
+    )
+}
+
+/// [`generate`] with the channel mapping as parameters: each source texel
+/// is read as four channel values by `decode` (each `< 2³²`), the box
+/// filter sums `weight · value` per channel (integer weights), and
+/// `encode(sums, den)` turns the sums and the common denominator `den ≥ 1`
+/// into the output texel. [`generate`] uses the 8-bit channels as they
+/// are; sRGB pyramids (`crate::srgb`) filter in linear space.
+pub(crate) fn generate_mapped(
+    geometry: &Geometry,
+    buf: &mut [Texel],
+    decode: impl Fn(Texel) -> [u32; 4],
+    encode: impl Fn([u64; 4], u64) -> Texel,
+) -> Result<(), MipError> {
     let needed = geometry.len();
     if buf.len() < needed {
         return Err(MipError::BufferTooShort {
@@ -330,18 +358,12 @@ pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> 
                         .unwrap_or(&[]);
                     for (&t, &wx) in taps.iter().zip(tx.weights.iter().take(tx.count)) {
                         let w = wx * wy;
-                        for (c, s) in sum.iter_mut().enumerate() {
-                            *s += w * u64::from((t >> (8 * c)) & 0xFF);
+                        for (s, v) in sum.iter_mut().zip(decode(t)) {
+                            *s = s.saturating_add(w * u64::from(v));
                         }
                     }
                 }
-                // Round half up: floor(S/D + ½) = floor((2S + D) / 2D); D ≥ 1.
-                let mut out = 0u32;
-                for (c, s) in sum.iter().enumerate() {
-                    let v = (2 * s + den).checked_div(2 * den).unwrap_or(0);
-                    out |= (v.min(255) as u32) << (8 * c);
-                }
-                *d = out;
+                *d = encode(sum, den);
             }
         }
     }

@@ -16,6 +16,9 @@ use core::hint::black_box as bb;
 
 use cortex_m_rt::entry;
 use panic_never as _;
+use raymip::address::AddressMode;
+use raymip::aniso::{Footprint, probes};
+use raymip::bc;
 use raymip::cache::{BlockCache, TexelCache, block_index};
 use raymip::ffi::{
     RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
@@ -23,15 +26,22 @@ use raymip::ffi::{
     rm_ray_stack_pop, rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::image::Image;
 use raymip::lod::{
     Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
 };
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::srgb;
+use raymip::stochastic::StochasticMode;
 use raymip::table::{Log2Pb, PbTable, PixelSpread};
+use raymip::texture_sampler::TextureSampler;
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
+static BYTES: [u8; 4096] = [0x5A; 4096];
 
 /// Every function of the C ABI with opaque arguments.
 #[allow(unsafe_code)]
@@ -130,6 +140,28 @@ fn main() -> ! {
     let mut direct = Sampler::new(pyramid, Address::Wrap);
     let mut cached = Sampler::new(TexelCache::<_, 16, 2>::new(pyramid), Address::Clamp);
     let mut tags: BlockCache<32, 4> = BlockCache::new();
+    // The GPU-style sampler: state, every format (through the cache: BC
+    // decode on fill), sRGB, border, anisotropy.
+    let Ok(state) = SamplerState::new(SamplerDesc {
+        address_u: bb(AddressMode::ClampToBorder),
+        address_v: bb(AddressMode::Mirror),
+        border: bb(0x1234_5678),
+        lod_bias: bb(Lod::from_bits(-100)),
+        min_lod: bb(Lod::from_bits(10)),
+        max_lod: bb(Lod::from_bits(900)),
+        max_anisotropy: bb(16),
+        srgb_output: bb(SrgbOutput::Linear),
+    }) else {
+        loop {}
+    };
+    let Ok(format) = Format::new(bb(TexelFormat::Bc3), bb(ColorSpace::Srgb)) else {
+        loop {}
+    };
+    let Ok(image) = Image::new(geometry, format, &BYTES) else {
+        loop {}
+    };
+    let mut gpu = TextureSampler::new(TexelCache::<_, 16, 2>::new(image), state, format.space());
+    let mut gpu_direct = TextureSampler::new(image, state, bb(ColorSpace::Linear));
     let modes = [
         Mode::Trilinear,
         Mode::BilinearNearestLevel,
@@ -193,7 +225,50 @@ fn main() -> ! {
             bb(direct.sample_batch(bb(&samples[..bb(4)]), bb(m), bb(&mut texels[..bb(3)])));
             bb(cached.sample_batch(bb(&samples[..bb(3)]), bb(m), bb(&mut texels[..bb(4)])));
         }
+        for m in [
+            StochasticMode::Trilinear,
+            StochasticMode::Bilinear,
+            StochasticMode::TrilinearBilinear,
+        ] {
+            bb(direct.sample_stochastic(u, v, lod, bb(m), bb(0x8765_4321)));
+            bb(cached.sample_stochastic(u, v, lod, bb(m), bb(0x1234_5678)));
+        }
         bb(cached.source_mut().texel(bb(2), bb(5), bb(6)));
+        let fp = bb(Footprint {
+            x: [
+                bb(TexCoord::from_bits(1 << 27)),
+                bb(TexCoord::from_bits(-5)),
+            ],
+            y: [
+                bb(TexCoord::from_bits(3 << 20)),
+                bb(TexCoord::from_bits(1 << 22)),
+            ],
+        });
+        for &m in &modes {
+            bb(gpu.sample(u, v, lod, bb(m)));
+            bb(gpu.sample_aniso(u, v, &fp, bb(m)));
+            bb(gpu_direct.sample(u, v, lod, bb(m)));
+            bb(gpu_direct.sample_aniso(u, v, &fp, bb(m)));
+        }
+        bb(probes(&fp, bb(512), bb(64), bb(8)));
+        bb(state.lod(lod, bb(7)));
+        bb(bb(AddressMode::MirrorOnce).index(bb(-77), bb(5)));
+        bb(bb(AddressMode::Wrap).linear(u, bb(5)));
+        bb(bb(AddressMode::Mirror).nearest(v, bb(5)));
+        for f in TexelFormat::ALL {
+            bb(bb(f).decode(bb(0x1234_5678)));
+            bb(bc::decode_texel(
+                bb(f),
+                BYTES.get(..bb(16)).unwrap_or(&[]),
+                bb(7),
+            ));
+            let mut out = [0; 16];
+            bc::decode_block(bb(f), BYTES.get(..bb(12)).unwrap_or(&[]), &mut out);
+            bb(out);
+        }
+        bb(srgb::encode(bb(123_456)));
+        bb(srgb::decode(bb(77)));
+        bb(image.get(bb(3), bb(9), bb(1)));
         bb(tags.access(bb(1234)));
         bb(block_index(&geometry, bb(3), bb(1), bb(2)));
         bb(geometry.level_size(bb(9)));

@@ -1,0 +1,37 @@
+//! The GPU-style sampler (`raymip::texture_sampler`) against the f64
+//! reference (`raymip_host::sampler_ref`) for every texel format, sRGB
+//! (re-encoded and linear), address mode (random per axis, with border
+//! colours), lod bias/clamp and filter, including anisotropic filtering;
+//! every row must stay within its documented bound.
+
+use raymip_host::sampler_ref::measure;
+
+#[test]
+fn every_format_and_filter_within_bound() {
+    let rows = measure(400, 0x5EED_1234);
+    assert_eq!(rows.len(), (11 + 6 * 2) * 5);
+    for r in &rows {
+        eprintln!(
+            "{:<28} {:<36} max {:.3} bound {:.3} ties {}",
+            r.format, r.filter, r.max_error, r.bound, r.ties
+        );
+    }
+    for r in &rows {
+        assert!(
+            r.max_error <= r.bound,
+            "{} {}: {} > {}",
+            r.format,
+            r.filter,
+            r.max_error,
+            r.bound
+        );
+        // Ties are rare: most anisotropic samples are compared.
+        assert!(
+            r.ties * 10 < r.samples,
+            "{} {}: {} ties",
+            r.format,
+            r.filter,
+            r.ties
+        );
+    }
+}

@@ -1,0 +1,114 @@
+# shellcheck shell=bash
+# scripts/lib.sh: the set-up every script in scripts/ shares, in one place.
+# Sourced, never run:   . "$(dirname "$0")/lib.sh"
+#
+# After sourcing, the shell is in the repository root with `set -euo
+# pipefail`, and has:
+#   root              the repository root (absolute)
+#   ARM RV RVC        firmware targets: Cortex-M4F, RV32IMAC, RV32IMC (soft core)
+#   FIRMWARE_TARGETS  the targets the firmware is built and checked for (ARM RV)
+#   host_target       cargo target dir of the host workspace ($CARGO_TARGET_DIR or target/)
+#   demo_target       cargo target dir of the demo/ workspace ($DEMO_TARGET_DIR or
+#                     target/demo: its own, so RUSTFLAGS never rebuild the host)
+#   demo_rustflags    RUSTFLAGS of every demo build (see demo_cargo)
+#   QARM QRV QCOMMON  QEMU command lines: Cortex-M4 on mps2-an386, RV32 on virt,
+#                     and the options both share (semihosting carries output and exit code)
+#   QTIMEOUT          seconds before a hung guest is killed (120, or $QEMU_TIMEOUT)
+#   SUDO              "sudo" when not root, else empty (package installs)
+# and the functions below (step, die, tmpdir, ensure_targets, demo_cargo,
+# qemu_arm, qemu_rv, apt_install).
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+
+ARM=thumbv7em-none-eabihf
+RV=riscv32imac-unknown-none-elf
+RVC=riscv32imc-unknown-none-elf
+FIRMWARE_TARGETS=("$ARM" "$RV")
+
+host_target=${CARGO_TARGET_DIR:-$root/target}
+demo_target=${DEMO_TARGET_DIR:-$host_target/demo}
+# Demo builds embed source paths (panic locations); mapping the checkout to a
+# fixed name makes the images, and so BUDGETS.md, independent of where the
+# repository is cloned. Only for demo builds (RUSTFLAGS would rebuild the host).
+demo_rustflags="--remap-path-prefix=$root=/raymip"
+
+QARM=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4)
+QRV=(qemu-system-riscv32 -machine virt -bios none)
+QCOMMON=(-nographic -monitor none -serial none -semihosting-config enable=on,target=native)
+QTIMEOUT=${QEMU_TIMEOUT:-120}
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+
+# step TEXT...: a heading in the log.
+step() { printf '\n==> %s\n' "$*"; }
+
+# die TEXT...: message to stderr, exit 1.
+die() {
+    printf '%s\n' "$*" >&2
+    exit 1
+}
+
+# tmpdir VAR: a fresh private directory (mktemp) in VAR, removed when the
+# script exits, however it exits. No fixed /tmp names: two runs at once never
+# share files.
+_lib_tmpdirs=()
+_lib_cleanup() {
+    local d
+    for d in "${_lib_tmpdirs[@]}"; do rm -rf -- "$d"; done
+}
+trap _lib_cleanup EXIT
+tmpdir() {
+    local d
+    d=$(mktemp -d "${TMPDIR:-/tmp}/raymip.XXXXXXXX")
+    _lib_tmpdirs+=("$d")
+    printf -v "$1" '%s' "$d"
+}
+
+# ensure_targets [+TOOLCHAIN] TARGET...: rustup targets, added when missing.
+ensure_targets() {
+    local tc=()
+    case "${1:-}" in +*) tc=("$1"); shift ;; esac
+    local installed t
+    installed=$(rustup "${tc[@]}" target list --installed)
+    for t in "$@"; do
+        grep -qx "$t" <<<"$installed" || rustup "${tc[@]}" target add "$t"
+    done
+}
+
+# demo_cargo [+TOOLCHAIN] [--dir DIR] [--rustflags FLAGS] CARGO-ARGS...:
+# cargo in demo/ with the demo target dir (or DIR) and demo_rustflags (plus
+# FLAGS). Runs in a subshell: the caller's directory is unchanged.
+demo_cargo() {
+    local tc=() dir=$demo_target flags=$demo_rustflags
+    while [ $# -gt 0 ]; do
+        case "$1" in
+            +*) tc=("$1"); shift ;;
+            --dir) dir=$2; shift 2 ;;
+            --rustflags) flags="$flags $2"; shift 2 ;;
+            *) break ;;
+        esac
+    done
+    (cd "$root/demo" && CARGO_TARGET_DIR=$dir RUSTFLAGS=$flags cargo "${tc[@]}" "$@")
+}
+
+# qemu_arm ELF [QEMU-ARGS...] / qemu_rv ELF [QEMU-ARGS...]: run a bare-metal
+# image under QEMU (Cortex-M4 mps2-an386 / RV32 virt) with semihosting,
+# killed after QTIMEOUT seconds. The exit status is the guest's.
+qemu_arm() {
+    local elf=$1
+    shift
+    timeout "$QTIMEOUT" "${QARM[@]}" "${QCOMMON[@]}" "$@" -kernel "$elf"
+}
+qemu_rv() {
+    local elf=$1
+    shift
+    timeout "$QTIMEOUT" "${QRV[@]}" "${QCOMMON[@]}" "$@" -kernel "$elf"
+}
+
+# apt_install PACKAGE...: Debian packages, quietly, without recommends.
+apt_install() {
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}

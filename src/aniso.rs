@@ -1,0 +1,208 @@
+//! Anisotropic filtering: from a pixel's texture-space footprint to a row
+//! of trilinear probes (up to 16).
+//!
+//! The caller gives the footprint as two axis vectors in normalized
+//! texture coordinates, [`Footprint`] — the change of `(u, v)` per pixel
+//! step in x and in y, as ray differentials give them (pbrt's
+//! `dudx, dvdx, dudy, dvdy`). It is *not* derived here from a ray cone:
+//! this module only consumes two axes. With the axes scaled to level-0
+//! texels, `|a| ≥ |b|` (major, minor):
+//!
+//! ```text
+//! minor' = max(|b|, |a| / max_aniso)             (pbrt's clamp of the eccentricity)
+//! N      = min(max_aniso, ceil(|a| / minor'))    probes, 1 ..= 16
+//! lod    = log2(minor')                           (levels, before the sampler's bias/clamp)
+//! t_i    = (2i + 1 − N) / (2N),  i = 0 … N−1     probe i at (u, v) + t_i·a_uv
+//! ```
+//!
+//! Every probe is one trilinear (or the caller's filter mode) sample at
+//! `lod`; the result is their mean, weights `1/N` summing to exactly 1.
+//! The probes split the major axis's extent `[−½, ½]·a` into `N` equal
+//! parts, each sampled at its centre with a filter as wide as the minor
+//! axis.
+//!
+//! Fixed point: axis components in texels are clamped to `|x| < 2¹⁵`
+//! (the largest texture side) with 16 fractional bits, squared lengths
+//! are U32F32 in `u64`, logarithms come from [`crate::log2`] (error
+//! 2⁻¹³) and `N` from a comparison with `log2 k`, `k = 1 … 16`; the probe
+//! step `a_uv / N` is one 64-bit division at set-up of the sample. A zero
+//! axis reads as the smallest positive length (lod ≈ −16, clamped later).
+
+use fixed::types::I16F16;
+
+use crate::filter::TexCoord;
+use crate::lod::Lod;
+use crate::log2::log2_bits;
+
+/// A pixel's footprint: the two axis vectors in normalized texture
+/// coordinates (change of `(u, v)` per pixel step in x and in y). Any
+/// values are accepted (huge ones saturate).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Footprint {
+    /// `(du/dx, dv/dx)`.
+    pub x: [TexCoord; 2],
+    /// `(du/dy, dv/dy)`.
+    pub y: [TexCoord; 2],
+}
+
+/// What [`probes`] computes for one anisotropic sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Probes {
+    /// Number of probes, `1 ..= max_aniso`.
+    pub count: u8,
+    /// Level of detail of every probe (before the sampler's bias and
+    /// clamps).
+    pub lod: Lod,
+    /// Offset of the first probe from the sample point, `t₀·a_uv`.
+    pub first: [TexCoord; 2],
+    /// Step from one probe to the next, `a_uv / N`.
+    pub step: [TexCoord; 2],
+}
+
+/// `round(log2(k) · 2¹⁶)` for `k = 1 … 16` (checked against f64 in the
+/// tests).
+const LOG2_K: [i32; 16] = [
+    0, 65536, 103872, 131072, 152170, 169408, 183983, 196608, 207744, 217706, 226717, 234944,
+    242512, 249519, 256042, 262144,
+];
+
+/// Axis component `c` (normalized, I32F32 bits) times `size` texels, in
+/// texels with 16 fractional bits, clamped to `|x| < 2¹⁵`.
+#[inline(always)]
+fn texels(c: TexCoord, size: u32) -> i64 {
+    const LIMIT: i64 = (1 << 31) - 1;
+    (c.to_bits().saturating_mul(i64::from(size)) >> 16).clamp(-LIMIT, LIMIT)
+}
+
+/// Squared length (U32F32 bits) of a texel-space vector with 16
+/// fractional bits per component (`< 2⁶³`).
+#[inline(always)]
+fn len2(x: i64, y: i64) -> u64 {
+    x.unsigned_abs() * x.unsigned_abs() + y.unsigned_abs() * y.unsigned_abs()
+}
+
+/// Probe count, lod and probe positions of the footprint `fp` on a
+/// `width × height` level 0 with at most `max_aniso` probes (clamped to
+/// `1 ..= 16`). Never panics.
+#[must_use]
+pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes {
+    let max = max_aniso.clamp(1, 16);
+    let lx = len2(texels(fp.x[0], width), texels(fp.x[1], height));
+    let ly = len2(texels(fp.y[0], width), texels(fp.y[1], height));
+    let (major, l_major, l_minor) = if lx >= ly {
+        (fp.x, lx, ly)
+    } else {
+        (fp.y, ly, lx)
+    };
+    // log2 of the lengths: half the log2 of the squares (I16F16 bits).
+    let log_major = log2_bits(l_major, 32).to_bits() >> 1;
+    let log_minor = log2_bits(l_minor, 32).to_bits() >> 1;
+    let log_max = LOG2_K.get(usize::from(max) - 1).copied().unwrap_or(0);
+    let log_minor = log_minor.max(log_major - log_max);
+    let ratio = log_major - log_minor;
+    let mut count = max;
+    for (k, &l) in (1u8..=max).zip(LOG2_K.iter()) {
+        if ratio <= l {
+            count = k;
+            break;
+        }
+    }
+    // I16F16 → I8F8, rounded, saturating.
+    let lod = Lod::saturating_from_num(I16F16::from_bits(log_minor));
+    let n = i64::from(count);
+    let step = major.map(|c| TexCoord::from_bits(c.to_bits().checked_div(n).unwrap_or(0)));
+    let first = step.map(|s| TexCoord::from_bits(s.to_bits().saturating_mul(1 - n) >> 1));
+    Probes {
+        count,
+        lod,
+        first,
+        step,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn log2_table() {
+        for (k, &l) in LOG2_K.iter().enumerate() {
+            assert_eq!(
+                f64::from(l),
+                (((k + 1) as f64).log2() * 65536.0).round(),
+                "{k}"
+            );
+        }
+    }
+
+    fn fp(ax: f64, ay: f64, bx: f64, by: f64) -> Footprint {
+        let c = TexCoord::from_num;
+        Footprint {
+            x: [c(ax), c(ay)],
+            y: [c(bx), c(by)],
+        }
+    }
+
+    /// Reference vectors on a 256×256 texture.
+    #[test]
+    fn reference_vectors() {
+        // Isotropic 1-texel footprint: one probe, lod 0.
+        let p = probes(&fp(1.0 / 256.0, 0.0, 0.0, 1.0 / 256.0), 256, 256, 16);
+        assert_eq!((p.count, p.lod), (1, Lod::ZERO));
+        // 8:1 along u, minor 2 texels: 8 probes at lod 1.
+        let p = probes(&fp(16.0 / 256.0, 0.0, 0.0, 2.0 / 256.0), 256, 256, 16);
+        assert_eq!((p.count, p.lod), (8, Lod::ONE));
+        assert_eq!(p.step[0], TexCoord::from_num(2.0 / 256.0));
+        assert_eq!(p.first[0], TexCoord::from_num(-7.0 / 256.0));
+        // Capped at 4: minor' = 16/4 = 4 texels, lod 2.
+        let p = probes(&fp(16.0 / 256.0, 0.0, 0.0, 2.0 / 256.0), 256, 256, 4);
+        assert_eq!((p.count, p.lod), (4, Lod::from_num(2)));
+        // Major along y (v), 3:1 → 3 probes.
+        let p = probes(&fp(1.0 / 256.0, 0.0, 0.0, 3.0 / 256.0), 256, 256, 16);
+        assert_eq!(p.count, 3);
+        assert_eq!(p.step, [TexCoord::ZERO, TexCoord::from_num(1.0 / 256.0)]);
+        // Degenerate: zero footprint → one probe at the lowest lod.
+        let p = probes(&Footprint::default(), 256, 256, 16);
+        assert_eq!(p.count, 1);
+        assert!(p.lod < Lod::from_num(-15));
+        // Extreme: saturates, no panic.
+        let p = probes(&fp(-2e9, 2e9, 1e-9, 0.0), 32768, 32768, 200);
+        assert_eq!(p.count, 16);
+    }
+
+    proptest! {
+        /// f64 reference (pbrt-style clamp, ceil of the ratio, log2 of the
+        /// clamped minor axis); near-ties of the probe count (within 2⁻¹²
+        /// in log2) may go either way.
+        #[test]
+        fn matches_f64(ax in -0.5f64..0.5, ay in -0.5f64..0.5, bx in -0.5f64..0.5, by in -0.5f64..0.5,
+                       size in 1u32..=4096, max in 1u8..=16) {
+            let f = fp(ax, ay, bx, by);
+            let p = probes(&f, size, size, max);
+            let s = f64::from(size);
+            let la = (ax * s).hypot(ay * s);
+            let lb = (bx * s).hypot(by * s);
+            let (maj, min) = (la.max(lb), la.min(lb));
+            prop_assume!(min > 1e-3);
+            let min_c = min.max(maj / f64::from(max));
+            let ratio = maj / min_c;
+            let near_tie = (1..=16).any(|k| (ratio.log2() - f64::from(k).log2()).abs() < 1.0 / 4096.0);
+            if !near_tie {
+                let n = (ratio.ceil() as u8).clamp(1, max);
+                prop_assert_eq!(p.count, n);
+            }
+            prop_assert!((p.lod.to_num::<f64>() - min_c.log2()).abs() <= 1.0 / 256.0 + 1.0 / 8192.0,
+                "lod {} vs {}", p.lod, min_c.log2());
+            // Probes centred and spanning the major axis.
+            let major = if la >= lb { [ax, ay] } else { [bx, by] };
+            let n = f64::from(p.count);
+            // Which axis is major is a tie when the lengths nearly agree.
+            for c in (0..2).filter(|_| (la - lb).abs() > 1e-6 * maj) {
+                prop_assert!((p.step[c].to_num::<f64>() - major[c] / n).abs() < 1e-8);
+                prop_assert!((p.first[c].to_num::<f64>() - major[c] * (1.0 - n) / (2.0 * n)).abs() < 1e-8);
+            }
+        }
+    }
+}

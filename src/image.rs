@@ -1,0 +1,265 @@
+//! A texture stored in any [`TexelFormat`]: geometry, format and a borrowed
+//! byte slice holding every level, read as RGBA8 texels.
+//!
+//! # Layout
+//!
+//! Levels follow each other, level 0 first, each tightly packed:
+//! uncompressed levels row-major at [`TexelFormat::unit_bytes`] per texel
+//! (multi-byte texels little-endian); BC levels as
+//! `ceil(w/4) × ceil(h/4)` blocks row-major, 8 or 16 bytes each (texels of
+//! a block beyond the level's edge are padding and never read).
+//! [`image_len`] is a `const fn`, so storage can be a `static`. A BC1 level
+//! costs half a byte per texel.
+//!
+//! # Reads
+//!
+//! As a [`TexelSource`] an image decodes each texel on read (a BC texel
+//! decodes its block's palette: slow, for tests and cache-less use). As a
+//! [`TexelMemory`] it decodes a whole 4×4 block per cache fill, so a
+//! [`TexelCache`](crate::cache::TexelCache) in front of a BC image is the
+//! block decoder: the cache holds decoded RGBA8 texels. sRGB data stays
+//! encoded here; the sampler ([`crate::texture_sampler`]) linearizes it.
+
+use core::fmt;
+
+use crate::bc::{self, BLOCK_TEXELS};
+use crate::cache::{BLOCK, TexelMemory};
+use crate::format::{Format, TexelFormat};
+use crate::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
+
+/// Bytes of level `k` of a `width × height` texture in `format`.
+const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64 {
+    let k = (k & 31) as u32;
+    let w = if width >> k == 0 { 1 } else { width >> k } as u64;
+    let h = if height >> k == 0 { 1 } else { height >> k } as u64;
+    let unit = format.unit_bytes() as u64;
+    if format.is_block_compressed() {
+        w.div_ceil(BLOCK as u64) * h.div_ceil(BLOCK as u64) * unit
+    } else {
+        w * h * unit
+    }
+}
+
+/// Bytes of levels `0 .. levels` of a `width × height` texture in `format`
+/// (levels limited to [`full_levels`](crate::mip::full_levels); 0 for a
+/// zero side; saturates at `usize::MAX`).
+#[must_use]
+pub const fn image_len(width: u32, height: u32, levels: u8, format: TexelFormat) -> usize {
+    let full = crate::mip::full_levels(width, height);
+    let n = if levels < full { levels } else { full };
+    let mut total = 0u64;
+    let mut k = 0;
+    while k < n {
+        total += level_bytes(width, height, k, format);
+        k += 1;
+    }
+    if total > usize::MAX as u64 {
+        usize::MAX
+    } else {
+        total as usize
+    }
+}
+
+/// The byte slice is shorter than the image needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ImageTooShort {
+    /// Bytes needed ([`image_len`]).
+    pub needed: usize,
+    /// Bytes given.
+    pub got: usize,
+}
+
+impl fmt::Display for ImageTooShort {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "image data holds {} bytes, the levels need {}",
+            self.got, self.needed
+        )
+    }
+}
+
+impl core::error::Error for ImageTooShort {}
+
+/// A texture in caller memory in any [`Format`] (see the module docs).
+#[derive(Clone, Copy, Debug)]
+pub struct Image<'a> {
+    geometry: Geometry,
+    format: Format,
+    bytes: &'a [u8],
+    /// Byte offset of each level; entries past `levels` hold the total.
+    offsets: [usize; MAX_LEVELS as usize + 1],
+}
+
+impl<'a> Image<'a> {
+    /// Wraps `bytes` (at least [`image_len`] long; extra bytes ignored).
+    ///
+    /// # Errors
+    /// [`ImageTooShort`].
+    pub fn new(geometry: Geometry, format: Format, bytes: &'a [u8]) -> Result<Self, ImageTooShort> {
+        let mut offsets = [0usize; MAX_LEVELS as usize + 1];
+        let mut total = 0usize;
+        for (k, o) in (0u8..).zip(offsets.iter_mut()) {
+            *o = total;
+            if k < geometry.levels() {
+                let n = level_bytes(geometry.width(), geometry.height(), k, format.texel());
+                total = total.saturating_add(usize::try_from(n).unwrap_or(usize::MAX));
+            }
+        }
+        if bytes.len() < total {
+            return Err(ImageTooShort {
+                needed: total,
+                got: bytes.len(),
+            });
+        }
+        Ok(Self {
+            geometry,
+            format,
+            bytes,
+            offsets,
+        })
+    }
+
+    /// The format.
+    #[must_use]
+    pub fn format(&self) -> Format {
+        self.format
+    }
+
+    /// The stored bytes.
+    #[must_use]
+    pub fn bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+
+    /// Byte offset of `level` (clamped to the top stored level).
+    #[must_use]
+    pub fn level_offset(&self, level: u8) -> usize {
+        let k = usize::from(level.min(self.geometry.top_level()));
+        self.offsets.get(k).copied().unwrap_or(0)
+    }
+
+    /// The bytes of block `(bx, by)` of a BC `level` (clamped to the
+    /// level's block grid; empty if out of data).
+    #[inline]
+    fn block_bytes(&self, level: u8, bx: u32, by: u32) -> &'a [u8] {
+        let (w, h) = self.geometry.level_size(level);
+        let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
+        let (bx, by) = (bx.min(bw - 1) as usize, by.min(bh - 1) as usize);
+        let unit = self.format.texel().unit_bytes() as usize;
+        let at = self.level_offset(level) + (by * bw as usize + bx) * unit;
+        self.bytes.get(at..).unwrap_or(&[])
+    }
+
+    /// Texel `(x, y)` of `level` as RGBA8 (sRGB data left encoded); level
+    /// and coordinates clamped to the stored range.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, level: u8, x: u32, y: u32) -> Texel {
+        let (w, h) = self.geometry.level_size(level);
+        let (x, y) = (x.min(w - 1), y.min(h - 1));
+        let f = self.format.texel();
+        if f.is_block_compressed() {
+            let block = self.block_bytes(level, x / BLOCK, y / BLOCK);
+            bc::decode_texel(f, block, ((y % BLOCK) * BLOCK + x % BLOCK) as usize)
+        } else {
+            let unit = f.unit_bytes() as usize;
+            let at = self.level_offset(level) + (y as usize * w as usize + x as usize) * unit;
+            let mut raw = [0u8; 4];
+            for (i, r) in raw.iter_mut().take(unit).enumerate() {
+                *r = self.bytes.get(at + i).copied().unwrap_or(0);
+            }
+            f.decode(u32::from_le_bytes(raw))
+        }
+    }
+}
+
+impl TexelSource for Image<'_> {
+    #[inline]
+    fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        self.get(level, x, y)
+    }
+}
+
+impl TexelMemory for Image<'_> {
+    fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// Decodes block `(bx, by)` of `level`: BC blocks in one go (the block
+    /// decoder as the cache's fill path), uncompressed ones texel by texel
+    /// (edge texels repeated beyond the level's edge).
+    fn read_block(&mut self, level: u8, bx: u32, by: u32, out: &mut [Texel; BLOCK_TEXELS]) {
+        let f = self.format.texel();
+        if f.is_block_compressed() {
+            bc::decode_block(f, self.block_bytes(level, bx, by), out);
+        } else {
+            let (x0, y0) = (bx.saturating_mul(BLOCK), by.saturating_mul(BLOCK));
+            for (i, t) in (0u32..).zip(out.iter_mut()) {
+                *t = self.get(
+                    level,
+                    x0.saturating_add(i % BLOCK),
+                    y0.saturating_add(i / BLOCK),
+                );
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::cache::TexelCache;
+    use crate::format::ColorSpace;
+    use std::vec::Vec;
+
+    #[test]
+    fn lengths() {
+        assert_eq!(image_len(4, 4, 3, TexelFormat::Rgba8), 4 * 21);
+        assert_eq!(image_len(4, 4, 3, TexelFormat::Rgb565), 2 * 21);
+        // BC1: 1 block + 1 + 1 (2×2 and 1×1 still take a whole block).
+        assert_eq!(image_len(4, 4, 3, TexelFormat::Bc1), 24);
+        assert_eq!(
+            image_len(9, 5, 4, TexelFormat::Bc3),
+            16 * (3 * 2 + 1 + 1 + 1)
+        );
+        let g = Geometry::new(4, 4, 3).unwrap();
+        let f = Format::linear(TexelFormat::L8);
+        assert_eq!(
+            Image::new(g, f, &[0; 20]).unwrap_err(),
+            ImageTooShort {
+                needed: 21,
+                got: 20
+            }
+        );
+        assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
+    }
+
+    /// Through the cache (block decode on fill) and directly (texel
+    /// decode), every format reads the same texels.
+    #[test]
+    fn cache_fill_equals_direct_reads() {
+        let g = Geometry::new(9, 6, 4).unwrap();
+        for f in TexelFormat::ALL {
+            let n = image_len(9, 6, 4, f);
+            let bytes: Vec<u8> = (0..n as u32)
+                .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+                .collect();
+            let img = Image::new(g, Format::linear(f), &bytes).unwrap();
+            let mut c: TexelCache<Image<'_>, 2, 2> = TexelCache::new(img);
+            for k in 0..4u8 {
+                for y in 0..8 {
+                    for x in 0..11 {
+                        assert_eq!(c.texel(k, x, y), img.get(k, x, y), "{f:?} {k} {x} {y}");
+                    }
+                }
+            }
+        }
+    }
+}
