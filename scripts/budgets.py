@@ -63,13 +63,14 @@ def symbols(work, name):
 PC = re.compile(r"\[[0-9a-f]+/([0-9a-f]+)/")
 
 
-def count(work, name):
-    """Instructions per call of every wrapper: {symbol: [count, ...]}."""
+def count(work, name, first=None):
+    """Instructions per call of every wrapper: {symbol: [count, ...]}; the
+    program counters of each wrapper's first call go into `first` (a dict)."""
     syms = symbols(work, name)
     entry = {a: s for s, (a, _) in syms.items() if s.startswith(("rm_bench_", "rm_batch_"))}
     d0, dsz = syms["rm_budget_driver"]
     counts = {s: [] for s in entry.values()}
-    cur, n = None, 0
+    cur, n, pcs = None, 0, []
     with open(os.path.join(work, name + ".trace"), errors="replace") as f:
         for line in f:
             m = PC.search(line)
@@ -78,13 +79,56 @@ def count(work, name):
             pc = int(m.group(1), 16)
             if cur is None:
                 if pc in entry:
-                    cur, n = entry[pc], 1
+                    cur, n, pcs = entry[pc], 1, [pc]
             elif d0 <= pc < d0 + dsz:
+                if first is not None and cur not in first:
+                    first[cur] = pcs
                 counts[cur].append(n)
                 cur = None
             else:
                 n += 1
+                pcs.append(pc)
     return counts
+
+
+DIS = re.compile(r"^\s*([0-9a-f]+):\s+(\S+)")
+
+
+def mnemonics(work, name):
+    """{address: mnemonic} from the disassembly."""
+    out = {}
+    with open(os.path.join(work, name + ".dis")) as f:
+        for line in f:
+            m = DIS.match(line)
+            if m:
+                out[int(m.group(1), 16)] = m.group(2).lower()
+    return out
+
+
+CLASSES = ["load/store", "multiply", "shift/extract", "add/logic/move", "compare/select", "branch"]
+
+
+def classify(op):
+    """Instruction class of a Thumb-2 or RISC-V mnemonic."""
+    op = op.split(".")[0]
+    if re.match(r"^(ldr|str|ldm|stm|push|pop|lw|lh|lb|sw|sh|sb|ld|sd|c\.lw|c\.sw)", op):
+        return "load/store"
+    if re.match(r"^(mul|mla|mls|umull|umlal|smull|smlal|smla|smul|mulh)", op):
+        return "multiply"
+    if re.match(r"^(lsl|lsr|asr|ror|ubfx|sbfx|bfc|bfi|uxt|sxt|clz|rev|sll|srl|sra|zext|sext|ctz|cpop|rol)", op):
+        return "shift/extract"
+    if re.match(r"^(cmp|cmn|tst|teq|it|slt|seqz|snez|sgt|sltz|sgtz|min|max|csel|ssat|usat)", op):
+        return "compare/select"
+    if re.match(r"^(b|bl|bx|blx|cbz|cbnz|beq|bne|blt|bge|bltu|bgeu|beqz|bnez|blez|bgez|bltz|bgtz|bgt|ble|bgtu|bleu|j|jal|jalr|jr|ret|call|tail)$", op):
+        return "branch"
+    return "add/logic/move"
+
+
+def mix(pcs, ops):
+    c = {k: 0 for k in CLASSES}
+    for pc in pcs:
+        c[classify(ops.get(pc, "?"))] += 1
+    return c
 
 
 def stat(v):
@@ -147,7 +191,9 @@ def without_softcore(text):
 
 
 def render(work, old_text):
-    res = {k: count(work, k) for k, _ in ISAS}
+    firsts = {k: {} for k, _ in ISAS}
+    res = {k: count(work, k, firsts[k]) for k, _ in ISAS}
+    ops = {k: mnemonics(work, k) for k, _ in ISAS}
     bad = []
     for k, _ in ISAS:
         for c, _ in CALLS:
@@ -227,10 +273,28 @@ def render(work, old_text):
     for c, _ in CALLS:
         w(f"| {c} | {mi.get(c, '?')} | {mz.get(c, '?')} |")
 
-    if MISSED:
+    w("\n## Executed instruction mix\n")
+    w("Where the instructions of one call go: the first of the 64 calls of each fixed-point wrapper,")
+    w("every executed instruction classified by its mnemonic (from `llvm-objdump`; the wrapper's")
+    w("own frame included). Classes: load/store (incl. push/pop), multiply, shift/extract (shifts,")
+    w("bit-field extracts, `clz`), add/logic/move, compare/select (incl. `it`, `slt*`), branch")
+    w("(incl. call and return).\n")
+    w("| call | ISA | total | " + " | ".join(CLASSES) + " |")
+    w("|---|---|---|" + "---|" * len(CLASSES))
+    for c, label in CALLS:
+        for k, isa in ISAS:
+            m = mix(firsts[k]["rm_bench_" + c], ops[k])
+            w(f"| {label} | {isa} | {sum(m.values())} | " + " | ".join(str(m[x]) for x in CLASSES) + " |")
+
+    missed = [(c, k) for c, _ in CALLS for k, _ in ISAS if (c, k) not in met]
+    if missed:
         w("\n## Goals missed, and why\n")
+        w("Missed (call, ISA, max instructions / goal): " + "; ".join(
+            f"{dict(CALLS)[c]} {dict(ISAS)[k]} {stat(res[k]['rm_bench_' + c])[2]} / {GOALS[c][k]}"
+            for c, k in missed) + ".\n")
         for c, text in MISSED.items():
-            w(f"**{dict(CALLS)[c]}.** {text}\n")
+            if any(cc == c for cc, _ in missed):
+                w(f"**{dict(CALLS)[c]}.** {text}\n")
 
     w("")
     w(softcore_block(old_text) or BEGIN + "\n" + END)
