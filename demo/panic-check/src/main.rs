@@ -208,7 +208,10 @@ fn main() -> ! {
         // batch entry points (slices of opaque length)
         let hits = bb([(pl, pb); 4]);
         let mut lods = [None; 3];
-        bb(table_lod_batch(bb(&hits[..bb(4)]), bb(&mut lods[..bb(3)])));
+        bb(table_lod_batch(
+            hits.get(..bb(4)).unwrap_or_default(),
+            lods.get_mut(..bb(3)).unwrap_or_default(),
+        ));
         let cones = bb([(
             Width::from_bits(77),
             fixed::types::I16F16::from_bits(5),
@@ -216,14 +219,22 @@ fn main() -> ! {
         ); 4]);
         let mut cone_out = [Lod::ZERO; 4];
         bb(cone_lod_batch(
-            bb(&cones[..bb(2)]),
-            bb(&mut cone_out[..bb(4)]),
+            cones.get(..bb(2)).unwrap_or_default(),
+            cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];
         for &m in &modes {
-            bb(direct.sample_batch(bb(&samples[..bb(4)]), bb(m), bb(&mut texels[..bb(3)])));
-            bb(cached.sample_batch(bb(&samples[..bb(3)]), bb(m), bb(&mut texels[..bb(4)])));
+            bb(direct.sample_batch(
+                samples.get(..bb(4)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(3)).unwrap_or_default(),
+            ));
+            bb(cached.sample_batch(
+                samples.get(..bb(3)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(4)).unwrap_or_default(),
+            ));
         }
         for m in [
             StochasticMode::Trilinear,
