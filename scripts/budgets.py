@@ -177,17 +177,24 @@ def static_stack(work, t):
     return d
 
 
+BLOCK = re.compile(r"<!-- (\w[\w-]*):begin -->.*?<!-- \1:end -->", re.S)
+
+
+def blocks(text):
+    """Blocks other scripts own, `<!-- NAME:begin -->` … `<!-- NAME:end -->`
+    (e.g. softcore, features), markers included: {name: block}, in order."""
+    return {m.group(1): m.group(0) for m in BLOCK.finditer(text)}
+
+
 def softcore_block(text):
     """The softcore block (markers included) of `text`, or None."""
-    i, j = text.find(BEGIN), text.find(END)
-    if i < 0 or j < i:
-        return None
-    return text[i:j + len(END)]
+    return blocks(text).get("softcore")
 
 
 def without_softcore(text):
-    b = softcore_block(text)
-    return text.replace(b, BEGIN + END) if b else text
+    """`text` with the content of every owned block removed (what the
+    staleness check compares)."""
+    return BLOCK.sub(lambda m: f"<!-- {m.group(1)}:begin --><!-- {m.group(1)}:end -->", text)
 
 
 def render(work, old_text):
@@ -376,6 +383,10 @@ def render(work, old_text):
                     line = f"demo ({t}) :"
                 w(line)
         w("```")
+    # Other scripts' blocks (scripts/features, …) follow, unchanged.
+    for name, block in blocks(old_text).items():
+        if name != "softcore":
+            w("\n" + block)
     return "\n".join(L) + "\n", bad
 
 
@@ -385,6 +396,9 @@ def self_test():
     assert without_softcore(t) == without_softcore(f"a\n{BEGIN}\ny 2\n{END}\nb\n")
     assert without_softcore(t) != without_softcore(f"a\n{BEGIN}\nx 1\n{END}\nc\n")
     assert softcore_block("no markers") is None
+    f = "<!-- features:begin -->\nF\n<!-- features:end -->"
+    assert blocks(t + f) == {"softcore": softcore_block(t), "features": f}
+    assert without_softcore(t + f) == without_softcore(t + f.replace("F", "G"))
 
 
 def main():

@@ -112,3 +112,32 @@ qemu_rv() {
 apt_install() {
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$@" >/dev/null
 }
+
+# demo_host_lines: the lines of the host's fixed-point render of the demo
+# tile that every bare-metal run must print identically (checksum, counters).
+demo_host_lines() {
+    local out
+    out=$(cargo run -q --release -p raymip-host --bin raymip-demo -- render)
+    echo "host (x86-64):" >&2
+    sed 's/^/  /' <<<"$out" >&2
+    grep -E '^(checksum|counters):' <<<"$out"
+}
+
+# demo_check NAME RC OUTPUT WANT: prints a bare-metal demo run's OUTPUT and
+# compares its checksum and counter lines with WANT (demo_host_lines)
+# exactly; returns 1 when the run failed (RC ≠ 0) or the lines differ.
+demo_check() {
+    local name=$1 rc=$2 out=$3 want=$4 got
+    echo "$name, exit code $rc:"
+    sed 's/^/  /' <<<"$out"
+    got=$(grep -E '^(checksum|counters):' <<<"$out" || true)
+    if [ "$rc" -ne 0 ]; then
+        echo "FAIL: $name demo exited with $rc" >&2
+        return 1
+    elif [ "$got" != "$want" ]; then
+        echo "FAIL: $name checksum/counters differ from the host render" >&2
+        diff <(echo "$want") <(echo "$got") >&2 || true
+        return 1
+    fi
+    echo "  OK: bit-identical to the host"
+}

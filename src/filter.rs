@@ -58,27 +58,33 @@ pub enum Address {
     Clamp,
 }
 
-/// Filter mode, numbered as in the `sample` command.
+/// Filter mode, numbered as in the `sample` command. The linear-level
+/// modes (0 and 3) need the `trilinear` feature.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
     /// Bilinear within a level, linear between levels.
+    #[cfg(feature = "trilinear")]
     Trilinear = 0,
     /// Bilinear within the nearest level `floor(lod + ½)`.
     BilinearNearestLevel = 1,
     /// Nearest texel of the nearest level.
     Nearest = 2,
     /// Nearest texel in each of two levels, linear between levels.
+    #[cfg(feature = "trilinear")]
     NearestTexelLinearLevel = 3,
 }
 
 impl Mode {
-    /// The mode numbered `n` (0..=3), `None` otherwise.
+    /// The mode numbered `n` (0..=3), `None` otherwise (and for 0 and 3
+    /// without the `trilinear` feature).
     #[must_use]
     pub const fn from_index(n: u8) -> Option<Self> {
         match n {
+            #[cfg(feature = "trilinear")]
             0 => Some(Self::Trilinear),
             1 => Some(Self::BilinearNearestLevel),
             2 => Some(Self::Nearest),
+            #[cfg(feature = "trilinear")]
             3 => Some(Self::NearestTexelLinearLevel),
             _ => None,
         }
@@ -331,9 +337,11 @@ impl<S: TexelSource> Sampler<S> {
     #[inline(always)]
     pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
         match mode {
+            #[cfg(feature = "trilinear")]
             Mode::Trilinear => self.sample_trilinear(u, v, lod),
             Mode::BilinearNearestLevel => self.sample_bilinear(u, v, lod),
             Mode::Nearest => self.sample_nearest(u, v, lod),
+            #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => self.sample_nearest_linear_level(u, v, lod),
         }
     }
@@ -356,7 +364,8 @@ impl<S: TexelSource> Sampler<S> {
 
     /// [`Mode::Trilinear`]: bilinear in levels `floor(lod)` and
     /// `floor(lod) + 1`, blended by `frac(lod)` (one level when the
-    /// fraction is 0).
+    /// fraction is 0). Feature `trilinear`.
+    #[cfg(feature = "trilinear")]
     #[inline]
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
@@ -391,7 +400,9 @@ impl<S: TexelSource> Sampler<S> {
     }
 
     /// [`Mode::NearestTexelLinearLevel`]: nearest texel in levels
-    /// `floor(lod)` and `floor(lod) + 1`, blended by `frac(lod)`.
+    /// `floor(lod)` and `floor(lod) + 1`, blended by `frac(lod)`. Feature
+    /// `trilinear`.
+    #[cfg(feature = "trilinear")]
     #[inline]
     pub fn sample_nearest_linear_level(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
@@ -427,9 +438,11 @@ impl<S: TexelSource> Sampler<S> {
             };
         }
         match mode {
+            #[cfg(feature = "trilinear")]
             Mode::Trilinear => each!(sample_trilinear),
             Mode::BilinearNearestLevel => each!(sample_bilinear),
             Mode::Nearest => each!(sample_nearest),
+            #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => each!(sample_nearest_linear_level),
         }
         n
@@ -561,7 +574,7 @@ impl<S: TexelSource> Sampler<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;

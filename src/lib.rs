@@ -24,6 +24,27 @@
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
+//!
+//! # Cargo features
+//!
+//! Each feature compiles a whole stage in; the defaults are what most
+//! users need (everything but the C ABI). A scene that needs less sets
+//! `default-features = false` and lists what it uses. Code a program does
+//! not call is not linked anyway; what a feature removes beyond that is
+//! the part every per-hit call carries (the cone update in
+//! [`PathState::advance`](raystack::PathState::advance), the linear-level
+//! arms of [`Sampler::sample`](filter::Sampler::sample)) and API surface.
+//! Linked `.text` / `.rodata` per feature set on both targets:
+//! `BUDGETS.md`, "Feature sets" (written by `scripts/features`).
+//!
+//! | feature | default | stage | left out |
+//! |---|---|---|---|
+//! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`raystack::PathState`] is 16 bytes instead of 32 ([`raystack::PATH_STATE_BYTES`]) |
+//! | `trilinear` | yes | linear-between-levels modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`) | nearest-level modes only |
+//! | `cache` | yes | texel cache (`cache`) | the sampler reads memory directly |
+//! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
+//! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
 //!
 //! GPU-sampler parity (D3D11 / Vulkan sampler objects), one concept each:
 //!
@@ -119,9 +140,11 @@
 )]
 
 pub mod address;
+pub mod analysis;
 pub mod aniso;
 pub mod bc;
 pub mod bilerp;
+#[cfg(feature = "cache")]
 pub mod cache;
 #[cfg(feature = "ffi")]
 pub mod ffi;
@@ -129,6 +152,8 @@ pub mod filter;
 #[cfg(feature = "f32")]
 pub mod float;
 pub mod format;
+// Images decode BC blocks as the texel cache's fill path.
+#[cfg(feature = "cache")]
 pub mod image;
 pub mod lod;
 pub mod log2;

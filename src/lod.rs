@@ -21,12 +21,18 @@
 //! # Grazing angles
 //!
 //! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
-//! `[`[`MIN_COS`]` = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
+//! `[MIN_COS = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
 
-use fixed::types::{I8F8, I16F16, U1F31};
+use fixed::types::I8F8;
+#[cfg(feature = "cone")]
+use fixed::types::{I16F16, U1F31};
 
-use crate::log2::{LOD_BIAS, log2_u1f31_biased, log2_u32f32_parts};
-use crate::raystack::{PathLength, Width};
+use crate::log2::log2_u32f32_parts;
+#[cfg(feature = "cone")]
+use crate::log2::{LOD_BIAS, log2_u1f31_biased};
+use crate::raystack::PathLength;
+#[cfg(feature = "cone")]
+use crate::raystack::Width;
 use crate::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
@@ -38,6 +44,8 @@ pub type Lod = I8F8;
 pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
 /// Smallest `|n·d|` used by the normal term: 2⁻¹⁶ (U1F31 raw `1 << 15`).
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
@@ -61,8 +69,10 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
 /// (scene units), triangle constant `delta` (`Δ`, from
-/// [`Log2Pb::delta`]) and, optionally, `|n·d|` (clamped to
+/// `Log2Pb::delta`) and, optionally, `|n·d|` (clamped to
 /// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 #[inline]
 #[must_use]
 pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
@@ -98,7 +108,9 @@ pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -
 
 /// Batch of [`cone_lod`]: `out[i] = cone_lod(w, Δ, n·d)` of `hits[i]` for
 /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
-/// Same results as the per-hit call, bit for bit; never panics.
+/// Same results as the per-hit call, bit for bit; never panics. Feature
+/// `cone`.
+#[cfg(feature = "cone")]
 #[inline]
 pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
     let n = hits.len().min(out.len());
@@ -133,6 +145,9 @@ mod tests {
     use crate::raystack::{PathState, Spread};
     use crate::table::{Coord, PixelSpread, TexTriangle};
     use fixed::types::I2F30;
+    use fixed::types::I16F16;
+    #[cfg(feature = "cone")]
+    use fixed::types::U1F31;
     use proptest::prelude::*;
 
     /// Independent f64 reference of log2 Pb (see module docs of `table`).
@@ -197,12 +212,16 @@ mod tests {
                     "side {s}, {w} texels, fov {fov_deg}, H {hgt}: lod at {mult}·d = {lod}, want {want}"
                 );
                 // The same through a primary ray cone.
+                #[cfg(feature = "cone")]
                 let st = PathState::primary(&spread, 0).advance(PathLength::from_num(d * mult));
-                let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-                assert!(
-                    (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
-                    "cone {c} want {want}"
-                );
+                #[cfg(feature = "cone")]
+                {
+                    let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                    assert!(
+                        (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
+                        "cone {c} want {want}"
+                    );
+                }
             }
         }
     }
@@ -222,6 +241,7 @@ mod tests {
             assert!(table_lod(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
             assert!(table_lod(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
         }
+        #[cfg(feature = "cone")]
         assert_eq!(
             cone_lod(Width::ZERO, I16F16::from_num(3), None),
             Lod::from_num(-29)
@@ -246,6 +266,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "cone")]
     fn normal_term_and_grazing_clamp() {
         let w = Width::from_num(1);
         let d = I16F16::ZERO;
@@ -293,6 +314,7 @@ mod tests {
         Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
     }
 
+    #[cfg(feature = "cone")]
     fn cone_lod_formula(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
         use crate::log2::log2_bits;
         let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
@@ -335,7 +357,9 @@ mod tests {
                     table_lod_formula(pl, pb),
                     "{p:#x} {b:#x}"
                 );
+                #[cfg(feature = "cone")]
                 let d = I16F16::from_bits(b);
+                #[cfg(feature = "cone")]
                 for c in [
                     None,
                     Some(0u32),
@@ -391,10 +415,13 @@ mod tests {
             // Identity: cone with β = 0 and no normal term equals the table,
             // where the cone width is resolved (w ≥ 2^-20 scene units; its
             // step is 2^-32, see the module docs).
-            prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
-            let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-            prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
-                "cone {} vs table {}", cone, got);
+            #[cfg(feature = "cone")]
+            {
+                prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
+                let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
+                    "cone {} vs table {}", cone, got);
+            }
         }
 
         #[test]
@@ -402,8 +429,13 @@ mod tests {
             let pl = PathLength::from_bits(p >> s);
             let pb = Log2Pb::from_bits(b);
             prop_assert_eq!(table_lod(pl, pb), table_lod_formula(pl, pb));
-            let (w, d, c) = (Width::from_bits(w >> s), I16F16::from_bits(b), c.map(U1F31::from_bits));
-            prop_assert_eq!(cone_lod(w, d, c), cone_lod_formula(w, d, c));
+            #[cfg(feature = "cone")]
+            {
+                let (w, d, c) = (Width::from_bits(w >> s), I16F16::from_bits(b), c.map(U1F31::from_bits));
+                prop_assert_eq!(cone_lod(w, d, c), cone_lod_formula(w, d, c));
+            }
+            #[cfg(not(feature = "cone"))]
+            let _ = (w, c);
         }
 
         #[test]
@@ -419,6 +451,7 @@ mod tests {
         }
 
         #[test]
+        #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
             prop_assert!(l >= Lod::MIN && l <= Lod::MAX);

@@ -34,7 +34,8 @@ pub type Spread = I2F30;
 pub const DEFAULT_CAPACITY: usize = 10;
 
 /// Ray-cone state (Akenine-Möller et al., RTG ch. 20): width `w` and spread
-/// angle `γ`.
+/// angle `γ`. Feature `cone`.
+#[cfg(feature = "cone")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct RayCone {
     /// Cone width at the current origin (scene units).
@@ -43,6 +44,7 @@ pub struct RayCone {
     pub spread: Spread,
 }
 
+#[cfg(feature = "cone")]
 impl RayCone {
     /// `w' = w + γ·t`, saturating; the flag is true if it saturated.
     #[inline]
@@ -89,6 +91,7 @@ impl RayCone {
 /// `γ·t` as I32F32 with two 32×32→64 multiplications (no 128-bit product);
 /// saturates (flag true) beyond the I32F32 range. Rounded to nearest:
 /// error ≤ 2⁻³³.
+#[cfg(feature = "cone")]
 #[inline]
 fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
     let g = i64::from(g.to_bits());
@@ -108,12 +111,14 @@ fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
 
 /// The state of one path (one stack entry): what LOD needs, the path's ray
 /// mask (stochastic LOD: chosen once per path, kept on every bounce) and its
-/// depth.
+/// depth. [`PATH_STATE_BYTES`] per entry: 32 with the `cone` feature, 16
+/// without (no cone state carried, no `γ·t` per advance).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct PathState {
     /// Accumulated path length `Pl` from the camera (scene units).
     pub pl: PathLength,
-    /// Ray-cone state.
+    /// Ray-cone state (feature `cone`).
+    #[cfg(feature = "cone")]
     pub cone: RayCone,
     /// 8-bit ray mask of the path.
     pub mask: u8,
@@ -128,8 +133,11 @@ impl PathState {
     /// A primary ray: `Pl = 0`, cone width 0 and spread `γ` of the camera.
     #[must_use]
     pub const fn primary(spread: &PixelSpread, mask: u8) -> Self {
+        #[cfg(not(feature = "cone"))]
+        let _ = spread;
         Self {
             pl: PathLength::ZERO,
+            #[cfg(feature = "cone")]
             cone: RayCone {
                 width: Width::ZERO,
                 spread: spread.angle(),
@@ -148,9 +156,13 @@ impl PathState {
             Some(v) => (v, false),
             None => (PathLength::MAX, true),
         };
+        #[cfg(feature = "cone")]
         let (cone, c_sat) = self.cone.advance(t);
+        #[cfg(not(feature = "cone"))]
+        let c_sat = false;
         Self {
             pl,
+            #[cfg(feature = "cone")]
             cone,
             saturated: self.saturated | pl_sat | c_sat,
             ..self
@@ -158,12 +170,17 @@ impl PathState {
     }
 
     /// The state of a reflected or refracted continuation: spread `γ + β`
-    /// (`β` = surface spread angle, 0 for flat), depth + 1.
+    /// (`β` = surface spread angle, 0 for flat; ignored without the `cone`
+    /// feature), depth + 1.
     #[inline]
     #[must_use]
     pub fn bounce(self, beta: Spread) -> Self {
+        #[cfg(feature = "cone")]
         let (cone, sat) = self.cone.bounce(beta);
+        #[cfg(not(feature = "cone"))]
+        let (sat, _) = (false, beta);
         Self {
+            #[cfg(feature = "cone")]
             cone,
             depth: self.depth.saturating_add(1),
             saturated: self.saturated | sat,
@@ -171,6 +188,12 @@ impl PathState {
         }
     }
 }
+
+/// Bytes of one [`PathState`] (one ray-stack entry) on every target:
+/// 32 with the `cone` feature (the cone is a 16-byte aligned pair), 16
+/// without (checked at compile time on every target).
+pub const PATH_STATE_BYTES: usize = if cfg!(feature = "cone") { 32 } else { 16 };
+const _: () = assert!(core::mem::size_of::<PathState>() == PATH_STATE_BYTES);
 
 /// A push onto a full stack: the rejected state is handed back; the stack is
 /// unchanged.
@@ -292,27 +315,36 @@ mod tests {
             (refl.depth, refr.depth, refl.mask, refr.mask),
             (1, 1, 0x80, 0x80)
         );
-        let w = refl.cone.width.to_num::<f64>();
-        let want = 0.001 * 2.0 + (0.001 + 0.01) * 1.0;
-        assert!((w - want).abs() < 1e-8, "{w} vs {want}");
+        #[cfg(feature = "cone")]
+        {
+            let w = refl.cone.width.to_num::<f64>();
+            let want = 0.001 * 2.0 + (0.001 + 0.01) * 1.0;
+            assert!((w - want).abs() < 1e-8, "{w} vs {want}");
+        }
     }
 
     #[test]
     fn saturation_is_flagged_not_wrapped() {
         let p = PathState::primary(&spread(1.5), 0).advance(PathLength::MAX);
-        assert!(p.saturated);
+        // Pl = 0 + MAX is exact; only the cone width (1.5·MAX) saturates.
+        assert_eq!(p.saturated, cfg!(feature = "cone"));
         assert_eq!(p.pl, PathLength::MAX);
+        #[cfg(feature = "cone")]
         assert_eq!(p.cone.width, Width::MAX);
         let p2 = PathState::primary(&spread(0.5), 0)
             .advance(PathLength::from_num(4.0e9))
             .advance(PathLength::from_num(4.0e9));
         assert!(p2.saturated && p2.pl == PathLength::MAX);
+        #[cfg(feature = "cone")]
         let neg = PathState::primary(&spread(0.5), 0)
             .bounce(Spread::MIN)
             .bounce(Spread::MIN);
-        assert!(neg.saturated && neg.cone.spread == Spread::MIN);
-        let neg_w = neg.advance(PathLength::from_num(4.0e9));
-        assert_eq!(neg_w.cone.width, Width::MIN);
+        #[cfg(feature = "cone")]
+        {
+            assert!(neg.saturated && neg.cone.spread == Spread::MIN);
+            let neg_w = neg.advance(PathLength::from_num(4.0e9));
+            assert_eq!(neg_w.cone.width, Width::MIN);
+        }
         let deep = (0..300).fold(PathState::default(), |p, _| p.bounce(Spread::ZERO));
         assert_eq!(deep.depth, 255);
     }
@@ -320,6 +352,7 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5_000))]
         /// Ten bounces against an f64 reference of the same recurrences.
+        #[cfg(feature = "cone")]
         #[test]
         fn ten_bounces_match_f64(
             g in 1.0e-5..0.1f64,
@@ -345,6 +378,7 @@ mod tests {
             prop_assert_eq!(usize::from(st.depth), segs.len());
         }
 
+        #[cfg(feature = "cone")]
         #[test]
         fn mul_spread_matches_f64(g in any::<i32>(), t in any::<u64>()) {
             let (got, sat) = mul_spread(Spread::from_bits(g), PathLength::from_bits(t));

@@ -26,6 +26,7 @@
 //! ½ from rounding, plus the input's linear error times the OETF's
 //! steepest slope (12.92·255 LSB per unit, 0.05 LSB per L16 step).
 
+#[cfg(feature = "mipgen")]
 use crate::mip::{Geometry, MipError, Texel, generate_mapped};
 
 /// Linear L16 value (65535 = 1.0) of every 8-bit sRGB code.
@@ -116,6 +117,9 @@ pub fn decode(c: u8) -> u16 {
 ///
 /// # Errors
 /// [`MipError::BufferTooShort`] when `buf` is shorter than the geometry.
+///
+/// Feature `mipgen`.
+#[cfg(feature = "mipgen")]
 pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
     generate_mapped(
         geometry,
@@ -202,6 +206,7 @@ mod tests {
         /// Linear-space pyramids: every level-1 texel against the f64
         /// linear box of its four sources, re-encoded.
         #[test]
+        #[cfg(feature = "mipgen")]
         fn generate_in_linear_space(texels in proptest::collection::vec(any::<u32>(), 16)) {
             let g = Geometry::new(4, 4, 3).unwrap();
             let mut buf = std::vec![0u32; g.len()];

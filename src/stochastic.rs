@@ -146,7 +146,7 @@ impl<S: TexelSource> Sampler<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;

@@ -365,7 +365,8 @@ impl Log2Pb {
     }
 
     /// The ray-cone triangle constant `Δ = ½·log2(N/A) = −log2 Pb − log2 γ`
-    /// (I16F16, saturating; `None` when untextured).
+    /// (I16F16, saturating; `None` when untextured). Feature `cone`.
+    #[cfg(feature = "cone")]
     #[must_use]
     pub fn delta(self, spread: &PixelSpread) -> Option<I16F16> {
         if self.is_untextured() {
@@ -531,6 +532,7 @@ mod tests {
         );
         let e = Log2Pb::compute(&t, &spread(1.0 / 1024.0));
         assert_eq!(e.to_i16f16(), I16F16::from_num(2));
+        #[cfg(feature = "cone")]
         assert_eq!(e.delta(&spread(1.0 / 1024.0)), Some(I16F16::from_num(8)));
     }
 

@@ -130,7 +130,10 @@ impl<S: TexelSource> TextureSampler<S> {
             t,
             nearest: nearest_level,
         } = LevelSplit::new(lod, &self.geometry);
+        #[cfg(not(feature = "trilinear"))]
+        let _ = (lower, t);
         match mode {
+            #[cfg(feature = "trilinear")]
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, lower);
                 if t == 0 {
@@ -143,6 +146,7 @@ impl<S: TexelSource> TextureSampler<S> {
             }
             Mode::BilinearNearestLevel => self.bilinear(u, v, nearest_level),
             Mode::Nearest => self.nearest(u, v, nearest_level),
+            #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => {
                 let a = self.nearest(u, v, lower);
                 if t == 0 {
@@ -262,6 +266,7 @@ impl<S: TexelSource> TextureSampler<S> {
 }
 
 /// `a·(1 − t/256) + b·t/256` in 16.8, rounded; `t ≤ 256`.
+#[cfg(feature = "trilinear")]
 #[inline(always)]
 fn blend(a: Lin, b: Lin, t: u32) -> Lin {
     let t = t.min(256);
@@ -277,7 +282,7 @@ fn blend(a: Lin, b: Lin, t: u32) -> Lin {
     out
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;

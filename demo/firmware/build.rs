@@ -1,5 +1,6 @@
 //! Linker set-up for the demo binaries: the layout is the repository root's
-//! `memory.x` (one file for both targets, see its comments). The `-T`
+//! `memory.x` (one file for both QEMU targets, see its comments), or
+//! `demo/softcore/memory.x` with the feature `softcore` (the PicoRV32 SoC). The `-T`
 //! arguments are given here rather than as `rustflags`, because a
 //! `RUSTFLAGS` variable would replace the config's `rustflags`.
 
@@ -13,8 +14,13 @@ fn main() {
         .join("../..")
         .canonicalize()
         .expect("repository root exists");
-    println!("cargo:rustc-link-search={}", root.display());
-    println!("cargo:rerun-if-changed={}", root.join("memory.x").display());
+    let dir = if env::var_os("CARGO_FEATURE_SOFTCORE").is_some() {
+        root.join("demo/softcore")
+    } else {
+        root
+    };
+    println!("cargo:rustc-link-search={}", dir.display());
+    println!("cargo:rerun-if-changed={}", dir.join("memory.x").display());
     let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
     match arch.as_str() {
         // cortex-m-rt's link.x INCLUDEs memory.x.

@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use raymip_host::aff;
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::scene::aff;
 use raymip_host::scene::aff_adapter;
 
 fn bart_dir() -> Option<PathBuf> {

@@ -9,6 +9,11 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+// Output, exit and cycle counters on QEMU and on the soft core.
+pub mod console;
+pub mod counters;
+pub use console::exit;
+
 /// Stack painting: fill the free stack below the current stack pointer with
 /// a pattern, run code, then find the lowest word that changed. Exact to 4
 /// bytes for code that runs without interrupts (as the demos do).

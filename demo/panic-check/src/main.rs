@@ -17,6 +17,7 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::address::AddressMode;
+use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::aniso::{Footprint, probes};
 use raymip::bc;
 use raymip::cache::{BlockCache, TexelCache, block_index};
@@ -138,6 +139,11 @@ fn main() -> ! {
         loop {}
     };
     let mut direct = Sampler::new(pyramid, Address::Wrap);
+    // A trimmed pyramid (levels 2..=4 of the same texels).
+    let Ok(trimmed) = pyramid.trim(bb(2), bb(4)) else {
+        loop {}
+    };
+    let mut trimmed = Sampler::new(trimmed, Address::Wrap);
     let mut cached = Sampler::new(TexelCache::<_, 16, 2>::new(pyramid), Address::Clamp);
     let mut tags: BlockCache<32, 4> = BlockCache::new();
     // The GPU-style sampler: state, every format (through the cache: BC
@@ -202,6 +208,7 @@ fn main() -> ! {
         );
         let lod = bb(Lod::from_bits(300));
         for &m in &modes {
+            bb(trimmed.sample(u, v, lod, bb(m)));
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
         }
@@ -284,5 +291,23 @@ fn main() -> ! {
         bb(block_index(&geometry, bb(3), bb(1), bb(2)));
         bb(geometry.level_size(bb(9)));
         bb(geometry.texel_index(bb(9), bb(100), bb(3)));
+        // Set-up scene analysis.
+        let mut usage = [TextureUse::default(); 2];
+        let ids = bb([0u16, 1, 7, 0]);
+        let bounds = bb([
+            Some(PathBounds {
+                nearest: bb(PathLength::from_bits(1 << 30)),
+                farthest: bb(PathLength::from_bits(1 << 40)),
+            }),
+            None,
+        ]);
+        let mut pbs = bb([Log2Pb::from_bits(bb(5 << 16)); 4]);
+        bb(analyse(&pbs, &ids, &bounds, &mut usage).is_ok());
+        if let Some(r) = usage.first().and_then(|u| u.lod) {
+            bb(r.levels(bb(Mode::Trilinear), bb(9)));
+            bb(r.for_cones());
+        }
+        bb(mark_skipped(&mut pbs, &ids, &usage));
+        bb(Geometry::trimmed(bb(64), bb(32), bb(7), bb(1), bb(5)).is_ok());
     }
 }

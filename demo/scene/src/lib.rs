@@ -33,6 +33,8 @@
 
 use core::fmt;
 
+pub mod parity;
+
 use fixed::types::I2F30;
 use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};

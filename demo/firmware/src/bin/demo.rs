@@ -6,14 +6,15 @@
 //!
 //! Run from `demo/`: `cargo run --release --target thumbv7em-none-eabihf`
 //! (QEMU mps2-an386, Cortex-M4) or `--target riscv32imac-unknown-none-elf`
-//! (QEMU virt).
+//! (QEMU virt); `scripts/softcore` runs it on the PicoRV32 soft core
+//! (feature `softcore`, `riscv32imc-unknown-none-elf`), where it also prints
+//! the render's cycles and instructions.
 #![no_std]
 #![no_main]
 #![forbid(unsafe_code)]
 
-use raymip_demo_firmware::stack;
+use raymip_demo_firmware::{counters, exit, println, stack};
 use raymip_demo_scene::{Fnv1a, HEIGHT, Renderer, WIDTH};
-use semihosting::{println, process};
 
 /// Stack bytes painted below the render's caller.
 const PAINT_BYTES: usize = 16 * 1024;
@@ -26,7 +27,7 @@ use riscv_rt::entry;
 #[entry]
 fn main() -> ! {
     let code = run();
-    process::exit(code)
+    exit(code)
 }
 
 /// The render behind a call boundary, so that its whole frame lies in the
@@ -39,6 +40,8 @@ fn render(r: &mut Renderer, h: &mut Fnv1a) {
 fn run() -> i32 {
     let target = if cfg!(target_arch = "arm") {
         "thumbv7em-none-eabihf (Cortex-M4)"
+    } else if cfg!(feature = "softcore") {
+        "riscv32imc-unknown-none-elf (PicoRV32 soft core)"
     } else {
         "riscv32imac-unknown-none-elf"
     };
@@ -51,7 +54,9 @@ fn run() -> i32 {
     // Worst-case stack of the render (stack painting, see the lib docs).
     let top = stack::sp();
     stack::paint(top, PAINT_BYTES);
+    let c0 = counters::read();
     render(&mut r, &mut h);
+    let c1 = counters::read();
     let used = stack::used(top, PAINT_BYTES);
     println!(
         "checksum: {:#010x} ({}x{} RGB, FNV-1a)",
@@ -61,6 +66,10 @@ fn run() -> i32 {
     );
     println!("counters: {}", r.counters);
     println!("stack: {used} bytes used by the render (painted {PAINT_BYTES})");
+    if cfg!(feature = "softcore") {
+        let (cycles, instret) = (c1.cycles - c0.cycles, c1.instret - c0.instret);
+        println!("render: {cycles} cycles, {instret} instructions (rdcycle/rdinstret)");
+    }
     if r.counters.table_mismatches != 0 || r.counters.pyramid_mismatches != 0 {
         return 1;
     }

@@ -1,0 +1,164 @@
+//! `raymip-host`: command-line front end of the host harness (a thin
+//! dispatcher; each subcommand's logic lives in the library): sample the
+//! firmware texture unit, render scenes through the firmware texture path,
+//! compare against float references and ground truth, reproduce Table I.
+
+use std::io::{self, BufWriter};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use raymip_host::cli::sample::{self, SampleArgs};
+use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
+use raymip_host::render::{Method, Options, Precision};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raymip-host",
+    version,
+    about = "Host harness for the raymip texture unit"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Debug)]
+struct RenderArgs {
+    /// `builtin:hall|mirrors|glass` or a path to an `.aff` file.
+    #[arg(long)]
+    scene: String,
+    /// Image size WxH (default: 800x480 for built-in scenes, the camera's for AFF).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Animation time (AFF scenes).
+    #[arg(long, default_value_t = 0.0)]
+    time: f64,
+    /// Maximum reflection/refraction bounces.
+    #[arg(long, default_value_t = 10)]
+    bounces: u8,
+    /// Samples per pixel of the ground truth.
+    #[arg(long, default_value_t = 256)]
+    spp: u32,
+    /// Output directory.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Read `u,v,lod,mode` (or anisotropic `u,v,mode,dudx,dvdx,dudy,dvdy`)
+    /// lines from stdin and print filtered `r,g,b,a` lines (firmware
+    /// fixed-point path; sampler state, formats, sRGB and anisotropy by
+    /// option). Modes: 0 trilinear, 1 bilinear + nearest level, 2 nearest
+    /// texel + nearest level, 3 nearest texel + linear between levels.
+    Sample(SampleArgs),
+    /// Render one image: image.png, levels.png (mip level per pixel), report.json/md.
+    Render {
+        #[command(flatten)]
+        args: RenderArgs,
+        /// Texture LOD method.
+        #[arg(long, value_enum, default_value_t = Method::Table)]
+        method: Method,
+        /// Fixed point (firmware) or f64 reference.
+        #[arg(long, value_enum, default_value_t = Precision::Fixed)]
+        precision: Precision,
+    },
+    /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
+    Compare {
+        #[command(flatten)]
+        args: RenderArgs,
+        /// Methods to compare (truth is always rendered).
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "table,cone,raydiff,mip0"
+        )]
+        methods: Vec<Method>,
+    },
+    /// Table I: mip-level shares and texel-cache hit rates (mip mapping off/on) per BART scene.
+    Table1 {
+        /// Folder with one sub-folder per scene (default ../shared/scenes/bart).
+        #[arg(long)]
+        scenes: Option<PathBuf>,
+        /// Image size WxH.
+        #[arg(long, value_parser = parse_size, default_value = "800x480")]
+        size: (u32, u32),
+        /// Maximum reflection/refraction bounces.
+        #[arg(long, default_value_t = 10)]
+        bounces: u8,
+        /// Animation time.
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        /// Also measure the built-in scenes.
+        #[arg(long)]
+        builtin: bool,
+        /// Write table1.md and table1.json here.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
+    Options {
+        method,
+        precision,
+        size: a.size,
+        bounces: a.bounces,
+        spp: a.spp,
+        record_blocks: false,
+        progress: true,
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let r = match &cli.command {
+        Command::Sample(args) => {
+            let out = BufWriter::new(io::stdout().lock());
+            sample::run(args, io::stdin().lock(), out)
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        }
+        Command::Render {
+            args,
+            method,
+            precision,
+        } => cmd_render(
+            &args.scene,
+            args.time,
+            &options(args, *method, *precision),
+            &args.out,
+        ),
+        Command::Compare { args, methods } => cmd_compare(
+            &args.scene,
+            args.time,
+            &options(args, Method::Table, Precision::Fixed),
+            methods,
+            &args.out,
+        ),
+        Command::Table1 {
+            scenes,
+            size,
+            bounces,
+            time,
+            builtin,
+            out,
+        } => cmd_table1(
+            scenes.as_deref(),
+            *size,
+            *bounces,
+            *time,
+            *builtin,
+            out.as_deref(),
+        ),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,263 @@
+#!/usr/bin/env python3
+"""Formats the soft-core measurement of scripts/softcore into BUDGETS.md (the
+block between <!-- softcore:begin --> and <!-- softcore:end -->) and README.md
+(the throughput comparison between <!-- softcore-throughput:begin --> and
+<!-- softcore-throughput:end -->). Every number comes from the files in
+--work: demo.out (the demo tile on the model: counters, render cycles,
+soc-sim's summary line), cycles.out (per-call cycles), size-*.txt (`size -A`)
+and table1/table1.json (textured hits per frame of the BART scenes).
+
+--check writes nothing and reports differences (exit 1 on them only with
+RAYMIP_BUDGETS_STRICT=1). --self-test checks the parsers on fixed text.
+"""
+import argparse
+import hashlib
+import json
+import math
+import os
+import re
+import sys
+
+B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
+R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
+
+# The hardware paper's FPGA prototype: clock and frame rate range at 800×480.
+PAPER_MHZ = 84
+PAPER_FPS = (3.4, 6.4)
+PAPER_SIZE = (800, 480)
+
+CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
+         ("bilinear", "bilinear sample"), ("trilinear", "trilinear sample")]
+
+CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
+                     r"instret min (\d+) sum (\d+) max (\d+)$")
+BASE_RE = re.compile(r"^baseline: cycles min (\d+) max (\d+) instret min (\d+) max (\d+)$")
+RENDER_RE = re.compile(r"^\s*render: (\d+) cycles, (\d+) instructions")
+SIM_RE = re.compile(r"soc-sim: exit code (\d+) after (\d+) cycles \(RAM (\d+) KiB\)")
+
+
+def parse_cycles(text):
+    """{call: dict(n, cycles=(min, mean, max), instret=(min, mean, max))}, baseline."""
+    calls, base = {}, None
+    for line in text.splitlines():
+        m = CALL_RE.match(line.strip())
+        if m:
+            n = int(m.group(2))
+            c = [int(x) for x in m.group(3, 4, 5)]
+            i = [int(x) for x in m.group(6, 7, 8)]
+            calls[m.group(1)] = {"n": n, "cycles": (c[0], c[1] / n, c[2]),
+                                 "instret": (i[0], i[1] / n, i[2])}
+        m = BASE_RE.match(line.strip())
+        if m:
+            base = tuple(int(x) for x in m.groups())
+    return calls, base
+
+
+def parse_demo(text):
+    """Counters (dict), render (cycles, instructions), RAM KiB of the demo run."""
+    counters, render, ram = {}, None, None
+    for line in text.splitlines():
+        s = line.strip()
+        if s.startswith("counters:"):
+            counters = {k: int(v) for k, v in re.findall(r"(\w+)=(\d+)", s)}
+        m = RENDER_RE.match(s)
+        if m:
+            render = (int(m.group(1)), int(m.group(2)))
+        m = SIM_RE.search(s)
+        if m:
+            ram = int(m.group(3))
+    return counters, render, ram
+
+
+def loaded_bytes(size_text):
+    """Bytes of RAM the image occupies: every allocated section of `size -A`
+    except the stack/heap reservations and non-loaded metadata."""
+    total = 0
+    for line in size_text.splitlines():
+        p = line.split()
+        if len(p) == 3 and p[0].startswith(".") and p[1].isdigit():
+            if p[0] in (".stack", ".heap", ".comment", ".riscv.attributes") or p[0].startswith(".debug"):
+                continue
+            total += int(p[1])
+    return total
+
+
+def rtl_id(rtl):
+    h = hashlib.sha256(open(rtl, "rb").read()).hexdigest()[:16]
+    commit = None
+    readme = os.path.join(os.path.dirname(rtl), "README.md")
+    if os.path.exists(readme):
+        m = re.search(r"commit ([0-9a-f]{40})", open(readme).read())
+        commit = m.group(1) if m else None
+    return h, commit
+
+
+def fmt3(t, digits=1):
+    return f"{t[0]} / {t[1]:.{digits}f} / {t[2]}"
+
+
+def si(x):
+    for div, unit in ((1e6, " M"), (1e3, " k")):
+        if x >= div:
+            return f"{x / div:.3g}{unit}"
+    return f"{x:.3g} "
+
+
+def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit):
+    L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
+    L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
+    src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
+    L.append(f"{src}`picorv32.v` sha256 {rtl_sha}…) in the SoC `demo/softcore/soc.v`,")
+    L.append(f"simulated cycle by cycle by {a.verilator}. Core: RV32IMC with `ENABLE_FAST_MUL`,")
+    L.append("`ENABLE_DIV`, `BARREL_SHIFTER`, `COMPRESSED_ISA`, `ENABLE_COUNTERS`, no interrupts;")
+    L.append(f"{ram} KiB single-port on-chip RAM holding code and data, one block-RAM read cycle per")
+    L.append("access (request in cycle t, data in t+1), no caches. Firmware: `riscv32imc-unknown-none-elf`,")
+    L.append(f"release profile, {a.rustc}.\n")
+    L.append("Cycles and instructions per call from `rdcycle`/`rdinstret` read around each call")
+    L.append("(`demo/firmware/src/bin/cycles.rs`), call-inclusive (argument moves, call, return) minus an")
+    L.append(f"empty measurement ({base[0]} cycles, {base[2]} instruction: the counter reads), over the same")
+    L.append("64 inputs as the QEMU budgets above. min / mean / max; CPI = mean cycles / mean instructions.\n")
+    L.append("| call | cycles | instructions | CPI |")
+    L.append("|---|---|---|---|")
+    for k, name in CALLS:
+        c = calls[k]
+        L.append(f"| {name} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | "
+                 f"{c['cycles'][1] / c['instret'][1]:.2f} |")
+    cyc, ins = render
+    px = counters.get("pixels", 0)
+    tex = counters.get("samples", 0)
+    L.append(f"\nWhole demo tile (64×48 = {px} pixels, {counters.get('hits', 0)} hits, {tex} textured")
+    L.append(f"samples; checksum equal to the host's): {cyc} cycles, {ins} instructions, CPI {cyc / ins:.2f};")
+    L.append(f"{cyc / px:.0f} cycles per pixel. Image {image} bytes (`size -A`, loaded sections) + {stack}")
+    L.append(f"bytes of stack painted under the render, of the {ram} KiB RAM.")
+    L.append(B_END)
+    return "\n".join(L)
+
+
+def readme_block(calls, counters, render, rows):
+    hz = PAPER_MHZ * 1e6
+    lod = calls["lod"]["cycles"][1]
+    tri = calls["trilinear"]["cycles"][1]
+    per = {"LOD alone (table lod)": lod, "LOD + trilinear": lod + tri}
+    L = [R_BEGIN]
+    L.append("Written by `scripts/softcore` from its measurement (cycles: BUDGETS.md, soft-core block;")
+    L.append("hits: `table1` at 800×480, animation time 0, up to 10 bounces); do not edit.\n")
+    L.append(f"| work per textured hit | cycles (mean) | textured hits/s, one PicoRV32 at {PAPER_MHZ} MHz |")
+    L.append("|---|---|---|")
+    for name, c in per.items():
+        L.append(f"| {name} | {c:.1f} | {si(hz / c)} |")
+    if rows:
+        lo, hi = PAPER_FPS
+        L.append(f"\n| scene ({PAPER_SIZE[0]}×{PAPER_SIZE[1]}) | textured hits / frame | "
+                 f"frames/s, LOD alone | frames/s, LOD + trilinear | "
+                 f"PicoRV32s for {lo}–{hi} fps, LOD alone | PicoRV32s for {lo}–{hi} fps, LOD + trilinear |")
+        L.append("|---|---|---|---|---|---|")
+        for r in rows:
+            h = r["textured_hits"]
+            fps = [hz / (c * h) for c in per.values()]
+            cores = [f"{math.ceil(lo / f)}–{math.ceil(hi / f)}" for f in fps]
+            L.append(f"| {r['scene']} | {h} | {fps[0]:.2f} | {fps[1]:.3f} | {cores[0]} | {cores[1]} |")
+    else:
+        L.append("\n(BART scenes not found when this was written: no per-scene rows.)")
+    cyc, _ = render
+    px = counters.get("pixels", 1)
+    frame = PAPER_SIZE[0] * PAPER_SIZE[1] * cyc / px
+    L.append(f"\nFor scale, the whole firmware path of the demo tile (tile tracer, ray stack, table lod,")
+    L.append(f"trilinear through the texel cache) takes {cyc / px:.0f} cycles per pixel on the soft core:")
+    L.append(f"{hz / frame:.3f} frames/s at {PAPER_SIZE[0]}×{PAPER_SIZE[1]} and {PAPER_MHZ} MHz for a scene as simple as the demo's.")
+    L.append(R_END)
+    return "\n".join(L)
+
+
+def replace_block(text, begin, end, block, anchor=None):
+    i, j = text.find(begin), text.find(end)
+    if i >= 0 and j > i:
+        return text[:i] + block + text[j + len(end):]
+    if anchor and anchor in text:
+        k = text.index(anchor)
+        return text[:k] + block + "\n\n" + text[k:]
+    return text.rstrip("\n") + "\n\n" + block + "\n"
+
+
+def self_test():
+    calls, base = parse_cycles("baseline: cycles min 18 max 18 instret min 1 max 1\n"
+                               "call lod: n 4 cycles min 10 sum 44 max 12 instret min 2 sum 10 max 3\n")
+    assert base == (18, 18, 1, 1), base
+    assert calls["lod"]["cycles"] == (10, 11.0, 12) and calls["lod"]["instret"] == (2, 2.5, 3)
+    c, r, ram = parse_demo("counters: pixels=3 hits=2 samples=1\n"
+                           "render: 100 cycles, 20 instructions (rdcycle/rdinstret)\n"
+                           "soc-sim: exit code 0 after 123 cycles (RAM 128 KiB)\n")
+    assert c == {"pixels": 3, "hits": 2, "samples": 1} and r == (100, 20) and ram == 128
+    assert loaded_bytes("x :\nsection size addr\n.text 10 0\n.rodata 5 10\n.stack 99 15\n"
+                        ".debug_info 7 0\nTotal 121\n") == 15
+    t = f"a\n{B_BEGIN}\nold\n{B_END}\nb\n"
+    assert replace_block(t, B_BEGIN, B_END, "X") == "a\nXb\n".replace("Xb", "X\nb")
+    assert replace_block("a\n## Code size\n", B_BEGIN, B_END, "X", "## Code size") == "a\nX\n\n## Code size\n"
+    assert si(322000) == "322 k" and si(3.2e6) == "3.2 M"
+    print("softcore.py: self-test passed")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--self-test", action="store_true")
+    ap.add_argument("--work")
+    ap.add_argument("--rtl")
+    ap.add_argument("--verilator")
+    ap.add_argument("--rustc")
+    ap.add_argument("--budgets")
+    ap.add_argument("--readme")
+    ap.add_argument("--check", action="store_true")
+    a = ap.parse_args()
+    if a.self_test:
+        self_test()
+        return 0
+    rd = lambda name: open(os.path.join(a.work, name)).read()
+    calls, base = parse_cycles(rd("cycles.out"))
+    missing = [k for k, _ in CALLS if k not in calls or calls[k]["n"] != 64]
+    if missing or base is None:
+        sys.exit(f"softcore.py: cycles.out lacks {missing or 'the baseline'}")
+    counters, render, ram = parse_demo(rd("demo.out"))
+    if not counters or render is None or ram is None:
+        sys.exit("softcore.py: demo.out lacks the counters, render or soc-sim lines")
+    stack = int(re.search(r"stack: (\d+) bytes", rd("demo.out")).group(1))
+    image = loaded_bytes(rd("size-demo.txt"))
+    rtl_sha, commit = rtl_id(a.rtl)
+    rows = []
+    t1 = os.path.join(a.work, "table1", "table1.json")
+    if os.path.exists(t1):
+        rows = [r for r in json.load(open(t1))["rows"] if r["scene"] in ("kitchen", "robots")]
+        for r in rows:
+            if (r["width"], r["height"]) != PAPER_SIZE:
+                sys.exit(f"softcore.py: table1 row {r['scene']} is {r['width']}×{r['height']}")
+    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit)
+    rb = readme_block(calls, counters, render, rows)
+    changed = []
+    for path, begin, end, block, anchor in [(a.budgets, B_BEGIN, B_END, bb, "## Code size"),
+                                            (a.readme, R_BEGIN, R_END, rb, None)]:
+        old = open(path).read()
+        if R_BEGIN == begin and not rows and begin in old:
+            print(f"softcore.py: no BART rows: {os.path.basename(path)} left as it is")
+            continue
+        new = replace_block(old, begin, end, block, anchor)
+        if new == old:
+            print(f"softcore.py: {os.path.basename(path)} is up to date")
+            continue
+        changed.append(path)
+        if a.check:
+            import difflib
+            print(f"softcore.py: {os.path.basename(path)} differs from this measurement "
+                  "(run scripts/softcore and commit it):")
+            sys.stdout.writelines(difflib.unified_diff(old.splitlines(True), new.splitlines(True),
+                                                       path, path + " (measured)"))
+        else:
+            open(path, "w").write(new)
+            print(f"softcore.py: wrote {os.path.basename(path)}")
+    print(bb)
+    print(rb)
+    if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
