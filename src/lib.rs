@@ -24,6 +24,8 @@
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
+//! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
 //! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
 //!
 //! # Cargo features
@@ -152,6 +154,7 @@ pub mod filter;
 #[cfg(feature = "f32")]
 pub mod float;
 pub mod format;
+pub mod geomlod;
 // Images decode BC blocks as the texel cache's fill path.
 #[cfg(feature = "cache")]
 pub mod image;
@@ -159,6 +162,7 @@ pub mod lod;
 pub mod log2;
 pub mod mip;
 pub mod raystack;
+pub mod rng;
 pub mod sampler_state;
 pub mod srgb;
 pub mod stochastic;

@@ -11,10 +11,8 @@
 
 use std::fmt::Write as _;
 
+use raymip_host::cli::output::write_between_markers;
 use raymip_host::reference::sampler_ref::{FILTERS, measure};
-
-const BEGIN: &str = "<!-- sampler-accuracy:begin -->";
-const END: &str = "<!-- sampler-accuracy:end -->";
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -59,12 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     print!("{table}");
     if let Some(path) = write {
-        let text = std::fs::read_to_string(path)?;
-        let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END)) else {
-            return Err(format!("{path}: markers {BEGIN} / {END} not found").into());
-        };
-        let out = format!("{}{BEGIN}\n{table}{}", &text[..b], &text[e..]);
-        std::fs::write(path, out)?;
+        write_between_markers(std::path::Path::new(path), "sampler-accuracy", &table)?;
         eprintln!("wrote {path}");
     }
     Ok(())

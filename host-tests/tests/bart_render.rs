@@ -38,6 +38,7 @@ fn check(name: &str, triangles: usize, textured: usize) {
             bounces: 10,
             spp: 1,
             record_blocks: false,
+            aniso: None,
             progress: false,
         };
         let img = render(&prep, &opts);

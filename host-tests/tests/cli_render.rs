@@ -42,6 +42,43 @@ fn render_writes_image_levels_and_reports() {
 }
 
 #[test]
+fn render_with_anisotropic_filtering() {
+    let out = tmp("aniso");
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--size",
+        "40x24",
+        "--method",
+        "raydiff",
+        "--filter",
+        "aniso",
+        "--max-aniso",
+        "8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["max_aniso"], 8);
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--filter",
+        "aniso",
+        "--max-aniso",
+        "17",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
 fn compare_and_table1_run_on_builtin_scenes() {
     let out = tmp("compare");
     let o = run(&[

@@ -16,6 +16,7 @@ fn opts(method: Method, precision: Precision) -> Options {
         bounces: 10,
         spp: 64,
         record_blocks: false,
+        aniso: None,
         progress: false,
     }
 }

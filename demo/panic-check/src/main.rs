@@ -28,6 +28,10 @@ use raymip::ffi::{
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::geomlod::{
+    Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
+    transition_step, visible,
+};
 use raymip::image::Image;
 use raymip::lod::{
     Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
@@ -35,6 +39,7 @@ use raymip::lod::{
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::rng::{Rng, mix32};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
 use raymip::stochastic::StochasticMode;
@@ -138,6 +143,21 @@ fn main() -> ! {
     let Ok(pyramid) = Pyramid::new(geometry, &TEXELS) else {
         loop {}
     };
+    let Ok(range) = LodRange::new(
+        bb(Depth::from_bits(1 << 32)),
+        bb(Depth::from_bits(256 << 32)),
+        bb(8),
+        bb(LodBias::from_bits(-3)),
+    ) else {
+        loop {}
+    };
+    let Ok(selector) = Selector::new(
+        range,
+        bb(LodMode::Stochastic(Transition::from_bits(0x8000))),
+    ) else {
+        loop {}
+    };
+    let mut records = [InstanceLod::default(); 8];
     let mut direct = Sampler::new(pyramid, Address::Wrap);
     // A trimmed pyramid (levels 2..=4 of the same texels).
     let Ok(trimmed) = pyramid.trim(bb(2), bb(4)) else {
@@ -291,6 +311,21 @@ fn main() -> ! {
         bb(block_index(&geometry, bb(3), bb(1), bb(2)));
         bb(geometry.level_size(bb(9)));
         bb(geometry.texel_index(bb(9), bb(100), bb(3)));
+        // stochastic geometric LOD (per instance) and the path's ray mask
+        let z = bb(Depth::from_bits(0x12_3456_789A));
+        bb(range.lod_param(z));
+        bb(selector.pick(z));
+        bb(choose(bb(range.lod_param(z)), bb(9), bb(LodMode::Discrete)));
+        bb(transition_step(bb(0x9000), bb(0x2_0000)));
+        bb(selector.fill(
+            (0..bb(6u32)).map(|i| (i, Depth::from_bits(i64::from(i) << 33))),
+            &mut records,
+        ))
+        .ok();
+        let mut rng = Rng::for_pixel(bb(3), bb(4), bb(5));
+        let m = ray_mask(&mut rng);
+        bb(visible(bb(records[1].mask), m));
+        bb(mix32(bb(rng.next_u32())));
         // Set-up scene analysis.
         let mut usage = [TextureUse::default(); 2];
         let ids = bb([0u16, 1, 7, 0]);

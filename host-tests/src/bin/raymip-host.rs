@@ -8,9 +8,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use raymip_host::cli::instances::{cmd_bench, cmd_render as cmd_render_instances};
 use raymip_host::cli::sample::{self, SampleArgs};
 use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
+use raymip_host::render::instances::{Config, GeomLodMode, MaskPolicy};
 use raymip_host::render::{Method, Options, Precision};
+use raymip_host::scene::instances::{DEFAULT_SIZE, View};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -23,9 +26,18 @@ struct Cli {
     command: Command,
 }
 
+/// Texture filter of `render`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FilterArg {
+    /// Trilinear at the LOD method's level of detail.
+    Trilinear,
+    /// Anisotropic (trilinear probes along the footprint's major axis).
+    Aniso,
+}
+
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
-    /// `builtin:hall|mirrors|glass` or a path to an `.aff` file.
+    /// `builtin:hall|mirrors|glass|instances` or a path to an `.aff` file.
     #[arg(long)]
     scene: String,
     /// Image size WxH (default: 800x480 for built-in scenes, the camera's for AFF).
@@ -43,6 +55,30 @@ struct RenderArgs {
     /// Output directory.
     #[arg(long)]
     out: PathBuf,
+}
+
+/// Options of `--scene builtin:instances` (stochastic geometric LOD).
+#[derive(clap::Args, Debug)]
+struct GeomArgs {
+    /// Geometric LOD (builtin:instances): none, discrete or stochastic.
+    #[arg(long, value_enum, default_value_t = GeomLodMode::Stochastic)]
+    geom_lod: GeomLodMode,
+    /// Transition interval t in [0, 1] of the stochastic mode.
+    #[arg(long, default_value_t = 0.5)]
+    transition: f64,
+    /// LOD bias in levels.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    lod_bias: f64,
+    /// Frames to accumulate (builtin:instances).
+    #[arg(long, default_value_t = 16)]
+    frames: u32,
+    /// Camera view of builtin:instances.
+    #[arg(long, value_enum, default_value_t = View::High)]
+    view: View,
+    /// Also render the exact blend (mean of the 8 single-bit ray masks) and
+    /// report the RMS of the accumulation against it.
+    #[arg(long)]
+    reference: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -63,6 +99,33 @@ enum Command {
         /// Fixed point (firmware) or f64 reference.
         #[arg(long, value_enum, default_value_t = Precision::Fixed)]
         precision: Precision,
+        /// Texture filter: trilinear at the method's lod, or anisotropic
+        /// over the pixel footprint from ray differentials (pbrt-style
+        /// axes; the method then only sets the level histogram).
+        #[arg(long, value_enum, default_value_t = FilterArg::Trilinear)]
+        filter: FilterArg,
+        /// Maximum anisotropy (probes) for `--filter aniso`, 1..=16.
+        #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u8).range(1..=16))]
+        max_aniso: u8,
+        #[command(flatten)]
+        geom: GeomArgs,
+    },
+    /// Geometric-LOD benchmark of `builtin:instances`: every view with no
+    /// LOD, discrete and stochastic LOD (t = 0, 0.25, 0.5, 1); writes
+    /// bench.md and bench.json.
+    GeomlodBench {
+        /// Image size WxH.
+        #[arg(long, value_parser = parse_size, default_value = "400x240")]
+        size: (u32, u32),
+        /// Frames per configuration (the best time is kept).
+        #[arg(long, default_value_t = 3)]
+        repeats: u32,
+        /// Maximum reflection bounces.
+        #[arg(long, default_value_t = 2)]
+        bounces: u8,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
     },
     /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
     Compare {
@@ -109,6 +172,7 @@ fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
         spp: a.spp,
         record_blocks: false,
         progress: true,
+        aniso: None,
     }
 }
 
@@ -121,14 +185,39 @@ fn main() -> ExitCode {
                 .map(|_| ())
                 .map_err(|e| e.to_string())
         }
+        Command::Render { args, geom, .. } if args.scene == "builtin:instances" => {
+            let cfg = Config {
+                mode: geom.geom_lod,
+                transition: geom.transition,
+                bias: geom.lod_bias,
+                view: geom.view,
+                size: args.size.unwrap_or(DEFAULT_SIZE),
+                frames: geom.frames.max(1),
+                bounces: args.bounces,
+                policy: MaskPolicy::PerPath,
+            };
+            cmd_render_instances(&cfg, geom.reference, &args.out)
+        }
+        Command::GeomlodBench {
+            size,
+            repeats,
+            bounces,
+            out,
+        } => cmd_bench(*size, *repeats, *bounces, out),
         Command::Render {
             args,
             method,
             precision,
+            filter,
+            max_aniso,
+            ..
         } => cmd_render(
             &args.scene,
             args.time,
-            &options(args, *method, *precision),
+            &Options {
+                aniso: (*filter == FilterArg::Aniso).then_some(*max_aniso),
+                ..options(args, *method, *precision)
+            },
             &args.out,
         ),
         Command::Compare { args, methods } => cmd_compare(

@@ -7,7 +7,7 @@ use serde::Serialize;
 use serde_json::json;
 
 use super::output::{heat_map, max_diff, psnr, write_json, write_png, write_text};
-use crate::render::{Image, Method, Options, Precision, Prepared, render};
+use crate::render::{Image, Method, Options, Precision, Prepared, render, render_truth};
 use crate::scene::{builtin, load_scene};
 
 /// One comparison row.
@@ -62,7 +62,7 @@ pub fn compare(
         }
         Ok(())
     };
-    let truth = render(prep, &opts(base, Method::Truth, Precision::Float));
+    let truth = render_truth(prep, base);
     let t8 = truth.to_rgb8();
     save("truth.png", &t8)?;
     let mut rows = Vec::new();

@@ -6,6 +6,7 @@ use std::path::Path;
 
 pub mod compare;
 pub mod demo_data;
+pub mod instances;
 pub mod output;
 pub mod render;
 pub mod sample;

@@ -143,6 +143,29 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), String> {
     fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// Replaces the text between the lines `<!-- NAME:begin -->` and
+/// `<!-- NAME:end -->` of the file `path` (a README) with `text`: how the
+/// measurement commands write their tables.
+///
+/// # Errors
+/// When the file cannot be read or written or lacks the markers.
+pub fn write_between_markers(path: &Path, name: &str, text: &str) -> Result<(), String> {
+    let begin = format!("<!-- {name}:begin -->");
+    let end = format!("<!-- {name}:end -->");
+    let old = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let (Some(b), Some(e)) = (old.find(&begin), old.find(&end)) else {
+        return Err(format!(
+            "{}: markers {begin} / {end} not found",
+            path.display()
+        ));
+    };
+    if e < b {
+        return Err(format!("{}: {end} before {begin}", path.display()));
+    }
+    let new = format!("{}{begin}\n{text}{}", &old[..b], &old[e..]);
+    std::fs::write(path, new).map_err(|e| format!("{}: {e}", path.display()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -107,6 +107,7 @@ pub fn measure(
         bounces,
         spp: 1,
         record_blocks: true,
+        aniso: None,
         progress,
     };
     let off = render(&prep, &base);

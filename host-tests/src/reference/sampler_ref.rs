@@ -268,38 +268,12 @@ impl RefSampler<'_> {
         self.output(self.filter(u, v, self.lod(lod), mode))
     }
 
-    /// Probe count, lod (before bias/clamps) and exact probe positions of
-    /// the anisotropic footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]`
-    /// at `(u, v)` (pbrt-style: minor axis clamped to major/max, probes at
-    /// `t_i = (2i + 1 − N)/(2N)` along the major axis).
-    #[must_use]
-    pub fn aniso_probes(&self, u: f64, v: f64, axes: [[f64; 2]; 2]) -> (u32, f64, Vec<[f64; 2]>) {
-        let (w, h) = self.tex.sizes[0];
-        let len = |a: [f64; 2]| (a[0] * f64::from(w)).hypot(a[1] * f64::from(h));
-        let (major, minor) = if len(axes[0]) >= len(axes[1]) {
-            (axes[0], len(axes[1]))
-        } else {
-            (axes[1], len(axes[0]))
-        };
-        let lmaj = len(major);
-        let max = f64::from(self.state.max_aniso);
-        let minor = minor.max(lmaj / max).max(f64::MIN_POSITIVE);
-        let n = ((lmaj / minor).ceil() as u32).clamp(1, self.state.max_aniso);
-        let nf = f64::from(n);
-        let probes = (0..n)
-            .map(|i| {
-                let t = (2.0 * f64::from(i) + 1.0 - nf) / (2.0 * nf);
-                [u + major[0] * t, v + major[1] * t]
-            })
-            .collect();
-        (n, minor.log2(), probes)
-    }
-
-    /// Exact anisotropic sample (mean of the probes' `mode` samples),
-    /// channel values 0..=255 (unrounded).
+    /// Exact anisotropic sample (mean of the probes' `mode` samples,
+    /// [`aniso_probes`]), channel values 0..=255 (unrounded).
     #[must_use]
     pub fn sample_aniso(&self, u: f64, v: f64, axes: [[f64; 2]; 2], mode: Mode) -> [f64; 4] {
-        let (n, lod, probes) = self.aniso_probes(u, v, axes);
+        let (w, h) = self.tex.sizes[0];
+        let (n, lod, probes) = aniso_probes((w, h), self.state.max_aniso, u, v, axes);
         let lod = self.lod(lod);
         let mut acc = [0.0; 4];
         for p in &probes {
@@ -310,6 +284,41 @@ impl RefSampler<'_> {
         }
         self.output(acc)
     }
+}
+
+/// Probe count, lod (before bias/clamps) and exact probe positions of the
+/// anisotropic footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` at
+/// `(u, v)` on a level 0 of `size` texels with at most `max` probes
+/// (pbrt-style: minor axis clamped to major/max, `N = ceil(major/minor')`,
+/// lod `log2 minor'`, probes at `t_i = (2i + 1 − N)/(2N)` along the major
+/// axis).
+#[must_use]
+pub fn aniso_probes(
+    size: (u32, u32),
+    max: u32,
+    u: f64,
+    v: f64,
+    axes: [[f64; 2]; 2],
+) -> (u32, f64, Vec<[f64; 2]>) {
+    let (w, h) = size;
+    let len = |a: [f64; 2]| (a[0] * f64::from(w)).hypot(a[1] * f64::from(h));
+    let (major, minor) = if len(axes[0]) >= len(axes[1]) {
+        (axes[0], len(axes[1]))
+    } else {
+        (axes[1], len(axes[0]))
+    };
+    let lmaj = len(major);
+    let max = max.max(1);
+    let minor = minor.max(lmaj / f64::from(max)).max(f64::MIN_POSITIVE);
+    let n = ((lmaj / minor).ceil() as u32).clamp(1, max);
+    let nf = f64::from(n);
+    let probes = (0..n)
+        .map(|i| {
+            let t = (2.0 * f64::from(i) + 1.0 - nf) / (2.0 * nf);
+            [u + major[0] * t, v + major[1] * t]
+        })
+        .collect();
+    (n, minor.log2(), probes)
 }
 
 /// One row of the accuracy table: a format/colour space and a filter.

@@ -8,39 +8,49 @@ const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 const EPS: f64 = 1e-12;
 
-#[derive(Clone, Copy, Debug)]
-struct Aabb {
-    lo: V3,
-    hi: V3,
+/// Axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Minimum corner.
+    pub lo: V3,
+    /// Maximum corner.
+    pub hi: V3,
 }
 
 impl Aabb {
-    const EMPTY: Self = Self {
+    /// The empty box (grows to anything).
+    pub const EMPTY: Self = Self {
         lo: [f64::INFINITY; 3],
         hi: [f64::NEG_INFINITY; 3],
     };
-    fn grow_p(&mut self, p: V3) {
+    /// Grows to contain point `p`.
+    pub fn grow_p(&mut self, p: V3) {
         for k in 0..3 {
             self.lo[k] = self.lo[k].min(p[k]);
             self.hi[k] = self.hi[k].max(p[k]);
         }
     }
-    fn grow(&mut self, b: &Aabb) {
+    /// Grows to contain box `b`.
+    pub fn grow(&mut self, b: &Aabb) {
         for k in 0..3 {
             self.lo[k] = self.lo[k].min(b.lo[k]);
             self.hi[k] = self.hi[k].max(b.hi[k]);
         }
     }
-    fn area(&self) -> f64 {
+    /// Surface area (0 for the empty box).
+    #[must_use]
+    pub fn area(&self) -> f64 {
         let d = v::sub(self.hi, self.lo);
         if d[0] < 0.0 {
             return 0.0;
         }
         2.0 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])
     }
-    /// Slab test: entry distance if the box is hit within `(0, tmax)`.
+    /// Slab test: entry distance if the box is hit within `(0, tmax)`
+    /// (`inv` = per-component reciprocal of the ray direction).
     #[inline]
-    fn hit(&self, o: V3, inv: V3, tmax: f64) -> Option<f64> {
+    #[must_use]
+    pub fn hit(&self, o: V3, inv: V3, tmax: f64) -> Option<f64> {
         let mut t0 = 0.0f64;
         let mut t1 = tmax;
         for k in 0..3 {
@@ -81,29 +91,34 @@ pub struct Hit {
     pub b2: f64,
 }
 
-/// The hierarchy plus a copy of the triangle positions.
-#[derive(Clone, Debug)]
-pub struct Bvh {
-    nodes: Vec<Node>,
-    order: Vec<u32>,
-    tris: Vec<[V3; 3]>,
+/// Work counters of traversals: nodes visited (entered) and primitives
+/// tested at leaves (triangles, or instances at a top level).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalStats {
+    /// Nodes entered.
+    pub nodes: u64,
+    /// Leaf primitives tested.
+    pub prims: u64,
 }
 
-impl Bvh {
-    /// Builds over triangle positions (index = triangle id).
+/// A binned-SAH hierarchy over primitive boxes (no primitives of its own):
+/// the bottom level over triangles ([`Bvh`]) and top levels over instances
+/// share it.
+#[derive(Clone, Debug)]
+pub struct Hierarchy {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl Hierarchy {
+    /// Builds over primitive boxes (index = primitive id).
     #[must_use]
-    pub fn build(tris: Vec<[V3; 3]>) -> Self {
-        let n = tris.len();
-        let mut boxes = Vec::with_capacity(n);
-        let mut cent = Vec::with_capacity(n);
-        for t in &tris {
-            let mut b = Aabb::EMPTY;
-            for p in t {
-                b.grow_p(*p);
-            }
-            cent.push(v::scale(v::add(b.lo, b.hi), 0.5));
-            boxes.push(b);
-        }
+    pub fn build(boxes: &[Aabb]) -> Self {
+        let n = boxes.len();
+        let cent: Vec<V3> = boxes
+            .iter()
+            .map(|b| v::scale(v::add(b.lo, b.hi), 0.5))
+            .collect();
         let mut order: Vec<u32> = (0..n as u32).collect();
         let mut nodes = Vec::with_capacity(2 * n.max(1));
         nodes.push(Node {
@@ -126,7 +141,7 @@ impl Bvh {
                 if e - s <= MAX_LEAF {
                     continue;
                 }
-                let Some((axis, split)) = best_split(&order[s..e], &boxes, &cent, &cb, b.area())
+                let Some((axis, split)) = best_split(&order[s..e], boxes, &cent, &cb, b.area())
                 else {
                     continue;
                 };
@@ -159,7 +174,7 @@ impl Bvh {
                 work.push((l + 1, m, e));
             }
         }
-        Self { nodes, order, tris }
+        Self { nodes, order }
     }
 
     /// Number of nodes.
@@ -168,43 +183,52 @@ impl Bvh {
         self.nodes.len()
     }
 
-    /// Closest hit with `t ∈ (tmin, tmax)`.
+    /// Bytes of the node and index arrays.
     #[must_use]
-    pub fn closest(&self, o: V3, d: V3, tmin: f64, tmax: f64) -> Option<Hit> {
-        self.traverse(o, d, tmin, tmax, false)
+    pub fn bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node>() + self.order.len() * 4
     }
 
-    /// Any hit with `t ∈ (tmin, tmax)` (for shadows).
+    /// Bounds of everything (the empty box for no primitives).
     #[must_use]
-    pub fn any(&self, o: V3, d: V3, tmin: f64, tmax: f64) -> Option<Hit> {
-        self.traverse(o, d, tmin, tmax, true)
+    pub fn bounds(&self) -> Aabb {
+        self.nodes[0].bounds
     }
 
-    fn traverse(&self, o: V3, d: V3, tmin: f64, tmax: f64, any: bool) -> Option<Hit> {
-        if self.tris.is_empty() {
-            return None;
-        }
-        let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
-        let mut best: Option<Hit> = None;
+    /// Front-to-back traversal of the ray `o + t·d` (`inv` = `1/d` per
+    /// component) up to `tmax`. `leaf(prim, tbest)` tests one primitive
+    /// and returns its hit distance if it is closer than `tbest`; with
+    /// `any` the first such hit ends the traversal. Returns the closest
+    /// distance found (or `tmax`).
+    pub fn traverse(
+        &self,
+        o: V3,
+        inv: V3,
+        tmax: f64,
+        any: bool,
+        stats: &mut TraversalStats,
+        mut leaf: impl FnMut(u32, f64) -> Option<f64>,
+    ) -> f64 {
         let mut tbest = tmax;
+        if self.order.is_empty() || self.nodes[0].bounds.hit(o, inv, tbest).is_none() {
+            return tbest;
+        }
         let mut stack = [0u32; 128];
         let mut sp = 0usize;
-        let root = &self.nodes[0];
-        root.bounds.hit(o, inv, tbest)?;
         let mut cur = 0u32;
         loop {
             let node = &self.nodes[cur as usize];
+            stats.nodes += 1;
             if node.count > 0 {
                 let s = node.start as usize;
-                for &ti in &self.order[s..s + node.count as usize] {
-                    if let Some((t, b1, b2)) = intersect(&self.tris[ti as usize], o, d)
-                        && t > tmin
+                for &pi in &self.order[s..s + node.count as usize] {
+                    stats.prims += 1;
+                    if let Some(t) = leaf(pi, tbest)
                         && t < tbest
                     {
                         tbest = t;
-                        best = Some(Hit { t, tri: ti, b1, b2 });
                         if any {
-                            return best;
+                            return tbest;
                         }
                     }
                 }
@@ -236,7 +260,7 @@ impl Bvh {
             // Pop, skipping nodes now farther than the best hit.
             loop {
                 if sp == 0 {
-                    return best;
+                    return tbest;
                 }
                 sp -= 1;
                 let n = stack[sp];
@@ -246,6 +270,100 @@ impl Bvh {
                 }
             }
         }
+    }
+}
+
+/// The hierarchy plus a copy of the triangle positions.
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    hierarchy: Hierarchy,
+    tris: Vec<[V3; 3]>,
+}
+
+impl Bvh {
+    /// Builds over triangle positions (index = triangle id).
+    #[must_use]
+    pub fn build(tris: Vec<[V3; 3]>) -> Self {
+        let boxes: Vec<Aabb> = tris
+            .iter()
+            .map(|t| {
+                let mut b = Aabb::EMPTY;
+                for p in t {
+                    b.grow_p(*p);
+                }
+                b
+            })
+            .collect();
+        Self {
+            hierarchy: Hierarchy::build(&boxes),
+            tris,
+        }
+    }
+
+    /// Number of nodes.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.hierarchy.node_count()
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// Triangle `i`'s positions.
+    #[must_use]
+    pub fn triangle(&self, i: u32) -> [V3; 3] {
+        self.tris[i as usize]
+    }
+
+    /// Bounds of all triangles.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.hierarchy.bounds()
+    }
+
+    /// Bytes of the hierarchy and the triangle positions.
+    #[must_use]
+    pub fn bytes(&self) -> usize {
+        self.hierarchy.bytes() + self.tris.len() * std::mem::size_of::<[V3; 3]>()
+    }
+
+    /// Closest hit with `t ∈ (tmin, tmax)`.
+    #[must_use]
+    pub fn closest(&self, o: V3, d: V3, tmin: f64, tmax: f64) -> Option<Hit> {
+        self.query(o, d, tmin, tmax, false, &mut TraversalStats::default())
+    }
+
+    /// Any hit with `t ∈ (tmin, tmax)` (for shadows).
+    #[must_use]
+    pub fn any(&self, o: V3, d: V3, tmin: f64, tmax: f64) -> Option<Hit> {
+        self.query(o, d, tmin, tmax, true, &mut TraversalStats::default())
+    }
+
+    /// Closest (or, with `any`, any) hit with `t ∈ (tmin, tmax)`, adding the
+    /// work to `stats`.
+    pub fn query(
+        &self,
+        o: V3,
+        d: V3,
+        tmin: f64,
+        tmax: f64,
+        any: bool,
+        stats: &mut TraversalStats,
+    ) -> Option<Hit> {
+        let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
+        let mut best: Option<Hit> = None;
+        self.hierarchy
+            .traverse(o, inv, tmax, any, stats, |ti, tbest| {
+                let (t, b1, b2) = intersect(&self.tris[ti as usize], o, d)?;
+                (t > tmin && t < tbest).then(|| {
+                    best = Some(Hit { t, tri: ti, b1, b2 });
+                    t
+                })
+            });
+        best
     }
 }
 

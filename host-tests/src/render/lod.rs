@@ -107,18 +107,24 @@ impl Ctx<'_> {
     }
 }
 
+/// The pixel footprint's two axes in normalized texture coordinates from
+/// the ray differentials (pbrt): `[(du/dx, dv/dx), (du/dy, dv/dy)]`.
+pub(crate) fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
+    let uv = q.uv;
+    let axis = |(a, b): (f64, f64)| {
+        [
+            a * (uv[1][0] - uv[0][0]) + b * (uv[2][0] - uv[0][0]),
+            a * (uv[1][1] - uv[0][1]) + b * (uv[2][1] - uv[0][1]),
+        ]
+    };
+    [axis(q.dbx), axis(q.dby)]
+}
+
 /// Ray-differential lod (Igehy 1999): log2 of the larger texel-space
 /// footprint edge per pixel.
 fn raydiff_lod(q: &LodQuery) -> f64 {
-    let uv = q.uv;
     let (tw, th) = (f64::from(q.tex.width), f64::from(q.tex.height));
-    let du = |a: f64, b: f64| {
-        let su = a * (uv[1][0] - uv[0][0]) + b * (uv[2][0] - uv[0][0]);
-        let sv = a * (uv[1][1] - uv[0][1]) + b * (uv[2][1] - uv[0][1]);
-        ((su * tw).powi(2) + (sv * th).powi(2)).sqrt()
-    };
-    du(q.dbx.0, q.dbx.1)
-        .max(du(q.dby.0, q.dby.1))
-        .max(1e-300)
-        .log2()
+    let len = |a: [f64; 2]| ((a[0] * tw).powi(2) + (a[1] * th).powi(2)).sqrt();
+    let [x, y] = raydiff_axes(q);
+    len(x).max(len(y)).max(1e-300).log2()
 }

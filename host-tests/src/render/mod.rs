@@ -14,15 +14,18 @@ use rayon::prelude::*;
 
 pub mod bvh;
 mod counters;
+pub mod instances;
 pub mod lod;
 mod options;
 mod setup;
+pub mod skip;
 pub mod texunit;
+pub mod tlas;
 mod tracer;
 
 pub use counters::Counters;
 pub use options::{Method, Options, Precision};
-pub use setup::{Prepared, SetupTimes};
+pub use setup::{CameraFrame, Prepared, SetupTimes};
 
 use texunit::{FetchLog, Unit};
 use tracer::Ctx;
@@ -63,6 +66,20 @@ impl Image {
     }
 }
 
+/// The ground truth: `base` rendered with [`Method::Truth`] in f64
+/// (jittered supersampling, `base.spp` samples per pixel).
+#[must_use]
+pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
+    render(
+        prep,
+        &Options {
+            method: Method::Truth,
+            precision: Precision::Float,
+            ..base.clone()
+        },
+    )
+}
+
 /// Renders an image.
 #[must_use]
 pub fn render(prep: &Prepared, opts: &Options) -> Image {
@@ -99,7 +116,7 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
             let mut ctx = Ctx {
                 prep,
                 opts,
-                unit: Unit::new(&prep.textures, fixed, opts.record_blocks),
+                unit: Unit::new(&prep.textures, fixed, opts.record_blocks, opts.aniso),
                 counters: Counters {
                     depth_hist: vec![0; usize::from(opts.bounces) + 1],
                     ..Counters::default()

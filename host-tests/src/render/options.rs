@@ -70,6 +70,10 @@ pub struct Options {
     pub record_blocks: bool,
     /// Show a progress bar.
     pub progress: bool,
+    /// Anisotropic filtering with at most this many probes (1..=16) over
+    /// the ray-differential footprint (pbrt-style axes; never a ray-cone
+    /// ellipse); `None` = isotropic (trilinear at the method's lod).
+    pub aniso: Option<u8>,
 }
 
 impl Default for Options {
@@ -82,6 +86,7 @@ impl Default for Options {
             spp: 256,
             record_blocks: false,
             progress: false,
+            aniso: None,
         }
     }
 }

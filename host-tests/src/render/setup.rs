@@ -51,14 +51,61 @@ pub struct Prepared {
     pub(crate) cam: CameraFrame,
 }
 
+/// A pinhole camera's orthonormal frame at one image size.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct CameraFrame {
-    pub(crate) eye: V3,
-    fwd: V3,
-    right: V3,
-    up: V3,
+pub struct CameraFrame {
+    /// Eye position.
+    pub eye: V3,
+    /// Unit view direction.
+    pub fwd: V3,
+    /// Unit right vector.
+    pub right: V3,
+    /// Unit up vector.
+    pub up: V3,
     /// Film-plane size of one pixel at distance 1.
-    px: f64,
+    pub px: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+impl CameraFrame {
+    /// The frame of camera `c` rendering `width`×`height` pixels.
+    #[must_use]
+    pub fn new(c: &crate::scene::Camera, width: u32, height: u32) -> Self {
+        let fov = c.fov_y_deg.to_radians();
+        let fwd = v::norm(v::sub(c.at, c.from));
+        let mut right = v::norm(v::cross(fwd, c.up));
+        if v::len(right) < 0.5 {
+            right = v::norm(v::cross(fwd, [0.0, 0.0, 1.0]));
+            if v::len(right) < 0.5 {
+                right = v::norm(v::cross(fwd, [1.0, 0.0, 0.0]));
+            }
+        }
+        let up = v::cross(right, fwd);
+        Self {
+            eye: c.from,
+            fwd,
+            right,
+            up,
+            px: 2.0 * (fov / 2.0).tan() / f64::from(height),
+            width,
+            height,
+        }
+    }
+
+    /// Unnormalised direction through film point `(fx, fy)` (pixels from
+    /// the top-left corner; `x + 0.5` is a pixel centre).
+    #[must_use]
+    pub fn dir(&self, fx: f64, fy: f64) -> V3 {
+        let sx = (fx - f64::from(self.width) / 2.0) * self.px;
+        let sy = (f64::from(self.height) / 2.0 - fy) * self.px;
+        v::add(
+            v::add(self.fwd, v::scale(self.right, sx)),
+            v::scale(self.up, sy),
+        )
+    }
 }
 
 impl Prepared {
@@ -136,23 +183,7 @@ impl Prepared {
         } else {
             v::len(v::sub(hi, lo)).max(1e-9)
         };
-        let c = &scene.camera;
-        let fwd = v::norm(v::sub(c.at, c.from));
-        let mut right = v::norm(v::cross(fwd, c.up));
-        if v::len(right) < 0.5 {
-            right = v::norm(v::cross(fwd, [0.0, 0.0, 1.0]));
-            if v::len(right) < 0.5 {
-                right = v::norm(v::cross(fwd, [1.0, 0.0, 0.0]));
-            }
-        }
-        let up = v::cross(right, fwd);
-        let cam = CameraFrame {
-            eye: c.from,
-            fwd,
-            right,
-            up,
-            px: 2.0 * (fov / 2.0).tan() / f64::from(height),
-        };
+        let cam = CameraFrame::new(&scene.camera, width, height);
         Ok(Self {
             scene,
             width,
@@ -173,13 +204,20 @@ impl Prepared {
         })
     }
 
+    /// Ray offset along the normal at continuation rays (scene units:
+    /// 10⁻⁷ of the scene diagonal).
+    pub(crate) fn eps(&self) -> f64 {
+        1e-7 * self.scale
+    }
+
     /// Unnormalized primary direction through film point `(fx, fy)` (pixels,
     /// origin top-left) and its derivatives per pixel in x and y.
     pub(crate) fn primary_dir(&self, fx: f64, fy: f64) -> (V3, V3, V3) {
         let c = &self.cam;
-        let sx = (fx - f64::from(self.width) / 2.0) * c.px;
-        let sy = (f64::from(self.height) / 2.0 - fy) * c.px;
-        let d = v::add(v::add(c.fwd, v::scale(c.right, sx)), v::scale(c.up, sy));
-        (d, v::scale(c.right, c.px), v::scale(c.up, -c.px))
+        (
+            c.dir(fx, fy),
+            v::scale(c.right, c.px),
+            v::scale(c.up, -c.px),
+        )
     }
 }

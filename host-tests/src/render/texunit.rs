@@ -7,14 +7,24 @@
 //!   the texel-block address of every fetch for the cache study;
 //! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
 //!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
+//!
+//! Anisotropic filtering (`Options::aniso`): the firmware unit uses one
+//! `raymip::texture_sampler::TextureSampler` per texture (wrap, the given
+//! maximum anisotropy), the float unit averages its own trilinear samples
+//! at the probes of `reference::sampler_ref::aniso_probes`.
 
+use raymip::aniso::Footprint;
 use raymip::cache::{BlockLayout, block_count};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::format::ColorSpace;
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
+use raymip::sampler_state::{SamplerDesc, SamplerState};
+use raymip::texture_sampler::TextureSampler;
 
 use super::Method;
 use super::lod::HitLod;
+use crate::reference::sampler_ref::aniso_probes;
 use crate::scene::TextureImage;
 
 /// Which filter a sample uses.
@@ -48,6 +58,28 @@ pub struct FetchLog {
     pub skipped: u64,
     /// Block addresses in fetch order, when recording.
     pub blocks: Option<Vec<u32>>,
+}
+
+impl FetchLog {
+    /// Adds a sampler's counters and moves the block addresses its
+    /// recorder logged.
+    fn take(&mut self, st: raymip::filter::FetchStats, source: &mut Recorder<'_>) {
+        self.fetched += st.fetched;
+        self.skipped += st.skipped;
+        if let (Some(all), Some(b)) = (self.blocks.as_mut(), source.blocks.as_mut()) {
+            all.append(b);
+        }
+    }
+}
+
+/// RGB of an RGBA8 texel in 0..1.
+fn texel_rgb(t: Texel) -> [f64; 3] {
+    let c = t.to_le_bytes();
+    [
+        f64::from(c[0]) / 255.0,
+        f64::from(c[1]) / 255.0,
+        f64::from(c[2]) / 255.0,
+    ]
 }
 
 /// A MIP pyramid in one buffer (level 0 first), built by the firmware's
@@ -95,6 +127,20 @@ impl MipTexture {
         })
     }
 
+    /// The same texture over other stored texels: `geometry` (the full
+    /// one or a [trimmed](Geometry::trimmed) one) and its texels (empty: a
+    /// texture with nothing stored, which samples black). Block addresses
+    /// stay those of the full pyramid.
+    #[must_use]
+    pub fn with_pyramid(&self, geometry: Geometry, texels: Vec<Texel>) -> Self {
+        Self {
+            texels,
+            geometry,
+            layout: BlockLayout::new(&geometry),
+            ..self.clone()
+        }
+    }
+
     /// Size of `level`.
     #[must_use]
     pub fn level_size(&self, level: u8) -> (u32, u32) {
@@ -137,11 +183,45 @@ impl<'a> Unit<'a> {
     /// The unit for `textures`: the firmware one for fixed-point renders
     /// (recording block addresses when `record`), else the f64 one.
     #[must_use]
-    pub fn new(textures: &'a [MipTexture], fixed: bool, record: bool) -> Self {
+    pub fn new(textures: &'a [MipTexture], fixed: bool, record: bool, aniso: Option<u8>) -> Self {
         if fixed {
-            Self::Firmware(FirmwareUnit::new(textures, record))
+            Self::Firmware(FirmwareUnit::new(textures, record, aniso))
         } else {
-            Self::Float(FloatUnit { textures })
+            Self::Float(FloatUnit {
+                textures,
+                max_aniso: aniso.unwrap_or(1),
+            })
+        }
+    }
+
+    /// One anisotropic sample of texture `tex` at `(u, v)` over the
+    /// footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` (normalized
+    /// texture coordinates per pixel), linear RGB in 0..1; trilinear
+    /// probes, at most the unit's maximum anisotropy.
+    pub fn sample_aniso(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        axes: [[f64; 2]; 2],
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        match self {
+            Self::Firmware(unit) => {
+                let a = |x: f64| {
+                    if x.is_finite() {
+                        TexCoord::saturating_from_num(x)
+                    } else {
+                        TexCoord::ZERO
+                    }
+                };
+                let fp = Footprint {
+                    x: [a(axes[0][0]), a(axes[0][1])],
+                    y: [a(axes[1][0]), a(axes[1][1])],
+                };
+                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), &fp, log))
+            }
+            Self::Float(unit) => unit.sample_aniso(tex, u, v, axes, log),
         }
     }
 
@@ -167,14 +247,7 @@ impl<'a> Unit<'a> {
                     Filter::Trilinear => Mode::Trilinear,
                     Filter::BilinearLevel0 => Mode::BilinearNearestLevel,
                 };
-                let c = unit
-                    .sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log)
-                    .to_le_bytes();
-                [
-                    f64::from(c[0]) / 255.0,
-                    f64::from(c[1]) / 255.0,
-                    f64::from(c[2]) / 255.0,
-                ]
+                texel_rgb(unit.sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log))
             }
             Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
         }
@@ -185,6 +258,7 @@ impl<'a> Unit<'a> {
 #[derive(Clone, Copy, Debug)]
 pub struct FloatUnit<'a> {
     textures: &'a [MipTexture],
+    max_aniso: u8,
 }
 
 fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
@@ -248,6 +322,31 @@ impl FloatUnit<'_> {
         };
         [c[0] / 255.0, c[1] / 255.0, c[2] / 255.0]
     }
+
+    /// Anisotropic sample: the mean of trilinear samples at the probes of
+    /// [`aniso_probes`] (exact positions and lod), linear RGB in 0..1.
+    pub fn sample_aniso(
+        &self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        axes: [[f64; 2]; 2],
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        let Some(t) = self.textures.get(tex) else {
+            return [0.0; 3];
+        };
+        let (n, lod, probes) =
+            aniso_probes((t.width, t.height), u32::from(self.max_aniso), u, v, axes);
+        let mut acc = [0.0; 3];
+        for p in probes {
+            let s = self.sample(tex, p[0], p[1], lod, Filter::Trilinear, log);
+            for c in 0..3 {
+                acc[c] += s[c] / f64::from(n);
+            }
+        }
+        acc
+    }
 }
 
 /// A [`TexelSource`] over one texture's pyramid that logs the global block
@@ -286,27 +385,64 @@ impl TexelSource for Recorder<'_> {
 #[derive(Debug)]
 pub struct FirmwareUnit<'a> {
     samplers: Vec<Option<Sampler<Recorder<'a>>>>,
+    aniso: Vec<Option<TextureSampler<Recorder<'a>>>>,
 }
 
 impl<'a> FirmwareUnit<'a> {
     /// One wrap-addressing sampler per texture; `record` logs the block
     /// address of every fetch.
     #[must_use]
-    pub fn new(textures: &'a [MipTexture], record: bool) -> Self {
+    pub fn new(textures: &'a [MipTexture], record: bool, aniso: Option<u8>) -> Self {
+        let source = |tex: &'a MipTexture| {
+            Some(Recorder {
+                pyramid: Pyramid::new(tex.geometry, &tex.texels).ok()?,
+                layout: &tex.layout,
+                base: tex.block_base,
+                blocks: record.then(Vec::new),
+            })
+        };
         let samplers = textures
             .iter()
+            .map(|tex| Some(Sampler::new(source(tex)?, Address::Wrap)))
+            .collect();
+        let state = aniso.and_then(|max| {
+            SamplerState::new(SamplerDesc {
+                max_anisotropy: max.clamp(1, 16),
+                ..SamplerDesc::default()
+            })
+            .ok()
+        });
+        let aniso = textures
+            .iter()
             .map(|tex| {
-                let pyramid = Pyramid::new(tex.geometry, &tex.texels).ok()?;
-                let source = Recorder {
-                    pyramid,
-                    layout: &tex.layout,
-                    base: tex.block_base,
-                    blocks: record.then(Vec::new),
-                };
-                Some(Sampler::new(source, Address::Wrap))
+                Some(TextureSampler::new(
+                    source(tex)?,
+                    state?,
+                    ColorSpace::Linear,
+                ))
             })
             .collect();
-        Self { samplers }
+        Self { samplers, aniso }
+    }
+
+    /// One anisotropic sample of texture `tex` through the firmware
+    /// `TextureSampler` (trilinear probes); fetches go to `log`. Texel 0
+    /// for an unknown texture or without anisotropy.
+    pub fn sample_aniso(
+        &mut self,
+        tex: usize,
+        u: TexCoord,
+        v: TexCoord,
+        fp: &Footprint,
+        log: &mut FetchLog,
+    ) -> Texel {
+        let Some(Some(sampler)) = self.aniso.get_mut(tex) else {
+            return 0;
+        };
+        let t = sampler.sample_aniso(u, v, fp, Mode::Trilinear);
+        log.take(sampler.stats(), sampler.source_mut());
+        sampler.reset_stats();
+        t
     }
 
     /// One sample of texture `tex` through the firmware sampler; fetch
@@ -325,13 +461,8 @@ impl<'a> FirmwareUnit<'a> {
             return 0;
         };
         let t = sampler.sample(u, v, lod, mode);
-        let st = sampler.stats();
+        log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
-        log.fetched += st.fetched;
-        log.skipped += st.skipped;
-        if let (Some(all), Some(b)) = (log.blocks.as_mut(), sampler.source_mut().blocks.as_mut()) {
-            all.append(b);
-        }
         t
     }
 }

@@ -4,7 +4,7 @@ use fixed::types::U32F32;
 use raymip::raystack::{PathState, RayStack, Spread};
 
 use super::bvh::Hit;
-use super::lod::LodQuery;
+use super::lod::{LodQuery, raydiff_axes};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
 use crate::scene::{Material, Triangle, V3, v};
@@ -236,10 +236,18 @@ impl Ctx<'_> {
         if first_lod.is_nan() {
             *first_lod = lod.to_f64();
         }
-        let filter = Filter::of(self.opts.method);
-        let c = self
-            .unit
-            .sample(x as usize, u, vv, lod, filter, &mut self.log);
+        let c = match self.opts.aniso {
+            Some(_) if Filter::of(self.opts.method) == Filter::Trilinear => {
+                let axes = raydiff_axes(&query);
+                self.unit
+                    .sample_aniso(x as usize, u, vv, axes, &mut self.log)
+            }
+            _ => {
+                let filter = Filter::of(self.opts.method);
+                self.unit
+                    .sample(x as usize, u, vv, lod, filter, &mut self.log)
+            }
+        };
         v::mul(kd, c)
     }
 
@@ -284,7 +292,7 @@ impl Ctx<'_> {
 
     /// Ray offset along the normal (scene-relative).
     fn eps(&self) -> f64 {
-        1e-7 * self.prep.scale
+        self.prep.eps()
     }
 
     /// Continuation rays: refraction (total internal reflection folds into

@@ -5,7 +5,9 @@
 
 pub mod aff;
 pub mod builtin;
+pub mod instances;
 mod load;
+pub mod lodmesh;
 pub mod ppm;
 
 pub use load::{default_bart_dir, load_aff, load_scene, load_scene_dir};
