@@ -160,6 +160,10 @@ enum Command {
         /// Write table1.md and table1.json here.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Measure the other scenes when one fails to load (it is named on
+        /// stderr); without it a scene that cannot be loaded is an error.
+        #[arg(long)]
+        skip_unloadable: bool,
     },
 }
 
@@ -234,6 +238,7 @@ fn main() -> ExitCode {
             time,
             builtin,
             out,
+            skip_unloadable,
         } => cmd_table1(
             scenes.as_deref(),
             *size,
@@ -241,6 +246,7 @@ fn main() -> ExitCode {
             *time,
             *builtin,
             out.as_deref(),
+            *skip_unloadable,
         ),
     };
     match r {
