@@ -334,7 +334,15 @@ mod tests {
         #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
-            prop_assert!(l >= Lod::MIN && l <= Lod::MAX);
+            // f64 reference over the whole input range (issue 11, defect 6:
+            // this used to assert `Lod::MIN <= l <= Lod::MAX`, true of every
+            // Lod): `w = 0` read as 2⁻³², |n·d| clamped to [2⁻¹⁶, 1], the sum
+            // saturated to the Lod range. Two log2 errors and the output
+            // rounding stay within LOD_MAX_ERROR.
+            let lw = (w.unsigned_abs().max(1) as f64).log2() - 32.0;
+            let lc = c.map_or(0.0, |c| (f64::from(c.clamp(1 << 15, 1 << 31)) / 2f64.powi(31)).log2());
+            let want = (f64::from(d) / 65536.0 + lw - lc).clamp(Lod::MIN.to_num(), Lod::MAX.to_num());
+            prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod = {} vs f64 {}", l, want);
             let c2 = clamp_lod(l, 13);
             prop_assert!(c2 >= Lod::ZERO && c2 <= Lod::from_num(12));
         }

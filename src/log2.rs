@@ -127,13 +127,25 @@ fn mantissa_log2(m: u32) -> u32 {
 }
 
 /// log2 of an unsigned fixed-point number given as raw `bits` with
-/// `frac_bits` fractional bits (`0 ≤ frac_bits ≤ 64`), as I16F16.
+/// `frac_bits` fractional bits, as I16F16.
 ///
 /// Range: the result lies in `[−frac_bits, 64 − frac_bits)`; zero gives
-/// `−frac_bits` (see [Zero](self#zero)). Error ≤ [`LOG2_MAX_ERROR`].
+/// `−frac_bits` (see [Zero](self#zero)). Error ≤ [`LOG2_MAX_ERROR`]. The
+/// formats of this crate have `frac_bits ≤ 64`; any larger count is still
+/// `log2 x − frac_bits`, saturated at `I16F16::MIN` (a separate set-up
+/// path; a constant `frac_bits ≤ 64` compiles to the branch-free one).
 #[inline]
 #[must_use]
 pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
+    if frac_bits > 64 {
+        return log2_bits_wide(bits, frac_bits);
+    }
+    log2_bits_narrow(bits, frac_bits)
+}
+
+/// [`log2_bits`] for `frac_bits ≤ 64` (the result then fits I16F16).
+#[inline(always)]
+fn log2_bits_narrow(bits: u64, frac_bits: u32) -> I16F16 {
     // Zero is read as the smallest positive value (branch-free).
     let bits = if bits == 0 { 1 } else { bits };
     let lz = clz64(bits); // 0..=63
@@ -141,6 +153,14 @@ pub fn log2_bits(bits: u64, frac_bits: u32) -> I16F16 {
     let m = ((bits << lz) >> 32) as u32;
     let int = 63 - lz as i32 - frac_bits as i32;
     I16F16::from_bits((int << 16) + mantissa_log2(m) as i32)
+}
+
+/// [`log2_bits`] for `frac_bits > 64`: `log2 x ∈ [0, 64)` minus
+/// `frac_bits` in 64-bit arithmetic (no overflow), saturated at `I16F16::MIN`.
+#[cold]
+fn log2_bits_wide(bits: u64, frac_bits: u32) -> I16F16 {
+    let l = i64::from(log2_bits_narrow(bits, 0).to_bits()) - (i64::from(frac_bits) << 16);
+    I16F16::from_bits(l.max(i64::from(i32::MIN)) as i32)
 }
 
 /// Count of leading zero bits of a 64-bit value (64 for zero): one
@@ -325,6 +345,61 @@ mod tests {
         assert_eq!(log2_bits_u128(0, 10), LOG2_ZERO);
     }
 
+    /// f64 reference of `log2_bits` for any `frac_bits`, saturated at the
+    /// bottom of I16F16 (the top, `64 − frac_bits < 64`, is never reached).
+    fn reference_saturated(bits: u64, frac: u32) -> f64 {
+        reference(bits.max(1), frac).max(I16F16::MIN.to_num::<f64>())
+    }
+
+    /// Regression (issue 11, defect 6): `frac_bits` above 64 is outside the
+    /// formats the crate uses but must still give `log2 x − frac_bits`,
+    /// saturated at `I16F16::MIN`, instead of wrapping (or, in debug,
+    /// panicking on the subtraction).
+    #[test]
+    fn frac_bits_beyond_64_saturate() {
+        assert_eq!(log2_bits(1 << 63, 100).to_num::<f64>(), -37.0);
+        assert_eq!(log2_bits(1, 32_768), I16F16::MIN);
+        assert_eq!(log2_bits(1, 40_000), I16F16::MIN);
+        assert_eq!(log2_bits(u64::MAX, u32::MAX), I16F16::MIN);
+        assert_eq!(log2_bits(0, 1 << 31), I16F16::MIN);
+        assert_eq!(log2_bits(1 << 20, (1 << 31) + 5), I16F16::MIN);
+        // Just above the bottom: still the true value.
+        assert_eq!(log2_bits(1 << 40, 32_768 + 40).to_num::<f64>(), -32_768.0);
+        let near = log2_bits(3 << 40, 32_768 + 40).to_num::<f64>();
+        assert!((near - reference(3 << 40, 32_768 + 40)).abs() <= LOG2_MAX_ERROR);
+    }
+
+    /// Neighbours `(x, x + 1)` at every place where the method changes
+    /// branch: each octave boundary and each table-segment boundary of every
+    /// octave (issue 11, defect 6: the old property drew far-apart pairs only).
+    #[test]
+    fn monotonic_at_every_octave_and_segment_boundary() {
+        for frac in [0, 16, 31, 32, 64] {
+            for n in 0..64u32 {
+                let base = 1u64 << n;
+                for i in 0..=64u64 {
+                    // Start of segment i of octave n (i = 64: the next octave).
+                    let b = base.saturating_add(((u128::from(base) * u128::from(i)) / 64) as u64);
+                    for x in [
+                        b.saturating_sub(2),
+                        b.saturating_sub(1),
+                        b,
+                        b.saturating_add(1),
+                    ] {
+                        if x == u64::MAX {
+                            continue;
+                        }
+                        assert!(
+                            log2_bits(x, frac) <= log2_bits(x + 1, frac),
+                            "log2({x:#x}) > log2({:#x}) with {frac} fractional bits",
+                            x + 1
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         #[test]
@@ -337,6 +412,25 @@ mod tests {
             let got = log2_bits_u128(bits, frac).to_num::<f64>();
             let want = (bits as f64).log2() - f64::from(frac);
             prop_assert!((got - want).abs() <= LOG2_MAX_ERROR, "{} vs {}", got, want);
+        }
+
+        /// Neighbours `(x, x + 1)` drawn uniformly over the octaves (a plain
+        /// `any::<u64>()` would put half the draws in the top octave), with
+        /// every format the crate uses.
+        #[test]
+        fn monotonic_neighbours_over_the_whole_range(n in 0u32..64, m in any::<u64>(), frac in 0u32..=64) {
+            let x = (1u64 << n) | (m & ((1u64 << n) - 1));
+            prop_assume!(x < u64::MAX);
+            prop_assert!(log2_bits(x, frac) <= log2_bits(x + 1, frac), "x = {:#x}", x);
+            prop_assert!(log2_bits(x - 1, frac) <= log2_bits(x, frac), "x = {:#x}", x);
+        }
+
+        /// Any `frac_bits`, saturated at the bottom, within the error bound.
+        #[test]
+        fn any_frac_bits_within_bound(bits in any::<u64>(), frac in any::<u32>()) {
+            let got = log2_bits(bits, frac).to_num::<f64>();
+            let want = reference_saturated(bits, frac);
+            prop_assert!((got - want).abs() <= LOG2_MAX_ERROR, "log2_bits({:#x}, {}) = {} vs {}", bits, frac, got, want);
         }
 
         #[test]

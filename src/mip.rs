@@ -64,7 +64,8 @@ pub const fn full_levels(width: u32, height: u32) -> u8 {
 
 /// Total texels of levels `0 .. levels` of a `width × height` texture
 /// (`levels` is limited to [`full_levels`]); 0 when a side is 0. Saturates
-/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]).
+/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]: for sides near 2³²
+/// the sum exceeds `u64`, so it saturates there too).
 #[must_use]
 pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let full = full_levels(width, height);
@@ -73,7 +74,8 @@ pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let mut k = 0;
     while k < n {
         let (w, h) = level_dims(width, height, k);
-        total += w as u64 * h as u64;
+        // One level is below 2⁶⁴; the sum of all of them need not be.
+        total = total.saturating_add(w as u64 * h as u64);
         k += 1;
     }
     if total > usize::MAX as u64 {
@@ -629,6 +631,32 @@ mod tests {
         assert_eq!(Geometry::new(4, 4, 0), Err(MipError::BadLevels));
         let g = Geometry::new(MAX_SIZE, MAX_SIZE, 16).unwrap();
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
+    }
+
+    /// Regression (issue 11, defect 2): sides near 2³² overflowed the
+    /// 64-bit sum (wrapped in release, panicked in debug) instead of
+    /// saturating as documented.
+    #[test]
+    fn pyramid_len_saturates_for_huge_sides() {
+        // Level 0 alone is (2³² − 1)² = 2⁶⁴ − 2³³ + 1 texels; level 1 adds ≈ 2⁶²:
+        // the exact total exceeds u64 (and usize).
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 32), usize::MAX);
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 2), usize::MAX);
+        // One level still fits u64 exactly (and saturates only on 32-bit targets).
+        let one = u64::from(u32::MAX) * u64::from(u32::MAX);
+        assert_eq!(
+            pyramid_len(u32::MAX, u32::MAX, 1),
+            usize::try_from(one).unwrap_or(usize::MAX)
+        );
+        // Monotonic in the level count over the whole u32 side range.
+        for side in [1u32 << 31, (1 << 31) + 1, u32::MAX - 1, u32::MAX] {
+            let mut last = 0;
+            for levels in 0..=33 {
+                let n = pyramid_len(side, side, levels);
+                assert!(n >= last, "{side}: {levels} levels {n} < {last}");
+                last = n;
+            }
+        }
     }
 
     #[test]
