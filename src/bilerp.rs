@@ -86,6 +86,34 @@ pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
     out
 }
 
+/// [`bilerp_in_range`] rounded to a texel in one step, bit-identical to
+/// `round_wide_in_range(bilerp_in_range(t, fx, fy))`: with
+/// `X = top·(4096 − fy) + bot·fy ≤ 255·2²⁴`,
+/// `floor((floor((X + 2⁷)/2⁸) + 2¹⁵)/2¹⁶) = floor((X + 2⁷ + 2²³)/2²⁴)`
+/// (a floor of an integer plus an integer composes), and
+/// `X + 2⁷ + 2²³ < 2³²`.
+#[inline(always)]
+pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32) -> Texel {
+    let gx = WEIGHT_ONE.wrapping_sub(fx);
+    let gy = WEIGHT_ONE.wrapping_sub(fy);
+    let mut out = 0u32;
+    for c in 0..4 {
+        let top = ch(t[0], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[1], c).wrapping_mul(fx));
+        let bot = ch(t[2], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+        let r = top
+            .wrapping_mul(gy)
+            .wrapping_add(bot.wrapping_mul(fy))
+            .wrapping_add((1 << 7) + (1 << 23))
+            >> 24;
+        out |= (r & 0xFF) << (8 * c);
+    }
+    out
+}
+
 /// A texel widened to 8.16 per channel (exact).
 #[inline]
 #[must_use]
@@ -246,5 +274,28 @@ mod tests {
         assert_eq!(round_wide(w), u32::MAX);
         assert_eq!(blend_wide([u32::MAX; 4], [u32::MAX; 4], 999), u32::MAX);
         assert_eq!(blend_texels(u32::MAX, u32::MAX, 999), u32::MAX);
+    }
+
+    #[test]
+    fn rounded_bilerp_equals_two_roundings() {
+        let mut x = 0x2545_F491_u64;
+        for n in 0..200_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let t = [
+                x as u32,
+                (x >> 16) as u32,
+                (x >> 32) as u32,
+                (x >> 40) as u32 | (n << 24),
+            ];
+            let (fx, fy) = ((x >> 48) as u32 & 0xFFF, (n * 37) % 4097);
+            let t = if n % 7 == 0 { [u32::MAX; 4] } else { t };
+            assert_eq!(
+                bilerp_rounded(t, fx, fy),
+                round_wide_in_range(bilerp_in_range(t, fx, fy)),
+                "{t:x?} {fx} {fy}"
+            );
+        }
     }
 }

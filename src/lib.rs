@@ -151,6 +151,8 @@ pub mod cache;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 pub mod filter;
+#[cfg(feature = "f32")]
+pub mod float;
 pub mod format;
 pub mod geomlod;
 // Images decode BC blocks as the texel cache's fill path.

@@ -27,9 +27,9 @@ use fixed::types::I8F8;
 #[cfg(feature = "cone")]
 use fixed::types::{I16F16, U1F31};
 
+use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
-use crate::log2::log2_bits;
-use crate::log2::log2_u32f32;
+use crate::log2::{LOD_BIAS, log2_u1f31_biased};
 use crate::raystack::PathLength;
 #[cfg(feature = "cone")]
 use crate::raystack::Width;
@@ -48,14 +48,6 @@ pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 #[cfg(feature = "cone")]
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
-/// Rounds an I16F16 level to [`Lod`] (nearest, ties up), saturating.
-#[cfg(feature = "cone")]
-#[inline(always)]
-fn to_lod(x: I16F16) -> Lod {
-    let r = x.to_bits().saturating_add(0x80) >> 8;
-    Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
-}
-
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
 /// `pl` (scene units) and the hit triangle's table entry. `None` for an
 /// untextured triangle (nothing to fetch). `Pl = 0` is read as 2⁻³².
@@ -68,8 +60,11 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     if pb.is_untextured() {
         return None;
     }
-    let d = log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
-    Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
+    // log2 Pl + 0x80 = biased − (lz << 16) in I16F16 bits (the I8F8
+    // rounding offset is folded into the log2 table).
+    let (lz, biased) = log2_u32f32_parts(pl.to_bits());
+    let d = biased as i32 - (((lz as i32) << 16) + pb.to_i16f16().to_bits());
+    Some(Lod::from_bits((d >> 8) as i16))
 }
 
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
@@ -81,13 +76,48 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 #[inline]
 #[must_use]
 pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
-    let mut l = delta.saturating_add(lw);
+    // Every term in I16F16 bits: log2|w| ∈ [−32, 32) levels, the normal
+    // term ∈ [0, 16]. With Δ clamped to ±2^30 bits (±16384 levels) nothing
+    // overflows i32, and the result equals the saturating sum: once |Δ|
+    // exceeds 2^30 bits the sum lies beyond ±2^29 bits either way, far past
+    // the ±2^23 bits that `Lod` holds, so both saturate to the same end.
+    let delta = delta.to_bits().clamp(-(1 << 30), 1 << 30);
+    let (lz, biased) = log2_u32f32_parts(width.to_bits().unsigned_abs());
+    // log2|w| + 0x80 (the I8F8 rounding offset) + Δ.
+    let mut l = delta + (biased as i32 - ((lz as i32) << 16));
     if let Some(c) = n_dot_d {
         let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
-        l = l.saturating_sub(log2_bits(u64::from(c), 31));
+        // Both terms carry LOD_BIAS: it cancels.
+        l -= log2_u1f31_biased(c) - LOD_BIAS as i32;
     }
-    to_lod(l)
+    Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+}
+
+/// Batch of [`table_lod`]: `out[i] = table_lod(hits[i].0, hits[i].1)` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`
+/// (results past `n` are left untouched). Same results as the per-hit call,
+/// bit for bit; never panics.
+#[inline]
+pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(pl, pb)) in out.iter_mut().zip(hits) {
+        *o = table_lod(pl, pb);
+    }
+    n
+}
+
+/// Batch of [`cone_lod`]: `out[i] = cone_lod(w, Δ, n·d)` of `hits[i]` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+/// Same results as the per-hit call, bit for bit; never panics. Feature
+/// `cone`.
+#[cfg(feature = "cone")]
+#[inline]
+pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
+        *o = cone_lod(w, d, c);
+    }
+    n
 }
 
 /// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
@@ -273,6 +303,82 @@ mod tests {
         )
     }
 
+    /// The formulas as first written (one `log2_bits` per term, saturating
+    /// I16F16 sums, rounding to I8F8): the optimised per-hit code must give
+    /// the same bits for every input.
+    fn table_lod_formula(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+        if pb.is_untextured() {
+            return None;
+        }
+        let d = crate::log2::log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
+        Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
+    }
+
+    #[cfg(feature = "cone")]
+    fn cone_lod_formula(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+        use crate::log2::log2_bits;
+        let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
+        let mut l = delta.saturating_add(lw);
+        if let Some(c) = n_dot_d {
+            let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+            l = l.saturating_sub(log2_bits(u64::from(c), 31));
+        }
+        let r = l.to_bits().saturating_add(0x80) >> 8;
+        Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+    }
+
+    #[test]
+    fn per_hit_code_equals_formula_at_the_edges() {
+        let pls = [
+            0u64,
+            1,
+            2,
+            0xFFFF_FFFF,
+            1 << 32,
+            (1 << 32) + 1,
+            u64::MAX,
+            1 << 63,
+        ];
+        let pbs = [
+            i32::MIN,
+            i32::MIN + 1,
+            -95 << 16,
+            -1,
+            0,
+            1,
+            95 << 16,
+            i32::MAX,
+        ];
+        for &p in &pls {
+            for &b in &pbs {
+                let (pl, pb) = (PathLength::from_bits(p), Log2Pb::from_bits(b));
+                assert_eq!(
+                    table_lod(pl, pb),
+                    table_lod_formula(pl, pb),
+                    "{p:#x} {b:#x}"
+                );
+                #[cfg(feature = "cone")]
+                let d = I16F16::from_bits(b);
+                #[cfg(feature = "cone")]
+                for c in [
+                    None,
+                    Some(0u32),
+                    Some(1),
+                    Some(1 << 15),
+                    Some(1 << 31),
+                    Some(u32::MAX),
+                ] {
+                    let (w, c) = (Width::from_bits(p as i64), c.map(U1F31::from_bits));
+                    assert_eq!(
+                        cone_lod(w, d, c),
+                        cone_lod_formula(w, d, c),
+                        "{p:#x} {b:#x} {c:?}"
+                    );
+                }
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4_000))]
 
@@ -316,6 +422,20 @@ mod tests {
                 prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
                     "cone {} vs table {}", cone, got);
             }
+        }
+
+        #[test]
+        fn per_hit_code_equals_formula(p in any::<u64>(), s in 0u32..64, b in any::<i32>(), w in any::<i64>(), c in proptest::option::of(any::<u32>())) {
+            let pl = PathLength::from_bits(p >> s);
+            let pb = Log2Pb::from_bits(b);
+            prop_assert_eq!(table_lod(pl, pb), table_lod_formula(pl, pb));
+            #[cfg(feature = "cone")]
+            {
+                let (w, d, c) = (Width::from_bits(w >> s), I16F16::from_bits(b), c.map(U1F31::from_bits));
+                prop_assert_eq!(cone_lod(w, d, c), cone_lod_formula(w, d, c));
+            }
+            #[cfg(not(feature = "cone"))]
+            let _ = (w, c);
         }
 
         #[test]

@@ -487,6 +487,14 @@ pub trait TexelSource {
             self.texel(level, x[1], y[1]),
         ]
     }
+    /// The whole pyramid in memory (layout of the module docs), when the
+    /// source reads memory directly: lets a [`Sampler`](crate::filter::Sampler)
+    /// compute texel addresses itself (one address per 2×2 footprint).
+    /// Sources that must see every read (a cache) return `None`, the default.
+    #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        None
+    }
 }
 
 /// A pyramid: geometry plus a borrowed texel slice laid out as in the
@@ -562,6 +570,11 @@ impl TexelSource for Pyramid<'_> {
     }
 
     #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        Some(self.texels)
+    }
+
+    #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
         self.get(level, x, y)
     }
@@ -598,6 +611,11 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         (**self).footprint(level, x, y)
+    }
+
+    #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        (**self).texel_slice()
     }
 }
 

@@ -33,7 +33,9 @@ use raymip::geomlod::{
     transition_step, visible,
 };
 use raymip::image::Image;
-use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
+use raymip::lod::{
+    Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
+};
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
@@ -229,6 +231,37 @@ fn main() -> ! {
             bb(trimmed.sample(u, v, lod, bb(m)));
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
+        }
+        // batch entry points (slices of opaque length)
+        let hits = bb([(pl, pb); 4]);
+        let mut lods = [None; 3];
+        bb(table_lod_batch(
+            hits.get(..bb(4)).unwrap_or_default(),
+            lods.get_mut(..bb(3)).unwrap_or_default(),
+        ));
+        let cones = bb([(
+            Width::from_bits(77),
+            fixed::types::I16F16::from_bits(5),
+            Some(fixed::types::U1F31::from_bits(3)),
+        ); 4]);
+        let mut cone_out = [Lod::ZERO; 4];
+        bb(cone_lod_batch(
+            cones.get(..bb(2)).unwrap_or_default(),
+            cone_out.get_mut(..bb(4)).unwrap_or_default(),
+        ));
+        let samples = bb([(u, v, lod); 4]);
+        let mut texels = [0; 4];
+        for &m in &modes {
+            bb(direct.sample_batch(
+                samples.get(..bb(4)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(3)).unwrap_or_default(),
+            ));
+            bb(cached.sample_batch(
+                samples.get(..bb(3)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(4)).unwrap_or_default(),
+            ));
         }
         for m in [
             StochasticMode::Trilinear,

@@ -126,6 +126,10 @@ enum Command {
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+        /// Also write the table between `<!-- geomlod-bench:begin/end -->`
+        /// markers in these files (README.md, BENCHMARKS.md).
+        #[arg(long)]
+        write: Vec<PathBuf>,
     },
     /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
     Compare {
@@ -199,6 +203,7 @@ fn main() -> ExitCode {
                 frames: geom.frames.max(1),
                 bounces: args.bounces,
                 policy: MaskPolicy::PerPath,
+                serial: false,
             };
             cmd_render_instances(&cfg, geom.reference, &args.out)
         }
@@ -207,7 +212,8 @@ fn main() -> ExitCode {
             repeats,
             bounces,
             out,
-        } => cmd_bench(*size, *repeats, *bounces, out),
+            write,
+        } => cmd_bench(*size, *repeats, *bounces, out, write),
         Command::Render {
             args,
             method,

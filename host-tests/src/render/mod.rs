@@ -18,6 +18,7 @@ pub mod instances;
 pub mod lod;
 mod options;
 mod setup;
+pub mod skip;
 pub mod texunit;
 pub mod tlas;
 mod tracer;

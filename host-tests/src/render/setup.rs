@@ -204,6 +204,12 @@ impl Prepared {
         })
     }
 
+    /// Ray offset along the normal at continuation rays (scene units:
+    /// 10⁻⁷ of the scene diagonal).
+    pub(crate) fn eps(&self) -> f64 {
+        1e-7 * self.scale
+    }
+
     /// Unnormalized primary direction through film point `(fx, fy)` (pixels,
     /// origin top-left) and its derivatives per pixel in x and y.
     pub(crate) fn primary_dir(&self, fx: f64, fy: f64) -> (V3, V3, V3) {

@@ -127,6 +127,20 @@ impl MipTexture {
         })
     }
 
+    /// The same texture over other stored texels: `geometry` (the full
+    /// one or a [trimmed](Geometry::trimmed) one) and its texels (empty: a
+    /// texture with nothing stored, which samples black). Block addresses
+    /// stay those of the full pyramid.
+    #[must_use]
+    pub fn with_pyramid(&self, geometry: Geometry, texels: Vec<Texel>) -> Self {
+        Self {
+            texels,
+            geometry,
+            layout: BlockLayout::new(&geometry),
+            ..self.clone()
+        }
+    }
+
     /// Size of `level`.
     #[must_use]
     pub fn level_size(&self, level: u8) -> (u32, u32) {

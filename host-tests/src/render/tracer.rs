@@ -292,7 +292,7 @@ impl Ctx<'_> {
 
     /// Ray offset along the normal (scene-relative).
     fn eps(&self) -> f64 {
-        1e-7 * self.prep.scale
+        self.prep.eps()
     }
 
     /// Continuation rays: refraction (total internal reflection folds into
