@@ -148,3 +148,50 @@ fn bad_inputs_are_clear_errors() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));
 }
+
+/// Regression (issue 11, defect 5): a requested scene that cannot be loaded
+/// made `table1` print a message and exit 0. It is an error naming the
+/// scene and the reason, unless the user asked to skip.
+#[test]
+fn table1_fails_on_a_scene_that_does_not_load() {
+    let dir = tmp("table1-broken");
+    std::fs::create_dir_all(dir.join("broken")).unwrap();
+    std::fs::write(
+        dir.join("broken").join("broken.aff"),
+        "this is not AFF {{{\n",
+    )
+    .unwrap();
+    // With the built-in scenes measurable beside it (the old code measured
+    // those, printed the broken one and exited 0).
+    let o = run(&[
+        "table1",
+        "--scenes",
+        dir.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--builtin",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success(),
+        "exit 0 with an unloadable scene; stderr: {err}"
+    );
+    assert!(
+        err.contains("broken") && err.contains("cannot be loaded"),
+        "{err}"
+    );
+    // Skipped on request: the built-in scenes are still measured.
+    let o = run(&[
+        "table1",
+        "--scenes",
+        dir.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--builtin",
+        "--skip-unloadable",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("skipped") && err.contains("broken"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

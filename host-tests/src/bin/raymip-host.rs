@@ -126,6 +126,10 @@ enum Command {
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+        /// Also write the table between `<!-- geomlod-bench:begin/end -->`
+        /// markers in these files (README.md, BENCHMARKS.md).
+        #[arg(long)]
+        write: Vec<PathBuf>,
     },
     /// PSNR / max difference: fixed vs float per method and every method vs ground truth.
     Compare {
@@ -160,6 +164,10 @@ enum Command {
         /// Write table1.md and table1.json here.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Measure the other scenes when one fails to load (it is named on
+        /// stderr); without it a scene that cannot be loaded is an error.
+        #[arg(long)]
+        skip_unloadable: bool,
     },
 }
 
@@ -195,6 +203,7 @@ fn main() -> ExitCode {
                 frames: geom.frames.max(1),
                 bounces: args.bounces,
                 policy: MaskPolicy::PerPath,
+                serial: false,
             };
             cmd_render_instances(&cfg, geom.reference, &args.out)
         }
@@ -203,7 +212,8 @@ fn main() -> ExitCode {
             repeats,
             bounces,
             out,
-        } => cmd_bench(*size, *repeats, *bounces, out),
+            write,
+        } => cmd_bench(*size, *repeats, *bounces, out, write),
         Command::Render {
             args,
             method,
@@ -234,6 +244,7 @@ fn main() -> ExitCode {
             time,
             builtin,
             out,
+            skip_unloadable,
         } => cmd_table1(
             scenes.as_deref(),
             *size,
@@ -241,6 +252,7 @@ fn main() -> ExitCode {
             *time,
             *builtin,
             out.as_deref(),
+            *skip_unloadable,
         ),
     };
     match r {

@@ -187,7 +187,9 @@ type SceneLoader = Box<dyn Fn() -> Result<Scene, String>>;
 
 /// `table1`: every scene folder under `scenes` (and the built-in scenes if
 /// `builtin`), printed beside the paper's values; `table1.md` / `table1.json`
-/// into `out` when given.
+/// into `out` when given. A scene that fails to load is an error naming it
+/// and the reason, unless `skip_unloadable` (then it is named on stderr and
+/// the others are measured).
 pub fn cmd_table1(
     scenes: Option<&Path>,
     size: (u32, u32),
@@ -195,6 +197,7 @@ pub fn cmd_table1(
     time: f64,
     builtin_too: bool,
     out: Option<&Path>,
+    skip_unloadable: bool,
 ) -> Result<(), String> {
     let mut jobs: Vec<(String, SceneLoader)> = Vec::new();
     let dir = scenes.map_or_else(default_bart_dir, Path::to_path_buf);
@@ -233,9 +236,14 @@ pub fn cmd_table1(
         let t0 = Instant::now();
         let scene = match load() {
             Ok(s) => s,
-            Err(e) => {
-                eprintln!("error: {name}: {e}");
+            Err(e) if skip_unloadable => {
+                eprintln!("skipped (--skip-unloadable): {name}: {e}");
                 continue;
+            }
+            Err(e) => {
+                return Err(format!(
+                    "{name}: cannot be loaded, so it cannot be measured: {e} (pass --skip-unloadable to measure the other scenes)"
+                ));
             }
         };
         println!(

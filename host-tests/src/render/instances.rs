@@ -84,6 +84,9 @@ pub struct Config {
     pub bounces: u8,
     /// Mask of secondary rays.
     pub policy: MaskPolicy,
+    /// Render on the calling thread only (the benchmark: its CPU time is
+    /// then measurable on a machine shared with other jobs).
+    pub serial: bool,
 }
 
 impl Default for Config {
@@ -97,6 +100,7 @@ impl Default for Config {
             frames: 16,
             bounces: 2,
             policy: MaskPolicy::PerPath,
+            serial: false,
         }
     }
 }
@@ -205,6 +209,9 @@ pub struct FrameStats {
     pub mismatches: u64,
     /// Render wall time (s).
     pub render_s: f64,
+    /// Render CPU time of a serial frame (s; NaN when rendered in
+    /// parallel or when the thread clock is unavailable).
+    pub cpu_s: f64,
 }
 
 impl FrameStats {
@@ -227,6 +234,7 @@ impl FrameStats {
         self.triangles += o.triangles;
         self.mismatches += o.mismatches;
         self.render_s += o.render_s;
+        self.cpu_s += o.cpu_s;
     }
 
     /// All rays.
@@ -307,20 +315,24 @@ impl<'a> Prepared<'a> {
     ) -> Frame {
         let (w, h) = cfg.size;
         let t0 = Instant::now();
-        let rows: Vec<(Vec<V3>, Vec<V3>, FrameStats)> = (0..h)
-            .into_par_iter()
-            .map(|y| {
-                let mut st = FrameStats::default();
-                let mut rgb = Vec::with_capacity(w as usize);
-                let mut lod = Vec::with_capacity(w as usize);
-                for x in 0..w {
-                    let (c, l) = self.path(scene, cfg, x, y, frame, fixed_mask, &mut st);
-                    rgb.push(c);
-                    lod.push(l);
-                }
-                (rgb, lod, st)
-            })
-            .collect();
+        let row = |y: u32| {
+            let mut st = FrameStats::default();
+            let mut rgb = Vec::with_capacity(w as usize);
+            let mut lod = Vec::with_capacity(w as usize);
+            for x in 0..w {
+                let (c, l) = self.path(scene, cfg, x, y, frame, fixed_mask, &mut st);
+                rgb.push(c);
+                lod.push(l);
+            }
+            (rgb, lod, st)
+        };
+        let cpu0 = thread_cpu_ns();
+        let rows: Vec<(Vec<V3>, Vec<V3>, FrameStats)> = if cfg.serial {
+            (0..h).map(row).collect()
+        } else {
+            (0..h).into_par_iter().map(row).collect()
+        };
+        let cpu = cfg.serial.then(|| Some(thread_cpu_ns()? - cpu0?)).flatten();
         let mut out = Frame {
             rgb: Vec::with_capacity((w * h) as usize),
             lod: Vec::with_capacity((w * h) as usize),
@@ -332,6 +344,7 @@ impl<'a> Prepared<'a> {
             out.stats.add(&st);
         }
         out.stats.render_s = t0.elapsed().as_secs_f64();
+        out.stats.cpu_s = cpu.map_or(f64::NAN, |ns| ns as f64 * 1e-9);
         out
     }
 
@@ -443,6 +456,21 @@ impl<'a> Prepared<'a> {
         }
         (color, lod_col)
     }
+}
+
+/// CPU time of the calling thread in ns (`clock_gettime` with
+/// `CLOCK_THREAD_CPUTIME_ID`: nanosecond resolution, time other jobs on
+/// the machine take does not count).
+#[must_use]
+pub fn thread_cpu_ns() -> Option<u64> {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec for the call.
+    #[allow(unsafe_code)]
+    let r = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    (r == 0).then(|| ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64)
 }
 
 fn sky(d: V3) -> V3 {
