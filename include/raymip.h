@@ -14,6 +14,10 @@
 // Capacity of [`RmRayStack`] (10, as in the hardware paper).
 #define RM_RAY_STACK_CAPACITY 10
 
+// `|n·d| = 1` in U1F31 bits: passed to [`rm_cone_lod`] it leaves the
+// normal term out (`log2 1 = 0` exactly).
+#define RM_COS_ONE 2147483648
+
 // Result codes of the C ABI (`0` = success, negative = error, positive =
 // a documented non-error outcome).
 typedef enum RmStatus {
@@ -37,6 +41,8 @@ typedef enum RmStatus {
   RM_STATUS_TABLE_FULL = -7,
   // The texel buffer is shorter than the pyramid.
   RM_STATUS_BUFFER_TOO_SHORT = -8,
+  // A pointer is not aligned for its type (nothing was read or written).
+  RM_STATUS_MISALIGNED = -9,
 } RmStatus;
 
 // One triangle for the Pb table.
@@ -114,7 +120,7 @@ extern "C" {
 // `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
 // Returns `TableFull` when `start + count > len` (the entries that fit are
 // written), `BadAngle`, `ZeroSize` (a textured triangle with a zero texture
-// side; entries before it are written), `NullPointer`.
+// side; entries before it are written), `NullPointer`, `Misaligned`.
 //
 // # Safety
 // `entries` points to `len` writable `int32_t`, `tris` to `count`
@@ -149,8 +155,9 @@ enum RmStatus rm_table_lod(uint64_t pl, int32_t entry_bits, int16_t *out);
 
 // Ray-cone lod `Δ + log2|w| − log2|n·d|` (I8F8 bits) for cone width
 // `width` (I32F32 bits), triangle constant `delta` (I16F16 bits) and
-// `|n·d|` (U1F31 bits; `n_dot_d = 0` leaves the normal term out, as the
-// grazing limit would be clamped anyway).
+// `|n·d|` (U1F31 bits), exactly as the Rust `cone_lod`: `|n·d|` is clamped
+// to `[2⁻¹⁶, 1]`, so a grazing hit (`n_dot_d = 0`) is 16 levels coarser
+// than a head-on one. [`RM_COS_ONE`] (or more) leaves the normal term out.
 int16_t rm_cone_lod(int64_t width, int32_t delta, uint32_t n_dot_d);
 
 // `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
@@ -162,12 +169,13 @@ int16_t rm_clamp_lod(int16_t lod, uint8_t levels);
 // `stack` is null (→ `NullPointer`) or points to a writable [`RmRayStack`].
 enum RmStatus rm_ray_stack_init(struct RmRayStack *stack);
 
-// Pushes `state`; `StackFull` (stack unchanged) when full.
+// Pushes `state` (which may point into `stack`, e.g. to one of its
+// entries); `StackFull` (stack unchanged) when full.
 //
 // # Safety
-// `stack` and `state` are null (→ `NullPointer`) or valid (`stack`
-// initialised by [`rm_ray_stack_init`]; a corrupt `len` above the capacity
-// is read as full).
+// `stack` and `state` are null (→ `NullPointer`), misaligned
+// (→ `Misaligned`) or valid (`stack` initialised by [`rm_ray_stack_init`];
+// a corrupt `len` above the capacity is read as full).
 enum RmStatus rm_ray_stack_push(struct RmRayStack *stack, const struct RmPathState *state);
 
 // Pops the most recent state into `out`; `StackEmpty` when empty.

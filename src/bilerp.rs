@@ -23,7 +23,7 @@
 //! channel, in 8-bit LSB: final rounding ½, the 8.16 intermediate 2⁻¹⁷, and
 //! the texel position rounded to 1/4096 texel per axis (done by the caller,
 //! [`crate::filter`]), at most `255 · 2⁻¹³` per axis. Total
-//! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`MAX_ERROR_LSB`] `= 0.5625`, for
+//! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`BILERP_MAX_ERROR_LSB`] `= 0.5625`, for
 //! bilinear and trilinear alike (the blend of two values each within
 //! `0.0623` stays within it).
 
@@ -40,7 +40,7 @@ pub const BLEND_BITS: u32 = 8;
 
 /// Documented error bound of bilinear and trilinear filtering against the
 /// exact f64 filter, in 8-bit LSB per channel: 0.5625.
-pub const MAX_ERROR_LSB: f64 = 0.5625;
+pub const BILERP_MAX_ERROR_LSB: f64 = 0.5625;
 
 /// Four channels (r, g, b, a) in 8.16 unsigned fixed point, each in
 /// `[0, 255·2¹⁶]`.
@@ -82,6 +82,34 @@ pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
             .wrapping_add(bot.wrapping_mul(fy))
             .wrapping_add(1 << 7)
             >> 8;
+    }
+    out
+}
+
+/// [`bilerp_in_range`] rounded to a texel in one step, bit-identical to
+/// `round_wide_in_range(bilerp_in_range(t, fx, fy))`: with
+/// `X = top·(4096 − fy) + bot·fy ≤ 255·2²⁴`,
+/// `floor((floor((X + 2⁷)/2⁸) + 2¹⁵)/2¹⁶) = floor((X + 2⁷ + 2²³)/2²⁴)`
+/// (a floor of an integer plus an integer composes), and
+/// `X + 2⁷ + 2²³ < 2³²`.
+#[inline(always)]
+pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32) -> Texel {
+    let gx = WEIGHT_ONE.wrapping_sub(fx);
+    let gy = WEIGHT_ONE.wrapping_sub(fy);
+    let mut out = 0u32;
+    for c in 0..4 {
+        let top = ch(t[0], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[1], c).wrapping_mul(fx));
+        let bot = ch(t[2], c)
+            .wrapping_mul(gx)
+            .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+        let r = top
+            .wrapping_mul(gy)
+            .wrapping_add(bot.wrapping_mul(fy))
+            .wrapping_add((1 << 7) + (1 << 23))
+            >> 24;
+        out |= (r & 0xFF) << (8 * c);
     }
     out
 }
@@ -205,7 +233,7 @@ mod tests {
             let out = round_wide(w);
             let r = f64::from(out & 0xFF);
             assert!(
-                (r - exact).abs() <= MAX_ERROR_LSB,
+                (r - exact).abs() <= BILERP_MAX_ERROR_LSB,
                 "{a},{b},{c},{d} @ {fx},{fy}: {r} vs {exact}"
             );
             // The 8.16 value is within 2^-17 LSB of exact.
@@ -246,5 +274,28 @@ mod tests {
         assert_eq!(round_wide(w), u32::MAX);
         assert_eq!(blend_wide([u32::MAX; 4], [u32::MAX; 4], 999), u32::MAX);
         assert_eq!(blend_texels(u32::MAX, u32::MAX, 999), u32::MAX);
+    }
+
+    #[test]
+    fn rounded_bilerp_equals_two_roundings() {
+        let mut x = 0x2545_F491_u64;
+        for n in 0..200_000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let t = [
+                x as u32,
+                (x >> 16) as u32,
+                (x >> 32) as u32,
+                (x >> 40) as u32 | (n << 24),
+            ];
+            let (fx, fy) = ((x >> 48) as u32 & 0xFFF, (n * 37) % 4097);
+            let t = if n % 7 == 0 { [u32::MAX; 4] } else { t };
+            assert_eq!(
+                bilerp_rounded(t, fx, fy),
+                round_wide_in_range(bilerp_in_range(t, fx, fy)),
+                "{t:x?} {fx} {fy}"
+            );
+        }
     }
 }

@@ -9,7 +9,7 @@
 //! a square block serves a ray's footprint equally in every direction (rays
 //! hit textures at arbitrary orientation, unlike a rasterizer's scanlines).
 //!
-//! Blocks are numbered ([`block_index`]) level by level, and within a level
+//! Blocks are numbered ([`BlockLayout::index`]) level by level, and within a level
 //! in Morton (Z) order: the bits of the block column and row are
 //! interleaved, so blocks that are close in 2-D get close numbers. With the
 //! set index `block % SETS`, a 2×2 group of blocks around any even-aligned
@@ -57,7 +57,7 @@ const fn part1by1(x: u32) -> u32 {
 /// to bit `2i`, bit `i` of `y` to bit `2i + 1`.
 #[inline]
 #[must_use]
-pub const fn morton2(x: u32, y: u32) -> u32 {
+pub(crate) const fn morton2(x: u32, y: u32) -> u32 {
     part1by1(x) | (part1by1(y) << 1)
 }
 
@@ -109,23 +109,19 @@ impl BlockLayout {
     }
 
     /// Number of block numbers used (every [`index`](Self::index) is below
-    /// it).
+    /// it; at least 1): a base stride for giving several pyramids disjoint
+    /// global block addresses.
     #[must_use]
+    #[allow(clippy::len_without_is_empty)] // a pyramid has at least one block
     pub const fn len(&self) -> u32 {
         self.offsets[MAX_LEVELS as usize]
-    }
-
-    /// Always `false` (a pyramid has at least one block).
-    #[must_use]
-    pub const fn is_empty(&self) -> bool {
-        false
     }
 
     /// Block number of block `(bx, by)` of `level` (level clamped to the
     /// top stored level, `bx`/`by` to the level's padded block grid).
     #[inline]
     #[must_use]
-    pub fn index_of_block(&self, level: u8, bx: u32, by: u32) -> u32 {
+    pub(crate) fn index_of_block(&self, level: u8, bx: u32, by: u32) -> u32 {
         let k = usize::from(level.min(self.geometry.top_level()));
         let (lx, ly) = self.log2_dims.get(k).copied().unwrap_or((0, 0));
         let (lx, ly) = (u32::from(lx), u32::from(ly));
@@ -150,23 +146,6 @@ impl BlockLayout {
             y.min(h - 1) >> BLOCK_SHIFT,
         )
     }
-}
-
-/// Block number of the 4×4 block holding texel `(x, y)` of `level`, unique
-/// within one pyramid: level block offset plus Morton order within the
-/// level (see module docs; in `[0, `[`block_count`]`)`). Level and
-/// coordinates are clamped to the stored range. Computes the level offsets
-/// each call (≤ 16 steps); keep a [`BlockLayout`] for repeated use.
-#[must_use]
-pub fn block_index(geometry: &Geometry, level: u8, x: u32, y: u32) -> u32 {
-    BlockLayout::new(geometry).index(level, x, y)
-}
-
-/// Number of block numbers [`block_index`] uses for `geometry`: a base
-/// stride for giving several pyramids disjoint global block addresses.
-#[must_use]
-pub const fn block_count(geometry: &Geometry) -> u32 {
-    BlockLayout::new(geometry).len()
 }
 
 /// Hit and miss counters.
@@ -424,7 +403,7 @@ mod tests {
                     for bx in 0..lw.div_ceil(4) {
                         let i = layout.index(k, bx * 4, by * 4);
                         assert!(i < layout.len());
-                        assert_eq!(i, block_index(&g, k, bx * 4 + 1, by * 4));
+                        assert_eq!(i, layout.index(k, bx * 4 + 1, by * 4));
                         seen.push(i);
                     }
                 }
@@ -438,7 +417,7 @@ mod tests {
             }
         }
         let g = Geometry::new(64, 64, 1).unwrap();
-        assert_eq!(block_count(&g), 256);
+        assert_eq!(BlockLayout::new(&g).len(), 256);
     }
 
     #[test]

@@ -34,16 +34,20 @@
 //! without it): turning caller pointers into references and slices. Each
 //! function documents what the caller guarantees: non-null pointers (null
 //! is checked and reported), pointing to the stated number of valid,
-//! aligned, initialised elements that nothing else accesses during the call.
+//! aligned, initialised elements. A pointer that is not aligned for its
+//! type is reported ([`RmStatus::Misaligned`]) and never dereferenced.
+//! Inputs are read before outputs are written, so an input may point into
+//! an output (pushing an entry of the same ray stack is allowed).
 #![allow(unsafe_code)]
 
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 
+use crate::camera::PixelSpread;
 use crate::filter::{Address, Mode, Sampler};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
-use crate::table::{Log2Pb, PixelSpread, TableError, TexTriangle};
+use crate::table::{Log2Pb, TableError, TexTriangle};
 
 /// Result codes of the C ABI (`0` = success, negative = error, positive =
 /// a documented non-error outcome).
@@ -70,6 +74,8 @@ pub enum RmStatus {
     TableFull = -7,
     /// The texel buffer is shorter than the pyramid.
     BufferTooShort = -8,
+    /// A pointer is not aligned for its type (nothing was read or written).
+    Misaligned = -9,
 }
 
 /// Raw bits of the untextured table marker (`INT32_MIN`).
@@ -185,7 +191,6 @@ impl From<RmPathState> for PathState {
 fn table_status(e: TableError) -> RmStatus {
     match e {
         TableError::ZeroTextureSize => RmStatus::ZeroSize,
-        TableError::BadAngle | TableError::ZeroImageHeight => RmStatus::BadAngle,
         TableError::TableFull => RmStatus::TableFull,
         _ => RmStatus::OutOfRange,
     }
@@ -199,6 +204,22 @@ fn mip_status(e: MipError) -> RmStatus {
     }
 }
 
+/// `NullPointer` if `p` is null and `may_be_null` is false, `Misaligned` if
+/// it is not aligned for `T` (null counts as aligned).
+fn check_ptr<T>(p: *const T, may_be_null: bool) -> Result<(), RmStatus> {
+    if p.is_null() {
+        if may_be_null {
+            Ok(())
+        } else {
+            Err(RmStatus::NullPointer)
+        }
+    } else if p.is_aligned() {
+        Ok(())
+    } else {
+        Err(RmStatus::Misaligned)
+    }
+}
+
 /// A table entry from raw bits (markers included).
 fn entry(bits: i32) -> Log2Pb {
     Log2Pb::from_bits(bits)
@@ -209,7 +230,7 @@ fn entry(bits: i32) -> Log2Pb {
 /// `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
 /// Returns `TableFull` when `start + count > len` (the entries that fit are
 /// written), `BadAngle`, `ZeroSize` (a textured triangle with a zero texture
-/// side; entries before it are written), `NullPointer`.
+/// side; entries before it are written), `NullPointer`, `Misaligned`.
 ///
 /// # Safety
 /// `entries` points to `len` writable `int32_t`, `tris` to `count`
@@ -225,8 +246,14 @@ pub unsafe extern "C" fn rm_table_update(
     spread: i32,
     stats: *mut RmBuildStats,
 ) -> RmStatus {
-    if (entries.is_null() && len > 0) || (tris.is_null() && count > 0) {
-        return RmStatus::NullPointer;
+    for c in [
+        check_ptr(entries.cast_const(), len == 0),
+        check_ptr(tris, count == 0),
+        check_ptr(stats.cast_const(), true),
+    ] {
+        if let Err(e) = c {
+            return e;
+        }
     }
     let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
         return RmStatus::BadAngle;
@@ -313,8 +340,8 @@ pub unsafe extern "C" fn rm_table_build(
 /// `out` is null (→ `NullPointer`) or points to a writable `int16_t`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_table_lod(pl: u64, entry_bits: i32, out: *mut i16) -> RmStatus {
-    if out.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(out.cast_const(), false) {
+        return e;
     }
     match table_lod(U32F32::from_bits(pl), entry(entry_bits)) {
         Some(l) => {
@@ -326,14 +353,19 @@ pub unsafe extern "C" fn rm_table_lod(pl: u64, entry_bits: i32, out: *mut i16) -
     }
 }
 
+/// `|n·d| = 1` in U1F31 bits: passed to [`rm_cone_lod`] it leaves the
+/// normal term out (`log2 1 = 0` exactly).
+pub const RM_COS_ONE: u32 = 0x8000_0000;
+
 /// Ray-cone lod `Δ + log2|w| − log2|n·d|` (I8F8 bits) for cone width
 /// `width` (I32F32 bits), triangle constant `delta` (I16F16 bits) and
-/// `|n·d|` (U1F31 bits; `n_dot_d = 0` leaves the normal term out, as the
-/// grazing limit would be clamped anyway).
+/// `|n·d|` (U1F31 bits), exactly as the Rust `cone_lod`: `|n·d|` is clamped
+/// to `[2⁻¹⁶, 1]`, so a grazing hit (`n_dot_d = 0`) is 16 levels coarser
+/// than a head-on one. [`RM_COS_ONE`] (or more) leaves the normal term out.
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_cone_lod(width: i64, delta: i32, n_dot_d: u32) -> i16 {
-    let c = (n_dot_d != 0).then_some(U1F31::from_bits(n_dot_d));
-    cone_lod(I32F32::from_bits(width), I16F16::from_bits(delta), c).to_bits()
+    let c = U1F31::from_bits(n_dot_d);
+    cone_lod(I32F32::from_bits(width), I16F16::from_bits(delta), Some(c)).to_bits()
 }
 
 /// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
@@ -348,8 +380,8 @@ pub extern "C" fn rm_clamp_lod(lod: i16, levels: u8) -> i16 {
 /// `stack` is null (→ `NullPointer`) or points to a writable [`RmRayStack`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_ray_stack_init(stack: *mut RmRayStack) -> RmStatus {
-    if stack.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(stack.cast_const(), false) {
+        return e;
     }
     // SAFETY: non-null, writable (caller).
     unsafe {
@@ -361,22 +393,26 @@ pub unsafe extern "C" fn rm_ray_stack_init(stack: *mut RmRayStack) -> RmStatus {
     RmStatus::Ok
 }
 
-/// Pushes `state`; `StackFull` (stack unchanged) when full.
+/// Pushes `state` (which may point into `stack`, e.g. to one of its
+/// entries); `StackFull` (stack unchanged) when full.
 ///
 /// # Safety
-/// `stack` and `state` are null (→ `NullPointer`) or valid (`stack`
-/// initialised by [`rm_ray_stack_init`]; a corrupt `len` above the capacity
-/// is read as full).
+/// `stack` and `state` are null (→ `NullPointer`), misaligned
+/// (→ `Misaligned`) or valid (`stack` initialised by [`rm_ray_stack_init`];
+/// a corrupt `len` above the capacity is read as full).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_ray_stack_push(
     stack: *mut RmRayStack,
     state: *const RmPathState,
 ) -> RmStatus {
-    if stack.is_null() || state.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(stack.cast_const(), false).and(check_ptr(state, false)) {
+        return e;
     }
-    // SAFETY: non-null, valid, not aliased during the call (caller).
-    let (stack, state) = unsafe { (&mut *stack, *state) };
+    // SAFETY: non-null, aligned (checked), valid (caller). The input is
+    // copied out before the stack is borrowed mutably, so `state` may alias it.
+    let state = unsafe { state.read() };
+    // SAFETY: as above; no other reference to the stack is live.
+    let stack = unsafe { &mut *stack };
     let Some(slot) = stack.entries.get_mut(stack.len as usize) else {
         return RmStatus::StackFull;
     };
@@ -394,21 +430,25 @@ pub unsafe extern "C" fn rm_ray_stack_pop(
     stack: *mut RmRayStack,
     out: *mut RmPathState,
 ) -> RmStatus {
-    if stack.is_null() || out.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(stack.cast_const(), false).and(check_ptr(out.cast_const(), false)) {
+        return e;
     }
-    // SAFETY: non-null, valid, not aliased during the call (caller).
-    let stack = unsafe { &mut *stack };
-    let len = (stack.len as usize).min(RM_RAY_STACK_CAPACITY);
-    let Some(i) = len.checked_sub(1) else {
-        return RmStatus::StackEmpty;
+    // SAFETY: non-null, aligned (checked), valid (caller); the borrow ends
+    // before `out` (which may point into the stack) is written.
+    let s = {
+        let stack = unsafe { &mut *stack };
+        let len = (stack.len as usize).min(RM_RAY_STACK_CAPACITY);
+        let Some(i) = len.checked_sub(1) else {
+            return RmStatus::StackEmpty;
+        };
+        let Some(&s) = stack.entries.get(i) else {
+            return RmStatus::StackEmpty;
+        };
+        stack.len = i as u32;
+        s
     };
-    let Some(&s) = stack.entries.get(i) else {
-        return RmStatus::StackEmpty;
-    };
-    // SAFETY: non-null, writable (caller).
-    unsafe { *out = s };
-    stack.len = i as u32;
+    // SAFETY: non-null, aligned (checked), writable (caller).
+    unsafe { out.write(s) };
     RmStatus::Ok
 }
 
@@ -419,8 +459,8 @@ pub unsafe extern "C" fn rm_ray_stack_pop(
 /// `out` is null (→ `NullPointer`) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPathState) -> RmStatus {
-    if out.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(out.cast_const(), false) {
+        return e;
     }
     let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
         return RmStatus::BadAngle;
@@ -437,8 +477,8 @@ pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPath
 /// `state` is null (→ `NullPointer`) or valid and writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmStatus {
-    if state.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(state.cast_const(), false) {
+        return e;
     }
     // SAFETY: non-null, valid, writable (caller).
     let s = unsafe { &mut *state };
@@ -453,8 +493,8 @@ pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmS
 /// As [`rm_path_advance`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_bounce(state: *mut RmPathState, beta: i32) -> RmStatus {
-    if state.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(state.cast_const(), false) {
+        return e;
     }
     // SAFETY: non-null, valid, writable (caller).
     let s = unsafe { &mut *state };
@@ -488,8 +528,8 @@ pub unsafe extern "C" fn rm_mip_generate(
     height: u32,
     levels: u8,
 ) -> RmStatus {
-    if texels.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(texels.cast_const(), false) {
+        return e;
     }
     let g = match Geometry::new(width, height, levels) {
         Ok(g) => g,
@@ -522,13 +562,13 @@ pub unsafe extern "C" fn rm_sample(
     address: u8,
     out: *mut u32,
 ) -> RmStatus {
-    if tex.is_null() || out.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(tex, false).and(check_ptr(out.cast_const(), false)) {
+        return e;
     }
-    // SAFETY: non-null, valid (caller).
+    // SAFETY: non-null, aligned (checked), valid (caller).
     let t = unsafe { *tex };
-    if t.texels.is_null() {
-        return RmStatus::NullPointer;
+    if let Err(e) = check_ptr(t.texels, false) {
+        return e;
     }
     let Some(mode) = Mode::from_index(mode) else {
         return RmStatus::OutOfRange;
@@ -638,6 +678,156 @@ mod tests {
         assert_eq!(st.len as usize, RM_RAY_STACK_CAPACITY - 1);
     }
 
+    /// Regression (issue 11, defect 1): a grazing hit (`|n·d| = 0`) through
+    /// C clamps like the Rust `cone_lod` (2⁻¹⁶, 16 levels coarser) instead
+    /// of dropping the normal term; `|n·d| = 1` is "no normal term".
+    #[test]
+    fn grazing_cone_lod_agrees_with_rust() {
+        let w = I32F32::ONE;
+        let grazing = cone_lod(w, I16F16::ZERO, Some(U1F31::ZERO));
+        assert_eq!(grazing, I8F8::from_num(16));
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 0), grazing.to_bits());
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 1), grazing.to_bits());
+        assert_eq!(rm_cone_lod(w.to_bits(), 0, 1 << 31), 0);
+        assert_eq!(
+            cone_lod(w, I16F16::ZERO, None),
+            cone_lod(w, I16F16::ZERO, Some(U1F31::from_bits(1 << 31)))
+        );
+    }
+
+    /// Regression (issue 11, defect 3): pushing an entry of the same stack
+    /// (`rm_ray_stack_push(&s, &s.entries[i])`) is a natural C idiom; the
+    /// state must be read before the stack is borrowed mutably (Miri reports
+    /// undefined behaviour otherwise).
+    #[test]
+    fn push_an_entry_of_the_same_stack() {
+        let mut st = RmRayStack {
+            entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+            len: 0,
+        };
+        let p: *mut RmRayStack = &mut st;
+        let first = RmPathState {
+            pl: 42,
+            depth: 3,
+            ..RmPathState::default()
+        };
+        // SAFETY: `p` points to a valid local stack; `entry` points into it
+        // (the aliasing under test).
+        unsafe {
+            assert_eq!(rm_ray_stack_push(p, &first), RmStatus::Ok);
+            let entry: *const RmPathState = core::ptr::addr_of!((*p).entries[0]);
+            assert_eq!(rm_ray_stack_push(p, entry), RmStatus::Ok);
+            assert_eq!((*p).len, 2);
+            assert_eq!((*p).entries[1], first);
+            // Pop into the slot being popped (out aliases the stack too).
+            let out: *mut RmPathState = core::ptr::addr_of_mut!((*p).entries[1]);
+            assert_eq!(rm_ray_stack_pop(p, out), RmStatus::Ok);
+            assert_eq!((*p).len, 1);
+            assert_eq!((*p).entries[1], first);
+        }
+    }
+
+    /// Regression (issue 11, defect 3): a misaligned caller pointer is an
+    /// error, never dereferenced (`from_raw_parts` and `*p` require
+    /// alignment; debug builds panic on it, release builds are UB).
+    #[test]
+    fn misaligned_pointers_are_rejected() {
+        let mut raw = [0u64; 64];
+        let base = raw.as_mut_ptr().cast::<u8>();
+        // SAFETY: offsets stay inside `raw`; the misaligned pointers are only
+        // handed to the entry points, which must not dereference them.
+        unsafe {
+            let mis = base.add(1);
+            assert_eq!(rm_table_lod(1 << 32, 0, mis.cast()), RmStatus::Misaligned);
+            assert_eq!(rm_ray_stack_init(base.add(4).cast()), RmStatus::Misaligned);
+            let good = RmPathState::default();
+            assert_eq!(
+                rm_ray_stack_push(base.add(4).cast(), &good),
+                RmStatus::Misaligned
+            );
+            let mut st = RmRayStack {
+                entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
+                len: 0,
+            };
+            assert_eq!(
+                rm_ray_stack_push(&mut st, base.add(4).cast()),
+                RmStatus::Misaligned
+            );
+            assert_eq!(st.len, 0);
+            assert_eq!(
+                rm_ray_stack_pop(&mut st, base.add(4).cast()),
+                RmStatus::Misaligned
+            );
+            assert_eq!(
+                rm_path_primary(1 << 20, 0, base.add(4).cast()),
+                RmStatus::Misaligned
+            );
+            assert_eq!(rm_path_advance(base.add(4).cast(), 1), RmStatus::Misaligned);
+            assert_eq!(rm_path_bounce(base.add(4).cast(), 1), RmStatus::Misaligned);
+            assert_eq!(
+                rm_mip_generate(base.add(2).cast(), 21, 4, 4, 3),
+                RmStatus::Misaligned
+            );
+            let tri = RmTriangle {
+                positions: [[0; 3]; 3],
+                uvs: [[0; 2]; 3],
+                tex_width: 1,
+                tex_height: 1,
+                textured: 0,
+            };
+            assert_eq!(
+                rm_table_build(mis.cast(), 1, &tri, 1, 1 << 20, core::ptr::null_mut()),
+                RmStatus::Misaligned
+            );
+            let mut e = [0i32; 1];
+            assert_eq!(
+                rm_table_build(
+                    e.as_mut_ptr(),
+                    1,
+                    base.add(4).cast(),
+                    1,
+                    1 << 20,
+                    core::ptr::null_mut()
+                ),
+                RmStatus::Misaligned
+            );
+            assert_eq!(
+                rm_table_build(e.as_mut_ptr(), 1, &tri, 1, 1 << 20, base.add(2).cast()),
+                RmStatus::Misaligned
+            );
+            let texels = [0u32; 1];
+            let tex = RmTexture {
+                texels: base.add(2).cast(),
+                len: 1,
+                width: 1,
+                height: 1,
+                levels: 1,
+            };
+            let mut out = 0u32;
+            assert_eq!(
+                rm_sample(&tex, 0, 0, 0, 0, 0, &mut out),
+                RmStatus::Misaligned
+            );
+            let tex_ok = RmTexture {
+                texels: texels.as_ptr(),
+                ..tex
+            };
+            assert_eq!(
+                rm_sample(base.add(4).cast(), 0, 0, 0, 0, 0, &mut out),
+                RmStatus::Misaligned
+            );
+            assert_eq!(
+                rm_sample(&tex_ok, 0, 0, 0, 0, 0, base.add(2).cast()),
+                RmStatus::Misaligned
+            );
+            assert_eq!(rm_sample(&tex_ok, 0, 0, 0, 0, 0, &mut out), RmStatus::Ok);
+        }
+        assert!(
+            raw.iter().all(|&x| x == 0),
+            "a misaligned pointer was written through"
+        );
+    }
+
     proptest! {
         /// The C entry points agree with the Rust API for every input.
         #[test]
@@ -647,7 +837,7 @@ mod tests {
                 Some(l) => prop_assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
                 None => prop_assert_eq!((s, e), (RmStatus::Untextured, RM_UNTEXTURED)),
             }
-            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), (c != 0).then_some(U1F31::from_bits(c)));
+            let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), Some(U1F31::from_bits(c)));
             prop_assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
             prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
         }

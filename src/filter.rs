@@ -21,7 +21,7 @@
 //!   the avoided texel reads are counted in [`FetchStats::skipped`].
 //!
 //! Output is RGBA8, rounded to nearest per channel; error bound
-//! [`MAX_ERROR_LSB`](crate::bilerp::MAX_ERROR_LSB) = 0.5625 LSB for
+//! [`BILERP_MAX_ERROR_LSB`](crate::bilerp::BILERP_MAX_ERROR_LSB) = 0.5625 LSB for
 //! bilinear and trilinear, exact for the nearest-texel modes.
 //!
 //! # Precision for large coordinates
@@ -44,7 +44,7 @@ use fixed::types::I32F32;
 
 use crate::bilerp::{self, WEIGHT_BITS, Wide};
 use crate::lod::{Lod, clamp_lod};
-use crate::mip::{Geometry, Texel, TexelSource};
+use crate::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
 
 /// A normalized texture coordinate (I32F32: range `[−2³¹, 2³¹)`, step 2⁻³²).
 pub type TexCoord = I32F32;
@@ -58,27 +58,33 @@ pub enum Address {
     Clamp,
 }
 
-/// Filter mode, numbered as in the `sample` command.
+/// Filter mode, numbered as in the `sample` command. The linear-level
+/// modes (0 and 3) need the `trilinear` feature.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
     /// Bilinear within a level, linear between levels.
+    #[cfg(feature = "trilinear")]
     Trilinear = 0,
     /// Bilinear within the nearest level `floor(lod + ½)`.
     BilinearNearestLevel = 1,
     /// Nearest texel of the nearest level.
     Nearest = 2,
     /// Nearest texel in each of two levels, linear between levels.
+    #[cfg(feature = "trilinear")]
     NearestTexelLinearLevel = 3,
 }
 
 impl Mode {
-    /// The mode numbered `n` (0..=3), `None` otherwise.
+    /// The mode numbered `n` (0..=3), `None` otherwise (and for 0 and 3
+    /// without the `trilinear` feature).
     #[must_use]
     pub const fn from_index(n: u8) -> Option<Self> {
         match n {
+            #[cfg(feature = "trilinear")]
             0 => Some(Self::Trilinear),
             1 => Some(Self::BilinearNearestLevel),
             2 => Some(Self::Nearest),
+            #[cfg(feature = "trilinear")]
             3 => Some(Self::NearestTexelLinearLevel),
             _ => None,
         }
@@ -139,6 +145,71 @@ pub struct Sampler<S: TexelSource> {
     pub(crate) geometry: Geometry,
     pub(crate) address: Address,
     pub(crate) stats: FetchStats,
+    /// `clamp_lod(Lod::MAX, levels)` in I8F8 bits: the top stored level.
+    top_lod: i16,
+    /// Per-level addressing when every level side is a power of two and
+    /// the addressing is [`Address::Wrap`] (set up by [`Sampler::new`]).
+    pow2_wrap: Option<[Pow2Level; MAX_LEVELS as usize]>,
+}
+
+/// Addressing of one level of a power-of-two texture under
+/// [`Address::Wrap`]: the level's offset in texels, its width and height
+/// (`2^k ≤ 2¹⁵`) and the per-axis constant `c = (2¹⁹ − 2³¹)/2^k` of
+/// [`pow2_wrap_taps`] (wrapping `u32`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Pow2Level {
+    offset: u32,
+    w: u32,
+    h: u32,
+    cx: u32,
+    cy: u32,
+}
+
+impl Pow2Level {
+    /// The table for `g` when both sides are powers of two (then every
+    /// level's are); levels past the top repeat the top level.
+    fn table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize]> {
+        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
+            return None;
+        }
+        let mut t = [Self::default(); MAX_LEVELS as usize];
+        for (k, e) in (0u8..).zip(t.iter_mut()) {
+            let (w, h) = g.level_size(k);
+            *e = Self {
+                offset: u32::try_from(g.level_offset(k)).ok()?,
+                w,
+                h,
+                cx: pow2_wrap_constant(w),
+                cy: pow2_wrap_constant(h),
+            };
+        }
+        Some(t)
+    }
+}
+
+/// `(2¹⁹ − 2³¹)/size` as wrapping `u32` for a power-of-two `size ≤ 2¹⁹`
+/// (exact: the numerator is a multiple of 2¹⁹).
+fn pow2_wrap_constant(size: u32) -> u32 {
+    const C: i32 = (1 << 19) + i32::MIN; // 2¹⁹ − 2³¹
+    C.wrapping_shr(size.trailing_zeros()) as u32
+}
+
+/// Bilinear footprint on one axis of a power-of-two side `size = 2^k`
+/// under [`Address::Wrap`]: the same `(i₀, i₁, weight)` as [`linear_taps`]
+/// with one 32×32→64-bit multiply. With `x = u·size − ½ + 2⁻¹³` in
+/// 2⁻³²-texel units and `u` the fractional bits of the coordinate,
+/// `x = size·y` for the integer `y = u + c`, `c = (2¹⁹ − 2³¹)/size` (exact
+/// for `k ≤ 19`). For `y mod 2³²` the product `size·y` has `i₀ = floor(x / 2³²)`
+/// already wrapped to `[0, size)` in its high word and the weight in bits
+/// 20..32 of its low word; `i₁ = (i₀ + 1) mod size`. Tested equal to
+/// [`linear_taps`] for every side up to [`crate::mip::MAX_SIZE`].
+#[inline(always)]
+fn pow2_wrap_taps(coord: TexCoord, size: u32, c: u32) -> (u32, u32, u32) {
+    let y = (coord.to_bits() as u32).wrapping_add(c);
+    let p = u64::from(y) * u64::from(size);
+    let i0 = (p >> 32) as u32;
+    let f = (p as u32) >> (32 - WEIGHT_BITS);
+    (i0, i0.wrapping_add(1) & size.wrapping_sub(1), f)
 }
 
 /// Rounding offset that turns the truncation to 12 fractional bits into
@@ -242,49 +313,139 @@ impl<S: TexelSource> Sampler<S> {
     /// A sampler over `source` with addressing `address`.
     pub fn new(source: S, address: Address) -> Self {
         let geometry = source.geometry();
+        let pow2_wrap = match address {
+            Address::Wrap => Pow2Level::table(&geometry),
+            Address::Clamp => None,
+        };
         Self {
             source,
             geometry,
             address,
             stats: FetchStats::default(),
+            top_lod: clamp_lod(Lod::MAX, geometry.levels()).to_bits(),
+            pow2_wrap,
         }
     }
 
     /// Filtered texel at `(u, v)` and level of detail `lod` (clamped to
-    /// `[0, levels − 1]`) with filter `mode`. Never panics.
-    #[inline]
+    /// `[0, levels − 1]`) with filter `mode`. Never panics. Dispatches to
+    /// [`sample_trilinear`](Self::sample_trilinear),
+    /// [`sample_bilinear`](Self::sample_bilinear),
+    /// [`sample_nearest`](Self::sample_nearest) and
+    /// [`sample_nearest_linear_level`](Self::sample_nearest_linear_level) (always inlined,
+    /// so a constant `mode` costs no dispatch).
+    #[inline(always)]
     pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
-        let LevelSplit {
-            lower,
-            t,
-            nearest: nearest_level,
-        } = LevelSplit::new(lod, &self.geometry);
         match mode {
-            Mode::Trilinear => {
-                let a = self.bilinear(u, v, lower);
-                if t == 0 {
-                    self.stats.skipped += 4;
-                    bilerp::round_wide_in_range(a)
-                } else {
-                    let b = self.bilinear(u, v, lower + 1);
-                    bilerp::blend_wide_in_range(a, b, t)
-                }
-            }
-            Mode::BilinearNearestLevel => {
-                bilerp::round_wide_in_range(self.bilinear(u, v, nearest_level))
-            }
-            Mode::Nearest => self.nearest(u, v, nearest_level),
-            Mode::NearestTexelLinearLevel => {
-                let a = self.nearest(u, v, lower);
-                if t == 0 {
-                    self.stats.skipped += 1;
-                    a
-                } else {
-                    let b = self.nearest(u, v, lower + 1);
-                    bilerp::blend_texels(a, b, t)
-                }
-            }
+            #[cfg(feature = "trilinear")]
+            Mode::Trilinear => self.sample_trilinear(u, v, lod),
+            Mode::BilinearNearestLevel => self.sample_bilinear(u, v, lod),
+            Mode::Nearest => self.sample_nearest(u, v, lod),
+            #[cfg(feature = "trilinear")]
+            Mode::NearestTexelLinearLevel => self.sample_nearest_linear_level(u, v, lod),
         }
+    }
+
+    /// `lod` clamped to the stored levels, as I8F8 bits in `[0, 3840]`.
+    #[inline(always)]
+    fn lod_bits(&self, lod: Lod) -> u16 {
+        // = clamp_lod(lod, levels): `top_lod ≥ 0`, so the result is in
+        // `[0, top_lod]` and the cast is exact.
+        lod.to_bits().min(self.top_lod).max(0) as u16
+    }
+
+    /// The nearest level `floor(lod + ½)` of clamped lod bits
+    /// (`bits ≤ top_lod = top level · 256`, so the result is at most the top
+    /// level).
+    #[inline(always)]
+    fn nearest_level(bits: u16) -> u8 {
+        ((bits + 0x80) >> 8) as u8
+    }
+
+    /// [`Mode::Trilinear`]: bilinear in levels `floor(lod)` and
+    /// `floor(lod) + 1`, blended by `frac(lod)` (one level when the
+    /// fraction is 0). Feature `trilinear`.
+    #[cfg(feature = "trilinear")]
+    #[inline]
+    pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let bits = self.lod_bits(lod);
+        let lower = (bits >> 8) as u8;
+        let t = u32::from(bits & 0xFF);
+        let a = self.bilinear_wide(u, v, lower);
+        if t == 0 {
+            self.stats.fetched += 4;
+            self.stats.skipped += 4;
+            bilerp::round_wide_in_range(a)
+        } else {
+            let b = self.bilinear_wide(u, v, lower + 1);
+            self.stats.fetched += 8;
+            bilerp::blend_wide_in_range(a, b, t)
+        }
+    }
+
+    /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
+    #[inline]
+    pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let level = Self::nearest_level(self.lod_bits(lod));
+        self.stats.fetched += 4;
+        let (t, fx, fy) = self.footprint(u, v, level);
+        bilerp::bilerp_rounded(t, fx, fy)
+    }
+
+    /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
+    #[inline]
+    pub fn sample_nearest(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let level = Self::nearest_level(self.lod_bits(lod));
+        self.nearest(u, v, level)
+    }
+
+    /// [`Mode::NearestTexelLinearLevel`]: nearest texel in levels
+    /// `floor(lod)` and `floor(lod) + 1`, blended by `frac(lod)`. Feature
+    /// `trilinear`.
+    #[cfg(feature = "trilinear")]
+    #[inline]
+    pub fn sample_nearest_linear_level(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let bits = self.lod_bits(lod);
+        let lower = (bits >> 8) as u8;
+        let t = u32::from(bits & 0xFF);
+        let a = self.nearest(u, v, lower);
+        if t == 0 {
+            self.stats.skipped += 1;
+            a
+        } else {
+            let b = self.nearest(u, v, lower + 1);
+            bilerp::blend_texels(a, b, t)
+        }
+    }
+
+    /// Batch of [`sample`](Self::sample): `out[i]` = the sample at
+    /// `hits[i] = (u, v, lod)` with filter `mode`, for
+    /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+    /// Same results and fetch counters as `n` single calls; never panics.
+    #[inline]
+    pub fn sample_batch(
+        &mut self,
+        hits: &[(TexCoord, TexCoord, Lod)],
+        mode: Mode,
+        out: &mut [Texel],
+    ) -> usize {
+        let n = hits.len().min(out.len());
+        macro_rules! each {
+            ($f:ident) => {
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.$f(u, v, lod);
+                }
+            };
+        }
+        match mode {
+            #[cfg(feature = "trilinear")]
+            Mode::Trilinear => each!(sample_trilinear),
+            Mode::BilinearNearestLevel => each!(sample_bilinear),
+            Mode::Nearest => each!(sample_nearest),
+            #[cfg(feature = "trilinear")]
+            Mode::NearestTexelLinearLevel => each!(sample_nearest_linear_level),
+        }
+        n
     }
 
     /// [`sample`](Self::sample) with float inputs: a set-up/host
@@ -315,15 +476,49 @@ impl<S: TexelSource> Sampler<S> {
         Ok(self.sample(u, v, lod, mode))
     }
 
-    /// Bilinear value at `level` in 8.16 per channel.
+    /// The 2×2 footprint at `level` and its weights `(fx, fy)` (counted in
+    /// [`FetchStats::fetched`] by the caller). Power-of-two textures under
+    /// [`Address::Wrap`] read from memory with one address computation per
+    /// footprint ([`pow2_wrap_taps`]); every other case goes through the
+    /// source's [`TexelSource::footprint`]. Both give the same texels.
     #[inline(always)]
-    pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
+    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: u8) -> ([Texel; 4], u32, u32) {
+        if let (Some(levels), Some(texels)) = (&self.pow2_wrap, self.source.texel_slice()) {
+            // `level ≤ top level < MAX_LEVELS = 16`: the mask keeps the read
+            // in bounds without a check.
+            let l = levels[usize::from(level) & 15];
+            let (x0, x1, fx) = pow2_wrap_taps(u, l.w, l.cx);
+            let (y0, y1, fy) = pow2_wrap_taps(v, l.h, l.cy);
+            let row0 = l.offset.wrapping_add(y0.wrapping_mul(l.w));
+            let row1 = l.offset.wrapping_add(y1.wrapping_mul(l.w));
+            let get = |i: u32| texels.get(i as usize).copied().unwrap_or(0);
+            let t = [
+                get(row0.wrapping_add(x0)),
+                get(row0.wrapping_add(x1)),
+                get(row1.wrapping_add(x0)),
+                get(row1.wrapping_add(x1)),
+            ];
+            return (t, fx, fy);
+        }
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
-        let [t00, t10, t01, t11] = self.source.footprint(level, [x0, x1], [y0, y1]);
+        (self.source.footprint(level, [x0, x1], [y0, y1]), fx, fy)
+    }
+
+    /// Bilinear value at `level` in 8.16 per channel, not counted in the
+    /// fetch statistics (the caller counts).
+    #[inline(always)]
+    fn bilinear_wide(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
+        let (t, fx, fy) = self.footprint(u, v, level);
+        bilerp::bilerp_in_range(t, fx, fy)
+    }
+
+    /// Bilinear value at `level` in 8.16 per channel (4 texels counted).
+    #[inline(always)]
+    pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
         self.stats.fetched += 4;
-        bilerp::bilerp_in_range([t00, t10, t01, t11], fx, fy)
+        self.bilinear_wide(u, v, level)
     }
 
     /// Nearest texel at `level`.
@@ -379,7 +574,7 @@ impl<S: TexelSource> Sampler<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;
@@ -488,5 +683,95 @@ mod tests {
         );
         assert_eq!(tex_coord_from_f64(3e9), Err(FilterError::OutOfRange));
         assert_eq!(tex_coord_from_f64(-0.25), Ok(c(-0.25)));
+    }
+
+    #[test]
+    fn pow2_wrap_taps_equal_linear_taps() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for k in 0..=15u32 {
+            let size = 1u32 << k;
+            for n in 0..4000u64 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                // Random bits, and the seam/edge values of this size.
+                let edge = (n % (2 * u64::from(size) + 1)) << (31 - k);
+                for bits in [
+                    x as i64,
+                    edge as i64,
+                    -(edge as i64),
+                    (x as i64) >> (n % 40),
+                ] {
+                    let c = TexCoord::from_bits(bits);
+                    assert_eq!(
+                        pow2_wrap_taps(c, size, pow2_wrap_constant(size)),
+                        linear_taps(c, size, Address::Wrap),
+                        "k {k} bits {bits:#x}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The power-of-two wrap path (addresses computed by the sampler) and
+    /// the generic path through a cache (`TexelSource::footprint`, no
+    /// texel slice) give the same texels for every mode.
+    #[test]
+    fn pow2_wrap_path_equals_generic_path() {
+        use crate::cache::TexelCache;
+        for (w, h, levels) in [
+            (32u32, 32u32, 6u8),
+            (64, 4, 7),
+            (1, 16, 5),
+            (8, 1, 2),
+            (1, 1, 1),
+        ] {
+            let g = Geometry::new(w, h, levels).unwrap();
+            let mut buf: Vec<Texel> = (0..g.len() as u32)
+                .map(|i| i.wrapping_mul(0x9E37_79B9) ^ 0x5A5A_1234)
+                .collect();
+            generate(&g, &mut buf).unwrap();
+            let p = Pyramid::new(g, &buf).unwrap();
+            let mut fast = Sampler::new(p, Address::Wrap);
+            assert!(fast.pow2_wrap.is_some());
+            let mut generic = Sampler::new(TexelCache::<_, 4, 2>::new(p), Address::Wrap);
+            let mut x = 12345u64;
+            for _ in 0..3000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let u = TexCoord::from_bits((x as i64) >> (x % 29));
+                let v = TexCoord::from_bits(((x >> 3) as i64).wrapping_mul(7) >> (x % 31));
+                let lod = Lod::from_bits(((x >> 40) % 2400) as i16 - 200);
+                for mode in [
+                    Mode::Trilinear,
+                    Mode::BilinearNearestLevel,
+                    Mode::Nearest,
+                    Mode::NearestTexelLinearLevel,
+                ] {
+                    assert_eq!(
+                        fast.sample(u, v, lod, mode),
+                        generic.sample(u, v, lod, mode),
+                        "{w}x{h} {mode:?} {u} {v} {lod}"
+                    );
+                }
+            }
+            assert_eq!(fast.stats(), generic.stats());
+        }
+        // Non-power-of-two sides or clamp: no table.
+        let g = Geometry::new(6, 4, 2).unwrap();
+        let buf = vec![0; g.len()];
+        assert!(
+            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Wrap)
+                .pow2_wrap
+                .is_none()
+        );
+        let g = Geometry::new(8, 4, 2).unwrap();
+        let buf = vec![0; g.len()];
+        assert!(
+            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Clamp)
+                .pow2_wrap
+                .is_none()
+        );
     }
 }

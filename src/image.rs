@@ -34,9 +34,11 @@ const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64
     let h = if height >> k == 0 { 1 } else { height >> k } as u64;
     let unit = format.unit_bytes() as u64;
     if format.is_block_compressed() {
-        w.div_ceil(BLOCK as u64) * h.div_ceil(BLOCK as u64) * unit
+        // Blocks < 2⁶⁰, but 16 bytes each need not fit u64: saturate.
+        (w.div_ceil(BLOCK as u64) * h.div_ceil(BLOCK as u64)).saturating_mul(unit)
     } else {
-        w * h * unit
+        // w·h < 2⁶⁴, but times up to 4 bytes it need not fit: saturate.
+        (w * h).saturating_mul(unit)
     }
 }
 
@@ -50,7 +52,7 @@ pub const fn image_len(width: u32, height: u32, levels: u8, format: TexelFormat)
     let mut total = 0u64;
     let mut k = 0;
     while k < n {
-        total += level_bytes(width, height, k, format);
+        total = total.saturating_add(level_bytes(width, height, k, format));
         k += 1;
     }
     if total > usize::MAX as u64 {
@@ -239,6 +241,21 @@ mod tests {
             }
         );
         assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
+    }
+
+    /// Like `mip::pyramid_len` (issue 11, defect 2): sides near 2³² must
+    /// saturate, not overflow the 64-bit byte count.
+    #[test]
+    fn image_len_saturates_for_huge_sides() {
+        for f in [TexelFormat::Rgba8, TexelFormat::L8, TexelFormat::Bc3] {
+            assert_eq!(image_len(u32::MAX, u32::MAX, 32, f), usize::MAX, "{f:?}");
+        }
+        assert_eq!(
+            image_len(u32::MAX, u32::MAX, 1, TexelFormat::Rgba8),
+            usize::MAX
+        );
+        let one_row = usize::try_from(4 * u64::from(u32::MAX)).unwrap_or(usize::MAX);
+        assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
     }
 
     /// Through the cache (block decode on fill) and directly (texel

@@ -16,6 +16,7 @@
 //! | stage | module | per hit |
 //! |---|---|---|
 //! | fixed-point logarithm | [`log2`] | leading zeros + 64-entry table |
+//! | camera pixel spread `γ` (set-up) | [`camera`] | – |
 //! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
 //! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
 //! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
@@ -24,6 +25,29 @@
 //! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
 //! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
 //! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
+//! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
+//! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
+//!
+//! # Cargo features
+//!
+//! Each feature compiles a whole stage in; the defaults are what most
+//! users need (everything but the C ABI). A scene that needs less sets
+//! `default-features = false` and lists what it uses. Code a program does
+//! not call is not linked anyway; what a feature removes beyond that is
+//! the part every per-hit call carries (the cone update in
+//! [`PathState::advance`](raystack::PathState::advance), the linear-level
+//! arms of [`Sampler::sample`](filter::Sampler::sample)) and API surface.
+//! Linked `.text` / `.rodata` per feature set on both targets:
+//! `BUDGETS.md`, "Feature sets" (written by `scripts/features`).
+//!
+//! | feature | default | stage | left out |
+//! |---|---|---|---|
+//! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`raystack::PathState`] is 16 bytes instead of 32 ([`raystack::PATH_STATE_BYTES`]) |
+//! | `trilinear` | yes | linear-between-levels modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`) | nearest-level modes only |
+//! | `cache` | yes | texel cache (`cache`) | the sampler reads memory directly |
+//! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
+//! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
 //!
 //! GPU-sampler parity (D3D11 / Vulkan sampler objects), one concept each:
 //!
@@ -42,7 +66,8 @@
 //! use fixed::types::U32F32;
 //! use raymip::lod::{table_lod, Lod};
 //! use raymip::raystack::{PathState, RayStack, Spread};
-//! use raymip::table::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+//! use raymip::camera::PixelSpread;
+//! use raymip::table::{Log2Pb, PbTable, TexTriangle};
 //!
 //! // Set-up: camera with 60° vertical field of view, 480 rows.
 //! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
@@ -119,21 +144,45 @@
 )]
 
 pub mod address;
+pub mod analysis;
 pub mod aniso;
 pub mod bc;
 pub mod bilerp;
+#[cfg(feature = "cache")]
 pub mod cache;
+pub mod camera;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 pub mod filter;
+#[cfg(feature = "f32")]
+pub mod float;
 pub mod format;
+pub mod geomlod;
+// Images decode BC blocks as the texel cache's fill path.
+#[cfg(feature = "cache")]
 pub mod image;
 pub mod lod;
 pub mod log2;
 pub mod mip;
 pub mod raystack;
+pub mod rng;
 pub mod sampler_state;
 pub mod srgb;
 pub mod stochastic;
 pub mod table;
 pub mod texture_sampler;
+
+// The harness's f64 reference of `log2 Pb`, shared by the unit tests.
+#[cfg(test)]
+#[path = "../host-tests/src/reference/pb.rs"]
+mod pb_reference;
+
+// The everyday types, re-exported at the crate root.
+#[cfg(feature = "cache")]
+pub use cache::{BlockCache, BlockLayout, TexelCache};
+pub use camera::{CameraError, PixelSpread};
+pub use filter::{Address, Mode, Sampler, TexCoord};
+pub use lod::Lod;
+pub use mip::{Geometry, MipError, Pyramid, Texel};
+pub use raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
+pub use table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};

@@ -21,12 +21,20 @@
 //! # Grazing angles
 //!
 //! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
-//! `[`[`MIN_COS`]` = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
+//! `[MIN_COS = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
 
-use fixed::types::{I8F8, I16F16, U1F31};
+use fixed::types::I8F8;
+#[cfg(feature = "cone")]
+use fixed::types::{I16F16, U1F31};
 
-use crate::log2::{log2_bits, log2_u32f32};
-use crate::raystack::{PathLength, Width};
+use crate::log2::log2_u32f32_parts;
+#[cfg(feature = "cone")]
+use crate::log2::{LOD_BIAS, log2_u1f31_biased};
+use crate::raystack::PathLength;
+#[cfg(feature = "cone")]
+use crate::raystack::Width;
+#[cfg(feature = "cone")]
+use crate::table::Delta;
 use crate::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
@@ -38,14 +46,9 @@ pub type Lod = I8F8;
 pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
 /// Smallest `|n·d|` used by the normal term: 2⁻¹⁶ (U1F31 raw `1 << 15`).
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
-
-/// Rounds an I16F16 level to [`Lod`] (nearest, ties up), saturating.
-#[inline(always)]
-fn to_lod(x: I16F16) -> Lod {
-    let r = x.to_bits().saturating_add(0x80) >> 8;
-    Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
-}
 
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
 /// `pl` (scene units) and the hit triangle's table entry. `None` for an
@@ -59,24 +62,64 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     if pb.is_untextured() {
         return None;
     }
-    let d = log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
-    Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
+    // log2 Pl + 0x80 = biased − (lz << 16) in I16F16 bits (the I8F8
+    // rounding offset is folded into the log2 table).
+    let (lz, biased) = log2_u32f32_parts(pl.to_bits());
+    let d = biased as i32 - (((lz as i32) << 16) + pb.to_i16f16().to_bits());
+    Some(Lod::from_bits((d >> 8) as i16))
 }
 
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
 /// (scene units), triangle constant `delta` (`Δ`, from
-/// [`Log2Pb::delta`]) and, optionally, `|n·d|` (clamped to
+/// `Log2Pb::delta`) and, optionally, `|n·d|` (clamped to
 /// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
+/// Feature `cone`.
+#[cfg(feature = "cone")]
 #[inline]
 #[must_use]
-pub fn cone_lod(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
-    let mut l = delta.saturating_add(lw);
+pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    // Every term in I16F16 bits: log2|w| ∈ [−32, 32) levels, the normal
+    // term ∈ [0, 16]. With Δ clamped to ±2^30 bits (±16384 levels) nothing
+    // overflows i32, and the result equals the saturating sum: once |Δ|
+    // exceeds 2^30 bits the sum lies beyond ±2^29 bits either way, far past
+    // the ±2^23 bits that `Lod` holds, so both saturate to the same end.
+    let delta = delta.to_bits().clamp(-(1 << 30), 1 << 30);
+    let (lz, biased) = log2_u32f32_parts(width.to_bits().unsigned_abs());
+    // log2|w| + 0x80 (the I8F8 rounding offset) + Δ.
+    let mut l = delta + (biased as i32 - ((lz as i32) << 16));
     if let Some(c) = n_dot_d {
         let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
-        l = l.saturating_sub(log2_bits(u64::from(c), 31));
+        // Both terms carry LOD_BIAS: it cancels.
+        l -= log2_u1f31_biased(c) - LOD_BIAS as i32;
     }
-    to_lod(l)
+    Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+}
+
+/// Batch of [`table_lod`]: `out[i] = table_lod(hits[i].0, hits[i].1)` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`
+/// (results past `n` are left untouched). Same results as the per-hit call,
+/// bit for bit; never panics.
+#[inline]
+pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(pl, pb)) in out.iter_mut().zip(hits) {
+        *o = table_lod(pl, pb);
+    }
+    n
+}
+
+/// Batch of [`cone_lod`]: `out[i] = cone_lod(w, Δ, n·d)` of `hits[i]` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+/// Same results as the per-hit call, bit for bit; never panics. Feature
+/// `cone`.
+#[cfg(feature = "cone")]
+#[inline]
+pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
+        *o = cone_lod(w, d, c);
+    }
+    n
 }
 
 /// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
@@ -101,27 +144,14 @@ pub fn table_lod_clamped(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> 
 mod tests {
     extern crate std;
     use super::*;
+    use crate::camera::PixelSpread;
     use crate::raystack::{PathState, Spread};
-    use crate::table::{Coord, PixelSpread, TexTriangle};
+    use crate::table::{Coord, TexTriangle};
     use fixed::types::I2F30;
+    use fixed::types::I16F16;
+    #[cfg(feature = "cone")]
+    use fixed::types::U1F31;
     use proptest::prelude::*;
-
-    /// Independent f64 reference of log2 Pb (see module docs of `table`).
-    fn ref_log2_pb(p: &[[f64; 3]; 3], uv: &[[f64; 2]; 3], w: f64, h: f64, gamma: f64) -> f64 {
-        let e1: std::vec::Vec<f64> = (0..3).map(|k| p[1][k] - p[0][k]).collect();
-        let e2: std::vec::Vec<f64> = (0..3).map(|k| p[2][k] - p[0][k]).collect();
-        let cx = e1[1] * e2[2] - e1[2] * e2[1];
-        let cy = e1[2] * e2[0] - e1[0] * e2[2];
-        let cz = e1[0] * e2[1] - e1[1] * e2[0];
-        let a = 0.5 * (cx * cx + cy * cy + cz * cz).sqrt();
-        let n = 0.5
-            * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
-                - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]))
-                .abs()
-            * w
-            * h;
-        0.5 * (a / n).log2() - gamma.log2()
-    }
 
     fn q(x: f64) -> f64 {
         Coord::from_num(x).to_num()
@@ -168,12 +198,16 @@ mod tests {
                     "side {s}, {w} texels, fov {fov_deg}, H {hgt}: lod at {mult}·d = {lod}, want {want}"
                 );
                 // The same through a primary ray cone.
+                #[cfg(feature = "cone")]
                 let st = PathState::primary(&spread, 0).advance(PathLength::from_num(d * mult));
-                let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-                assert!(
-                    (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
-                    "cone {c} want {want}"
-                );
+                #[cfg(feature = "cone")]
+                {
+                    let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                    assert!(
+                        (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
+                        "cone {c} want {want}"
+                    );
+                }
             }
         }
     }
@@ -193,6 +227,7 @@ mod tests {
             assert!(table_lod(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
             assert!(table_lod(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
         }
+        #[cfg(feature = "cone")]
         assert_eq!(
             cone_lod(Width::ZERO, I16F16::from_num(3), None),
             Lod::from_num(-29)
@@ -217,6 +252,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "cone")]
     fn normal_term_and_grazing_clamp() {
         let w = Width::from_num(1);
         let d = I16F16::ZERO;
@@ -253,6 +289,82 @@ mod tests {
         )
     }
 
+    /// The formulas as first written (one `log2_bits` per term, saturating
+    /// I16F16 sums, rounding to I8F8): the optimised per-hit code must give
+    /// the same bits for every input.
+    fn table_lod_formula(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+        if pb.is_untextured() {
+            return None;
+        }
+        let d = crate::log2::log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
+        Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
+    }
+
+    #[cfg(feature = "cone")]
+    fn cone_lod_formula(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+        use crate::log2::log2_bits;
+        let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
+        let mut l = delta.saturating_add(lw);
+        if let Some(c) = n_dot_d {
+            let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+            l = l.saturating_sub(log2_bits(u64::from(c), 31));
+        }
+        let r = l.to_bits().saturating_add(0x80) >> 8;
+        Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+    }
+
+    #[test]
+    fn per_hit_code_equals_formula_at_the_edges() {
+        let pls = [
+            0u64,
+            1,
+            2,
+            0xFFFF_FFFF,
+            1 << 32,
+            (1 << 32) + 1,
+            u64::MAX,
+            1 << 63,
+        ];
+        let pbs = [
+            i32::MIN,
+            i32::MIN + 1,
+            -95 << 16,
+            -1,
+            0,
+            1,
+            95 << 16,
+            i32::MAX,
+        ];
+        for &p in &pls {
+            for &b in &pbs {
+                let (pl, pb) = (PathLength::from_bits(p), Log2Pb::from_bits(b));
+                assert_eq!(
+                    table_lod(pl, pb),
+                    table_lod_formula(pl, pb),
+                    "{p:#x} {b:#x}"
+                );
+                #[cfg(feature = "cone")]
+                let d = I16F16::from_bits(b);
+                #[cfg(feature = "cone")]
+                for c in [
+                    None,
+                    Some(0u32),
+                    Some(1),
+                    Some(1 << 15),
+                    Some(1 << 31),
+                    Some(u32::MAX),
+                ] {
+                    let (w, c) = (Width::from_bits(p as i64), c.map(U1F31::from_bits));
+                    assert_eq!(
+                        cone_lod(w, d, c),
+                        cone_lod_formula(w, d, c),
+                        "{p:#x} {b:#x} {c:?}"
+                    );
+                }
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4_000))]
 
@@ -269,7 +381,7 @@ mod tests {
             let gq = I2F30::from_num(g);
             let spread = PixelSpread::from_angle(gq).unwrap();
             let pb = Log2Pb::compute(&make(p, uv, w, h), &spread);
-            let want_pb = ref_log2_pb(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
+            let want_pb = crate::pb_reference::log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
             prop_assume!(want_pb.is_finite() && want_pb.abs() < 100.0);
             // Segments whose sum lies in [2^-16, 2^16].
             let n = segs.len() as f64;
@@ -289,10 +401,27 @@ mod tests {
             // Identity: cone with β = 0 and no normal term equals the table,
             // where the cone width is resolved (w ≥ 2^-20 scene units; its
             // step is 2^-32, see the module docs).
-            prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
-            let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
-            prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
-                "cone {} vs table {}", cone, got);
+            #[cfg(feature = "cone")]
+            {
+                prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
+                let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
+                    "cone {} vs table {}", cone, got);
+            }
+        }
+
+        #[test]
+        fn per_hit_code_equals_formula(p in any::<u64>(), s in 0u32..64, b in any::<i32>(), w in any::<i64>(), c in proptest::option::of(any::<u32>())) {
+            let pl = PathLength::from_bits(p >> s);
+            let pb = Log2Pb::from_bits(b);
+            prop_assert_eq!(table_lod(pl, pb), table_lod_formula(pl, pb));
+            #[cfg(feature = "cone")]
+            {
+                let (w, d, c) = (Width::from_bits(w >> s), I16F16::from_bits(b), c.map(U1F31::from_bits));
+                prop_assert_eq!(cone_lod(w, d, c), cone_lod_formula(w, d, c));
+            }
+            #[cfg(not(feature = "cone"))]
+            let _ = (w, c);
         }
 
         #[test]
@@ -308,9 +437,18 @@ mod tests {
         }
 
         #[test]
+        #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
-            prop_assert!(l >= Lod::MIN && l <= Lod::MAX);
+            // f64 reference over the whole input range (issue 11, defect 6:
+            // this used to assert `Lod::MIN <= l <= Lod::MAX`, true of every
+            // Lod): `w = 0` read as 2⁻³², |n·d| clamped to [2⁻¹⁶, 1], the sum
+            // saturated to the Lod range. Two log2 errors and the output
+            // rounding stay within LOD_MAX_ERROR.
+            let lw = (w.unsigned_abs().max(1) as f64).log2() - 32.0;
+            let lc = c.map_or(0.0, |c| (f64::from(c.clamp(1 << 15, 1 << 31)) / 2f64.powi(31)).log2());
+            let want = (f64::from(d) / 65536.0 + lw - lc).clamp(Lod::MIN.to_num(), Lod::MAX.to_num());
+            prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod = {} vs f64 {}", l, want);
             let c2 = clamp_lod(l, 13);
             prop_assert!(c2 >= Lod::ZERO && c2 <= Lod::from_num(12));
         }

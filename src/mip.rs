@@ -64,7 +64,8 @@ pub const fn full_levels(width: u32, height: u32) -> u8 {
 
 /// Total texels of levels `0 .. levels` of a `width × height` texture
 /// (`levels` is limited to [`full_levels`]); 0 when a side is 0. Saturates
-/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]).
+/// at `usize::MAX` (only reachable beyond [`MAX_SIZE`]: for sides near 2³²
+/// the sum exceeds `u64`, so it saturates there too).
 #[must_use]
 pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let full = full_levels(width, height);
@@ -73,7 +74,8 @@ pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     let mut k = 0;
     while k < n {
         let (w, h) = level_dims(width, height, k);
-        total += w as u64 * h as u64;
+        // One level is below 2⁶⁴; the sum of all of them need not be.
+        total = total.saturating_add(w as u64 * h as u64);
         k += 1;
     }
     if total > usize::MAX as u64 {
@@ -133,7 +135,11 @@ pub struct Geometry {
     width: u32,
     height: u32,
     levels: u8,
-    /// Offset of level k in texels; entries past `levels` hold the total.
+    /// First and last stored level (`0` and `levels − 1` unless trimmed).
+    first: u8,
+    last: u8,
+    /// Offset of level k in texels (0 below `first`); entries past `last`
+    /// hold the total.
     offsets: [u32; MAX_LEVELS as usize + 1],
 }
 
@@ -154,12 +160,50 @@ impl Geometry {
         if levels == 0 || levels > full_levels(width, height) {
             return Err(MipError::BadLevels);
         }
+        Self::with_stored(width, height, levels, 0, levels - 1)
+    }
+
+    /// Geometry of a trimmed pyramid: a `width × height` texture whose
+    /// samplers address `levels` levels (lod clamped to `[0, levels − 1]`,
+    /// as for [`Geometry::new`]) but which stores only levels
+    /// `first ..= last`, `first` first. Reads of a level outside that range
+    /// are clamped into it, so a sampler gives the same texels as with the
+    /// full pyramid for every lod whose levels are stored
+    /// (`crate::analysis` computes that range for a scene). The stored
+    /// texels are the sub-slice [`Geometry::stored_range`] of the full
+    /// pyramid (see [`Pyramid::trim`]).
+    ///
+    /// # Errors
+    /// As [`Geometry::new`]; [`MipError::BadLevels`] also when
+    /// `first > last` or `last ≥ levels`.
+    pub const fn trimmed(
+        width: u32,
+        height: u32,
+        levels: u8,
+        first: u8,
+        last: u8,
+    ) -> Result<Self, MipError> {
+        match Self::new(width, height, levels) {
+            Err(e) => Err(e),
+            Ok(_) if first > last || last >= levels => Err(MipError::BadLevels),
+            Ok(_) => Self::with_stored(width, height, levels, first, last),
+        }
+    }
+
+    /// [`Geometry::trimmed`] after the checks.
+    const fn with_stored(
+        width: u32,
+        height: u32,
+        levels: u8,
+        first: u8,
+        last: u8,
+    ) -> Result<Self, MipError> {
         let mut offsets = [0u32; MAX_LEVELS as usize + 1];
         let mut total: u32 = 0;
         let mut k = 0u8;
         while k < MAX_LEVELS {
             offsets[k as usize] = total;
-            if k < levels {
+            if k >= first && k <= last {
                 let (w, h) = level_dims(width, height, k);
                 // ≤ 4/3 · 2³⁰ < 2³¹: no overflow for sides ≤ MAX_SIZE.
                 total += w * h;
@@ -171,8 +215,40 @@ impl Geometry {
             width,
             height,
             levels,
+            first,
+            last,
             offsets,
         })
+    }
+
+    /// First stored level (0 unless trimmed).
+    #[inline]
+    #[must_use]
+    pub const fn first_level(&self) -> u8 {
+        self.first
+    }
+
+    /// Last stored level (`levels − 1` unless trimmed).
+    #[inline]
+    #[must_use]
+    pub const fn last_level(&self) -> u8 {
+        self.last
+    }
+
+    /// True when every level `0 .. levels` is stored.
+    #[inline]
+    #[must_use]
+    pub const fn is_full(&self) -> bool {
+        self.first == 0 && self.last == self.top_level()
+    }
+
+    /// The texels of this geometry's stored levels inside the full
+    /// pyramid of the same size and `levels` (level 0 first): the
+    /// sub-slice a trimmed pyramid stores.
+    #[must_use]
+    pub const fn stored_range(&self) -> core::ops::Range<usize> {
+        let start = pyramid_len(self.width, self.height, self.first);
+        start..start + self.len()
     }
 
     /// Width of level 0 in texels.
@@ -189,54 +265,59 @@ impl Geometry {
         self.height
     }
 
-    /// Number of stored levels (≥ 1).
+    /// Number of levels the samplers address (≥ 1): lod is clamped to
+    /// `[0, levels − 1]`. All of them are stored unless the geometry is
+    /// [trimmed](Geometry::trimmed).
     #[inline]
     #[must_use]
     pub const fn levels(&self) -> u8 {
         self.levels
     }
 
-    /// Index of the top (coarsest) stored level, `levels − 1`.
+    /// Index of the top (coarsest) addressed level, `levels − 1`.
     #[inline]
     #[must_use]
     pub const fn top_level(&self) -> u8 {
         self.levels.saturating_sub(1)
     }
 
+    /// `level` clamped to the stored levels `[first, last]`.
+    #[inline(always)]
+    const fn stored_level(&self, level: u8) -> u8 {
+        if level > self.last {
+            self.last
+        } else if level < self.first {
+            self.first
+        } else {
+            level
+        }
+    }
+
     /// Size of `level` in texels: `(max(1, w >> k), max(1, h >> k))`, with
-    /// `k = min(level, levels − 1)` (levels above the top are clamped).
+    /// `k` = `level` clamped to the stored levels (to `levels − 1` unless
+    /// trimmed).
     #[inline]
     #[must_use]
     pub const fn level_size(&self, level: u8) -> (u32, u32) {
-        let top = self.top_level();
-        level_dims(
-            self.width,
-            self.height,
-            if level < top { level } else { top },
-        )
+        level_dims(self.width, self.height, self.stored_level(level))
     }
 
-    /// Offset of `level` in texels from the start of the pyramid (level
-    /// clamped to the top stored level).
+    /// Offset of `level` in texels from the start of the stored texels
+    /// (level clamped to the stored levels).
     #[inline]
     #[must_use]
     pub fn level_offset(&self, level: u8) -> usize {
-        let k = usize::from(level.min(self.top_level()));
+        let k = usize::from(self.stored_level(level));
         self.offsets.get(k).copied().unwrap_or(0) as usize
     }
 
-    /// Total stored texels (= [`pyramid_len`]`(w, h, levels)`).
+    /// Total stored texels (= [`pyramid_len`]`(w, h, levels)` unless
+    /// trimmed; at least 1).
     #[inline]
     #[must_use]
+    #[allow(clippy::len_without_is_empty)] // a geometry has at least one texel
     pub const fn len(&self) -> usize {
         self.offsets[MAX_LEVELS as usize] as usize
-    }
-
-    /// Always `false`: a geometry has at least one texel.
-    #[inline]
-    #[must_use]
-    pub const fn is_empty(&self) -> bool {
-        false
     }
 
     /// Index of texel `(x, y)` of `level` in the pyramid slice. Level,
@@ -253,6 +334,7 @@ impl Geometry {
 
 /// One axis of the generation filter: up to 3 source taps with integer
 /// weights summing to `den`.
+#[cfg(feature = "mipgen")]
 #[derive(Clone, Copy)]
 struct Taps {
     first: u32,
@@ -262,6 +344,7 @@ struct Taps {
 }
 
 /// Taps of output texel `i` for a source extent `src` (see module docs).
+#[cfg(feature = "mipgen")]
 fn axis_taps(src: u32, i: u32) -> Taps {
     if src == 1 {
         Taps {
@@ -290,11 +373,17 @@ fn axis_taps(src: u32, i: u32) -> Taps {
 }
 
 /// Fills levels `1 .. levels` from level 0 (already in `buf[..w*h]`), in
-/// place, with the filter of the module docs.
+/// place, with the filter of the module docs. For a
+/// [trimmed](Geometry::trimmed) geometry: the stored levels after the
+/// first from the first (already at the start of `buf`); each level depends
+/// only on the one below, so they equal the full pyramid's.
 ///
 /// # Errors
 /// [`MipError::BufferTooShort`] when `buf` is shorter than
 /// [`Geometry::len`] (nothing is written).
+///
+/// Feature `mipgen`.
+#[cfg(feature = "mipgen")]
 pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
     generate_mapped(
         geometry,
@@ -318,6 +407,7 @@ pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> 
 /// `encode(sums, den)` turns the sums and the common denominator `den ≥ 1`
 /// into the output texel. [`generate`] uses the 8-bit channels as they
 /// are; sRGB pyramids (`crate::srgb`) filter in linear space.
+#[cfg(feature = "mipgen")]
 pub(crate) fn generate_mapped(
     geometry: &Geometry,
     buf: &mut [Texel],
@@ -331,7 +421,7 @@ pub(crate) fn generate_mapped(
             got: buf.len(),
         });
     }
-    for k in 1..geometry.levels() {
+    for k in geometry.first_level().saturating_add(1)..=geometry.last_level() {
         let (sw, sh) = geometry.level_size(k - 1);
         let (dw, dh) = geometry.level_size(k);
         // Every access below is checked (`get`), so no input can panic; the
@@ -391,6 +481,14 @@ pub trait TexelSource {
             self.texel(level, x[1], y[1]),
         ]
     }
+    /// The whole pyramid in memory (layout of the module docs), when the
+    /// source reads memory directly: lets a [`Sampler`](crate::filter::Sampler)
+    /// compute texel addresses itself (one address per 2×2 footprint).
+    /// Sources that must see every read (a cache) return `None`, the default.
+    #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        None
+    }
 }
 
 /// A pyramid: geometry plus a borrowed texel slice laid out as in the
@@ -423,6 +521,31 @@ impl<'a> Pyramid<'a> {
         self.texels
     }
 
+    /// The same pyramid storing only levels `first ..= last` (a
+    /// [trimmed](Geometry::trimmed) geometry over a sub-slice of these
+    /// texels; nothing is copied). Every lod whose levels lie in that range
+    /// samples exactly the same texels as before.
+    ///
+    /// # Errors
+    /// [`MipError::BadLevels`] when `first > last` or the range is not
+    /// stored here.
+    pub fn trim(&self, first: u8, last: u8) -> Result<Self, MipError> {
+        let g = &self.geometry;
+        if first < g.first_level() || last > g.last_level() {
+            return Err(MipError::BadLevels);
+        }
+        let geometry = Geometry::trimmed(g.width(), g.height(), g.levels(), first, last)?;
+        let start = geometry.stored_range().start - g.stored_range().start;
+        let texels =
+            self.texels
+                .get(start..start + geometry.len())
+                .ok_or(MipError::BufferTooShort {
+                    needed: start + geometry.len(),
+                    got: self.texels.len(),
+                })?;
+        Ok(Self { geometry, texels })
+    }
+
     /// Texel `(x, y)` of `level`, clamped as in [`TexelSource::texel`].
     #[inline]
     #[must_use]
@@ -438,6 +561,11 @@ impl TexelSource for Pyramid<'_> {
     #[inline]
     fn geometry(&self) -> Geometry {
         self.geometry
+    }
+
+    #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        Some(self.texels)
     }
 
     #[inline]
@@ -478,12 +606,18 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         (**self).footprint(level, x, y)
     }
+
+    #[inline]
+    fn texel_slice(&self) -> Option<&[Texel]> {
+        (**self).texel_slice()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
+    #[cfg(feature = "mipgen")]
     use std::vec;
 
     #[test]
@@ -511,7 +645,34 @@ mod tests {
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
     }
 
+    /// Regression (issue 11, defect 2): sides near 2³² overflowed the
+    /// 64-bit sum (wrapped in release, panicked in debug) instead of
+    /// saturating as documented.
     #[test]
+    fn pyramid_len_saturates_for_huge_sides() {
+        // Level 0 alone is (2³² − 1)² = 2⁶⁴ − 2³³ + 1 texels; level 1 adds ≈ 2⁶²:
+        // the exact total exceeds u64 (and usize).
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 32), usize::MAX);
+        assert_eq!(pyramid_len(u32::MAX, u32::MAX, 2), usize::MAX);
+        // One level still fits u64 exactly (and saturates only on 32-bit targets).
+        let one = u64::from(u32::MAX) * u64::from(u32::MAX);
+        assert_eq!(
+            pyramid_len(u32::MAX, u32::MAX, 1),
+            usize::try_from(one).unwrap_or(usize::MAX)
+        );
+        // Monotonic in the level count over the whole u32 side range.
+        for side in [1u32 << 31, (1 << 31) + 1, u32::MAX - 1, u32::MAX] {
+            let mut last = 0;
+            for levels in 0..=33 {
+                let n = pyramid_len(side, side, levels);
+                assert!(n >= last, "{side}: {levels} levels {n} < {last}");
+                last = n;
+            }
+        }
+    }
+
+    #[test]
+    #[cfg(feature = "mipgen")]
     fn pot_box_and_one_wide() {
         let g = Geometry::new(2, 2, 2).unwrap();
         let mut buf = vec![0u32; g.len()];
@@ -530,6 +691,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "mipgen")]
     fn odd_extent_polyphase_box() {
         // 3 → 1: weights (1, 1, 1)/3.
         let g = Geometry::new(3, 1, 2).unwrap();
@@ -554,6 +716,76 @@ mod tests {
         assert_eq!(p.texel(1, 0, 0), 5);
         assert_eq!(p.texel(7, 3, 3), 5);
         assert!(Pyramid::new(g, &buf[..4]).is_err());
+    }
+
+    /// A trimmed pyramid reads the full pyramid's texels at every stored
+    /// level and clamps other levels into its range; generated in place
+    /// from its first level it equals the full pyramid's sub-slice.
+    #[test]
+    fn trimmed_reads_the_full_pyramids_texels() {
+        for (w, h) in [(8u32, 8u32), (5, 3), (1, 16), (13, 7)] {
+            let levels = full_levels(w, h);
+            let full = Geometry::new(w, h, levels).unwrap();
+            assert!(full.is_full() && full.stored_range() == (0..full.len()));
+            let buf: std::vec::Vec<Texel> = (0..full.len() as u32).map(|i| i * 7919).collect();
+            let p = Pyramid::new(full, &buf).unwrap();
+            for first in 0..levels {
+                for last in first..levels {
+                    let t = p.trim(first, last).unwrap();
+                    let g = t.geometry();
+                    assert_eq!(
+                        (g.first_level(), g.last_level(), g.levels()),
+                        (first, last, levels)
+                    );
+                    assert_eq!(g.len(), g.stored_range().len());
+                    assert_eq!(g.is_full(), first == 0 && last == levels - 1);
+                    for level in 0..levels + 2 {
+                        let k = level.clamp(first, last);
+                        assert_eq!(g.level_size(level), full.level_size(k));
+                        let (lw, lh) = full.level_size(k);
+                        for (x, y) in [(0, 0), (lw - 1, lh - 1), (lw / 2, lh / 3), (99, 99)] {
+                            assert_eq!(
+                                t.get(level, x, y),
+                                p.get(k, x, y),
+                                "{w}x{h} [{first},{last}] level {level}"
+                            );
+                        }
+                    }
+                    assert_eq!(t.trim(first, last).unwrap().texels(), t.texels());
+                    if first > 0 {
+                        assert_eq!(t.trim(first - 1, last).unwrap_err(), MipError::BadLevels);
+                    }
+                }
+            }
+            assert_eq!(
+                Geometry::trimmed(w, h, levels, 1, 0),
+                Err(MipError::BadLevels)
+            );
+            assert_eq!(
+                Geometry::trimmed(w, h, levels, 0, levels),
+                Err(MipError::BadLevels)
+            );
+        }
+    }
+
+    #[test]
+    #[cfg(feature = "mipgen")]
+    fn trimmed_generation_equals_the_full_pyramid() {
+        let full = Geometry::new(13, 7, 4).unwrap();
+        let mut buf: std::vec::Vec<Texel> = (0..full.len() as u32)
+            .map(|i| i.wrapping_mul(2_654_435_761))
+            .collect();
+        generate(&full, &mut buf).unwrap();
+        for first in 0..4 {
+            let g = Geometry::trimmed(13, 7, 4, first, 3).unwrap();
+            let range = g.stored_range();
+            let (w, h) = g.level_size(first);
+            let mut t = std::vec![0u32; g.len()];
+            let n = (w * h) as usize;
+            t[..n].copy_from_slice(&buf[range.start..range.start + n]);
+            generate(&g, &mut t).unwrap();
+            assert_eq!(t[..], buf[range]);
+        }
     }
 
     #[test]

@@ -21,7 +21,7 @@ use core::fmt;
 
 use fixed::types::{I2F30, I32F32, U32F32};
 
-use crate::table::PixelSpread;
+use crate::camera::PixelSpread;
 
 /// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units.
 pub type PathLength = U32F32;
@@ -34,7 +34,8 @@ pub type Spread = I2F30;
 pub const DEFAULT_CAPACITY: usize = 10;
 
 /// Ray-cone state (Akenine-Möller et al., RTG ch. 20): width `w` and spread
-/// angle `γ`.
+/// angle `γ`. Feature `cone`.
+#[cfg(feature = "cone")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct RayCone {
     /// Cone width at the current origin (scene units).
@@ -43,6 +44,7 @@ pub struct RayCone {
     pub spread: Spread,
 }
 
+#[cfg(feature = "cone")]
 impl RayCone {
     /// `w' = w + γ·t`, saturating; the flag is true if it saturated.
     #[inline]
@@ -89,6 +91,7 @@ impl RayCone {
 /// `γ·t` as I32F32 with two 32×32→64 multiplications (no 128-bit product);
 /// saturates (flag true) beyond the I32F32 range. Rounded to nearest:
 /// error ≤ 2⁻³³.
+#[cfg(feature = "cone")]
 #[inline]
 fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
     let g = i64::from(g.to_bits());
@@ -108,12 +111,14 @@ fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
 
 /// The state of one path (one stack entry): what LOD needs, the path's ray
 /// mask (stochastic LOD: chosen once per path, kept on every bounce) and its
-/// depth.
+/// depth. [`PATH_STATE_BYTES`] per entry: 32 with the `cone` feature, 16
+/// without (no cone state carried, no `γ·t` per advance).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct PathState {
     /// Accumulated path length `Pl` from the camera (scene units).
     pub pl: PathLength,
-    /// Ray-cone state.
+    /// Ray-cone state (feature `cone`).
+    #[cfg(feature = "cone")]
     pub cone: RayCone,
     /// 8-bit ray mask of the path.
     pub mask: u8,
@@ -128,8 +133,11 @@ impl PathState {
     /// A primary ray: `Pl = 0`, cone width 0 and spread `γ` of the camera.
     #[must_use]
     pub const fn primary(spread: &PixelSpread, mask: u8) -> Self {
+        #[cfg(not(feature = "cone"))]
+        let _ = spread;
         Self {
             pl: PathLength::ZERO,
+            #[cfg(feature = "cone")]
             cone: RayCone {
                 width: Width::ZERO,
                 spread: spread.angle(),
@@ -148,9 +156,13 @@ impl PathState {
             Some(v) => (v, false),
             None => (PathLength::MAX, true),
         };
+        #[cfg(feature = "cone")]
         let (cone, c_sat) = self.cone.advance(t);
+        #[cfg(not(feature = "cone"))]
+        let c_sat = false;
         Self {
             pl,
+            #[cfg(feature = "cone")]
             cone,
             saturated: self.saturated | pl_sat | c_sat,
             ..self
@@ -158,12 +170,17 @@ impl PathState {
     }
 
     /// The state of a reflected or refracted continuation: spread `γ + β`
-    /// (`β` = surface spread angle, 0 for flat), depth + 1.
+    /// (`β` = surface spread angle, 0 for flat; ignored without the `cone`
+    /// feature), depth + 1.
     #[inline]
     #[must_use]
     pub fn bounce(self, beta: Spread) -> Self {
+        #[cfg(feature = "cone")]
         let (cone, sat) = self.cone.bounce(beta);
+        #[cfg(not(feature = "cone"))]
+        let (sat, _) = (false, beta);
         Self {
+            #[cfg(feature = "cone")]
             cone,
             depth: self.depth.saturating_add(1),
             saturated: self.saturated | sat,
@@ -172,29 +189,43 @@ impl PathState {
     }
 }
 
-/// A push onto a full stack: the rejected state is handed back; the stack is
-/// unchanged.
+/// Bytes of one [`PathState`] (one ray-stack entry) on every target:
+/// 32 with the `cone` feature (the cone is a 16-byte aligned pair), 16
+/// without (checked at compile time on every target).
+pub const PATH_STATE_BYTES: usize = if cfg!(feature = "cone") { 32 } else { 16 };
+const _: () = assert!(core::mem::size_of::<PathState>() == PATH_STATE_BYTES);
+
+/// A push onto a full stack: the rejected state and its caller payload are
+/// handed back; the stack is unchanged.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
-pub struct StackFull(pub PathState);
+pub struct StackFull<T = ()>(pub PathState, pub T);
 
-impl core::error::Error for StackFull {}
+impl<T: fmt::Debug> core::error::Error for StackFull<T> {}
 
-impl fmt::Display for StackFull {
+impl<T> fmt::Display for StackFull<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "ray stack full (path depth {})", self.0.depth)
     }
 }
 
-/// Fixed-capacity LIFO of [`PathState`]s (capacity `N`, default 10). At a
-/// hit push both the reflection and the refraction branch; `pop` continues
-/// the most recently pushed one, then the other.
-#[derive(Clone, Debug, Default)]
-pub struct RayStack<const N: usize = DEFAULT_CAPACITY> {
-    entries: heapless::Vec<PathState, N>,
+/// Fixed-capacity LIFO of [`PathState`]s (capacity `N`, default 10), each
+/// with a caller payload `T` (default `()`: none), e.g. the host side of a
+/// ray (origin, direction, weight) so that the caller keeps no second stack
+/// in lockstep. At a hit push both the reflection and the refraction
+/// branch; `pop` continues the most recently pushed one, then the other.
+#[derive(Clone, Debug)]
+pub struct RayStack<T = (), const N: usize = DEFAULT_CAPACITY> {
+    entries: heapless::Vec<(PathState, T), N>,
 }
 
-impl<const N: usize> RayStack<N> {
+impl<T, const N: usize> Default for RayStack<T, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T, const N: usize> RayStack<T, N> {
     /// An empty stack.
     #[must_use]
     pub const fn new() -> Self {
@@ -203,24 +234,26 @@ impl<const N: usize> RayStack<N> {
         }
     }
 
-    /// Pushes a state; on overflow returns it in [`StackFull`] and keeps
-    /// everything already on the stack.
+    /// Pushes a state with its payload; on overflow returns both in
+    /// [`StackFull`] and keeps everything already on the stack.
     #[inline]
-    pub fn push(&mut self, state: PathState) -> Result<(), StackFull> {
-        self.entries.push(state).map_err(StackFull)
+    pub fn push_with(&mut self, state: PathState, payload: T) -> Result<(), StackFull<T>> {
+        self.entries
+            .push((state, payload))
+            .map_err(|(s, p)| StackFull(s, p))
     }
 
-    /// Pops the most recent state.
+    /// Pops the most recent state with its payload.
     #[inline]
-    pub fn pop(&mut self) -> Option<PathState> {
+    pub fn pop_with(&mut self) -> Option<(PathState, T)> {
         self.entries.pop()
     }
 
-    /// The most recent state without removing it.
+    /// The most recent state and its payload without removing them.
     #[inline]
     #[must_use]
-    pub fn peek(&self) -> Option<&PathState> {
-        self.entries.last()
+    pub fn peek_with(&self) -> Option<(&PathState, &T)> {
+        self.entries.last().map(|(s, p)| (s, p))
     }
 
     /// Number of states on the stack.
@@ -247,6 +280,28 @@ impl<const N: usize> RayStack<N> {
     }
 }
 
+impl<const N: usize> RayStack<(), N> {
+    /// Pushes a state; on overflow returns it in [`StackFull`] and keeps
+    /// everything already on the stack.
+    #[inline]
+    pub fn push(&mut self, state: PathState) -> Result<(), StackFull> {
+        self.push_with(state, ())
+    }
+
+    /// Pops the most recent state.
+    #[inline]
+    pub fn pop(&mut self) -> Option<PathState> {
+        self.pop_with().map(|(s, ())| s)
+    }
+
+    /// The most recent state without removing it.
+    #[inline]
+    #[must_use]
+    pub fn peek(&self) -> Option<&PathState> {
+        self.peek_with().map(|(s, _)| s)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -259,21 +314,37 @@ mod tests {
 
     #[test]
     fn push_pop_order_and_overflow() {
-        let mut s: RayStack<3> = RayStack::new();
+        let mut s: RayStack<(), 3> = RayStack::new();
         let base = PathState::primary(&spread(0.001), 0b0000_0100);
         for d in 0..3u8 {
             s.push(PathState { depth: d, ..base }).unwrap();
         }
         let extra = PathState { depth: 9, ..base };
-        assert_eq!(s.push(extra), Err(StackFull(extra)));
+        assert_eq!(s.push(extra), Err(StackFull(extra, ())));
         assert_eq!(s.len(), 3, "overflow keeps the stack");
         assert_eq!(s.pop().map(|p| p.depth), Some(2));
         assert_eq!(s.pop().map(|p| p.depth), Some(1));
         assert_eq!(s.peek().map(|p| p.depth), Some(0));
         s.clear();
         assert!(s.is_empty() && s.pop().is_none());
-        assert_eq!(RayStack::<10>::new().capacity(), 10);
-        assert!(std::format!("{}", StackFull(extra)).contains("full"));
+        assert_eq!(RayStack::<(), 10>::new().capacity(), 10);
+        assert!(std::format!("{}", StackFull(extra, ())).contains("full"));
+    }
+
+    #[test]
+    fn payload_travels_with_its_state() {
+        let base = PathState::primary(&spread(0.001), 0xFF);
+        let mut s: RayStack<u32, 2> = RayStack::new();
+        s.push_with(base.bounce(Spread::ZERO), 7).unwrap();
+        s.push_with(base.bounce(Spread::ZERO).bounce(Spread::ZERO), 8)
+            .unwrap();
+        let extra = base;
+        assert_eq!(s.push_with(extra, 9), Err(StackFull(extra, 9)));
+        assert_eq!(s.peek_with().map(|(st, p)| (st.depth, *p)), Some((2, 8)));
+        assert_eq!(s.pop_with().map(|(st, p)| (st.depth, p)), Some((2, 8)));
+        assert_eq!(s.pop_with().map(|(st, p)| (st.depth, p)), Some((1, 7)));
+        assert_eq!(s.pop_with(), None);
+        assert!(s.is_empty());
     }
 
     #[test]
@@ -292,27 +363,36 @@ mod tests {
             (refl.depth, refr.depth, refl.mask, refr.mask),
             (1, 1, 0x80, 0x80)
         );
-        let w = refl.cone.width.to_num::<f64>();
-        let want = 0.001 * 2.0 + (0.001 + 0.01) * 1.0;
-        assert!((w - want).abs() < 1e-8, "{w} vs {want}");
+        #[cfg(feature = "cone")]
+        {
+            let w = refl.cone.width.to_num::<f64>();
+            let want = 0.001 * 2.0 + (0.001 + 0.01) * 1.0;
+            assert!((w - want).abs() < 1e-8, "{w} vs {want}");
+        }
     }
 
     #[test]
     fn saturation_is_flagged_not_wrapped() {
         let p = PathState::primary(&spread(1.5), 0).advance(PathLength::MAX);
-        assert!(p.saturated);
+        // Pl = 0 + MAX is exact; only the cone width (1.5·MAX) saturates.
+        assert_eq!(p.saturated, cfg!(feature = "cone"));
         assert_eq!(p.pl, PathLength::MAX);
+        #[cfg(feature = "cone")]
         assert_eq!(p.cone.width, Width::MAX);
         let p2 = PathState::primary(&spread(0.5), 0)
             .advance(PathLength::from_num(4.0e9))
             .advance(PathLength::from_num(4.0e9));
         assert!(p2.saturated && p2.pl == PathLength::MAX);
+        #[cfg(feature = "cone")]
         let neg = PathState::primary(&spread(0.5), 0)
             .bounce(Spread::MIN)
             .bounce(Spread::MIN);
-        assert!(neg.saturated && neg.cone.spread == Spread::MIN);
-        let neg_w = neg.advance(PathLength::from_num(4.0e9));
-        assert_eq!(neg_w.cone.width, Width::MIN);
+        #[cfg(feature = "cone")]
+        {
+            assert!(neg.saturated && neg.cone.spread == Spread::MIN);
+            let neg_w = neg.advance(PathLength::from_num(4.0e9));
+            assert_eq!(neg_w.cone.width, Width::MIN);
+        }
         let deep = (0..300).fold(PathState::default(), |p, _| p.bounce(Spread::ZERO));
         assert_eq!(deep.depth, 255);
     }
@@ -320,6 +400,7 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5_000))]
         /// Ten bounces against an f64 reference of the same recurrences.
+        #[cfg(feature = "cone")]
         #[test]
         fn ten_bounces_match_f64(
             g in 1.0e-5..0.1f64,
@@ -345,6 +426,7 @@ mod tests {
             prop_assert_eq!(usize::from(st.depth), segs.len());
         }
 
+        #[cfg(feature = "cone")]
         #[test]
         fn mul_spread_matches_f64(g in any::<i32>(), t in any::<u64>()) {
             let (got, sat) = mul_spread(Spread::from_bits(g), PathLength::from_bits(t));

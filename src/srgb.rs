@@ -22,10 +22,11 @@
 //! # Error bound
 //!
 //! Decode is within 2⁻¹⁷ of the exact EOTF. An encoded result is within
-//! [`MAX_ENCODE_ERROR_LSB`] = 0.55 sRGB LSB of `255·OETF(exact linear)`:
+//! [`SRGB_ENCODE_MAX_ERROR_LSB`] = 0.55 sRGB LSB of `255·OETF(exact linear)`:
 //! ½ from rounding, plus the input's linear error times the OETF's
 //! steepest slope (12.92·255 LSB per unit, 0.05 LSB per L16 step).
 
+#[cfg(feature = "mipgen")]
 use crate::mip::{Geometry, MipError, Texel, generate_mapped};
 
 /// Linear L16 value (65535 = 1.0) of every 8-bit sRGB code.
@@ -84,7 +85,7 @@ pub const ENCODE_THRESHOLDS: [u32; 256] = [
 /// encoding of the exact linear filter, in 8-bit sRGB LSB (with
 /// 12-bit bilinear weights the position error adds to it; see
 /// `crate::texture_sampler`).
-pub const MAX_ENCODE_ERROR_LSB: f64 = 0.55;
+pub const SRGB_ENCODE_MAX_ERROR_LSB: f64 = 0.55;
 
 /// 8-bit sRGB code of a linear 16.8 value `x` (65535·256 = 1.0; larger
 /// values give 255): `round(255·OETF(x))` by binary search. Never panics.
@@ -116,6 +117,9 @@ pub fn decode(c: u8) -> u16 {
 ///
 /// # Errors
 /// [`MipError::BufferTooShort`] when `buf` is shorter than the geometry.
+///
+/// Feature `mipgen`.
+#[cfg(feature = "mipgen")]
 pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> {
     generate_mapped(
         geometry,
@@ -202,6 +206,7 @@ mod tests {
         /// Linear-space pyramids: every level-1 texel against the f64
         /// linear box of its four sources, re-encoded.
         #[test]
+        #[cfg(feature = "mipgen")]
         fn generate_in_linear_space(texels in proptest::collection::vec(any::<u32>(), 16)) {
             let g = Geometry::new(4, 4, 3).unwrap();
             let mut buf = std::vec![0u32; g.len()];
@@ -217,7 +222,7 @@ mod tests {
                             acc += if c < 3 { eotf(v / 255.0) } else { v } / 4.0;
                         }
                         let exact = if c < 3 { 255.0 * oetf(acc) } else { acc };
-                        prop_assert!((f64::from(o) - exact).abs() <= MAX_ENCODE_ERROR_LSB,
+                        prop_assert!((f64::from(o) - exact).abs() <= SRGB_ENCODE_MAX_ERROR_LSB,
                             "channel {c}: {o} vs {exact}");
                     }
                 }

@@ -52,13 +52,18 @@
 
 use core::fmt;
 
-use fixed::types::{I2F30, I16F16, I32F32};
+use fixed::types::{I16F16, I32F32};
 
-use crate::log2::{log2_bits, log2_bits_u128, log2_u32};
+use crate::camera::PixelSpread;
+use crate::log2::{log2_bits_u128, log2_u32};
 
 /// World-space position or texture coordinate: I32F32 (range ±2³¹ scene
 /// units or texture repeats, step 2⁻³²).
 pub type Coord = I32F32;
+
+/// The ray-cone triangle constant `Δ = ½·log2(N/A)` (levels, I16F16; see
+/// [`Log2Pb::delta`]), the cone method's per-triangle input.
+pub type Delta = I16F16;
 
 /// Documented maximum absolute error of a table entry against exact
 /// arithmetic, in levels: 2⁻¹⁰.
@@ -68,16 +73,12 @@ pub const TABLE_MAX_ERROR: f64 = 1.0 / 1024.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum TableError {
-    /// A coordinate or angle was NaN or infinite.
+    /// A coordinate was NaN or infinite.
     NonFinite,
     /// A coordinate does not fit I32F32 (|x| ≥ 2³¹).
     OutOfRange,
     /// Texture width or height was zero.
     ZeroTextureSize,
-    /// Field of view outside `(0, π)` radians or pixel spread outside `(0, 2)`.
-    BadAngle,
-    /// Image height was zero.
-    ZeroImageHeight,
     /// More triangles than table entries (entries up to the end were written).
     TableFull,
 }
@@ -87,11 +88,9 @@ impl core::error::Error for TableError {}
 impl fmt::Display for TableError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            Self::NonFinite => "coordinate or angle is NaN or infinite",
+            Self::NonFinite => "coordinate is NaN or infinite",
             Self::OutOfRange => "coordinate outside the I32F32 range (|x| >= 2^31)",
             Self::ZeroTextureSize => "texture width or height is zero",
-            Self::BadAngle => "field of view must be in (0, pi), pixel spread in (0, 2) radians",
-            Self::ZeroImageHeight => "image height is zero",
             Self::TableFull => "more triangles than table entries",
         })
     }
@@ -236,57 +235,6 @@ fn half(x: I16F16) -> I16F16 {
     I16F16::from_bits(x.to_bits() >> 1)
 }
 
-/// The pixel spread angle `γ` of a camera (radians, I2F30, range `(0, 2)`)
-/// with its log2 precomputed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PixelSpread {
-    angle: I2F30,
-    log2: I16F16,
-}
-
-impl PixelSpread {
-    /// From the angle itself (radians, `0 < γ < 2`); float-free.
-    pub fn from_angle(angle: I2F30) -> Result<Self, TableError> {
-        if angle <= I2F30::ZERO {
-            return Err(TableError::BadAngle);
-        }
-        Ok(Self {
-            angle,
-            log2: log2_bits(angle.to_bits() as u64, 30),
-        })
-    }
-
-    /// `γ = atan(2·tan(fov_y/2)/H)` from the full vertical field of view
-    /// (radians, `0 < fov_y < π`) and the image height in pixels (≥ 1).
-    /// Set-up only: uses `libm` floats.
-    pub fn from_fov_y(fov_y: f64, image_height: u32) -> Result<Self, TableError> {
-        if !fov_y.is_finite() {
-            return Err(TableError::NonFinite);
-        }
-        if !(fov_y > 0.0 && fov_y < core::f64::consts::PI) {
-            return Err(TableError::BadAngle);
-        }
-        if image_height == 0 {
-            return Err(TableError::ZeroImageHeight);
-        }
-        let g = libm::atan(2.0 * libm::tan(fov_y / 2.0) / f64::from(image_height));
-        let a = I2F30::checked_from_num(g).ok_or(TableError::BadAngle)?;
-        Self::from_angle(a)
-    }
-
-    /// `γ` in radians (I2F30).
-    #[must_use]
-    pub const fn angle(&self) -> I2F30 {
-        self.angle
-    }
-
-    /// `log2 γ` (I16F16; error ≤ [`LOG2_MAX_ERROR`](crate::log2::LOG2_MAX_ERROR)).
-    #[must_use]
-    pub const fn log2(&self) -> I16F16 {
-        self.log2
-    }
-}
-
 /// One table entry: `log2 Pb` in I16F16 (log2 of scene units), limited to
 /// `[−64, 64]` (Pb from 5·10⁻²⁰ to 1.8·10¹⁹ scene units), or one of three
 /// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`](crate::lod::Lod)
@@ -318,7 +266,7 @@ impl Log2Pb {
             return Self::DEGENERATE_UV;
         };
         // log2 Pb = ½·(log2 2A − log2 2N) − log2 γ
-        let v = half(la.saturating_sub(ln)).saturating_sub(spread.log2);
+        let v = half(la.saturating_sub(ln)).saturating_sub(spread.log2());
         Self::from_log2(v)
     }
 
@@ -328,7 +276,7 @@ impl Log2Pb {
         Self(v.clamp(Self::MIN.0, Self::MAX.0))
     }
 
-    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_i16f16`]
+    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_bits`]
     /// (C tables, `static` data): the three markers are kept, any other
     /// value is clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`]. Never panics.
     #[must_use]
@@ -358,6 +306,13 @@ impl Log2Pb {
         self.0
     }
 
+    /// The raw I16F16 bits (markers included): the inverse of
+    /// [`Log2Pb::from_bits`] for every entry this type holds.
+    #[must_use]
+    pub const fn to_bits(self) -> i32 {
+        self.0.to_bits()
+    }
+
     /// True for [`Log2Pb::UNTEXTURED`].
     #[must_use]
     pub const fn is_untextured(self) -> bool {
@@ -365,13 +320,14 @@ impl Log2Pb {
     }
 
     /// The ray-cone triangle constant `Δ = ½·log2(N/A) = −log2 Pb − log2 γ`
-    /// (I16F16, saturating; `None` when untextured).
+    /// (I16F16, saturating; `None` when untextured). Feature `cone`.
+    #[cfg(feature = "cone")]
     #[must_use]
-    pub fn delta(self, spread: &PixelSpread) -> Option<I16F16> {
+    pub fn delta(self, spread: &PixelSpread) -> Option<Delta> {
         if self.is_untextured() {
             return None;
         }
-        Some(self.0.saturating_neg().saturating_sub(spread.log2))
+        Some(self.0.saturating_neg().saturating_sub(spread.log2()))
     }
 }
 
@@ -463,25 +419,12 @@ impl<'a> PbTable<'a> {
 mod tests {
     extern crate std;
     use super::*;
+    use fixed::types::I2F30;
     use proptest::prelude::*;
 
-    /// Independent f64 reference of log2 Pb.
+    /// The harness's independent f64 reference of log2 Pb.
     fn reference(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: f64, h: f64, gamma: f64) -> f64 {
-        let sub = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let e1 = sub(p[0], p[1]);
-        let e2 = sub(p[0], p[2]);
-        let c = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        let area = 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-        let uva = 0.5
-            * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
-                - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]))
-                .abs();
-        let n = uva * w * h;
-        ((area / n).sqrt() / gamma).log2()
+        crate::pb_reference::log2_pb_f64(&p, &uv, w, h, gamma)
     }
 
     fn tri(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
@@ -491,32 +434,6 @@ mod tests {
 
     fn spread(g: f64) -> PixelSpread {
         PixelSpread::from_angle(I2F30::from_num(g)).unwrap()
-    }
-
-    #[test]
-    fn pixel_spread_from_fov() {
-        let s = PixelSpread::from_fov_y(40f64.to_radians(), 600).unwrap();
-        let want = (2.0 * (20f64.to_radians()).tan() / 600.0).atan();
-        assert!((s.angle().to_num::<f64>() - want).abs() < 1e-9);
-        assert!((s.log2().to_num::<f64>() - want.log2()).abs() <= crate::log2::LOG2_MAX_ERROR);
-        assert_eq!(PixelSpread::from_fov_y(0.0, 600), Err(TableError::BadAngle));
-        assert_eq!(PixelSpread::from_fov_y(4.0, 600), Err(TableError::BadAngle));
-        assert_eq!(
-            PixelSpread::from_fov_y(f64::NAN, 600),
-            Err(TableError::NonFinite)
-        );
-        assert_eq!(
-            PixelSpread::from_fov_y(1.0, 0),
-            Err(TableError::ZeroImageHeight)
-        );
-        assert_eq!(
-            PixelSpread::from_angle(I2F30::ZERO),
-            Err(TableError::BadAngle)
-        );
-        assert_eq!(
-            PixelSpread::from_angle(I2F30::from_num(-0.1)),
-            Err(TableError::BadAngle)
-        );
     }
 
     #[test]
@@ -531,6 +448,7 @@ mod tests {
         );
         let e = Log2Pb::compute(&t, &spread(1.0 / 1024.0));
         assert_eq!(e.to_i16f16(), I16F16::from_num(2));
+        #[cfg(feature = "cone")]
         assert_eq!(e.delta(&spread(1.0 / 1024.0)), Some(I16F16::from_num(8)));
     }
 

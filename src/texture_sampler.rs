@@ -30,7 +30,7 @@
 //!
 //! # Error bounds (per channel, 8-bit LSB, against the exact f64 filter)
 //!
-//! * linear data: [`MAX_ERROR_LSB`] = 0.5625 for every filter (½ final
+//! * linear data: [`SAMPLER_MAX_ERROR_LSB`] = 0.5625 for every filter (½ final
 //!   rounding, `255·2⁻¹³` per axis from the 12-bit weights, `< 2⁻¹⁵` from
 //!   the 16.8 intermediates); nearest-texel modes exact;
 //! * sRGB, re-encoded: [`SRGB_MAX_ERROR_LSB`] = 1.4: ½ rounding, plus the
@@ -47,8 +47,8 @@ use crate::sampler_state::{SamplerState, SrgbOutput};
 use crate::srgb;
 
 /// Error bound of every filter on linear data (8-bit LSB), as
-/// [`bilerp::MAX_ERROR_LSB`](crate::bilerp::MAX_ERROR_LSB).
-pub const MAX_ERROR_LSB: f64 = crate::bilerp::MAX_ERROR_LSB;
+/// [`bilerp::BILERP_MAX_ERROR_LSB`](crate::bilerp::BILERP_MAX_ERROR_LSB).
+pub const SAMPLER_MAX_ERROR_LSB: f64 = crate::bilerp::BILERP_MAX_ERROR_LSB;
 
 /// Error bound of filtered sRGB data re-encoded to sRGB (8-bit sRGB LSB).
 pub const SRGB_MAX_ERROR_LSB: f64 = 1.4;
@@ -130,7 +130,10 @@ impl<S: TexelSource> TextureSampler<S> {
             t,
             nearest: nearest_level,
         } = LevelSplit::new(lod, &self.geometry);
+        #[cfg(not(feature = "trilinear"))]
+        let _ = (lower, t);
         match mode {
+            #[cfg(feature = "trilinear")]
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, lower);
                 if t == 0 {
@@ -143,6 +146,7 @@ impl<S: TexelSource> TextureSampler<S> {
             }
             Mode::BilinearNearestLevel => self.bilinear(u, v, nearest_level),
             Mode::Nearest => self.nearest(u, v, nearest_level),
+            #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => {
                 let a = self.nearest(u, v, lower);
                 if t == 0 {
@@ -262,6 +266,7 @@ impl<S: TexelSource> TextureSampler<S> {
 }
 
 /// `a·(1 − t/256) + b·t/256` in 16.8, rounded; `t ≤ 256`.
+#[cfg(feature = "trilinear")]
 #[inline(always)]
 fn blend(a: Lin, b: Lin, t: u32) -> Lin {
     let t = t.min(256);
@@ -277,7 +282,7 @@ fn blend(a: Lin, b: Lin, t: u32) -> Lin {
     out
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
 mod tests {
     extern crate std;
     use super::*;

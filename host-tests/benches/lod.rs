@@ -9,18 +9,14 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::lod::{cone_lod, table_lod};
 use raymip::table::Log2Pb;
+use raymip_host::reference::Rng;
 
 const N: usize = 1024;
 
 /// Deterministic pseudo-random inputs (xorshift), the same for both precisions.
 fn inputs() -> Vec<(f32, f32, f32, f32)> {
-    let mut s = 0x2545_F491_4F6C_DD1Du64;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let mut next = || (rng.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
     (0..N)
         .map(|_| {
             let pl = 2f32.powf(next() * 20.0 - 8.0); // path length 2^-8 .. 2^12

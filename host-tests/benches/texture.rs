@@ -12,8 +12,8 @@ use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel};
-use raymip_host::texf32::SamplerF32;
-use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
+use raymip_host::reference::texf32::SamplerF32;
+use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
 
 const N: usize = 1024;
 /// Side of the texture of the timing runs: 256×256 RGBA8 plus levels

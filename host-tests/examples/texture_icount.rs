@@ -14,8 +14,8 @@ use std::process::ExitCode;
 
 use raymip::filter::{Address, Mode, Sampler};
 use raymip::mip::Pyramid;
-use raymip_host::texf32::SamplerF32;
-use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
+use raymip_host::reference::texf32::SamplerF32;
+use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
 
 /// Samples per run.
 const N: usize = 100_000;

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use raymip_host::aff::{self, AffErrorKind, DEFAULT_TIME};
+use raymip_host::scene::aff::{self, AffErrorKind, DEFAULT_TIME};
 
 /// A fresh folder for one test.
 fn dir(test: &str) -> PathBuf {

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use raymip_host::aff::{self, Scene};
+use raymip_host::scene::aff::{self, Scene};
 
 const VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n";
 

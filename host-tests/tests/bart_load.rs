@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use raymip_host::aff::{self, DEFAULT_TIME, Scene};
+use raymip_host::scene::aff::{self, DEFAULT_TIME, Scene};
 
 /// `../shared/scenes/bart` relative to the repository root; the variable
 /// `RAYMIP_BART_DIR` overrides it (git worktrees live elsewhere).

@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use raymip_host::aff;
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::scene::aff;
 use raymip_host::scene::aff_adapter;
 
 fn bart_dir() -> Option<PathBuf> {
@@ -38,6 +38,7 @@ fn check(name: &str, triangles: usize, textured: usize) {
             bounces: 10,
             spp: 1,
             record_blocks: false,
+            aniso: None,
             progress: false,
         };
         let img = render(&prep, &opts);

@@ -1,7 +1,7 @@
 //! BC1–BC4: the firmware decoder (`raymip::bc`) against an independent
 //! decoder from crates.io (`texture2ddecoder`, test-only dependency), bit
 //! for bit, over random blocks and every mode edge; and the harness encoder
-//! (`raymip_host::texformat`) round trip.
+//! (`raymip_host::reference::texformat`) round trip.
 //!
 //! `texture2ddecoder` returns BGRA words and decodes the colour block of
 //! BC2/BC3 with BC1's mode switch, where D3D specifies the four-colour
@@ -10,13 +10,11 @@
 //! 0↔1 and 2↔3 exchanged, which is the same four-colour palette; equal
 //! endpoints make every entry the endpoint).
 
-mod common;
-
-use common::Rng;
 use raymip::bc::{decode_block, decode_texel};
 use raymip::format::TexelFormat;
 use raymip::mip::Texel;
-use raymip_host::texformat::encode_block;
+use raymip_host::reference::Rng;
+use raymip_host::reference::texformat::encode_block;
 
 /// BGRA word (texture2ddecoder) to our RGBA8 texel.
 fn from_bgra(w: u32) -> Texel {
@@ -99,7 +97,7 @@ fn random_blocks_bit_exact() {
     for format in BC {
         let n = format.unit_bytes() as usize;
         for _ in 0..50_000 {
-            let bytes: Vec<u8> = (0..n).map(|_| rng.next() as u8).collect();
+            let bytes: Vec<u8> = (0..n).map(|_| rng.next_u64() as u8).collect();
             check(format, &bytes);
         }
     }
@@ -138,12 +136,12 @@ fn mode_edges_bit_exact() {
                 let cidx = if rep < 4 {
                     0x5555_5555u32 * rep as u32
                 } else {
-                    rng.next() as u32
+                    rng.next_u64() as u32
                 };
                 let vidx = if rep < 8 {
                     (0..16).fold(0u64, |b, i| b | ((rep as u64) << (3 * i)))
                 } else {
-                    rng.next() & 0xFFFF_FFFF_FFFF
+                    rng.next_u64() & 0xFFFF_FFFF_FFFF
                 };
                 let mut colour = [0u8; 8];
                 colour[..2].copy_from_slice(&c0.to_le_bytes());
@@ -158,7 +156,7 @@ fn mode_edges_bit_exact() {
                 let mut bc3 = value.to_vec();
                 bc3.extend_from_slice(&colour);
                 check(TexelFormat::Bc3, &bc3);
-                let mut bc2 = (rng.next()).to_le_bytes().to_vec();
+                let mut bc2 = (rng.next_u64()).to_le_bytes().to_vec();
                 bc2.extend_from_slice(&colour);
                 check(TexelFormat::Bc2, &bc2);
             }
@@ -175,14 +173,14 @@ fn encoder_round_trip() {
     for format in BC {
         for _ in 0..2000 {
             // Two 565-exact colours (and alphas 0/255), randomly placed.
-            let a = TexelFormat::Rgb565.decode(rng.next() as u32 & 0xFFFF);
-            let b = TexelFormat::Rgb565.decode(rng.next() as u32 & 0xFFFF);
+            let a = TexelFormat::Rgb565.decode(rng.next_u64() as u32 & 0xFFFF);
+            let b = TexelFormat::Rgb565.decode(rng.next_u64() as u32 & 0xFFFF);
             let texels: [Texel; 16] = std::array::from_fn(|_| {
-                let t = if rng.next() & 1 == 0 { a } else { b };
+                let t = if rng.next_u64() & 1 == 0 { a } else { b };
                 if format == TexelFormat::Bc1 {
                     t
                 } else {
-                    (t & 0xFFFFFF) | ((rng.next() as u32 & 1) * 0xFF00_0000)
+                    (t & 0xFFFFFF) | ((rng.next_u64() as u32 & 1) * 0xFF00_0000)
                 }
             });
             let block = encode_block(format, &texels);

@@ -42,6 +42,43 @@ fn render_writes_image_levels_and_reports() {
 }
 
 #[test]
+fn render_with_anisotropic_filtering() {
+    let out = tmp("aniso");
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--size",
+        "40x24",
+        "--method",
+        "raydiff",
+        "--filter",
+        "aniso",
+        "--max-aniso",
+        "8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["max_aniso"], 8);
+    let o = run(&[
+        "render",
+        "--scene",
+        "builtin:hall",
+        "--filter",
+        "aniso",
+        "--max-aniso",
+        "17",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
 fn compare_and_table1_run_on_builtin_scenes() {
     let out = tmp("compare");
     let o = run(&[
@@ -110,4 +147,51 @@ fn bad_inputs_are_clear_errors() {
     let o = run(&["table1", "--scenes", "/nonexistent-raymip"]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));
+}
+
+/// Regression (issue 11, defect 5): a requested scene that cannot be loaded
+/// made `table1` print a message and exit 0. It is an error naming the
+/// scene and the reason, unless the user asked to skip.
+#[test]
+fn table1_fails_on_a_scene_that_does_not_load() {
+    let dir = tmp("table1-broken");
+    std::fs::create_dir_all(dir.join("broken")).unwrap();
+    std::fs::write(
+        dir.join("broken").join("broken.aff"),
+        "this is not AFF {{{\n",
+    )
+    .unwrap();
+    // With the built-in scenes measurable beside it (the old code measured
+    // those, printed the broken one and exited 0).
+    let o = run(&[
+        "table1",
+        "--scenes",
+        dir.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--builtin",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success(),
+        "exit 0 with an unloadable scene; stderr: {err}"
+    );
+    assert!(
+        err.contains("broken") && err.contains("cannot be loaded"),
+        "{err}"
+    );
+    // Skipped on request: the built-in scenes are still measured.
+    let o = run(&[
+        "table1",
+        "--scenes",
+        dir.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--builtin",
+        "--skip-unloadable",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("skipped") && err.contains("broken"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use raymip_host::demo_data::{DATA_PATH, generate_data_rs};
+use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
 
 /// `demo/scene/src/data.rs` equals what the generator writes now.
 #[test]

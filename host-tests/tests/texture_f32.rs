@@ -6,7 +6,7 @@
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, full_levels, generate};
-use raymip_host::texf32::SamplerF32;
+use raymip_host::reference::texf32::SamplerF32;
 
 #[test]
 fn f32_matches_fixed() {

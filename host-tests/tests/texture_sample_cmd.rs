@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
 use raymip::filter::Address;
-use raymip_host::ppm::{RgbImage, write_ppm};
-use raymip_host::sample::{SampleError, build_pyramid, sample_lines};
+use raymip_host::cli::sample::{SampleError, build_pyramid, sample_lines};
+use raymip_host::scene::ppm::{RgbImage, write_ppm};
 
 /// 2×2 texture: red, green / blue, white. Level 1 (1×1) is the average
 /// (128, 128, 128) per channel: (255+0+0+255+2)>>2 = 128.
@@ -141,8 +141,8 @@ fn binary_end_to_end() {
     assert!(!ok && err.contains("--levels 3"), "{err}");
     let (ok, _, err) = run_bin(&["sample", "--texture", "/nonexistent/x.ppm"], "");
     assert!(!ok && err.contains("/nonexistent/x.ppm"), "{err}");
-    let (ok, _, err) = run_bin(&["sample", "--texture", t, "--address", "mirror"], "");
-    assert!(!ok && err.contains("mirror"), "{err}");
+    let (ok, _, err) = run_bin(&["sample", "--texture", t, "--address", "spiral"], "");
+    assert!(!ok && err.contains("spiral"), "{err}");
 }
 
 #[test]
@@ -160,4 +160,93 @@ fn npot_texture_through_binary() {
     );
     assert!(ok, "{err}");
     assert_eq!(out, "60,0,0,255\n60,0,0,255\n");
+}
+
+/// GPU-sampler options through the binary, hand-worked on the 2×2 texture
+/// (red, green / blue, white; level 1 = gray 128).
+#[test]
+fn sampler_state_options_through_binary() {
+    let tex = temp_ppm("state.ppm", &image());
+    let t = tex.to_str().unwrap();
+    let run = |extra: &[&str], input: &str| {
+        let mut args = vec!["sample", "--texture", t];
+        args.extend_from_slice(extra);
+        let (ok, out, err) = run_bin(&args, input);
+        assert!(ok, "{extra:?}: {err}");
+        out
+    };
+    // Mirror: u = 1.25 reads u = 0.75 (green); mirror-once: u = −0.25 → 0.25 (red).
+    assert_eq!(
+        run(&["--address", "mirror"], "1.25,0.25,0,2\n"),
+        "0,255,0,255\n"
+    );
+    assert_eq!(
+        run(&["--address", "mirror-once"], "-0.25,0.25,0,2\n"),
+        "255,0,0,255\n"
+    );
+    // Border per axis: u wraps, v outside reads the border colour.
+    assert_eq!(
+        run(
+            &["--address", "wrap,border", "--border", "10,20,30,40"],
+            "1.25,-0.5,0,2\n1.25,0.25,0,2\n"
+        ),
+        "10,20,30,40\n255,0,0,255\n"
+    );
+    // Bias +1 → level 1; min-lod 1 → level 1; max-lod 0 → level 0.
+    assert_eq!(
+        run(&["--bias", "1"], "0.25,0.25,0,2\n"),
+        "128,128,128,255\n"
+    );
+    assert_eq!(
+        run(&["--min-lod", "1"], "0.25,0.25,0,2\n"),
+        "128,128,128,255\n"
+    );
+    assert_eq!(
+        run(&["--max-lod", "0", "--bias", "-0.5"], "0.25,0.25,5,2\n"),
+        "255,0,0,255\n"
+    );
+    // Formats: L8 reads red as luminance, A8 keeps alpha only; RGB565 keeps
+    // 255 and 0 exactly.
+    assert_eq!(run(&["--format", "l8"], "0.75,0.25,0,2\n"), "0,0,0,255\n");
+    assert_eq!(run(&["--format", "a8"], "0.25,0.25,0,2\n"), "0,0,0,255\n");
+    assert_eq!(
+        run(&["--format", "rgb565"], "0.75,0.75,0,2\n"),
+        "255,255,255,255\n"
+    );
+    // BC1: the encoder's endpoints are the first two texels farthest apart
+    // (all pairs tie here: red and green), so red survives exactly.
+    assert_eq!(
+        run(&["--format", "bc1"], "0.25,0.25,0,2\n"),
+        "255,0,0,255\n"
+    );
+    // sRGB: a texel comes back as stored (decode + encode), linear output
+    // of half red/green = 255·(EOTF(1)/2) per channel: 127.5 → 128; the
+    // sRGB pyramid's level 1 is the linear mean of the four texels:
+    // red = (1 + 0 + 0 + 1)/4 = 0.5 linear → sRGB 188.
+    assert_eq!(run(&["--srgb"], "0.25,0.25,0,2\n"), "255,0,0,255\n");
+    assert_eq!(
+        run(&["--srgb", "--linear-output"], "0.5,0.25,0,1\n"),
+        "128,128,0,255\n"
+    );
+    assert_eq!(run(&["--srgb"], "0.5,0.5,1,2\n"), "188,188,188,255\n");
+    // Anisotropic line: 8:1 along u over the top row at lod 0 → probes
+    // spread evenly between red and green: half each (127.5 → 128).
+    assert_eq!(run(&[], "0.5,0.25,1,0.5,0,0,0.0625\n"), "128,128,0,255\n");
+    // Invalid options: clear errors.
+    for (args, what) in [
+        (vec!["--bias", "16"], "bias"),
+        (vec!["--min-lod", "2", "--max-lod", "1"], "min lod"),
+        (vec!["--max-aniso", "17"], "anisotropy"),
+        (vec!["--format", "rgb565", "--srgb"], "sRGB"),
+        (vec!["--linear-output"], "--srgb"),
+        (vec!["--border", "1,2,3"], "border"),
+    ] {
+        let mut a = vec!["sample", "--texture", t];
+        a.extend_from_slice(&args);
+        let (ok, _, err) = run_bin(&a, "0.5,0.5,0,0\n");
+        assert!(!ok && err.contains(what), "{args:?}: {err}");
+    }
+    // --help documents the line format.
+    let (ok, out, _) = run_bin(&["sample", "--help"], "");
+    assert!(ok && out.contains("u,v,mode,dudx,dvdx,dudy,dvdy"), "{out}");
 }

@@ -1,10 +1,10 @@
 //! The GPU-style sampler (`raymip::texture_sampler`) against the f64
-//! reference (`raymip_host::sampler_ref`) for every texel format, sRGB
+//! reference (`raymip_host::reference::sampler_ref`) for every texel format, sRGB
 //! (re-encoded and linear), address mode (random per axis, with border
 //! colours), lod bias/clamp and filter, including anisotropic filtering;
 //! every row must stay within its documented bound.
 
-use raymip_host::sampler_ref::measure;
+use raymip_host::reference::sampler_ref::measure;
 
 #[test]
 fn every_format_and_filter_within_bound() {

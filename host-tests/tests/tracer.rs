@@ -1,8 +1,10 @@
 //! Renderer tests on the built-in scenes (reduced sizes to keep CI fast).
 
-use raymip_host::builtin::{self, NAMES, fronto_quad, mirror_quad, one_texel_per_pixel_distance};
-use raymip_host::output::psnr;
+use raymip_host::cli::output::psnr;
 use raymip_host::render::{Image, Method, Options, Precision, Prepared, render};
+use raymip_host::scene::builtin::{
+    self, NAMES, fronto_quad, mirror_quad, one_texel_per_pixel_distance,
+};
 
 const SIZE: (u32, u32) = (200, 120);
 
@@ -14,6 +16,7 @@ fn opts(method: Method, precision: Precision) -> Options {
         bounces: 10,
         spp: 64,
         record_blocks: false,
+        aniso: None,
         progress: false,
     }
 }
@@ -126,7 +129,7 @@ fn mirror_room_has_deep_paths_and_glass_refracts() {
 
 #[test]
 fn table1_mip_mapping_raises_cache_hit_rate_on_hall() {
-    let row = raymip_host::table1::measure("hall", builtin::hall(), SIZE, 10, false).unwrap();
+    let row = raymip_host::cli::table1::measure("hall", builtin::hall(), SIZE, 10, false).unwrap();
     println!("{row:?}");
     assert!(row.accesses[0] > 0 && row.accesses[1] > 0);
     assert!((row.level_share.iter().sum::<f64>() - 100.0).abs() < 1e-6);
@@ -175,7 +178,7 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
 
 #[test]
 fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
-    use raymip_host::builtin::{quad, sphere};
+    use raymip_host::scene::builtin::{quad, sphere};
     use raymip_host::scene::{Camera, Material, Scene};
     // Camera at the origin looking down −z at a mirror sphere (r = 1, front
     // 4 away); the centre ray comes straight back and meets a textured

@@ -81,9 +81,12 @@ static void test_table_and_lod(void) {
     CHECK(rm_table_build(NULL, 3, tris, 3, spread, NULL) == RM_STATUS_NULL_POINTER, "null entries");
 
     /* Cone lod: log2 w + delta - log2 |n.d|. */
-    CHECK(rm_cone_lod(fx32(1.0), 0, 0) == 0, "cone w=1");
+    CHECK(rm_cone_lod(fx32(1.0), 0, RM_COS_ONE) == 0, "cone w=1, no normal term");
     CHECK(rm_cone_lod(fx32(1.0), 0, 1u << 30) == 256, "cone n.d=0.5: %d", rm_cone_lod(fx32(1.0), 0, 1u << 30));
-    CHECK(fabs(i8f8(rm_cone_lod(fx32(3.0), 2 << 16, 0)) - (log2(3.0) + 2.0)) <= 1.0 / 256, "cone w=3");
+    CHECK(fabs(i8f8(rm_cone_lod(fx32(3.0), 2 << 16, RM_COS_ONE)) - (log2(3.0) + 2.0)) <= 1.0 / 256, "cone w=3");
+    /* Grazing: |n.d| clamps at 2^-16 (as the Rust cone_lod), 16 levels coarser, never dropped. */
+    CHECK(rm_cone_lod(fx32(1.0), 0, 0) == 16 * 256, "cone grazing n.d=0: %d", rm_cone_lod(fx32(1.0), 0, 0));
+    CHECK(rm_cone_lod(fx32(1.0), 0, 1) == 16 * 256, "cone grazing n.d=2^-31: %d", rm_cone_lod(fx32(1.0), 0, 1));
     CHECK(rm_clamp_lod(1000, 3) == 512 && rm_clamp_lod(-5, 3) == 0 && rm_clamp_lod(300, 3) == 300, "clamp");
 }
 
@@ -109,6 +112,20 @@ static void test_ray_stack(void) {
     }
     CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_STACK_EMPTY, "empty");
     CHECK(rm_ray_stack_push(NULL, &s) == RM_STATUS_NULL_POINTER, "null stack");
+    /* Pushing an entry of the same stack (input aliases the stack). */
+    CHECK(rm_ray_stack_push(&stack, &s) == RM_STATUS_OK, "push");
+    CHECK(rm_ray_stack_push(&stack, &stack.entries[0]) == RM_STATUS_OK && stack.len == 2, "push own entry");
+    CHECK(memcmp(&stack.entries[1], &s, sizeof s) == 0, "own entry copied");
+    CHECK(rm_ray_stack_pop(&stack, &stack.entries[1]) == RM_STATUS_OK && stack.len == 1, "pop into own slot");
+    CHECK(rm_ray_stack_pop(&stack, &out) == RM_STATUS_OK && stack.len == 0, "pop");
+    /* A misaligned pointer is reported, never dereferenced. */
+    _Alignas(8) unsigned char raw[sizeof(RmRayStack) + 8] = {0};
+    CHECK(rm_ray_stack_init((RmRayStack *)(void *)(raw + 4)) == RM_STATUS_MISALIGNED, "misaligned stack");
+    CHECK(rm_ray_stack_push(&stack, (const RmPathState *)(const void *)(raw + 4)) == RM_STATUS_MISALIGNED, "misaligned state");
+    CHECK(rm_table_lod(1ull << 32, 0, (int16_t *)(void *)(raw + 1)) == RM_STATUS_MISALIGNED, "misaligned out");
+    int untouched = 1;
+    for (size_t i = 0; i < sizeof raw; i++) untouched &= raw[i] == 0;
+    CHECK(untouched, "nothing written through a misaligned pointer");
     /* Saturation is flagged, never wraps. */
     RmPathState far = s;
     CHECK(rm_path_advance(&far, UINT64_MAX) == RM_STATUS_OK && far.saturated && far.pl == UINT64_MAX, "saturate");

@@ -17,9 +17,10 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::address::AddressMode;
+use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::aniso::{Footprint, probes};
 use raymip::bc;
-use raymip::cache::{BlockCache, TexelCache, block_index};
+use raymip::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::ffi::{
     RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
     rm_path_advance, rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init,
@@ -27,15 +28,23 @@ use raymip::ffi::{
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::geomlod::{
+    Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
+    transition_step, visible,
+};
 use raymip::image::Image;
-use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod, table_lod_clamped};
+use raymip::lod::{
+    Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
+};
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::rng::{Rng, mix32};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
 use raymip::stochastic::StochasticMode;
-use raymip::table::{Log2Pb, PbTable, PixelSpread};
+use raymip::camera::PixelSpread;
+use raymip::table::{Log2Pb, PbTable};
 use raymip::texture_sampler::TextureSampler;
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
@@ -135,7 +144,27 @@ fn main() -> ! {
     let Ok(pyramid) = Pyramid::new(geometry, &TEXELS) else {
         loop {}
     };
+    let Ok(range) = LodRange::new(
+        bb(Depth::from_bits(1 << 32)),
+        bb(Depth::from_bits(256 << 32)),
+        bb(8),
+        bb(LodBias::from_bits(-3)),
+    ) else {
+        loop {}
+    };
+    let Ok(selector) = Selector::new(
+        range,
+        bb(LodMode::Stochastic(Transition::from_bits(0x8000))),
+    ) else {
+        loop {}
+    };
+    let mut records = [InstanceLod::default(); 8];
     let mut direct = Sampler::new(pyramid, Address::Wrap);
+    // A trimmed pyramid (levels 2..=4 of the same texels).
+    let Ok(trimmed) = pyramid.trim(bb(2), bb(4)) else {
+        loop {}
+    };
+    let mut trimmed = Sampler::new(trimmed, Address::Wrap);
     let mut cached = Sampler::new(TexelCache::<_, 16, 2>::new(pyramid), Address::Clamp);
     let mut tags: BlockCache<32, 4> = BlockCache::new();
     // The GPU-style sampler: state, every format (through the cache: BC
@@ -200,8 +229,40 @@ fn main() -> ! {
         );
         let lod = bb(Lod::from_bits(300));
         for &m in &modes {
+            bb(trimmed.sample(u, v, lod, bb(m)));
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
+        }
+        // batch entry points (slices of opaque length)
+        let hits = bb([(pl, pb); 4]);
+        let mut lods = [None; 3];
+        bb(table_lod_batch(
+            hits.get(..bb(4)).unwrap_or_default(),
+            lods.get_mut(..bb(3)).unwrap_or_default(),
+        ));
+        let cones = bb([(
+            Width::from_bits(77),
+            fixed::types::I16F16::from_bits(5),
+            Some(fixed::types::U1F31::from_bits(3)),
+        ); 4]);
+        let mut cone_out = [Lod::ZERO; 4];
+        bb(cone_lod_batch(
+            cones.get(..bb(2)).unwrap_or_default(),
+            cone_out.get_mut(..bb(4)).unwrap_or_default(),
+        ));
+        let samples = bb([(u, v, lod); 4]);
+        let mut texels = [0; 4];
+        for &m in &modes {
+            bb(direct.sample_batch(
+                samples.get(..bb(4)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(3)).unwrap_or_default(),
+            ));
+            bb(cached.sample_batch(
+                samples.get(..bb(3)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(4)).unwrap_or_default(),
+            ));
         }
         for m in [
             StochasticMode::Trilinear,
@@ -248,8 +309,41 @@ fn main() -> ! {
         bb(srgb::decode(bb(77)));
         bb(image.get(bb(3), bb(9), bb(1)));
         bb(tags.access(bb(1234)));
-        bb(block_index(&geometry, bb(3), bb(1), bb(2)));
+        bb(BlockLayout::new(&geometry).index(bb(3), bb(1), bb(2)));
         bb(geometry.level_size(bb(9)));
         bb(geometry.texel_index(bb(9), bb(100), bb(3)));
+        // stochastic geometric LOD (per instance) and the path's ray mask
+        let z = bb(Depth::from_bits(0x12_3456_789A));
+        bb(range.lod_param(z));
+        bb(selector.pick(z));
+        bb(choose(bb(range.lod_param(z)), bb(9), bb(LodMode::Discrete)));
+        bb(transition_step(bb(0x9000), bb(0x2_0000)));
+        bb(selector.fill(
+            (0..bb(6u32)).map(|i| (i, Depth::from_bits(i64::from(i) << 33))),
+            &mut records,
+        ))
+        .ok();
+        let mut rng = Rng::for_pixel(bb(3), bb(4), bb(5));
+        let m = ray_mask(&mut rng);
+        bb(visible(bb(records[1].mask), m));
+        bb(mix32(bb(rng.next_u32())));
+        // Set-up scene analysis.
+        let mut usage = [TextureUse::default(); 2];
+        let ids = bb([0u16, 1, 7, 0]);
+        let bounds = bb([
+            Some(PathBounds {
+                nearest: bb(PathLength::from_bits(1 << 30)),
+                farthest: bb(PathLength::from_bits(1 << 40)),
+            }),
+            None,
+        ]);
+        let mut pbs = bb([Log2Pb::from_bits(bb(5 << 16)); 4]);
+        bb(analyse(&pbs, &ids, &bounds, &mut usage).is_ok());
+        if let Some(r) = usage.first().and_then(|u| u.lod) {
+            bb(r.levels(bb(Mode::Trilinear), bb(9)));
+            bb(r.for_cones());
+        }
+        bb(mark_skipped(&mut pbs, &ids, &usage));
+        bb(Geometry::trimmed(bb(64), bb(32), bb(7), bb(1), bb(5)).is_ok());
     }
 }

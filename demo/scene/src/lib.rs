@@ -33,13 +33,16 @@
 
 use core::fmt;
 
+pub mod parity;
+
 use fixed::types::I2F30;
 use raymip::cache::TexelCache;
+use raymip::camera::PixelSpread;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{clamp_lod, table_lod};
 use raymip::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
-use raymip::table::{Coord, Log2Pb, PbTable, PixelSpread, TexTriangle};
+use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
 
 mod data;
 pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};
@@ -511,8 +514,7 @@ impl Renderer {
     pub fn pixel(&mut self, px: u32, py: u32) -> [u8; 3] {
         let c = &mut self.counters;
         c.pixels += 1;
-        let mut stack: RayStack<STACK> = RayStack::new();
-        let mut rays = [Ray::default(); STACK];
+        let mut stack: RayStack<Ray, STACK> = RayStack::new();
         let mut acc = [0u32; 3];
         let mut cur_state = PathState::primary(&self.spread, 0xFF);
         let mut cur = Ray {
@@ -602,22 +604,16 @@ impl Renderer {
                 }
             }
             if let Some((state, ray)) = next {
-                let slot = stack.len();
-                match stack.push(state) {
-                    Ok(()) => {
-                        c.pushes += 1;
-                        if let Some(r) = rays.get_mut(slot) {
-                            *r = ray;
-                        }
-                    }
+                match stack.push_with(state, ray) {
+                    Ok(()) => c.pushes += 1,
                     Err(_) => c.stack_full += 1,
                 }
             }
-            match stack.pop() {
-                Some(state) => {
+            match stack.pop_with() {
+                Some((state, ray)) => {
                     c.pops += 1;
                     cur_state = state;
-                    cur = rays.get(stack.len()).copied().unwrap_or_default();
+                    cur = ray;
                 }
                 None => break,
             }

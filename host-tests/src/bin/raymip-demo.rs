@@ -7,14 +7,16 @@
 //! * `raymip-demo render [--ppm FILE]`: renders the demo tile with the same
 //!   fixed-point code the firmware runs and prints the checksum and counter
 //!   lines the QEMU demos print (`scripts/test-all` compares them).
+//! * `raymip-demo parity`: prints the GPU-style sampler's parity line (the
+//!   firmware `parity` binary prints the same on both targets).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use raymip_host::demo_data::{DATA_PATH, generate_data_rs};
+use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
 
 fn usage() -> ExitCode {
-    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE]");
+    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity");
     ExitCode::from(2)
 }
 
@@ -69,7 +71,7 @@ fn main() -> ExitCode {
                 return ExitCode::FAILURE;
             };
             let mut h = raymip_demo_scene::Fnv1a::default();
-            let mut img = raymip_host::ppm::RgbImage {
+            let mut img = raymip_host::scene::ppm::RgbImage {
                 width: raymip_demo_scene::WIDTH,
                 height: raymip_demo_scene::HEIGHT,
                 pixels: Vec::new(),
@@ -78,16 +80,26 @@ fn main() -> ExitCode {
                 h.write(&rgb);
                 img.pixels.push(rgb);
             });
-            println!("{}", raymip_host::demo_data::checksum_line(h.finish()));
+            println!("{}", raymip_host::cli::demo_data::checksum_line(h.finish()));
             println!("counters: {}", r.counters);
             if let Some(p) = ppm
-                && let Err(e) = raymip_host::ppm::write_ppm(&p, &img)
+                && let Err(e) = raymip_host::scene::ppm::write_ppm(&p, &img)
             {
                 eprintln!("error: {}: {e}", p.display());
                 return ExitCode::FAILURE;
             }
             ExitCode::SUCCESS
         }
+        Some("parity") => match raymip_demo_scene::parity::checksum() {
+            Some(line) => {
+                println!("{line}");
+                ExitCode::SUCCESS
+            }
+            None => {
+                eprintln!("error: parity set-up failed");
+                ExitCode::FAILURE
+            }
+        },
         _ => usage(),
     }
 }

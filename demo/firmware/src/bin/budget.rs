@@ -1,21 +1,29 @@
 //! Budgets of single per-hit calls (run by `scripts/budgets` under QEMU).
 //!
 //! Each measured function is a `#[no_mangle] #[inline(never)]` wrapper
-//! around one library call, called [`N`] times with pseudo-random inputs the
-//! optimiser cannot see (`black_box`):
+//! around one library call, called [`N`] times with the pseudo-random inputs
+//! of [`raymip_demo_firmware::inputs`], hidden from the optimiser
+//! (`black_box`):
 //!
 //! * `rm_bench_lod`: one table LOD (`log2 Pl − log2 Pb`, rounded);
 //! * `rm_bench_cone_lod`: one ray-cone LOD with the normal term;
 //! * `rm_bench_bilinear`: one bilinear sample at the nearest level;
 //! * `rm_bench_trilinear`: one trilinear sample (two bilinear levels and the
-//!   blend; the LOD always has a fractional part, so both levels are read).
+//!   blend; the LOD always has a fractional part, so both levels are read);
+//! * `rm_bench_f32_*`: the same four stages in f32 (`raymip::float`, libm)
+//!   on the same inputs converted to f32 outside the call: hardware FPU on
+//!   the Cortex-M4F, soft float on RV32IMAC;
+//! * `rm_batch_*`: the batch entry points (slice of hits in, slice of
+//!   results out, caller memory), called once with the first 32 and once
+//!   with all 64 inputs: the difference over 32 is the steady-state cost
+//!   per hit.
 //!
 //! `scripts/budgets` counts the instructions executed from each wrapper's
 //! entry to its return from the QEMU execution trace (`-d exec,nochain`
 //! with one instruction per translation block), on both targets. On RISC-V
-//! this binary also reads `minstret` around every call (exact under
-//! `-icount shift=0`) and prints the call-inclusive counts minus an empty
-//! call. The stack each wrapper uses is measured by stack painting.
+//! this binary also reads `minstret` around every fixed-point call (exact
+//! under `-icount shift=0`) and prints the call-inclusive counts minus an
+//! empty call. The stack each wrapper uses is measured by stack painting.
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
@@ -24,10 +32,12 @@ use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::lod::{Lod, cone_lod, table_lod};
+use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
+use raymip::lod::{Lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch};
 use raymip::mip::{Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
+use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::stack;
 use semihosting::{println, process};
 
@@ -36,12 +46,13 @@ use cortex_m_rt::entry;
 #[cfg(target_arch = "riscv32")]
 use riscv_rt::entry;
 
-/// Calls per measured function.
-const N: u32 = 64;
 /// Stack bytes painted per measurement.
 const PAINT: usize = 2048;
 
 type Tex = Sampler<Pyramid<'static>>;
+type LodIn = (PathLength, Log2Pb);
+type ConeIn = (Width, I16F16, Option<U1F31>);
+type SampleIn = (TexCoord, TexCoord, Lod);
 
 /// One table LOD.
 #[allow(unsafe_code)]
@@ -75,26 +86,76 @@ pub fn rm_bench_trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Te
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
+/// One table LOD in f32.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_f32_lod(pl: f32, log2_pb: f32) -> f32 {
+    table_lod_f32(pl, log2_pb)
+}
+
+/// One ray-cone LOD with the normal term in f32.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_f32_cone_lod(w: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
+    cone_lod_f32(w, delta, n_dot_d)
+}
+
+/// One bilinear sample at the nearest level in f32.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_f32_bilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
+    s.sample(u, v, lod, Mode::BilinearNearestLevel)
+}
+
+/// One trilinear sample in f32.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_f32_trilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// A batch of table LODs.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
+    table_lod_batch(hits, out)
+}
+
+/// A batch of ray-cone LODs.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
+    cone_lod_batch(hits, out)
+}
+
+/// A batch of bilinear samples at the nearest level.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_bilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+    s.sample_batch(hits, Mode::BilinearNearestLevel, out)
+}
+
+/// A batch of trilinear samples.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+    s.sample_batch(hits, Mode::Trilinear, out)
+}
+
 /// An empty call (baseline of the `minstret` call-inclusive counts).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_empty(x: u32) -> u32 {
     x
-}
-
-/// Deterministic xorshift inputs.
-struct Rng(u32);
-
-impl Rng {
-    fn next(&mut self) -> u32 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.0 = x;
-        x
-    }
 }
 
 /// Retired-instruction counter (RISC-V `minstret`; 0 elsewhere).
@@ -133,20 +194,15 @@ impl Stat {
     }
 }
 
-/// Measures one wrapper: `input` draws the arguments of a call, `call`
-/// makes it; returns the call-inclusive `minstret` statistics and the
-/// painted stack depth.
+/// Measures one wrapper over `inputs`: `call` makes one call; returns the
+/// call-inclusive `minstret` statistics and the painted stack depth.
 #[inline(always)]
-fn measure<I>(
-    rng: &mut Rng,
-    mut input: impl FnMut(&mut Rng) -> I,
-    mut call: impl FnMut(I) -> u32,
-) -> (Stat, usize) {
+fn measure<I: Copy>(inputs: &[I], mut call: impl FnMut(I) -> u32) -> (Stat, usize) {
     let mut s = Stat::new();
     let top = stack::sp();
     stack::paint(top, PAINT);
-    for _ in 0..N {
-        let x = bb(input(rng));
+    for &x in inputs {
+        let x = bb(x);
         let a = instret();
         let y = call(x);
         let b = instret();
@@ -156,56 +212,70 @@ fn measure<I>(
     (s, stack::used(top, PAINT))
 }
 
+/// `N` inputs drawn by `draw`.
+fn draw<I: Copy>(rng: &mut Rng, mut draw: impl FnMut(&mut Rng) -> I) -> [I; N] {
+    let first = draw(rng);
+    let mut out = [first; N];
+    for x in out.iter_mut().skip(1) {
+        *x = draw(rng);
+    }
+    out
+}
+
 /// The driver: every measured call happens here (the trace counter ends a
 /// call when execution is back inside this function).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_budget_driver(tex: &mut Tex) {
-    let mut rng = Rng(0x2545_F491);
-    let (empty, _) = measure(&mut rng, |r| r.next(), rm_bench_empty);
-    let (lod, lod_stack) = measure(
-        &mut rng,
-        |r| {
-            // Pl over 2^-16 .. 2^16 scene units, log2 Pb over [-16, 16).
-            let shift = 16 + r.next() % 32;
-            let pl = PathLength::from_bits((u64::from(r.next()) << (shift - 16)) | 1);
-            let pb = Log2Pb::from_log2(I16F16::from_bits((r.next() as i32) >> 11));
-            (pl, pb)
-        },
-        |(pl, pb)| rm_bench_lod(pl, pb).map_or(0, |l| l.to_bits() as u32),
-    );
-    let (cone, cone_stack) = measure(
-        &mut rng,
-        |r| {
-            let w = Width::from_bits(i64::from(r.next()) << (r.next() % 24));
-            let d = I16F16::from_bits((r.next() as i32) >> 10);
-            let c = Some(U1F31::from_bits(r.next() | (1 << 20)));
-            (w, d, c)
-        },
-        |(w, d, c)| rm_bench_cone_lod(w, d, c).to_bits() as u32,
-    );
-    let (bil, bil_stack) = measure(
-        &mut rng,
-        |r| {
-            let u = TexCoord::from_bits(i64::from(r.next()));
-            let v = TexCoord::from_bits(i64::from(r.next()));
-            let lod = Lod::from_bits((r.next() % (5 << 8)) as i16);
-            (u, v, lod)
-        },
-        |(u, v, lod)| rm_bench_bilinear(tex, u, v, lod),
-    );
-    let (tri, tri_stack) = measure(
-        &mut rng,
-        |r| {
-            let u = TexCoord::from_bits(i64::from(r.next()));
-            let v = TexCoord::from_bits(i64::from(r.next()));
-            // Fractional part never 0: both levels are filtered.
-            let lod = Lod::from_bits((r.next() % (5 << 8)) as i16 | 1);
-            (u, v, lod)
-        },
-        |(u, v, lod)| rm_bench_trilinear(tex, u, v, lod),
-    );
+pub fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>) {
+    let mut rng = Rng(inputs::SEED);
+    let empty_in = draw(&mut rng, Rng::next);
+    let lod_in = draw(&mut rng, inputs::table_lod);
+    let cone_in = draw(&mut rng, inputs::cone_lod);
+    let bil_in = draw(&mut rng, inputs::bilinear);
+    let tri_in = draw(&mut rng, inputs::trilinear);
+
+    let (empty, _) = measure(&empty_in, rm_bench_empty);
+    let (lod, lod_stack) = measure(&lod_in, |(pl, pb)| {
+        rm_bench_lod(pl, pb).map_or(0, |l| l.to_bits() as u32)
+    });
+    let (cone, cone_stack) = measure(&cone_in, |(w, d, c)| {
+        rm_bench_cone_lod(w, d, c).to_bits() as u32
+    });
+    let (bil, bil_stack) = measure(&bil_in, |(u, v, lod)| rm_bench_bilinear(tex, u, v, lod));
+    let (tri, tri_stack) = measure(&tri_in, |(u, v, lod)| rm_bench_trilinear(tex, u, v, lod));
+
+    // The same stages in f32 on the same inputs (converted here, outside
+    // the counted calls).
+    let f = |x: I16F16| x.to_num::<f32>();
+    measure(&lod_in, |(pl, pb)| {
+        rm_bench_f32_lod(pl.to_num(), f(pb.to_i16f16())).to_bits()
+    });
+    measure(&cone_in, |(w, d, c)| {
+        rm_bench_f32_cone_lod(w.to_num(), f(d), c.map(|c| c.to_num())).to_bits()
+    });
+    let sf = |(u, v, lod): SampleIn| (u.to_num::<f32>(), v.to_num::<f32>(), lod.to_num::<f32>());
+    measure(&bil_in, |x| {
+        let (u, v, l) = sf(x);
+        rm_bench_f32_bilinear(texf, u, v, l)
+    });
+    measure(&tri_in, |x| {
+        let (u, v, l) = sf(x);
+        rm_bench_f32_trilinear(texf, u, v, l)
+    });
+
+    // Batches of N/2 and N hits.
+    let mut lod_out = [None; N];
+    let mut cone_out = [Lod::ZERO; N];
+    let mut tex_out = [0; N];
+    for n in [N / 2, N] {
+        bb(rm_batch_lod(bb(&lod_in[..n]), &mut lod_out));
+        bb(rm_batch_cone_lod(bb(&cone_in[..n]), &mut cone_out));
+        bb(rm_batch_bilinear(tex, bb(&bil_in[..n]), &mut tex_out));
+        bb(rm_batch_trilinear(tex, bb(&tri_in[..n]), &mut tex_out));
+    }
+    bb((&lod_out, &cone_out, &tex_out));
+
     if cfg!(target_arch = "riscv32") {
         // Call-inclusive minus the empty call's count.
         let e = empty.min;
@@ -218,7 +288,7 @@ pub fn rm_budget_driver(tex: &mut Tex) {
             println!(
                 "minstret {name}: min {} mean {} max {} (minus empty call {e})",
                 s.min - e,
-                (s.sum - N * e) / N,
+                (s.sum - N as u32 * e) / N as u32,
                 s.max - e
             );
         }
@@ -241,7 +311,10 @@ fn main() -> ! {
     let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
         process::exit(1)
     };
+    let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, Address::Wrap) else {
+        process::exit(1)
+    };
     let mut tex = Sampler::new(p, Address::Wrap);
-    rm_budget_driver(&mut tex);
+    rm_budget_driver(&mut tex, &texf);
     process::exit(0)
 }

@@ -17,7 +17,8 @@ use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, cone_lod, table_lod_clamped};
 use raymip::mip::{Geometry, Pyramid, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
-use raymip::table::{Coord, Log2Pb, PbTable, PixelSpread, TexTriangle};
+use raymip::camera::PixelSpread;
+use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
 
 #[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;

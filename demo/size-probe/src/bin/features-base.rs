@@ -1,0 +1,19 @@
+//! Code-size probe: the skeleton of `features` without any raymip call
+//! (runtime, semihosting exit, panic handler and the texture data);
+//! `scripts/features` subtracts its sections from each feature set's.
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+
+use core::hint::black_box as bb;
+
+#[cfg(target_arch = "arm")]
+use cortex_m_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
+
+#[entry]
+fn main() -> ! {
+    bb(&raymip_size_probe::TEX);
+    semihosting::process::exit(bb(0))
+}

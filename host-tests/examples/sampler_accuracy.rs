@@ -1,0 +1,64 @@
+//! Writes the README table of the GPU-style sampler's error per format and
+//! filter, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
+//!
+//! ```sh
+//! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write README.md]
+//! ```
+//!
+//! Prints the Markdown table; with `--write FILE` it replaces the text
+//! between `<!-- sampler-accuracy:begin -->` and
+//! `<!-- sampler-accuracy:end -->` in FILE.
+
+use std::fmt::Write as _;
+
+use raymip_host::cli::output::write_between_markers;
+use raymip_host::reference::sampler_ref::{FILTERS, measure};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let samples: usize = args
+        .iter()
+        .find(|a| a.parse::<usize>().is_ok())
+        .map_or(Ok(20_000), |a| a.parse())?;
+    let write = args
+        .iter()
+        .position(|a| a == "--write")
+        .and_then(|i| args.get(i + 1));
+    let rows = measure(samples, 0x5EED_2026);
+    let mut table = String::new();
+    writeln!(
+        table,
+        "Max error per channel in 8-bit LSB against the f64 reference (measured / documented bound), {samples} random samples per cell (`cargo run --release -p raymip-host --example sampler_accuracy -- {samples} --write README.md`):\n"
+    )?;
+    write!(table, "| format |")?;
+    for f in FILTERS {
+        write!(table, " {f} |")?;
+    }
+    writeln!(table)?;
+    writeln!(table, "|---|{}", "---|".repeat(FILTERS.len()))?;
+    for chunk in rows.chunks(FILTERS.len()) {
+        write!(table, "| {} |", chunk[0].format)?;
+        for r in chunk {
+            if r.max_error > r.bound {
+                return Err(format!(
+                    "{} {}: {} above bound {}",
+                    r.format, r.filter, r.max_error, r.bound
+                )
+                .into());
+            }
+            write!(table, " {:.3} / {:.3} |", r.max_error, r.bound)?;
+        }
+        writeln!(table)?;
+    }
+    let ties: usize = rows.iter().map(|r| r.ties).sum();
+    writeln!(
+        table,
+        "\n({ties} anisotropic samples whose probe count is a tie within 2⁻¹² in log2 were left out.)"
+    )?;
+    print!("{table}");
+    if let Some(path) = write {
+        write_between_markers(std::path::Path::new(path), "sampler-accuracy", &table)?;
+        eprintln!("wrote {path}");
+    }
+    Ok(())
+}

@@ -1,0 +1,592 @@
+//! The `sample` command: filtered texels through the firmware fixed-point
+//! path, one output line per input line.
+//!
+//! Input lines are `u,v,lod,mode` (decimal numbers; mode 0 = trilinear,
+//! 1 = bilinear + nearest level, 2 = nearest texel + nearest level,
+//! 3 = nearest texel + linear between levels), or, for an anisotropic
+//! sample, `u,v,mode,dudx,dvdx,dudy,dvdy` (the footprint's two axis vectors
+//! in normalized texture coordinates; the probes use `mode`). Output lines
+//! are `r,g,b,a` (0–255). Any malformed line (wrong field count, bad
+//! number, NaN/inf, unknown mode, blank) stops the command with an error
+//! naming the line; nothing is skipped silently.
+//!
+//! With only `--address wrap|clamp` the command runs the original
+//! `raymip::filter::Sampler` (RGBA8, unchanged outputs). Any GPU-sampler
+//! option (`--address` with another mode or two axes, `--border`,
+//! `--format`, `--srgb`, `--linear-output`, `--bias`, `--min-lod`,
+//! `--max-lod`, `--max-aniso`) or an anisotropic line selects
+//! `raymip::texture_sampler::TextureSampler`: the PPM becomes an RGBA8
+//! pyramid (generated in linear space with `--srgb`), converted to
+//! `--format` (BC by the harness encoder) and read through a 16 KiB texel
+//! cache (BC blocks decoded on fill).
+
+use std::fmt;
+use std::io::{self, BufRead, Write};
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+use raymip::address::AddressMode;
+use raymip::aniso::Footprint;
+use raymip::cache::TexelCache;
+use raymip::filter::{Address, Mode, Sampler, TexCoord, tex_coord_from_f64};
+use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::image::Image;
+use raymip::lod::Lod;
+use raymip::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
+use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture_sampler::TextureSampler;
+
+use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
+
+/// Addressing mode on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AddressArg {
+    /// Repeat the texture.
+    Wrap,
+    /// Clamp to the edge texels.
+    Clamp,
+    /// Repeat, every other copy mirrored.
+    Mirror,
+    /// Mirror once around 0, then clamp to the edge.
+    MirrorOnce,
+    /// Outside the texture: the border colour (--border).
+    Border,
+}
+
+impl AddressArg {
+    /// The firmware address mode.
+    #[must_use]
+    pub fn mode(self) -> AddressMode {
+        match self {
+            Self::Wrap => AddressMode::Wrap,
+            Self::Clamp => AddressMode::ClampToEdge,
+            Self::Mirror => AddressMode::Mirror,
+            Self::MirrorOnce => AddressMode::MirrorOnce,
+            Self::Border => AddressMode::ClampToBorder,
+        }
+    }
+
+    /// The original sampler's addressing, for wrap and clamp.
+    #[must_use]
+    pub fn legacy(self) -> Option<Address> {
+        match self {
+            Self::Wrap => Some(Address::Wrap),
+            Self::Clamp => Some(Address::Clamp),
+            _ => None,
+        }
+    }
+}
+
+/// Texel format on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// 8 bits per channel.
+    Rgba8,
+    /// 5/6/5 bits, alpha 255.
+    Rgb565,
+    /// 5/5/5/1 bits.
+    Rgba5551,
+    /// 4 bits per channel.
+    Rgba4444,
+    /// Luminance (red) and alpha.
+    La8,
+    /// Luminance (red).
+    L8,
+    /// Alpha only.
+    A8,
+    /// BC1 (DXT1).
+    Bc1,
+    /// BC2 (DXT3).
+    Bc2,
+    /// BC3 (DXT5).
+    Bc3,
+    /// BC4 (red).
+    Bc4,
+}
+
+impl FormatArg {
+    /// The firmware format.
+    #[must_use]
+    pub fn format(self) -> TexelFormat {
+        match self {
+            Self::Rgba8 => TexelFormat::Rgba8,
+            Self::Rgb565 => TexelFormat::Rgb565,
+            Self::Rgba5551 => TexelFormat::Rgba5551,
+            Self::Rgba4444 => TexelFormat::Rgba4444,
+            Self::La8 => TexelFormat::La8,
+            Self::L8 => TexelFormat::L8,
+            Self::A8 => TexelFormat::A8,
+            Self::Bc1 => TexelFormat::Bc1,
+            Self::Bc2 => TexelFormat::Bc2,
+            Self::Bc3 => TexelFormat::Bc3,
+            Self::Bc4 => TexelFormat::Bc4,
+        }
+    }
+}
+
+/// Parses `R,G,B,A` (0–255 each) into an RGBA8 texel.
+///
+/// # Errors
+/// A message when there are not four integers in 0..=255.
+pub fn parse_rgba(s: &str) -> Result<Texel, String> {
+    let v: Vec<u8> = s
+        .split(',')
+        .map(|x| x.trim().parse::<u8>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("{s:?}: expected R,G,B,A with values 0-255"))?;
+    match v.as_slice() {
+        &[r, g, b, a] => Ok(u32::from_le_bytes([r, g, b, a])),
+        _ => Err(format!("{s:?}: expected four values R,G,B,A")),
+    }
+}
+
+/// Arguments of `raymip-host sample`.
+#[derive(Clone, Debug, Args)]
+#[command(after_long_help = LINE_FORMAT)]
+pub struct SampleArgs {
+    /// Texture, binary PPM (P6); alpha is 255.
+    #[arg(long)]
+    pub texture: PathBuf,
+    /// Stored MIP levels (1 ..= full chain); default: the full chain.
+    #[arg(long)]
+    pub levels: Option<u8>,
+    /// Addressing outside [0, 1): one mode for both axes, or `U,V`
+    /// (wrap, clamp, mirror, mirror-once, border).
+    #[arg(long, value_delimiter = ',', num_args = 1..=2, default_value = "wrap")]
+    pub address: Vec<AddressArg>,
+    /// Border colour `R,G,B,A` (0-255, linear) for `--address border`.
+    #[arg(long, value_parser = parse_rgba)]
+    pub border: Option<Texel>,
+    /// Stored texel format (the PPM is converted to it).
+    #[arg(long, value_enum, default_value_t = FormatArg::Rgba8)]
+    pub format: FormatArg,
+    /// The texture is sRGB (rgba8, la8, l8, bc1-bc3): decoded to linear
+    /// before filtering, pyramid generated in linear space, results
+    /// re-encoded to sRGB (see --linear-output).
+    #[arg(long)]
+    pub srgb: bool,
+    /// With --srgb: print linear results instead of re-encoding them.
+    #[arg(long)]
+    pub linear_output: bool,
+    /// LOD bias in levels, [-16, 16) (steps of 1/256).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub bias: f64,
+    /// Lower lod clamp in levels (applied after the bias).
+    #[arg(long, allow_negative_numbers = true)]
+    pub min_lod: Option<f64>,
+    /// Upper lod clamp in levels (applied after the bias).
+    #[arg(long, allow_negative_numbers = true)]
+    pub max_lod: Option<f64>,
+    /// Maximum anisotropy 1..=16 for anisotropic lines.
+    #[arg(long, default_value_t = 16)]
+    pub max_aniso: u8,
+}
+
+/// The line format, printed by `sample --help`.
+pub const LINE_FORMAT: &str = "\
+Input lines (stdin), decimal numbers, comma-separated:
+  u,v,lod,mode                      one sample at lod (levels)
+  u,v,mode,dudx,dvdx,dudy,dvdy      anisotropic sample over the footprint
+                                    (du/dx, dv/dx), (du/dy, dv/dy) in
+                                    normalized coordinates; up to
+                                    --max-aniso probes of `mode`
+mode: 0 trilinear, 1 bilinear + nearest level, 2 nearest texel + nearest
+level, 3 nearest texel + linear between levels.
+Output lines (stdout): r,g,b,a (0-255), one per input line.
+Lod order (D3D11/Vulkan): lod + bias, clamp to [min-lod, max-lod], clamp to
+the stored levels.";
+
+impl SampleArgs {
+    /// Whether any GPU-sampler option is set (else the original sampler
+    /// runs).
+    #[must_use]
+    pub fn uses_sampler_state(&self) -> bool {
+        self.address.len() > 1
+            || self.address.iter().any(|a| a.legacy().is_none())
+            || self.border.is_some()
+            || self.format != FormatArg::Rgba8
+            || self.srgb
+            || self.linear_output
+            || self.bias != 0.0
+            || self.min_lod.is_some()
+            || self.max_lod.is_some()
+    }
+
+    /// The validated sampler state and format of the options.
+    ///
+    /// # Errors
+    /// A message naming the option out of range.
+    pub fn state(&self) -> Result<(SamplerState, Format), String> {
+        let lod = |name: &str, x: f64| -> Result<Lod, String> {
+            if !x.is_finite() {
+                return Err(format!("--{name}: {x} is not finite"));
+            }
+            Lod::checked_from_num(x).ok_or_else(|| format!("--{name}: {x} outside [-128, 128)"))
+        };
+        let au = self.address.first().copied().unwrap_or(AddressArg::Wrap);
+        let av = self.address.get(1).copied().unwrap_or(au);
+        let state = SamplerState::new(SamplerDesc {
+            address_u: au.mode(),
+            address_v: av.mode(),
+            border: self.border.unwrap_or(0),
+            lod_bias: lod("bias", self.bias)?,
+            min_lod: self.min_lod.map_or(Ok(Lod::MIN), |x| lod("min-lod", x))?,
+            max_lod: self.max_lod.map_or(Ok(Lod::MAX), |x| lod("max-lod", x))?,
+            max_anisotropy: self.max_aniso,
+            srgb_output: if self.linear_output {
+                SrgbOutput::Linear
+            } else {
+                SrgbOutput::Encoded
+            },
+        })
+        .map_err(|e| e.to_string())?;
+        let space = if self.srgb {
+            ColorSpace::Srgb
+        } else {
+            ColorSpace::Linear
+        };
+        let format = Format::new(self.format.format(), space).map_err(|e| e.to_string())?;
+        if self.linear_output && !self.srgb {
+            return Err("--linear-output needs --srgb".into());
+        }
+        Ok((state, format))
+    }
+}
+
+/// What went wrong in `sample`.
+#[derive(Debug)]
+pub enum SampleError {
+    /// The texture could not be read.
+    Texture(PpmError),
+    /// The texture cannot form a pyramid (size or levels).
+    Pyramid {
+        /// The texture file.
+        path: PathBuf,
+        /// Why.
+        error: MipError,
+        /// Requested levels, when that was the problem.
+        levels: Option<u8>,
+    },
+    /// A malformed input line.
+    Line {
+        /// Name of the input (`<stdin>`).
+        input: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Invalid sampler options.
+    Options(String),
+    /// Reading input or writing output failed.
+    Io(io::Error),
+}
+
+impl fmt::Display for SampleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Texture(e) => write!(f, "{e}"),
+            Self::Pyramid {
+                path,
+                error,
+                levels: Some(l),
+            } => write!(f, "{}: --levels {l}: {error}", path.display()),
+            Self::Pyramid { path, error, .. } => write!(f, "{}: {error}", path.display()),
+            Self::Line {
+                input,
+                line,
+                message,
+            } => write!(f, "{input}:{line}: {message}"),
+            Self::Options(m) => write!(f, "{m}"),
+            Self::Io(e) => write!(f, "i/o error: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for SampleError {}
+
+impl From<io::Error> for SampleError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// A texture's pyramid, owned: geometry and texels (levels generated).
+#[derive(Clone, Debug)]
+pub struct OwnedPyramid {
+    /// Size and levels.
+    pub geometry: Geometry,
+    /// All stored levels, level 0 first.
+    pub texels: Vec<Texel>,
+}
+
+impl OwnedPyramid {
+    /// Borrowed view for the firmware sampler.
+    ///
+    /// # Errors
+    /// [`MipError::BufferTooShort`] if `texels` was shortened after
+    /// [`build_pyramid`].
+    pub fn pyramid(&self) -> Result<Pyramid<'_>, MipError> {
+        Pyramid::new(self.geometry, &self.texels)
+    }
+}
+
+/// Builds the pyramid of `img` (RGBA8, alpha 255) with `levels` levels
+/// (default: the full chain), generated by the firmware filter.
+pub fn build_pyramid(
+    img: &RgbImage,
+    levels: Option<u8>,
+    path: &Path,
+) -> Result<OwnedPyramid, SampleError> {
+    let n = levels.unwrap_or_else(|| full_levels(img.width, img.height));
+    let err = |error| SampleError::Pyramid {
+        path: path.to_path_buf(),
+        error,
+        levels,
+    };
+    let geometry = Geometry::new(img.width, img.height, n).map_err(err)?;
+    let mut texels = img.to_rgba8888();
+    texels.resize(geometry.len(), 0);
+    generate(&geometry, &mut texels).map_err(err)?;
+    Ok(OwnedPyramid { geometry, texels })
+}
+
+/// One parsed input line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SampleLine {
+    /// `u,v,lod,mode`.
+    Lod {
+        /// Coordinates.
+        u: f64,
+        /// Coordinates.
+        v: f64,
+        /// Level of detail.
+        lod: f64,
+        /// Filter.
+        mode: Mode,
+    },
+    /// `u,v,mode,dudx,dvdx,dudy,dvdy`.
+    Aniso {
+        /// Coordinates.
+        u: f64,
+        /// Coordinates.
+        v: f64,
+        /// Filter of the probes.
+        mode: Mode,
+        /// `[[du/dx, dv/dx], [du/dy, dv/dy]]`.
+        axes: [[f64; 2]; 2],
+    },
+}
+
+/// Parses one input line (see [`LINE_FORMAT`]).
+fn parse_line(text: &str) -> Result<SampleLine, String> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    if fields.len() != 4 && fields.len() != 7 {
+        return Err(format!(
+            "expected 4 comma-separated fields u,v,lod,mode or 7 fields u,v,mode,dudx,dvdx,dudy,dvdy, found {} in {text:?}",
+            fields.len()
+        ));
+    }
+    let num = |i: usize, name: &str| -> Result<f64, String> {
+        let s = fields[i];
+        let x: f64 = s
+            .parse()
+            .map_err(|_| format!("{name}: {s:?} is not a number"))?;
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!("{name}: {s:?} is not finite"))
+        }
+    };
+    let mode_at = |i: usize| {
+        fields[i]
+            .parse::<u8>()
+            .ok()
+            .and_then(Mode::from_index)
+            .ok_or_else(|| format!("mode: {:?} is not one of 0, 1, 2, 3", fields[i]))
+    };
+    let (u, v) = (num(0, "u")?, num(1, "v")?);
+    if fields.len() == 4 {
+        Ok(SampleLine::Lod {
+            u,
+            v,
+            lod: num(2, "lod")?,
+            mode: mode_at(3)?,
+        })
+    } else {
+        Ok(SampleLine::Aniso {
+            u,
+            v,
+            mode: mode_at(2)?,
+            axes: [
+                [num(3, "dudx")?, num(4, "dvdx")?],
+                [num(5, "dudy")?, num(6, "dvdy")?],
+            ],
+        })
+    }
+}
+
+/// `x` reduced (exactly, in f64) to the range that addresses the same
+/// texels under `mode`, as a [`TexCoord`].
+fn coord(x: f64, mode: AddressMode) -> Result<TexCoord, String> {
+    let r = match mode {
+        AddressMode::Wrap => x - x.floor(),
+        AddressMode::Mirror => x - 2.0 * (x / 2.0).floor(),
+        _ => x.clamp(-2.0, 2.0),
+    };
+    tex_coord_from_f64(r).map_err(|e| e.to_string())
+}
+
+/// Samples every line of `input` (`u,v,lod,mode`) from `pyramid` and writes
+/// `r,g,b,a` lines to `output`, in order. `input_name` names the input in
+/// errors. Returns the number of samples written.
+///
+/// # Errors
+/// [`SampleError::Line`] for the first malformed line (earlier results are
+/// already written), [`SampleError::Io`] for read/write failures.
+pub fn sample_lines<R: BufRead, W: Write>(
+    pyramid: &OwnedPyramid,
+    address: Address,
+    input: R,
+    mut output: W,
+    input_name: &str,
+) -> Result<usize, SampleError> {
+    let view = pyramid.pyramid().map_err(|error| SampleError::Pyramid {
+        path: PathBuf::from(input_name),
+        error,
+        levels: None,
+    })?;
+    let mut sampler = Sampler::new(view, address);
+    let mut count = 0;
+    for (i, line) in input.lines().enumerate() {
+        let line = line?;
+        let line_err = |message: String| SampleError::Line {
+            input: input_name.to_string(),
+            line: i + 1,
+            message,
+        };
+        let text = line.strip_suffix('\r').unwrap_or(&line);
+        let SampleLine::Lod { u, v, lod, mode } = parse_line(text).map_err(line_err)? else {
+            return Err(line_err(
+                "anisotropic lines need the GPU-style sampler (sample_lines_state)".into(),
+            ));
+        };
+        let t = sampler
+            .sample_f64(u, v, lod, mode)
+            .map_err(|e| line_err(e.to_string()))?;
+        let [r, g, b, a] = t.to_le_bytes();
+        writeln!(output, "{r},{g},{b},{a}")?;
+        count += 1;
+    }
+    output.flush()?;
+    Ok(count)
+}
+
+/// Samples every line of `input` through the GPU-style sampler over
+/// `pyramid` (RGBA8; generated in linear space for sRGB) converted to
+/// `format`, with `state`; writes `r,g,b,a` lines. Returns the count.
+/// With `legacy = Some(address)`, `u,v,lod,mode` lines go through the
+/// original `filter::Sampler` instead (anisotropic lines always use the
+/// GPU-style sampler).
+///
+/// # Errors
+/// As [`sample_lines`].
+pub fn sample_lines_state<R: BufRead, W: Write>(
+    pyramid: &OwnedPyramid,
+    state: SamplerState,
+    format: Format,
+    legacy: Option<Address>,
+    input: R,
+    mut output: W,
+    input_name: &str,
+) -> Result<usize, SampleError> {
+    let view = pyramid.pyramid().map_err(|error| SampleError::Pyramid {
+        path: PathBuf::from(input_name),
+        error,
+        levels: None,
+    })?;
+    let mut original = legacy.map(|a| Sampler::new(view, a));
+    let bytes = crate::reference::texformat::encode_pyramid(
+        &pyramid.geometry,
+        &pyramid.texels,
+        format.texel(),
+    );
+    let image = Image::new(pyramid.geometry, format, &bytes)
+        .map_err(|e| SampleError::Options(e.to_string()))?;
+    let mut cache: Box<TexelCache<Image<'_>, 64, 4>> = Box::new(TexelCache::new(image));
+    let mut sampler = TextureSampler::new(&mut *cache, state, format.space());
+    let [au, av] = state.address();
+    let mut count = 0;
+    for (i, line) in input.lines().enumerate() {
+        let line = line?;
+        let line_err = |message: String| SampleError::Line {
+            input: input_name.to_string(),
+            line: i + 1,
+            message,
+        };
+        let text = line.strip_suffix('\r').unwrap_or(&line);
+        let t = match parse_line(text).map_err(line_err)? {
+            SampleLine::Lod { u, v, lod, mode } => match original.as_mut() {
+                Some(o) => o
+                    .sample_f64(u, v, lod, mode)
+                    .map_err(|e| line_err(e.to_string()))?,
+                None => {
+                    let (u, v) = (
+                        coord(u, au).map_err(line_err)?,
+                        coord(v, av).map_err(line_err)?,
+                    );
+                    sampler.sample(u, v, Lod::saturating_from_num(lod), mode)
+                }
+            },
+            SampleLine::Aniso { u, v, mode, axes } => {
+                let (u, v) = (
+                    coord(u, au).map_err(line_err)?,
+                    coord(v, av).map_err(line_err)?,
+                );
+                let a = |x: f64| TexCoord::saturating_from_num(x);
+                let fp = Footprint {
+                    x: [a(axes[0][0]), a(axes[0][1])],
+                    y: [a(axes[1][0]), a(axes[1][1])],
+                };
+                sampler.sample_aniso(u, v, &fp, mode)
+            }
+        };
+        let [r, g, b, a] = t.to_le_bytes();
+        writeln!(output, "{r},{g},{b},{a}")?;
+        count += 1;
+    }
+    output.flush()?;
+    Ok(count)
+}
+
+/// The whole command: read the texture, build the pyramid, sample `input`
+/// into `output` (the original sampler unless a GPU-sampler option is
+/// set; anisotropic lines need one, `--max-aniso` counts).
+///
+/// # Errors
+/// See [`SampleError`].
+pub fn run<R: BufRead, W: Write>(
+    args: &SampleArgs,
+    input: R,
+    output: W,
+) -> Result<usize, SampleError> {
+    let img = read_ppm(&args.texture).map_err(SampleError::Texture)?;
+    let (state, format) = args.state().map_err(SampleError::Options)?;
+    let mut pyramid = build_pyramid(&img, args.levels, &args.texture)?;
+    let legacy = args
+        .address
+        .first()
+        .and_then(|a| a.legacy())
+        .filter(|_| !args.uses_sampler_state());
+    if args.srgb {
+        // Regenerate the levels in linear space.
+        raymip::srgb::generate(&pyramid.geometry, &mut pyramid.texels).map_err(|error| {
+            SampleError::Pyramid {
+                path: args.texture.clone(),
+                error,
+                levels: args.levels,
+            }
+        })?;
+    }
+    sample_lines_state(&pyramid, state, format, legacy, input, output, "<stdin>")
+}

@@ -1,0 +1,565 @@
+//! f64 reference of the GPU-style sampler (`raymip::texture_sampler`):
+//! every option — address modes, border colour, lod bias and clamps,
+//! texel formats, sRGB, BC1–BC4, anisotropic filtering — written here
+//! from the definitions (Vulkan "wrapping operation", D3D11 lod order,
+//! bit replication, sRGB EOTF/OETF, pbrt-style anisotropy), in f64 with
+//! exact sample positions, weights and lods.
+//!
+//! Formats are decoded independently of the firmware: replication as
+//! `floor(x·33/4)` (5 bits), `floor(x·65/16)` (6 bits), `17x` (4 bits),
+//! BC blocks by the `texture2ddecoder` crate is not available outside
+//! tests, so BC images are given to the reference already decoded
+//! ([`RefTexture::from_rgba8`]); `tests/bc_decode.rs` checks the firmware
+//! decoder bit for bit.
+
+use raymip::address::AddressMode;
+use raymip::cache::TexelCache;
+use raymip::filter::{Mode, TexCoord};
+use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::image::Image;
+use raymip::lod::Lod;
+use raymip::mip::{Geometry, Texel};
+use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture_sampler::{SAMPLER_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
+
+use super::Rng;
+
+/// sRGB EOTF (code fraction → linear).
+#[must_use]
+pub fn srgb_to_linear(s: f64) -> f64 {
+    if s <= 0.04045 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// sRGB OETF (linear → code fraction).
+#[must_use]
+pub fn linear_to_srgb(l: f64) -> f64 {
+    if l <= 0.003_130_8 {
+        l * 12.92
+    } else {
+        1.055 * l.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// One stored uncompressed texel (little-endian word) to RGBA 0..=255
+/// channel values, by bit replication written as exact floors.
+#[must_use]
+pub fn decode_texel(format: TexelFormat, raw: u32) -> [f64; 4] {
+    let f = |x: u32| f64::from(x);
+    let r5 = |x: u32| (f(x & 31) * 33.0 / 4.0).floor();
+    let r6 = |x: u32| (f(x & 63) * 65.0 / 16.0).floor();
+    let r4 = |x: u32| f(x & 15) * 17.0;
+    match format {
+        TexelFormat::Rgba8 => raw.to_le_bytes().map(f64::from),
+        TexelFormat::Rgb565 => [r5(raw >> 11), r6(raw >> 5), r5(raw), 255.0],
+        TexelFormat::Rgba5551 => [
+            r5(raw >> 11),
+            r5(raw >> 6),
+            r5(raw >> 1),
+            f(raw & 1) * 255.0,
+        ],
+        TexelFormat::Rgba4444 => [r4(raw >> 12), r4(raw >> 8), r4(raw >> 4), r4(raw)],
+        TexelFormat::La8 => {
+            let l = f(raw & 255);
+            [l, l, l, f((raw >> 8) & 255)]
+        }
+        TexelFormat::L8 => {
+            let l = f(raw & 255);
+            [l, l, l, 255.0]
+        }
+        TexelFormat::A8 => [0.0, 0.0, 0.0, f(raw & 255)],
+        _ => [0.0; 4],
+    }
+}
+
+/// A texture for the reference: every level as RGBA channel values
+/// 0..=255 (as stored, before any sRGB decode).
+#[derive(Clone, Debug)]
+pub struct RefTexture {
+    /// `(width, height)` of each level.
+    pub sizes: Vec<(u32, u32)>,
+    /// Texels of each level, row-major.
+    pub levels: Vec<Vec<[f64; 4]>>,
+}
+
+impl RefTexture {
+    /// From RGBA8 texels in the `raymip::mip` pyramid layout.
+    #[must_use]
+    pub fn from_rgba8(geometry: &Geometry, texels: &[Texel]) -> Self {
+        Self::from_fn(geometry, |level, x, y| {
+            texels[geometry.texel_index(level, x, y)]
+                .to_le_bytes()
+                .map(f64::from)
+        })
+    }
+
+    /// From uncompressed `bytes` in the `raymip::image` layout of `format`.
+    #[must_use]
+    pub fn from_bytes(geometry: &Geometry, format: TexelFormat, bytes: &[u8]) -> Self {
+        let unit = format.unit_bytes() as usize;
+        let mut offset = 0usize;
+        let mut offsets = Vec::new();
+        for k in 0..geometry.levels() {
+            offsets.push(offset);
+            let (w, h) = geometry.level_size(k);
+            offset += (w * h) as usize * unit;
+        }
+        Self::from_fn(geometry, |level, x, y| {
+            let (w, _) = geometry.level_size(level);
+            let at = offsets[level as usize] + (y * w + x) as usize * unit;
+            let mut raw = [0u8; 4];
+            raw[..unit].copy_from_slice(&bytes[at..at + unit]);
+            decode_texel(format, u32::from_le_bytes(raw))
+        })
+    }
+
+    fn from_fn(geometry: &Geometry, f: impl Fn(u8, u32, u32) -> [f64; 4]) -> Self {
+        let mut sizes = Vec::new();
+        let mut levels = Vec::new();
+        for k in 0..geometry.levels() {
+            let (w, h) = geometry.level_size(k);
+            sizes.push((w, h));
+            levels.push(
+                (0..h)
+                    .flat_map(|y| (0..w).map(move |x| (x, y)))
+                    .map(|(x, y)| f(k, x, y))
+                    .collect(),
+            );
+        }
+        Self { sizes, levels }
+    }
+}
+
+/// Sampler options of the reference (all in f64).
+#[derive(Clone, Copy, Debug)]
+pub struct RefState {
+    /// Address modes of u and v.
+    pub address: [AddressMode; 2],
+    /// Border colour, channel values 0..=255 (linear).
+    pub border: [f64; 4],
+    /// Lod bias, min and max.
+    pub bias: f64,
+    /// Lower lod clamp.
+    pub min_lod: f64,
+    /// Upper lod clamp.
+    pub max_lod: f64,
+    /// Maximum anisotropy (1..=16).
+    pub max_aniso: u32,
+    /// Texels are sRGB-encoded (RGB).
+    pub srgb: bool,
+    /// Return sRGB results re-encoded (else linear).
+    pub encode_srgb: bool,
+}
+
+/// The Vulkan wrapping operation on an integer texel index (`None` =
+/// border).
+#[must_use]
+pub fn wrap_index(mode: AddressMode, i: i64, n: i64) -> Option<i64> {
+    let mirror = |a: i64| if a >= 0 { a } else { -(1 + a) };
+    match mode {
+        AddressMode::Wrap => Some(i.rem_euclid(n)),
+        AddressMode::Mirror => Some((n - 1) - mirror(i.rem_euclid(2 * n) - n)),
+        AddressMode::ClampToEdge => Some(i.clamp(0, n - 1)),
+        AddressMode::MirrorOnce => Some(mirror(i).clamp(0, n - 1)),
+        AddressMode::ClampToBorder => (0..n).contains(&i).then_some(i),
+    }
+}
+
+/// The reference sampler.
+#[derive(Clone, Debug)]
+pub struct RefSampler<'a> {
+    /// The texture.
+    pub tex: &'a RefTexture,
+    /// The options.
+    pub state: RefState,
+}
+
+impl RefSampler<'_> {
+    /// Texel `(i, j)` of `level` in linear 0..1 (border, sRGB decode).
+    fn texel(&self, level: usize, i: i64, j: i64) -> [f64; 4] {
+        let (w, h) = self.tex.sizes[level];
+        let x = wrap_index(self.state.address[0], i, i64::from(w));
+        let y = wrap_index(self.state.address[1], j, i64::from(h));
+        let t = match (x, y) {
+            (Some(x), Some(y)) => {
+                let t = self.tex.levels[level][(y * i64::from(w) + x) as usize];
+                if self.state.srgb {
+                    [
+                        srgb_to_linear(t[0] / 255.0) * 255.0,
+                        srgb_to_linear(t[1] / 255.0) * 255.0,
+                        srgb_to_linear(t[2] / 255.0) * 255.0,
+                        t[3],
+                    ]
+                } else {
+                    t
+                }
+            }
+            _ => self.state.border,
+        };
+        t.map(|c| c / 255.0)
+    }
+
+    fn bilinear(&self, u: f64, v: f64, level: usize) -> [f64; 4] {
+        let (w, h) = self.tex.sizes[level];
+        let x = u * f64::from(w) - 0.5;
+        let y = v * f64::from(h) - 0.5;
+        let (i, j) = (x.floor(), y.floor());
+        let (fx, fy) = (x - i, y - j);
+        let (i, j) = (i as i64, j as i64);
+        let t = [
+            self.texel(level, i, j),
+            self.texel(level, i + 1, j),
+            self.texel(level, i, j + 1),
+            self.texel(level, i + 1, j + 1),
+        ];
+        std::array::from_fn(|c| {
+            (t[0][c] * (1.0 - fx) + t[1][c] * fx) * (1.0 - fy)
+                + (t[2][c] * (1.0 - fx) + t[3][c] * fx) * fy
+        })
+    }
+
+    fn nearest(&self, u: f64, v: f64, level: usize) -> [f64; 4] {
+        let (w, h) = self.tex.sizes[level];
+        self.texel(
+            level,
+            (u * f64::from(w)).floor() as i64,
+            (v * f64::from(h)).floor() as i64,
+        )
+    }
+
+    /// The lod a sample uses: bias, `[min, max]`, stored levels.
+    #[must_use]
+    pub fn lod(&self, lod: f64) -> f64 {
+        let top = (self.tex.levels.len() - 1) as f64;
+        (lod + self.state.bias)
+            .clamp(self.state.min_lod, self.state.max_lod)
+            .clamp(0.0, top)
+    }
+
+    /// Linear 0..1 filter value at an already processed lod.
+    fn filter(&self, u: f64, v: f64, lod: f64, mode: Mode) -> [f64; 4] {
+        let top = self.tex.levels.len() - 1;
+        let lower = lod.floor() as usize;
+        let t = lod - lod.floor();
+        let upper = (lower + 1).min(top);
+        let nearest = ((lod + 0.5).floor() as usize).min(top);
+        let mix = |a: [f64; 4], b: [f64; 4]| std::array::from_fn(|c| a[c] * (1.0 - t) + b[c] * t);
+        match mode {
+            Mode::Trilinear => mix(self.bilinear(u, v, lower), self.bilinear(u, v, upper)),
+            Mode::BilinearNearestLevel => self.bilinear(u, v, nearest),
+            Mode::Nearest => self.nearest(u, v, nearest),
+            Mode::NearestTexelLinearLevel => {
+                mix(self.nearest(u, v, lower), self.nearest(u, v, upper))
+            }
+        }
+    }
+
+    /// Output channel values 0..=255 (unrounded) of a linear 0..1 result.
+    fn output(&self, lin: [f64; 4]) -> [f64; 4] {
+        std::array::from_fn(|c| {
+            if self.state.srgb && self.state.encode_srgb && c < 3 {
+                linear_to_srgb(lin[c]) * 255.0
+            } else {
+                lin[c] * 255.0
+            }
+        })
+    }
+
+    /// Exact sample at `(u, v)` and `lod` with filter `mode`, channel
+    /// values 0..=255 (unrounded).
+    #[must_use]
+    pub fn sample(&self, u: f64, v: f64, lod: f64, mode: Mode) -> [f64; 4] {
+        self.output(self.filter(u, v, self.lod(lod), mode))
+    }
+
+    /// Exact anisotropic sample (mean of the probes' `mode` samples,
+    /// [`aniso_probes`]), channel values 0..=255 (unrounded).
+    #[must_use]
+    pub fn sample_aniso(&self, u: f64, v: f64, axes: [[f64; 2]; 2], mode: Mode) -> [f64; 4] {
+        let (w, h) = self.tex.sizes[0];
+        let (n, lod, probes) = aniso_probes((w, h), self.state.max_aniso, u, v, axes);
+        let lod = self.lod(lod);
+        let mut acc = [0.0; 4];
+        for p in &probes {
+            let s = self.filter(p[0], p[1], lod, mode);
+            for c in 0..4 {
+                acc[c] += s[c] / f64::from(n);
+            }
+        }
+        self.output(acc)
+    }
+}
+
+/// Probe count, lod (before bias/clamps) and exact probe positions of the
+/// anisotropic footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` at
+/// `(u, v)` on a level 0 of `size` texels with at most `max` probes
+/// (pbrt-style: minor axis clamped to major/max, `N = ceil(major/minor')`,
+/// lod `log2 minor'`, probes at `t_i = (2i + 1 − N)/(2N)` along the major
+/// axis).
+#[must_use]
+pub fn aniso_probes(
+    size: (u32, u32),
+    max: u32,
+    u: f64,
+    v: f64,
+    axes: [[f64; 2]; 2],
+) -> (u32, f64, Vec<[f64; 2]>) {
+    let (w, h) = size;
+    let len = |a: [f64; 2]| (a[0] * f64::from(w)).hypot(a[1] * f64::from(h));
+    let (major, minor) = if len(axes[0]) >= len(axes[1]) {
+        (axes[0], len(axes[1]))
+    } else {
+        (axes[1], len(axes[0]))
+    };
+    let lmaj = len(major);
+    let max = max.max(1);
+    let minor = minor.max(lmaj / f64::from(max)).max(f64::MIN_POSITIVE);
+    let n = ((lmaj / minor).ceil() as u32).clamp(1, max);
+    let nf = f64::from(n);
+    let probes = (0..n)
+        .map(|i| {
+            let t = (2.0 * f64::from(i) + 1.0 - nf) / (2.0 * nf);
+            [u + major[0] * t, v + major[1] * t]
+        })
+        .collect();
+    (n, minor.log2(), probes)
+}
+
+/// One row of the accuracy table: a format/colour space and a filter.
+#[derive(Clone, Debug)]
+pub struct AccuracyRow {
+    /// Format name (with `_SRGB` for sRGB; `+enc`/`+lin` = result encoding).
+    pub format: String,
+    /// Filter name.
+    pub filter: &'static str,
+    /// Samples compared.
+    pub samples: usize,
+    /// Anisotropic samples left out as probe-count ties (the count's
+    /// `ceil` is within 2⁻¹² in log2 of an integer).
+    pub ties: usize,
+    /// Largest |firmware − reference| over all channels, 8-bit LSB.
+    pub max_error: f64,
+    /// The documented bound for this row.
+    pub bound: f64,
+}
+
+/// The filters of the accuracy table.
+pub const FILTERS: [&str; 5] = [
+    "nearest",
+    "nearest texel, linear level",
+    "bilinear",
+    "trilinear",
+    "anisotropic 16x (trilinear probes)",
+];
+
+/// Measures the firmware `TextureSampler` against [`RefSampler`] for every
+/// format (linear, and sRGB re-encoded and linear where it exists) and
+/// filter, over `samples` random samples each: random 24×20 RGBA8 level 0
+/// (pyramid by `mip::generate`, or `srgb::generate` for sRGB), converted
+/// by [`crate::reference::texformat::encode_pyramid`]; random address modes per axis,
+/// border colour, bias in [−16, 16), lod clamps, coordinates in
+/// [−3, 3], lods in [−2, 8], anisotropic footprints with axes up to ±0.5
+/// (up to 12 texels), through the texel cache. The reference reads the
+/// stored bytes with its own decoder for uncompressed formats; BC texel
+/// values come from `raymip::bc`, which `tests/bc_decode.rs` proves
+/// bit-identical to an independent decoder.
+#[must_use]
+pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
+    let mut rng = Rng(seed.max(1));
+    let geometry = Geometry::new(24, 20, 5).expect("geometry");
+    let mut rows = Vec::new();
+    for format in TexelFormat::ALL {
+        let spaces: &[(ColorSpace, SrgbOutput, &str)] = if format.has_srgb() {
+            &[
+                (ColorSpace::Linear, SrgbOutput::Encoded, ""),
+                (ColorSpace::Srgb, SrgbOutput::Encoded, "_SRGB (encoded)"),
+                (ColorSpace::Srgb, SrgbOutput::Linear, "_SRGB (linear)"),
+            ]
+        } else {
+            &[(ColorSpace::Linear, SrgbOutput::Encoded, "")]
+        };
+        for &(space, out, suffix) in spaces {
+            let mut texels: Vec<Texel> = (0..geometry.len())
+                .map(|_| (rng.unit() * 4_294_967_296.0) as u32)
+                .collect();
+            if space == ColorSpace::Srgb {
+                raymip::srgb::generate(&geometry, &mut texels).expect("srgb pyramid");
+            } else {
+                raymip::mip::generate(&geometry, &mut texels).expect("pyramid");
+            }
+            let bytes = crate::reference::texformat::encode_pyramid(&geometry, &texels, format);
+            let fmt = Format::new(format, space).expect("format");
+            let image = Image::new(geometry, fmt, &bytes).expect("image");
+            let reference = reference_texture(&geometry, format, &image, &bytes);
+            for (fi, &filter) in FILTERS.iter().enumerate() {
+                let mut max_error = 0.0f64;
+                let mut ties = 0;
+                for _ in 0..samples {
+                    let Some((got, want)) =
+                        sample_pair(&mut rng, fi, image, &reference, space, out)
+                    else {
+                        ties += 1;
+                        continue;
+                    };
+                    for (g, w) in got.to_le_bytes().iter().zip(want) {
+                        max_error = max_error.max((f64::from(*g) - w).abs());
+                    }
+                }
+                rows.push(AccuracyRow {
+                    format: format!("{format:?}{suffix}"),
+                    filter,
+                    samples,
+                    ties,
+                    max_error,
+                    bound: error_bound(fi, space, out),
+                });
+            }
+        }
+    }
+    rows
+}
+
+/// The reference's view of `image`: its own decode of the stored bytes,
+/// or the firmware's BC decode (checked bit for bit elsewhere).
+fn reference_texture(
+    geometry: &Geometry,
+    format: TexelFormat,
+    image: &Image<'_>,
+    bytes: &[u8],
+) -> RefTexture {
+    if format.is_block_compressed() {
+        let decoded: Vec<Texel> = (0..geometry.levels())
+            .flat_map(|k| {
+                let (w, h) = geometry.level_size(k);
+                (0..h).flat_map(move |y| (0..w).map(move |x| (k, x, y)))
+            })
+            .map(|(k, x, y)| image.get(k, x, y))
+            .collect();
+        RefTexture::from_rgba8(geometry, &decoded)
+    } else {
+        RefTexture::from_bytes(geometry, format, bytes)
+    }
+}
+
+/// Documented bound of filter `fi` (index into [`FILTERS`]).
+fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput) -> f64 {
+    let encoded = space == ColorSpace::Srgb && out == SrgbOutput::Encoded;
+    let base = if encoded {
+        SRGB_MAX_ERROR_LSB
+    } else {
+        SAMPLER_MAX_ERROR_LSB
+    };
+    match fi {
+        // sRGB: the decoded (or border) value is rounded once.
+        0 if space == ColorSpace::Srgb => 0.5,
+        0 => 0.0,
+        1..=3 => base,
+        _ => base + ANISO_LOD_ERROR_LSB * if encoded { 2.0 } else { 1.0 },
+    }
+}
+
+/// A random sampler state (address modes, border, bias, lod clamps).
+fn random_state(rng: &mut Rng, out: SrgbOutput) -> (SamplerDesc, [AddressMode; 2]) {
+    let pick = |x: f64| AddressMode::ALL[((x * 5.0) as usize).min(4)];
+    let address = [pick(rng.unit()), pick(rng.unit())];
+    let border_bits = (rng.unit() * 4_294_967_296.0) as u32;
+    let bias = Lod::from_bits(((rng.unit() * 8192.0) as i32 - 4096) as i16);
+    let (a, b) = (
+        Lod::from_bits(((rng.unit() * 3072.0) as i32 - 512) as i16),
+        Lod::from_bits(((rng.unit() * 3072.0) as i32 - 512) as i16),
+    );
+    let (lo, hi) = if rng.unit() < 0.5 {
+        (a.min(b), a.max(b))
+    } else {
+        (Lod::MIN, Lod::MAX)
+    };
+    let desc = SamplerDesc {
+        address_u: address[0],
+        address_v: address[1],
+        border: border_bits,
+        lod_bias: bias,
+        min_lod: lo,
+        max_lod: hi,
+        max_anisotropy: 16,
+        srgb_output: out,
+    };
+    (desc, address)
+}
+
+/// One random sample of filter `fi` through the firmware and the
+/// reference: `(firmware texel, reference channels)`, or `None` for an
+/// anisotropic footprint whose probe count is a rounding tie.
+fn sample_pair(
+    rng: &mut Rng,
+    fi: usize,
+    image: Image<'_>,
+    reference: &RefTexture,
+    space: ColorSpace,
+    out: SrgbOutput,
+) -> Option<(Texel, [f64; 4])> {
+    let (desc, address) = random_state(rng, out);
+    let state = SamplerState::new(desc).expect("state");
+    let mut fw = TextureSampler::new(TexelCache::<_, 8, 2>::new(image), state, space);
+    let rs = RefSampler {
+        tex: reference,
+        state: RefState {
+            address,
+            border: desc.border.to_le_bytes().map(f64::from),
+            bias: desc.lod_bias.to_num(),
+            min_lod: desc.min_lod.to_num(),
+            max_lod: desc.max_lod.to_num(),
+            max_aniso: 16,
+            srgb: space == ColorSpace::Srgb,
+            encode_srgb: out == SrgbOutput::Encoded,
+        },
+    };
+    let u = TexCoord::from_num(rng.unit() * 6.0 - 3.0);
+    let v = TexCoord::from_num(rng.unit() * 6.0 - 3.0);
+    let (uf, vf) = (u.to_num::<f64>(), v.to_num::<f64>());
+    if fi < 4 {
+        let mode = [
+            Mode::Nearest,
+            Mode::NearestTexelLinearLevel,
+            Mode::BilinearNearestLevel,
+            Mode::Trilinear,
+        ][fi];
+        let lod = Lod::from_bits(((rng.unit() * 2560.0) as i32 - 512) as i16);
+        return Some((
+            fw.sample(u, v, lod, mode),
+            rs.sample(uf, vf, lod.to_num(), mode),
+        ));
+    }
+    let axis = |x: f64| TexCoord::from_num(x);
+    let ax = [axis(rng.unit() - 0.5), axis(rng.unit() - 0.5)];
+    let s = rng.unit() * rng.unit();
+    let ay = [axis((rng.unit() - 0.5) * s), axis((rng.unit() - 0.5) * s)];
+    let axes = [
+        [ax[0].to_num::<f64>(), ax[1].to_num::<f64>()],
+        [ay[0].to_num::<f64>(), ay[1].to_num::<f64>()],
+    ];
+    let (w, h) = (24.0, 20.0);
+    let len = |a: [f64; 2]| (a[0] * w).hypot(a[1] * h);
+    let (l0, l1) = (len(axes[0]), len(axes[1]));
+    // Above 16:1 the count is 16 whatever the rounding.
+    let ratio = (l0.max(l1) / l0.min(l1)).log2();
+    let tie = (1..=16).any(|k| (ratio - f64::from(k).log2()).abs() < 1.0 / 4096.0)
+        || (l0 - l1).abs() < 1e-9 * l0.max(l1)
+        || l0.min(l1) < 1e-6;
+    if tie {
+        return None;
+    }
+    let fp = raymip::aniso::Footprint { x: ax, y: ay };
+    Some((
+        fw.sample_aniso(u, v, &fp, Mode::Trilinear),
+        rs.sample_aniso(uf, vf, axes, Mode::Trilinear),
+    ))
+}
+
+/// Extra error of anisotropic samples against the exact-lod reference:
+/// the probe lod carries the log2 error (2⁻¹³) and is rounded to 8
+/// fractional bits, so the level blend weight may differ by
+/// `2⁻⁸ + 2⁻¹³`, times at most 255 LSB between the two levels.
+pub const ANISO_LOD_ERROR_LSB: f64 = 255.0 * (1.0 / 256.0 + 1.0 / 8192.0);

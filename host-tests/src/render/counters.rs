@@ -1,0 +1,67 @@
+//! Counters of one render.
+
+use serde::Serialize;
+
+use super::HIST_LEVELS;
+
+/// Counters of one render.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Counters {
+    /// Camera paths started (pixels × spp).
+    pub paths: u64,
+    /// Ray segments traced (primary + secondary).
+    pub rays: u64,
+    /// Segments that hit a triangle.
+    pub hits: u64,
+    /// Hits on textured triangles (texture path taken).
+    pub textured_hits: u64,
+    /// Hits on untextured triangles (texture path skipped).
+    pub untextured_skipped: u64,
+    /// Textured hits per selected integer mip level 0..15 (clamped lod, floor).
+    pub level_hist: [u64; HIST_LEVELS],
+    /// Hits per path depth (index = bounces before the hit).
+    pub depth_hist: Vec<u64>,
+    /// Reflection/refraction continuations pushed on the ray stack.
+    pub bounces: u64,
+    /// Continuations dropped because the ray stack was full.
+    pub stack_full: u64,
+    /// Hits whose path state saturated (lod is then a bound).
+    pub saturations: u64,
+    /// Shadow rays.
+    pub shadow_rays: u64,
+    /// Texels fetched.
+    pub fetched: u64,
+    /// Texel fetches skipped by the filter.
+    pub fetch_skipped: u64,
+}
+
+impl Counters {
+    pub(crate) fn add(&mut self, o: &Counters) {
+        self.paths += o.paths;
+        self.rays += o.rays;
+        self.hits += o.hits;
+        self.textured_hits += o.textured_hits;
+        self.untextured_skipped += o.untextured_skipped;
+        for (a, b) in self.level_hist.iter_mut().zip(o.level_hist.iter()) {
+            *a += b;
+        }
+        if self.depth_hist.len() < o.depth_hist.len() {
+            self.depth_hist.resize(o.depth_hist.len(), 0);
+        }
+        for (a, b) in self.depth_hist.iter_mut().zip(o.depth_hist.iter()) {
+            *a += b;
+        }
+        self.bounces += o.bounces;
+        self.stack_full += o.stack_full;
+        self.saturations += o.saturations;
+        self.shadow_rays += o.shadow_rays;
+        self.fetched += o.fetched;
+        self.fetch_skipped += o.fetch_skipped;
+    }
+
+    /// Deepest depth with a hit.
+    #[must_use]
+    pub fn max_depth(&self) -> usize {
+        self.depth_hist.iter().rposition(|&n| n > 0).unwrap_or(0)
+    }
+}

@@ -1,0 +1,169 @@
+//! Whitted ray tracer: point lights with shadows, mirror reflection and
+//! refraction up to `bounces` levels, the firmware [`RayStack`](raymip::raystack::RayStack) /
+//! [`PathState`](raymip::raystack::PathState) carrying `Pl` and the ray cone (with the surface spread
+//! angle β of curved mirrors) along each path, and a
+//! texture LOD chosen per [`Method`] and [`Precision`].
+//!
+//! Pixels are traversed in 8×8 tiles in row-major tile order (the order the
+//! cache study replays); tiles are rendered in parallel with rayon.
+
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+pub mod bvh;
+pub mod camera;
+mod counters;
+pub mod instances;
+pub mod lod;
+mod options;
+mod setup;
+pub mod skip;
+pub mod texunit;
+pub mod tlas;
+mod tracer;
+
+pub use camera::CameraFrame;
+pub use counters::Counters;
+pub use options::{Method, Options, Precision};
+pub use setup::{Prepared, SetupTimes};
+
+use texunit::{FetchLog, Unit};
+use tracer::Ctx;
+
+/// Tile edge in pixels.
+pub const TILE: u32 = 8;
+/// Number of integer mip levels in the histogram.
+pub const HIST_LEVELS: usize = 16;
+
+/// Result of a render.
+#[derive(Clone, Debug)]
+pub struct Image {
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// Linear RGB per pixel, row-major (not clamped).
+    pub rgb: Vec<[f32; 3]>,
+    /// Unclamped lod of the first textured hit of each pixel's path
+    /// (first sample for truth), or NaN.
+    pub lod: Vec<f32>,
+    /// Counters.
+    pub counters: Counters,
+    /// Fetched block addresses in tile order (when recorded).
+    pub blocks: Option<Vec<u32>>,
+    /// Wall-clock render time (s).
+    pub render_s: f64,
+}
+
+impl Image {
+    /// RGB8 pixels (clamped, rounded).
+    #[must_use]
+    pub fn to_rgb8(&self) -> Vec<[u8; 3]> {
+        self.rgb
+            .iter()
+            .map(|c| c.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8))
+            .collect()
+    }
+}
+
+/// The ground truth: `base` rendered with [`Method::Truth`] in f64
+/// (jittered supersampling, `base.spp` samples per pixel).
+#[must_use]
+pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
+    render(
+        prep,
+        &Options {
+            method: Method::Truth,
+            precision: Precision::Float,
+            ..base.clone()
+        },
+    )
+}
+
+/// Renders an image.
+#[must_use]
+pub fn render(prep: &Prepared, opts: &Options) -> Image {
+    let (w, h) = (prep.width, prep.height);
+    let tiles_x = w.div_ceil(TILE);
+    let tiles_y = h.div_ceil(TILE);
+    let n_tiles = tiles_x * tiles_y;
+    let bar = if opts.progress {
+        let b = ProgressBar::new(u64::from(n_tiles));
+        b.set_style(
+            ProgressStyle::with_template(
+                "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} tiles (eta {eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        b.set_message(format!(
+            "{} {} {}x{}",
+            opts.method.name(),
+            opts.precision.name(),
+            w,
+            h
+        ));
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let fixed = opts.precision == Precision::Fixed;
+    let t0 = Instant::now();
+    let tiles: Vec<_> = (0..n_tiles)
+        .into_par_iter()
+        .map(|ti| {
+            let tx = ti % tiles_x;
+            let ty = ti / tiles_x;
+            let mut ctx = Ctx {
+                prep,
+                opts,
+                unit: Unit::new(&prep.textures, fixed, opts.record_blocks, opts.aniso),
+                counters: Counters {
+                    depth_hist: vec![0; usize::from(opts.bounces) + 1],
+                    ..Counters::default()
+                },
+                log: FetchLog {
+                    blocks: opts.record_blocks.then(Vec::new),
+                    ..FetchLog::default()
+                },
+            };
+            let mut px = Vec::new();
+            for y in ty * TILE..((ty + 1) * TILE).min(h) {
+                for x in tx * TILE..((tx + 1) * TILE).min(w) {
+                    px.push((x, y, ctx.pixel(x, y)));
+                }
+            }
+            bar.inc(1);
+            ctx.counters.fetched = ctx.log.fetched;
+            ctx.counters.fetch_skipped = ctx.log.skipped;
+            (px, ctx.counters, ctx.log.blocks)
+        })
+        .collect();
+    let render_s = t0.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let mut rgb = vec![[0.0f32; 3]; (w * h) as usize];
+    let mut lod = vec![f32::NAN; (w * h) as usize];
+    let mut counters = Counters::default();
+    let mut blocks = opts.record_blocks.then(Vec::new);
+    for (px, c, b) in tiles {
+        for (x, y, (col, l)) in px {
+            let i = (y * w + x) as usize;
+            rgb[i] = col.map(|c| c as f32);
+            lod[i] = l as f32;
+        }
+        counters.add(&c);
+        if let (Some(all), Some(b)) = (blocks.as_mut(), b) {
+            all.extend_from_slice(&b);
+        }
+    }
+    Image {
+        width: w,
+        height: h,
+        rgb,
+        lod,
+        counters,
+        blocks,
+        render_s,
+    }
+}

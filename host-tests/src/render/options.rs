@@ -1,0 +1,92 @@
+//! What to render: LOD method, arithmetic, size, bounces.
+
+use serde::Serialize;
+
+/// Texture LOD method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Per-triangle Pb table and accumulated path length (Park et al.).
+    Table,
+    /// Ray cones (Akenine-Möller et al., RTG ch. 20), with the |n·d| term.
+    Cone,
+    /// Ray differentials (Igehy 1999), f64 only.
+    Raydiff,
+    /// No LOD: bilinear in level 0.
+    Mip0,
+    /// Ground truth: jittered supersampling, bilinear in level 0.
+    Truth,
+}
+
+impl Method {
+    /// Lower-case name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Table => "table",
+            Self::Cone => "cone",
+            Self::Raydiff => "raydiff",
+            Self::Mip0 => "mip0",
+            Self::Truth => "truth",
+        }
+    }
+}
+
+/// Arithmetic of the LOD and the texture unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Precision {
+    /// Firmware fixed point (table, ray stack, lod, sampler).
+    Fixed,
+    /// f64 reference written in this crate.
+    Float,
+}
+
+impl Precision {
+    /// Lower-case name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Float => "float",
+        }
+    }
+}
+
+/// Render options.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// LOD method.
+    pub method: Method,
+    /// Precision.
+    pub precision: Precision,
+    /// Image size; `None` = the scene camera's.
+    pub size: Option<(u32, u32)>,
+    /// Maximum reflection/refraction depth (≤ 10 fits the ray stack).
+    pub bounces: u8,
+    /// Samples per pixel for [`Method::Truth`].
+    pub spp: u32,
+    /// Record the texel-block address of every fetch (firmware unit).
+    pub record_blocks: bool,
+    /// Show a progress bar.
+    pub progress: bool,
+    /// Anisotropic filtering with at most this many probes (1..=16) over
+    /// the ray-differential footprint (pbrt-style axes; never a ray-cone
+    /// ellipse); `None` = isotropic (trilinear at the method's lod).
+    pub aniso: Option<u8>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            method: Method::Table,
+            precision: Precision::Fixed,
+            size: None,
+            bounces: 10,
+            spp: 256,
+            record_blocks: false,
+            progress: false,
+            aniso: None,
+        }
+    }
+}

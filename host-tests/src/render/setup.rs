@@ -1,0 +1,187 @@
+//! Set-up of a scene for rendering at one size: BVH, pyramids, Pb tables,
+//! camera frame.
+
+use std::time::Instant;
+
+use raymip::camera::PixelSpread;
+use raymip::table::{Log2Pb, PbTable, TexTriangle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::bvh::Bvh;
+use super::camera::CameraFrame;
+use super::texunit::{MipTexture, assign_block_bases};
+use crate::reference::log2_pb_f64;
+use crate::scene::{Scene, v};
+
+/// Set-up timings (seconds).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct SetupTimes {
+    /// BVH build.
+    pub bvh_s: f64,
+    /// MIP pyramids.
+    pub pyramids_s: f64,
+    /// Pb tables (fixed and f64).
+    pub table_s: f64,
+}
+
+/// A scene ready to render at one image size.
+#[derive(Debug)]
+pub struct Prepared {
+    /// The scene.
+    pub scene: Scene,
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// BVH.
+    pub bvh: Bvh,
+    /// Pyramids (block bases assigned).
+    pub textures: Vec<MipTexture>,
+    /// Firmware `log2 Pb` per triangle.
+    pub pb_fixed: Vec<Log2Pb>,
+    /// f64 `log2 Pb` per triangle (NaN = untextured).
+    pub pb_float: Vec<f64>,
+    /// Scene bounding-box diagonal (for ray offsets).
+    pub scale: f64,
+    /// Set-up timings.
+    pub times: SetupTimes,
+    /// Camera frame (f64).
+    pub cam: CameraFrame,
+    /// The firmware's pixel spread of the camera.
+    pub spread: PixelSpread,
+}
+
+impl Prepared {
+    /// Builds BVH, pyramids and tables; `size` overrides the camera's.
+    ///
+    /// # Errors
+    /// A zero image size, a bad camera, a missing material or texture, a
+    /// texture that cannot form a pyramid, a triangle outside the firmware's
+    /// coordinate range.
+    pub fn new(scene: Scene, size: Option<(u32, u32)>) -> Result<Self, String> {
+        let (width, height) = size.unwrap_or((scene.camera.width, scene.camera.height));
+        if width == 0 || height == 0 {
+            return Err("image size must be at least 1x1".into());
+        }
+        let spread = CameraFrame::pixel_spread(&scene.camera, height)?;
+        let cam = CameraFrame::new(&scene.camera, width, height);
+        check_references(&scene)?;
+        let t0 = Instant::now();
+        let bvh = Bvh::build(scene.triangles.iter().map(|t| t.p).collect());
+        let bvh_s = t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        let mut textures = scene
+            .textures
+            .par_iter()
+            .map(MipTexture::new)
+            .collect::<Result<Vec<_>, _>>()?;
+        assign_block_bases(&mut textures);
+        let pyramids_s = t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        let (pb_fixed, pb_float) = pb_tables(&scene, &cam, &spread)?;
+        let table_s = t0.elapsed().as_secs_f64();
+        let scale = scene_scale(&scene);
+        Ok(Self {
+            scene,
+            width,
+            height,
+            bvh,
+            textures,
+            pb_fixed,
+            pb_float,
+            scale,
+            times: SetupTimes {
+                bvh_s,
+                pyramids_s,
+                table_s,
+            },
+            cam,
+            spread,
+        })
+    }
+}
+
+impl Prepared {
+    /// Ray offset along the normal at continuation rays (scene units:
+    /// 10⁻⁷ of the scene diagonal).
+    pub(crate) fn eps(&self) -> f64 {
+        1e-7 * self.scale
+    }
+}
+
+/// Every triangle's material and texture exist.
+fn check_references(scene: &Scene) -> Result<(), String> {
+    for (i, t) in scene.triangles.iter().enumerate() {
+        if scene.materials.get(t.material as usize).is_none() {
+            return Err(format!(
+                "triangle {i}: material {} does not exist",
+                t.material
+            ));
+        }
+        if let Some(x) = t.texture
+            && scene.textures.get(x as usize).is_none()
+        {
+            return Err(format!("triangle {i}: texture {x} does not exist"));
+        }
+    }
+    Ok(())
+}
+
+/// The firmware Pb table (built by `PbTable::build` from the triangles in
+/// f32, as a controller receives them) and the f64 one (NaN = untextured).
+fn pb_tables(
+    scene: &Scene,
+    cam: &CameraFrame,
+    spread: &PixelSpread,
+) -> Result<(Vec<Log2Pb>, Vec<f64>), String> {
+    let mut tex_tris = Vec::with_capacity(scene.triangles.len());
+    let mut pb_float = Vec::with_capacity(scene.triangles.len());
+    for (i, t) in scene.triangles.iter().enumerate() {
+        match (t.texture, t.uv) {
+            (Some(x), Some(uv)) => {
+                let tex = &scene.textures[x as usize];
+                let p32 = t.p.map(|p| p.map(|c| c as f32));
+                let uv32 = uv.map(|q| q.map(|c| c as f32));
+                let tt = TexTriangle::from_f32(p32, uv32, tex.width, tex.height)
+                    .map_err(|e| format!("triangle {i}: {e}"))?;
+                tex_tris.push(Some(tt));
+                pb_float.push(log2_pb_f64(
+                    &t.p,
+                    &uv,
+                    f64::from(tex.width),
+                    f64::from(tex.height),
+                    cam.gamma,
+                ));
+            }
+            _ => {
+                tex_tris.push(None);
+                pb_float.push(f64::NAN);
+            }
+        }
+    }
+    let mut pb_fixed = vec![Log2Pb::UNTEXTURED; scene.triangles.len()];
+    PbTable::new(&mut pb_fixed)
+        .build(tex_tris, spread)
+        .map_err(|e| format!("Pb table: {e}"))?;
+    Ok((pb_fixed, pb_float))
+}
+
+/// Scene bounding-box diagonal (1 for an empty scene, at least 10⁻⁹).
+fn scene_scale(scene: &Scene) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for t in &scene.triangles {
+        for p in &t.p {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    if scene.triangles.is_empty() {
+        1.0
+    } else {
+        v::len(v::sub(hi, lo)).max(1e-9)
+    }
+}

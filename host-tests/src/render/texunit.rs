@@ -1,0 +1,477 @@
+//! Textures as the renderer uses them: MIP pyramids of RGBA8888 texels and
+//! the two texture units of a render ([`Unit`]):
+//!
+//! * [`FirmwareUnit`]: the firmware texture unit, one
+//!   `raymip::filter::Sampler` per texture (fixed point: [`TexCoord`],
+//!   [`Lod`], [`Mode`] in, a texel out; wrap addressing), which also records
+//!   the texel-block address of every fetch for the cache study;
+//! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
+//!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
+//!
+//! Anisotropic filtering (`Options::aniso`): the firmware unit uses one
+//! `raymip::texture_sampler::TextureSampler` per texture (wrap, the given
+//! maximum anisotropy), the float unit averages its own trilinear samples
+//! at the probes of `reference::sampler_ref::aniso_probes`.
+
+use raymip::aniso::Footprint;
+use raymip::cache::BlockLayout;
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::format::ColorSpace;
+use raymip::lod::Lod;
+use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
+use raymip::sampler_state::{SamplerDesc, SamplerState};
+use raymip::texture_sampler::TextureSampler;
+
+use super::Method;
+use super::lod::HitLod;
+use crate::reference::sampler_ref::aniso_probes;
+use crate::scene::TextureImage;
+
+/// Which filter a sample uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Filter {
+    /// Trilinear between the two levels around the lod.
+    Trilinear,
+    /// Bilinear in level 0 only (mip mapping off, ground truth).
+    BilinearLevel0,
+}
+
+impl Filter {
+    /// The filter of a LOD method: bilinear in level 0 without LOD (mip 0,
+    /// ground truth), trilinear otherwise.
+    #[must_use]
+    pub fn of(method: Method) -> Self {
+        match method {
+            Method::Mip0 | Method::Truth => Self::BilinearLevel0,
+            Method::Table | Method::Cone | Method::Raydiff => Self::Trilinear,
+        }
+    }
+}
+
+/// Fetch counters and, optionally, the log of fetched texel-block
+/// addresses (global: per-texture block base + block index).
+#[derive(Clone, Debug, Default)]
+pub struct FetchLog {
+    /// Texels fetched.
+    pub fetched: u64,
+    /// Fetches the filter skipped (zero-weight texels or levels).
+    pub skipped: u64,
+    /// Block addresses in fetch order, when recording.
+    pub blocks: Option<Vec<u32>>,
+}
+
+impl FetchLog {
+    /// Adds a sampler's counters and moves the block addresses its
+    /// recorder logged.
+    fn take(&mut self, st: raymip::filter::FetchStats, source: &mut Recorder<'_>) {
+        self.fetched += st.fetched;
+        self.skipped += st.skipped;
+        if let (Some(all), Some(b)) = (self.blocks.as_mut(), source.blocks.as_mut()) {
+            all.append(b);
+        }
+    }
+}
+
+/// RGB of an RGBA8 texel in 0..1.
+fn texel_rgb(t: Texel) -> [f64; 3] {
+    let c = t.to_le_bytes();
+    [
+        f64::from(c[0]) / 255.0,
+        f64::from(c[1]) / 255.0,
+        f64::from(c[2]) / 255.0,
+    ]
+}
+
+/// A MIP pyramid in one buffer (level 0 first), built by the firmware's
+/// `mip::generate`.
+#[derive(Clone, Debug)]
+pub struct MipTexture {
+    /// Name.
+    pub name: String,
+    /// Level-0 width.
+    pub width: u32,
+    /// Level-0 height.
+    pub height: u32,
+    /// Number of levels (full chain down to 1×1).
+    pub levels: u8,
+    /// All levels' texels.
+    pub texels: Vec<Texel>,
+    /// First 4×4-block address of this texture in the global texel memory.
+    pub block_base: u32,
+    /// Number of block addresses this texture spans (`BlockLayout::len`).
+    pub block_span: u32,
+    geometry: Geometry,
+    layout: BlockLayout,
+}
+
+impl MipTexture {
+    /// Builds the full pyramid of `img` with the firmware generator.
+    pub fn new(img: &TextureImage) -> Result<Self, String> {
+        let levels = full_levels(img.width, img.height);
+        let geometry = Geometry::new(img.width, img.height, levels)
+            .map_err(|e| format!("texture {} ({}x{}): {e}", img.name, img.width, img.height))?;
+        let mut texels = vec![0u32; geometry.len()];
+        let n = img.texels.len().min(texels.len());
+        texels[..n].copy_from_slice(&img.texels[..n]);
+        generate(&geometry, &mut texels).map_err(|e| format!("texture {}: {e}", img.name))?;
+        Ok(Self {
+            name: img.name.clone(),
+            width: img.width,
+            height: img.height,
+            levels,
+            texels,
+            block_base: 0,
+            block_span: BlockLayout::new(&geometry).len(),
+            geometry,
+            layout: BlockLayout::new(&geometry),
+        })
+    }
+
+    /// The same texture over other stored texels: `geometry` (the full
+    /// one or a [trimmed](Geometry::trimmed) one) and its texels (empty: a
+    /// texture with nothing stored, which samples black). Block addresses
+    /// stay those of the full pyramid.
+    #[must_use]
+    pub fn with_pyramid(&self, geometry: Geometry, texels: Vec<Texel>) -> Self {
+        Self {
+            texels,
+            geometry,
+            layout: BlockLayout::new(&geometry),
+            ..self.clone()
+        }
+    }
+
+    /// Size of `level`.
+    #[must_use]
+    pub fn level_size(&self, level: u8) -> (u32, u32) {
+        self.geometry.level_size(level)
+    }
+
+    /// The firmware geometry.
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    fn texel(&self, level: u8, x: u32, y: u32) -> u32 {
+        self.texels
+            .get(self.geometry.texel_index(level, x, y))
+            .copied()
+            .unwrap_or(0)
+    }
+}
+
+/// Assigns consecutive block bases to the textures.
+pub fn assign_block_bases(textures: &mut [MipTexture]) {
+    let mut base = 0u32;
+    for t in textures {
+        t.block_base = base;
+        base = base.saturating_add(t.block_span);
+    }
+}
+
+/// The texture unit of one render (per tile: it holds the samplers' state).
+#[derive(Debug)]
+pub enum Unit<'a> {
+    /// The firmware unit (fixed-point renders).
+    Firmware(FirmwareUnit<'a>),
+    /// The f64 reference unit (float renders).
+    Float(FloatUnit<'a>),
+}
+
+impl<'a> Unit<'a> {
+    /// The unit for `textures`: the firmware one for fixed-point renders
+    /// (recording block addresses when `record`), else the f64 one.
+    #[must_use]
+    pub fn new(textures: &'a [MipTexture], fixed: bool, record: bool, aniso: Option<u8>) -> Self {
+        if fixed {
+            Self::Firmware(FirmwareUnit::new(textures, record, aniso))
+        } else {
+            Self::Float(FloatUnit {
+                textures,
+                max_aniso: aniso.unwrap_or(1),
+            })
+        }
+    }
+
+    /// One anisotropic sample of texture `tex` at `(u, v)` over the
+    /// footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` (normalized
+    /// texture coordinates per pixel), linear RGB in 0..1; trilinear
+    /// probes, at most the unit's maximum anisotropy.
+    pub fn sample_aniso(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        axes: [[f64; 2]; 2],
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        match self {
+            Self::Firmware(unit) => {
+                let a = |x: f64| {
+                    if x.is_finite() {
+                        TexCoord::saturating_from_num(x)
+                    } else {
+                        TexCoord::ZERO
+                    }
+                };
+                let fp = Footprint {
+                    x: [a(axes[0][0]), a(axes[0][1])],
+                    y: [a(axes[1][0]), a(axes[1][1])],
+                };
+                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), &fp, log))
+            }
+            Self::Float(unit) => unit.sample_aniso(tex, u, v, axes, log),
+        }
+    }
+
+    /// One filtered sample of texture `tex` at `(u, v)` in texture repeats
+    /// (wrap addressing) as linear RGB in 0..1. A fixed-point lod goes to
+    /// the firmware unit unchanged; each unit is fed its own arithmetic.
+    pub fn sample(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        lod: HitLod,
+        filter: Filter,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        match self {
+            Self::Firmware(unit) => {
+                let lod = match lod {
+                    HitLod::Fixed(l) => l,
+                    HitLod::Float(l) => Lod::saturating_from_num(l),
+                };
+                let mode = match filter {
+                    Filter::Trilinear => Mode::Trilinear,
+                    Filter::BilinearLevel0 => Mode::BilinearNearestLevel,
+                };
+                texel_rgb(unit.sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log))
+            }
+            Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
+        }
+    }
+}
+
+/// The f64 reference sampler over the render's textures.
+#[derive(Clone, Copy, Debug)]
+pub struct FloatUnit<'a> {
+    textures: &'a [MipTexture],
+    max_aniso: u8,
+}
+
+fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
+    let (w, h) = tex.level_size(level);
+    let x = u * f64::from(w) - 0.5;
+    let y = v * f64::from(h) - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let wrap = |a: f64, n: u32| (a.rem_euclid(f64::from(n))) as u32 % n;
+    let xs = [wrap(x0, w), wrap(x0 + 1.0, w)];
+    let ys = [wrap(y0, h), wrap(y0 + 1.0, h)];
+    let mut out = [0.0; 4];
+    for (j, &yy) in ys.iter().enumerate() {
+        for (i, &xx) in xs.iter().enumerate() {
+            let wgt = (if i == 0 { 1.0 - fx } else { fx }) * (if j == 0 { 1.0 - fy } else { fy });
+            let t = tex.texel(level, xx, yy).to_le_bytes();
+            log.fetched += 1;
+            for c in 0..4 {
+                out[c] += wgt * f64::from(t[c]);
+            }
+        }
+    }
+    out
+}
+
+impl FloatUnit<'_> {
+    /// One sample of texture `tex` (f64 lod, clamped to the stored levels;
+    /// NaN = level 0), linear RGB in 0..1; black for an unknown texture.
+    pub fn sample(
+        &self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        lod: f64,
+        filter: Filter,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        let Some(tex) = self.textures.get(tex) else {
+            return [0.0; 3];
+        };
+        let top = f64::from(tex.levels - 1);
+        let c = match filter {
+            Filter::BilinearLevel0 => bilinear_f64(tex, 0, u, v, log),
+            Filter::Trilinear => {
+                let l = if lod.is_nan() {
+                    0.0
+                } else {
+                    lod.clamp(0.0, top)
+                };
+                let l0 = l.floor();
+                let f = l - l0;
+                let a = bilinear_f64(tex, l0 as u8, u, v, log);
+                if f > 0.0 && l0 < top {
+                    let b = bilinear_f64(tex, l0 as u8 + 1, u, v, log);
+                    std::array::from_fn(|k| a[k] + f * (b[k] - a[k]))
+                } else {
+                    log.skipped += 4;
+                    a
+                }
+            }
+        };
+        [c[0] / 255.0, c[1] / 255.0, c[2] / 255.0]
+    }
+
+    /// Anisotropic sample: the mean of trilinear samples at the probes of
+    /// [`aniso_probes`] (exact positions and lod), linear RGB in 0..1.
+    pub fn sample_aniso(
+        &self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        axes: [[f64; 2]; 2],
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        let Some(t) = self.textures.get(tex) else {
+            return [0.0; 3];
+        };
+        let (n, lod, probes) =
+            aniso_probes((t.width, t.height), u32::from(self.max_aniso), u, v, axes);
+        let mut acc = [0.0; 3];
+        for p in probes {
+            let s = self.sample(tex, p[0], p[1], lod, Filter::Trilinear, log);
+            for c in 0..3 {
+                acc[c] += s[c] / f64::from(n);
+            }
+        }
+        acc
+    }
+}
+
+/// A [`TexelSource`] over one texture's pyramid that logs the global block
+/// address of every fetch (when recording).
+#[derive(Debug)]
+struct Recorder<'a> {
+    pyramid: Pyramid<'a>,
+    layout: &'a BlockLayout,
+    base: u32,
+    blocks: Option<Vec<u32>>,
+}
+
+impl TexelSource for Recorder<'_> {
+    fn geometry(&self) -> Geometry {
+        self.pyramid.geometry()
+    }
+
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        if let Some(b) = self.blocks.as_mut() {
+            b.push(self.base.wrapping_add(self.layout.index(level, x, y)));
+        }
+        self.pyramid.get(level, x, y)
+    }
+
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        if let Some(b) = self.blocks.as_mut() {
+            for (xx, yy) in [(x[0], y[0]), (x[1], y[0]), (x[0], y[1]), (x[1], y[1])] {
+                b.push(self.base.wrapping_add(self.layout.index(level, xx, yy)));
+            }
+        }
+        self.pyramid.footprint(level, x, y)
+    }
+}
+
+/// The firmware texture unit: one [`Sampler`] per texture, built once.
+#[derive(Debug)]
+pub struct FirmwareUnit<'a> {
+    samplers: Vec<Option<Sampler<Recorder<'a>>>>,
+    aniso: Vec<Option<TextureSampler<Recorder<'a>>>>,
+}
+
+impl<'a> FirmwareUnit<'a> {
+    /// One wrap-addressing sampler per texture; `record` logs the block
+    /// address of every fetch.
+    #[must_use]
+    pub fn new(textures: &'a [MipTexture], record: bool, aniso: Option<u8>) -> Self {
+        let source = |tex: &'a MipTexture| {
+            Some(Recorder {
+                pyramid: Pyramid::new(tex.geometry, &tex.texels).ok()?,
+                layout: &tex.layout,
+                base: tex.block_base,
+                blocks: record.then(Vec::new),
+            })
+        };
+        let samplers = textures
+            .iter()
+            .map(|tex| Some(Sampler::new(source(tex)?, Address::Wrap)))
+            .collect();
+        let state = aniso.and_then(|max| {
+            SamplerState::new(SamplerDesc {
+                max_anisotropy: max.clamp(1, 16),
+                ..SamplerDesc::default()
+            })
+            .ok()
+        });
+        let aniso = textures
+            .iter()
+            .map(|tex| {
+                Some(TextureSampler::new(
+                    source(tex)?,
+                    state?,
+                    ColorSpace::Linear,
+                ))
+            })
+            .collect();
+        Self { samplers, aniso }
+    }
+
+    /// One anisotropic sample of texture `tex` through the firmware
+    /// `TextureSampler` (trilinear probes); fetches go to `log`. Texel 0
+    /// for an unknown texture or without anisotropy.
+    pub fn sample_aniso(
+        &mut self,
+        tex: usize,
+        u: TexCoord,
+        v: TexCoord,
+        fp: &Footprint,
+        log: &mut FetchLog,
+    ) -> Texel {
+        let Some(Some(sampler)) = self.aniso.get_mut(tex) else {
+            return 0;
+        };
+        let t = sampler.sample_aniso(u, v, fp, Mode::Trilinear);
+        log.take(sampler.stats(), sampler.source_mut());
+        sampler.reset_stats();
+        t
+    }
+
+    /// One sample of texture `tex` through the firmware sampler; fetch
+    /// counts (and block addresses) go to `log`. Texel 0 (black) for an
+    /// unknown texture.
+    pub fn sample(
+        &mut self,
+        tex: usize,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mode: Mode,
+        log: &mut FetchLog,
+    ) -> Texel {
+        let Some(Some(sampler)) = self.samplers.get_mut(tex) else {
+            return 0;
+        };
+        let t = sampler.sample(u, v, lod, mode);
+        log.take(sampler.stats(), sampler.source_mut());
+        sampler.reset_stats();
+        t
+    }
+}
+
+/// `u` reduced to `[0, 1)` (wrap addressing, exact in f64) as a [`TexCoord`].
+fn wrap_coord(u: f64) -> TexCoord {
+    if u.is_finite() {
+        TexCoord::saturating_from_num(u - u.floor())
+    } else {
+        TexCoord::ZERO
+    }
+}

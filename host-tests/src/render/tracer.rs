@@ -1,0 +1,563 @@
+//! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
+
+use fixed::types::U32F32;
+use raymip::raystack::{PathState, RayStack, Spread};
+
+use super::bvh::Hit;
+use super::lod::{LodQuery, raydiff_axes};
+use super::texunit::{FetchLog, Filter, Unit};
+use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
+use crate::scene::{Material, Triangle, V3, v};
+
+/// Ray-differential state (Igehy 1999): position and unit-direction
+/// derivatives per pixel in x and y.
+#[derive(Clone, Copy, Debug, Default)]
+struct Diff {
+    dpx: V3,
+    dpy: V3,
+    ddx: V3,
+    ddy: V3,
+}
+
+/// Host side of one ray (the payload of its ray-stack entry; the firmware
+/// [`PathState`] beside it carries the fixed-point Pl and cone).
+#[derive(Clone, Copy, Debug)]
+struct Ray {
+    o: V3,
+    d: V3,
+    weight: V3,
+    tmin: f64,
+    pl: f64,
+    width: f64,
+    spread: f64,
+    diff: Diff,
+}
+
+impl Ray {
+    /// A continuation of this ray from `o` in direction `d` with `weight`,
+    /// path length and cone width `(pl, width)` at the hit and this ray's
+    /// cone spread; `dd(ddir, dn)` maps a direction differential and the
+    /// matching shading-normal differential to the new ray's.
+    fn continued(
+        &self,
+        o: V3,
+        d: V3,
+        weight: V3,
+        (pl, width): (f64, f64),
+        f: &HitFrame,
+        dd: impl Fn(V3, V3) -> V3,
+    ) -> Self {
+        Self {
+            o,
+            d,
+            weight,
+            tmin: 0.0,
+            pl,
+            width,
+            spread: self.spread,
+            diff: Diff {
+                dpx: f.dpx,
+                dpy: f.dpy,
+                ddx: dd(self.diff.ddx, f.dnx),
+                ddy: dd(self.diff.ddy, f.dny),
+            },
+        }
+    }
+}
+
+pub(crate) struct Ctx<'a> {
+    pub(crate) prep: &'a Prepared,
+    pub(crate) opts: &'a Options,
+    pub(crate) unit: Unit<'a>,
+    pub(crate) counters: Counters,
+    pub(crate) log: FetchLog,
+}
+
+/// Deterministic per-sample random numbers in [0, 1).
+fn hash01(x: u32, y: u32, s: u32, k: u32) -> f64 {
+    let mut z = u64::from(x)
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add(u64::from(y).wrapping_mul(0xC2B2_AE3D_27D4_EB4F))
+        .wrapping_add(u64::from(s).wrapping_mul(0x1656_67B1_9E37_79F9))
+        .wrapping_add(u64::from(k));
+    z ^= z >> 30;
+    z = z.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z ^= z >> 27;
+    z = z.wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+impl Ctx<'_> {
+    pub(crate) fn pixel(&mut self, x: u32, y: u32) -> ([f64; 3], f64) {
+        if self.opts.method == Method::Truth {
+            let n = self.opts.spp.max(1);
+            let k = (f64::from(n).sqrt() as u32).max(1);
+            let mut acc = [0.0; 3];
+            let mut first = f64::NAN;
+            for s in 0..n {
+                // Stratified k×k jitter for the first k² samples, uniform after.
+                let (jx, jy) = if s < k * k {
+                    (
+                        (f64::from(s % k) + hash01(x, y, s, 0)) / f64::from(k),
+                        (f64::from(s / k) + hash01(x, y, s, 1)) / f64::from(k),
+                    )
+                } else {
+                    (hash01(x, y, s, 0), hash01(x, y, s, 1))
+                };
+                let (c, l) = self.path(f64::from(x) + jx, f64::from(y) + jy);
+                acc = v::add(acc, c);
+                if s == 0 {
+                    first = l;
+                }
+            }
+            (v::scale(acc, 1.0 / f64::from(n)), first)
+        } else {
+            self.path(f64::from(x) + 0.5, f64::from(y) + 0.5)
+        }
+    }
+
+    /// Traces one camera path; returns colour and the first textured lod.
+    fn path(&mut self, fx: f64, fy: f64) -> ([f64; 3], f64) {
+        let prep = self.prep;
+        let (dv, dxv, dyv) = prep.cam.primary_dir(fx, fy);
+        let dd = v::dot(dv, dv);
+        let ddir = |r: V3| {
+            v::scale(
+                v::sub(v::scale(r, dd), v::scale(dv, v::dot(dv, r))),
+                dd.powf(-1.5),
+            )
+        };
+        let ray = Ray {
+            o: prep.cam.eye,
+            d: v::norm(dv),
+            weight: [1.0; 3],
+            tmin: 0.0,
+            pl: 0.0,
+            width: 0.0,
+            spread: prep.cam.gamma,
+            diff: Diff {
+                ddx: ddir(dxv),
+                ddy: ddir(dyv),
+                ..Diff::default()
+            },
+        };
+        self.counters.paths += 1;
+        let mut stack: RayStack<Ray> = RayStack::new();
+        let mut color = [0.0; 3];
+        let mut first_lod = f64::NAN;
+        // The primary state always fits an empty stack.
+        let _ = stack.push_with(PathState::primary(&prep.spread, 0xFF), ray);
+        while let Some((state, ray)) = stack.pop_with() {
+            self.segment(state, ray, &mut stack, &mut color, &mut first_lod);
+        }
+        (color, first_lod)
+    }
+
+    /// One ray segment: hit frame, texture (LOD choice + sample), local
+    /// shading, continuation rays with the surface spread.
+    fn segment(
+        &mut self,
+        state: PathState,
+        ray: Ray,
+        stack: &mut RayStack<Ray>,
+        color: &mut [f64; 3],
+        first_lod: &mut f64,
+    ) {
+        let prep = self.prep;
+        let scene = &prep.scene;
+        self.counters.rays += 1;
+        let Some(hit) = prep.bvh.closest(ray.o, ray.d, ray.tmin, f64::INFINITY) else {
+            *color = v::add(*color, v::mul(ray.weight, scene.background));
+            return;
+        };
+        self.counters.hits += 1;
+        let depth = usize::from(state.depth);
+        if let Some(c) = self.counters.depth_hist.get_mut(depth) {
+            *c += 1;
+        }
+        let state = state.advance(U32F32::saturating_from_num(hit.t));
+        if state.saturated {
+            self.counters.saturations += 1;
+        }
+        let tri = &scene.triangles[hit.tri as usize];
+        let mat = &scene.materials[tri.material as usize];
+        let f = HitFrame::new(tri, &ray, &hit);
+        let pl = ray.pl + f.t;
+        let width = ray.width + ray.spread * f.t;
+        let kd = self.texture(hit.tri as usize, &f, &ray, &state, pl, width, first_lod);
+        let local = self.local_shading(mat, &f, &ray, kd, tri.is_textured());
+        *color = v::add(*color, v::mul(ray.weight, local));
+        if usize::from(state.depth) >= usize::from(self.opts.bounces) {
+            return;
+        }
+        let (refr, refl) = self.continuations(mat, &f, &ray, pl, width);
+        let beta = surface_spread(&f, width);
+        let beta_fixed = Spread::saturating_from_num(beta);
+        let refl = refl.map(|mut r| {
+            r.spread += if self.opts.precision == Precision::Fixed {
+                beta_fixed.to_num::<f64>()
+            } else {
+                beta
+            };
+            (r, beta_fixed)
+        });
+        let refr = refr.map(|r| (r, Spread::ZERO));
+        for (r, b) in [refr, refl].into_iter().flatten() {
+            if stack.push_with(state.bounce(b), r).is_ok() {
+                self.counters.bounces += 1;
+            } else {
+                self.counters.stack_full += 1;
+            }
+        }
+    }
+
+    /// Texture step: the LOD choice and one sample; returns the diffuse
+    /// colour modulated by the texture (the material's diffuse when
+    /// untextured or when the lod is undefined).
+    #[allow(clippy::too_many_arguments)]
+    fn texture(
+        &mut self,
+        tri_index: usize,
+        f: &HitFrame,
+        ray: &Ray,
+        state: &PathState,
+        pl: f64,
+        width: f64,
+        first_lod: &mut f64,
+    ) -> V3 {
+        let prep = self.prep;
+        let tri = &prep.scene.triangles[tri_index];
+        let kd = prep.scene.materials[tri.material as usize].diffuse;
+        let (Some(x), Some(uv)) = (tri.texture, tri.uv) else {
+            self.counters.untextured_skipped += 1;
+            return kd;
+        };
+        let tex = &prep.textures[x as usize];
+        let [b0, b1, b2] = f.b;
+        let u = b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0];
+        let vv = b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1];
+        let query = LodQuery {
+            tri: tri_index,
+            tex,
+            uv: &uv,
+            state,
+            pl,
+            width,
+            n_dot_d: v::dot(f.ng, ray.d).abs(),
+            dbx: f.dbx,
+            dby: f.dby,
+        };
+        let Some(lod) = self.hit_lod(&query) else {
+            self.counters.untextured_skipped += 1;
+            return kd;
+        };
+        self.counters.textured_hits += 1;
+        self.counters.level_hist[lod.level(tex.levels).min(HIST_LEVELS - 1)] += 1;
+        if first_lod.is_nan() {
+            *first_lod = lod.to_f64();
+        }
+        let c = match self.opts.aniso {
+            Some(_) if Filter::of(self.opts.method) == Filter::Trilinear => {
+                let axes = raydiff_axes(&query);
+                self.unit
+                    .sample_aniso(x as usize, u, vv, axes, &mut self.log)
+            }
+            _ => {
+                let filter = Filter::of(self.opts.method);
+                self.unit
+                    .sample(x as usize, u, vv, lod, filter, &mut self.log)
+            }
+        };
+        v::mul(kd, c)
+    }
+
+    /// Local shading: ambient plus Phong from every light not in shadow.
+    fn local_shading(
+        &mut self,
+        mat: &Material,
+        f: &HitFrame,
+        ray: &Ray,
+        kd: V3,
+        textured: bool,
+    ) -> V3 {
+        let scene = &self.prep.scene;
+        let mut local = v::mul(
+            v::mul(scene.ambient, mat.ambient),
+            if textured {
+                kd_ratio(kd, mat.diffuse)
+            } else {
+                [1.0; 3]
+            },
+        );
+        let po = v::madd(f.p, f.face_ng, self.eps());
+        for light in &scene.lights {
+            let to = v::sub(light.position, po);
+            let dist = v::len(to);
+            let l = v::scale(to, 1.0 / dist);
+            let nl = v::dot(f.ns, l);
+            if nl <= 0.0 || v::dot(f.face_ng, l) <= 0.0 {
+                continue;
+            }
+            let att = self.shadow(po, l, dist);
+            if v::max_c(att) <= 0.0 {
+                continue;
+            }
+            let hv = v::norm(v::sub(l, ray.d));
+            let spec = v::dot(f.ns, hv).max(0.0).powf(mat.shine.max(1.0));
+            let c = v::add(v::scale(kd, nl), v::scale(mat.specular, spec));
+            local = v::add(local, v::mul(v::mul(c, light.color), att));
+        }
+        local
+    }
+
+    /// Ray offset along the normal (scene-relative).
+    fn eps(&self) -> f64 {
+        self.prep.eps()
+    }
+
+    /// Continuation rays: refraction (total internal reflection folds into
+    /// the reflection weight) and reflection, with their ray differentials;
+    /// `(refracted, reflected)`. Cone spreads are the incoming ray's (the
+    /// caller adds the surface spread of the reflection).
+    fn continuations(
+        &self,
+        mat: &Material,
+        f: &HitFrame,
+        ray: &Ray,
+        pl: f64,
+        width: f64,
+    ) -> (Option<Ray>, Option<Ray>) {
+        let eps = self.eps();
+        let ns = f.ns;
+        let face_ng = f.face_ng;
+        let mut refl_w = v::mul(ray.weight, mat.specular);
+        let trans_w = v::mul(ray.weight, mat.transmission);
+        let cosi = -v::dot(ray.d, ns);
+        let mut refr: Option<Ray> = None;
+        if v::max_c(trans_w) > 1e-3 {
+            let eta = if f.entering {
+                1.0 / mat.ior.max(1e-3)
+            } else {
+                mat.ior
+            };
+            let k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+            if k < 0.0 {
+                refl_w = v::add(refl_w, trans_w);
+            } else {
+                let sk = k.sqrt();
+                let mu = eta * cosi - sk;
+                let mut dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
+                if v::dot(dir, face_ng) >= 0.0 {
+                    // The interpolated normal bent the ray back out: refract
+                    // about the geometric normal instead.
+                    let c = -v::dot(ray.d, face_ng);
+                    let kg = (1.0 - eta * eta * (1.0 - c * c)).max(0.0);
+                    dir = v::norm(v::add(
+                        v::scale(ray.d, eta),
+                        v::scale(face_ng, eta * c - kg.sqrt()),
+                    ));
+                }
+                let dtr = |dd: V3, dn: V3| {
+                    let dcos = -(v::dot(dd, ns) + v::dot(ray.d, dn));
+                    let dmu = (eta - eta * eta * cosi / sk) * dcos;
+                    v::add(
+                        v::add(v::scale(dd, eta), v::scale(ns, dmu)),
+                        v::scale(dn, mu),
+                    )
+                };
+                refr = Some(ray.continued(
+                    v::madd(f.p, face_ng, -eps),
+                    dir,
+                    trans_w,
+                    (pl, width),
+                    f,
+                    dtr,
+                ));
+            }
+        }
+        let refl = (v::max_c(refl_w) > 1e-3).then(|| {
+            let dn_ = v::dot(ray.d, ns);
+            let mut dir = v::norm(v::madd(ray.d, ns, -2.0 * dn_));
+            if v::dot(dir, face_ng) <= 0.0 {
+                // Interpolated normal sends the ray below the surface:
+                // reflect about the geometric normal instead.
+                dir = v::norm(v::madd(ray.d, face_ng, -2.0 * v::dot(ray.d, face_ng)));
+            }
+            let drf = |dd: V3, dn: V3| {
+                let ddn = v::dot(dd, ns) + v::dot(ray.d, dn);
+                v::sub(
+                    dd,
+                    v::scale(v::add(v::scale(dn, dn_), v::scale(ns, ddn)), 2.0),
+                )
+            };
+            ray.continued(v::madd(f.p, face_ng, eps), dir, refl_w, (pl, width), f, drf)
+        });
+        (refr, refl)
+    }
+
+    /// Transmission towards a light at `dist` (0 = blocked by an opaque surface).
+    fn shadow(&mut self, o: V3, l: V3, dist: f64) -> V3 {
+        let prep = self.prep;
+        let mut att = [1.0; 3];
+        let mut tmin = 0.0;
+        for _ in 0..8 {
+            self.counters.shadow_rays += 1;
+            let Some(h) = prep.bvh.closest(o, l, tmin, dist) else {
+                return att;
+            };
+            let m = &prep.scene.materials[prep.scene.triangles[h.tri as usize].material as usize];
+            att = v::mul(att, m.transmission);
+            if v::max_c(att) < 1e-3 {
+                return [0.0; 3];
+            }
+            tmin = h.t + 1e-7 * prep.scale;
+        }
+        att
+    }
+}
+
+/// Texture modulation factor `kd / diffuse` (1 where the diffuse is 0).
+fn kd_ratio(kd: V3, diffuse: V3) -> V3 {
+    std::array::from_fn(|k| {
+        if diffuse[k] > 0.0 {
+            kd[k] / diffuse[k]
+        } else {
+            1.0
+        }
+    })
+}
+
+/// The surface at a hit: position, barycentrics, normals and the ray
+/// differentials transferred to the hit plane.
+struct HitFrame {
+    /// Distance along the ray.
+    t: f64,
+    /// Hit point.
+    p: V3,
+    /// Barycentric weights of vertices 0, 1, 2.
+    b: [f64; 3],
+    /// Unit geometric normal (winding side).
+    ng: V3,
+    /// Geometric normal facing the incoming ray.
+    face_ng: V3,
+    /// The ray enters the surface (hits the winding side).
+    entering: bool,
+    /// Unit shading normal facing the incoming ray.
+    ns: V3,
+    /// Shading-normal derivatives per pixel in x and y.
+    dnx: V3,
+    dny: V3,
+    /// Position differentials on the hit plane per pixel in x and y.
+    dpx: V3,
+    dpy: V3,
+    /// Barycentric (b1, b2) differentials per pixel in x and y.
+    dbx: (f64, f64),
+    dby: (f64, f64),
+}
+
+impl HitFrame {
+    fn new(tri: &Triangle, ray: &Ray, hit: &Hit) -> Self {
+        let t = hit.t;
+        let p = v::madd(ray.o, ray.d, t);
+        let (b0, b1, b2) = (1.0 - hit.b1 - hit.b2, hit.b1, hit.b2);
+        let e1 = v::sub(tri.p[1], tri.p[0]);
+        let e2 = v::sub(tri.p[2], tri.p[0]);
+        let gn_raw = v::cross(e1, e2);
+        let gn2 = v::dot(gn_raw, gn_raw);
+        let ng = v::norm(gn_raw);
+        let entering = v::dot(ng, ray.d) < 0.0;
+        // Ray-differential transfer to the hit plane.
+        let transfer = |dp: V3, dd: V3| {
+            let q = v::madd(dp, dd, t);
+            let dt = -v::dot(q, ng) / v::dot(ray.d, ng);
+            v::madd(q, ray.d, dt)
+        };
+        let dpx = transfer(ray.diff.dpx, ray.diff.ddx);
+        let dpy = transfer(ray.diff.dpy, ray.diff.ddy);
+        let bary_d = |dp: V3| {
+            (
+                v::dot(v::cross(dp, e2), gn_raw) / gn2,
+                v::dot(v::cross(e1, dp), gn_raw) / gn2,
+            )
+        };
+        let dbx = bary_d(dpx);
+        let dby = bary_d(dpy);
+        let (mut ns, mut dnx, mut dny) = shading_normal(tri, ng, [b0, b1, b2], dbx, dby);
+        if v::dot(ns, ray.d) > 0.0 {
+            ns = v::scale(ns, -1.0);
+            dnx = v::scale(dnx, -1.0);
+            dny = v::scale(dny, -1.0);
+        }
+        let face_ng = if entering { ng } else { v::scale(ng, -1.0) };
+        Self {
+            t,
+            p,
+            b: [b0, b1, b2],
+            ng,
+            face_ng,
+            entering,
+            ns,
+            dnx,
+            dny,
+            dpx,
+            dpy,
+            dbx,
+            dby,
+        }
+    }
+}
+
+/// Interpolated unit shading normal and its derivatives per pixel (from the
+/// barycentric differentials); the geometric normal `ng` and zero
+/// derivatives for flat triangles.
+fn shading_normal(
+    tri: &Triangle,
+    ng: V3,
+    b: [f64; 3],
+    (db1x, db2x): (f64, f64),
+    (db1y, db2y): (f64, f64),
+) -> (V3, V3, V3) {
+    let Some(n) = tri.n else {
+        return (ng, [0.0; 3], [0.0; 3]);
+    };
+    let nn = v::add(
+        v::add(v::scale(n[0], b[0]), v::scale(n[1], b[1])),
+        v::scale(n[2], b[2]),
+    );
+    let l2 = v::dot(nn, nn);
+    if l2.is_nan() || l2 <= 0.0 {
+        return (ng, [0.0; 3], [0.0; 3]);
+    }
+    let dn = |a: f64, b: f64| {
+        let d = v::add(
+            v::scale(v::sub(n[1], n[0]), a),
+            v::scale(v::sub(n[2], n[0]), b),
+        );
+        v::scale(
+            v::sub(v::scale(d, l2), v::scale(nn, v::dot(nn, d))),
+            l2.powf(-1.5),
+        )
+    };
+    (v::norm(nn), dn(db1x, db2x), dn(db1y, db2y))
+}
+
+/// Surface spread angle β of the reflected cone (curved surfaces): across
+/// the cone's footprint (width |w|) the shading normal turns by κ·|w|,
+/// κ = |dn|/|dp| from the ray differentials, and the reflected direction by
+/// twice that; positive (spreading) on convex surfaces (dp·dn > 0),
+/// negative on concave ones. Flat: 0. Refracted cones keep β = 0.
+fn surface_spread(f: &HitFrame, width: f64) -> f64 {
+    let kappa = |dp: V3, dn: V3| {
+        let l = v::len(dp);
+        if l > 0.0 { v::len(dn) / l } else { 0.0 }
+    };
+    let k = kappa(f.dpx, f.dnx).max(kappa(f.dpy, f.dny));
+    let convex = v::dot(f.dpx, f.dnx) + v::dot(f.dpy, f.dny) >= 0.0;
+    if k.is_finite() {
+        let b = (2.0 * k * width.abs()).min(1.0);
+        if convex { b } else { -b }
+    } else {
+        0.0
+    }
+}

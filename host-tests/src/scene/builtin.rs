@@ -1,0 +1,540 @@
+//! Built-in scenes (no files needed) with procedural textures:
+//!
+//! * `hall`: a textured floor receding to the horizon between two textured
+//!   walls (classic minification), one mirror sphere;
+//! * `mirrors`: a room with two facing mirrors and mirror spheres (paths of
+//!   8–10 bounces);
+//! * `glass`: glass spheres and a glass slab over a textured floor (refraction).
+//!
+//! Textures: `tiles` 512×512 (POT), `bricks` 320×192 (NPOT), `grid` 384×384
+//! (NPOT). Default image size 800×480. [`fronto_quad`] builds the
+//! fronto-parallel quad of the LOD tests.
+
+use super::{Camera, Light, Material, Scene, TextureImage, Triangle, V3, v};
+
+/// Names of the built-in scenes.
+pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];
+
+/// Default image size of the built-in scenes.
+pub const DEFAULT_SIZE: (u32, u32) = (800, 480);
+
+/// A built-in scene by name.
+pub fn by_name(name: &str) -> Result<Scene, String> {
+    match name {
+        "hall" => Ok(hall()),
+        "mirrors" => Ok(mirrors()),
+        "glass" => Ok(glass()),
+        _ => Err(format!(
+            "unknown built-in scene `{name}` (choose one of {})",
+            NAMES.join(", ")
+        )),
+    }
+}
+
+fn rgba(c: [f64; 3]) -> u32 {
+    let b = c.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+    u32::from_le_bytes([b[0], b[1], b[2], 255])
+}
+
+fn image(name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> [f64; 3]) -> TextureImage {
+    let mut texels = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            texels.push(rgba(f(x, y)));
+        }
+    }
+    TextureImage {
+        name: name.into(),
+        width: w,
+        height: h,
+        texels,
+    }
+}
+
+/// 512×512 floor tiles: 8×8 checker cells of 64 texels with 2-texel grout
+/// and a fine 4-texel inner pattern (high frequencies that alias without
+/// mip mapping).
+#[must_use]
+pub fn tiles_texture() -> TextureImage {
+    image("tiles", 512, 512, |x, y| {
+        let (cx, cy) = (x / 64, y / 64);
+        let (ix, iy) = (x % 64, y % 64);
+        if ix < 2 || iy < 2 {
+            return [0.15, 0.12, 0.1];
+        }
+        let base = if (cx + cy) % 2 == 0 {
+            [0.85, 0.8, 0.7]
+        } else {
+            [0.55, 0.2, 0.15]
+        };
+        let fine = if ((ix / 4) + (iy / 4)) % 2 == 0 {
+            1.0
+        } else {
+            0.8
+        };
+        base.map(|c| c * fine)
+    })
+}
+
+/// 320×192 bricks (NPOT): 64×32 bricks, half-offset rows, 3-texel mortar.
+#[must_use]
+pub fn bricks_texture() -> TextureImage {
+    image("bricks", 320, 192, |x, y| {
+        let row = y / 32;
+        let xs = x + if row % 2 == 1 { 32 } else { 0 };
+        let (bx, ix, iy) = (xs / 64, xs % 64, y % 32);
+        if ix < 3 || iy < 3 {
+            return [0.8, 0.8, 0.75];
+        }
+        let tone = 0.75 + 0.25 * f64::from((bx * 7 + row * 13) % 5) / 4.0;
+        [0.7 * tone, 0.3 * tone, 0.2 * tone]
+    })
+}
+
+/// 384×384 grid (NPOT): blue and white squares of 24 texels with thin lines.
+#[must_use]
+pub fn grid_texture() -> TextureImage {
+    image("grid", 384, 384, |x, y| {
+        if x % 24 == 0 || y % 24 == 0 {
+            return [0.05, 0.05, 0.1];
+        }
+        if ((x / 24) + (y / 24)) % 2 == 0 {
+            [0.9, 0.9, 0.95]
+        } else {
+            [0.2, 0.35, 0.75]
+        }
+    })
+}
+
+fn diffuse(c: V3) -> Material {
+    Material {
+        ambient: c,
+        diffuse: c,
+        specular: [0.0; 3],
+        shine: 1.0,
+        transmission: [0.0; 3],
+        ior: 1.0,
+    }
+}
+
+fn mirror(k: f64, tint: V3) -> Material {
+    Material {
+        ambient: v::scale(tint, 0.05),
+        diffuse: v::scale(tint, 0.05),
+        specular: v::scale(tint, k),
+        shine: 200.0,
+        transmission: [0.0; 3],
+        ior: 1.0,
+    }
+}
+
+fn glass_mat() -> Material {
+    Material {
+        ambient: [0.0; 3],
+        diffuse: [0.0; 3],
+        specular: [0.1; 3],
+        shine: 200.0,
+        transmission: [0.88, 0.92, 0.9],
+        ior: 1.5,
+    }
+}
+
+/// Two triangles of the parallelogram `p0, p0+ex, p0+ex+ey, p0+ey`, UVs
+/// `(0,0)..(su,sv)` (texture repeats).
+#[must_use]
+pub fn quad(
+    p0: V3,
+    ex: V3,
+    ey: V3,
+    su: f64,
+    sv: f64,
+    material: u32,
+    texture: Option<u32>,
+) -> [Triangle; 2] {
+    let p1 = v::add(p0, ex);
+    let p2 = v::add(p1, ey);
+    let p3 = v::add(p0, ey);
+    let uv = texture.map(|_| ([0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]));
+    [
+        Triangle {
+            p: [p0, p1, p2],
+            n: None,
+            uv: uv.map(|u| [u.0, u.1, u.2]),
+            material,
+            texture,
+        },
+        Triangle {
+            p: [p0, p2, p3],
+            n: None,
+            uv: uv.map(|u| [u.0, u.2, u.3]),
+            material,
+            texture,
+        },
+    ]
+}
+
+/// A UV sphere with smooth (interpolated) normals: `nu` segments around,
+/// `nv` from pole to pole.
+#[must_use]
+pub fn sphere(c: V3, r: f64, nu: u32, nv: u32, material: u32) -> Vec<Triangle> {
+    let pt = |i: u32, j: u32| {
+        let th = std::f64::consts::PI * f64::from(j) / f64::from(nv);
+        let ph = 2.0 * std::f64::consts::PI * f64::from(i) / f64::from(nu);
+        let n = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
+        (v::madd(c, n, r), n)
+    };
+    let mut out = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let a = pt(i, j);
+            let b = pt(i + 1, j);
+            let cc = pt(i + 1, j + 1);
+            let d = pt(i, j + 1);
+            for (x, y, z) in [(a, cc, b), (a, d, cc)] {
+                let area = v::len(v::cross(v::sub(y.0, x.0), v::sub(z.0, x.0)));
+                if area > 1e-12 * r * r {
+                    out.push(Triangle {
+                        p: [x.0, y.0, z.0],
+                        n: Some([x.1, y.1, z.1]),
+                        uv: None,
+                        material,
+                        texture: None,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// An axis-aligned box (12 flat triangles).
+#[must_use]
+pub fn boxed(lo: V3, hi: V3, material: u32) -> Vec<Triangle> {
+    let d = v::sub(hi, lo);
+    let (ex, ey, ez) = ([d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]);
+    let mut out = Vec::new();
+    for (p, a, b) in [
+        (lo, ey, ex),
+        (lo, ex, ez),
+        (lo, ez, ey),
+        (hi, v::scale(ex, -1.0), v::scale(ey, -1.0)),
+        (hi, v::scale(ez, -1.0), v::scale(ex, -1.0)),
+        (hi, v::scale(ey, -1.0), v::scale(ez, -1.0)),
+    ] {
+        out.extend(quad(p, a, b, 1.0, 1.0, material, None));
+    }
+    out
+}
+
+fn camera(from: V3, at: V3, fov_y_deg: f64) -> Camera {
+    Camera {
+        from,
+        at,
+        up: [0.0, 1.0, 0.0],
+        fov_y_deg,
+        width: DEFAULT_SIZE.0,
+        height: DEFAULT_SIZE.1,
+    }
+}
+
+/// The hall: floor 10 wide and 305 deep, walls 4 high, one mirror sphere.
+#[must_use]
+pub fn hall() -> Scene {
+    let materials = vec![
+        diffuse([0.9; 3]),
+        diffuse([0.9; 3]),
+        mirror(0.8, [0.9, 0.95, 1.0]),
+    ];
+    let (len, z0) = (305.0, 5.0);
+    let mut triangles = Vec::new();
+    // Floor: 2×2 units per texture repeat.
+    triangles.extend(quad(
+        [-5.0, 0.0, z0],
+        [10.0, 0.0, 0.0],
+        [0.0, 0.0, -len],
+        5.0,
+        len / 2.0,
+        0,
+        Some(0),
+    ));
+    // Walls: one brick texture repeat per 4 (along) × 2.4 (up) units.
+    triangles.extend(quad(
+        [-5.0, 0.0, z0],
+        [0.0, 0.0, -len],
+        [0.0, 4.0, 0.0],
+        len / 4.0,
+        4.0 / 2.4,
+        1,
+        Some(1),
+    ));
+    triangles.extend(quad(
+        [5.0, 0.0, z0],
+        [0.0, 0.0, -len],
+        [0.0, 4.0, 0.0],
+        len / 4.0,
+        4.0 / 2.4,
+        1,
+        Some(1),
+    ));
+    triangles.extend(sphere([1.8, 0.9, -7.0], 0.9, 32, 16, 2));
+    Scene {
+        camera: camera([0.0, 1.7, 4.0], [0.0, 1.2, -10.0], 50.0),
+        background: [0.55, 0.7, 0.9],
+        ambient: [0.25; 3],
+        lights: vec![
+            Light {
+                position: [0.0, 3.8, 0.0],
+                color: [0.5; 3],
+            },
+            Light {
+                position: [-2.0, 3.8, -30.0],
+                color: [0.4; 3],
+            },
+        ],
+        materials,
+        textures: vec![tiles_texture(), bricks_texture()],
+        triangles,
+    }
+}
+
+/// The mirror room: 8×3.5×8, mirrors on the walls z = ±4, textured floor and
+/// side walls, three mirror spheres.
+#[must_use]
+pub fn mirrors() -> Scene {
+    let materials = vec![
+        diffuse([0.9; 3]),
+        diffuse([0.85; 3]),
+        mirror(0.9, [1.0, 1.0, 1.0]),
+        mirror(0.85, [1.0, 0.85, 0.6]),
+        diffuse([0.8, 0.8, 0.75]),
+    ];
+    let mut t = Vec::new();
+    t.extend(quad(
+        [-4.0, 0.0, 4.0],
+        [8.0, 0.0, 0.0],
+        [0.0, 0.0, -8.0],
+        4.0,
+        4.0,
+        0,
+        Some(0),
+    ));
+    t.extend(quad(
+        [-4.0, 3.5, 4.0],
+        [8.0, 0.0, 0.0],
+        [0.0, 0.0, -8.0],
+        1.0,
+        1.0,
+        4,
+        None,
+    ));
+    t.extend(quad(
+        [-4.0, 0.0, 4.0],
+        [0.0, 0.0, -8.0],
+        [0.0, 3.5, 0.0],
+        3.0,
+        1.5,
+        1,
+        Some(1),
+    ));
+    t.extend(quad(
+        [4.0, 0.0, 4.0],
+        [0.0, 0.0, -8.0],
+        [0.0, 3.5, 0.0],
+        3.0,
+        3.5 / 2.0,
+        1,
+        Some(2),
+    ));
+    t.extend(quad(
+        [-4.0, 0.0, -4.0],
+        [8.0, 0.0, 0.0],
+        [0.0, 3.5, 0.0],
+        1.0,
+        1.0,
+        2,
+        None,
+    ));
+    t.extend(quad(
+        [-4.0, 0.0, 4.0],
+        [8.0, 0.0, 0.0],
+        [0.0, 3.5, 0.0],
+        1.0,
+        1.0,
+        2,
+        None,
+    ));
+    t.extend(sphere([-1.2, 0.8, -1.0], 0.8, 32, 16, 3));
+    t.extend(sphere([1.4, 0.6, 0.5], 0.6, 32, 16, 2));
+    t.extend(sphere([0.3, 0.45, -2.6], 0.45, 24, 12, 2));
+    Scene {
+        camera: camera([-2.6, 1.8, 3.0], [0.8, 1.0, -4.0], 55.0),
+        background: [0.0; 3],
+        ambient: [0.2; 3],
+        lights: vec![
+            Light {
+                position: [0.0, 3.2, 0.0],
+                color: [0.55; 3],
+            },
+            Light {
+                position: [2.5, 3.0, 2.5],
+                color: [0.35; 3],
+            },
+        ],
+        materials,
+        textures: vec![tiles_texture(), bricks_texture(), grid_texture()],
+        triangles: t,
+    }
+}
+
+/// Glass: two glass spheres and a glass slab over a textured floor in front
+/// of a textured wall.
+#[must_use]
+pub fn glass() -> Scene {
+    let materials = vec![
+        diffuse([0.9; 3]),
+        diffuse([0.9; 3]),
+        glass_mat(),
+        diffuse([0.2, 0.6, 0.3]),
+    ];
+    let mut t = Vec::new();
+    t.extend(quad(
+        [-30.0, 0.0, 10.0],
+        [60.0, 0.0, 0.0],
+        [0.0, 0.0, -60.0],
+        20.0,
+        20.0,
+        0,
+        Some(0),
+    ));
+    t.extend(quad(
+        [-30.0, 0.0, -12.0],
+        [60.0, 0.0, 0.0],
+        [0.0, 15.0, 0.0],
+        12.0,
+        15.0 / 2.4,
+        1,
+        Some(2),
+    ));
+    t.extend(sphere([-1.6, 1.0, -2.0], 1.0, 48, 24, 2));
+    t.extend(sphere([1.2, 0.7, 0.2], 0.7, 40, 20, 2));
+    t.extend(boxed([2.2, 0.0, -4.5], [4.2, 2.2, -4.1], 2));
+    t.extend(sphere([0.5, 0.5, -7.0], 0.5, 24, 12, 3));
+    Scene {
+        camera: camera([0.0, 2.2, 6.0], [0.0, 0.8, -3.0], 45.0),
+        background: [0.6, 0.7, 0.85],
+        ambient: [0.25; 3],
+        lights: vec![
+            Light {
+                position: [-4.0, 8.0, 6.0],
+                color: [0.6; 3],
+            },
+            Light {
+                position: [5.0, 6.0, -1.0],
+                color: [0.3; 3],
+            },
+        ],
+        materials,
+        textures: vec![tiles_texture(), bricks_texture(), grid_texture()],
+        triangles: t,
+    }
+}
+
+/// The distance at which a fronto-parallel square of side `side` mapped
+/// once onto a `tex`×`tex` texture shows one texel per pixel for a camera
+/// with vertical field of view `fov_y_deg` and `height` rows:
+/// `(side/tex)/γ`, `γ = atan(2·tan(fov/2)/height)`.
+#[must_use]
+pub fn one_texel_per_pixel_distance(side: f64, tex: u32, fov_y_deg: f64, height: u32) -> f64 {
+    let g = (2.0 * (fov_y_deg.to_radians() / 2.0).tan() / f64::from(height)).atan();
+    side / f64::from(tex) / g
+}
+
+/// A fronto-parallel square (side `side`, centred on the view axis at
+/// `distance`, whole `tex`×`tex` grid texture once), camera at the origin
+/// looking down −z, image `width`×`height`.
+#[must_use]
+pub fn fronto_quad(
+    side: f64,
+    tex: u32,
+    distance: f64,
+    fov_y_deg: f64,
+    width: u32,
+    height: u32,
+) -> Scene {
+    let img = image("checker", tex, tex, |x, y| {
+        if ((x / 4) + (y / 4)) % 2 == 0 {
+            [0.9; 3]
+        } else {
+            [0.1; 3]
+        }
+    });
+    let h = side / 2.0;
+    Scene {
+        camera: Camera {
+            from: [0.0; 3],
+            at: [0.0, 0.0, -1.0],
+            up: [0.0, 1.0, 0.0],
+            fov_y_deg,
+            width,
+            height,
+        },
+        background: [0.0; 3],
+        ambient: [1.0; 3],
+        lights: Vec::new(),
+        materials: vec![diffuse([1.0; 3])],
+        textures: vec![img],
+        triangles: quad(
+            [-h, -h, -distance],
+            [side, 0.0, 0.0],
+            [0.0, side, 0.0],
+            1.0,
+            1.0,
+            0,
+            Some(0),
+        )
+        .to_vec(),
+    }
+}
+
+/// The fronto-parallel quad of [`fronto_quad`] seen through a 45° flat
+/// mirror: the camera at the origin looks down −z at a large mirror whose
+/// centre is `a` away; the reflected axis goes up (+y) and meets the
+/// textured square (side `side`, whole `tex`×`tex` texture once, facing
+/// down) `b` further on. The path length at the square's centre is `a + b`.
+#[must_use]
+pub fn mirror_quad(
+    side: f64,
+    tex: u32,
+    a: f64,
+    b: f64,
+    fov_y_deg: f64,
+    width: u32,
+    height: u32,
+) -> Scene {
+    let mut s = fronto_quad(side, tex, 1.0, fov_y_deg, width, height);
+    s.materials.push(mirror(1.0, [1.0; 3]));
+    let h = side / 2.0;
+    let m = 4.0 * (a + b).max(side);
+    // Mirror plane through (0, 0, −a) with normal (0, 1, 1)/√2.
+    let mut t = quad(
+        [-m, -m, -a + m],
+        [2.0 * m, 0.0, 0.0],
+        [0.0, 2.0 * m, -2.0 * m],
+        1.0,
+        1.0,
+        1,
+        None,
+    )
+    .to_vec();
+    t.extend(quad(
+        [-h, b, -a - h],
+        [side, 0.0, 0.0],
+        [0.0, 0.0, side],
+        1.0,
+        1.0,
+        0,
+        Some(0),
+    ));
+    s.triangles = t;
+    s
+}

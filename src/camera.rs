@@ -1,0 +1,123 @@
+//! The camera's pixel spread angle `γ = atan(2·tan(fov_y/2)/H)` (radians,
+//! I2F30) with its `log2` precomputed: the camera constant of the Pb table
+//! (`log2 Pb = −Δ − log2 γ`, see [`table`](crate::table)) and of the primary
+//! ray cone. Set up once per camera and image height.
+
+use core::fmt;
+
+use fixed::types::{I2F30, I16F16};
+
+use crate::log2::log2_bits;
+
+/// Errors of the camera set-up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum CameraError {
+    /// The field of view was NaN or infinite.
+    NonFinite,
+    /// Field of view outside `(0, π)` radians or pixel spread outside `(0, 2)`.
+    BadAngle,
+    /// Image height was zero.
+    ZeroImageHeight,
+}
+
+impl core::error::Error for CameraError {}
+
+impl fmt::Display for CameraError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::NonFinite => "field of view is NaN or infinite",
+            Self::BadAngle => "field of view must be in (0, pi), pixel spread in (0, 2) radians",
+            Self::ZeroImageHeight => "image height is zero",
+        })
+    }
+}
+
+/// The pixel spread angle `γ` of a camera (radians, I2F30, range `(0, 2)`)
+/// with its log2 precomputed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelSpread {
+    angle: I2F30,
+    log2: I16F16,
+}
+
+impl PixelSpread {
+    /// From the angle itself (radians, `0 < γ < 2`); float-free.
+    pub fn from_angle(angle: I2F30) -> Result<Self, CameraError> {
+        if angle <= I2F30::ZERO {
+            return Err(CameraError::BadAngle);
+        }
+        Ok(Self {
+            angle,
+            log2: log2_bits(angle.to_bits() as u64, 30),
+        })
+    }
+
+    /// `γ = atan(2·tan(fov_y/2)/H)` from the full vertical field of view
+    /// (radians, `0 < fov_y < π`) and the image height in pixels (≥ 1).
+    /// Set-up only: uses `libm` floats.
+    pub fn from_fov_y(fov_y: f64, image_height: u32) -> Result<Self, CameraError> {
+        if !fov_y.is_finite() {
+            return Err(CameraError::NonFinite);
+        }
+        if !(fov_y > 0.0 && fov_y < core::f64::consts::PI) {
+            return Err(CameraError::BadAngle);
+        }
+        if image_height == 0 {
+            return Err(CameraError::ZeroImageHeight);
+        }
+        let g = libm::atan(2.0 * libm::tan(fov_y / 2.0) / f64::from(image_height));
+        let a = I2F30::checked_from_num(g).ok_or(CameraError::BadAngle)?;
+        Self::from_angle(a)
+    }
+
+    /// `γ` in radians (I2F30).
+    #[must_use]
+    pub const fn angle(&self) -> I2F30 {
+        self.angle
+    }
+
+    /// `log2 γ` (I16F16; error ≤ [`LOG2_MAX_ERROR`](crate::log2::LOG2_MAX_ERROR)).
+    #[must_use]
+    pub const fn log2(&self) -> I16F16 {
+        self.log2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    #[test]
+    fn pixel_spread_from_fov() {
+        let s = PixelSpread::from_fov_y(40f64.to_radians(), 600).unwrap();
+        let want = (2.0 * (20f64.to_radians()).tan() / 600.0).atan();
+        assert!((s.angle().to_num::<f64>() - want).abs() < 1e-9);
+        assert!((s.log2().to_num::<f64>() - want.log2()).abs() <= crate::log2::LOG2_MAX_ERROR);
+        assert_eq!(
+            PixelSpread::from_fov_y(0.0, 600),
+            Err(CameraError::BadAngle)
+        );
+        assert_eq!(
+            PixelSpread::from_fov_y(4.0, 600),
+            Err(CameraError::BadAngle)
+        );
+        assert_eq!(
+            PixelSpread::from_fov_y(f64::NAN, 600),
+            Err(CameraError::NonFinite)
+        );
+        assert_eq!(
+            PixelSpread::from_fov_y(1.0, 0),
+            Err(CameraError::ZeroImageHeight)
+        );
+        assert_eq!(
+            PixelSpread::from_angle(I2F30::ZERO),
+            Err(CameraError::BadAngle)
+        );
+        assert_eq!(
+            PixelSpread::from_angle(I2F30::from_num(-0.1)),
+            Err(CameraError::BadAngle)
+        );
+    }
+}

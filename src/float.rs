@@ -1,0 +1,201 @@
+//! The per-hit stages in `f32` (feature `f32`): table lod, cone lod and the
+//! texture filters written with floats and [`libm`], with the same
+//! definitions as the fixed-point modules. They are the comparison
+//! baseline of `BUDGETS.md` (the same calls counted on Cortex-M4F, whose
+//! FPU runs them, and on RV32IMAC, where they become soft-float calls) and
+//! of the host benches; the fixed-point modules stay the product.
+//!
+//! Not for FPU-less cores' per-hit path (soft float); not bit-identical
+//! across targets. Cost of the feature: nothing unless called (the module
+//! adds no dependency: `libm` is already used at set-up).
+//!
+//! Definitions (as [`crate::lod`] and [`crate::filter`]):
+//! `lod = log2 Pl − log2 Pb`; `λ = Δ + log2|w| − log2 max(|n·d|, 2⁻¹⁶)`
+//! (`|n·d|` clamped to 1); texel centres at `(i + ½)/size`, wrap or clamp to
+//! edge, lod clamped to the stored levels, nearest level `floor(lod + ½)`,
+//! blend weight `frac(lod)`.
+
+use crate::filter::{Address, Mode};
+use crate::mip::{Geometry, Texel};
+
+/// `log2 Pl − log2 Pb` in f32 for a path length `pl > 0` (scene units) and
+/// the triangle's `log2 Pb`. `pl ≤ 0` or NaN gives NaN or −∞ (no check: the
+/// float baseline of [`crate::lod::table_lod`]).
+#[inline]
+#[must_use]
+pub fn table_lod_f32(pl: f32, log2_pb: f32) -> f32 {
+    libm::log2f(pl) - log2_pb
+}
+
+/// Ray-cone `λ = Δ + log2|w| − log2|n·d|` in f32, `|n·d|` clamped to
+/// `[2⁻¹⁶, 1]` as [`crate::lod::cone_lod`] does. `w = 0` gives −∞.
+#[inline]
+#[must_use]
+pub fn cone_lod_f32(width: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
+    let mut l = delta + libm::log2f(libm::fabsf(width));
+    if let Some(c) = n_dot_d {
+        l -= libm::log2f(libm::fabsf(c).clamp(1.0 / 65536.0, 1.0));
+    }
+    l
+}
+
+/// A pyramid sampled in f32 (same memory layout as
+/// [`Pyramid`](crate::mip::Pyramid)).
+#[derive(Clone, Copy, Debug)]
+pub struct SamplerF32<'a> {
+    geometry: Geometry,
+    texels: &'a [Texel],
+    address: Address,
+}
+
+/// `floor` without a libm call (baseline x86-64 has no SSE4.1 `roundss`,
+/// so `libm::floorf` would be a call): exact for every f32, since values
+/// with `|x| ≥ 2²³` are integers already.
+#[inline(always)]
+fn floor(x: f32) -> f32 {
+    if libm::fabsf(x) < 8_388_608.0 {
+        let t = x as i32 as f32;
+        if t > x { t - 1.0 } else { t }
+    } else {
+        x
+    }
+}
+
+#[inline(always)]
+fn channels(t: Texel) -> [f32; 4] {
+    let b = t.to_le_bytes();
+    [
+        f32::from(b[0]),
+        f32::from(b[1]),
+        f32::from(b[2]),
+        f32::from(b[3]),
+    ]
+}
+
+#[inline(always)]
+fn pack(c: [f32; 4]) -> Texel {
+    // Round to nearest; `as u8` saturates (values are in [0, 255]).
+    u32::from_le_bytes(c.map(|x| (x + 0.5) as u8))
+}
+
+impl<'a> SamplerF32<'a> {
+    /// A sampler over `texels` laid out as `geometry` describes. `None`
+    /// when the slice is too short.
+    #[must_use]
+    pub fn new(geometry: Geometry, texels: &'a [Texel], address: Address) -> Option<Self> {
+        (texels.len() >= geometry.len()).then_some(Self {
+            geometry,
+            texels,
+            address,
+        })
+    }
+
+    /// Index in `[−n, 2n]` (coordinates are reduced first) into `[0, n)`.
+    #[inline(always)]
+    fn fix(&self, i: i32, n: u32) -> u32 {
+        let n = n as i32;
+        let i = match self.address {
+            Address::Wrap if i < 0 => i + n,
+            Address::Wrap if i >= n => i - n,
+            _ => i,
+        };
+        i.max(0).min(n - 1) as u32
+    }
+
+    #[inline(always)]
+    fn reduce(&self, u: f32) -> f32 {
+        match self.address {
+            Address::Wrap => u - floor(u),
+            Address::Clamp => u.clamp(-1.0, 2.0),
+        }
+    }
+
+    #[inline(always)]
+    fn texel(&self, level: u8, x: u32, y: u32) -> Texel {
+        let (w, _) = self.geometry.level_size(level);
+        let i = self.geometry.level_offset(level) + (y * w + x) as usize;
+        self.texels.get(i).copied().unwrap_or(0)
+    }
+
+    #[inline(always)]
+    fn bilinear(&self, u: f32, v: f32, level: u8) -> [f32; 4] {
+        let (w, h) = self.geometry.level_size(level);
+        let x = u * w as f32 - 0.5;
+        let y = v * h as f32 - 0.5;
+        let (x0, y0) = (floor(x), floor(y));
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i32, y0 as i32);
+        let (xa, xb) = (self.fix(x0, w), self.fix(x0 + 1, w));
+        let (ya, yb) = (self.fix(y0, h), self.fix(y0 + 1, h));
+        let p = channels(self.texel(level, xa, ya));
+        let q = channels(self.texel(level, xb, ya));
+        let r = channels(self.texel(level, xa, yb));
+        let s = channels(self.texel(level, xb, yb));
+        let mut out = [0.0; 4];
+        for c in 0..4 {
+            let top = p[c] + (q[c] - p[c]) * fx;
+            let bot = r[c] + (s[c] - r[c]) * fx;
+            out[c] = top + (bot - top) * fy;
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn nearest(&self, u: f32, v: f32, level: u8) -> Texel {
+        let (w, h) = self.geometry.level_size(level);
+        let x = self.fix(floor(u * w as f32) as i32, w);
+        let y = self.fix(floor(v * h as f32) as i32, h);
+        self.texel(level, x, y)
+    }
+
+    /// Filtered texel at `(u, v)`, level of detail `lod`, in f32. Non-finite
+    /// inputs give an unspecified texel (no panic).
+    #[inline]
+    pub fn sample(&self, u: f32, v: f32, lod: f32, mode: Mode) -> Texel {
+        let (u, v) = (self.reduce(u), self.reduce(v));
+        let top = f32::from(self.geometry.top_level());
+        let lod = lod.max(0.0).min(top);
+        let lower = floor(lod);
+        let t = lod - lower;
+        let l0 = lower as u8;
+        let nearest_level = floor(lod + 0.5).min(top) as u8;
+        match mode {
+            Mode::Trilinear => {
+                let a = self.bilinear(u, v, l0);
+                if t == 0.0 {
+                    pack(a)
+                } else {
+                    let b = self.bilinear(u, v, l0.saturating_add(1));
+                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                }
+            }
+            Mode::BilinearNearestLevel => pack(self.bilinear(u, v, nearest_level)),
+            Mode::Nearest => self.nearest(u, v, nearest_level),
+            Mode::NearestTexelLinearLevel => {
+                let a = channels(self.nearest(u, v, l0));
+                if t == 0.0 {
+                    pack(a)
+                } else {
+                    let b = channels(self.nearest(u, v, l0.saturating_add(1)));
+                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reference values worked out by hand (exact in f32).
+    #[test]
+    fn lod_reference_values() {
+        assert_eq!(table_lod_f32(8.0, 1.0), 2.0);
+        assert_eq!(table_lod_f32(0.25, -3.0), 1.0);
+        assert_eq!(cone_lod_f32(-4.0, 0.5, None), 2.5);
+        assert_eq!(cone_lod_f32(1.0, 0.0, Some(0.5)), 1.0);
+        assert_eq!(cone_lod_f32(1.0, 0.0, Some(0.0)), 16.0);
+        assert_eq!(cone_lod_f32(1.0, 0.0, Some(3.0)), 0.0);
+    }
+}

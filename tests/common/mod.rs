@@ -1,0 +1,12 @@
+//! Helpers shared by the integration tests (`mod common;` in each): the
+//! harness's one test RNG and f64 `log2 Pb`, included from their home in
+//! `host-tests/src/reference`.
+#![allow(dead_code, unused_imports)]
+
+#[path = "../../host-tests/src/reference/pb.rs"]
+mod pb;
+#[path = "../../host-tests/src/reference/rng.rs"]
+mod rng;
+
+pub use pb::log2_pb_f64;
+pub use rng::Rng;
