@@ -11,6 +11,7 @@ pub mod output;
 pub mod render;
 pub mod sample;
 pub mod table1;
+pub mod tradeoff;
 
 pub use compare::cmd_compare;
 pub use render::cmd_render;
