@@ -207,14 +207,7 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
         Some(0),
     ));
     let mut scene: Scene = fronto_quad(side, tex, 1.0, fov, SIZE.0, SIZE.1);
-    scene.camera = Camera {
-        from: [0.0; 3],
-        at: [0.0, 0.0, -1.0],
-        up: [0.0, 1.0, 0.0],
-        fov_y_deg: fov,
-        width: SIZE.0,
-        height: SIZE.1,
-    };
+    scene.camera = Camera::looking_at([0.0; 3], [0.0, 0.0, -1.0], fov, SIZE);
     scene.materials = vec![mat(1.0, 0.0), mat(0.0, 1.0)];
     scene.triangles = triangles;
     let prep = Prepared::new(scene, None).unwrap();

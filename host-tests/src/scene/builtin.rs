@@ -227,14 +227,7 @@ pub fn boxed(lo: V3, hi: V3, material: u32) -> Vec<Triangle> {
 }
 
 fn camera(from: V3, at: V3, fov_y_deg: f64) -> Camera {
-    Camera {
-        from,
-        at,
-        up: [0.0, 1.0, 0.0],
-        fov_y_deg,
-        width: DEFAULT_SIZE.0,
-        height: DEFAULT_SIZE.1,
-    }
+    Camera::looking_at(from, at, fov_y_deg, DEFAULT_SIZE)
 }
 
 /// The hall: floor 10 wide and 305 deep, walls 4 high, one mirror sphere.
@@ -470,14 +463,7 @@ pub fn fronto_quad(
     });
     let h = side / 2.0;
     Scene {
-        camera: Camera {
-            from: [0.0; 3],
-            at: [0.0, 0.0, -1.0],
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg,
-            width,
-            height,
-        },
+        camera: Camera::looking_at([0.0; 3], [0.0, 0.0, -1.0], fov_y_deg, (width, height)),
         background: [0.0; 3],
         ambient: [1.0; 3],
         lights: Vec::new(),

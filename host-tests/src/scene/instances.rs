@@ -74,14 +74,7 @@ impl View {
             Self::Low => ([0.0, 3.0, front + 6.0], [0.0, 1.5, front - 60.0], 50.0),
             Self::Close => ([4.3, 2.6, front + 4.4], [1.5, 1.1, front], 40.0),
         };
-        Camera {
-            from,
-            at,
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg: fov,
-            width,
-            height,
-        }
+        Camera::looking_at(from, at, fov, (width, height))
     }
 }
 
