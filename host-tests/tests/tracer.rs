@@ -179,7 +179,7 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
 #[test]
 fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     use raymip_host::scene::builtin::{quad, sphere};
-    use raymip_host::scene::{Camera, Material, Scene};
+    use raymip_host::scene::{Camera, Material, Scene, V3};
     // Camera at the origin looking down −z at a mirror sphere (r = 1, front
     // 4 away); the centre ray comes straight back and meets a textured
     // square 4 behind the camera. Paraxially a convex mirror adds 2·w/r to
@@ -188,26 +188,26 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     let (fov, tex, side) = (45.0, 256, 20.0);
     let pb = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
     let mat = |d: f64, s: f64| Material {
-        ambient: [d; 3],
-        diffuse: [d; 3],
-        specular: [s; 3],
+        ambient: V3::splat(d),
+        diffuse: V3::splat(d),
+        specular: V3::splat(s),
         shine: 10.0,
-        transmission: [0.0; 3],
+        transmission: V3::ZERO,
         ior: 1.0,
     };
-    let mut triangles = sphere([0.013, 0.007, -5.0], 1.0, 256, 128, 1);
+    let mut triangles = sphere(V3::new(0.013, 0.007, -5.0), 1.0, 256, 128, 1);
     let h = side / 2.0;
     triangles.extend(quad(
-        [-h, -h, 4.0],
-        [side, 0.0, 0.0],
-        [0.0, side, 0.0],
+        V3::new(-h, -h, 4.0),
+        V3::new(side, 0.0, 0.0),
+        V3::new(0.0, side, 0.0),
         1.0,
         1.0,
         0,
         Some(0),
     ));
     let mut scene: Scene = fronto_quad(side, tex, 1.0, fov, SIZE.0, SIZE.1);
-    scene.camera = Camera::looking_at([0.0; 3], [0.0, 0.0, -1.0], fov, SIZE);
+    scene.camera = Camera::looking_at(V3::ZERO, V3::new(0.0, 0.0, -1.0), fov, SIZE);
     scene.materials = vec![mat(1.0, 0.0), mat(0.0, 1.0)];
     scene.triangles = triangles;
     let prep = Prepared::new(scene, None).unwrap();

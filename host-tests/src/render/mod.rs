@@ -149,7 +149,7 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
     for (px, c, b) in tiles {
         for (x, y, (col, l)) in px {
             let i = (y * w + x) as usize;
-            rgb[i] = col.map(|c| c as f32);
+            rgb[i] = col.to_array().map(|c| c as f32);
             lod[i] = l as f32;
         }
         counters.add(&c);

@@ -12,8 +12,9 @@ pub mod ppm;
 
 pub use load::{default_bart_dir, load_aff, load_scene, load_scene_dir};
 
-/// A 3-vector of scene units.
-pub type V3 = [f64; 3];
+/// A 3-vector of scene units (or a linear RGB colour): `glam`'s f64
+/// vector, the one home of the harness's vector math.
+pub type V3 = glam::DVec3;
 
 /// Pinhole camera (built-in scenes and the AFF loader alike).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,7 +44,7 @@ impl Camera {
         Self {
             from,
             at,
-            up: [0.0, 1.0, 0.0],
+            up: V3::new(0.0, 1.0, 0.0),
             fov_y_deg,
             hither: 1.0,
             width,
@@ -142,66 +143,6 @@ impl Scene {
     #[must_use]
     pub fn textured_count(&self) -> usize {
         self.triangles.iter().filter(|t| t.is_textured()).count()
-    }
-}
-
-/// Vector helpers.
-pub mod v {
-    use super::V3;
-    /// a + b
-    #[must_use]
-    pub fn add(a: V3, b: V3) -> V3 {
-        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-    }
-    /// a − b
-    #[must_use]
-    pub fn sub(a: V3, b: V3) -> V3 {
-        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-    }
-    /// a·s
-    #[must_use]
-    pub fn scale(a: V3, s: f64) -> V3 {
-        [a[0] * s, a[1] * s, a[2] * s]
-    }
-    /// a ∘ b (component-wise)
-    #[must_use]
-    pub fn mul(a: V3, b: V3) -> V3 {
-        [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
-    }
-    /// a·b
-    #[must_use]
-    pub fn dot(a: V3, b: V3) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    }
-    /// a×b
-    #[must_use]
-    pub fn cross(a: V3, b: V3) -> V3 {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    }
-    /// |a|
-    #[must_use]
-    pub fn len(a: V3) -> f64 {
-        dot(a, a).sqrt()
-    }
-    /// a/|a| (zero stays zero)
-    #[must_use]
-    pub fn norm(a: V3) -> V3 {
-        let l = len(a);
-        if l > 0.0 { scale(a, 1.0 / l) } else { a }
-    }
-    /// a + b·s
-    #[must_use]
-    pub fn madd(a: V3, b: V3, s: f64) -> V3 {
-        [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s]
-    }
-    /// max component
-    #[must_use]
-    pub fn max_c(a: V3) -> f64 {
-        a[0].max(a[1]).max(a[2])
     }
 }
 

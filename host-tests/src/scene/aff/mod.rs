@@ -76,10 +76,10 @@ pub struct Scene {
     /// Camera (from the `camera` track at the load time when there is one).
     pub camera: Camera,
     /// Colour of rays that hit nothing (`b`; default black).
-    pub background: [f64; 3],
+    pub background: crate::scene::V3,
     /// Global ambient intensity (`am`; default 1 1 1); multiplies each
     /// material's ambient colour.
-    pub ambient: [f64; 3],
+    pub ambient: crate::scene::V3,
     /// Point lights in world space.
     pub lights: Vec<Light>,
     /// Distinct materials (identical `fm` records share one entry).
