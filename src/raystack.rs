@@ -16,6 +16,36 @@
 //! * [`Spread`] = I2F30 (cone spread angle, radians, range ±2, step
 //!   9.3·10⁻¹⁰). A 4K image has `γ ≈ 2.5·10⁻⁴`, a relative step of 4·10⁻⁶.
 //!   Sums saturate and set the flag.
+//!
+//! # How many entries a path needs
+//!
+//! A tracer that pops an entry, traces its segment and, when the entry's
+//! depth `d` is below the bounce limit `B`, pushes at most `k ≥ 1`
+//! continuations of depth `d + 1` (the primary ray alone at depth 0) needs
+//! at most [`stack_bound`]`(B, k) = (k − 1)·B + 1` entries, and a path can
+//! reach that many. Derivation (depth-first order, pop = most recent):
+//!
+//! * Invariant, true before every pop: from bottom to top the depths never
+//!   decrease, every depth is held by at most `k − 1` entries except the
+//!   top depth, which may hold `k` (the children just pushed).
+//!   It holds for the primary entry alone. Popping the top entry (depth
+//!   `d`) leaves at most `k − 1` entries of each depth `1 ..= d` (the top
+//!   group lost one; depth 0 is only ever the primary, popped first), so
+//!   at most `(k − 1)·d` entries. Pushing its `≤ k` children of depth
+//!   `d + 1` (greater than every depth below) restores the invariant with
+//!   at most `(k − 1)·d + k` entries.
+//! * Pushes happen only for `d ≤ B − 1`, so the stack never exceeds
+//!   `(k − 1)·(B − 1) + k = (k − 1)·B + 1` (and 1, the primary, for
+//!   `B = 0`).
+//! * The bound is reached: when every hit along the chain of most recently
+//!   pushed entries pushes `k` continuations, `k − 1` siblings wait at each
+//!   depth `1 ..= B − 1` when the `k` entries of depth `B` are pushed.
+//!
+//! Reflection plus refraction (`k = 2`) for `B` bounces thus needs `B + 1`
+//! entries: the paper's 10 entries ([`DEFAULT_CAPACITY`]) hold 9 such
+//! bounces, 10 bounces need 11 and drop a branch on the deepest paths
+//! otherwise. One continuation per hit (`k = 1`: a mirror chain, pushed and
+//! popped at once) needs a single entry at any depth.
 
 use core::fmt;
 
@@ -30,8 +60,23 @@ pub type Width = I32F32;
 /// Ray-cone spread angle: I2F30 radians.
 pub type Spread = I2F30;
 
-/// Default stack capacity: 10 entries, as in the hardware paper.
+/// Default stack capacity: 10 entries, as in the hardware paper: enough for
+/// `stack_bound(9, 2)` (9 bounces with a reflection and a refraction per
+/// hit) or any depth with one continuation per hit. Size a stack for `B`
+/// bounces of `k` branches as `RayStack<T, { stack_bound(B, k) }>`.
 pub const DEFAULT_CAPACITY: usize = 10;
+
+/// Entries a depth-first tracer needs for paths of up to `bounces` bounces
+/// when each hit pushes at most `branches` continuations (1 ..= 255;
+/// 0 is taken as 1) and pop takes the most recent: `(branches − 1)·bounces
+/// + 1` (derivation in the [module docs](self); the bound is reached).
+/// Examples: `stack_bound(10, 2) = 11`, `stack_bound(b, 1) = 1`,
+/// `stack_bound(255, 255) = 64 771` (no overflow for any `u8` inputs).
+#[must_use]
+pub const fn stack_bound(bounces: u8, branches: u8) -> usize {
+    let k = if branches == 0 { 1 } else { branches as usize };
+    (k - 1) * bounces as usize + 1
+}
 
 /// Ray-cone state (Akenine-Möller et al., RTG ch. 20): width `w` and spread
 /// angle `γ`. Feature `cone`.
@@ -395,6 +440,70 @@ mod tests {
         }
         let deep = (0..300).fold(PathState::default(), |p, _| p.bounce(Spread::ZERO));
         assert_eq!(deep.depth, 255);
+    }
+
+    /// A depth-first tracer over a 64-entry stack: pops, and below depth
+    /// `bounces` pushes `branches(node)` children; returns the largest
+    /// occupancy seen and whether a push failed.
+    fn trace_tree(bounces: u8, mut branches: impl FnMut(u32) -> u8) -> (usize, bool) {
+        let mut s: RayStack<(), 64> = RayStack::new();
+        let mut full = false;
+        let mut node = 0u32;
+        s.push(PathState::default()).unwrap();
+        let mut most = s.len();
+        while let Some(p) = s.pop() {
+            node += 1;
+            if p.depth < bounces {
+                for _ in 0..branches(node) {
+                    full |= s.push(p.bounce(Spread::ZERO)).is_err();
+                }
+            }
+            most = most.max(s.len());
+        }
+        (most, full)
+    }
+
+    #[test]
+    fn stack_bound_is_reached_by_full_trees() {
+        // Full k-ary trees reach (k − 1)·B + 1 exactly.
+        for (k, max_b) in [(1u8, 12u8), (2, 10), (3, 5)] {
+            for b in 0..=max_b {
+                let (most, full) = trace_tree(b, |_| k);
+                assert!(!full);
+                assert_eq!(most, stack_bound(b, k), "B = {b}, k = {k}");
+            }
+        }
+        assert_eq!(stack_bound(10, 2), 11);
+        assert_eq!(stack_bound(9, 2), DEFAULT_CAPACITY);
+        assert_eq!(stack_bound(200, 0), 1);
+        assert_eq!(stack_bound(u8::MAX, u8::MAX), 254 * 255 + 1);
+        // The paper's 10 entries drop a branch of a full binary tree of
+        // 10 bounces: the case the host renderer sizes its stack for.
+        let mut s: RayStack<(), DEFAULT_CAPACITY> = RayStack::new();
+        let mut dropped = 0;
+        s.push(PathState::default()).unwrap();
+        while let Some(p) = s.pop() {
+            if p.depth < 10 {
+                for _ in 0..2 {
+                    dropped += u32::from(s.push(p.bounce(Spread::ZERO)).is_err());
+                }
+            }
+        }
+        assert!(dropped > 0);
+    }
+
+    proptest! {
+        /// Any branching of at most 2 (0, 1 or 2 per hit) stays within
+        /// `stack_bound(B, 2)`.
+        #[test]
+        fn binary_branching_stays_within_the_bound(
+            b in 0u8..=10,
+            picks in proptest::collection::vec(0u8..=2, 1..2048),
+        ) {
+            let (most, full) = trace_tree(b, |n| picks[n as usize % picks.len()]);
+            prop_assert!(!full);
+            prop_assert!(most <= stack_bound(b, 2), "{} > {}", most, stack_bound(b, 2));
+        }
     }
 
     proptest! {

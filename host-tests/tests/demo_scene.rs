@@ -31,6 +31,8 @@ fn rebuilt_table_equals_static_table() {
     );
     assert_eq!(counters.segments, counters.hits + counters.misses);
     assert_eq!(counters.pushes, counters.pops);
+    // Issue 11, defect 4: no mirror branch is dropped (one entry per path).
+    assert_eq!(counters.stack_full, 0);
 }
 
 /// Every table LOD of the demo's textured hits is within the documented

@@ -25,14 +25,27 @@ fn prep(name: &str) -> Prepared {
     Prepared::new(builtin::by_name(name).unwrap(), Some(SIZE)).unwrap()
 }
 
+/// Every built-in scene at 10 bounces, both methods and precisions: the
+/// fixed-point image within 50 dB of the float one, no branch dropped.
 #[test]
 fn fixed_vs_float_psnr_at_least_50_db() {
     for name in NAMES {
         let p = prep(name);
         for m in [Method::Table, Method::Cone] {
-            let a = render(&p, &opts(m, Precision::Fixed)).to_rgb8();
-            let b = render(&p, &opts(m, Precision::Float)).to_rgb8();
-            let q = psnr(&a, &b);
+            let a = render(&p, &opts(m, Precision::Fixed));
+            let b = render(&p, &opts(m, Precision::Float));
+            // Issue 11, defect 4: at 10 bounces no branch is dropped (a
+            // 10-entry stack drops some on `glass`).
+            for (img, pr) in [(&a, "fixed"), (&b, "float")] {
+                assert!(img.counters.stack_peak <= 11, "{name}: {:?}", img.counters);
+                assert_eq!(
+                    img.counters.stack_full,
+                    0,
+                    "{name} {} {pr}: branches dropped on a full ray stack",
+                    m.name()
+                );
+            }
+            let q = psnr(&a.to_rgb8(), &b.to_rgb8());
             println!("{name} {}: fixed vs float {q:.2} dB", m.name());
             assert!(q >= 50.0, "{name} {}: {q:.2} dB < 50 dB", m.name());
         }
@@ -227,4 +240,77 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     let r = lod(Method::Raydiff, Precision::Float);
     println!("raydiff {r:.4}");
     assert!((r - want_cone).abs() < 0.1, "raydiff {r} vs {want_cone}");
+}
+
+/// Issue 11, defect 4: the ray-stack worst case. Two facing beam-splitter
+/// panes (specular 0.7, transmission 0.3, index 1) over a textured floor:
+/// every hit on a pane pushes a refraction and a reflection, the
+/// reflection (pushed last) is traced first and hits the other pane, so a
+/// refraction waits at every depth: `stack_bound(10, 2) = 11` entries at 10
+/// bounces, one more than the paper's 10. The renderer's stack holds them
+/// all (no branch dropped) and the peak is exactly the bound.
+#[test]
+fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
+    use raymip::raystack::stack_bound;
+    use raymip_host::scene::{Camera, Light, Material, Scene, V3};
+    let mat = |diffuse: f64, specular: f64, transmission: f64| Material {
+        ambient: V3::splat(diffuse),
+        diffuse: V3::splat(diffuse),
+        specular: V3::splat(specular),
+        shine: 200.0,
+        transmission: V3::splat(transmission),
+        ior: 1.0,
+    };
+    let (splitter, floor) = (mat(0.05, 0.7, 0.3), mat(0.8, 0.0, 0.0));
+    let mut t = Vec::new();
+    for x in [-1.0, 1.0] {
+        t.extend(builtin::quad(
+            V3::new(x, -1.0, 1.0),
+            V3::new(0.0, 0.0, -101.0),
+            V3::new(0.0, 4.0, 0.0),
+            1.0,
+            1.0,
+            0,
+            None,
+        ));
+    }
+    t.extend(builtin::quad(
+        V3::new(-1.0, -1.0, 1.0),
+        V3::new(2.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -101.0),
+        2.0,
+        100.0,
+        1,
+        Some(0),
+    ));
+    let scene = Scene {
+        camera: Camera::looking_at(
+            V3::new(0.0, 0.5, 0.0),
+            V3::new(0.0, 0.3, -1.0),
+            60.0,
+            (64, 48),
+        ),
+        background: V3::new(0.6, 0.7, 0.85),
+        ambient: V3::splat(0.2),
+        lights: vec![Light {
+            position: V3::new(0.0, 2.5, -3.0),
+            color: V3::splat(0.8),
+        }],
+        materials: vec![splitter, floor],
+        textures: vec![builtin::tiles_texture()],
+        triangles: t,
+    };
+    let prep = Prepared::new(scene, None).unwrap();
+    for m in [Method::Table, Method::Cone] {
+        let c = render(&prep, &opts(m, Precision::Fixed)).counters;
+        println!(
+            "corridor {}: stack peak {} entries, {} dropped, hits per depth {:?}",
+            m.name(),
+            c.stack_peak,
+            c.stack_full,
+            c.depth_hist
+        );
+        assert_eq!(c.stack_full, 0, "{}: branches dropped", m.name());
+        assert_eq!(c.stack_peak, stack_bound(10, 2) as u64, "{}", m.name());
+    }
 }

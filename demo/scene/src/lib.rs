@@ -55,8 +55,12 @@ pub const HEIGHT: u32 = 48;
 pub const FOV_Y_DEGREES: f64 = 60.0;
 /// Longest path: primary ray plus this many bounces.
 pub const MAX_DEPTH: u8 = 8;
-/// Ray stack capacity of the demo.
+/// Ray stack capacity of the demo (the paper's 10 entries). Each hit
+/// pushes at most one continuation (the mirror term) and the tracer pops it
+/// at once, so a path needs `stack_bound(MAX_DEPTH, 1) = 1` entry (derivation
+/// in `raymip::raystack`): the stack never fills and `stack_full` stays 0.
 pub const STACK: usize = 10;
+const _: () = assert!(STACK >= raymip::raystack::stack_bound(MAX_DEPTH, 1));
 /// Texture size (level 0) of both demo textures, texels per side.
 pub const TEX_SIZE: u32 = 32;
 /// Number of MIP levels of the demo textures (32 → 1).

@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use raymip_host::cli::instances::{cmd_bench, cmd_render as cmd_render_instances};
 use raymip_host::cli::sample::{self, SampleArgs};
+use raymip_host::cli::stress::cmd_stress;
 use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::instances::{Config, GeomLodMode, MaskPolicy};
 use raymip_host::render::{Method, Options, Precision};
@@ -144,6 +145,17 @@ enum Command {
         )]
         methods: Vec<Method>,
     },
+    /// Every class of bad input (NaN, ±inf, subnormals, ±0, 1e±30,
+    /// degenerate triangles, saturating path lengths, stack overflow,
+    /// extreme texture sizes, short buffers, bad C ABI arguments) at every
+    /// API edge: a table of what came back; exits non-zero when a case
+    /// panicked or did not return its documented result.
+    Stress {
+        /// Also write the totals between `<!-- stress:begin/end -->`
+        /// markers of this file (README.md).
+        #[arg(long)]
+        write_readme: Option<PathBuf>,
+    },
     /// Table I: mip-level shares and texel-cache hit rates (mip mapping off/on) per BART scene.
     Table1 {
         /// Folder with one sub-folder per scene (default ../shared/scenes/bart).
@@ -207,6 +219,7 @@ fn main() -> ExitCode {
             };
             cmd_render_instances(&cfg, geom.reference, &args.out)
         }
+        Command::Stress { write_readme } => cmd_stress(write_readme.as_deref()),
         Command::GeomlodBench {
             size,
             repeats,

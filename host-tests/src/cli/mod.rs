@@ -1,5 +1,5 @@
 //! The CLI commands and their output: `render`, `compare`, `table1`,
-//! `sample` and the demo's `gen-data`, as library functions (the binaries
+//! `sample`, `stress` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
 use std::path::Path;
@@ -10,6 +10,7 @@ pub mod instances;
 pub mod output;
 pub mod render;
 pub mod sample;
+pub mod stress;
 pub mod table1;
 
 pub use compare::cmd_compare;

@@ -25,6 +25,9 @@ pub struct Counters {
     pub bounces: u64,
     /// Continuations dropped because the ray stack was full.
     pub stack_full: u64,
+    /// Most entries on one path's ray stack (at most
+    /// [`stack_bound`](raymip::raystack::stack_bound)`(bounces, 2)`).
+    pub stack_peak: u64,
     /// Hits whose path state saturated (lod is then a bound).
     pub saturations: u64,
     /// Shadow rays.
@@ -53,6 +56,7 @@ impl Counters {
         }
         self.bounces += o.bounces;
         self.stack_full += o.stack_full;
+        self.stack_peak = self.stack_peak.max(o.stack_peak);
         self.saturations += o.saturations;
         self.shadow_rays += o.shadow_rays;
         self.fetched += o.fetched;

@@ -28,6 +28,7 @@ pub use camera::CameraFrame;
 pub use counters::Counters;
 pub use options::{Method, Options, Precision};
 pub use setup::{Prepared, SetupTimes};
+pub use tracer::STACK_CAPACITY;
 
 use texunit::{FetchLog, Unit};
 use tracer::Ctx;

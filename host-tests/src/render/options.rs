@@ -62,7 +62,8 @@ pub struct Options {
     pub precision: Precision,
     /// Image size; `None` = the scene camera's.
     pub size: Option<(u32, u32)>,
-    /// Maximum reflection/refraction depth (≤ 10 fits the ray stack).
+    /// Maximum reflection/refraction depth (every value fits the ray
+    /// stack: [`STACK_CAPACITY`](super::STACK_CAPACITY)).
     pub bounces: u8,
     /// Samples per pixel for [`Method::Truth`].
     pub spp: u32,

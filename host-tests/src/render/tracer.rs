@@ -1,7 +1,7 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
 use fixed::types::U32F32;
-use raymip::raystack::{PathState, RayStack, Spread};
+use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
 use super::lod::{LodQuery, raydiff_axes};
@@ -18,6 +18,13 @@ struct Diff {
     ddx: V3,
     ddy: V3,
 }
+
+/// Ray-stack entries of the renderer: each hit pushes at most a
+/// refraction and a reflection, so `stack_bound(bounces, 2) = bounces + 1`
+/// entries hold every branch; sized for the largest `bounces` (`u8::MAX`)
+/// so that no setting drops one (256 entries of 232 bytes, ≈ 58 KiB of the
+/// tracing thread's stack).
+pub const STACK_CAPACITY: usize = stack_bound(u8::MAX, 2);
 
 /// Host side of one ray (the payload of its ray-stack entry; the firmware
 /// [`PathState`] beside it carries the fixed-point Pl and cone).
@@ -138,7 +145,7 @@ impl Ctx<'_> {
             },
         };
         self.counters.paths += 1;
-        let mut stack: RayStack<Ray> = RayStack::new();
+        let mut stack: RayStack<Ray, STACK_CAPACITY> = RayStack::new();
         let mut color = V3::ZERO;
         let mut first_lod = f64::NAN;
         // The primary state always fits an empty stack.
@@ -155,7 +162,7 @@ impl Ctx<'_> {
         &mut self,
         state: PathState,
         ray: Ray,
-        stack: &mut RayStack<Ray>,
+        stack: &mut RayStack<Ray, STACK_CAPACITY>,
         color: &mut V3,
         first_lod: &mut f64,
     ) {
@@ -205,6 +212,7 @@ impl Ctx<'_> {
                 self.counters.stack_full += 1;
             }
         }
+        self.counters.stack_peak = self.counters.stack_peak.max(stack.len() as u64);
     }
 
     /// Texture step: the LOD choice and one sample; returns the diffuse
