@@ -78,6 +78,10 @@ pub(crate) struct Ctx<'a> {
     pub(crate) unit: Unit<'a>,
     pub(crate) counters: Counters,
     pub(crate) log: FetchLog,
+    /// Filter override (`None`: the method's, [`Filter::of`]).
+    pub(crate) filter: Option<Filter>,
+    /// The pixel's generator of stochastic-filter bits (reseeded per pixel).
+    pub(crate) rng: raymip::rng::Rng,
 }
 
 /// Deterministic per-sample random numbers in [0, 1).
@@ -267,9 +271,13 @@ impl Ctx<'_> {
                     .sample_aniso(x as usize, u, vv, axes, &mut self.log)
             }
             _ => {
-                let filter = Filter::of(self.opts.method);
+                let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
+                let bits = match filter {
+                    Filter::Stochastic(_) => self.rng.next_u32(),
+                    _ => 0,
+                };
                 self.unit
-                    .sample(x as usize, u, vv, lod, filter, &mut self.log)
+                    .sample(x as usize, u, vv, lod, filter, bits, &mut self.log)
             }
         };
         kd * V3::from(c)
