@@ -172,7 +172,7 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
     for (px, c, b) in tiles {
         for (x, y, (col, l)) in px {
             let i = (y * w + x) as usize;
-            rgb[i] = col.map(|c| c as f32);
+            rgb[i] = col.to_array().map(|c| c as f32);
             lod[i] = l as f32;
         }
         counters.add(&c);
