@@ -573,10 +573,8 @@ pub unsafe extern "C" fn rm_sample(
     let Some(mode) = Mode::from_index(mode) else {
         return RmStatus::OutOfRange;
     };
-    let address = match address {
-        0 => Address::Wrap,
-        1 => Address::Clamp,
-        _ => return RmStatus::OutOfRange,
+    let Some(address) = Address::from_index(address) else {
+        return RmStatus::OutOfRange;
     };
     let g = match Geometry::new(t.width, t.height, t.levels) {
         Ok(g) => g,

@@ -53,9 +53,22 @@ pub type TexCoord = I32F32;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Address {
     /// Repeat: only the fractional part of the coordinate is used.
-    Wrap,
+    Wrap = 0,
     /// Clamp to edge: texel indices are clamped to `[0, size − 1]`.
-    Clamp,
+    Clamp = 1,
+}
+
+impl Address {
+    /// The addressing numbered `n` (0 wrap, 1 clamp: the discriminants),
+    /// `None` otherwise.
+    #[must_use]
+    pub const fn from_index(n: u8) -> Option<Self> {
+        match n {
+            0 => Some(Self::Wrap),
+            1 => Some(Self::Clamp),
+            _ => None,
+        }
+    }
 }
 
 /// Filter mode, numbered as in the `sample` command. The linear-level
@@ -588,6 +601,16 @@ mod tests {
 
     fn gray(v: u8) -> Texel {
         u32::from_le_bytes([v, v, v, 255])
+    }
+
+    #[test]
+    fn address_from_index_is_the_discriminant() {
+        for a in [Address::Wrap, Address::Clamp] {
+            assert_eq!(Address::from_index(a as u8), Some(a));
+        }
+        for n in 2..=u8::MAX {
+            assert_eq!(Address::from_index(n), None);
+        }
     }
 
     #[test]

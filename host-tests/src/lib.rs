@@ -8,3 +8,4 @@ pub mod cli;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod tradeoff;

@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use raymip_host::scene::V3;
 use raymip_host::scene::aff::{self, AffErrorKind, DEFAULT_TIME};
 
 /// A fresh folder for one test.
@@ -273,11 +274,15 @@ tt tex.ppm 0 0 0 0 0  1 0 0 1 0  0 1 0 0 1\r\n";
     tex.extend([255, 0, 0, 0, 255, 0, 0x0A]); // one stray trailing byte
     write(&d, "tex.ppm", &tex);
     let s = aff::load(&top, DEFAULT_TIME).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(s.background, [0.1, 0.2, 0.3]);
+    assert_eq!(s.background, V3::new(0.1, 0.2, 0.3));
     assert_eq!(s.camera.hither, 1.0, "hither < 1e-4 reads as 1");
     assert_eq!(s.lights.len(), 2);
-    assert_eq!(s.lights[0].color, [1.0; 3], "default light colour is white");
-    assert_eq!(s.lights[1].color, [0.5; 3]);
+    assert_eq!(
+        s.lights[0].color,
+        V3::splat(1.0),
+        "default light colour is white"
+    );
+    assert_eq!(s.lights[1].color, V3::splat(0.5));
     assert_eq!(s.materials.len(), 1);
     assert_eq!(s.materials[0].ior, 1.0, "ior 0 is guarded to 1");
     assert_eq!(s.triangles.len(), 2);
@@ -386,7 +391,7 @@ rot 4\n0 0 1 0 0 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 180 0 0 0\n3 0 1 0 270 0 0 0\n
             match aff::load(&top, time) {
                 Ok(s) => {
                     for t in &s.triangles {
-                        prop_assert!(t.p.iter().flatten().all(|v| v.is_finite()));
+                        prop_assert!(t.p.iter().all(|v| v.is_finite()));
                     }
                 }
                 Err(e) => {

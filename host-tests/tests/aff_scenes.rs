@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use raymip_host::scene::V3;
 use raymip_host::scene::aff::{self, Scene};
 
 const VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n";
@@ -22,7 +23,7 @@ fn scene(test: &str, files: &[(&str, &str)], time: f64) -> Scene {
     s
 }
 
-fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+fn close(a: V3, b: V3) -> bool {
     (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9)
 }
 
@@ -68,8 +69,8 @@ fn tracks_bind_late_last_wins_missing_is_identity() {
         k(7.0)
     );
     let s = scene("late", &[("top.aff", &top)], 1.5);
-    assert!(close(s.triangles[0].p[0], [7.0, 0.0, 0.0]));
-    assert!(close(s.triangles[1].p[0], [0.0, 0.0, 0.0]));
+    assert!(close(s.triangles[0].p[0], V3::new(7.0, 0.0, 0.0)));
+    assert!(close(s.triangles[1].p[0], V3::new(0.0, 0.0, 0.0)));
     assert_eq!(s.stats.unbound_tracks, ["ghost"]);
 }
 
@@ -83,9 +84,9 @@ rot 4\n0 0 1 0 90 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 90 0 0 0\n3 0 1 0 90 0 0 0\n}
     );
     let s = scene("cam", &[("top.aff", &top)], 0.0);
     let c = s.camera;
-    assert!(close(c.from, [1.0, 2.0, 3.0]));
-    assert!(close(c.at, [0.0, 2.0, 3.0]), "{:?}", c.at);
-    assert!(close(c.up, [0.0, 1.0, 0.0]));
+    assert!(close(c.from, V3::new(1.0, 2.0, 3.0)));
+    assert!(close(c.at, V3::new(0.0, 2.0, 3.0)), "{:?}", c.at);
+    assert!(close(c.up, V3::new(0.0, 1.0, 0.0)));
     // angle, hither, resolution still from `v`.
     assert_eq!(
         (c.fov_y_deg, c.hither, c.width, c.height),
@@ -107,7 +108,7 @@ fn tpa_interpolates_linearly_and_clamps() {
         let tri = s.triangles[0];
         assert!((tri.p[0][0] - x).abs() < 1e-12, "t {t}: {:?}", tri.p);
         // Non-unit normals come out unit length.
-        assert!(close(tri.n.unwrap()[0], [0.0, 0.0, 1.0]));
+        assert!(close(tri.n.unwrap()[0], V3::new(0.0, 0.0, 1.0)));
     }
 }
 
@@ -131,10 +132,10 @@ texturecoords 3 t.ppm\n0.5 0.5\n0.25 0.75\n1 2\ntriangles 1\n3 1 0  1 1 0  2 0 1
     let s = aff::load(&d.join("top.aff"), 0.0).unwrap();
     std::fs::remove_dir_all(&d).ok();
     let t = s.triangles[0];
-    assert!(close(t.p[0], [0.0, 0.0, 1.0]) && close(t.p[1], [2.0, 0.0, 0.0]));
+    assert!(close(t.p[0], V3::new(0.0, 0.0, 1.0)) && close(t.p[1], V3::new(2.0, 0.0, 0.0)));
     let l = (0.25f64 + 1.0).sqrt();
     let n = t.n.unwrap();
-    assert!(close(n[0], [0.5 / l, 1.0 / l, 0.0]) && close(n[2], [0.0, 0.0, 1.0]));
+    assert!(close(n[0], V3::new(0.5 / l, 1.0 / l, 0.0)) && close(n[2], V3::new(0.0, 0.0, 1.0)));
     assert_eq!(t.uv.unwrap(), [[1.0, 2.0], [0.5, 0.5], [0.25, 0.75]]);
     assert_eq!(t.texture, Some(0));
     assert_eq!(s.textures[0].image.pixels, [[1, 2, 3]]);
@@ -157,9 +158,9 @@ s 0 0 0 1\nc 0 0 0 1 0 2 0 0.5\np 5 0 0 0 1 0 0 2 1 0 1 2 0 0 1 0\n",
     assert_eq!(s0.triangles.len(), 1 + 960 + 64 + 3);
     assert_eq!(s1.triangles.len(), 960 + 64 + 3);
     assert_eq!(s1.stats.hidden, 1);
-    assert!(close(s0.lights[0].position, [9.0, 8.0, 7.0]));
-    assert_eq!(s0.lights[0].color, [0.5; 3]);
-    assert_eq!(s0.lights[1].color, [1.0; 3]);
+    assert!(close(s0.lights[0].position, V3::new(9.0, 8.0, 7.0)));
+    assert_eq!(s0.lights[0].color, V3::splat(0.5));
+    assert_eq!(s0.lights[1].color, V3::splat(1.0));
     assert_eq!(
         (s0.stats.spheres, s0.stats.cones, s0.stats.polygons),
         (1, 1, 2)
@@ -206,17 +207,24 @@ ttp t.ppm 0 0 0 0 0 2 0.1 0.2  1 0 0 0 0 2 0.3 0.4  0 1 0 0 0 2 0.5 0.6\n"
     let s = aff::load(&d.join("top.aff"), 0.0).unwrap_or_else(|e| panic!("{e}"));
     std::fs::remove_dir_all(&d).ok();
     let m = s.materials[0];
-    assert_eq!(m.diffuse, [0.8, 0.4, 0.0]);
+    assert_eq!(m.diffuse, V3::new(0.8, 0.4, 0.0));
     assert_eq!(m.ambient, m.diffuse);
-    assert_eq!(m.specular, [0.3; 3]);
-    assert_eq!((m.shine, m.transmission, m.ior), (20.0, [0.1; 3], 1.0));
+    assert_eq!(m.specular, V3::splat(0.3));
+    assert_eq!(
+        (m.shine, m.transmission, m.ior),
+        (20.0, V3::splat(0.1), 1.0)
+    );
     assert_eq!(s.triangles.len(), 3);
     assert_eq!(
         s.triangles[1].p,
-        [[0.0; 3], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
+        [
+            V3::splat(0.0),
+            V3::new(1.0, 1.0, 0.0),
+            V3::new(0.0, 1.0, 0.0)
+        ]
     );
     let t = s.triangles[2];
-    assert_eq!(t.n.unwrap()[0], [0.0, 0.0, 1.0]);
+    assert_eq!(t.n.unwrap()[0], V3::new(0.0, 0.0, 1.0));
     assert_eq!(t.uv.unwrap(), [[0.1, 0.2], [0.3, 0.4], [0.5, 0.6]]);
     assert_eq!(t.texture, Some(0));
 }

@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use raymip_host::scene::V3;
 use raymip_host::scene::aff::{self, DEFAULT_TIME, Scene};
 
 /// `../shared/scenes/bart` relative to the repository root; the variable
@@ -77,7 +78,7 @@ fn check_common(s: &Scene, e: &Expect) {
     let mut used = vec![false; s.textures.len()];
     let (mut umin, mut umax, mut vmin, mut vmax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for t in &s.triangles {
-        assert!(t.p.iter().flatten().all(|x| x.is_finite()));
+        assert!(t.p.iter().all(|x| x.is_finite()));
         assert!((t.material as usize) < s.materials.len());
         assert_eq!(t.uv.is_some(), t.texture.is_some());
         if let Some(n) = t.n {
@@ -143,13 +144,13 @@ fn rotate(v: [f64; 3], axis: [f64; 3], deg: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| v[i] * c + kxv[i] * s + k[i] * kv * (1.0 - c))
 }
 
-fn assert_camera_at_key(s: &Scene, from: [f64; 3], axis: [f64; 3], deg: f64) {
+fn assert_camera_at_key(s: &Scene, from: V3, axis: V3, deg: f64) {
     let c = &s.camera;
-    for (got, want) in c.from.iter().zip(from) {
+    for (got, want) in c.from.to_array().into_iter().zip(from.to_array()) {
         assert!((got - want).abs() < 1e-9, "from {:?}", c.from);
     }
-    let dir = rotate([0.0, 0.0, -1.0], axis, deg);
-    let up = rotate([0.0, 1.0, 0.0], axis, deg);
+    let dir = rotate([0.0, 0.0, -1.0], axis.to_array(), deg);
+    let up = rotate([0.0, 1.0, 0.0], axis.to_array(), deg);
     for i in 0..3 {
         assert!((c.at[i] - c.from[i] - dir[i]).abs() < 1e-9, "dir");
         assert!((c.up[i] - up[i]).abs() < 1e-9, "up");
@@ -176,15 +177,15 @@ fn kitchen_loads_with_published_counts() {
             uv_tol: 0.051,
         },
     );
-    assert_eq!(s.background, [0.5, 0.5, 1.0]);
-    assert_eq!(s.ambient, [2.5; 3]);
+    assert_eq!(s.background, V3::new(0.5, 0.5, 1.0));
+    assert_eq!(s.ambient, V3::splat(2.5));
     assert_eq!(s.camera.fov_y_deg, 40.0);
     assert_eq!(s.camera.hither, 0.01);
     // t = 0 is exactly key 1 of kitchen.aff's `camera` track.
     assert_camera_at_key(
         &s,
-        [3.75, 2.3, 3.6],
-        [0.77895, -0.61838, -0.10410],
+        V3::new(3.75, 2.3, 3.6),
+        V3::new(0.77895, -0.61838, -0.10410),
         -31.77348,
     );
     let floor = s.textures.iter().find(|t| t.name == "floor.ppm").unwrap();
@@ -212,11 +213,16 @@ fn robots_loads_with_published_counts() {
             uv_tol: 0.51,
         },
     );
-    assert_eq!(s.background, [0.0; 3]);
-    assert_eq!(s.lights[0].position, [1.0, 500.0, 1.0]);
+    assert_eq!(s.background, V3::splat(0.0));
+    assert_eq!(s.lights[0].position, V3::new(1.0, 500.0, 1.0));
     assert_eq!(s.camera.hither, 1.0);
     // t = 0 is key 1 of Robot.aff's `camera` track (keys 0 and 1 both at 0).
-    assert_camera_at_key(&s, [-3.5, 2.0, -203.0], [-0.85813, 0.513, -0.02546], -6.6);
+    assert_camera_at_key(
+        &s,
+        V3::new(-3.5, 2.0, -203.0),
+        V3::new(-0.85813, 0.513, -0.02546),
+        -6.6,
+    );
     // Robot1/Robot2 use `x` names that have no `k` track: identity.
     assert_eq!(
         s.stats.unbound_tracks,
@@ -233,7 +239,7 @@ fn robots_loads_with_published_counts() {
 #[test]
 fn robots_finite_where_reference_goes_nan() {
     // grip_rot2's non-unit axes send the reference to NaN for t in
-    // [5.888, 6.0) and (42.0, 42.182]; the clamp keeps everything finite.
+    // [5.888, 6.0] and (42.0, 42.182); the clamp keeps everything finite.
     let Some(dir) = bart() else { return };
     for t in [5.9, 5.99, 42.1] {
         let s = load(&dir, "robots", t);
@@ -241,7 +247,7 @@ fn robots_finite_where_reference_goes_nan() {
         assert!(
             s.triangles
                 .iter()
-                .all(|t| t.p.iter().flatten().all(|x| x.is_finite())),
+                .all(|t| t.p.iter().all(|x| x.is_finite())),
             "t = {t}"
         );
     }

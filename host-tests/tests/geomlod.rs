@@ -12,7 +12,6 @@ use raymip_host::render::instances::{
     rms,
 };
 use raymip_host::scene::instances::{InstanceScene, View};
-use raymip_host::scene::v;
 
 fn scene() -> &'static InstanceScene {
     static S: OnceLock<InstanceScene> = OnceLock::new();
@@ -168,10 +167,7 @@ fn selection_matches_f64() {
         let cam = CameraFrame::new(&view.camera(80, 48), 80, 48);
         let mut checked = 0;
         for r in &p.records {
-            let z = v::dot(
-                v::sub(s.placements[r.id as usize].translation, cam.eye),
-                cam.fwd,
-            );
+            let z = (s.placements[r.id as usize].translation - cam.eye).dot(cam.fwd);
             let l = lod_param_f64(z, 0.0);
             if (l.fract() - 0.5).abs() < 1e-4 {
                 continue;

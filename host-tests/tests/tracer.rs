@@ -192,7 +192,7 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
 #[test]
 fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     use raymip_host::scene::builtin::{quad, sphere};
-    use raymip_host::scene::{Camera, Material, Scene};
+    use raymip_host::scene::{Camera, Material, Scene, V3};
     // Camera at the origin looking down −z at a mirror sphere (r = 1, front
     // 4 away); the centre ray comes straight back and meets a textured
     // square 4 behind the camera. Paraxially a convex mirror adds 2·w/r to
@@ -201,33 +201,26 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     let (fov, tex, side) = (45.0, 256, 20.0);
     let pb = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
     let mat = |d: f64, s: f64| Material {
-        ambient: [d; 3],
-        diffuse: [d; 3],
-        specular: [s; 3],
+        ambient: V3::splat(d),
+        diffuse: V3::splat(d),
+        specular: V3::splat(s),
         shine: 10.0,
-        transmission: [0.0; 3],
+        transmission: V3::ZERO,
         ior: 1.0,
     };
-    let mut triangles = sphere([0.013, 0.007, -5.0], 1.0, 256, 128, 1);
+    let mut triangles = sphere(V3::new(0.013, 0.007, -5.0), 1.0, 256, 128, 1);
     let h = side / 2.0;
     triangles.extend(quad(
-        [-h, -h, 4.0],
-        [side, 0.0, 0.0],
-        [0.0, side, 0.0],
+        V3::new(-h, -h, 4.0),
+        V3::new(side, 0.0, 0.0),
+        V3::new(0.0, side, 0.0),
         1.0,
         1.0,
         0,
         Some(0),
     ));
     let mut scene: Scene = fronto_quad(side, tex, 1.0, fov, SIZE.0, SIZE.1);
-    scene.camera = Camera {
-        from: [0.0; 3],
-        at: [0.0, 0.0, -1.0],
-        up: [0.0, 1.0, 0.0],
-        fov_y_deg: fov,
-        width: SIZE.0,
-        height: SIZE.1,
-    };
+    scene.camera = Camera::looking_at(V3::ZERO, V3::new(0.0, 0.0, -1.0), fov, SIZE);
     scene.materials = vec![mat(1.0, 0.0), mat(0.0, 1.0)];
     scene.triangles = triangles;
     let prep = Prepared::new(scene, None).unwrap();
@@ -259,22 +252,22 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
 #[test]
 fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
     use raymip::raystack::stack_bound;
-    use raymip_host::scene::{Camera, Light, Material, Scene};
+    use raymip_host::scene::{Camera, Light, Material, Scene, V3};
     let mat = |diffuse: f64, specular: f64, transmission: f64| Material {
-        ambient: [diffuse; 3],
-        diffuse: [diffuse; 3],
-        specular: [specular; 3],
+        ambient: V3::splat(diffuse),
+        diffuse: V3::splat(diffuse),
+        specular: V3::splat(specular),
         shine: 200.0,
-        transmission: [transmission; 3],
+        transmission: V3::splat(transmission),
         ior: 1.0,
     };
     let (splitter, floor) = (mat(0.05, 0.7, 0.3), mat(0.8, 0.0, 0.0));
     let mut t = Vec::new();
     for x in [-1.0, 1.0] {
         t.extend(builtin::quad(
-            [x, -1.0, 1.0],
-            [0.0, 0.0, -101.0],
-            [0.0, 4.0, 0.0],
+            V3::new(x, -1.0, 1.0),
+            V3::new(0.0, 0.0, -101.0),
+            V3::new(0.0, 4.0, 0.0),
             1.0,
             1.0,
             0,
@@ -282,28 +275,26 @@ fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
         ));
     }
     t.extend(builtin::quad(
-        [-1.0, -1.0, 1.0],
-        [2.0, 0.0, 0.0],
-        [0.0, 0.0, -101.0],
+        V3::new(-1.0, -1.0, 1.0),
+        V3::new(2.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -101.0),
         2.0,
         100.0,
         1,
         Some(0),
     ));
     let scene = Scene {
-        camera: Camera {
-            from: [0.0, 0.5, 0.0],
-            at: [0.0, 0.3, -1.0],
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg: 60.0,
-            width: 64,
-            height: 48,
-        },
-        background: [0.6, 0.7, 0.85],
-        ambient: [0.2; 3],
+        camera: Camera::looking_at(
+            V3::new(0.0, 0.5, 0.0),
+            V3::new(0.0, 0.3, -1.0),
+            60.0,
+            (64, 48),
+        ),
+        background: V3::new(0.6, 0.7, 0.85),
+        ambient: V3::splat(0.2),
         lights: vec![Light {
-            position: [0.0, 2.5, -3.0],
-            color: [0.8; 3],
+            position: V3::new(0.0, 2.5, -3.0),
+            color: V3::splat(0.8),
         }],
         materials: vec![splitter, floor],
         textures: vec![builtin::tiles_texture()],

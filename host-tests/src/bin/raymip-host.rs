@@ -11,9 +11,11 @@ use clap::{Parser, Subcommand};
 use raymip_host::cli::instances::{cmd_bench, cmd_render as cmd_render_instances};
 use raymip_host::cli::sample::{self, SampleArgs};
 use raymip_host::cli::stress::cmd_stress;
+use raymip_host::cli::tradeoff::{Args as TradeoffArgs, cmd_tradeoff};
 use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::instances::{Config, GeomLodMode, MaskPolicy};
 use raymip_host::render::{Method, Options, Precision};
+use raymip_host::scene::default_bart_dir;
 use raymip_host::scene::instances::{DEFAULT_SIZE, View};
 
 #[derive(Parser, Debug)]
@@ -145,6 +147,33 @@ enum Command {
         )]
         methods: Vec<Method>,
     },
+    /// Run time against error: every LOD method and precision, every
+    /// filter (incl. stochastic) and whole frames, timed on the host and
+    /// compared with f64 references and ground truth; writes
+    /// tradeoff.json/.md and Pareto charts (PNG, SVG).
+    Tradeoff {
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Small sizes for CI (a few seconds; frames of builtin:hall only).
+        #[arg(long)]
+        quick: bool,
+        /// Frame-stage scenes (`builtin:NAME`, an .aff file or a BART
+        /// folder), comma-separated; default builtin:hall, builtin:mirrors
+        /// and the BART kitchen and robots when found.
+        #[arg(long, value_delimiter = ',')]
+        scene: Vec<String>,
+        /// BART folder (default ../shared/scenes/bart).
+        #[arg(long)]
+        bart: Option<PathBuf>,
+        /// Frame size WxH (default 320x192, 40x24 with --quick).
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
+        /// Also write the charts into ROOT/docs/tradeoff/ and the
+        /// `tradeoff` blocks of ROOT/BENCHMARKS.md and ROOT/README.md.
+        #[arg(long, value_name = "ROOT")]
+        publish: Option<PathBuf>,
+    },
     /// Every class of bad input (NaN, ±inf, subnormals, ±0, 1e±30,
     /// degenerate triangles, saturating path lengths, stack overflow,
     /// extreme texture sizes, short buffers, bad C ABI arguments) at every
@@ -250,6 +279,22 @@ fn main() -> ExitCode {
             methods,
             &args.out,
         ),
+        Command::Tradeoff {
+            out,
+            quick,
+            scene,
+            bart,
+            size,
+            publish,
+        } => cmd_tradeoff(&TradeoffArgs {
+            out: out.clone(),
+            quick: *quick,
+            scenes: scene.clone(),
+            bart: bart.clone().unwrap_or_else(default_bart_dir),
+            size: *size,
+            publish: publish.clone(),
+        })
+        .map(|_| ()),
         Command::Table1 {
             scenes,
             size,

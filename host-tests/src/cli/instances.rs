@@ -19,7 +19,7 @@ use crate::scene::instances::{GRID, InstanceScene, View};
 fn to_rgb8(c: &[V3], gamma: bool) -> Vec<[u8; 3]> {
     c.iter()
         .map(|p| {
-            p.map(|x| {
+            p.to_array().map(|x| {
                 let x = x.clamp(0.0, 1.0);
                 let y = if gamma { x.powf(1.0 / 2.2) } else { x };
                 (y * 255.0).round() as u8

@@ -12,6 +12,7 @@ pub mod render;
 pub mod sample;
 pub mod stress;
 pub mod table1;
+pub mod tradeoff;
 
 pub use compare::cmd_compare;
 pub use render::cmd_render;

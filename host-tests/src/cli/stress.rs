@@ -1334,16 +1334,16 @@ fn verdict(rows: &[Row]) -> Result<(), String> {
 /// and two facing mirrors.
 fn degenerate_scene() -> crate::scene::Scene {
     use crate::scene::builtin::{quad, tiles_texture};
-    use crate::scene::{Camera, Light, Material, Scene, Triangle};
+    use crate::scene::{Camera, Light, Material, Scene, Triangle, V3};
     let mat = |specular: f64| Material {
-        ambient: [0.2; 3],
-        diffuse: [0.7; 3],
-        specular: [specular; 3],
+        ambient: V3::splat(0.2),
+        diffuse: V3::splat(0.7),
+        specular: V3::splat(specular),
         shine: 50.0,
-        transmission: [0.0; 3],
+        transmission: V3::ZERO,
         ior: 1.0,
     };
-    let tri = |p: [[f64; 3]; 3], uv: [[f64; 2]; 3]| Triangle {
+    let tri = |p: [V3; 3], uv: [[f64; 2]; 3]| Triangle {
         p,
         n: None,
         uv: Some(uv),
@@ -1352,17 +1352,28 @@ fn degenerate_scene() -> crate::scene::Scene {
     };
     let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
     let mut t = vec![
-        tri([[0.0, 1.0, -3.0]; 3], uv),
-        tri([[-1.0, 0.5, -3.0], [0.0, 1.0, -3.0], [1.0, 1.5, -3.0]], uv),
+        tri([V3::new(0.0, 1.0, -3.0); 3], uv),
         tri(
-            [[-1.0, 0.5, -2.5], [1.0, 0.5, -2.5], [0.0, 1.5, -2.5]],
+            [
+                V3::new(-1.0, 0.5, -3.0),
+                V3::new(0.0, 1.0, -3.0),
+                V3::new(1.0, 1.5, -3.0),
+            ],
+            uv,
+        ),
+        tri(
+            [
+                V3::new(-1.0, 0.5, -2.5),
+                V3::new(1.0, 0.5, -2.5),
+                V3::new(0.0, 1.5, -2.5),
+            ],
             [[0.5, 0.5]; 3],
         ),
     ];
     t.extend(quad(
-        [-50.0, 0.0, 5.0],
-        [100.0, 0.0, 0.0],
-        [0.0, 0.0, -200.0],
+        V3::new(-50.0, 0.0, 5.0),
+        V3::new(100.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -200.0),
         50.0,
         100.0,
         0,
@@ -1370,9 +1381,9 @@ fn degenerate_scene() -> crate::scene::Scene {
     ));
     for z in [-6.0, 6.0] {
         t.extend(quad(
-            [-3.0, 0.0, z],
-            [6.0, 0.0, 0.0],
-            [0.0, 3.0, 0.0],
+            V3::new(-3.0, 0.0, z),
+            V3::new(6.0, 0.0, 0.0),
+            V3::new(0.0, 3.0, 0.0),
             1.0,
             1.0,
             1,
@@ -1380,19 +1391,17 @@ fn degenerate_scene() -> crate::scene::Scene {
         ));
     }
     Scene {
-        camera: Camera {
-            from: [0.0, 1.0e-3, 0.0],
-            at: [0.0, 1.0e-3, -1.0],
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg: 60.0,
-            width: 48,
-            height: 32,
-        },
-        background: [0.5; 3],
-        ambient: [0.2; 3],
+        camera: Camera::looking_at(
+            V3::new(0.0, 1.0e-3, 0.0),
+            V3::new(0.0, 1.0e-3, -1.0),
+            60.0,
+            (48, 32),
+        ),
+        background: V3::splat(0.5),
+        ambient: V3::splat(0.2),
         lights: vec![Light {
-            position: [0.0, 5.0, 0.0],
-            color: [0.8; 3],
+            position: V3::new(0.0, 5.0, 0.0),
+            color: V3::splat(0.8),
         }],
         materials: vec![mat(0.0), mat(0.95)],
         textures: vec![tiles_texture()],

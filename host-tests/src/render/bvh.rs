@@ -2,7 +2,7 @@
 //! leaves of at most 4 triangles), with closest-hit and any-hit queries.
 //! Ray/triangle tests use Möller–Trumbore in f64.
 
-use crate::scene::{V3, v};
+use crate::scene::V3;
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
@@ -20,8 +20,8 @@ pub struct Aabb {
 impl Aabb {
     /// The empty box (grows to anything).
     pub const EMPTY: Self = Self {
-        lo: [f64::INFINITY; 3],
-        hi: [f64::NEG_INFINITY; 3],
+        lo: V3::splat(f64::INFINITY),
+        hi: V3::splat(f64::NEG_INFINITY),
     };
     /// Grows to contain point `p`.
     pub fn grow_p(&mut self, p: V3) {
@@ -40,7 +40,7 @@ impl Aabb {
     /// Surface area (0 for the empty box).
     #[must_use]
     pub fn area(&self) -> f64 {
-        let d = v::sub(self.hi, self.lo);
+        let d = self.hi - self.lo;
         if d[0] < 0.0 {
             return 0.0;
         }
@@ -115,10 +115,7 @@ impl Hierarchy {
     #[must_use]
     pub fn build(boxes: &[Aabb]) -> Self {
         let n = boxes.len();
-        let cent: Vec<V3> = boxes
-            .iter()
-            .map(|b| v::scale(v::add(b.lo, b.hi), 0.5))
-            .collect();
+        let cent: Vec<V3> = boxes.iter().map(|b| (b.lo + b.hi) * 0.5).collect();
         let mut order: Vec<u32> = (0..n as u32).collect();
         let mut nodes = Vec::with_capacity(2 * n.max(1));
         nodes.push(Node {
@@ -353,7 +350,7 @@ impl Bvh {
         any: bool,
         stats: &mut TraversalStats,
     ) -> Option<Hit> {
-        let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
+        let inv = V3::new(1.0 / d[0], 1.0 / d[1], 1.0 / d[2]);
         let mut best: Option<Hit> = None;
         self.hierarchy
             .traverse(o, inv, tmax, any, stats, |ti, tbest| {
@@ -426,25 +423,25 @@ fn best_split(
 #[inline]
 #[must_use]
 pub fn intersect(tri: &[V3; 3], o: V3, d: V3) -> Option<(f64, f64, f64)> {
-    let e1 = v::sub(tri[1], tri[0]);
-    let e2 = v::sub(tri[2], tri[0]);
-    let pv = v::cross(d, e2);
-    let det = v::dot(e1, pv);
+    let e1 = tri[1] - tri[0];
+    let e2 = tri[2] - tri[0];
+    let pv = d.cross(e2);
+    let det = e1.dot(pv);
     if det.abs() < 1e-300 || !det.is_finite() {
         return None;
     }
     let inv = 1.0 / det;
-    let tv = v::sub(o, tri[0]);
-    let b1 = v::dot(tv, pv) * inv;
+    let tv = o - tri[0];
+    let b1 = tv.dot(pv) * inv;
     if !(0.0..=1.0).contains(&b1) {
         return None;
     }
-    let qv = v::cross(tv, e1);
-    let b2 = v::dot(d, qv) * inv;
+    let qv = tv.cross(e1);
+    let b2 = d.dot(qv) * inv;
     if b2 < 0.0 || b1 + b2 > 1.0 {
         return None;
     }
-    let t = v::dot(e2, qv) * inv;
+    let t = e2.dot(qv) * inv;
     Some((t, b1, b2))
 }
 
@@ -464,22 +461,22 @@ mod tests {
         let mut s = 7u64;
         let mut tris = Vec::new();
         for _ in 0..500 {
-            let c = [lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, lcg(&mut s) * 10.0];
-            let mut t = [[0.0; 3]; 3];
+            let c = V3::new(lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, lcg(&mut s) * 10.0);
+            let mut t = [V3::ZERO; 3];
             for p in &mut t {
-                *p = [
+                *p = V3::new(
                     c[0] + lcg(&mut s) - 0.5,
                     c[1] + lcg(&mut s) - 0.5,
                     c[2] + lcg(&mut s) - 0.5,
-                ];
+                );
             }
             tris.push(t);
         }
         let bvh = Bvh::build(tris.clone());
         let mut hits = 0;
         for _ in 0..2000 {
-            let o = [lcg(&mut s) * 12.0 - 1.0, lcg(&mut s) * 12.0 - 1.0, -5.0];
-            let d = v::norm([lcg(&mut s) - 0.5, lcg(&mut s) - 0.5, 1.0]);
+            let o = V3::new(lcg(&mut s) * 12.0 - 1.0, lcg(&mut s) * 12.0 - 1.0, -5.0);
+            let d = V3::new(lcg(&mut s) - 0.5, lcg(&mut s) - 0.5, 1.0).normalize_or_zero();
             let mut want: Option<(f64, u32)> = None;
             for (i, t) in tris.iter().enumerate() {
                 if let Some((tt, _, _)) = intersect(t, o, d)

@@ -5,7 +5,7 @@
 
 use raymip::camera::PixelSpread;
 
-use crate::scene::{Camera, V3, v};
+use crate::scene::{Camera, V3};
 
 /// Primary-ray frame and pixel spread of a camera at one image size.
 #[derive(Clone, Copy, Debug)]
@@ -34,19 +34,19 @@ impl CameraFrame {
     pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
         let fov = camera.fov_y_deg.to_radians();
         let px = 2.0 * (fov / 2.0).tan() / f64::from(height);
-        let fwd = v::norm(v::sub(camera.at, camera.from));
-        let mut right = v::norm(v::cross(fwd, camera.up));
-        if v::len(right) < 0.5 {
-            right = v::norm(v::cross(fwd, [0.0, 0.0, 1.0]));
-            if v::len(right) < 0.5 {
-                right = v::norm(v::cross(fwd, [1.0, 0.0, 0.0]));
+        let fwd = (camera.at - camera.from).normalize_or_zero();
+        let mut right = fwd.cross(camera.up).normalize_or_zero();
+        if right.length() < 0.5 {
+            right = fwd.cross(V3::new(0.0, 0.0, 1.0)).normalize_or_zero();
+            if right.length() < 0.5 {
+                right = fwd.cross(V3::new(1.0, 0.0, 0.0)).normalize_or_zero();
             }
         }
         Self {
             eye: camera.from,
             fwd,
             right,
-            up: v::cross(right, fwd),
+            up: right.cross(fwd),
             px,
             gamma: px.atan(),
             width,
@@ -76,14 +76,7 @@ impl CameraFrame {
     pub fn primary_dir(&self, fx: f64, fy: f64) -> (V3, V3, V3) {
         let sx = (fx - f64::from(self.width) / 2.0) * self.px;
         let sy = (f64::from(self.height) / 2.0 - fy) * self.px;
-        let d = v::add(
-            v::add(self.fwd, v::scale(self.right, sx)),
-            v::scale(self.up, sy),
-        );
-        (
-            d,
-            v::scale(self.right, self.px),
-            v::scale(self.up, -self.px),
-        )
+        let d = (self.fwd + (self.right * sx)) + (self.up * sy);
+        (d, self.right * self.px, self.up * -self.px)
     }
 }

@@ -33,13 +33,13 @@ use serde::Serialize;
 
 use super::CameraFrame;
 use super::tlas::{Instance, TwoLevel, TwoLevelStats, rotation_from_quaternion};
+use crate::scene::V3;
 use crate::scene::instances::{
     DEFAULT_SIZE, GROUND, InstanceScene, LEVELS, View, Z_FAR, Z_NEAR, lod_color,
 };
-use crate::scene::{V3, v};
 
 /// Sun direction (towards the sun) and colour; ambient; sky.
-const SUN: V3 = [-0.38, 0.85, 0.36];
+const SUN: V3 = V3::new(-0.38, 0.85, 0.36);
 const AMBIENT: f64 = 0.18;
 const RAY_EPS: f64 = 1e-4;
 
@@ -149,7 +149,7 @@ impl InstanceScene {
         };
         let sel = Selector::new(range, mode).map_err(|e| e.to_string())?;
         let depths = self.placements.iter().enumerate().map(|(i, p)| {
-            let z = v::dot(v::sub(p.translation, cam.eye), cam.fwd);
+            let z = (p.translation - cam.eye).dot(cam.fwd);
             (i as u32, Depth::saturating_from_num(z))
         });
         let mut out = vec![InstanceLod::default(); 2 * n];
@@ -176,7 +176,7 @@ impl InstanceScene {
             .collect();
         inst.push(Instance {
             rotation: rotation_from_quaternion([1.0, 0.0, 0.0, 0.0]),
-            translation: [0.0; 3],
+            translation: V3::ZERO,
             mesh: GROUND,
             mask: 0xFF,
             id: u32::MAX,
@@ -364,10 +364,13 @@ impl<'a> Prepared<'a> {
         let mut stack: RayStack = RayStack::new();
         let mut state = PathState::primary(&self.spread, primary_mask);
         let mut o = self.cam.eye;
-        let mut d = v::norm(self.cam.dir(f64::from(x) + 0.5, f64::from(y) + 0.5));
-        let mut weight = [1.0; 3];
-        let mut color = [0.0; 3];
-        let mut lod_col = [0.0; 3];
+        let mut d = self
+            .cam
+            .dir(f64::from(x) + 0.5, f64::from(y) + 0.5)
+            .normalize_or_zero();
+        let mut weight = V3::ONE;
+        let mut color = V3::ZERO;
+        let mut lod_col = V3::ZERO;
         let insts = self.tl.instances();
         loop {
             let mask = match cfg.policy {
@@ -385,7 +388,7 @@ impl<'a> Prepared<'a> {
                 st.reflection += 1;
             }
             let Some(hit) = hit else {
-                color = v::add(color, v::mul(weight, sky(d)));
+                color += weight * sky(d);
                 break;
             };
             let inst = &insts[hit.instance as usize];
@@ -393,28 +396,28 @@ impl<'a> Prepared<'a> {
             let ground = inst.mesh == GROUND;
             if state.depth == 0 {
                 lod_col = if ground {
-                    [0.25; 3]
+                    V3::splat(0.25)
                 } else {
                     lod_color(inst.mesh as u8)
                 };
             }
-            let p = v::madd(o, d, hit.hit.t);
+            let p = o + d * hit.hit.t;
             let tri = scene.meshes[inst.mesh as usize].triangle(hit.hit.tri);
-            let mut n = v::norm(
-                inst.dir_to_world(v::cross(v::sub(tri[1], tri[0]), v::sub(tri[2], tri[0]))),
-            );
-            if v::dot(n, d) > 0.0 {
-                n = v::scale(n, -1.0);
+            let mut n = inst
+                .dir_to_world((tri[1] - tri[0]).cross(tri[2] - tri[0]))
+                .normalize_or_zero();
+            if n.dot(d) > 0.0 {
+                n *= -1.0;
             }
             let (albedo, reflect) = if ground {
                 let c = ((p[0] / 2.0).floor() + (p[2] / 2.0).floor()).rem_euclid(2.0);
-                ([0.45 + 0.2 * c; 3], 0.35)
+                (V3::splat(0.45 + 0.2 * c), 0.35)
             } else {
                 (scene.placements[inst.id as usize].albedo, 0.15)
             };
-            let origin = v::madd(p, n, RAY_EPS * (1.0 + v::max_c(p.map(f64::abs))));
-            let sun = v::norm(SUN);
-            let cos = v::dot(n, sun);
+            let origin = p + n * (RAY_EPS * (1.0 + p.map(f64::abs).max_element()));
+            let sun = SUN.normalize_or_zero();
+            let cos = n.dot(sun);
             let mut light = AMBIENT;
             if cos > 0.0 {
                 let smask = match cfg.policy {
@@ -435,10 +438,7 @@ impl<'a> Prepared<'a> {
                     None => light += cos,
                 }
             }
-            color = v::add(
-                color,
-                v::scale(v::mul(weight, albedo), light * (1.0 - reflect)),
-            );
+            color += (weight * albedo) * (light * (1.0 - reflect));
             if state.depth >= cfg.bounces {
                 break;
             }
@@ -450,8 +450,8 @@ impl<'a> Prepared<'a> {
             }
             let Some(next) = stack.pop() else { break };
             state = next;
-            weight = v::scale(weight, reflect);
-            d = v::sub(d, v::scale(n, 2.0 * v::dot(d, n)));
+            weight *= reflect;
+            d = d - (n * (2.0 * d.dot(n)));
             o = origin;
         }
         (color, lod_col)
@@ -475,10 +475,7 @@ pub fn thread_cpu_ns() -> Option<u64> {
 
 fn sky(d: V3) -> V3 {
     let t = d[1].clamp(0.0, 1.0);
-    v::add(
-        v::scale([0.75, 0.82, 0.9], 1.0 - t),
-        v::scale([0.35, 0.5, 0.85], t),
-    )
+    (V3::new(0.75, 0.82, 0.9) * (1.0 - t)) + (V3::new(0.35, 0.5, 0.85) * t)
 }
 
 /// Root-mean-square difference of two images (all channels).
@@ -498,8 +495,8 @@ pub fn mean(images: &[&[V3]]) -> Vec<V3> {
     let n = images.len().max(1) as f64;
     (0..images.first().map_or(0, |i| i.len()))
         .map(|p| {
-            let s = images.iter().fold([0.0; 3], |s, img| v::add(s, img[p]));
-            v::scale(s, 1.0 / n)
+            let s = images.iter().fold(V3::ZERO, |s, img| s + img[p]);
+            s * (1.0 / n)
         })
         .collect()
 }
@@ -560,22 +557,22 @@ pub fn accumulate(
         ProgressBar::hidden()
     };
     let px = (cfg.size.0 * cfg.size.1) as usize;
-    let mut rgb = vec![[0.0; 3]; px];
-    let mut lod = vec![[0.0; 3]; px];
+    let mut rgb = vec![V3::ZERO; px];
+    let mut lod = vec![V3::ZERO; px];
     let mut stats = FrameStats::default();
     let mut first = None;
     let mut snapshots = Vec::new();
     for f in 0..n {
         let fr = prep.render_frame(scene, cfg, f, None);
         for p in 0..px {
-            rgb[p] = v::add(rgb[p], fr.rgb[p]);
-            lod[p] = v::add(lod[p], fr.lod[p]);
+            rgb[p] += fr.rgb[p];
+            lod[p] += fr.lod[p];
         }
         stats.add(&fr.stats);
         let k = f + 1;
         if k.is_power_of_two() || k == n {
             let s = 1.0 / f64::from(k);
-            snapshots.push((k, lod.iter().map(|c| v::scale(*c, s)).collect()));
+            snapshots.push((k, lod.iter().map(|c| *c * s).collect()));
         }
         if first.is_none() {
             first = Some(fr);
@@ -585,8 +582,8 @@ pub fn accumulate(
     bar.finish_and_clear();
     let s = 1.0 / f64::from(n);
     Accumulated {
-        rgb: rgb.iter().map(|c| v::scale(*c, s)).collect(),
-        lod: lod.iter().map(|c| v::scale(*c, s)).collect(),
+        rgb: rgb.iter().map(|c| *c * s).collect(),
+        lod: lod.iter().map(|c| *c * s).collect(),
         first: first.unwrap_or(Frame {
             rgb: Vec::new(),
             lod: Vec::new(),

@@ -86,6 +86,24 @@ pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
 /// Renders an image.
 #[must_use]
 pub fn render(prep: &Prepared, opts: &Options) -> Image {
+    render_filtered(prep, opts, None)
+}
+
+/// A texture-filter override for one frame of a render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameFilter {
+    /// The filter of every textured hit (instead of the method's).
+    pub filter: texunit::Filter,
+    /// Frame number: stochastic filters draw their bits from
+    /// `raymip::rng::Rng::for_pixel(x, y, frame)`, so frames differ and
+    /// each is reproducible.
+    pub frame: u32,
+}
+
+/// Renders an image with the filter of `ff` (the method's when `None`).
+/// Anisotropic options take precedence over the override.
+#[must_use]
+pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>) -> Image {
     let (w, h) = (prep.width, prep.height);
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
@@ -128,10 +146,14 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
                     blocks: opts.record_blocks.then(Vec::new),
                     ..FetchLog::default()
                 },
+                filter: ff.map(|f| f.filter),
+                rng: raymip::rng::Rng::new(0),
             };
+            let frame = ff.map_or(0, |f| f.frame);
             let mut px = Vec::new();
             for y in ty * TILE..((ty + 1) * TILE).min(h) {
                 for x in tx * TILE..((tx + 1) * TILE).min(w) {
+                    ctx.rng = raymip::rng::Rng::for_pixel(x, y, frame);
                     px.push((x, y, ctx.pixel(x, y)));
                 }
             }
@@ -150,7 +172,7 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
     for (px, c, b) in tiles {
         for (x, y, (col, l)) in px {
             let i = (y * w + x) as usize;
-            rgb[i] = col.map(|c| c as f32);
+            rgb[i] = col.to_array().map(|c| c as f32);
             lod[i] = l as f32;
         }
         counters.add(&c);

@@ -12,7 +12,7 @@ use super::bvh::Bvh;
 use super::camera::CameraFrame;
 use super::texunit::{MipTexture, assign_block_bases};
 use crate::reference::log2_pb_f64;
-use crate::scene::{Scene, v};
+use crate::scene::{Scene, V3};
 
 /// Set-up timings (seconds).
 #[derive(Clone, Debug, Default, Serialize)]
@@ -141,13 +141,13 @@ fn pb_tables(
         match (t.texture, t.uv) {
             (Some(x), Some(uv)) => {
                 let tex = &scene.textures[x as usize];
-                let p32 = t.p.map(|p| p.map(|c| c as f32));
+                let p32 = t.p.map(|p| p.to_array().map(|c| c as f32));
                 let uv32 = uv.map(|q| q.map(|c| c as f32));
                 let tt = TexTriangle::from_f32(p32, uv32, tex.width, tex.height)
                     .map_err(|e| format!("triangle {i}: {e}"))?;
                 tex_tris.push(Some(tt));
                 pb_float.push(log2_pb_f64(
-                    &t.p,
+                    &t.p.map(|p| p.to_array()),
                     &uv,
                     f64::from(tex.width),
                     f64::from(tex.height),
@@ -169,8 +169,8 @@ fn pb_tables(
 
 /// Scene bounding-box diagonal (1 for an empty scene, at least 10⁻⁹).
 fn scene_scale(scene: &Scene) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
+    let mut lo = V3::INFINITY;
+    let mut hi = V3::NEG_INFINITY;
     for t in &scene.triangles {
         for p in &t.p {
             for k in 0..3 {
@@ -182,6 +182,6 @@ fn scene_scale(scene: &Scene) -> f64 {
     if scene.triangles.is_empty() {
         1.0
     } else {
-        v::len(v::sub(hi, lo)).max(1e-9)
+        (hi - lo).length().max(1e-9)
     }
 }

@@ -30,7 +30,7 @@ use serde::Serialize;
 
 use super::texunit::MipTexture;
 use super::{Image, Method, Options, Precision, Prepared, render};
-use crate::scene::{V3, v};
+use crate::scene::V3;
 
 /// Bytes per stored texel (RGBA8888).
 const TEXEL_BYTES: u64 = 4;
@@ -100,26 +100,26 @@ fn box_of<'a>(points: impl Iterator<Item = &'a V3>) -> Option<(V3, V3)> {
 /// Distance from `p` to the triangle `t` (closest point by Voronoi
 /// regions, Ericson, Real-Time Collision Detection 5.1.5).
 fn dist_to_triangle(p: V3, [a, b, c]: [V3; 3]) -> f64 {
-    let (ab, ac, ap) = (v::sub(b, a), v::sub(c, a), v::sub(p, a));
-    let (d1, d2) = (v::dot(ab, ap), v::dot(ac, ap));
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     let closest = if d1 <= 0.0 && d2 <= 0.0 {
         a
     } else {
-        let bp = v::sub(p, b);
-        let (d3, d4) = (v::dot(ab, bp), v::dot(ac, bp));
-        let cp = v::sub(p, c);
-        let (d5, d6) = (v::dot(ab, cp), v::dot(ac, cp));
+        let bp = p - b;
+        let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+        let cp = p - c;
+        let (d5, d6) = (ab.dot(cp), ac.dot(cp));
         let (vc, vb, va) = (d1 * d4 - d3 * d2, d5 * d2 - d1 * d6, d3 * d6 - d5 * d4);
         if d3 >= 0.0 && d4 <= d3 {
             b
         } else if d6 >= 0.0 && d5 <= d6 {
             c
         } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-            v::madd(a, ab, d1 / (d1 - d3))
+            a + ab * (d1 / (d1 - d3))
         } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-            v::madd(a, ac, d2 / (d2 - d6))
+            a + ac * (d2 / (d2 - d6))
         } else if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-            v::madd(b, v::sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))
+            b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))
         } else {
             let den = va + vb + vc;
             if den.abs() < f64::MIN_POSITIVE {
@@ -128,28 +128,30 @@ fn dist_to_triangle(p: V3, [a, b, c]: [V3; 3]) -> f64 {
                     .min(dist_to_segment(p, b, c))
                     .min(dist_to_segment(p, a, c));
             }
-            v::add(v::madd(a, ab, vb / den), v::scale(ac, vc / den))
+            (a + ab * (vb / den)) + (ac * (vc / den))
         }
     };
-    v::len(v::sub(p, closest))
+    (p - closest).length()
 }
 
 /// Distance from `p` to the segment `ab`.
 fn dist_to_segment(p: V3, a: V3, b: V3) -> f64 {
-    let ab = v::sub(b, a);
-    let l2 = v::dot(ab, ab);
+    let ab = b - a;
+    let l2 = ab.dot(ab);
     let t = if l2 > 0.0 {
-        (v::dot(v::sub(p, a), ab) / l2).clamp(0.0, 1.0)
+        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    v::len(v::sub(p, v::madd(a, ab, t)))
+    (p - (a + ab * t)).length()
 }
 
 /// Largest distance from `p` to a corner of the box.
 fn far_in_box(p: V3, (lo, hi): (V3, V3)) -> f64 {
-    let d: V3 = std::array::from_fn(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()));
-    v::len(d)
+    let d = V3::from(std::array::from_fn::<f64, 3, _>(|k| {
+        (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs())
+    }));
+    d.length()
 }
 
 /// Path-length bounds per texture (module docs); `None` for a texture no
@@ -163,9 +165,9 @@ pub fn path_bounds(prep: &Prepared, bounces: u8) -> Vec<Option<PathBounds>> {
         && scene
             .materials
             .iter()
-            .any(|m| v::max_c(m.specular) > 0.0 || v::max_c(m.transmission) > 0.0);
+            .any(|m| m.specular.max_element() > 0.0 || m.transmission.max_element() > 0.0);
     let all = box_of(scene.triangles.iter().flat_map(|t| t.p.iter()));
-    let diag = all.map_or(0.0, |(lo, hi)| v::len(v::sub(hi, lo)));
+    let diag = all.map_or(0.0, |(lo, hi)| (hi - lo).length());
     let abs = 1e-6 * diag + 2f64.powi(-20);
     let n = f64::from(bounces);
     (0..scene.textures.len())
@@ -180,7 +182,7 @@ pub fn path_bounds(prep: &Prepared, bounces: u8) -> Vec<Option<PathBounds>> {
             for t in tris {
                 near = near.min(dist_to_triangle(eye, t.p));
                 for p in &t.p {
-                    far = far.max(v::len(v::sub(eye, *p)));
+                    far = far.max((eye - *p).length());
                 }
             }
             if secondary {
@@ -342,23 +344,20 @@ mod tests {
         let mut rng = Rng(0x5EED);
         let mut r = || rng.range(-2.0, 2.0);
         for _ in 0..300 {
-            let tri: [V3; 3] = std::array::from_fn(|_| [r(), r(), r()]);
-            let p = [r() * 2.0, r() * 2.0, r() * 2.0];
+            let tri: [V3; 3] = std::array::from_fn(|_| V3::new(r(), r(), r()));
+            let p = V3::new(r() * 2.0, r() * 2.0, r() * 2.0);
             let d = dist_to_triangle(p, tri);
             let n = 60;
             let mut best = f64::INFINITY;
             for i in 0..=n {
                 for j in 0..=(n - i) {
                     let (b1, b2) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
-                    let q = v::add(
-                        v::madd(v::scale(tri[0], 1.0 - b1 - b2), tri[1], b1),
-                        v::scale(tri[2], b2),
-                    );
-                    best = best.min(v::len(v::sub(p, q)));
+                    let q = ((tri[0] * (1.0 - b1 - b2)) + tri[1] * b1) + (tri[2] * b2);
+                    best = best.min((p - q).length());
                 }
             }
             let edge = (0..3)
-                .map(|k| v::len(v::sub(tri[k], tri[(k + 1) % 3])))
+                .map(|k| (tri[k] - tri[(k + 1) % 3]).length())
                 .fold(0.0, f64::max);
             assert!(d <= best + 1e-12, "{d} > sampled {best}");
             assert!(

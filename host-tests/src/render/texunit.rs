@@ -20,6 +20,7 @@ use raymip::format::ColorSpace;
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 use raymip::sampler_state::{SamplerDesc, SamplerState};
+use raymip::stochastic::StochasticMode;
 use raymip::texture_sampler::TextureSampler;
 
 use super::Method;
@@ -34,6 +35,15 @@ pub enum Filter {
     Trilinear,
     /// Bilinear in level 0 only (mip mapping off, ground truth).
     BilinearLevel0,
+    /// Bilinear in the nearest level `floor(lod + ½)`.
+    Bilinear,
+    /// Nearest texel of the nearest level.
+    Nearest,
+    /// A firmware stochastic filter (`raymip::stochastic`), driven by the
+    /// random bits passed to [`Unit::sample`]. The f64 unit has no
+    /// stochastic mode: it returns the filter's expectation (trilinear for
+    /// the level-choosing modes, bilinear for stochastic bilinear).
+    Stochastic(StochasticMode),
 }
 
 impl Filter {
@@ -228,6 +238,9 @@ impl<'a> Unit<'a> {
     /// One filtered sample of texture `tex` at `(u, v)` in texture repeats
     /// (wrap addressing) as linear RGB in 0..1. A fixed-point lod goes to
     /// the firmware unit unchanged; each unit is fed its own arithmetic.
+    /// `bits`: the 32 random bits of a [`Filter::Stochastic`] sample
+    /// (ignored by the other filters).
+    #[allow(clippy::too_many_arguments)]
     pub fn sample(
         &mut self,
         tex: usize,
@@ -235,6 +248,7 @@ impl<'a> Unit<'a> {
         v: f64,
         lod: HitLod,
         filter: Filter,
+        bits: u32,
         log: &mut FetchLog,
     ) -> [f64; 3] {
         match self {
@@ -243,11 +257,16 @@ impl<'a> Unit<'a> {
                     HitLod::Fixed(l) => l,
                     HitLod::Float(l) => Lod::saturating_from_num(l),
                 };
+                let (u, v) = (wrap_coord(u), wrap_coord(v));
                 let mode = match filter {
                     Filter::Trilinear => Mode::Trilinear,
-                    Filter::BilinearLevel0 => Mode::BilinearNearestLevel,
+                    Filter::BilinearLevel0 | Filter::Bilinear => Mode::BilinearNearestLevel,
+                    Filter::Nearest => Mode::Nearest,
+                    Filter::Stochastic(m) => {
+                        return texel_rgb(unit.sample_stochastic(tex, u, v, lod, m, bits, log));
+                    }
                 };
-                texel_rgb(unit.sample(tex, wrap_coord(u), wrap_coord(v), lod, mode, log))
+                texel_rgb(unit.sample(tex, u, v, lod, mode, log))
             }
             Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
         }
@@ -284,6 +303,19 @@ fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog)
     out
 }
 
+fn nearest_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
+    let (w, h) = tex.level_size(level);
+    let idx = |a: f64, n: u32| {
+        ((a - a.floor()) * f64::from(n))
+            .floor()
+            .min(f64::from(n - 1)) as u32
+    };
+    log.fetched += 1;
+    tex.texel(level, idx(u, w), idx(v, h))
+        .to_le_bytes()
+        .map(f64::from)
+}
+
 impl FloatUnit<'_> {
     /// One sample of texture `tex` (f64 lod, clamped to the stored levels;
     /// NaN = level 0), linear RGB in 0..1; black for an unknown texture.
@@ -300,14 +332,20 @@ impl FloatUnit<'_> {
             return [0.0; 3];
         };
         let top = f64::from(tex.levels - 1);
+        let clamped = if lod.is_nan() {
+            0.0
+        } else {
+            lod.clamp(0.0, top)
+        };
+        let nearest = (clamped + 0.5).floor().min(top) as u8;
         let c = match filter {
             Filter::BilinearLevel0 => bilinear_f64(tex, 0, u, v, log),
-            Filter::Trilinear => {
-                let l = if lod.is_nan() {
-                    0.0
-                } else {
-                    lod.clamp(0.0, top)
-                };
+            Filter::Bilinear | Filter::Stochastic(StochasticMode::Bilinear) => {
+                bilinear_f64(tex, nearest, u, v, log)
+            }
+            Filter::Nearest => nearest_f64(tex, nearest, u, v, log),
+            Filter::Trilinear | Filter::Stochastic(_) => {
+                let l = clamped;
                 let l0 = l.floor();
                 let f = l - l0;
                 let a = bilinear_f64(tex, l0 as u8, u, v, log);
@@ -461,6 +499,29 @@ impl<'a> FirmwareUnit<'a> {
             return 0;
         };
         let t = sampler.sample(u, v, lod, mode);
+        log.take(sampler.stats(), sampler.source_mut());
+        sampler.reset_stats();
+        t
+    }
+
+    /// One stochastic sample (`raymip::stochastic`) of texture `tex` with
+    /// the random `bits`; fetches go to `log`. Texel 0 for an unknown
+    /// texture.
+    #[allow(clippy::too_many_arguments)]
+    pub fn sample_stochastic(
+        &mut self,
+        tex: usize,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mode: StochasticMode,
+        bits: u32,
+        log: &mut FetchLog,
+    ) -> Texel {
+        let Some(Some(sampler)) = self.samplers.get_mut(tex) else {
+            return 0;
+        };
+        let t = sampler.sample_stochastic(u, v, lod, mode, bits);
         log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
         t

@@ -8,10 +8,10 @@
 use raymip::geomlod::visible;
 
 use super::bvh::{Aabb, Bvh, Hierarchy, Hit, TraversalStats};
-use crate::scene::{V3, v};
+use crate::scene::V3;
 
 /// A rotation matrix (rows), object → world.
-pub type Mat3 = [[f64; 3]; 3];
+pub type Mat3 = [V3; 3];
 
 /// One instance: `world = rotation · object + translation`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,7 +32,7 @@ impl Instance {
     /// World point of object point `p`.
     #[must_use]
     pub fn to_world(&self, p: V3) -> V3 {
-        v::add(mul(&self.rotation, p), self.translation)
+        mul(&self.rotation, p) + self.translation
     }
 
     /// World vector of object vector `d`.
@@ -45,16 +45,16 @@ impl Instance {
     #[must_use]
     pub fn dir_to_object(&self, d: V3) -> V3 {
         let r = &self.rotation;
-        [
+        V3::new(
             r[0][0] * d[0] + r[1][0] * d[1] + r[2][0] * d[2],
             r[0][1] * d[0] + r[1][1] * d[1] + r[2][1] * d[2],
             r[0][2] * d[0] + r[1][2] * d[1] + r[2][2] * d[2],
-        ]
+        )
     }
 }
 
 fn mul(m: &Mat3, p: V3) -> V3 {
-    [v::dot(m[0], p), v::dot(m[1], p), v::dot(m[2], p)]
+    V3::new(m[0].dot(p), m[1].dot(p), m[2].dot(p))
 }
 
 /// A hit in the two-level structure.
@@ -109,11 +109,11 @@ impl<'a> TwoLevel<'a> {
                 let b = meshes[inst.mesh as usize].bounds();
                 let mut w = Aabb::EMPTY;
                 for k in 0..8 {
-                    let c = [
+                    let c = V3::new(
                         if k & 1 == 0 { b.lo[0] } else { b.hi[0] },
                         if k & 2 == 0 { b.lo[1] } else { b.hi[1] },
                         if k & 4 == 0 { b.lo[2] } else { b.hi[2] },
-                    ];
+                    );
                     w.grow_p(inst.to_world(c));
                 }
                 w
@@ -149,7 +149,7 @@ impl<'a> TwoLevel<'a> {
         any: bool,
         stats: &mut TwoLevelStats,
     ) -> Option<InstanceHit> {
-        let inv = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
+        let inv = V3::new(1.0 / d[0], 1.0 / d[1], 1.0 / d[2]);
         let mut best = None;
         let (top, rest) = (&mut stats.top, (&mut stats.bottom, &mut stats.masked));
         let (bottom, masked) = rest;
@@ -159,7 +159,7 @@ impl<'a> TwoLevel<'a> {
                 *masked += 1;
                 return None;
             }
-            let oo = inst.dir_to_object(v::sub(o, inst.translation));
+            let oo = inst.dir_to_object(o - inst.translation);
             let od = inst.dir_to_object(d);
             let h = self.meshes[inst.mesh as usize].query(oo, od, tmin, tbest, any, bottom)?;
             best = Some(InstanceHit {
@@ -178,21 +178,21 @@ pub fn rotation_from_quaternion(q: [f64; 4]) -> Mat3 {
     let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
     let [w, x, y, z] = q.map(|c| c / n);
     [
-        [
+        V3::new(
             1.0 - 2.0 * (y * y + z * z),
             2.0 * (x * y - w * z),
             2.0 * (x * z + w * y),
-        ],
-        [
+        ),
+        V3::new(
             2.0 * (x * y + w * z),
             1.0 - 2.0 * (x * x + z * z),
             2.0 * (y * z - w * x),
-        ],
-        [
+        ),
+        V3::new(
             2.0 * (x * z - w * y),
             2.0 * (y * z + w * x),
             1.0 - 2.0 * (x * x + y * y),
-        ],
+        ),
     ]
 }
 
@@ -215,19 +215,16 @@ mod tests {
                 Bvh::build(
                     (0..40)
                         .map(|_| {
-                            let c = [
+                            let c = V3::new(
                                 lcg(&mut s) * 2.0 - 1.0,
                                 lcg(&mut s) * 2.0 - 1.0,
                                 lcg(&mut s) * 2.0 - 1.0,
-                            ];
+                            );
                             [0, 1, 2].map(|_| {
-                                v::add(
-                                    c,
-                                    [
-                                        lcg(&mut s) * 0.6 - 0.3,
-                                        lcg(&mut s) * 0.6 - 0.3,
-                                        lcg(&mut s) * 0.6 - 0.3,
-                                    ],
+                                c + V3::new(
+                                    lcg(&mut s) * 0.6 - 0.3,
+                                    lcg(&mut s) * 0.6 - 0.3,
+                                    lcg(&mut s) * 0.6 - 0.3,
                                 )
                             })
                         })
@@ -243,7 +240,7 @@ mod tests {
                     lcg(&mut s) - 0.5,
                     lcg(&mut s) - 0.5,
                 ]),
-                translation: [lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, lcg(&mut s) * 3.0],
+                translation: V3::new(lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, lcg(&mut s) * 3.0),
                 mesh: i % 3,
                 mask: (lcg(&mut s) * 256.0) as u8,
                 id: i,
@@ -252,8 +249,8 @@ mod tests {
         let tl = TwoLevel::build(&meshes, instances.clone());
         let mut hits = 0;
         for _ in 0..1500 {
-            let o = [lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, -5.0];
-            let d = v::norm([lcg(&mut s) - 0.5, lcg(&mut s) - 0.5, 1.0]);
+            let o = V3::new(lcg(&mut s) * 10.0, lcg(&mut s) * 10.0, -5.0);
+            let d = V3::new(lcg(&mut s) - 0.5, lcg(&mut s) - 0.5, 1.0).normalize_or_zero();
             let rm = 1u8 << (lcg(&mut s) * 8.0) as u32;
             let mut want: Option<(f64, u32)> = None;
             for (ii, inst) in instances.iter().enumerate() {
@@ -289,7 +286,7 @@ mod tests {
         let r = rotation_from_quaternion([0.3, -0.2, 0.9, 0.1]);
         for i in 0..3 {
             for j in 0..3 {
-                let d = v::dot(r[i], r[j]);
+                let d = r[i].dot(r[j]);
                 assert!((d - f64::from(u8::from(i == j))).abs() < 1e-12);
             }
         }

@@ -7,7 +7,7 @@ use super::bvh::Hit;
 use super::lod::{LodQuery, raydiff_axes};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
-use crate::scene::{Material, Triangle, V3, v};
+use crate::scene::{Material, Triangle, V3};
 
 /// Ray-differential state (Igehy 1999): position and unit-direction
 /// derivatives per pixel in x and y.
@@ -78,6 +78,10 @@ pub(crate) struct Ctx<'a> {
     pub(crate) unit: Unit<'a>,
     pub(crate) counters: Counters,
     pub(crate) log: FetchLog,
+    /// Filter override (`None`: the method's, [`Filter::of`]).
+    pub(crate) filter: Option<Filter>,
+    /// The pixel's generator of stochastic-filter bits (reseeded per pixel).
+    pub(crate) rng: raymip::rng::Rng,
 }
 
 /// Deterministic per-sample random numbers in [0, 1).
@@ -96,11 +100,11 @@ fn hash01(x: u32, y: u32, s: u32, k: u32) -> f64 {
 }
 
 impl Ctx<'_> {
-    pub(crate) fn pixel(&mut self, x: u32, y: u32) -> ([f64; 3], f64) {
+    pub(crate) fn pixel(&mut self, x: u32, y: u32) -> (V3, f64) {
         if self.opts.method == Method::Truth {
             let n = self.opts.spp.max(1);
             let k = (f64::from(n).sqrt() as u32).max(1);
-            let mut acc = [0.0; 3];
+            let mut acc = V3::ZERO;
             let mut first = f64::NAN;
             for s in 0..n {
                 // Stratified k×k jitter for the first k² samples, uniform after.
@@ -113,32 +117,27 @@ impl Ctx<'_> {
                     (hash01(x, y, s, 0), hash01(x, y, s, 1))
                 };
                 let (c, l) = self.path(f64::from(x) + jx, f64::from(y) + jy);
-                acc = v::add(acc, c);
+                acc += c;
                 if s == 0 {
                     first = l;
                 }
             }
-            (v::scale(acc, 1.0 / f64::from(n)), first)
+            (acc * (1.0 / f64::from(n)), first)
         } else {
             self.path(f64::from(x) + 0.5, f64::from(y) + 0.5)
         }
     }
 
     /// Traces one camera path; returns colour and the first textured lod.
-    fn path(&mut self, fx: f64, fy: f64) -> ([f64; 3], f64) {
+    fn path(&mut self, fx: f64, fy: f64) -> (V3, f64) {
         let prep = self.prep;
         let (dv, dxv, dyv) = prep.cam.primary_dir(fx, fy);
-        let dd = v::dot(dv, dv);
-        let ddir = |r: V3| {
-            v::scale(
-                v::sub(v::scale(r, dd), v::scale(dv, v::dot(dv, r))),
-                dd.powf(-1.5),
-            )
-        };
+        let dd = dv.dot(dv);
+        let ddir = |r: V3| ((r * dd) - (dv * dv.dot(r))) * dd.powf(-1.5);
         let ray = Ray {
             o: prep.cam.eye,
-            d: v::norm(dv),
-            weight: [1.0; 3],
+            d: dv.normalize_or_zero(),
+            weight: V3::ONE,
             tmin: 0.0,
             pl: 0.0,
             width: 0.0,
@@ -151,7 +150,7 @@ impl Ctx<'_> {
         };
         self.counters.paths += 1;
         let mut stack: RayStack<Ray, STACK_CAPACITY> = RayStack::new();
-        let mut color = [0.0; 3];
+        let mut color = V3::ZERO;
         let mut first_lod = f64::NAN;
         // The primary state always fits an empty stack.
         let _ = stack.push_with(PathState::primary(&prep.spread, 0xFF), ray);
@@ -168,14 +167,14 @@ impl Ctx<'_> {
         state: PathState,
         ray: Ray,
         stack: &mut RayStack<Ray, STACK_CAPACITY>,
-        color: &mut [f64; 3],
+        color: &mut V3,
         first_lod: &mut f64,
     ) {
         let prep = self.prep;
         let scene = &prep.scene;
         self.counters.rays += 1;
         let Some(hit) = prep.bvh.closest(ray.o, ray.d, ray.tmin, f64::INFINITY) else {
-            *color = v::add(*color, v::mul(ray.weight, scene.background));
+            *color += ray.weight * scene.background;
             return;
         };
         self.counters.hits += 1;
@@ -194,7 +193,7 @@ impl Ctx<'_> {
         let width = ray.width + ray.spread * f.t;
         let kd = self.texture(hit.tri as usize, &f, &ray, &state, pl, width, first_lod);
         let local = self.local_shading(mat, &f, &ray, kd, tri.is_textured());
-        *color = v::add(*color, v::mul(ray.weight, local));
+        *color += ray.weight * local;
         if usize::from(state.depth) >= usize::from(self.opts.bounces) {
             return;
         }
@@ -252,7 +251,7 @@ impl Ctx<'_> {
             state,
             pl,
             width,
-            n_dot_d: v::dot(f.ng, ray.d).abs(),
+            n_dot_d: f.ng.dot(ray.d).abs(),
             dbx: f.dbx,
             dby: f.dby,
         };
@@ -272,12 +271,16 @@ impl Ctx<'_> {
                     .sample_aniso(x as usize, u, vv, axes, &mut self.log)
             }
             _ => {
-                let filter = Filter::of(self.opts.method);
+                let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
+                let bits = match filter {
+                    Filter::Stochastic(_) => self.rng.next_u32(),
+                    _ => 0,
+                };
                 self.unit
-                    .sample(x as usize, u, vv, lod, filter, &mut self.log)
+                    .sample(x as usize, u, vv, lod, filter, bits, &mut self.log)
             }
         };
-        v::mul(kd, c)
+        kd * V3::from(c)
     }
 
     /// Local shading: ambient plus Phong from every light not in shadow.
@@ -290,31 +293,29 @@ impl Ctx<'_> {
         textured: bool,
     ) -> V3 {
         let scene = &self.prep.scene;
-        let mut local = v::mul(
-            v::mul(scene.ambient, mat.ambient),
-            if textured {
+        let mut local = (scene.ambient * mat.ambient)
+            * (if textured {
                 kd_ratio(kd, mat.diffuse)
             } else {
-                [1.0; 3]
-            },
-        );
-        let po = v::madd(f.p, f.face_ng, self.eps());
+                V3::ONE
+            });
+        let po = f.p + f.face_ng * self.eps();
         for light in &scene.lights {
-            let to = v::sub(light.position, po);
-            let dist = v::len(to);
-            let l = v::scale(to, 1.0 / dist);
-            let nl = v::dot(f.ns, l);
-            if nl <= 0.0 || v::dot(f.face_ng, l) <= 0.0 {
+            let to = light.position - po;
+            let dist = to.length();
+            let l = to * (1.0 / dist);
+            let nl = f.ns.dot(l);
+            if nl <= 0.0 || f.face_ng.dot(l) <= 0.0 {
                 continue;
             }
             let att = self.shadow(po, l, dist);
-            if v::max_c(att) <= 0.0 {
+            if att.max_element() <= 0.0 {
                 continue;
             }
-            let hv = v::norm(v::sub(l, ray.d));
-            let spec = v::dot(f.ns, hv).max(0.0).powf(mat.shine.max(1.0));
-            let c = v::add(v::scale(kd, nl), v::scale(mat.specular, spec));
-            local = v::add(local, v::mul(v::mul(c, light.color), att));
+            let hv = (l - ray.d).normalize_or_zero();
+            let spec = f.ns.dot(hv).max(0.0).powf(mat.shine.max(1.0));
+            let c = (kd * nl) + (mat.specular * spec);
+            local += (c * light.color) * att;
         }
         local
     }
@@ -339,11 +340,11 @@ impl Ctx<'_> {
         let eps = self.eps();
         let ns = f.ns;
         let face_ng = f.face_ng;
-        let mut refl_w = v::mul(ray.weight, mat.specular);
-        let trans_w = v::mul(ray.weight, mat.transmission);
-        let cosi = -v::dot(ray.d, ns);
+        let mut refl_w = ray.weight * mat.specular;
+        let trans_w = ray.weight * mat.transmission;
+        let cosi = -ray.d.dot(ns);
         let mut refr: Option<Ray> = None;
-        if v::max_c(trans_w) > 1e-3 {
+        if trans_w.max_element() > 1e-3 {
             let eta = if f.entering {
                 1.0 / mat.ior.max(1e-3)
             } else {
@@ -351,55 +352,39 @@ impl Ctx<'_> {
             };
             let k = 1.0 - eta * eta * (1.0 - cosi * cosi);
             if k < 0.0 {
-                refl_w = v::add(refl_w, trans_w);
+                refl_w += trans_w;
             } else {
                 let sk = k.sqrt();
                 let mu = eta * cosi - sk;
-                let mut dir = v::norm(v::add(v::scale(ray.d, eta), v::scale(ns, mu)));
-                if v::dot(dir, face_ng) >= 0.0 {
+                let mut dir = ((ray.d * eta) + (ns * mu)).normalize_or_zero();
+                if dir.dot(face_ng) >= 0.0 {
                     // The interpolated normal bent the ray back out: refract
                     // about the geometric normal instead.
-                    let c = -v::dot(ray.d, face_ng);
+                    let c = -ray.d.dot(face_ng);
                     let kg = (1.0 - eta * eta * (1.0 - c * c)).max(0.0);
-                    dir = v::norm(v::add(
-                        v::scale(ray.d, eta),
-                        v::scale(face_ng, eta * c - kg.sqrt()),
-                    ));
+                    dir = ((ray.d * eta) + (face_ng * (eta * c - kg.sqrt()))).normalize_or_zero();
                 }
                 let dtr = |dd: V3, dn: V3| {
-                    let dcos = -(v::dot(dd, ns) + v::dot(ray.d, dn));
+                    let dcos = -(dd.dot(ns) + ray.d.dot(dn));
                     let dmu = (eta - eta * eta * cosi / sk) * dcos;
-                    v::add(
-                        v::add(v::scale(dd, eta), v::scale(ns, dmu)),
-                        v::scale(dn, mu),
-                    )
+                    ((dd * eta) + (ns * dmu)) + (dn * mu)
                 };
-                refr = Some(ray.continued(
-                    v::madd(f.p, face_ng, -eps),
-                    dir,
-                    trans_w,
-                    (pl, width),
-                    f,
-                    dtr,
-                ));
+                refr = Some(ray.continued(f.p + face_ng * -eps, dir, trans_w, (pl, width), f, dtr));
             }
         }
-        let refl = (v::max_c(refl_w) > 1e-3).then(|| {
-            let dn_ = v::dot(ray.d, ns);
-            let mut dir = v::norm(v::madd(ray.d, ns, -2.0 * dn_));
-            if v::dot(dir, face_ng) <= 0.0 {
+        let refl = (refl_w.max_element() > 1e-3).then(|| {
+            let dn_ = ray.d.dot(ns);
+            let mut dir = (ray.d + ns * (-2.0 * dn_)).normalize_or_zero();
+            if dir.dot(face_ng) <= 0.0 {
                 // Interpolated normal sends the ray below the surface:
                 // reflect about the geometric normal instead.
-                dir = v::norm(v::madd(ray.d, face_ng, -2.0 * v::dot(ray.d, face_ng)));
+                dir = (ray.d + face_ng * (-2.0 * ray.d.dot(face_ng))).normalize_or_zero();
             }
             let drf = |dd: V3, dn: V3| {
-                let ddn = v::dot(dd, ns) + v::dot(ray.d, dn);
-                v::sub(
-                    dd,
-                    v::scale(v::add(v::scale(dn, dn_), v::scale(ns, ddn)), 2.0),
-                )
+                let ddn = dd.dot(ns) + ray.d.dot(dn);
+                dd - (((dn * dn_) + (ns * ddn)) * 2.0)
             };
-            ray.continued(v::madd(f.p, face_ng, eps), dir, refl_w, (pl, width), f, drf)
+            ray.continued(f.p + face_ng * eps, dir, refl_w, (pl, width), f, drf)
         });
         (refr, refl)
     }
@@ -407,7 +392,7 @@ impl Ctx<'_> {
     /// Transmission towards a light at `dist` (0 = blocked by an opaque surface).
     fn shadow(&mut self, o: V3, l: V3, dist: f64) -> V3 {
         let prep = self.prep;
-        let mut att = [1.0; 3];
+        let mut att = V3::ONE;
         let mut tmin = 0.0;
         for _ in 0..8 {
             self.counters.shadow_rays += 1;
@@ -415,9 +400,9 @@ impl Ctx<'_> {
                 return att;
             };
             let m = &prep.scene.materials[prep.scene.triangles[h.tri as usize].material as usize];
-            att = v::mul(att, m.transmission);
-            if v::max_c(att) < 1e-3 {
-                return [0.0; 3];
+            att *= m.transmission;
+            if att.max_element() < 1e-3 {
+                return V3::ZERO;
             }
             tmin = h.t + 1e-7 * prep.scale;
         }
@@ -427,13 +412,13 @@ impl Ctx<'_> {
 
 /// Texture modulation factor `kd / diffuse` (1 where the diffuse is 0).
 fn kd_ratio(kd: V3, diffuse: V3) -> V3 {
-    std::array::from_fn(|k| {
+    V3::from(std::array::from_fn::<f64, 3, _>(|k| {
         if diffuse[k] > 0.0 {
             kd[k] / diffuse[k]
         } else {
             1.0
         }
-    })
+    }))
 }
 
 /// The surface at a hit: position, barycentrics, normals and the ray
@@ -467,37 +452,37 @@ struct HitFrame {
 impl HitFrame {
     fn new(tri: &Triangle, ray: &Ray, hit: &Hit) -> Self {
         let t = hit.t;
-        let p = v::madd(ray.o, ray.d, t);
+        let p = ray.o + ray.d * t;
         let (b0, b1, b2) = (1.0 - hit.b1 - hit.b2, hit.b1, hit.b2);
-        let e1 = v::sub(tri.p[1], tri.p[0]);
-        let e2 = v::sub(tri.p[2], tri.p[0]);
-        let gn_raw = v::cross(e1, e2);
-        let gn2 = v::dot(gn_raw, gn_raw);
-        let ng = v::norm(gn_raw);
-        let entering = v::dot(ng, ray.d) < 0.0;
+        let e1 = tri.p[1] - tri.p[0];
+        let e2 = tri.p[2] - tri.p[0];
+        let gn_raw = e1.cross(e2);
+        let gn2 = gn_raw.dot(gn_raw);
+        let ng = gn_raw.normalize_or_zero();
+        let entering = ng.dot(ray.d) < 0.0;
         // Ray-differential transfer to the hit plane.
         let transfer = |dp: V3, dd: V3| {
-            let q = v::madd(dp, dd, t);
-            let dt = -v::dot(q, ng) / v::dot(ray.d, ng);
-            v::madd(q, ray.d, dt)
+            let q = dp + dd * t;
+            let dt = -q.dot(ng) / ray.d.dot(ng);
+            q + ray.d * dt
         };
         let dpx = transfer(ray.diff.dpx, ray.diff.ddx);
         let dpy = transfer(ray.diff.dpy, ray.diff.ddy);
         let bary_d = |dp: V3| {
             (
-                v::dot(v::cross(dp, e2), gn_raw) / gn2,
-                v::dot(v::cross(e1, dp), gn_raw) / gn2,
+                dp.cross(e2).dot(gn_raw) / gn2,
+                e1.cross(dp).dot(gn_raw) / gn2,
             )
         };
         let dbx = bary_d(dpx);
         let dby = bary_d(dpy);
         let (mut ns, mut dnx, mut dny) = shading_normal(tri, ng, [b0, b1, b2], dbx, dby);
-        if v::dot(ns, ray.d) > 0.0 {
-            ns = v::scale(ns, -1.0);
-            dnx = v::scale(dnx, -1.0);
-            dny = v::scale(dny, -1.0);
+        if ns.dot(ray.d) > 0.0 {
+            ns *= -1.0;
+            dnx *= -1.0;
+            dny *= -1.0;
         }
-        let face_ng = if entering { ng } else { v::scale(ng, -1.0) };
+        let face_ng = if entering { ng } else { ng * -1.0 };
         Self {
             t,
             p,
@@ -527,27 +512,18 @@ fn shading_normal(
     (db1y, db2y): (f64, f64),
 ) -> (V3, V3, V3) {
     let Some(n) = tri.n else {
-        return (ng, [0.0; 3], [0.0; 3]);
+        return (ng, V3::ZERO, V3::ZERO);
     };
-    let nn = v::add(
-        v::add(v::scale(n[0], b[0]), v::scale(n[1], b[1])),
-        v::scale(n[2], b[2]),
-    );
-    let l2 = v::dot(nn, nn);
+    let nn = ((n[0] * b[0]) + (n[1] * b[1])) + (n[2] * b[2]);
+    let l2 = nn.dot(nn);
     if l2.is_nan() || l2 <= 0.0 {
-        return (ng, [0.0; 3], [0.0; 3]);
+        return (ng, V3::ZERO, V3::ZERO);
     }
     let dn = |a: f64, b: f64| {
-        let d = v::add(
-            v::scale(v::sub(n[1], n[0]), a),
-            v::scale(v::sub(n[2], n[0]), b),
-        );
-        v::scale(
-            v::sub(v::scale(d, l2), v::scale(nn, v::dot(nn, d))),
-            l2.powf(-1.5),
-        )
+        let d = ((n[1] - n[0]) * a) + ((n[2] - n[0]) * b);
+        ((d * l2) - (nn * nn.dot(d))) * l2.powf(-1.5)
     };
-    (v::norm(nn), dn(db1x, db2x), dn(db1y, db2y))
+    (nn.normalize_or_zero(), dn(db1x, db2x), dn(db1y, db2y))
 }
 
 /// Surface spread angle β of the reflected cone (curved surfaces): across
@@ -557,11 +533,11 @@ fn shading_normal(
 /// negative on concave ones. Flat: 0. Refracted cones keep β = 0.
 fn surface_spread(f: &HitFrame, width: f64) -> f64 {
     let kappa = |dp: V3, dn: V3| {
-        let l = v::len(dp);
-        if l > 0.0 { v::len(dn) / l } else { 0.0 }
+        let l = dp.length();
+        if l > 0.0 { dn.length() / l } else { 0.0 }
     };
     let k = kappa(f.dpx, f.dnx).max(kappa(f.dpy, f.dny));
-    let convex = v::dot(f.dpx, f.dnx) + v::dot(f.dpy, f.dny) >= 0.0;
+    let convex = f.dpx.dot(f.dnx) + f.dpy.dot(f.dny) >= 0.0;
     if k.is_finite() {
         let b = (2.0 * k * width.abs()).min(1.0);
         if convex { b } else { -b }

@@ -10,7 +10,7 @@
 //! (NPOT). Default image size 800×480. [`fronto_quad`] builds the
 //! fronto-parallel quad of the LOD tests.
 
-use super::{Camera, Light, Material, Scene, TextureImage, Triangle, V3, v};
+use super::{Camera, Light, Material, Scene, TextureImage, Triangle, V3};
 
 /// Names of the built-in scenes.
 pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];
@@ -31,12 +31,14 @@ pub fn by_name(name: &str) -> Result<Scene, String> {
     }
 }
 
-fn rgba(c: [f64; 3]) -> u32 {
-    let b = c.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+fn rgba(c: V3) -> u32 {
+    let b = c
+        .to_array()
+        .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
     u32::from_le_bytes([b[0], b[1], b[2], 255])
 }
 
-fn image(name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> [f64; 3]) -> TextureImage {
+fn image(name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> V3) -> TextureImage {
     let mut texels = Vec::with_capacity((w * h) as usize);
     for y in 0..h {
         for x in 0..w {
@@ -60,12 +62,12 @@ pub fn tiles_texture() -> TextureImage {
         let (cx, cy) = (x / 64, y / 64);
         let (ix, iy) = (x % 64, y % 64);
         if ix < 2 || iy < 2 {
-            return [0.15, 0.12, 0.1];
+            return V3::new(0.15, 0.12, 0.1);
         }
         let base = if (cx + cy) % 2 == 0 {
-            [0.85, 0.8, 0.7]
+            V3::new(0.85, 0.8, 0.7)
         } else {
-            [0.55, 0.2, 0.15]
+            V3::new(0.55, 0.2, 0.15)
         };
         let fine = if ((ix / 4) + (iy / 4)) % 2 == 0 {
             1.0
@@ -84,10 +86,10 @@ pub fn bricks_texture() -> TextureImage {
         let xs = x + if row % 2 == 1 { 32 } else { 0 };
         let (bx, ix, iy) = (xs / 64, xs % 64, y % 32);
         if ix < 3 || iy < 3 {
-            return [0.8, 0.8, 0.75];
+            return V3::new(0.8, 0.8, 0.75);
         }
         let tone = 0.75 + 0.25 * f64::from((bx * 7 + row * 13) % 5) / 4.0;
-        [0.7 * tone, 0.3 * tone, 0.2 * tone]
+        V3::new(0.7 * tone, 0.3 * tone, 0.2 * tone)
     })
 }
 
@@ -96,12 +98,12 @@ pub fn bricks_texture() -> TextureImage {
 pub fn grid_texture() -> TextureImage {
     image("grid", 384, 384, |x, y| {
         if x % 24 == 0 || y % 24 == 0 {
-            return [0.05, 0.05, 0.1];
+            return V3::new(0.05, 0.05, 0.1);
         }
         if ((x / 24) + (y / 24)) % 2 == 0 {
-            [0.9, 0.9, 0.95]
+            V3::new(0.9, 0.9, 0.95)
         } else {
-            [0.2, 0.35, 0.75]
+            V3::new(0.2, 0.35, 0.75)
         }
     })
 }
@@ -110,31 +112,31 @@ fn diffuse(c: V3) -> Material {
     Material {
         ambient: c,
         diffuse: c,
-        specular: [0.0; 3],
+        specular: V3::ZERO,
         shine: 1.0,
-        transmission: [0.0; 3],
+        transmission: V3::ZERO,
         ior: 1.0,
     }
 }
 
 fn mirror(k: f64, tint: V3) -> Material {
     Material {
-        ambient: v::scale(tint, 0.05),
-        diffuse: v::scale(tint, 0.05),
-        specular: v::scale(tint, k),
+        ambient: (tint * 0.05),
+        diffuse: (tint * 0.05),
+        specular: (tint * k),
         shine: 200.0,
-        transmission: [0.0; 3],
+        transmission: V3::ZERO,
         ior: 1.0,
     }
 }
 
 fn glass_mat() -> Material {
     Material {
-        ambient: [0.0; 3],
-        diffuse: [0.0; 3],
-        specular: [0.1; 3],
+        ambient: V3::ZERO,
+        diffuse: V3::ZERO,
+        specular: V3::splat(0.1),
         shine: 200.0,
-        transmission: [0.88, 0.92, 0.9],
+        transmission: V3::new(0.88, 0.92, 0.9),
         ior: 1.5,
     }
 }
@@ -151,9 +153,9 @@ pub fn quad(
     material: u32,
     texture: Option<u32>,
 ) -> [Triangle; 2] {
-    let p1 = v::add(p0, ex);
-    let p2 = v::add(p1, ey);
-    let p3 = v::add(p0, ey);
+    let p1 = p0 + ex;
+    let p2 = p1 + ey;
+    let p3 = p0 + ey;
     let uv = texture.map(|_| ([0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]));
     [
         Triangle {
@@ -180,8 +182,8 @@ pub fn sphere(c: V3, r: f64, nu: u32, nv: u32, material: u32) -> Vec<Triangle> {
     let pt = |i: u32, j: u32| {
         let th = std::f64::consts::PI * f64::from(j) / f64::from(nv);
         let ph = 2.0 * std::f64::consts::PI * f64::from(i) / f64::from(nu);
-        let n = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
-        (v::madd(c, n, r), n)
+        let n = V3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin());
+        (c + n * r, n)
     };
     let mut out = Vec::new();
     for j in 0..nv {
@@ -191,7 +193,7 @@ pub fn sphere(c: V3, r: f64, nu: u32, nv: u32, material: u32) -> Vec<Triangle> {
             let cc = pt(i + 1, j + 1);
             let d = pt(i, j + 1);
             for (x, y, z) in [(a, cc, b), (a, d, cc)] {
-                let area = v::len(v::cross(v::sub(y.0, x.0), v::sub(z.0, x.0)));
+                let area = (y.0 - x.0).cross(z.0 - x.0).length();
                 if area > 1e-12 * r * r {
                     out.push(Triangle {
                         p: [x.0, y.0, z.0],
@@ -210,16 +212,20 @@ pub fn sphere(c: V3, r: f64, nu: u32, nv: u32, material: u32) -> Vec<Triangle> {
 /// An axis-aligned box (12 flat triangles).
 #[must_use]
 pub fn boxed(lo: V3, hi: V3, material: u32) -> Vec<Triangle> {
-    let d = v::sub(hi, lo);
-    let (ex, ey, ez) = ([d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]);
+    let d = hi - lo;
+    let (ex, ey, ez) = (
+        V3::new(d[0], 0.0, 0.0),
+        V3::new(0.0, d[1], 0.0),
+        V3::new(0.0, 0.0, d[2]),
+    );
     let mut out = Vec::new();
     for (p, a, b) in [
         (lo, ey, ex),
         (lo, ex, ez),
         (lo, ez, ey),
-        (hi, v::scale(ex, -1.0), v::scale(ey, -1.0)),
-        (hi, v::scale(ez, -1.0), v::scale(ex, -1.0)),
-        (hi, v::scale(ey, -1.0), v::scale(ez, -1.0)),
+        (hi, ex * -1.0, ey * -1.0),
+        (hi, ez * -1.0, ex * -1.0),
+        (hi, ey * -1.0, ez * -1.0),
     ] {
         out.extend(quad(p, a, b, 1.0, 1.0, material, None));
     }
@@ -227,31 +233,24 @@ pub fn boxed(lo: V3, hi: V3, material: u32) -> Vec<Triangle> {
 }
 
 fn camera(from: V3, at: V3, fov_y_deg: f64) -> Camera {
-    Camera {
-        from,
-        at,
-        up: [0.0, 1.0, 0.0],
-        fov_y_deg,
-        width: DEFAULT_SIZE.0,
-        height: DEFAULT_SIZE.1,
-    }
+    Camera::looking_at(from, at, fov_y_deg, DEFAULT_SIZE)
 }
 
 /// The hall: floor 10 wide and 305 deep, walls 4 high, one mirror sphere.
 #[must_use]
 pub fn hall() -> Scene {
     let materials = vec![
-        diffuse([0.9; 3]),
-        diffuse([0.9; 3]),
-        mirror(0.8, [0.9, 0.95, 1.0]),
+        diffuse(V3::splat(0.9)),
+        diffuse(V3::splat(0.9)),
+        mirror(0.8, V3::new(0.9, 0.95, 1.0)),
     ];
     let (len, z0) = (305.0, 5.0);
     let mut triangles = Vec::new();
     // Floor: 2×2 units per texture repeat.
     triangles.extend(quad(
-        [-5.0, 0.0, z0],
-        [10.0, 0.0, 0.0],
-        [0.0, 0.0, -len],
+        V3::new(-5.0, 0.0, z0),
+        V3::new(10.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -len),
         5.0,
         len / 2.0,
         0,
@@ -259,36 +258,36 @@ pub fn hall() -> Scene {
     ));
     // Walls: one brick texture repeat per 4 (along) × 2.4 (up) units.
     triangles.extend(quad(
-        [-5.0, 0.0, z0],
-        [0.0, 0.0, -len],
-        [0.0, 4.0, 0.0],
+        V3::new(-5.0, 0.0, z0),
+        V3::new(0.0, 0.0, -len),
+        V3::new(0.0, 4.0, 0.0),
         len / 4.0,
         4.0 / 2.4,
         1,
         Some(1),
     ));
     triangles.extend(quad(
-        [5.0, 0.0, z0],
-        [0.0, 0.0, -len],
-        [0.0, 4.0, 0.0],
+        V3::new(5.0, 0.0, z0),
+        V3::new(0.0, 0.0, -len),
+        V3::new(0.0, 4.0, 0.0),
         len / 4.0,
         4.0 / 2.4,
         1,
         Some(1),
     ));
-    triangles.extend(sphere([1.8, 0.9, -7.0], 0.9, 32, 16, 2));
+    triangles.extend(sphere(V3::new(1.8, 0.9, -7.0), 0.9, 32, 16, 2));
     Scene {
-        camera: camera([0.0, 1.7, 4.0], [0.0, 1.2, -10.0], 50.0),
-        background: [0.55, 0.7, 0.9],
-        ambient: [0.25; 3],
+        camera: camera(V3::new(0.0, 1.7, 4.0), V3::new(0.0, 1.2, -10.0), 50.0),
+        background: V3::new(0.55, 0.7, 0.9),
+        ambient: V3::splat(0.25),
         lights: vec![
             Light {
-                position: [0.0, 3.8, 0.0],
-                color: [0.5; 3],
+                position: V3::new(0.0, 3.8, 0.0),
+                color: V3::splat(0.5),
             },
             Light {
-                position: [-2.0, 3.8, -30.0],
-                color: [0.4; 3],
+                position: V3::new(-2.0, 3.8, -30.0),
+                color: V3::splat(0.4),
             },
         ],
         materials,
@@ -302,82 +301,82 @@ pub fn hall() -> Scene {
 #[must_use]
 pub fn mirrors() -> Scene {
     let materials = vec![
-        diffuse([0.9; 3]),
-        diffuse([0.85; 3]),
-        mirror(0.9, [1.0, 1.0, 1.0]),
-        mirror(0.85, [1.0, 0.85, 0.6]),
-        diffuse([0.8, 0.8, 0.75]),
+        diffuse(V3::splat(0.9)),
+        diffuse(V3::splat(0.85)),
+        mirror(0.9, V3::new(1.0, 1.0, 1.0)),
+        mirror(0.85, V3::new(1.0, 0.85, 0.6)),
+        diffuse(V3::new(0.8, 0.8, 0.75)),
     ];
     let mut t = Vec::new();
     t.extend(quad(
-        [-4.0, 0.0, 4.0],
-        [8.0, 0.0, 0.0],
-        [0.0, 0.0, -8.0],
+        V3::new(-4.0, 0.0, 4.0),
+        V3::new(8.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -8.0),
         4.0,
         4.0,
         0,
         Some(0),
     ));
     t.extend(quad(
-        [-4.0, 3.5, 4.0],
-        [8.0, 0.0, 0.0],
-        [0.0, 0.0, -8.0],
+        V3::new(-4.0, 3.5, 4.0),
+        V3::new(8.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -8.0),
         1.0,
         1.0,
         4,
         None,
     ));
     t.extend(quad(
-        [-4.0, 0.0, 4.0],
-        [0.0, 0.0, -8.0],
-        [0.0, 3.5, 0.0],
+        V3::new(-4.0, 0.0, 4.0),
+        V3::new(0.0, 0.0, -8.0),
+        V3::new(0.0, 3.5, 0.0),
         3.0,
         1.5,
         1,
         Some(1),
     ));
     t.extend(quad(
-        [4.0, 0.0, 4.0],
-        [0.0, 0.0, -8.0],
-        [0.0, 3.5, 0.0],
+        V3::new(4.0, 0.0, 4.0),
+        V3::new(0.0, 0.0, -8.0),
+        V3::new(0.0, 3.5, 0.0),
         3.0,
         3.5 / 2.0,
         1,
         Some(2),
     ));
     t.extend(quad(
-        [-4.0, 0.0, -4.0],
-        [8.0, 0.0, 0.0],
-        [0.0, 3.5, 0.0],
+        V3::new(-4.0, 0.0, -4.0),
+        V3::new(8.0, 0.0, 0.0),
+        V3::new(0.0, 3.5, 0.0),
         1.0,
         1.0,
         2,
         None,
     ));
     t.extend(quad(
-        [-4.0, 0.0, 4.0],
-        [8.0, 0.0, 0.0],
-        [0.0, 3.5, 0.0],
+        V3::new(-4.0, 0.0, 4.0),
+        V3::new(8.0, 0.0, 0.0),
+        V3::new(0.0, 3.5, 0.0),
         1.0,
         1.0,
         2,
         None,
     ));
-    t.extend(sphere([-1.2, 0.8, -1.0], 0.8, 32, 16, 3));
-    t.extend(sphere([1.4, 0.6, 0.5], 0.6, 32, 16, 2));
-    t.extend(sphere([0.3, 0.45, -2.6], 0.45, 24, 12, 2));
+    t.extend(sphere(V3::new(-1.2, 0.8, -1.0), 0.8, 32, 16, 3));
+    t.extend(sphere(V3::new(1.4, 0.6, 0.5), 0.6, 32, 16, 2));
+    t.extend(sphere(V3::new(0.3, 0.45, -2.6), 0.45, 24, 12, 2));
     Scene {
-        camera: camera([-2.6, 1.8, 3.0], [0.8, 1.0, -4.0], 55.0),
-        background: [0.0; 3],
-        ambient: [0.2; 3],
+        camera: camera(V3::new(-2.6, 1.8, 3.0), V3::new(0.8, 1.0, -4.0), 55.0),
+        background: V3::ZERO,
+        ambient: V3::splat(0.2),
         lights: vec![
             Light {
-                position: [0.0, 3.2, 0.0],
-                color: [0.55; 3],
+                position: V3::new(0.0, 3.2, 0.0),
+                color: V3::splat(0.55),
             },
             Light {
-                position: [2.5, 3.0, 2.5],
-                color: [0.35; 3],
+                position: V3::new(2.5, 3.0, 2.5),
+                color: V3::splat(0.35),
             },
         ],
         materials,
@@ -391,46 +390,46 @@ pub fn mirrors() -> Scene {
 #[must_use]
 pub fn glass() -> Scene {
     let materials = vec![
-        diffuse([0.9; 3]),
-        diffuse([0.9; 3]),
+        diffuse(V3::splat(0.9)),
+        diffuse(V3::splat(0.9)),
         glass_mat(),
-        diffuse([0.2, 0.6, 0.3]),
+        diffuse(V3::new(0.2, 0.6, 0.3)),
     ];
     let mut t = Vec::new();
     t.extend(quad(
-        [-30.0, 0.0, 10.0],
-        [60.0, 0.0, 0.0],
-        [0.0, 0.0, -60.0],
+        V3::new(-30.0, 0.0, 10.0),
+        V3::new(60.0, 0.0, 0.0),
+        V3::new(0.0, 0.0, -60.0),
         20.0,
         20.0,
         0,
         Some(0),
     ));
     t.extend(quad(
-        [-30.0, 0.0, -12.0],
-        [60.0, 0.0, 0.0],
-        [0.0, 15.0, 0.0],
+        V3::new(-30.0, 0.0, -12.0),
+        V3::new(60.0, 0.0, 0.0),
+        V3::new(0.0, 15.0, 0.0),
         12.0,
         15.0 / 2.4,
         1,
         Some(2),
     ));
-    t.extend(sphere([-1.6, 1.0, -2.0], 1.0, 48, 24, 2));
-    t.extend(sphere([1.2, 0.7, 0.2], 0.7, 40, 20, 2));
-    t.extend(boxed([2.2, 0.0, -4.5], [4.2, 2.2, -4.1], 2));
-    t.extend(sphere([0.5, 0.5, -7.0], 0.5, 24, 12, 3));
+    t.extend(sphere(V3::new(-1.6, 1.0, -2.0), 1.0, 48, 24, 2));
+    t.extend(sphere(V3::new(1.2, 0.7, 0.2), 0.7, 40, 20, 2));
+    t.extend(boxed(V3::new(2.2, 0.0, -4.5), V3::new(4.2, 2.2, -4.1), 2));
+    t.extend(sphere(V3::new(0.5, 0.5, -7.0), 0.5, 24, 12, 3));
     Scene {
-        camera: camera([0.0, 2.2, 6.0], [0.0, 0.8, -3.0], 45.0),
-        background: [0.6, 0.7, 0.85],
-        ambient: [0.25; 3],
+        camera: camera(V3::new(0.0, 2.2, 6.0), V3::new(0.0, 0.8, -3.0), 45.0),
+        background: V3::new(0.6, 0.7, 0.85),
+        ambient: V3::splat(0.25),
         lights: vec![
             Light {
-                position: [-4.0, 8.0, 6.0],
-                color: [0.6; 3],
+                position: V3::new(-4.0, 8.0, 6.0),
+                color: V3::splat(0.6),
             },
             Light {
-                position: [5.0, 6.0, -1.0],
-                color: [0.3; 3],
+                position: V3::new(5.0, 6.0, -1.0),
+                color: V3::splat(0.3),
             },
         ],
         materials,
@@ -463,30 +462,28 @@ pub fn fronto_quad(
 ) -> Scene {
     let img = image("checker", tex, tex, |x, y| {
         if ((x / 4) + (y / 4)) % 2 == 0 {
-            [0.9; 3]
+            V3::splat(0.9)
         } else {
-            [0.1; 3]
+            V3::splat(0.1)
         }
     });
     let h = side / 2.0;
     Scene {
-        camera: Camera {
-            from: [0.0; 3],
-            at: [0.0, 0.0, -1.0],
-            up: [0.0, 1.0, 0.0],
+        camera: Camera::looking_at(
+            V3::ZERO,
+            V3::new(0.0, 0.0, -1.0),
             fov_y_deg,
-            width,
-            height,
-        },
-        background: [0.0; 3],
-        ambient: [1.0; 3],
+            (width, height),
+        ),
+        background: V3::ZERO,
+        ambient: V3::ONE,
         lights: Vec::new(),
-        materials: vec![diffuse([1.0; 3])],
+        materials: vec![diffuse(V3::ONE)],
         textures: vec![img],
         triangles: quad(
-            [-h, -h, -distance],
-            [side, 0.0, 0.0],
-            [0.0, side, 0.0],
+            V3::new(-h, -h, -distance),
+            V3::new(side, 0.0, 0.0),
+            V3::new(0.0, side, 0.0),
             1.0,
             1.0,
             0,
@@ -512,14 +509,14 @@ pub fn mirror_quad(
     height: u32,
 ) -> Scene {
     let mut s = fronto_quad(side, tex, 1.0, fov_y_deg, width, height);
-    s.materials.push(mirror(1.0, [1.0; 3]));
+    s.materials.push(mirror(1.0, V3::ONE));
     let h = side / 2.0;
     let m = 4.0 * (a + b).max(side);
     // Mirror plane through (0, 0, −a) with normal (0, 1, 1)/√2.
     let mut t = quad(
-        [-m, -m, -a + m],
-        [2.0 * m, 0.0, 0.0],
-        [0.0, 2.0 * m, -2.0 * m],
+        V3::new(-m, -m, -a + m),
+        V3::new(2.0 * m, 0.0, 0.0),
+        V3::new(0.0, 2.0 * m, -2.0 * m),
         1.0,
         1.0,
         1,
@@ -527,9 +524,9 @@ pub fn mirror_quad(
     )
     .to_vec();
     t.extend(quad(
-        [-h, b, -a - h],
-        [side, 0.0, 0.0],
-        [0.0, 0.0, side],
+        V3::new(-h, b, -a - h),
+        V3::new(side, 0.0, 0.0),
+        V3::new(0.0, 0.0, side),
         1.0,
         1.0,
         0,

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::lodmesh::{displaced_icosphere, lod_chain};
-use super::{Camera, V3, v};
+use super::{Camera, V3};
 use crate::render::bvh::Bvh;
 use crate::render::tlas::rotation_from_quaternion;
 
@@ -69,19 +69,24 @@ impl View {
     pub fn camera(self, width: u32, height: u32) -> Camera {
         let front = (f64::from(GRID.1) - 1.0) / 2.0 * SPACING; // z of the front row
         let (from, at, fov) = match self {
-            Self::Top => ([0.0, 250.0, 0.01], [0.0, 0.0, 0.0], 45.0),
-            Self::High => ([0.0, 30.0, front + 25.0], [0.0, 0.0, front - 50.0], 50.0),
-            Self::Low => ([0.0, 3.0, front + 6.0], [0.0, 1.5, front - 60.0], 50.0),
-            Self::Close => ([4.3, 2.6, front + 4.4], [1.5, 1.1, front], 40.0),
+            Self::Top => (V3::new(0.0, 250.0, 0.01), V3::new(0.0, 0.0, 0.0), 45.0),
+            Self::High => (
+                V3::new(0.0, 30.0, front + 25.0),
+                V3::new(0.0, 0.0, front - 50.0),
+                50.0,
+            ),
+            Self::Low => (
+                V3::new(0.0, 3.0, front + 6.0),
+                V3::new(0.0, 1.5, front - 60.0),
+                50.0,
+            ),
+            Self::Close => (
+                V3::new(4.3, 2.6, front + 4.4),
+                V3::new(1.5, 1.1, front),
+                40.0,
+            ),
         };
-        Camera {
-            from,
-            at,
-            up: [0.0, 1.0, 0.0],
-            fov_y_deg: fov,
-            width,
-            height,
-        }
+        Camera::looking_at(from, at, fov, (width, height))
     }
 }
 
@@ -124,7 +129,7 @@ impl InstanceScene {
             f64::from(GRID.0) * SPACING * 0.5 + 40.0,
             f64::from(GRID.1) * SPACING * 0.5 + 40.0,
         );
-        let g = |x: f64, z: f64| [x, 0.0, z];
+        let g = |x: f64, z: f64| V3::new(x, 0.0, z);
         meshes.push(Bvh::build(vec![
             [g(-hx, -hz), g(-hx, hz), g(hx, hz)],
             [g(-hx, -hz), g(hx, hz), g(hx, -hz)],
@@ -146,12 +151,12 @@ impl InstanceScene {
                 let hue = uni();
                 placements.push(Placement {
                     rotation: rotation_from_quaternion(q),
-                    translation: [
+                    translation: V3::new(
                         (f64::from(i) - (f64::from(GRID.0) - 1.0) / 2.0) * SPACING,
                         CENTRE_Y,
                         (f64::from(j) - (f64::from(GRID.1) - 1.0) / 2.0) * SPACING,
-                    ],
-                    albedo: v::add([0.25; 3], v::scale(hue_color(hue * 300.0), 0.5)),
+                    ),
+                    albedo: (V3::splat(0.25) + (hue_color(hue * 300.0) * 0.5)),
                 });
             }
         }
@@ -169,14 +174,14 @@ fn hue_color(h: f64) -> V3 {
     let h = h.rem_euclid(360.0) / 60.0;
     let x = 1.0 - (h % 2.0 - 1.0).abs();
     let c = match h as u32 {
-        0 => [1.0, x, 0.0],
-        1 => [x, 1.0, 0.0],
-        2 => [0.0, 1.0, x],
-        3 => [0.0, x, 1.0],
-        4 => [x, 0.0, 1.0],
-        _ => [1.0, 0.0, x],
+        0 => V3::new(1.0, x, 0.0),
+        1 => V3::new(x, 1.0, 0.0),
+        2 => V3::new(0.0, 1.0, x),
+        3 => V3::new(0.0, x, 1.0),
+        4 => V3::new(x, 0.0, 1.0),
+        _ => V3::new(1.0, 0.0, x),
     };
-    v::scale(c, 0.9)
+    c * 0.9
 }
 
 /// Colour of LOD `l`: LOD 0 red, then through yellow, green and cyan to

@@ -6,7 +6,7 @@
 
 use std::collections::HashMap;
 
-use crate::scene::{V3, v};
+use crate::scene::V3;
 
 /// An indexed triangle mesh (f32 positions, as the simplifier takes them).
 #[derive(Clone, Debug, PartialEq)]
@@ -32,7 +32,7 @@ impl IndexedMesh {
             .map(|t| {
                 let p = |i: u32| {
                     let q = self.positions[i as usize];
-                    [f64::from(q[0]), f64::from(q[1]), f64::from(q[2])]
+                    V3::new(f64::from(q[0]), f64::from(q[1]), f64::from(q[2]))
                 };
                 [p(t[0]), p(t[1]), p(t[2])]
             })
@@ -44,7 +44,7 @@ impl IndexedMesh {
 /// of three frequencies, in `[−0.17, 0.17]`.
 #[must_use]
 pub fn displacement(n: V3) -> f64 {
-    let [x, y, z] = n;
+    let [x, y, z] = n.to_array();
     0.09 * (5.0 * x).sin() * (5.0 * y).sin() * (5.0 * z).sin()
         + 0.05 * (11.0 * x + 2.0 * z).sin() * (9.0 * y - 3.0 * x).cos()
         + 0.03 * (23.0 * z + 7.0 * y).sin()
@@ -56,21 +56,21 @@ pub fn displacement(n: V3) -> f64 {
 pub fn displaced_icosphere(subdivisions: u32) -> IndexedMesh {
     let g = (1.0 + 5f64.sqrt()) / 2.0;
     let mut pos: Vec<V3> = [
-        [-1.0, g, 0.0],
-        [1.0, g, 0.0],
-        [-1.0, -g, 0.0],
-        [1.0, -g, 0.0],
-        [0.0, -1.0, g],
-        [0.0, 1.0, g],
-        [0.0, -1.0, -g],
-        [0.0, 1.0, -g],
-        [g, 0.0, -1.0],
-        [g, 0.0, 1.0],
-        [-g, 0.0, -1.0],
-        [-g, 0.0, 1.0],
+        V3::new(-1.0, g, 0.0),
+        V3::new(1.0, g, 0.0),
+        V3::new(-1.0, -g, 0.0),
+        V3::new(1.0, -g, 0.0),
+        V3::new(0.0, -1.0, g),
+        V3::new(0.0, 1.0, g),
+        V3::new(0.0, -1.0, -g),
+        V3::new(0.0, 1.0, -g),
+        V3::new(g, 0.0, -1.0),
+        V3::new(g, 0.0, 1.0),
+        V3::new(-g, 0.0, -1.0),
+        V3::new(-g, 0.0, 1.0),
     ]
     .iter()
-    .map(|&p| v::norm(p))
+    .map(|&p| p.normalize_or_zero())
     .collect();
     let mut tris: Vec<[u32; 3]> = vec![
         [0, 11, 5],
@@ -98,7 +98,7 @@ pub fn displaced_icosphere(subdivisions: u32) -> IndexedMesh {
         let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
         let mut midpoint = |a: u32, b: u32, pos: &mut Vec<V3>| {
             *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                pos.push(v::norm(v::add(pos[a as usize], pos[b as usize])));
+                pos.push((pos[a as usize] + pos[b as usize]).normalize_or_zero());
                 (pos.len() - 1) as u32
             })
         };
@@ -115,7 +115,7 @@ pub fn displaced_icosphere(subdivisions: u32) -> IndexedMesh {
         positions: pos
             .iter()
             .map(|&n| {
-                let p = v::scale(n, 1.0 + displacement(n));
+                let p = n * (1.0 + displacement(n));
                 [p[0] as f32, p[1] as f32, p[2] as f32]
             })
             .collect(),

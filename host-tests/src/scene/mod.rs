@@ -12,28 +12,49 @@ pub mod ppm;
 
 pub use load::{default_bart_dir, load_aff, load_scene, load_scene_dir};
 
-/// A 3-vector of scene units.
-pub type V3 = [f64; 3];
+/// A 3-vector of scene units (or a linear RGB colour): `glam`'s f64
+/// vector, the one home of the harness's vector math.
+pub type V3 = glam::DVec3;
 
-/// Pinhole camera.
-#[derive(Clone, Debug, PartialEq)]
+/// Pinhole camera (built-in scenes and the AFF loader alike).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
-    /// Eye position.
+    /// Eye position (scene units).
     pub from: V3,
     /// Point looked at.
     pub at: V3,
-    /// Up hint.
+    /// Up hint (not necessarily unit nor orthogonal to the view direction).
     pub up: V3,
     /// Full vertical field of view in degrees, in (0, 180).
     pub fov_y_deg: f64,
-    /// Image width in pixels.
+    /// Near distance (> 0, scene units): AFF `hither` (values below 1e-4
+    /// read as 1), 1 for the built-in scenes; the renderer does not clip.
+    pub hither: f64,
+    /// Image width in pixels (≥ 1).
     pub width: u32,
-    /// Image height in pixels.
+    /// Image height in pixels (≥ 1).
     pub height: u32,
 }
 
-/// Whitted material (all colours linear, 0..1).
-#[derive(Clone, Debug, PartialEq)]
+impl Camera {
+    /// A camera at `from` looking at `at` with up +y, near distance 1 and a
+    /// `width`×`height` image.
+    #[must_use]
+    pub fn looking_at(from: V3, at: V3, fov_y_deg: f64, (width, height): (u32, u32)) -> Self {
+        Self {
+            from,
+            at,
+            up: V3::new(0.0, 1.0, 0.0),
+            fov_y_deg,
+            hither: 1.0,
+            width,
+            height,
+        }
+    }
+}
+
+/// Whitted/NFF material (all colours linear, 0..1; AFF `fm`).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// Ambient reflectance.
     pub ambient: V3,
@@ -41,16 +62,17 @@ pub struct Material {
     pub diffuse: V3,
     /// Specular reflectance: highlight and mirror reflection weight.
     pub specular: V3,
-    /// Phong exponent.
+    /// Phong exponent (0…255 in BART).
     pub shine: f64,
-    /// Transmission weight (refraction).
+    /// Transmission weight (refraction; AFF gives one scalar, copied to the
+    /// three channels).
     pub transmission: V3,
-    /// Index of refraction of the inside.
+    /// Index of refraction of the inside (AFF values `<= 0` read as 1).
     pub ior: f64,
 }
 
 /// Point light.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
     /// Position.
     pub position: V3,
@@ -72,14 +94,16 @@ pub struct TextureImage {
     pub texels: Vec<u32>,
 }
 
-/// One triangle.
-#[derive(Clone, Debug, PartialEq)]
+/// One world-space triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
     /// Vertex positions.
     pub p: [V3; 3],
-    /// Per-vertex normals (interpolated, Phong); `None` = flat.
+    /// Unit per-vertex normals (interpolated, Phong; AFF normals go through
+    /// the inverse transpose); `None` = flat.
     pub n: Option<[V3; 3]>,
-    /// Per-vertex UVs in texture repeats; required for texturing.
+    /// Per-vertex UVs in texture repeats (AFF: as written, v = 0 the top
+    /// row of the image); required for texturing.
     pub uv: Option<[[f64; 2]; 3]>,
     /// Index into [`Scene::materials`].
     pub material: u32,
@@ -122,121 +146,28 @@ impl Scene {
     }
 }
 
-/// Vector helpers.
-pub mod v {
-    use super::V3;
-    /// a + b
-    #[must_use]
-    pub fn add(a: V3, b: V3) -> V3 {
-        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-    }
-    /// a − b
-    #[must_use]
-    pub fn sub(a: V3, b: V3) -> V3 {
-        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-    }
-    /// a·s
-    #[must_use]
-    pub fn scale(a: V3, s: f64) -> V3 {
-        [a[0] * s, a[1] * s, a[2] * s]
-    }
-    /// a ∘ b (component-wise)
-    #[must_use]
-    pub fn mul(a: V3, b: V3) -> V3 {
-        [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
-    }
-    /// a·b
-    #[must_use]
-    pub fn dot(a: V3, b: V3) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    }
-    /// a×b
-    #[must_use]
-    pub fn cross(a: V3, b: V3) -> V3 {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    }
-    /// |a|
-    #[must_use]
-    pub fn len(a: V3) -> f64 {
-        dot(a, a).sqrt()
-    }
-    /// a/|a| (zero stays zero)
-    #[must_use]
-    pub fn norm(a: V3) -> V3 {
-        let l = len(a);
-        if l > 0.0 { scale(a, 1.0 / l) } else { a }
-    }
-    /// a + b·s
-    #[must_use]
-    pub fn madd(a: V3, b: V3, s: f64) -> V3 {
-        [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s]
-    }
-    /// max component
-    #[must_use]
-    pub fn max_c(a: V3) -> f64 {
-        a[0].max(a[1]).max(a[2])
+/// Converts a loaded AFF scene: the textures to RGBA8888 level 0, the rest
+/// moves as it is (the loader produces these same types).
+#[must_use]
+pub fn aff_adapter(s: aff::Scene) -> Scene {
+    Scene {
+        camera: s.camera,
+        background: s.background,
+        ambient: s.ambient,
+        lights: s.lights,
+        materials: s.materials,
+        textures: s.textures.into_iter().map(TextureImage::from).collect(),
+        triangles: s.triangles,
     }
 }
 
-/// Converts a loaded AFF scene (textures to RGBA8888 level 0).
-#[must_use]
-pub fn aff_adapter(s: aff::Scene) -> Scene {
-    let c = s.camera;
-    Scene {
-        camera: Camera {
-            from: c.from,
-            at: c.at,
-            up: c.up,
-            fov_y_deg: c.fov_y_deg,
-            width: c.width,
-            height: c.height,
-        },
-        background: s.background,
-        ambient: s.ambient,
-        lights: s
-            .lights
-            .into_iter()
-            .map(|l| Light {
-                position: l.position,
-                color: l.color,
-            })
-            .collect(),
-        materials: s
-            .materials
-            .into_iter()
-            .map(|m| Material {
-                ambient: m.ambient,
-                diffuse: m.diffuse,
-                specular: m.specular,
-                shine: m.shine,
-                transmission: m.transmission,
-                ior: m.ior,
-            })
-            .collect(),
-        textures: s
-            .textures
-            .into_iter()
-            .map(|t| TextureImage {
-                name: t.name,
-                width: t.image.width,
-                height: t.image.height,
-                texels: t.image.to_rgba8888(),
-            })
-            .collect(),
-        triangles: s
-            .triangles
-            .into_iter()
-            .map(|t| Triangle {
-                p: t.p,
-                n: t.n,
-                uv: t.uv,
-                material: t.material,
-                texture: t.texture,
-            })
-            .collect(),
+impl From<aff::Texture> for TextureImage {
+    fn from(t: aff::Texture) -> Self {
+        Self {
+            width: t.image.width,
+            height: t.image.height,
+            texels: t.image.to_rgba8888(),
+            name: t.name,
+        }
     }
 }

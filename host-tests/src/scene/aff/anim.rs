@@ -10,8 +10,7 @@
 //!
 //! All f64; nothing here runs per ray.
 
-/// A 3-vector.
-pub type V3 = [f64; 3];
+pub use crate::scene::V3;
 
 /// Affine transform: rows of a 3×4 matrix, `p' = A p + b` with the last
 /// column as `b`.
@@ -25,7 +24,7 @@ impl Affine {
     /// Translation by `t`.
     pub fn translation(t: V3) -> Self {
         let mut m = Self::IDENTITY;
-        for (row, ti) in m.0.iter_mut().zip(t) {
+        for (row, ti) in m.0.iter_mut().zip(t.to_array()) {
             row[3] = ti;
         }
         m
@@ -34,7 +33,7 @@ impl Affine {
     /// Axis-aligned scale.
     pub fn scale(s: V3) -> Self {
         let mut m = Self::IDENTITY;
-        for (i, si) in s.into_iter().enumerate() {
+        for (i, si) in s.to_array().into_iter().enumerate() {
             m.0[i][i] = si;
         }
         m
@@ -43,12 +42,12 @@ impl Affine {
     /// Right-handed rotation by `deg` degrees about `axis` (normalised here;
     /// a zero or non-finite axis gives the identity).
     pub fn rotation_deg(axis: V3, deg: f64) -> Self {
-        let len = norm(axis);
+        let len = axis.length();
         if len == 0.0 || !len.is_finite() {
             return Self::IDENTITY;
         }
         let half = deg.to_radians() * 0.5;
-        let a = scale3(axis, half.sin() / len);
+        let a = axis * (half.sin() / len);
         Self::from_unit_quat([half.cos(), a[0], a[1], a[2]])
     }
 
@@ -102,19 +101,19 @@ impl Affine {
     /// Transforms a point.
     pub fn point(&self, p: V3) -> V3 {
         let m = &self.0;
-        [0, 1, 2].map(|i| m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2] + m[i][3])
+        V3::from([0, 1, 2].map(|i| m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2] + m[i][3]))
     }
 
     /// Transforms a direction (no translation).
     #[cfg(test)]
     pub fn vector(&self, v: V3) -> V3 {
         let m = &self.0;
-        [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+        V3::from([0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2]))
     }
 
     /// Column `j` of the 3×3 part.
     pub fn column(&self, j: usize) -> V3 {
-        [self.0[0][j], self.0[1][j], self.0[2][j]]
+        V3::new(self.0[0][j], self.0[1][j], self.0[2][j])
     }
 
     /// The inverse transpose of the 3×3 part (the normal matrix), as rows;
@@ -137,40 +136,6 @@ impl Affine {
         }
         Some(cof.map(|row| row.map(|v| v / det)))
     }
-}
-
-/// Dot product.
-pub fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-/// Euclidean length.
-pub fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
-}
-/// `a · s`.
-pub fn scale3(a: V3, s: f64) -> V3 {
-    a.map(|v| v * s)
-}
-/// `a − b`.
-pub fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-/// `a + b`.
-pub fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-/// Cross product.
-pub fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-/// `a / |a|`, or `None` for a zero or non-finite vector.
-pub fn normalize(a: V3) -> Option<V3> {
-    let n = norm(a);
-    (n > 0.0 && n.is_finite()).then(|| scale3(a, 1.0 / n))
 }
 
 /// Quaternion `(w, x, y, z)`; not necessarily unit (see 6.3).
@@ -199,7 +164,7 @@ fn qadd(a: Quat, b: Quat) -> Quat {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]]
 }
 fn vpart(q: Quat) -> V3 {
-    [q[1], q[2], q[3]]
+    V3::new(q[1], q[2], q[3])
 }
 
 /// `log(w, v) = (0, φ · v / sin φ)`, φ = acos w; `(0, v)` unchanged when
@@ -208,9 +173,9 @@ fn vpart(q: Quat) -> V3 {
 /// For a unit quaternion `sin φ = |v|`, which is how FORMAT.md §6.3 writes
 /// it (`φ v/|v|`). The key quaternions with non-unit axes are not unit,
 /// and there the two differ: dividing by `sin φ` reproduces the reference's
-/// NaN window on robots `grip_rot2` exactly (w > 1 for t in [5.888, 6.0)
-/// and (42.0, 42.182], as FORMAT.md reports), dividing by `|v|` does not
-/// ([5.911, 6.0) and (42.0, 42.143]); so the reference divides by `sin φ`
+/// NaN window on robots `grip_rot2` exactly (w > 1 for t in V3::new(5.888, 6.0)
+/// and (42.0, 42.182), as FORMAT.md reports), dividing by `|v|` does not
+/// (V3::new(5.911, 6.0) and (42.0, 42.143)); so the reference divides by `sin φ`
 /// (test `grip_rot2_window_where_w_exceeds_one_matches_reference`).
 fn qlog(q: Quat) -> Quat {
     let v = vpart(q);
@@ -230,7 +195,7 @@ fn qlog(q: Quat) -> Quat {
 /// `sin|v| < 1e-3`.
 fn qexp(q: Quat) -> Quat {
     let v = vpart(q);
-    let th = norm(v);
+    let th = v.length();
     let s = th.sin();
     if s < 1e-3 {
         return [th.cos(), v[0], v[1], v[2]];
@@ -343,20 +308,20 @@ pub fn eval_vec(keys: &[VecKey], t: f64) -> V3 {
     let times: Vec<f64> = keys.iter().map(|k| k.time).collect();
     let (j, u) = segment(&times, t);
     let (a, b, c, d) = (&keys[j], &keys[j + 1], &keys[j + 2], &keys[j + 3]);
-    let dd = sub(c.value, b.value);
+    let dd = c.value - b.value;
     let gb = gain(c.time - b.time, c.time - a.time);
     let gc = gain(c.time - b.time, d.time - b.time);
     let (wi, wo) = b.tcb.out_weights();
-    let tout = scale3(add(scale3(sub(b.value, a.value), wi), scale3(dd, wo)), gb);
+    let tout = (((b.value - a.value) * wi) + (dd * wo)) * gb;
     let (wi, wo) = c.tcb.in_weights();
-    let tin = scale3(add(scale3(dd, wi), scale3(sub(d.value, c.value), wo)), gc);
+    let tin = ((dd * wi) + ((d.value - c.value) * wo)) * gc;
     let (u2, u3) = (u * u, u * u * u);
-    [0, 1, 2].map(|i| {
+    V3::from([0, 1, 2].map(|i| {
         b.value[i]
             + tout[i] * u
             + (3. * dd[i] - 2. * tout[i] - tin[i]) * u2
             + (-2. * dd[i] + tout[i] + tin[i]) * u3
-    })
+    }))
 }
 
 fn key_quat(axis: V3, deg: f64) -> Quat {
@@ -389,7 +354,7 @@ impl RotChannel {
                 // length sqrt(1 − w²).
                 let w = n[0].clamp(-1.0, 1.0);
                 let v = vpart(n);
-                q[j + 2] = match normalize(v) {
+                q[j + 2] = match v.try_normalize() {
                     Some(ax) => {
                         let s = (1.0 - w * w).sqrt();
                         [w, ax[0] * s, ax[1] * s, ax[2] * s]
@@ -447,7 +412,7 @@ fn unit_from(q: Quat) -> Quat {
         return [1.0, 0.0, 0.0, 0.0];
     }
     let w = q[0].clamp(-1.0, 1.0);
-    match normalize(vpart(q)) {
+    match vpart(q).try_normalize() {
         Some(ax) => {
             let s = (1.0 - w * w).sqrt();
             [w, ax[0] * s, ax[1] * s, ax[2] * s]
@@ -521,7 +486,7 @@ mod tests {
     fn vk(time: f64, x: f64) -> VecKey {
         VecKey {
             time,
-            value: [x, 2.0 * x, -x],
+            value: V3::new(x, 2.0 * x, -x),
             tcb: Tcb::default(),
         }
     }
@@ -562,14 +527,18 @@ mod tests {
         // Equal spacing: Catmull–Rom of collinear equally spaced data is
         // the line: P(u) = 1 + u (by hand: Tout = Tin = D = 1).
         let keys = [vk(0., 0.), vk(1., 1.), vk(2., 2.), vk(3., 3.)];
-        assert!(close(eval_vec(&keys, 1.25), [1.25, 2.5, -1.25], 1e-12));
-        assert!(close(eval_vec(&keys, -5.0), [1.0, 2.0, -1.0], 1e-12));
-        assert!(close(eval_vec(&keys, 9.0), [2.0, 4.0, -2.0], 1e-12));
+        assert!(close(
+            eval_vec(&keys, 1.25),
+            V3::new(1.25, 2.5, -1.25),
+            1e-12
+        ));
+        assert!(close(eval_vec(&keys, -5.0), V3::new(1.0, 2.0, -1.0), 1e-12));
+        assert!(close(eval_vec(&keys, 9.0), V3::new(2.0, 4.0, -2.0), 1e-12));
         // Unequal spacing, value = time: g_b = g_c = 4/3, Tout = Tin = 2,
         // D = 2 → P(u) = 1 + 2u, i.e. P(2) = 2.
         let keys = [vk(0., 0.), vk(1., 1.), vk(3., 3.), vk(4., 4.)];
-        assert!(close(eval_vec(&keys, 2.0), [2.0, 4.0, -2.0], 1e-12));
-        assert!(close(eval_vec(&keys, 1.5), [1.5, 3.0, -1.5], 1e-12));
+        assert!(close(eval_vec(&keys, 2.0), V3::new(2.0, 4.0, -2.0), 1e-12));
+        assert!(close(eval_vec(&keys, 1.5), V3::new(1.5, 3.0, -1.5), 1e-12));
     }
 
     #[test]
@@ -581,7 +550,7 @@ mod tests {
         }
         // u = 0.25: 3/16 − 2/64 = 0.15625 → 1 + 2·0.15625 = 1.3125.
         let p = eval_vec(&keys, 1.25);
-        assert!(close(p, [1.3125, 2.625, -1.3125], 1e-12), "{p:?}");
+        assert!(close(p, V3::new(1.3125, 2.625, -1.3125), 1e-12), "{p:?}");
     }
 
     #[test]
@@ -601,7 +570,7 @@ mod tests {
         // Axis (0, 0, 2) as written: q = (cos 45°, 0, 0, 2 sin 45°), not
         // unit; every key equal so the spline returns q, and step 4
         // normalises the axis: 90° about +z maps x to y and y to −x.
-        let keys = [rk(0., [0., 0., 2.], 90.); 4];
+        let keys = [rk(0., V3::new(0., 0., 2.), 90.); 4];
         let keys: Vec<_> = keys
             .iter()
             .enumerate()
@@ -611,13 +580,25 @@ mod tests {
             })
             .collect();
         let r = RotChannel::new(&keys).eval(1.5);
-        assert!(close(r.vector([1., 0., 0.]), [0., 1., 0.], 1e-12));
-        assert!(close(r.vector([0., 1., 0.]), [-1., 0., 0.], 1e-12));
-        assert!(close(r.vector([0., 0., 1.]), [0., 0., 1.], 1e-12));
+        assert!(close(
+            r.vector(V3::new(1., 0., 0.)),
+            V3::new(0., 1., 0.),
+            1e-12
+        ));
+        assert!(close(
+            r.vector(V3::new(0., 1., 0.)),
+            V3::new(-1., 0., 0.),
+            1e-12
+        ));
+        assert!(close(
+            r.vector(V3::new(0., 0., 1.)),
+            V3::new(0., 0., 1.),
+            1e-12
+        ));
     }
 
     fn angle_about_z(r: &Affine) -> f64 {
-        let x = r.vector([1., 0., 0.]);
+        let x = r.vector(V3::new(1., 0., 0.));
         assert!(x[2].abs() < 1e-12);
         x[1].atan2(x[0]).to_degrees()
     }
@@ -631,10 +612,10 @@ mod tests {
         // −22.5 + 0.25·135 = 11.25°, blend h = 2·0.25·0.75 = 0.375 →
         // 22.5 + 0.375·(11.25 − 22.5) = 18.28125°. At s = 0.5 → 45°.
         let keys = [
-            rk(0., [0., 0., 1.], 0.),
-            rk(1., [0., 0., 1.], 0.),
-            rk(2., [0., 0., 1.], 90.),
-            rk(3., [0., 0., 1.], 90.),
+            rk(0., V3::new(0., 0., 1.), 0.),
+            rk(1., V3::new(0., 0., 1.), 0.),
+            rk(2., V3::new(0., 0., 1.), 90.),
+            rk(3., V3::new(0., 0., 1.), 90.),
         ];
         let ch = RotChannel::new(&keys);
         assert!((angle_about_z(&ch.eval(1.25)) - 18.28125).abs() < 1e-9);
@@ -649,10 +630,10 @@ mod tests {
         // (cos 175°, …) and (cos 5°, …) have a negative dot product; the
         // walk negates key 2 so the midpoint is 0° (= 360°), not 180°.
         let keys = [
-            rk(0., [0., 0., 1.], 350.),
-            rk(1., [0., 0., 1.], 350.),
-            rk(2., [0., 0., 1.], 10.),
-            rk(3., [0., 0., 1.], 10.),
+            rk(0., V3::new(0., 0., 1.), 350.),
+            rk(1., V3::new(0., 0., 1.), 350.),
+            rk(2., V3::new(0., 0., 1.), 10.),
+            rk(3., V3::new(0., 0., 1.), 10.),
         ];
         let a = angle_about_z(&RotChannel::new(&keys).eval(1.5));
         assert!(a.abs() < 1e-9, "{a}");
@@ -662,7 +643,7 @@ mod tests {
     fn non_unit_axes_never_give_nan() {
         // Axis length 1.077 (robots grip_rot2): interpolated w can exceed 1;
         // the clamp keeps the result a finite rotation.
-        let ax = [0.0, 1.077, 0.0];
+        let ax = V3::new(0.0, 1.077, 0.0);
         let keys = [
             rk(0., ax, 0.),
             rk(1., ax, 0.),
@@ -677,14 +658,14 @@ mod tests {
             assert!(m.0.iter().flatten().all(|v| v.is_finite()), "t={i}");
             // Still a rotation: columns unit length.
             for j in 0..3 {
-                assert!((norm(m.column(j)) - 1.0).abs() < 1e-9);
+                assert!((m.column(j).length() - 1.0).abs() < 1e-9);
             }
         }
     }
 
     /// Robots `grip_rot2` (Robot2.aff): axis length 1.077, 90° steps. FORMAT.md
     /// §6.3 reports that the reference's interpolated `w` exceeds 1 (acos →
-    /// NaN) exactly for t in [5.888, 6.0) and (42.0, 42.182]: the spline
+    /// NaN) exactly for t in V3::new(5.888, 6.0) and (42.0, 42.182): the spline
     /// here must put the same window there (to the 3 printed digits), and
     /// the clamp must turn it into the identity.
     #[test]
@@ -700,7 +681,7 @@ mod tests {
         let keys: Vec<RotKey> = times
             .iter()
             .zip(degs)
-            .map(|(&t, d)| rk(t, [0.76, -0.62, -0.445], d))
+            .map(|(&t, d)| rk(t, V3::new(0.76, -0.62, -0.445), d))
             .collect();
         let ch = RotChannel::new(&keys);
         let over = |t: f64| ch.eval_quat(t)[0] > 1.0;
@@ -728,15 +709,24 @@ mod tests {
     fn static_transform_order_is_t_r_s() {
         // Scale x by 2, rotate 90° about y (x → −z), translate by (1,2,3):
         // (1,0,0) → (2,0,0) → (0,0,−2) → (1,2,1).
-        let m = Affine::trs([1., 2., 3.], [0., 1., 0.], 90., [2., 1., 1.]);
-        assert!(close(m.point([1., 0., 0.]), [1., 2., 1.], 1e-12));
+        let m = Affine::trs(
+            V3::new(1., 2., 3.),
+            V3::new(0., 1., 0.),
+            90.,
+            V3::new(2., 1., 1.),
+        );
+        assert!(close(
+            m.point(V3::new(1., 0., 0.)),
+            V3::new(1., 2., 1.),
+            1e-12
+        ));
         // Normals under non-uniform scale use the inverse transpose: the
         // plane x + y = 0 scaled by (2,1,1) has normal ∝ (1/2, 1, 0).
-        let s = Affine::scale([2., 1., 1.]);
+        let s = Affine::scale(V3::new(2., 1., 1.));
         let nm = s.normal_matrix().unwrap();
-        let n = [0, 1, 2].map(|i| dot(nm[i], [1., 1., 0.]));
-        assert!(close(n, [0.5, 1., 0.], 1e-12));
-        assert!(Affine::scale([0., 1., 1.]).normal_matrix().is_none());
+        let n = V3::from([0, 1, 2].map(|i| V3::from(nm[i]).dot(V3::new(1., 1., 0.))));
+        assert!(close(n, V3::new(0.5, 1., 0.), 1e-12));
+        assert!(Affine::scale(V3::new(0., 1., 1.)).normal_matrix().is_none());
     }
 
     #[test]
@@ -746,7 +736,7 @@ mod tests {
             scale: Some(vec![
                 VecKey {
                     time: 0.,
-                    value: [3., 3., 3.],
+                    value: V3::new(3., 3., 3.),
                     tcb: Tcb::default()
                 };
                 4
@@ -765,8 +755,8 @@ mod tests {
         };
         // T · S: (1,0,0) → (3,0,0) → (4,2,−1).
         assert!(close(
-            t.matrix(0.).point([1., 0., 0.]),
-            [4., 2., -1.],
+            t.matrix(0.).point(V3::new(1., 0., 0.)),
+            V3::new(4., 2., -1.),
             1e-12
         ));
         assert!(t.visible(0.5) && !t.visible(1.0) && !t.visible(1.5) && t.visible(2.0));

@@ -54,6 +54,8 @@ mod parser;
 
 use std::path::{Path, PathBuf};
 
+/// The loader produces the renderer's own scene types.
+pub use crate::scene::{Camera, Light, Material, Triangle};
 pub use error::{AffError, AffErrorKind};
 pub use parser::{DEFAULT_MATERIAL, MAX_INCLUDE_DEPTH};
 
@@ -74,10 +76,10 @@ pub struct Scene {
     /// Camera (from the `camera` track at the load time when there is one).
     pub camera: Camera,
     /// Colour of rays that hit nothing (`b`; default black).
-    pub background: [f64; 3],
+    pub background: crate::scene::V3,
     /// Global ambient intensity (`am`; default 1 1 1); multiplies each
     /// material's ambient colour.
-    pub ambient: [f64; 3],
+    pub ambient: crate::scene::V3,
     /// Point lights in world space.
     pub lights: Vec<Light>,
     /// Distinct materials (identical `fm` records share one entry).
@@ -91,52 +93,6 @@ pub struct Scene {
     pub stats: LoadStats,
 }
 
-/// Pinhole camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
-    /// Eye point (world units).
-    pub from: [f64; 3],
-    /// A point the camera looks at.
-    pub at: [f64; 3],
-    /// Up vector (not necessarily unit nor orthogonal to the view direction).
-    pub up: [f64; 3],
-    /// Full vertical field of view in degrees, in (0, 180).
-    pub fov_y_deg: f64,
-    /// Near distance (> 0; values below 1e-4 were replaced by 1.0).
-    pub hither: f64,
-    /// Image width in pixels (≥ 1).
-    pub width: u32,
-    /// Image height in pixels (≥ 1).
-    pub height: u32,
-}
-
-/// Point light.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Light {
-    /// Position in world space.
-    pub position: [f64; 3],
-    /// RGB intensity (default white).
-    pub color: [f64; 3],
-}
-
-/// Whitted/NFF material (`fm`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Material {
-    /// Ambient colour (times the global ambient).
-    pub ambient: [f64; 3],
-    /// Diffuse colour.
-    pub diffuse: [f64; 3],
-    /// Specular colour; also the weight of the mirror ray.
-    pub specular: [f64; 3],
-    /// Phong exponent (0…255 in BART).
-    pub shine: f64,
-    /// Transmittance (weight of the refracted ray); AFF gives one scalar,
-    /// copied to the three channels.
-    pub transmission: [f64; 3],
-    /// Index of refraction; values `<= 0` in the file are replaced by 1.
-    pub ior: f64,
-}
-
 /// A texture image.
 #[derive(Clone, Debug)]
 pub struct Texture {
@@ -146,23 +102,6 @@ pub struct Texture {
     pub path: PathBuf,
     /// Pixels (any size, NPOT too); v = 0 is the first row of the file.
     pub image: crate::scene::ppm::RgbImage,
-}
-
-/// World-space triangle.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Triangle {
-    /// Vertices.
-    pub p: [[f64; 3]; 3],
-    /// Unit vertex normals (inverse-transpose transformed), if the file gave
-    /// them (tessellated spheres/cones always have them).
-    pub n: Option<[[f64; 3]; 3]>,
-    /// Texture coordinates as written (repeat wrap; v = 0 is the top row of
-    /// the image, v grows downward).
-    pub uv: Option<[[f64; 2]; 3]>,
-    /// Index into [`Scene::materials`].
-    pub material: u32,
-    /// Index into [`Scene::textures`]; `Some` exactly when `uv` is.
-    pub texture: Option<u32>,
 }
 
 /// What the loader read.

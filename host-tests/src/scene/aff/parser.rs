@@ -12,10 +12,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use super::anim::{
-    Affine, MIN_KEYS, RotChannel, RotKey, Tcb, Track, V3, VecKey, VisKey, add, dot, normalize,
-    scale3, sub,
-};
+use super::anim::{Affine, MIN_KEYS, RotChannel, RotKey, Tcb, Track, V3, VecKey, VisKey};
 use super::error::{AffError, AffErrorKind};
 use super::lexer::{Lexer, Token, parse_f64, parse_i64, parse_usize};
 use super::mesh::{RawTri, cone, sphere, zero_area, zero_uv_area};
@@ -29,11 +26,11 @@ pub const MAX_INCLUDE_DEPTH: usize = 32;
 /// Material used by primitives that come before any `fm`/`f`: white matte
 /// (ambient 0, diffuse 1, no specular, opaque). BART never relies on it.
 pub const DEFAULT_MATERIAL: Material = Material {
-    ambient: [0.0; 3],
-    diffuse: [1.0; 3],
-    specular: [0.0; 3],
+    ambient: V3::ZERO,
+    diffuse: V3::ONE,
+    specular: V3::ZERO,
     shine: 0.0,
-    transmission: [0.0; 3],
+    transmission: V3::ZERO,
     ior: 1.0,
 };
 
@@ -113,7 +110,7 @@ impl<'a> Src<'a> {
         parse_f64(t.text).ok_or_else(|| bad_number(self.path, &t, what))
     }
     fn v3(&mut self, what: &str) -> Result<V3, AffError> {
-        Ok([self.f64(what)?, self.f64(what)?, self.f64(what)?])
+        Ok(V3::new(self.f64(what)?, self.f64(what)?, self.f64(what)?))
     }
     fn count(&mut self, what: &str) -> Result<usize, AffError> {
         let t = self.tok(what)?;
@@ -215,8 +212,8 @@ impl Parser {
             tris: Vec::new(),
             tracks: HashMap::new(),
             view: None,
-            background: [0.0; 3],
-            ambient: [1.0; 3],
+            background: V3::ZERO,
+            ambient: V3::ONE,
             lights: Vec::new(),
             stats: LoadStats {
                 time,
@@ -377,11 +374,11 @@ impl Parser {
     fn material_fm(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
         let v: [f64; 12] = Self::material_values(src, "fm")?;
         self.set_material(Material {
-            ambient: [v[0], v[1], v[2]],
-            diffuse: [v[3], v[4], v[5]],
-            specular: [v[6], v[7], v[8]],
+            ambient: V3::new(v[0], v[1], v[2]),
+            diffuse: V3::new(v[3], v[4], v[5]),
+            specular: V3::new(v[6], v[7], v[8]),
             shine: v[9],
-            transmission: [v[10]; 3],
+            transmission: V3::splat(v[10]),
             ior: guard_ior(v[11]),
         });
         Ok(())
@@ -390,14 +387,14 @@ impl Parser {
     /// `f`: RGB, kd, ks, shine, transmission, ior (NFF).
     fn material_f(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
         let v: [f64; 8] = Self::material_values(src, "f")?;
-        let rgb = [v[0], v[1], v[2]];
-        let diffuse = scale3(rgb, v[3]);
+        let rgb = V3::new(v[0], v[1], v[2]);
+        let diffuse = rgb * v[3];
         self.set_material(Material {
             ambient: diffuse,
             diffuse,
-            specular: [v[4]; 3],
+            specular: V3::splat(v[4]),
             shine: v[5],
-            transmission: [v[6]; 3],
+            transmission: V3::splat(v[6]),
             ior: guard_ior(v[7]),
         });
         Ok(())
@@ -431,7 +428,7 @@ impl Parser {
         if src.next_is_number() {
             src.v3("light colour")
         } else {
-            Ok([1.0; 3])
+            Ok(V3::ONE)
         }
     }
 
@@ -480,7 +477,7 @@ impl Parser {
         if width == 0 || height == 0 {
             return Err(src.syntax(kw.line, format!("resolution {w}x{h} is empty")));
         }
-        if from == at || up == [0.0; 3] {
+        if from == at || up == V3::ZERO {
             return Err(src.syntax(
                 t.line,
                 "degenerate view: `from` equals `at` or `up` is zero".into(),
@@ -651,8 +648,8 @@ impl Parser {
     fn textured_triangle(&mut self, src: &mut Src<'_>, normals: bool) -> Result<(), AffError> {
         let name = src.name("texture name")?;
         let tex = self.texture(src, &name)?;
-        let mut p = [[0.0; 3]; 3];
-        let mut n = [[0.0; 3]; 3];
+        let mut p = [V3::ZERO; 3];
+        let mut n = [V3::ZERO; 3];
         let mut uv = [[0.0; 2]; 3];
         for i in 0..3 {
             let ctx = || format!("textured-triangle vertex {} of 3", i + 1);
@@ -680,8 +677,8 @@ impl Parser {
         for k in 0..n {
             let ctx = || format!("`tpa` key {} of {n}", k + 1);
             let time = src.f64("key time").map_err(|e| context(e, ctx))?;
-            let mut p = [[0.0; 3]; 3];
-            let mut nn = [[0.0; 3]; 3];
+            let mut p = [V3::ZERO; 3];
+            let mut nn = [V3::ZERO; 3];
             for i in 0..3 {
                 p[i] = src.v3("vertex coordinate").map_err(|e| context(e, ctx))?;
                 nn[i] = src.v3("normal component").map_err(|e| context(e, ctx))?;
@@ -701,7 +698,7 @@ impl Parser {
             } else {
                 0.0
             };
-            let lerp = |x: V3, y: V3| add(x, scale3(sub(y, x), s));
+            let lerp = |x: V3, y: V3| x + ((y - x) * s);
             (
                 [0, 1, 2].map(|j| lerp(a.1[j], b.1[j])),
                 [0, 1, 2].map(|j| lerp(a.2[j], b.2[j])),
@@ -1005,14 +1002,16 @@ impl Parser {
                 continue;
             }
             let p = r.p.map(|v| m.point(v));
-            if !p.iter().flatten().all(|v| v.is_finite()) {
+            if !p.iter().all(|v| v.is_finite()) {
                 // Only reachable with absurd scales (e.g. 1e300 · 1e300).
                 self.stats.skipped_non_finite += 1;
                 continue;
             }
             let n = match (r.n, &normal_mats[r.node as usize]) {
                 (Some(n), Some(nm)) => {
-                    let w = n.map(|v| normalize([0, 1, 2].map(|i| dot(nm[i], v))));
+                    let w = n.map(|v| {
+                        V3::from([0, 1, 2].map(|i| V3::from(nm[i]).dot(v))).try_normalize()
+                    });
                     match w {
                         [Some(a), Some(b), Some(c)] => Some([a, b, c]),
                         _ => {
@@ -1052,7 +1051,7 @@ impl Parser {
             self.stats.camera_from_track = true;
             apply_camera_track(&mut camera, cam, t);
         }
-        let finite = |v: [f64; 3]| v.iter().all(|x| x.is_finite());
+        let finite = |v: V3| v.is_finite();
         if !(finite(camera.from) && finite(camera.at) && finite(camera.up)) {
             return Err(AffError::new(
                 top,
@@ -1096,11 +1095,11 @@ pub(crate) fn apply_camera_track(camera: &mut Camera, track: &Track, t: f64) {
     match &track.rot {
         Some(r) => {
             let m = r.eval(t);
-            let dir = scale3(m.column(2), -1.0);
-            camera.at = add(eye, dir);
+            let dir = m.column(2) * -1.0;
+            camera.at = eye + dir;
             camera.up = m.column(1);
         }
-        None => camera.at = add(eye, sub(camera.at, camera.from)),
+        None => camera.at = eye + (camera.at - camera.from),
     }
     camera.from = eye;
 }
@@ -1121,13 +1120,13 @@ fn guard_ior(ior: f64) -> f64 {
 
 fn material_key(m: &Material) -> [u64; 14] {
     let mut k = [0u64; 14];
-    let vals = m
-        .ambient
+    let [a, d, s, t] = [m.ambient, m.diffuse, m.specular, m.transmission].map(|c| c.to_array());
+    let vals = a
         .iter()
-        .chain(&m.diffuse)
-        .chain(&m.specular)
+        .chain(&d)
+        .chain(&s)
         .chain([&m.shine])
-        .chain(&m.transmission[..1])
+        .chain(&t[..1])
         .chain([&m.ior]);
     for (slot, v) in k.iter_mut().zip(vals) {
         *slot = v.to_bits();

@@ -1,0 +1,430 @@
+//! Charts with `plotters`, each written as SVG and as PNG (bitmap backend
+//! into a buffer, encoded by `cli::output::write_png`). Text is drawn by
+//! `ab_glyph` with DejaVu Sans embedded from the `dejavu` crate, so no
+//! system font or fontconfig is needed.
+//!
+//! * [`scatter`]: time (log axis) against error, one colour per series,
+//!   every point labelled, the Pareto front joined by a line and drawn
+//!   filled (other points hollow); one panel per group (e.g. scene).
+//! * [`curves`]: lines on log–log axes (convergence over frames).
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use crate::cli::output::write_png;
+
+/// One point of a scatter chart.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// x (time; > 0).
+    pub x: f64,
+    /// y (error or PSNR).
+    pub y: f64,
+    /// Label drawn beside the point.
+    pub label: String,
+    /// Series (colour and legend entry).
+    pub series: String,
+    /// On the Pareto front.
+    pub front: bool,
+}
+
+/// A panel of a scatter chart.
+#[derive(Clone, Debug)]
+pub struct Panel {
+    /// Panel caption.
+    pub title: String,
+    /// The points.
+    pub points: Vec<Point>,
+}
+
+/// Axes of a chart.
+#[derive(Clone, Debug)]
+pub struct Axes {
+    /// x-axis description.
+    pub x: String,
+    /// y-axis description.
+    pub y: String,
+    /// Logarithmic y axis (values ≤ `y_floor` drawn at the floor).
+    pub log_y: bool,
+    /// Smallest y drawn on a log axis.
+    pub y_floor: f64,
+}
+
+/// A line of a curve chart.
+#[derive(Clone, Debug)]
+pub struct Line {
+    /// Legend entry.
+    pub name: String,
+    /// `(x, y)` points, both > 0.
+    pub points: Vec<(f64, f64)>,
+    /// Dashed (reference lines).
+    pub dashed: bool,
+}
+
+const WIDTH: u32 = 1400;
+const HEIGHT: u32 = 900;
+
+/// Registers the embedded font once.
+fn fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
+    });
+}
+
+/// Colour of series `i`.
+#[must_use]
+pub fn colour(i: usize) -> RGBColor {
+    const P: [RGBColor; 10] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+        RGBColor(255, 127, 14),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(90, 90, 90),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
+    ];
+    P[i % P.len()]
+}
+
+/// `v` with three significant digits, plain when in `[0.01, 10⁵)`.
+#[must_use]
+pub fn sig(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if (0.01..1e5).contains(&a) {
+        let d = (2 - a.log10().floor() as i32).max(0) as usize;
+        format!("{v:.d$}")
+    } else {
+        format!("{v:.1e}")
+    }
+}
+
+/// Tick label of a log10-transformed axis value.
+fn exp_label(v: &f64) -> String {
+    sig(10f64.powf(*v))
+}
+
+/// `(lo, hi)` with a margin, for a log axis (`log`) or a linear one.
+fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in vals.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return if log { (0.1, 10.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        (lo / 1.6, hi * 1.6)
+    } else {
+        let m = ((hi - lo) * 0.08).max(0.05);
+        (lo - m, hi + m)
+    }
+}
+
+/// A chart drawable on any backend.
+pub trait Draw {
+    /// Draws the chart on `root`.
+    ///
+    /// # Errors
+    /// The backend's error as text.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static;
+}
+
+fn err(e: impl std::fmt::Display) -> String {
+    format!("chart: {e}")
+}
+
+/// Writes `chart` as `stem.svg` and `stem.png`.
+///
+/// # Errors
+/// Drawing or file errors, naming the file.
+pub fn write(stem: &Path, chart: &impl Draw) -> Result<(), String> {
+    fonts();
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)).into_drawing_area();
+        chart.draw(&root)?;
+        root.present().map_err(err)?;
+    }
+    let svg_path = stem.with_extension("svg");
+    std::fs::write(&svg_path, svg).map_err(|e| format!("{}: {e}", svg_path.display()))?;
+    let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
+        chart.draw(&root)?;
+        root.present().map_err(err)?;
+    }
+    let px: Vec<[u8; 3]> = buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    write_png(&stem.with_extension("png"), WIDTH, HEIGHT, &px)
+}
+
+/// A panel on log10-transformed x (and y where the caller transforms it):
+/// caption, ranges, mesh with the axis descriptions.
+fn panel_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    axes: &Axes,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    y_fmt: &dyn Fn(&f64) -> String,
+) -> Result<Panel2d<'a, DB>, String>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 18))
+        .margin(14)
+        .x_label_area_size(44)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(axes.x.as_str())
+        .y_desc(axes.y.as_str())
+        .x_label_formatter(&exp_label)
+        .y_label_formatter(y_fmt)
+        .label_style(("sans-serif", 13))
+        .draw()
+        .map_err(err)?;
+    Ok(chart)
+}
+
+/// A chart panel over f64 axes.
+type Panel2d<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// `root` filled white under `title`: the area below the title.
+fn titled<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<DrawingArea<DB, Shift>, String>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(err)?;
+    root.titled(title, ("sans-serif", 24)).map_err(err)
+}
+
+/// The legend box, upper right.
+fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 13))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(err)
+}
+
+/// Time against error, one panel per group.
+#[derive(Clone, Debug)]
+pub struct Scatter {
+    /// Chart title.
+    pub title: String,
+    /// Axes.
+    pub axes: Axes,
+    /// Panels (one or more).
+    pub panels: Vec<Panel>,
+    /// One front per series (drawn in its colour) instead of one front
+    /// over every point (black).
+    pub front_per_series: bool,
+}
+
+impl Scatter {
+    /// Series names in order of first appearance (stable colours).
+    fn series(&self) -> Vec<String> {
+        let mut s: Vec<String> = Vec::new();
+        for p in self.panels.iter().flat_map(|p| &p.points) {
+            if !s.contains(&p.series) {
+                s.push(p.series.clone());
+            }
+        }
+        s
+    }
+
+    fn panel<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        p: &Panel,
+    ) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        let log_y = self.axes.log_y;
+        let floor = self.axes.y_floor;
+        let ty = move |y: f64| if log_y { y.max(floor).log10() } else { y };
+        let tx = |x: f64| x.log10();
+        let (x0, x1) = range(p.points.iter().map(|q| tx(q.x)), false);
+        // Room for the labels right of the last points.
+        let x1 = x1 + 0.18 * (x1 - x0);
+        let (y0, y1) = range(p.points.iter().map(|q| ty(q.y)), false);
+        let y_fmt = move |v: &f64| {
+            if log_y {
+                exp_label(v)
+            } else {
+                format!("{v:.1}")
+            }
+        };
+        let mut chart = panel_chart(area, &p.title, &self.axes, (x0, x1), (y0, y1), &y_fmt)?;
+        let front_line = |pts: &[&Point]| {
+            let mut f: Vec<(f64, f64)> = pts
+                .iter()
+                .filter(|q| q.front)
+                .map(|q| (tx(q.x), ty(q.y)))
+                .collect();
+            f.sort_by(|a, b| a.0.total_cmp(&b.0));
+            f
+        };
+        let all: Vec<&Point> = p.points.iter().collect();
+        let (label, c) = if self.front_per_series {
+            ("Pareto front (per method)", BLACK.mix(0.0))
+        } else {
+            ("Pareto front", BLACK.mix(1.0))
+        };
+        chart
+            .draw_series(LineSeries::new(
+                if self.front_per_series {
+                    Vec::new()
+                } else {
+                    front_line(&all)
+                },
+                c.stroke_width(2),
+            ))
+            .map_err(err)?
+            .label(label)
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
+        for (si, name) in self.series().iter().enumerate() {
+            let c = colour(si);
+            let pts: Vec<&Point> = p.points.iter().filter(|q| &q.series == name).collect();
+            if pts.is_empty() {
+                continue;
+            }
+            if self.front_per_series {
+                chart
+                    .draw_series(LineSeries::new(front_line(&pts), c.stroke_width(2)))
+                    .map_err(err)?;
+            }
+            chart
+                .draw_series(pts.iter().map(|q| {
+                    let style = if q.front {
+                        c.filled()
+                    } else {
+                        c.stroke_width(2)
+                    };
+                    Circle::new((tx(q.x), ty(q.y)), if q.front { 6 } else { 5 }, style)
+                }))
+                .map_err(err)?
+                .label(name.as_str())
+                .legend(move |(x, y)| Circle::new((x + 9, y), 5, c.filled()));
+            let font = ("sans-serif", 12).into_font().color(&c);
+            chart
+                .draw_series(pts.iter().map(|q| {
+                    EmptyElement::at((tx(q.x), ty(q.y)))
+                        + Text::new(q.label.clone(), (8, -14), font.clone())
+                }))
+                .map_err(err)?;
+        }
+        legend(&mut chart)
+    }
+}
+
+impl Draw for Scatter {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        let root = titled(root, &self.title)?;
+        let n = self.panels.len().max(1);
+        let (rows, cols) = if n == 1 {
+            (1, 1)
+        } else if n == 2 {
+            (1, 2)
+        } else {
+            (2, n.div_ceil(2))
+        };
+        for (p, a) in self.panels.iter().zip(root.split_evenly((rows, cols))) {
+            self.panel(&a, p)?;
+        }
+        Ok(())
+    }
+}
+
+/// Lines on log–log axes.
+#[derive(Clone, Debug)]
+pub struct Curves {
+    /// Chart title.
+    pub title: String,
+    /// Axes (both logarithmic; `log_y` ignored).
+    pub axes: Axes,
+    /// Panels: a caption and its lines.
+    pub panels: Vec<(String, Vec<Line>)>,
+}
+
+impl Curves {
+    fn panel<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        title: &str,
+        lines: &[Line],
+    ) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        let floor = self.axes.y_floor;
+        let t = move |(x, y): (f64, f64)| (x.log10(), y.max(floor).log10());
+        let all = || lines.iter().flat_map(|l| l.points.iter().map(|&p| t(p)));
+        let (x0, x1) = range(all().map(|p| p.0), false);
+        let (y0, y1) = range(all().map(|p| p.1), false);
+        let mut chart = panel_chart(area, title, &self.axes, (x0, x1), (y0, y1), &exp_label)?;
+        for (i, l) in lines.iter().enumerate() {
+            let c = if l.dashed { BLACK } else { colour(i) };
+            let pts = l.points.iter().map(|&p| t(p));
+            let s = if l.dashed {
+                chart.draw_series(DashedLineSeries::new(pts, 8, 6, c.stroke_width(2)))
+            } else {
+                chart.draw_series(LineSeries::new(pts, c.stroke_width(2)))
+            };
+            s.map_err(err)?
+                .label(l.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
+                });
+        }
+        legend(&mut chart)
+    }
+}
+
+impl Draw for Curves {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        let root = titled(root, &self.title)?;
+        let n = self.panels.len().max(1);
+        for ((t, l), a) in self.panels.iter().zip(root.split_evenly((1, n))) {
+            self.panel(&a, t, l)?;
+        }
+        Ok(())
+    }
+}

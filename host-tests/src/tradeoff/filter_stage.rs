@@ -1,0 +1,292 @@
+//! Filter per sample: nearest, bilinear, trilinear and the stochastic
+//! filters, fixed point (the firmware sampler) and f32 (`raymip::float`),
+//! timed per call; error in 8-bit LSB per channel against the exact f64
+//! trilinear filter (`reference::sampler_ref::RefSampler`) at the same
+//! inputs (the common target every filter approximates: the chart axis)
+//! and against the exact f64 version of the row's own filter (the
+//! implementation error).
+//! Stochastic rows come twice: one frame (one sample) and the mean of
+//! `Settings::accumulate` frames (the same per-frame cost).
+
+use raymip::address::AddressMode;
+use raymip::filter::{Address, Mode, Sampler, TexCoord};
+use raymip::float::SamplerF32;
+use raymip::lod::Lod;
+use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::rng::Rng as FrameRng;
+use raymip::stochastic::StochasticMode;
+
+use super::timing::measure;
+use super::{Row, Settings, Stage, error_stats};
+use crate::reference::Rng;
+use crate::reference::sampler_ref::{RefSampler, RefState, RefTexture};
+
+/// A random RGBA8 texture and its firmware pyramid.
+pub struct TestTexture {
+    /// Geometry (full chain).
+    pub geometry: Geometry,
+    /// Texels of every level.
+    pub texels: Vec<Texel>,
+}
+
+impl TestTexture {
+    /// A `size`×`size` level 0 of random texels (seeded), levels by
+    /// `mip::generate`.
+    #[must_use]
+    pub fn random(size: u32, seed: u64) -> Self {
+        let geometry = Geometry::new(size, size, full_levels(size, size))
+            .unwrap_or_else(|e| panic!("texture {size}: {e}"));
+        let mut texels = vec![0; geometry.len()];
+        let mut r = Rng(seed | 1);
+        for t in &mut texels[..(size * size) as usize] {
+            *t = r.next_u64() as u32;
+        }
+        generate(&geometry, &mut texels).unwrap_or_else(|e| panic!("generate: {e}"));
+        Self { geometry, texels }
+    }
+
+    /// A firmware sampler over it (wrap addressing).
+    #[must_use]
+    pub fn sampler(&self) -> Sampler<Pyramid<'_>> {
+        let p = Pyramid::new(self.geometry, &self.texels).unwrap_or_else(|e| panic!("{e}"));
+        Sampler::new(p, Address::Wrap)
+    }
+
+    /// The exact f64 reference over the same texels (wrap, no bias).
+    #[must_use]
+    pub fn reference(&self) -> RefTexture {
+        RefTexture::from_rgba8(&self.geometry, &self.texels)
+    }
+}
+
+/// The reference sampler state: wrap, no bias or clamps, linear.
+#[must_use]
+pub fn ref_state() -> RefState {
+    RefState {
+        address: [AddressMode::Wrap; 2],
+        border: [0.0; 4],
+        bias: 0.0,
+        min_lod: f64::NEG_INFINITY,
+        max_lod: f64::INFINITY,
+        max_aniso: 1,
+        srgb: false,
+        encode_srgb: false,
+    }
+}
+
+/// One sample position: exact in both I32F32 and f64; lod a multiple of
+/// 1/256 in [−1, top + 1).
+pub type Input = (TexCoord, TexCoord, Lod);
+
+/// `n` random inputs for a texture of `levels` levels.
+#[must_use]
+pub fn inputs(n: usize, levels: u8, seed: u64) -> Vec<Input> {
+    let mut r = Rng(seed | 1);
+    (0..n)
+        .map(|_| {
+            let u = TexCoord::from_num(r.unit());
+            let v = TexCoord::from_num(r.unit());
+            let l = Lod::from_num(r.range(-1.0, f64::from(levels)));
+            (u, v, l)
+        })
+        .collect()
+}
+
+/// The deterministic filter a stochastic mode converges to.
+#[must_use]
+pub fn expectation(m: StochasticMode) -> Mode {
+    match m {
+        StochasticMode::Bilinear => Mode::BilinearNearestLevel,
+        StochasticMode::Trilinear | StochasticMode::TrilinearBilinear => Mode::Trilinear,
+    }
+}
+
+/// Filter name of a mode in the tables and charts.
+#[must_use]
+pub fn mode_name(m: Mode) -> &'static str {
+    match m {
+        Mode::Trilinear => "trilinear",
+        Mode::BilinearNearestLevel => "bilinear",
+        Mode::Nearest => "nearest",
+        Mode::NearestTexelLinearLevel => "nearest-texel linear-level",
+    }
+}
+
+/// Filter name of a stochastic mode.
+#[must_use]
+pub fn stochastic_name(m: StochasticMode) -> &'static str {
+    match m {
+        StochasticMode::Trilinear => "stochastic trilinear",
+        StochasticMode::Bilinear => "stochastic bilinear",
+        StochasticMode::TrilinearBilinear => "stochastic trilinear+bilinear",
+    }
+}
+
+/// The stochastic modes, in chart order.
+pub const STOCHASTIC: [StochasticMode; 3] = [
+    StochasticMode::Trilinear,
+    StochasticMode::Bilinear,
+    StochasticMode::TrilinearBilinear,
+];
+
+/// The random bits of sample `i` in frame `frame`.
+#[must_use]
+pub fn bits(i: usize, frame: u32) -> u32 {
+    FrameRng::for_pixel(i as u32, 0, frame).next_u32()
+}
+
+/// Channels of a texel as f64.
+#[must_use]
+pub fn channels(t: Texel) -> [f64; 4] {
+    t.to_le_bytes().map(f64::from)
+}
+
+/// Per-channel differences `got − exact` (LSB).
+fn diffs<'a>(got: &'a [[f64; 4]], exact: &'a [[f64; 4]]) -> impl Iterator<Item = f64> + 'a {
+    got.iter()
+        .zip(exact)
+        .flat_map(|(g, e)| (0..4).map(move |c| g[c] - e[c]))
+}
+
+/// Exact values at every input: the trilinear target and the row's own
+/// filter.
+struct Exact<'a> {
+    target: &'a [[f64; 4]],
+    own: Vec<[f64; 4]>,
+}
+
+fn row(filter: &str, precision: &str, ns: f64, got: &[[f64; 4]], ex: &Exact) -> Row {
+    let (max, rms) = error_stats(diffs(got, ex.target));
+    let (own_max, own_rms) = error_stats(diffs(got, &ex.own));
+    Row {
+        time_ns: Some(ns),
+        filter: Some(filter.to_string()),
+        own_error_max: Some(own_max),
+        own_error_rms: Some(own_rms),
+        ..Row::new(Stage::Filter, "sample", precision, max, rms, "LSB")
+    }
+}
+
+/// The exact filter at every input.
+fn exact(r: &RefSampler, inp: &[Input], mode: Mode) -> Vec<[f64; 4]> {
+    inp.iter()
+        .map(|&(u, v, l)| r.sample(u.to_num(), v.to_num(), l.to_num(), mode))
+        .collect()
+}
+
+/// The BUDGETS.md call that counts a mode's firmware path.
+fn budget_call(m: Mode) -> Option<&'static str> {
+    match m {
+        Mode::Trilinear => Some("trilinear sample"),
+        Mode::BilinearNearestLevel => Some("bilinear sample"),
+        _ => None,
+    }
+}
+
+/// Deterministic rows: each mode fixed and f32.
+fn deterministic(
+    tex: &TestTexture,
+    r: &RefSampler,
+    inp: &[Input],
+    reps: usize,
+    target: &[[f64; 4]],
+) -> Vec<Row> {
+    let mut out = Vec::new();
+    let f32s = SamplerF32::new(tex.geometry, &tex.texels, Address::Wrap)
+        .unwrap_or_else(|| panic!("SamplerF32 over the test texture"));
+    let fin: Vec<(f32, f32, f32)> = inp
+        .iter()
+        .map(|&(u, v, l)| (u.to_num(), v.to_num(), l.to_num()))
+        .collect();
+    for mode in [Mode::Nearest, Mode::BilinearNearestLevel, Mode::Trilinear] {
+        let ex = Exact {
+            target,
+            own: exact(r, inp, mode),
+        };
+        let mut s = tex.sampler();
+        let (ns, got) = measure(inp, reps, |(u, v, l)| s.sample(u, v, l, mode), channels);
+        let call = budget_call(mode);
+        let mut fw = row(mode_name(mode), "fixed accurate", ns, &got, &ex);
+        fw.budget_call = call.map(|c| (c.to_string(), false));
+        out.push(fw);
+        let (ns, got) = measure(&fin, reps, |(u, v, l)| f32s.sample(u, v, l, mode), channels);
+        let mut fl = row(mode_name(mode), "f32 libm", ns, &got, &ex);
+        fl.budget_call = call.map(|c| (c.to_string(), true));
+        out.push(fl);
+    }
+    out
+}
+
+/// Stochastic rows: each mode, one frame and the mean of `frames` frames
+/// (error against the exact filter of its expectation).
+fn stochastic(
+    tex: &TestTexture,
+    r: &RefSampler,
+    inp: &[Input],
+    reps: usize,
+    frames: u32,
+    target: &[[f64; 4]],
+) -> Vec<Row> {
+    let mut out = Vec::new();
+    let idx: Vec<(usize, Input)> = inp.iter().copied().enumerate().collect();
+    for m in STOCHASTIC {
+        let ex = Exact {
+            target,
+            own: exact(r, inp, expectation(m)),
+        };
+        let mut s = tex.sampler();
+        let (ns, got) = measure(
+            &idx,
+            reps,
+            |(i, (u, v, l))| s.sample_stochastic(u, v, l, m, bits(i, 0)),
+            channels,
+        );
+        out.push(row(stochastic_name(m), "fixed accurate", ns, &got, &ex));
+        let mean = mean_of_frames(tex, inp, m, frames);
+        let mut acc = row(stochastic_name(m), "fixed accurate", ns, &mean, &ex);
+        acc.frames = frames;
+        out.push(acc);
+    }
+    out
+}
+
+/// Per input, the mean of the stochastic samples of frames `0..frames`.
+#[must_use]
+pub fn mean_of_frames(
+    tex: &TestTexture,
+    inp: &[Input],
+    m: StochasticMode,
+    frames: u32,
+) -> Vec<[f64; 4]> {
+    let mut s = tex.sampler();
+    inp.iter()
+        .enumerate()
+        .map(|(i, &(u, v, l))| {
+            let mut acc = [0.0; 4];
+            for f in 0..frames {
+                let c = channels(s.sample_stochastic(u, v, l, m, bits(i, f)));
+                for k in 0..4 {
+                    acc[k] += c[k];
+                }
+            }
+            acc.map(|a| a / f64::from(frames.max(1)))
+        })
+        .collect()
+}
+
+/// Every filter row. `tick` is called after each group.
+pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
+    let tex = TestTexture::random(s.texture_size, 0x5EED_7E57);
+    let rt = tex.reference();
+    let r = RefSampler {
+        tex: &rt,
+        state: ref_state(),
+    };
+    let inp = inputs(s.filter_inputs, tex.geometry.levels(), 0xF11E);
+    let target = exact(&r, &inp, Mode::Trilinear);
+    let mut out = deterministic(&tex, &r, &inp, s.repeats, &target);
+    tick();
+    out.extend(stochastic(&tex, &r, &inp, s.repeats, s.accumulate, &target));
+    tick();
+    out
+}

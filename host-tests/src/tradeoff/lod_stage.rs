@@ -1,0 +1,246 @@
+//! LOD per hit: table, cone, cone + normal term and ray differentials in
+//! every precision, timed per call and compared with f64 over the same
+//! inputs (error in levels).
+
+use fixed::types::{I16F16, I32F32, U1F31, U32F32};
+use raymip::float::{cone_lod_f32, table_lod_f32};
+use raymip::lod::{Lod, cone_lod, table_lod};
+use raymip::table::Log2Pb;
+
+use super::log2fx::{self, Log2Fx, Log2Tables};
+use super::timing::measure;
+use super::{Row, Settings, Stage, error_stats};
+use crate::reference::Rng;
+
+/// One hit's inputs, exactly representable in the firmware's formats.
+#[derive(Clone, Copy, Debug)]
+struct Hit {
+    pl: f64,
+    log2_pb: f64,
+    width: f64,
+    delta: f64,
+    cos: f64,
+    /// Ray-differential footprint axes in texels (x and y).
+    axes: [[f64; 2]; 2],
+}
+
+/// The hits: path lengths 2⁻⁸..2¹², `log2 Pb` in [−4, 12), cone widths
+/// `Pl·10⁻³`, `|n·d|` in [0.05, 1), footprint axes up to ±64 texels; every
+/// value rounded to its fixed-point format first, so all precisions see
+/// the same numbers.
+fn hits(n: usize) -> Vec<Hit> {
+    let mut r = Rng(0x2545_F491_4F6C_DD1D);
+    (0..n)
+        .map(|_| {
+            let pl = U32F32::from_num(2f64.powf(r.range(-8.0, 12.0)));
+            let pb = I16F16::from_num(r.range(-4.0, 12.0));
+            let w = I32F32::from_num(pl.to_num::<f64>() * 1e-3);
+            let d = I16F16::from_num(-pb.to_num::<f64>() - 10.0);
+            let c = U1F31::from_num(r.range(0.05, 1.0));
+            let mut ax = || [r.range(-64.0, 64.0), r.range(-64.0, 64.0)];
+            Hit {
+                pl: pl.to_num(),
+                log2_pb: pb.to_num(),
+                width: w.to_num(),
+                delta: d.to_num(),
+                cos: c.to_num(),
+                axes: [ax(), ax()],
+            }
+        })
+        .collect()
+}
+
+/// The three LOD formulas of the firmware.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Formula {
+    Table,
+    Cone,
+    ConeNormal,
+}
+
+impl Formula {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Table => "table",
+            Self::Cone => "cone",
+            Self::ConeNormal => "cone+normal",
+        }
+    }
+
+    fn exact(self, h: &Hit) -> f64 {
+        match self {
+            Self::Table => h.pl.log2() - h.log2_pb,
+            Self::Cone => h.delta + h.width.log2(),
+            Self::ConeNormal => h.delta + h.width.log2() - h.cos.log2(),
+        }
+    }
+
+    /// The BUDGETS.md call that counts this formula's firmware path.
+    fn budget_call(self) -> Option<&'static str> {
+        match self {
+            Self::Table => Some("table lod"),
+            Self::Cone => None,
+            Self::ConeNormal => Some("cone lod (with n·d)"),
+        }
+    }
+}
+
+type FixedHit = (U32F32, Log2Pb, I32F32, I16F16, U1F31);
+
+fn fixed_hit(h: &Hit) -> FixedHit {
+    (
+        U32F32::from_num(h.pl),
+        Log2Pb::from_log2(I16F16::from_num(h.log2_pb)),
+        I32F32::from_num(h.width),
+        I16F16::from_num(h.delta),
+        U1F31::from_num(h.cos),
+    )
+}
+
+/// `(ns per call, lods)` of the firmware's accurate path.
+fn firmware(f: Formula, inp: &[FixedHit], reps: usize) -> (f64, Vec<f64>) {
+    let l = |x: Lod| x.to_num::<f64>();
+    match f {
+        Formula::Table => measure(
+            inp,
+            reps,
+            |(pl, pb, ..)| table_lod(pl, pb),
+            |o| o.map_or(f64::NAN, l),
+        ),
+        Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone_lod(w, d, None), l),
+        Formula::ConeNormal => measure(inp, reps, |(_, _, w, d, c)| cone_lod(w, d, Some(c)), l),
+    }
+}
+
+/// `(ns per call, lods)` of a [`Log2Fx`] variant: the same formula with
+/// the variant's `log2`, rounded to I8F8 like the firmware.
+fn variant(
+    f: Formula,
+    v: Log2Fx,
+    t: &Log2Tables,
+    inp: &[FixedHit],
+    reps: usize,
+) -> (f64, Vec<f64>) {
+    let round = |bits: i32| f64::from((bits + 0x80) >> 8) / 256.0;
+    match f {
+        Formula::Table => measure(
+            inp,
+            reps,
+            |(pl, pb, ..)| t.log2(v, pl.to_bits()) - pb.to_bits(),
+            round,
+        ),
+        Formula::Cone => measure(
+            inp,
+            reps,
+            |(_, _, w, d, _)| d.to_bits() + t.log2(v, w.to_bits().unsigned_abs()),
+            round,
+        ),
+        Formula::ConeNormal => measure(
+            inp,
+            reps,
+            |(_, _, w, d, c)| {
+                d.to_bits() + t.log2(v, w.to_bits().unsigned_abs())
+                    - t.log2(v, u64::from(c.to_bits()) << 1)
+            },
+            round,
+        ),
+    }
+}
+
+type FloatHit = (f32, f32, f32, f32, f32);
+
+/// `(ns per call, lods)` in f32 with `libm` (the firmware's `float`
+/// module) or with `micromath`.
+fn float32(f: Formula, micro: bool, inp: &[FloatHit], reps: usize) -> (f64, Vec<f64>) {
+    use micromath::F32Ext;
+    let m = |x: f32| F32Ext::log2(x);
+    let c = f64::from;
+    match (f, micro) {
+        (Formula::Table, false) => measure(inp, reps, |(pl, pb, ..)| table_lod_f32(pl, pb), c),
+        (Formula::Table, true) => measure(inp, reps, |(pl, pb, ..)| m(pl) - pb, c),
+        (Formula::Cone, false) => measure(inp, reps, |(_, _, w, d, _)| cone_lod_f32(w, d, None), c),
+        (Formula::Cone, true) => measure(inp, reps, |(_, _, w, d, _)| d + m(F32Ext::abs(w)), c),
+        (Formula::ConeNormal, false) => {
+            measure(inp, reps, |(_, _, w, d, n)| cone_lod_f32(w, d, Some(n)), c)
+        }
+        (Formula::ConeNormal, true) => measure(
+            inp,
+            reps,
+            |(_, _, w, d, n)| d + m(F32Ext::abs(w)) - m(n.clamp(1.0 / 65536.0, 1.0)),
+            c,
+        ),
+    }
+}
+
+/// `(ns per call, lods)` in f64 (the reference formula itself).
+fn float64(f: Formula, hits: &[Hit], reps: usize) -> (f64, Vec<f64>) {
+    measure(hits, reps, |h| f.exact(&h), |x| x)
+}
+
+fn row(method: &str, precision: &str, (ns, got): (f64, Vec<f64>), exact: &[f64]) -> Row {
+    let (max, rms) = error_stats(got.iter().zip(exact).map(|(g, e)| g - e));
+    Row {
+        time_ns: Some(ns),
+        ..Row::new(Stage::Lod, method, precision, max, rms, "levels")
+    }
+}
+
+/// Every LOD row (the firmware rows carry BUDGETS.md instruction counts,
+/// added by the caller). `tick` is called after each row.
+pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
+    let hits = hits(s.lod_inputs);
+    let fx: Vec<FixedHit> = hits.iter().map(fixed_hit).collect();
+    let fl: Vec<FloatHit> = hits
+        .iter()
+        .map(|h| {
+            (
+                h.pl as f32,
+                h.log2_pb as f32,
+                h.width as f32,
+                h.delta as f32,
+                h.cos as f32,
+            )
+        })
+        .collect();
+    let tables = Log2Tables::default();
+    let reps = s.repeats;
+    let mut out = Vec::new();
+    for f in [Formula::Table, Formula::Cone, Formula::ConeNormal] {
+        let exact: Vec<f64> = hits.iter().map(|h| f.exact(h)).collect();
+        let mut fw = row(f.name(), "fixed accurate", firmware(f, &fx, reps), &exact);
+        fw.budget_call = f.budget_call().map(|c| (c.to_string(), false));
+        out.push(fw);
+        for v in [Log2Fx::Lut16Lerp, Log2Fx::Lut256, Log2Fx::Mitchell] {
+            out.push(row(
+                f.name(),
+                log2fx::name(v),
+                variant(f, v, &tables, &fx, reps),
+                &exact,
+            ));
+        }
+        let mut libm = row(f.name(), "f32 libm", float32(f, false, &fl, reps), &exact);
+        libm.budget_call = f.budget_call().map(|c| (c.to_string(), true));
+        out.push(libm);
+        out.push(row(
+            f.name(),
+            "f32 micromath",
+            float32(f, true, &fl, reps),
+            &exact,
+        ));
+        out.push(row(f.name(), "f64", float64(f, &hits, reps), &exact));
+        tick();
+    }
+    let raydiff = |h: Hit| {
+        let len = |a: [f64; 2]| (a[0] * a[0] + a[1] * a[1]).sqrt();
+        len(h.axes[0]).max(len(h.axes[1])).max(1e-300).log2()
+    };
+    let exact: Vec<f64> = hits.iter().map(|&h| raydiff(h)).collect();
+    out.push(row(
+        "raydiff",
+        "f64",
+        measure(&hits, reps, raydiff, |x| x),
+        &exact,
+    ));
+    tick();
+    out
+}

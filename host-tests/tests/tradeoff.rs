@@ -1,0 +1,165 @@
+//! `raymip-host tradeoff --quick` (CI): every file is written, every
+//! configuration has a time and an error, and the errors are sane: the
+//! f64 anchors have error 0, the firmware's accurate lods stay within
+//! their documented 2⁻⁸ levels, the fixed-point filters within their
+//! rounding bounds, the accumulated stochastic filters closer to their
+//! expectation than one frame.
+
+use std::path::Path;
+use std::process::Command;
+
+use raymip::bilerp::BILERP_MAX_ERROR_LSB;
+use raymip::lod::LOD_MAX_ERROR;
+use serde_json::Value;
+
+fn run(out: &Path) -> Vec<Value> {
+    let st = Command::new(env!("CARGO_BIN_EXE_raymip-host"))
+        .args(["tradeoff", "--quick", "--out"])
+        .arg(out)
+        .status()
+        .expect("run raymip-host");
+    assert!(st.success(), "tradeoff --quick failed: {st}");
+    let text = std::fs::read_to_string(out.join("tradeoff.json")).expect("tradeoff.json");
+    match serde_json::from_str(&text).expect("JSON") {
+        Value::Array(rows) => rows,
+        v => panic!("tradeoff.json is not an array: {v}"),
+    }
+}
+
+fn f(r: &Value, k: &str) -> Option<f64> {
+    r.get(k).and_then(Value::as_f64)
+}
+
+fn s<'a>(r: &'a Value, k: &str) -> &'a str {
+    r.get(k).and_then(Value::as_str).unwrap_or("")
+}
+
+fn find<'a>(
+    rows: &'a [Value],
+    stage: &str,
+    method: &str,
+    precision: &str,
+    filter: Option<&str>,
+) -> &'a Value {
+    rows.iter()
+        .find(|r| {
+            s(r, "stage") == stage
+                && s(r, "method") == method
+                && s(r, "precision") == precision
+                && filter.is_none_or(|x| s(r, "filter") == x)
+                && f(r, "frames") == Some(1.0)
+        })
+        .unwrap_or_else(|| panic!("no row {stage} {method} {precision} {filter:?}"))
+}
+
+#[test]
+fn quick_run_writes_everything_and_errors_are_sane() {
+    let out = std::env::temp_dir().join(format!("raymip-tradeoff-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let rows = run(&out);
+    for stem in raymip_host::tradeoff::report::CHARTS {
+        for ext in ["png", "svg"] {
+            let p = out.join(format!("{stem}.{ext}"));
+            let len = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+            assert!(len > 1000, "{} missing or empty", p.display());
+        }
+    }
+    let md = std::fs::read_to_string(out.join("tradeoff.md")).expect("tradeoff.md");
+    assert!(
+        md.contains("Pareto-optimal") && md.contains("Machine:"),
+        "{md}"
+    );
+
+    // Every stage present; every configuration timed and measured.
+    for stage in ["lod", "filter", "frame"] {
+        assert!(
+            rows.iter().any(|r| s(r, "stage") == stage),
+            "no {stage} rows"
+        );
+    }
+    for r in &rows {
+        for k in [
+            "stage",
+            "method",
+            "precision",
+            "filter",
+            "time_ns",
+            "time_ms",
+            "instructions_m4",
+            "instructions_rv32",
+            "error_max",
+            "error_rms",
+            "psnr_truth_db",
+        ] {
+            assert!(r.get(k).is_some(), "key {k} missing in {r}");
+        }
+        let t = f(r, "time_ns").or(f(r, "time_ms"));
+        assert!(t.is_some_and(|t| t.is_finite() && t > 0.0), "no time: {r}");
+        let (max, rms) = (f(r, "error_max").unwrap(), f(r, "error_rms").unwrap());
+        assert!(
+            max.is_finite() && rms.is_finite() && (0.0..=max + 1e-12).contains(&rms),
+            "errors: {r}"
+        );
+        if s(r, "stage") == "frame" {
+            assert!(f(r, "psnr_truth_db").is_some_and(|p| p > 5.0), "psnr: {r}");
+        }
+    }
+    assert!(
+        rows.iter()
+            .any(|r| r.get("pareto") == Some(&Value::Bool(true)))
+    );
+
+    // LOD: f64 anchors exact; the firmware within 2⁻⁸; f32 libm far closer
+    // than the firmware; the cheapest variant (no table) visibly worse.
+    for m in ["table", "cone", "cone+normal", "raydiff"] {
+        assert_eq!(
+            f(find(&rows, "lod", m, "f64", None), "error_max"),
+            Some(0.0),
+            "{m} f64"
+        );
+    }
+    for m in ["table", "cone", "cone+normal"] {
+        let fx = f(find(&rows, "lod", m, "fixed accurate", None), "error_max").unwrap();
+        assert!(fx <= LOD_MAX_ERROR && fx > 0.0, "{m} fixed: {fx}");
+        let libm = f(find(&rows, "lod", m, "f32 libm", None), "error_max").unwrap();
+        assert!(libm < 1e-4, "{m} f32: {libm}");
+        let mitchell = f(find(&rows, "lod", m, "fixed mitchell", None), "error_max").unwrap();
+        assert!(
+            mitchell > 0.05 && mitchell < 0.1,
+            "{m} mitchell: {mitchell}"
+        );
+    }
+    let table = find(&rows, "lod", "table", "fixed accurate", None);
+    assert!(
+        f(table, "instructions_m4").is_some(),
+        "BUDGETS.md counts not read: {table}"
+    );
+
+    // Filters: each fixed filter within the rounding bound of its own
+    // exact filter; stochastic means converge toward their expectation.
+    for filt in ["nearest", "bilinear", "trilinear"] {
+        let r = find(&rows, "filter", "sample", "fixed accurate", Some(filt));
+        let own = f(r, "own_error_max").unwrap();
+        assert!(own <= BILERP_MAX_ERROR_LSB, "{filt}: {own}");
+    }
+    for filt in [
+        "stochastic trilinear",
+        "stochastic bilinear",
+        "stochastic trilinear+bilinear",
+    ] {
+        let one = find(&rows, "filter", "sample", "fixed accurate", Some(filt));
+        let acc = rows
+            .iter()
+            .find(|r| s(r, "filter") == filt && f(r, "frames").unwrap_or(1.0) > 1.0)
+            .unwrap_or_else(|| panic!("no accumulated {filt}"));
+        let (a, b) = (
+            f(one, "own_error_rms").unwrap(),
+            f(acc, "own_error_rms").unwrap(),
+        );
+        assert!(
+            b < a / 2.0,
+            "{filt}: RMS {a} after one frame, {b} accumulated"
+        );
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
