@@ -42,7 +42,7 @@ fuzz_target!(|data: &[u8]| {
                 st.triangles_read - st.skipped_degenerate - st.hidden - st.skipped_non_finite
             );
             for t in &s.triangles {
-                assert!(t.p.iter().flatten().all(|x| x.is_finite()), "{t:?}");
+                assert!(t.p.iter().all(|v| v.is_finite()), "{t:?}");
                 assert!((t.material as usize) < s.materials.len().max(1), "{t:?}");
                 if let Some(x) = t.texture {
                     assert!((x as usize) < s.textures.len(), "{t:?}");
