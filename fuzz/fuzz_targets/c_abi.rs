@@ -11,12 +11,13 @@
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
+use raymip::camera::PixelSpread;
 use raymip::ffi::*;
 use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::raystack::PathState;
-use raymip::table::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+use raymip::table::{Log2Pb, PbTable, TexTriangle};
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);

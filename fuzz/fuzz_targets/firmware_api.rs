@@ -12,11 +12,12 @@ use fixed::types::{I16F16, I32F32, U1F31};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use raymip::cache::TexelCache;
+use raymip::camera::PixelSpread;
 use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
 use raymip::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
-use raymip::table::{Log2Pb, PbTable, PixelSpread, TableError, TexTriangle};
+use raymip::table::{Log2Pb, PbTable, TableError, TexTriangle};
 
 const TABLE: usize = 8;
 const STACK: usize = 4;
@@ -24,7 +25,7 @@ const STACK: usize = 4;
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);
     let mut entries = [Log2Pb::UNTEXTURED; TABLE];
-    let mut stack = RayStack::<STACK>::new();
+    let mut stack = RayStack::<(), STACK>::new();
     let mut model: Vec<PathState> = Vec::new();
     while !u.is_empty() {
         if step(&mut u, &mut entries, &mut stack, &mut model).is_err() {
@@ -86,7 +87,7 @@ fn path_state(u: &mut Unstructured) -> Result<PathState> {
 fn step(
     u: &mut Unstructured,
     entries: &mut [Log2Pb; TABLE],
-    stack: &mut RayStack<STACK>,
+    stack: &mut RayStack<(), STACK>,
     model: &mut Vec<PathState>,
 ) -> Result<()> {
     match u.int_in_range(0..=4u8)? {

@@ -402,3 +402,36 @@ rot 4\n0 0 1 0 0 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 180 0 0 0\n3 0 1 0 270 0 0 0\n
         }
     }
 }
+
+/// `load_from_memory` (the fuzz target's entry) reads the same scene as
+/// `load` from files, includes and textures included, and never the file
+/// system: a name missing from memory is a located error even when a file
+/// of that name exists in the working folder.
+#[test]
+fn memory_load_equals_file_load() {
+    let d = dir("memory");
+    let top = format!("{VIEW}fm 0.1 0.1 0.1 0.5 0.5 0.5 0 0 0 10 0 1\ni 0 part.aff\n");
+    let part = "tt t.ppm 0 0 0 0 0  1 0 0 1 0  0 1 0 0 1\np 3 0 0 1  1 0 1  0 1 1\n";
+    let files: [(&str, &[u8]); 3] = [
+        ("top.aff", top.as_bytes()),
+        ("part.aff", part.as_bytes()),
+        ("t.ppm", &ppm()),
+    ];
+    for (name, bytes) in files {
+        write(&d, name, bytes);
+    }
+    let disk = aff::load(&d.join("top.aff"), DEFAULT_TIME).unwrap_or_else(|e| panic!("{e}"));
+    let mem =
+        aff::load_from_memory(&files, "top.aff", DEFAULT_TIME).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(mem.triangles, disk.triangles);
+    assert_eq!(mem.materials, disk.materials);
+    assert_eq!(mem.camera, disk.camera);
+    assert_eq!(mem.textures.len(), 1);
+    assert_eq!(mem.textures[0].image, disk.textures[0].image);
+    assert_eq!(mem.stats.distinct_files, disk.stats.distinct_files);
+    let e = aff::load_from_memory(&files[..2], "top.aff", DEFAULT_TIME).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("t.ppm") && msg.contains("part.aff"), "{msg}");
+    assert!(aff::load_from_memory(&files, "top.aff", f64::NAN).is_err());
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -162,17 +162,40 @@ pub struct LoadStats {
 /// (scene seconds; use [`DEFAULT_TIME`] unless choosing a frame).
 /// Includes and textures resolve against `path`'s folder.
 pub fn load(path: &Path, time: f64) -> Result<Scene, AffError> {
-    if !time.is_finite() {
-        return Err(AffError::new(
-            path,
-            0,
-            AffErrorKind::Syntax(format!("animation time {time} is not finite")),
-        ));
-    }
+    finite_time(path, time)?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut p = parser::Parser::new(dir, time);
     p.parse_top(path)?;
     p.finish(path)
+}
+
+fn finite_time(path: &Path, time: f64) -> Result<(), AffError> {
+    if time.is_finite() {
+        Ok(())
+    } else {
+        Err(AffError::new(
+            path,
+            0,
+            AffErrorKind::Syntax(format!("animation time {time} is not finite")),
+        ))
+    }
+}
+
+/// [`load`] from memory: `files` are (name, bytes) pairs of scene files
+/// and PPM textures, `top` the name of the top-level file; includes and
+/// textures resolve among `files` only (the file system is never read;
+/// a missing name is a located "not found" error). Errors name the files
+/// as `mem/NAME`. For tests and fuzzing.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_from_memory(files: &[(&str, &[u8])], top: &str, time: f64) -> Result<Scene, AffError> {
+    let dir = PathBuf::from("mem");
+    let path = dir.join(top);
+    finite_time(&path, time)?;
+    let mut p = parser::Parser::from_memory(dir, time, files);
+    p.parse_top(&path)?;
+    p.finish(&path)
 }
 
 /// Finds the top-level file of one scene folder.

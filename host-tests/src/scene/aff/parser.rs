@@ -60,6 +60,9 @@ pub(crate) struct Parser {
     time: f64,
     dir: PathBuf,
     files: HashMap<PathBuf, Rc<[u8]>>,
+    /// Files given in memory ([`Parser::from_memory`]): includes and
+    /// textures resolve among them only, never the file system.
+    memory: Option<HashMap<PathBuf, Rc<[u8]>>>,
     nodes: Vec<Node>,
     node: u32,
     open: Vec<(u32, OpenBrace)>,
@@ -192,6 +195,7 @@ impl Parser {
             time,
             dir,
             files: HashMap::new(),
+            memory: None,
             nodes: vec![Node {
                 parent: 0,
                 kind: NodeKind::Static(Affine::IDENTITY),
@@ -218,11 +222,37 @@ impl Parser {
         }
     }
 
+    /// A parser whose files (scene files and PPM textures, named relative
+    /// to `dir`) are the given bytes; any other name is "not found".
+    pub fn from_memory(dir: PathBuf, time: f64, files: &[(&str, &[u8])]) -> Self {
+        let memory = files
+            .iter()
+            .map(|&(name, bytes)| (dir.join(name), Rc::from(bytes)))
+            .collect();
+        Self {
+            memory: Some(memory),
+            ..Self::new(dir, time)
+        }
+    }
+
+    /// The bytes of `path`: from memory, or from the file system.
+    fn source_bytes(&self, path: &Path) -> std::io::Result<Rc<[u8]>> {
+        match &self.memory {
+            Some(m) => m.get(path).cloned().ok_or_else(|| {
+                std::io::Error::new(
+                    std::io::ErrorKind::NotFound,
+                    "not among the in-memory files",
+                )
+            }),
+            None => Ok(std::fs::read(path)?.into()),
+        }
+    }
+
     fn read_file(&mut self, path: &Path) -> std::io::Result<Rc<[u8]>> {
         if let Some(b) = self.files.get(path) {
             return Ok(b.clone());
         }
-        let b: Rc<[u8]> = std::fs::read(path)?.into();
+        let b = self.source_bytes(path)?;
         self.files.insert(path.to_path_buf(), b.clone());
         self.stats.distinct_files += 1;
         Ok(b)
@@ -526,7 +556,18 @@ impl Parser {
         }
         let name_s = utf8_name(src, name)?;
         let path = self.dir.join(&name_s);
-        let image = crate::scene::ppm::read_ppm(&path).map_err(|e| {
+        let image = match &self.memory {
+            None => crate::scene::ppm::read_ppm(&path),
+            Some(_) => self
+                .source_bytes(&path)
+                .map_err(|e| crate::scene::ppm::PpmError {
+                    path: path.clone(),
+                    line: None,
+                    message: format!("cannot read: {e}"),
+                })
+                .and_then(|b| crate::scene::ppm::parse_ppm(&b, &path)),
+        }
+        .map_err(|e| {
             src.err(
                 name.line,
                 AffErrorKind::Texture {
