@@ -11,12 +11,16 @@
 // Raw bits of the untextured table marker (`INT32_MIN`).
 #define RM_UNTEXTURED INT32_MIN
 
-// Capacity of [`RmRayStack`] (10, as in the hardware paper).
+// Capacity of `RmRayStack` (10, as in the hardware paper).
 #define RM_RAY_STACK_CAPACITY 10
 
-// `|n·d| = 1` in U1F31 bits: passed to [`rm_cone_lod`] it leaves the
+// `|n·d| = 1` in U1F31 bits: passed to `rm_cone_lod` it leaves the
 // normal term out (`log2 1 = 0` exactly).
 #define RM_COS_ONE 2147483648
+
+// Size of an `RmSampler` in 64-bit words (640 bytes: enough for the
+// sampler on 32- and 64-bit targets, checked at compile time).
+#define RM_SAMPLER_WORDS 80
 
 // Result codes of the C ABI (`0` = success, negative = error, positive =
 // a documented non-error outcome).
@@ -43,7 +47,51 @@ typedef enum RmStatus {
   RM_STATUS_BUFFER_TOO_SHORT = -8,
   // A pointer is not aligned for its type (nothing was read or written).
   RM_STATUS_MISALIGNED = -9,
+  // The `RmSampler` was not set up by `rm_sampler_init`.
+  RM_STATUS_UNINITIALISED = -10,
 } RmStatus;
+
+// Filter mode of `rm_sample` (the numbering of the Rust `Mode`).
+enum RmMode
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // Bilinear within a level, linear between levels.
+  RM_MODE_TRILINEAR = 0,
+  // Bilinear within the nearest level `floor(lod + 1/2)`.
+  RM_MODE_BILINEAR_NEAREST_LEVEL = 1,
+  // Nearest texel of the nearest level.
+  RM_MODE_NEAREST = 2,
+  // Nearest texel in each of two levels, linear between levels.
+  RM_MODE_NEAREST_TEXEL_LINEAR_LEVEL = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum RmMode RmMode;
+#else
+typedef uint8_t RmMode;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// Addressing of `rm_sampler_init` (the numbering of the Rust `Address`).
+enum RmAddress
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // Repeat: only the fractional part of a coordinate is used.
+  RM_ADDRESS_WRAP = 0,
+  // Clamp to edge.
+  RM_ADDRESS_CLAMP = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum RmAddress RmAddress;
+#else
+typedef uint8_t RmAddress;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
 
 // One triangle for the Pb table.
 typedef struct RmTriangle {
@@ -55,7 +103,7 @@ typedef struct RmTriangle {
   uint32_t tex_width;
   // Level-0 texture height in texels (≥ 1 when textured).
   uint32_t tex_height;
-  // 0 = untextured (gets [`RM_UNTEXTURED`], no table work), else textured.
+  // 0 = untextured (gets `RM_UNTEXTURED`, no table work), else textured.
   uint8_t textured;
 } RmTriangle;
 
@@ -88,13 +136,36 @@ typedef struct RmPathState {
 } RmPathState;
 
 // A fixed-capacity ray stack in caller memory (initialise with
-// [`rm_ray_stack_init`]).
+// `rm_ray_stack_init`).
+//
+// A C struct of plain integers rather than the Rust `RayStack` in opaque
+// storage (as `RmSampler` is): C code reads its entries (peeks, pushes
+// one of its own entries), and every bit pattern a C caller may leave in
+// it is valid, so a corrupt `len` is an error case (read as full, popped
+// in range) instead of undefined behaviour. `RayStack` keeps its entries
+// in a `heapless::Vec` whose layout is not fixed and its `PathState`s hold
+// a `bool`; in caller memory, a stray write would be undefined behaviour.
+// The capacity is the Rust default (checked at compile time) and the
+// entries are converted to and from `PathState`; what is left is a bounds
+// check and a length update per push or pop.
 typedef struct RmRayStack {
   // Storage; entries `0 .. len` are valid.
   struct RmPathState entries[RM_RAY_STACK_CAPACITY];
   // Number of valid entries (`0 ..= RM_RAY_STACK_CAPACITY`).
   uint32_t len;
 } RmRayStack;
+
+// A texture sampler in caller memory: set up once per texture and
+// addressing by `rm_sampler_init` (which checks the texture), then used
+// by `rm_sample` for every hit without rebuilding the pyramid geometry
+// or the power-of-two addressing tables. Opaque: C code allocates it
+// (static, stack or heap, 8-byte aligned), may copy it bytewise, and never
+// writes into it. It borrows the texels of the `RmTexture` it was set up
+// with: they must stay valid and unchanged while it is used.
+typedef struct RmSampler {
+  // Owned by the library.
+  uint64_t opaque[RM_SAMPLER_WORDS];
+} RmSampler;
 
 // A MIP pyramid in caller memory: levels stored one after another, level 0
 // first, each row-major (`rm_pyramid_len` texels in all).
@@ -124,8 +195,8 @@ extern "C" {
 //
 // # Safety
 // `entries` points to `len` writable `int32_t`, `tris` to `count`
-// readable [`RmTriangle`]s (either may be null only when its length is 0),
-// `stats` is null or points to a writable [`RmBuildStats`].
+// readable `RmTriangle`s (either may be null only when its length is 0),
+// `stats` is null or points to a writable `RmBuildStats`.
 enum RmStatus rm_table_update(int32_t *entries,
                               size_t len,
                               size_t start,
@@ -134,10 +205,10 @@ enum RmStatus rm_table_update(int32_t *entries,
                               int32_t spread,
                               struct RmBuildStats *stats);
 
-// [`rm_table_update`] from entry 0 (a whole build).
+// `rm_table_update` from entry 0 (a whole build).
 //
 // # Safety
-// As [`rm_table_update`].
+// As `rm_table_update`.
 enum RmStatus rm_table_build(int32_t *entries,
                              size_t len,
                              const struct RmTriangle *tris,
@@ -147,7 +218,7 @@ enum RmStatus rm_table_build(int32_t *entries,
 
 // Table lod `log2 Pl − log2 Pb` for path length `pl` (U32F32 bits) and
 // table entry `entry` (I16F16 bits); writes the lod (I8F8 bits) to `out`.
-// Returns `Untextured` (and writes nothing) for [`RM_UNTEXTURED`].
+// Returns `Untextured` (and writes nothing) for `RM_UNTEXTURED`.
 //
 // # Safety
 // `out` is null (→ `NullPointer`) or points to a writable `int16_t`.
@@ -157,7 +228,7 @@ enum RmStatus rm_table_lod(uint64_t pl, int32_t entry_bits, int16_t *out);
 // `width` (I32F32 bits), triangle constant `delta` (I16F16 bits) and
 // `|n·d|` (U1F31 bits), exactly as the Rust `cone_lod`: `|n·d|` is clamped
 // to `[2⁻¹⁶, 1]`, so a grazing hit (`n_dot_d = 0`) is 16 levels coarser
-// than a head-on one. [`RM_COS_ONE`] (or more) leaves the normal term out.
+// than a head-on one. `RM_COS_ONE` (or more) leaves the normal term out.
 int16_t rm_cone_lod(int64_t width, int32_t delta, uint32_t n_dot_d);
 
 // `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
@@ -166,7 +237,7 @@ int16_t rm_clamp_lod(int16_t lod, uint8_t levels);
 // Empties `stack`.
 //
 // # Safety
-// `stack` is null (→ `NullPointer`) or points to a writable [`RmRayStack`].
+// `stack` is null (→ `NullPointer`) or points to a writable `RmRayStack`.
 enum RmStatus rm_ray_stack_init(struct RmRayStack *stack);
 
 // Pushes `state` (which may point into `stack`, e.g. to one of its
@@ -174,14 +245,14 @@ enum RmStatus rm_ray_stack_init(struct RmRayStack *stack);
 //
 // # Safety
 // `stack` and `state` are null (→ `NullPointer`), misaligned
-// (→ `Misaligned`) or valid (`stack` initialised by [`rm_ray_stack_init`];
+// (→ `Misaligned`) or valid (`stack` initialised by `rm_ray_stack_init`;
 // a corrupt `len` above the capacity is read as full).
 enum RmStatus rm_ray_stack_push(struct RmRayStack *stack, const struct RmPathState *state);
 
 // Pops the most recent state into `out`; `StackEmpty` when empty.
 //
 // # Safety
-// As [`rm_ray_stack_push`]; `out` writable.
+// As `rm_ray_stack_push`; `out` writable.
 enum RmStatus rm_ray_stack_pop(struct RmRayStack *stack, struct RmPathState *out);
 
 // A primary ray's state (`Pl = 0`, width 0, spread `spread` in I2F30
@@ -202,7 +273,7 @@ enum RmStatus rm_path_advance(struct RmPathState *state, uint64_t t);
 // surface spread angle), depth + 1.
 //
 // # Safety
-// As [`rm_path_advance`].
+// As `rm_path_advance`.
 enum RmStatus rm_path_bounce(struct RmPathState *state, int32_t beta);
 
 // Texels of a pyramid of `levels` levels of a `width × height` texture
@@ -215,7 +286,7 @@ size_t rm_pyramid_len(uint32_t width, uint32_t height, uint8_t levels);
 // sides). Set-up time, not per hit.
 //
 // Returns `NullPointer`, `ZeroSize`, `OutOfRange` (bad level count or side
-// above 32768) or `BufferTooShort` (`len` < [`rm_pyramid_len`]; nothing is
+// above 32768) or `BufferTooShort` (`len` < `rm_pyramid_len`; nothing is
 // written).
 //
 // # Safety
@@ -226,21 +297,40 @@ enum RmStatus rm_mip_generate(uint32_t *texels,
                               uint32_t height,
                               uint8_t levels);
 
-// Filtered texel of `tex` at `(u, v)` (I32F32 bits, normalised; texel
-// centres at `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the
-// stored levels) with filter `mode` (0 trilinear, 1 bilinear at the nearest
-// level, 2 nearest, 3 nearest texel with linear level blend) and
-// addressing `address` (0 wrap, 1 clamp); writes RGBA8888 to `out`.
+// Sets up `sampler` for the pyramid `tex` with addressing `address`
+// (`RM_ADDRESS_WRAP` or `RM_ADDRESS_CLAMP`): checks the texture once
+// (size, levels, length) and stores what `rm_sample` needs. On error
+// `sampler` is left unchanged.
+//
+// Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
+// or a side above 32768), `ZeroSize` or `BufferTooShort`.
 //
 // # Safety
-// `tex` and `out` are null (→ `NullPointer`) or valid; `tex->texels`
-// points to `tex->len` readable texels.
-enum RmStatus rm_sample(const struct RmTexture *tex,
+// `sampler` and `tex` are null (→ `NullPointer`) or valid;
+// `tex->texels` points to `tex->len` readable texels that stay valid and
+// unchanged while the sampler is used.
+enum RmStatus rm_sampler_init(struct RmSampler *sampler,
+                              const struct RmTexture *tex,
+                              RmAddress address);
+
+// Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
+// `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the stored
+// levels) with filter `mode` (`RM_MODE_*`) from the texture `sampler` was
+// set up with; writes RGBA8888 to `out`. The same texel as the Rust
+// `Sampler::sample`. Returns `NullPointer`, `Misaligned`, `Uninitialised`
+// (`sampler` not written by `rm_sampler_init`; a zeroed one is
+// recognised) or `OutOfRange` (mode).
+//
+// # Safety
+// `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
+// zeroed or set up by `rm_sampler_init` (and not written since), and
+// its texels are still valid. Not for two threads at once on one sampler
+// (it keeps fetch counters).
+enum RmStatus rm_sample(struct RmSampler *sampler,
                         int64_t u,
                         int64_t v,
                         int16_t lod,
-                        uint8_t mode,
-                        uint8_t address,
+                        RmMode mode,
                         uint32_t *out);
 
 #ifdef __cplusplus

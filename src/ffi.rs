@@ -47,7 +47,7 @@ use crate::filter::{Address, Mode, Sampler};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
-use crate::table::{Log2Pb, TableError, TexTriangle};
+use crate::table::{BuildStats, Log2Pb, PbTable, TableError, TexTriangle};
 
 /// Result codes of the C ABI (`0` = success, negative = error, positive =
 /// a documented non-error outcome).
@@ -76,6 +76,66 @@ pub enum RmStatus {
     BufferTooShort = -8,
     /// A pointer is not aligned for its type (nothing was read or written).
     Misaligned = -9,
+    /// The [`RmSampler`] was not set up by [`rm_sampler_init`].
+    Uninitialised = -10,
+}
+
+/// Filter mode of [`rm_sample`] (the numbering of the Rust `Mode`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmMode {
+    /// Bilinear within a level, linear between levels.
+    Trilinear = 0,
+    /// Bilinear within the nearest level `floor(lod + 1/2)`.
+    BilinearNearestLevel = 1,
+    /// Nearest texel of the nearest level.
+    Nearest = 2,
+    /// Nearest texel in each of two levels, linear between levels.
+    NearestTexelLinearLevel = 3,
+}
+const _: () = assert!(
+    RmMode::Trilinear as u8 == Mode::Trilinear as u8
+        && RmMode::BilinearNearestLevel as u8 == Mode::BilinearNearestLevel as u8
+        && RmMode::Nearest as u8 == Mode::Nearest as u8
+        && RmMode::NearestTexelLinearLevel as u8 == Mode::NearestTexelLinearLevel as u8
+);
+
+/// Addressing of [`rm_sampler_init`] (the numbering of the Rust `Address`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmAddress {
+    /// Repeat: only the fractional part of a coordinate is used.
+    Wrap = 0,
+    /// Clamp to edge.
+    Clamp = 1,
+}
+const _: () = assert!(
+    RmAddress::Wrap as u8 == Address::Wrap as u8 && RmAddress::Clamp as u8 == Address::Clamp as u8
+);
+
+/// An [`RmMode`] as it crosses the boundary: any byte (an enum parameter
+/// holding a value outside the enum would be undefined behaviour in Rust),
+/// checked by the callee (`OutOfRange`). The header names it `RmMode`.
+#[repr(transparent)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmModeBits(pub u8);
+
+impl From<RmMode> for RmModeBits {
+    fn from(m: RmMode) -> Self {
+        Self(m as u8)
+    }
+}
+
+/// An [`RmAddress`] as it crosses the boundary (any byte, checked; see
+/// [`RmModeBits`]). The header names it `RmAddress`.
+#[repr(transparent)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmAddressBits(pub u8);
+
+impl From<RmAddress> for RmAddressBits {
+    fn from(a: RmAddress) -> Self {
+        Self(a as u8)
+    }
 }
 
 /// Raw bits of the untextured table marker (`INT32_MIN`).
@@ -98,6 +158,23 @@ pub struct RmTriangle {
     pub tex_height: u32,
     /// 0 = untextured (gets [`RM_UNTEXTURED`], no table work), else textured.
     pub textured: u8,
+}
+
+impl RmTriangle {
+    /// The table input: `None` when untextured, `ZeroTextureSize` for a
+    /// textured triangle with a zero texture side.
+    fn tex_triangle(&self) -> Result<Option<TexTriangle>, TableError> {
+        if self.textured == 0 {
+            return Ok(None);
+        }
+        TexTriangle::new(
+            self.positions.map(|p| p.map(I32F32::from_bits)),
+            self.uvs.map(|p| p.map(I32F32::from_bits)),
+            self.tex_width,
+            self.tex_height,
+        )
+        .map(Some)
+    }
 }
 
 /// What a table build or update wrote.
@@ -134,6 +211,17 @@ pub struct RmPathState {
 
 /// A fixed-capacity ray stack in caller memory (initialise with
 /// [`rm_ray_stack_init`]).
+///
+/// A C struct of plain integers rather than the Rust `RayStack` in opaque
+/// storage (as [`RmSampler`] is): C code reads its entries (peeks, pushes
+/// one of its own entries), and every bit pattern a C caller may leave in
+/// it is valid, so a corrupt `len` is an error case (read as full, popped
+/// in range) instead of undefined behaviour. `RayStack` keeps its entries
+/// in a `heapless::Vec` whose layout is not fixed and its `PathState`s hold
+/// a `bool`; in caller memory, a stray write would be undefined behaviour.
+/// The capacity is the Rust default (checked at compile time) and the
+/// entries are converted to and from `PathState`; what is left is a bounds
+/// check and a length update per push or pop.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RmRayStack {
@@ -158,6 +246,17 @@ pub struct RmTexture {
     pub height: u32,
     /// Stored levels (1 ..= full chain).
     pub levels: u8,
+}
+
+impl From<BuildStats> for RmBuildStats {
+    fn from(s: BuildStats) -> Self {
+        Self {
+            textured: s.textured,
+            untextured: s.untextured,
+            degenerate_geometry: s.degenerate_geometry,
+            degenerate_uv: s.degenerate_uv,
+        }
+    }
 }
 
 impl From<PathState> for RmPathState {
@@ -220,11 +319,6 @@ fn check_ptr<T>(p: *const T, may_be_null: bool) -> Result<(), RmStatus> {
     }
 }
 
-/// A table entry from raw bits (markers included).
-fn entry(bits: i32) -> Log2Pb {
-    Log2Pb::from_bits(bits)
-}
-
 /// Computes table entries `start .. start + count` of `entries` (length
 /// `len`) from `tris[0 .. count]` for a camera with pixel spread angle
 /// `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
@@ -258,11 +352,13 @@ pub unsafe extern "C" fn rm_table_update(
     let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
         return RmStatus::BadAngle;
     };
-    let entries: &mut [i32] = if len == 0 {
+    let entries: &mut [Log2Pb] = if len == 0 {
         &mut []
     } else {
-        // SAFETY: non-null (checked), `len` writable elements (caller).
-        unsafe { core::slice::from_raw_parts_mut(entries, len) }
+        // SAFETY: non-null, aligned (checked), `len` writable elements
+        // (caller); `Log2Pb` is `repr(transparent)` over `I16F16`, itself
+        // over `i32`, and every `i32` is a valid entry (markers included).
+        unsafe { core::slice::from_raw_parts_mut(entries.cast::<Log2Pb>(), len) }
     };
     let tris: &[RmTriangle] = if count == 0 {
         &[]
@@ -270,47 +366,19 @@ pub unsafe extern "C" fn rm_table_update(
         // SAFETY: non-null (checked), `count` readable elements (caller).
         unsafe { core::slice::from_raw_parts(tris, count) }
     };
-    let mut st = RmBuildStats::default();
-    let mut status = RmStatus::Ok;
-    let mut slots = entries.iter_mut().skip(start);
-    for t in tris {
-        let Some(slot) = slots.next() else {
-            status = RmStatus::TableFull;
-            break;
-        };
-        let e = if t.textured == 0 {
-            st.untextured += 1;
-            Log2Pb::UNTEXTURED
-        } else {
-            let tri = TexTriangle::new(
-                t.positions.map(|p| p.map(I32F32::from_bits)),
-                t.uvs.map(|p| p.map(I32F32::from_bits)),
-                t.tex_width,
-                t.tex_height,
-            );
-            match tri {
-                Ok(tri) => {
-                    let e = Log2Pb::compute(&tri, &spread);
-                    if e == Log2Pb::DEGENERATE_GEOMETRY {
-                        st.degenerate_geometry += 1;
-                    } else if e == Log2Pb::DEGENERATE_UV {
-                        st.degenerate_uv += 1;
-                    } else {
-                        st.textured += 1;
-                    }
-                    e
-                }
-                Err(e) => {
-                    status = table_status(e);
-                    break;
-                }
-            }
-        };
-        *slot = e.to_i16f16().to_bits();
-    }
+    let mut st = BuildStats::default();
+    let status = match PbTable::new(entries).update_counted(
+        start,
+        tris.iter().map(RmTriangle::tex_triangle),
+        &spread,
+        &mut st,
+    ) {
+        Ok(()) => RmStatus::Ok,
+        Err(e) => table_status(e),
+    };
     if !stats.is_null() {
-        // SAFETY: non-null, writable (caller).
-        unsafe { *stats = st };
+        // SAFETY: non-null, aligned (checked), writable (caller).
+        unsafe { *stats = st.into() };
     }
     status
 }
@@ -343,7 +411,7 @@ pub unsafe extern "C" fn rm_table_lod(pl: u64, entry_bits: i32, out: *mut i16) -
     if let Err(e) = check_ptr(out.cast_const(), false) {
         return e;
     }
-    match table_lod(U32F32::from_bits(pl), entry(entry_bits)) {
+    match table_lod(U32F32::from_bits(pl), Log2Pb::from_bits(entry_bits)) {
         Some(l) => {
             // SAFETY: non-null, writable (caller).
             unsafe { *out = l.to_bits() };
@@ -477,13 +545,8 @@ pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPath
 /// `state` is null (→ `NullPointer`) or valid and writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmStatus {
-    if let Err(e) = check_ptr(state.cast_const(), false) {
-        return e;
-    }
-    // SAFETY: non-null, valid, writable (caller).
-    let s = unsafe { &mut *state };
-    *s = PathState::from(*s).advance(U32F32::from_bits(t)).into();
-    RmStatus::Ok
+    // SAFETY: same contract.
+    unsafe { update_state(state, |s| s.advance(U32F32::from_bits(t))) }
 }
 
 /// A reflection/refraction continuation: spread `+= beta` (I2F30 bits,
@@ -493,12 +556,23 @@ pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmS
 /// As [`rm_path_advance`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_bounce(state: *mut RmPathState, beta: i32) -> RmStatus {
+    // SAFETY: same contract.
+    unsafe { update_state(state, |s| s.bounce(I2F30::from_bits(beta))) }
+}
+
+/// Replaces `*state` by `f(*state)` through `PathState`.
+///
+/// # Safety
+/// As [`rm_path_advance`].
+unsafe fn update_state(
+    state: *mut RmPathState,
+    f: impl FnOnce(PathState) -> PathState,
+) -> RmStatus {
     if let Err(e) = check_ptr(state.cast_const(), false) {
         return e;
     }
-    // SAFETY: non-null, valid, writable (caller).
-    let s = unsafe { &mut *state };
-    *s = PathState::from(*s).bounce(I2F30::from_bits(beta)).into();
+    // SAFETY: non-null, aligned (checked), valid and writable (caller).
+    unsafe { state.write(f(PathState::from(state.read())).into()) };
     RmStatus::Ok
 }
 
@@ -543,56 +617,135 @@ pub unsafe extern "C" fn rm_mip_generate(
     }
 }
 
-/// Filtered texel of `tex` at `(u, v)` (I32F32 bits, normalised; texel
-/// centres at `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the
-/// stored levels) with filter `mode` (0 trilinear, 1 bilinear at the nearest
-/// level, 2 nearest, 3 nearest texel with linear level blend) and
-/// addressing `address` (0 wrap, 1 clamp); writes RGBA8888 to `out`.
+/// Size of an [`RmSampler`] in 64-bit words (640 bytes: enough for the
+/// sampler on 32- and 64-bit targets, checked at compile time).
+pub const RM_SAMPLER_WORDS: usize = 80;
+
+/// A texture sampler in caller memory: set up once per texture and
+/// addressing by [`rm_sampler_init`] (which checks the texture), then used
+/// by [`rm_sample`] for every hit without rebuilding the pyramid geometry
+/// or the power-of-two addressing tables. Opaque: C code allocates it
+/// (static, stack or heap, 8-byte aligned), may copy it bytewise, and never
+/// writes into it. It borrows the texels of the [`RmTexture`] it was set up
+/// with: they must stay valid and unchanged while it is used.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RmSampler {
+    /// Owned by the library.
+    pub opaque: [u64; RM_SAMPLER_WORDS],
+}
+
+/// Marks an [`RmSampler`] written by [`rm_sampler_init`] ("raymipSm").
+const SAMPLER_MAGIC: u64 = u64::from_le_bytes(*b"raymipSm");
+
+/// What an [`RmSampler`] holds: the magic word, then the Rust sampler over
+/// the caller's texels (their lifetime is the caller's promise).
+#[repr(C)]
+struct SamplerSlot {
+    magic: u64,
+    sampler: Sampler<Pyramid<'static>>,
+}
+
+const _: () = assert!(
+    core::mem::size_of::<SamplerSlot>() <= core::mem::size_of::<RmSampler>()
+        && core::mem::align_of::<SamplerSlot>() <= core::mem::align_of::<RmSampler>()
+);
+
+/// Sets up `sampler` for the pyramid `tex` with addressing `address`
+/// (`RM_ADDRESS_WRAP` or `RM_ADDRESS_CLAMP`): checks the texture once
+/// (size, levels, length) and stores what [`rm_sample`] needs. On error
+/// `sampler` is left unchanged.
+///
+/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
+/// or a side above 32768), `ZeroSize` or `BufferTooShort`.
 ///
 /// # Safety
-/// `tex` and `out` are null (→ `NullPointer`) or valid; `tex->texels`
-/// points to `tex->len` readable texels.
+/// `sampler` and `tex` are null (→ `NullPointer`) or valid;
+/// `tex->texels` points to `tex->len` readable texels that stay valid and
+/// unchanged while the sampler is used.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn rm_sample(
+pub unsafe extern "C" fn rm_sampler_init(
+    sampler: *mut RmSampler,
     tex: *const RmTexture,
-    u: i64,
-    v: i64,
-    lod: i16,
-    mode: u8,
-    address: u8,
-    out: *mut u32,
+    address: RmAddressBits,
 ) -> RmStatus {
-    if let Err(e) = check_ptr(tex, false).and(check_ptr(out.cast_const(), false)) {
+    if let Err(e) = check_ptr(sampler.cast_const(), false).and(check_ptr(tex, false)) {
         return e;
     }
     // SAFETY: non-null, aligned (checked), valid (caller).
-    let t = unsafe { *tex };
+    let t = unsafe { tex.read() };
     if let Err(e) = check_ptr(t.texels, false) {
         return e;
     }
-    let Some(mode) = Mode::from_index(mode) else {
-        return RmStatus::OutOfRange;
-    };
-    let Some(address) = Address::from_index(address) else {
+    let Some(address) = Address::from_index(address.0) else {
         return RmStatus::OutOfRange;
     };
     let g = match Geometry::new(t.width, t.height, t.levels) {
         Ok(g) => g,
         Err(e) => return mip_status(e),
     };
-    // SAFETY: non-null, `len` readable texels (caller).
+    // SAFETY: non-null, aligned (checked), `len` readable texels that
+    // outlive every use of the sampler (caller).
     let texels = unsafe { core::slice::from_raw_parts(t.texels, t.len) };
     let p = match Pyramid::new(g, texels) {
         Ok(p) => p,
         Err(e) => return mip_status(e),
     };
-    let texel = Sampler::new(p, address).sample(
+    let slot = SamplerSlot {
+        magic: SAMPLER_MAGIC,
+        sampler: Sampler::new(p, address),
+    };
+    // SAFETY: non-null, aligned and large enough (checked above and at
+    // compile time), writable (caller).
+    unsafe { sampler.cast::<SamplerSlot>().write(slot) };
+    RmStatus::Ok
+}
+
+/// Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
+/// `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the stored
+/// levels) with filter `mode` (`RM_MODE_*`) from the texture `sampler` was
+/// set up with; writes RGBA8888 to `out`. The same texel as the Rust
+/// `Sampler::sample`. Returns `NullPointer`, `Misaligned`, `Uninitialised`
+/// (`sampler` not written by [`rm_sampler_init`]; a zeroed one is
+/// recognised) or `OutOfRange` (mode).
+///
+/// # Safety
+/// `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
+/// zeroed or set up by [`rm_sampler_init`] (and not written since), and
+/// its texels are still valid. Not for two threads at once on one sampler
+/// (it keeps fetch counters).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sample(
+    sampler: *mut RmSampler,
+    u: i64,
+    v: i64,
+    lod: i16,
+    mode: RmModeBits,
+    out: *mut u32,
+) -> RmStatus {
+    if let Err(e) = check_ptr(sampler.cast_const(), false).and(check_ptr(out.cast_const(), false)) {
+        return e;
+    }
+    let slot = sampler.cast::<SamplerSlot>();
+    // SAFETY: non-null, aligned (checked), readable (caller); only the
+    // `u64` magic word is read (any bits are valid), no reference is made.
+    if unsafe { (&raw const (*slot).magic).read() } != SAMPLER_MAGIC {
+        return RmStatus::Uninitialised;
+    }
+    let Some(mode) = Mode::from_index(mode.0) else {
+        return RmStatus::OutOfRange;
+    };
+    // SAFETY: written by `rm_sampler_init` (magic, caller); no other
+    // reference to it is live; its texels are valid (caller).
+    let slot = unsafe { &mut *slot };
+    let texel = slot.sampler.sample(
         I32F32::from_bits(u),
         I32F32::from_bits(v),
         I8F8::from_bits(lod),
         mode,
     );
-    // SAFETY: non-null, writable (caller).
+    // SAFETY: non-null, aligned (checked), writable (caller); the borrow
+    // of the sampler has ended (an `out` inside it would corrupt it).
     unsafe { *out = texel };
     RmStatus::Ok
 }
@@ -654,7 +807,22 @@ mod tests {
                 RmStatus::NullPointer
             );
             assert_eq!(
-                rm_sample(core::ptr::null(), 0, 0, 0, 0, 0, core::ptr::null_mut()),
+                rm_sampler_init(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    RmAddress::Wrap.into()
+                ),
+                RmStatus::NullPointer
+            );
+            assert_eq!(
+                rm_sample(
+                    core::ptr::null_mut(),
+                    0,
+                    0,
+                    0,
+                    RmMode::Trilinear.into(),
+                    core::ptr::null_mut()
+                ),
                 RmStatus::NullPointer
             );
         }
@@ -801,24 +969,39 @@ mod tests {
                 height: 1,
                 levels: 1,
             };
-            let mut out = 0u32;
-            assert_eq!(
-                rm_sample(&tex, 0, 0, 0, 0, 0, &mut out),
-                RmStatus::Misaligned
-            );
+            let wrap = RmAddress::Wrap.into();
+            let mut sm = RmSampler {
+                opaque: [0; RM_SAMPLER_WORDS],
+            };
+            assert_eq!(rm_sampler_init(&mut sm, &tex, wrap), RmStatus::Misaligned);
             let tex_ok = RmTexture {
                 texels: texels.as_ptr(),
                 ..tex
             };
             assert_eq!(
-                rm_sample(base.add(4).cast(), 0, 0, 0, 0, 0, &mut out),
+                rm_sampler_init(base.add(4).cast(), &tex_ok, wrap),
                 RmStatus::Misaligned
             );
             assert_eq!(
-                rm_sample(&tex_ok, 0, 0, 0, 0, 0, base.add(2).cast()),
+                rm_sampler_init(&mut sm, base.add(4).cast(), wrap),
                 RmStatus::Misaligned
             );
-            assert_eq!(rm_sample(&tex_ok, 0, 0, 0, 0, 0, &mut out), RmStatus::Ok);
+            let tri = RmMode::Trilinear.into();
+            let mut out = 0u32;
+            assert_eq!(
+                rm_sample(&mut sm, 0, 0, 0, tri, &mut out),
+                RmStatus::Uninitialised
+            );
+            assert_eq!(rm_sampler_init(&mut sm, &tex_ok, wrap), RmStatus::Ok);
+            assert_eq!(
+                rm_sample(base.add(4).cast(), 0, 0, 0, tri, &mut out),
+                RmStatus::Misaligned
+            );
+            assert_eq!(
+                rm_sample(&mut sm, 0, 0, 0, tri, base.add(2).cast()),
+                RmStatus::Misaligned
+            );
+            assert_eq!(rm_sample(&mut sm, 0, 0, 0, tri, &mut out), RmStatus::Ok);
         }
         assert!(
             raw.iter().all(|&x| x == 0),
@@ -831,13 +1014,56 @@ mod tests {
         #[test]
         fn c_lod_equals_rust_lod(pl in any::<u64>(), e in any::<i32>(), w in any::<i64>(), d in any::<i32>(), c in any::<u32>(), lod in any::<i16>(), levels in any::<u8>()) {
             let (s, out) = ok_lod(pl, e);
-            match table_lod(U32F32::from_bits(pl), entry(e)) {
+            match table_lod(U32F32::from_bits(pl), Log2Pb::from_bits(e)) {
                 Some(l) => prop_assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
                 None => prop_assert_eq!((s, e), (RmStatus::Untextured, RM_UNTEXTURED)),
             }
             let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), Some(U1F31::from_bits(c)));
             prop_assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
             prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
+        }
+
+        /// A sampler set up once gives, sample after sample, the texel of
+        /// the Rust `Sampler` built afresh for each sample (what `rm_sample`
+        /// did before it took a set-up sampler); bad modes and addresses are
+        /// `OutOfRange`.
+        #[test]
+        fn set_up_sampler_equals_fresh_rust_sampler(
+            w in 1u32..9, h in 1u32..9, seed in any::<u64>(), address in 0u8..3,
+            samples in proptest::collection::vec((any::<i64>(), any::<i64>(), -512i16..4096, 0u8..5), 1..24),
+        ) {
+            let levels = crate::mip::full_levels(w, h);
+            let n = pyramid_len(w, h, levels);
+            let mut x = seed;
+            let texels: std::vec::Vec<u32> = (0..n)
+                .map(|_| {
+                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    (x >> 32) as u32
+                })
+                .collect();
+            let tex = RmTexture { texels: texels.as_ptr(), len: n, width: w, height: h, levels };
+            let mut sm = RmSampler { opaque: [0; RM_SAMPLER_WORDS] };
+            // SAFETY: valid locals; `texels` outlives `sm`'s use.
+            let st = unsafe { rm_sampler_init(&mut sm, &tex, RmAddressBits(address)) };
+            let Some(addr) = Address::from_index(address) else {
+                prop_assert_eq!(st, RmStatus::OutOfRange);
+                return Ok(());
+            };
+            prop_assert_eq!(st, RmStatus::Ok);
+            let g = Geometry::new(w, h, levels).unwrap();
+            for (u, v, lod, mode) in samples {
+                let mut out = 0u32;
+                // SAFETY: `sm` set up above, `out` a valid local.
+                let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
+                match Mode::from_index(mode) {
+                    Some(m) => {
+                        let fresh = Sampler::new(Pyramid::new(g, &texels).unwrap(), addr)
+                            .sample(I32F32::from_bits(u), I32F32::from_bits(v), I8F8::from_bits(lod), m);
+                        prop_assert_eq!((s, out), (RmStatus::Ok, fresh));
+                    }
+                    None => prop_assert_eq!(s, RmStatus::OutOfRange),
+                }
+            }
         }
 
         /// Path state round-trips and advances exactly as `PathState`.

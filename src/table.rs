@@ -240,6 +240,7 @@ fn half(x: I16F16) -> I16F16 {
 /// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`](crate::lod::Lod)
 /// range without saturating arithmetic on the per-hit path.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
 pub struct Log2Pb(I16F16);
 
 impl Log2Pb {
@@ -377,10 +378,26 @@ impl<'a> PbTable<'a> {
         spread: &PixelSpread,
     ) -> Result<BuildStats, TableError> {
         let mut stats = BuildStats::default();
+        self.update_counted(start, tris.into_iter().map(Ok), spread, &mut stats)?;
+        Ok(stats)
+    }
+
+    /// [`update`](Self::update) for items that are checked as they come
+    /// (e.g. a C triangle whose texture side may be zero): stops at the
+    /// first `Err` item (returned; an item with no slot left gives
+    /// [`TableError::TableFull`] first) and counts in `stats` every entry
+    /// written before it, so a caller sees what a partial update wrote.
+    pub fn update_counted(
+        &mut self,
+        start: usize,
+        tris: impl IntoIterator<Item = Result<Option<TexTriangle>, TableError>>,
+        spread: &PixelSpread,
+        stats: &mut BuildStats,
+    ) -> Result<(), TableError> {
         let mut slots = self.entries.iter_mut().skip(start);
         for tri in tris {
             let slot = slots.next().ok_or(TableError::TableFull)?;
-            *slot = match tri {
+            *slot = match tri? {
                 None => {
                     stats.untextured += 1;
                     Log2Pb::UNTEXTURED
@@ -398,7 +415,7 @@ impl<'a> PbTable<'a> {
                 }
             };
         }
-        Ok(stats)
+        Ok(())
     }
 
     /// The entry of triangle `i` (`None` out of range).

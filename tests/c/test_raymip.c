@@ -161,35 +161,62 @@ static void test_sampling(void) {
     CHECK(rm_mip_generate(gen, n, 0, W, LEVELS) == RM_STATUS_ZERO_SIZE, "generate zero size");
     CHECK(rm_mip_generate(gen, n, W, W, 9) == RM_STATUS_OUT_OF_RANGE, "generate too many levels");
     RmTexture tex = {texels, n, W, W, LEVELS};
+    /* One sampler per addressing, set up once and used for every sample. */
+    RmSampler wrap, clamp;
+    CHECK(rm_sampler_init(&wrap, &tex, RM_ADDRESS_WRAP) == RM_STATUS_OK, "init wrap");
+    CHECK(rm_sampler_init(&clamp, &tex, RM_ADDRESS_CLAMP) == RM_STATUS_OK, "init clamp");
     uint32_t out = 0;
-    /* Centre of texel (0,0) at level 0, nearest and bilinear: colour a. */
+    /* Centre of texel (0,0) at level 0, every mode: colour a. */
     int64_t u = fx32(0.125), v = fx32(0.125);
-    for (uint8_t mode = 0; mode < 4; mode++) {
-        CHECK(rm_sample(&tex, u, v, 0, mode, 0, &out) == RM_STATUS_OK && out == a, "mode %u at level 0: %08lx", (unsigned)mode, (unsigned long)out);
+    const RmMode modes[] = {RM_MODE_TRILINEAR, RM_MODE_BILINEAR_NEAREST_LEVEL, RM_MODE_NEAREST,
+                            RM_MODE_NEAREST_TEXEL_LINEAR_LEVEL};
+    for (int m = 0; m < 4; m++) {
+        CHECK(rm_sample(&wrap, u, v, 0, modes[m], &out) == RM_STATUS_OK && out == a, "mode %d at level 0: %08lx", m, (unsigned long)out);
     }
     /* Coarsest level: the mean everywhere (lod clamped to 2). */
-    CHECK(rm_sample(&tex, fx32(0.3), fx32(0.9), 10 * 256, 0, 1, &out) == RM_STATUS_OK && out == texels[20], "top %08lx", (unsigned long)out);
+    CHECK(rm_sample(&clamp, fx32(0.3), fx32(0.9), 10 * 256, RM_MODE_TRILINEAR, &out) == RM_STATUS_OK && out == texels[20], "top %08lx", (unsigned long)out);
     /* Trilinear halfway between level 0 (a at this texel centre) and
      * level 1 (clamped addressing: u = 0.125 is below the first level-1
      * texel centre 0.25, so only that texel, a): a. */
-    CHECK(rm_sample(&tex, u, v, 128, 0, 1, &out) == RM_STATUS_OK && out == a, "trilinear %08lx", (unsigned long)out);
+    CHECK(rm_sample(&clamp, u, v, 128, RM_MODE_TRILINEAR, &out) == RM_STATUS_OK && out == a, "trilinear %08lx", (unsigned long)out);
     /* With wrapping, level 1 mixes in the wrapped neighbours (b): neither
      * pure colour. */
-    CHECK(rm_sample(&tex, u, v, 128, 0, 0, &out) == RM_STATUS_OK && out != a && out != b, "trilinear wrap %08lx", (unsigned long)out);
+    CHECK(rm_sample(&wrap, u, v, 128, RM_MODE_TRILINEAR, &out) == RM_STATUS_OK && out != a && out != b, "trilinear wrap %08lx", (unsigned long)out);
     /* Bilinear on the edge between a and b at level 0: channel means. */
-    rm_sample(&tex, fx32(0.5), fx32(0.125), 0, 1, 1, &out);
+    rm_sample(&clamp, fx32(0.5), fx32(0.125), 0, RM_MODE_BILINEAR_NEAREST_LEVEL, &out);
     for (int c = 0; c < 4; c++) {
         int ca = (a >> (8 * c)) & 0xFF, cb = (b >> (8 * c)) & 0xFF;
         int got = (out >> (8 * c)) & 0xFF;
         CHECK(abs(got - (ca + cb) / 2) <= 1, "bilinear edge channel %d: %d", c, got);
     }
-    CHECK(rm_sample(&tex, u, v, 0, 9, 0, &out) == RM_STATUS_OUT_OF_RANGE, "bad mode");
-    CHECK(rm_sample(&tex, u, v, 0, 0, 7, &out) == RM_STATUS_OUT_OF_RANGE, "bad address");
+    /* A sampler set up once answers as one set up afresh for each sample
+     * (the same texture, mode, lod and point), and a copy of it as well. */
+    RmSampler copy = wrap;
+    int same = 1;
+    for (int i = 0; i < 64; i++) {
+        int64_t su = fx32(i / 37.0 - 0.4), sv = fx32(i / 23.0 - 0.7);
+        int16_t lod = (int16_t)(i * 53 - 300);
+        RmSampler fresh;
+        uint32_t once = 0, again = 0, copied = 0;
+        same &= rm_sampler_init(&fresh, &tex, RM_ADDRESS_WRAP) == RM_STATUS_OK;
+        same &= rm_sample(&wrap, su, sv, lod, modes[i % 4], &once) == RM_STATUS_OK;
+        same &= rm_sample(&fresh, su, sv, lod, modes[i % 4], &again) == RM_STATUS_OK;
+        same &= rm_sample(&copy, su, sv, lod, modes[i % 4], &copied) == RM_STATUS_OK;
+        same &= once == again && once == copied;
+    }
+    CHECK(same, "a reused sampler differs from a fresh one");
+    CHECK(rm_sample(&wrap, u, v, 0, (RmMode)9, &out) == RM_STATUS_OUT_OF_RANGE, "bad mode");
+    RmSampler zeroed;
+    memset(&zeroed, 0, sizeof zeroed);
+    CHECK(rm_sample(&zeroed, u, v, 0, RM_MODE_NEAREST, &out) == RM_STATUS_UNINITIALISED, "zeroed sampler");
+    RmSampler bad;
+    CHECK(rm_sampler_init(&bad, &tex, (RmAddress)7) == RM_STATUS_OUT_OF_RANGE, "bad address");
     RmTexture short_tex = {texels, 5, W, W, LEVELS};
-    CHECK(rm_sample(&short_tex, u, v, 0, 0, 0, &out) == RM_STATUS_BUFFER_TOO_SHORT, "short buffer");
-    CHECK(rm_sample(NULL, u, v, 0, 0, 0, &out) == RM_STATUS_NULL_POINTER, "null texture");
+    CHECK(rm_sampler_init(&bad, &short_tex, RM_ADDRESS_WRAP) == RM_STATUS_BUFFER_TOO_SHORT, "short buffer");
+    CHECK(rm_sampler_init(&bad, NULL, RM_ADDRESS_WRAP) == RM_STATUS_NULL_POINTER, "null texture");
+    CHECK(rm_sample(NULL, u, v, 0, RM_MODE_NEAREST, &out) == RM_STATUS_NULL_POINTER, "null sampler");
     RmTexture bad_levels = {texels, n, W, W, 9};
-    CHECK(rm_sample(&bad_levels, u, v, 0, 0, 0, &out) == RM_STATUS_OUT_OF_RANGE, "bad levels");
+    CHECK(rm_sampler_init(&bad, &bad_levels, RM_ADDRESS_WRAP) == RM_STATUS_OUT_OF_RANGE, "bad levels");
 }
 
 int main(void) {

@@ -22,9 +22,10 @@ use raymip::aniso::{Footprint, probes};
 use raymip::bc;
 use raymip::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::ffi::{
-    RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
-    rm_path_advance, rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init,
-    rm_ray_stack_pop, rm_ray_stack_push, rm_sample, rm_table_build, rm_table_lod, rm_table_update,
+    RM_SAMPLER_WORDS, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmTexture,
+    RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate, rm_path_advance, rm_path_bounce,
+    rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop, rm_ray_stack_push,
+    rm_sample, rm_sampler_init, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::format::{ColorSpace, Format, TexelFormat};
@@ -102,13 +103,16 @@ fn c_abi() {
         bb(rm_ray_stack_push(&mut stack, &st));
         bb(rm_ray_stack_pop(&mut stack, &mut st));
 
+        let mut sampler = RmSampler {
+            opaque: [0; RM_SAMPLER_WORDS],
+        };
+        bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
         bb(rm_sample(
-            &tex,
+            &mut sampler,
             bb(5),
             bb(6),
             bb(lod),
-            bb(0),
-            bb(1),
+            RmModeBits(bb(0)),
             &mut out,
         ));
     }

@@ -26,7 +26,10 @@ use std::path::Path;
 
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31};
 use raymip::camera::{CameraError, PixelSpread};
-use raymip::ffi::{self, RM_UNTEXTURED, RmPathState, RmRayStack, RmStatus, RmTexture};
+use raymip::ffi::{
+    self, RM_UNTEXTURED, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmStatus,
+    RmTexture,
+};
 use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::lod::{Lod, MIN_COS, clamp_lod, cone_lod, table_lod};
@@ -1043,7 +1046,30 @@ fn c_abi_lod(r: &mut Runner) {
     });
 }
 
+/// Sets up a C ABI sampler for `tex` with addressing `address` and, if that
+/// succeeds, samples it once at `(u, u)`, lod `lod`, filter `mode`.
 #[allow(unsafe_code)]
+fn sample_once(
+    tex: &RmTexture,
+    u: i64,
+    lod: i16,
+    mode: u8,
+    address: u8,
+    out: &mut u32,
+) -> RmStatus {
+    let mut sm = RmSampler {
+        opaque: [0; ffi::RM_SAMPLER_WORDS],
+    };
+    // SAFETY: `tex` describes a live buffer that outlives `sm`; `sm` and
+    // `out` are writable locals.
+    unsafe {
+        match ffi::rm_sampler_init(&mut sm, tex, RmAddressBits(address)) {
+            RmStatus::Ok => ffi::rm_sample(&mut sm, u, u, lod, RmModeBits(mode), out),
+            s => s,
+        }
+    }
+}
+
 fn c_abi_sample(r: &mut Runner) {
     let g = Geometry::new(8, 8, 4).expect("8×8");
     let mut tex_buf = texels_for(&g);
@@ -1068,10 +1094,9 @@ fn c_abi_sample(r: &mut Runner) {
         ("u,v i64::MIN, lod i16::MIN", i64::MIN, i16::MIN, 0, 0, None),
         ("u,v i64::MAX, lod i16::MAX", i64::MAX, i16::MAX, 3, 1, None),
     ] {
-        r.case(name, "C ABI: rm_sample", move || {
+        r.case(name, "C ABI: rm_sampler_init/rm_sample", move || {
             let mut out = 0u32;
-            // SAFETY: `tex` describes a live buffer; `out` is writable.
-            let s = unsafe { ffi::rm_sample(&tex, u, u, lod, mode, address, &mut out) };
+            let s = sample_once(&tex, u, lod, mode, address, &mut out);
             match (s, want) {
                 (s, Some(w)) if s == w && out == 0 => err(format!("{s:?}, nothing written")),
                 (RmStatus::Ok, None) if in_range(out) => clamp("a texel in range"),
@@ -1081,15 +1106,14 @@ fn c_abi_sample(r: &mut Runner) {
     }
     r.case(
         "texture len one texel short",
-        "C ABI: rm_sample",
+        "C ABI: rm_sampler_init/rm_sample",
         move || {
             let short = RmTexture {
                 len: tex.len - 1,
                 ..tex
             };
             let mut out = 0u32;
-            // SAFETY: as above, a shorter length.
-            let s = unsafe { ffi::rm_sample(&short, 0, 0, 0, 0, 0, &mut out) };
+            let s = sample_once(&short, 0, 0, 0, 0, &mut out);
             if s == RmStatus::BufferTooShort && out == 0 {
                 err("BufferTooShort")
             } else {
