@@ -21,6 +21,7 @@ use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::aniso::{Footprint, probes};
 use raymip::bc;
 use raymip::cache::{BlockCache, BlockLayout, TexelCache};
+use raymip::camera::PixelSpread;
 use raymip::ffi::{
     RM_SAMPLER_WORDS, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmTexture,
     RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate, rm_path_advance, rm_path_bounce,
@@ -44,7 +45,6 @@ use raymip::rng::{Rng, mix32};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
 use raymip::stochastic::StochasticMode;
-use raymip::camera::PixelSpread;
 use raymip::table::{Log2Pb, PbTable};
 use raymip::texture_sampler::TextureSampler;
 
