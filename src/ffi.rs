@@ -120,23 +120,11 @@ const _: () = assert!(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RmModeBits(pub u8);
 
-impl From<RmMode> for RmModeBits {
-    fn from(m: RmMode) -> Self {
-        Self(m as u8)
-    }
-}
-
 /// An [`RmAddress`] as it crosses the boundary (any byte, checked; see
 /// [`RmModeBits`]). The header names it `RmAddress`.
 #[repr(transparent)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RmAddressBits(pub u8);
-
-impl From<RmAddress> for RmAddressBits {
-    fn from(a: RmAddress) -> Self {
-        Self(a as u8)
-    }
-}
 
 /// Raw bits of the untextured table marker (`INT32_MIN`).
 pub const RM_UNTEXTURED: i32 = i32::MIN;
@@ -161,9 +149,12 @@ pub struct RmTriangle {
 }
 
 impl RmTriangle {
-    /// The table input: `None` when untextured, `ZeroTextureSize` for a
-    /// textured triangle with a zero texture side.
-    fn tex_triangle(&self) -> Result<Option<TexTriangle>, TableError> {
+    /// The Rust table input: `None` when untextured, `ZeroTextureSize`
+    /// for a textured triangle with a zero texture side.
+    ///
+    /// # Errors
+    /// [`TableError::ZeroTextureSize`].
+    pub fn tex_triangle(&self) -> Result<Option<TexTriangle>, TableError> {
         if self.textured == 0 {
             return Ok(None);
         }
@@ -366,15 +357,25 @@ pub unsafe extern "C" fn rm_table_update(
         // SAFETY: non-null (checked), `count` readable elements (caller).
         unsafe { core::slice::from_raw_parts(tris, count) }
     };
-    let mut st = BuildStats::default();
-    let status = match PbTable::new(entries).update_counted(
-        start,
-        tris.iter().map(RmTriangle::tex_triangle),
-        &spread,
-        &mut st,
-    ) {
-        Ok(()) => RmStatus::Ok,
-        Err(e) => table_status(e),
+    // The items in order, as `PbTable::update` takes them: the first one
+    // with no slot left gives `TableFull`, the first invalid one (a zero
+    // texture side) its error; the ones before are written and counted.
+    let slots = len.saturating_sub(start);
+    let valid = tris.iter().take_while(|t| t.tex_triangle().is_ok()).count();
+    let fit = valid.min(slots);
+    let items = tris
+        .iter()
+        .take(fit)
+        .map(|t| t.tex_triangle().ok().flatten());
+    let (st, status) = match PbTable::new(entries).update(start, items, &spread) {
+        Ok(st) if fit == tris.len() => (st, RmStatus::Ok),
+        Ok(st) if fit == slots => (st, RmStatus::TableFull),
+        Ok(st) => {
+            let e = tris.get(fit).map_or(Ok(None), RmTriangle::tex_triangle);
+            (st, e.map_or_else(table_status, |_| RmStatus::OutOfRange))
+        }
+        // Unreachable: every item given has a slot.
+        Err(e) => (BuildStats::default(), table_status(e)),
     };
     if !stats.is_null() {
         // SAFETY: non-null, aligned (checked), writable (caller).
@@ -810,7 +811,7 @@ mod tests {
                 rm_sampler_init(
                     core::ptr::null_mut(),
                     core::ptr::null(),
-                    RmAddress::Wrap.into()
+                    RmAddressBits(RmAddress::Wrap as u8)
                 ),
                 RmStatus::NullPointer
             );
@@ -820,7 +821,7 @@ mod tests {
                     0,
                     0,
                     0,
-                    RmMode::Trilinear.into(),
+                    RmModeBits(RmMode::Trilinear as u8),
                     core::ptr::null_mut()
                 ),
                 RmStatus::NullPointer
@@ -842,6 +843,70 @@ mod tests {
             assert_eq!(rm_ray_stack_pop(&mut st, &mut out), RmStatus::Ok);
         }
         assert_eq!(st.len as usize, RM_RAY_STACK_CAPACITY - 1);
+    }
+
+    /// A partial update reports what it wrote: the items before the first
+    /// one without a slot (`TableFull`) or the first invalid one
+    /// (`ZeroSize`; a missing slot wins when both apply), counted in
+    /// `stats`, the entries after them untouched.
+    #[test]
+    fn partial_update_counts_what_it_wrote() {
+        let unit = RmTriangle {
+            positions: [[0, 0, 0], [1 << 32, 0, 0], [0, 1 << 32, 0]],
+            uvs: [[0, 0], [1 << 32, 0], [0, 1 << 32]],
+            tex_width: 64,
+            tex_height: 64,
+            textured: 1,
+        };
+        let plain = RmTriangle {
+            textured: 0,
+            ..unit
+        };
+        let zero = RmTriangle {
+            tex_width: 0,
+            ..unit
+        };
+        let mk = |t, u| RmBuildStats {
+            textured: t,
+            untextured: u,
+            ..RmBuildStats::default()
+        };
+        for (start, tris, status, want, written) in [
+            (
+                1,
+                &[unit, plain, unit][..],
+                RmStatus::TableFull,
+                mk(1, 1),
+                2,
+            ),
+            (0, &[plain, zero, unit][..], RmStatus::ZeroSize, mk(0, 1), 1),
+            (2, &[unit, zero][..], RmStatus::TableFull, mk(1, 0), 1),
+            (5, &[unit][..], RmStatus::TableFull, mk(0, 0), 0),
+            (0, &[unit, plain][..], RmStatus::Ok, mk(1, 1), 2),
+        ] {
+            let mut e = [0x5A5A_5A5A; 3];
+            let mut st = RmBuildStats::default();
+            // SAFETY: valid locals of the stated lengths.
+            let s = unsafe {
+                rm_table_update(
+                    e.as_mut_ptr(),
+                    3,
+                    start,
+                    tris.as_ptr(),
+                    tris.len(),
+                    1 << 20,
+                    &mut st,
+                )
+            };
+            assert_eq!(
+                (s, st),
+                (status, want),
+                "start {start}, {} items",
+                tris.len()
+            );
+            let touched = e.iter().filter(|&&x| x != 0x5A5A_5A5A).count();
+            assert_eq!(touched, written, "start {start}");
+        }
     }
 
     /// Regression (issue 11, defect 1): a grazing hit (`|n·d| = 0`) through
@@ -969,7 +1034,7 @@ mod tests {
                 height: 1,
                 levels: 1,
             };
-            let wrap = RmAddress::Wrap.into();
+            let wrap = RmAddressBits(RmAddress::Wrap as u8);
             let mut sm = RmSampler {
                 opaque: [0; RM_SAMPLER_WORDS],
             };
@@ -986,7 +1051,7 @@ mod tests {
                 rm_sampler_init(&mut sm, base.add(4).cast(), wrap),
                 RmStatus::Misaligned
             );
-            let tri = RmMode::Trilinear.into();
+            let tri = RmModeBits(RmMode::Trilinear as u8);
             let mut out = 0u32;
             assert_eq!(
                 rm_sample(&mut sm, 0, 0, 0, tri, &mut out),

@@ -378,26 +378,10 @@ impl<'a> PbTable<'a> {
         spread: &PixelSpread,
     ) -> Result<BuildStats, TableError> {
         let mut stats = BuildStats::default();
-        self.update_counted(start, tris.into_iter().map(Ok), spread, &mut stats)?;
-        Ok(stats)
-    }
-
-    /// [`update`](Self::update) for items that are checked as they come
-    /// (e.g. a C triangle whose texture side may be zero): stops at the
-    /// first `Err` item (returned; an item with no slot left gives
-    /// [`TableError::TableFull`] first) and counts in `stats` every entry
-    /// written before it, so a caller sees what a partial update wrote.
-    pub fn update_counted(
-        &mut self,
-        start: usize,
-        tris: impl IntoIterator<Item = Result<Option<TexTriangle>, TableError>>,
-        spread: &PixelSpread,
-        stats: &mut BuildStats,
-    ) -> Result<(), TableError> {
         let mut slots = self.entries.iter_mut().skip(start);
         for tri in tris {
             let slot = slots.next().ok_or(TableError::TableFull)?;
-            *slot = match tri? {
+            *slot = match tri {
                 None => {
                     stats.untextured += 1;
                     Log2Pb::UNTEXTURED
@@ -415,7 +399,7 @@ impl<'a> PbTable<'a> {
                 }
             };
         }
-        Ok(())
+        Ok(stats)
     }
 
     /// The entry of triangle `i` (`None` out of range).
@@ -457,99 +441,77 @@ mod tests {
     fn unit_square_half() {
         // Right triangle with legs 1 covering half a 256x256 texture:
         // A = 0.5, N = 0.5·65536 → log2(A/N) = −16; γ = 2^-10 → log2 Pb = −8 + 10 = 2.
-        let t = tri(
-            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            256,
-            256,
-        );
+        let t = tri(UNIT_P, UNIT_UV, 256, 256);
         let e = Log2Pb::compute(&t, &spread(1.0 / 1024.0));
         assert_eq!(e.to_i16f16(), I16F16::from_num(2));
         #[cfg(feature = "cone")]
         assert_eq!(e.delta(&spread(1.0 / 1024.0)), Some(I16F16::from_num(8)));
     }
 
-    #[test]
-    fn degenerate_zero_area_collinear() {
-        let t = tri(
-            [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]],
-            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            64,
-            64,
-        );
-        assert_eq!(
-            Log2Pb::compute(&t, &spread(0.001)),
-            Log2Pb::DEGENERATE_GEOMETRY
-        );
-    }
+    /// The unit right triangle in xy and its UVs.
+    const UNIT_P: [[f64; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    const UNIT_UV: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
     #[test]
-    fn degenerate_duplicate_vertices() {
-        let t = tri(
-            [[3.0, 1.0, 2.0], [3.0, 1.0, 2.0], [0.0, 1.0, 0.0]],
-            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            64,
-            64,
-        );
-        assert_eq!(
-            Log2Pb::compute(&t, &spread(0.001)),
-            Log2Pb::DEGENERATE_GEOMETRY
-        );
-        let all_same = tri([[5.0; 3]; 3], [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], 64, 64);
-        assert_eq!(
-            Log2Pb::compute(&all_same, &spread(0.001)),
-            Log2Pb::DEGENERATE_GEOMETRY
-        );
-    }
-
-    #[test]
-    fn degenerate_zero_uv_area() {
-        let t = tri(
-            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]],
-            64,
-            64,
-        );
-        assert_eq!(Log2Pb::compute(&t, &spread(0.001)), Log2Pb::DEGENERATE_UV);
-    }
-
-    #[test]
-    fn degenerate_non_finite_and_out_of_range() {
-        let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let mut p = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
-            p[1][2] = bad;
-            assert_eq!(
-                TexTriangle::from_f32(p, uv, 8, 8),
-                Err(TableError::NonFinite)
-            );
+    fn degenerate_triangles_get_their_markers() {
+        for (name, p, uv, want) in [
+            (
+                "collinear",
+                [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]],
+                UNIT_UV,
+                Log2Pb::DEGENERATE_GEOMETRY,
+            ),
+            (
+                "duplicate vertices",
+                [[3.0, 1.0, 2.0], [3.0, 1.0, 2.0], [0.0, 1.0, 0.0]],
+                UNIT_UV,
+                Log2Pb::DEGENERATE_GEOMETRY,
+            ),
+            (
+                "all vertices equal",
+                [[5.0; 3]; 3],
+                UNIT_UV,
+                Log2Pb::DEGENERATE_GEOMETRY,
+            ),
+            (
+                "zero uv area",
+                UNIT_P,
+                [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]],
+                Log2Pb::DEGENERATE_UV,
+            ),
+        ] {
+            let e = Log2Pb::compute(&tri(p, uv, 64, 64), &spread(0.001));
+            assert_eq!(e, want, "{name}");
         }
-        p[1][2] = 3.0e9;
-        assert_eq!(
-            TexTriangle::from_f32(p, uv, 8, 8),
-            Err(TableError::OutOfRange)
-        );
-        p[1][2] = 0.0;
+    }
+
+    #[test]
+    fn from_f32_rejects_non_finite_out_of_range_and_zero_size() {
+        let p = UNIT_P.map(|v| v.map(|x| x as f32));
+        let uv = UNIT_UV.map(|v| v.map(|x| x as f32));
+        let mut cases = std::vec::Vec::new();
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 3.0e9] {
+            let mut q = p;
+            q[1][2] = bad;
+            let want = if bad.is_finite() {
+                TableError::OutOfRange
+            } else {
+                TableError::NonFinite
+            };
+            cases.push((q, uv, 8, 8, want));
+        }
         let mut uvb = uv;
         uvb[2][0] = f32::NAN;
-        assert_eq!(
-            TexTriangle::from_f32(p, uvb, 8, 8),
-            Err(TableError::NonFinite)
-        );
-    }
-
-    #[test]
-    fn degenerate_zero_texture_size() {
-        let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let p = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        assert_eq!(
-            TexTriangle::from_f32(p, uv, 0, 8),
-            Err(TableError::ZeroTextureSize)
-        );
-        assert_eq!(
-            TexTriangle::from_f32(p, uv, 8, 0),
-            Err(TableError::ZeroTextureSize)
-        );
+        cases.push((p, uvb, 8, 8, TableError::NonFinite));
+        cases.push((p, uv, 0, 8, TableError::ZeroTextureSize));
+        cases.push((p, uv, 8, 0, TableError::ZeroTextureSize));
+        for (p, uv, w, h, want) in cases {
+            assert_eq!(
+                TexTriangle::from_f32(p, uv, w, h),
+                Err(want),
+                "{p:?} {uv:?} {w}×{h}"
+            );
+        }
     }
 
     #[test]
@@ -578,12 +540,7 @@ mod tests {
 
     #[test]
     fn build_and_update() {
-        let a = tri(
-            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            256,
-            256,
-        );
+        let a = tri(UNIT_P, UNIT_UV, 256, 256);
         let s = spread(1.0 / 1024.0);
         let mut store = [Log2Pb::DEGENERATE_UV; 4];
         let mut table = PbTable::new(&mut store);

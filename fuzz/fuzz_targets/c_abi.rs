@@ -17,7 +17,7 @@ use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::raystack::PathState;
-use raymip::table::{Log2Pb, PbTable, TexTriangle};
+use raymip::table::{Log2Pb, PbTable};
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);
@@ -75,20 +75,6 @@ fn rm_triangle(u: &mut Unstructured) -> Result<RmTriangle> {
     Ok(t)
 }
 
-fn to_rust(t: &RmTriangle) -> Option<Option<TexTriangle>> {
-    if t.textured == 0 {
-        return Some(None);
-    }
-    TexTriangle::new(
-        t.positions.map(|p| p.map(I32F32::from_bits)),
-        t.uvs.map(|p| p.map(I32F32::from_bits)),
-        t.tex_width,
-        t.tex_height,
-    )
-    .ok()
-    .map(Some)
-}
-
 fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathState>) -> Result<()> {
     let mut raw = Raw([0; 40]);
     match u.int_in_range(0..=6u8)? {
@@ -103,54 +89,30 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                 .collect::<Result<Vec<_>>>()?;
             let mut entries = vec![0x5A5A_5A5Ai32; len];
             let mut stats = RmBuildStats::default();
+            // rm_table_update of these lengths, `start` and `spread` on the
+            // given entry and triangle pointers.
+            let mut update = |entries: *mut i32, tris: *const RmTriangle| {
+                // SAFETY: each call below states its pointers.
+                unsafe { rm_table_update(entries, len, start, tris, count, spread, &mut stats) }
+            };
             match u.int_in_range(0..=3u8)? {
                 0 if len > 0 => {
-                    // SAFETY: misaligned pointer: must be refused unread.
-                    let s = unsafe {
-                        rm_table_update(
-                            raw.misaligned(u)?,
-                            len,
-                            start,
-                            tris.as_ptr(),
-                            count,
-                            spread,
-                            &mut stats,
-                        )
-                    };
+                    // A misaligned pointer: must be refused unread.
+                    let s = update(raw.misaligned(u)?, tris.as_ptr());
                     assert_eq!(s, RmStatus::Misaligned);
                     assert!(raw.untouched());
                     return Ok(());
                 }
                 1 if count > 0 => {
-                    // SAFETY: null triangles with a count: must be refused.
-                    let s = unsafe {
-                        rm_table_update(
-                            entries.as_mut_ptr(),
-                            len,
-                            start,
-                            core::ptr::null(),
-                            count,
-                            spread,
-                            &mut stats,
-                        )
-                    };
+                    // Null triangles with a count: must be refused.
+                    let s = update(entries.as_mut_ptr(), core::ptr::null());
                     assert_eq!(s, RmStatus::NullPointer);
                     return Ok(());
                 }
                 _ => {}
             }
-            // SAFETY: valid buffers of the stated lengths.
-            let s = unsafe {
-                rm_table_update(
-                    entries.as_mut_ptr(),
-                    len,
-                    start,
-                    tris.as_ptr(),
-                    count,
-                    spread,
-                    &mut stats,
-                )
-            };
+            // Valid buffers of the stated lengths.
+            let s = update(entries.as_mut_ptr(), tris.as_ptr());
             let Ok(sp) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
                 assert_eq!(s, RmStatus::BadAngle);
                 assert!(entries.iter().all(|&e| e == 0x5A5A_5A5A));
@@ -158,7 +120,7 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
             };
             // The Rust API on the triangles up to the first invalid one.
             let mut rust = vec![Log2Pb::UNTEXTURED; len];
-            let valid: Vec<_> = tris.iter().map_while(to_rust).collect();
+            let valid: Vec<_> = tris.iter().map_while(|t| t.tex_triangle().ok()).collect();
             let r = PbTable::new(&mut rust).update(start, valid.iter().copied(), &sp);
             for (i, (&c, r)) in entries.iter().zip(&rust).enumerate() {
                 if i >= start && i - start < valid.len() {
