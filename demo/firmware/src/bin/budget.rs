@@ -41,11 +41,6 @@ use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::stack;
 use semihosting::{println, process};
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
 /// Stack bytes painted per measurement.
 const PAINT: usize = 2048;
 
@@ -303,8 +298,7 @@ pub fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>) {
     }
 }
 
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         process::exit(1)
     };

@@ -28,7 +28,6 @@ use raymip::table::Log2Pb;
 use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, println};
-use riscv_rt::entry;
 
 type Tex = Sampler<Pyramid<'static>>;
 
@@ -80,8 +79,7 @@ fn measure<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> (Stat, Stat
     (cy, ir)
 }
 
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         exit(1)
     };

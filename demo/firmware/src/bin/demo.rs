@@ -19,13 +19,7 @@ use raymip_demo_scene::{Fnv1a, HEIGHT, Renderer, WIDTH};
 /// Stack bytes painted below the render's caller.
 const PAINT_BYTES: usize = 16 * 1024;
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let code = run();
     exit(code)
 }

@@ -11,13 +11,7 @@
 
 use semihosting::{println, process};
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     match raymip_demo_scene::parity::checksum() {
         Some(line) => {
             println!("{line}");

@@ -7,13 +7,7 @@
 
 use core::hint::black_box as bb;
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     bb(&raymip_size_probe::TEX);
     semihosting::process::exit(bb(0))
 }

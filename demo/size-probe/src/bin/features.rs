@@ -21,11 +21,6 @@ use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
 use raymip::table::{Log2Pb, PbTable};
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
@@ -40,8 +35,7 @@ const MODES: &[Mode] = &[
     Mode::NearestTexelLinearLevel,
 ];
 
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let Ok(spread) = PixelSpread::from_angle(bb(I2F30::from_bits(1 << 20))) else {
         exit(1)
     };

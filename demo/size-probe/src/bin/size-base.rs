@@ -8,13 +8,7 @@
 use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     bb(&raymip_demo_scene::TEX0);
     semihosting::process::exit(bb(0))
 }

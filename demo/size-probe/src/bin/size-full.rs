@@ -20,17 +20,11 @@ use raymip::mip::{Geometry, Pyramid, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
 
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let Ok(spread) = PixelSpread::from_angle(bb(I2F30::from_bits(1 << 20))) else {
         exit(1)
     };

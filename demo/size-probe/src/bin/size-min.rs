@@ -15,13 +15,7 @@ use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::PathLength;
 use raymip::table::{Log2Pb, PbTable};
 
-#[cfg(target_arch = "arm")]
-use cortex_m_rt::entry;
-#[cfg(target_arch = "riscv32")]
-use riscv_rt::entry;
-
-#[entry]
-fn main() -> ! {
+raymip_demo_entry::main! {
     let mut entries = bb([Log2Pb::UNTEXTURED; 4]);
     let table = PbTable::new(&mut entries);
     let Ok(g) = Geometry::new(bb(32), bb(32), bb(6)) else {
