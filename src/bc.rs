@@ -202,44 +202,39 @@ mod tests {
     #[test]
     fn reference_vectors() {
         // BC1 four-colour: c0 = white (0xFFFF), c1 = black; indices 0,1,2,3.
-        let b = [0xFF, 0xFF, 0x00, 0x00, 0b1110_0100, 0, 0, 0];
-        let mut out = [0; 16];
-        decode_block(TexelFormat::Bc1, &b, &mut out);
-        assert_eq!(
-            out[..4],
-            [
-                t(255, 255, 255, 255),
-                t(0, 0, 0, 255),
-                t(170, 170, 170, 255),
-                t(85, 85, 85, 255)
-            ]
-        );
+        let four = [0xFF, 0xFF, 0x00, 0x00, 0b1110_0100, 0, 0, 0];
         // BC1 three-colour: c0 = black < c1 = white: c2 = 127, c3 transparent.
-        let b = [0x00, 0x00, 0xFF, 0xFF, 0b1110_0100, 0, 0, 0];
-        decode_block(TexelFormat::Bc1, &b, &mut out);
-        assert_eq!(
-            out[..4],
-            [
-                t(0, 0, 0, 255),
-                t(255, 255, 255, 255),
-                t(127, 127, 127, 255),
-                0
-            ]
-        );
+        let three = [0x00, 0x00, 0xFF, 0xFF, 0b1110_0100, 0, 0, 0];
         // The same colour block in BC2/BC3 is four-colour.
-        let mut b2 = [0u8; 16];
-        b2[0] = 0xF0; // texel 0 alpha 0, texel 1 alpha 255
-        b2[8..].copy_from_slice(&b);
-        decode_block(TexelFormat::Bc2, &b2, &mut out);
-        assert_eq!(
-            out[..4],
-            [
-                t(0, 0, 0, 0),
-                t(255, 255, 255, 255),
-                t(85, 85, 85, 0),
-                t(170, 170, 170, 0)
-            ]
-        );
+        let mut bc2 = [0u8; 16];
+        bc2[0] = 0xF0; // texel 0 alpha 0, texel 1 alpha 255
+        bc2[8..].copy_from_slice(&three);
+        let (white, black) = (t(255, 255, 255, 255), t(0, 0, 0, 255));
+        for (name, format, block, want) in [
+            (
+                "BC1 four-colour",
+                TexelFormat::Bc1,
+                &four[..],
+                [white, black, t(170, 170, 170, 255), t(85, 85, 85, 255)],
+            ),
+            (
+                "BC1 three-colour",
+                TexelFormat::Bc1,
+                &three[..],
+                [black, white, t(127, 127, 127, 255), 0],
+            ),
+            (
+                "BC2",
+                TexelFormat::Bc2,
+                &bc2[..],
+                [t(0, 0, 0, 0), white, t(85, 85, 85, 0), t(170, 170, 170, 0)],
+            ),
+        ] {
+            let mut out = [0; 16];
+            decode_block(format, block, &mut out);
+            assert_eq!(out[..4], want, "{name}");
+        }
+        let mut out = [0; 16];
         // BC4 eight values: r0 = 255, r1 = 0: index 2 → 6·255/7 = 218.
         let b4 = [255, 0, 0b0000_0010, 0, 0, 0, 0, 0];
         decode_block(TexelFormat::Bc4, &b4, &mut out);

@@ -71,12 +71,7 @@ pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
     let gy = WEIGHT_ONE.wrapping_sub(fy);
     let mut out = [0u32; 4];
     for (c, o) in out.iter_mut().enumerate() {
-        let top = ch(t[0], c)
-            .wrapping_mul(gx)
-            .wrapping_add(ch(t[1], c).wrapping_mul(fx));
-        let bot = ch(t[2], c)
-            .wrapping_mul(gx)
-            .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+        let (top, bot) = rows(t, c, fx, gx);
         *o = top
             .wrapping_mul(gy)
             .wrapping_add(bot.wrapping_mul(fy))
@@ -84,6 +79,20 @@ pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
             >> 8;
     }
     out
+}
+
+/// Channel `c` of the top and the bottom texel pair blended along x:
+/// `(t₀·gx + t₁·fx, t₂·gx + t₃·fx)` with `gx = 4096 − fx` (each
+/// `≤ 255·2¹²`).
+#[inline(always)]
+fn rows(t: [Texel; 4], c: usize, fx: u32, gx: u32) -> (u32, u32) {
+    let top = ch(t[0], c)
+        .wrapping_mul(gx)
+        .wrapping_add(ch(t[1], c).wrapping_mul(fx));
+    let bot = ch(t[2], c)
+        .wrapping_mul(gx)
+        .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+    (top, bot)
 }
 
 /// [`bilerp_in_range`] rounded to a texel in one step, bit-identical to
@@ -98,12 +107,7 @@ pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32) -> Texel {
     let gy = WEIGHT_ONE.wrapping_sub(fy);
     let mut out = 0u32;
     for c in 0..4 {
-        let top = ch(t[0], c)
-            .wrapping_mul(gx)
-            .wrapping_add(ch(t[1], c).wrapping_mul(fx));
-        let bot = ch(t[2], c)
-            .wrapping_mul(gx)
-            .wrapping_add(ch(t[3], c).wrapping_mul(fx));
+        let (top, bot) = rows(t, c, fx, gx);
         let r = top
             .wrapping_mul(gy)
             .wrapping_add(bot.wrapping_mul(fy))

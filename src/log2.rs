@@ -89,6 +89,16 @@ pub fn clz32(x: u32) -> u32 {
 #[inline(always)]
 #[must_use]
 pub fn clz32_soft(x: u32) -> u32 {
+    let (x, n) = shift_zero_bytes(x);
+    // `x >> 24 ≤ 255`: the index is in bounds and the check folds away.
+    n + u32::from(CLZ8[(x >> 24) as usize])
+}
+
+/// The first two steps of [`clz32_soft`]: `x` shifted left by 16 and/or 8
+/// while its top 16, then top 8 bits are zero, and the shift `n`
+/// (`0, 8, 16, 24`). The top byte of the result is non-zero unless `x = 0`.
+#[inline(always)]
+fn shift_zero_bytes(x: u32) -> (u32, u32) {
     let mut x = x;
     let mut n = 0;
     if x < 1 << 16 {
@@ -99,8 +109,7 @@ pub fn clz32_soft(x: u32) -> u32 {
         n += 8;
         x <<= 8;
     }
-    // `x >> 24 ≤ 255`: the index is in bounds and the check folds away.
-    n + u32::from(CLZ8[(x >> 24) as usize])
+    (x, n)
 }
 
 /// Leading zeros of a byte (8 for 0), the last step of [`clz32_soft`].
@@ -230,16 +239,7 @@ fn normalise32_nonzero(x: u32) -> (u32, u32) {
 )]
 #[inline(always)]
 fn normalise32_soft(x: u32) -> (u32, u32) {
-    let mut x = x;
-    let mut n = 0;
-    if x < 1 << 16 {
-        n += 16;
-        x <<= 16;
-    }
-    if x < 1 << 24 {
-        n += 8;
-        x <<= 8;
-    }
+    let (x, n) = shift_zero_bytes(x);
     let c = u32::from(CLZ8[((x >> 24) | 1) as usize]);
     (x << c, n + c)
 }

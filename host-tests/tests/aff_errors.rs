@@ -49,6 +49,14 @@ fn load_err(test: &str, files: &[(&str, &[u8])]) -> (String, aff::AffError) {
     (msg, e)
 }
 
+/// Loads the one file `top.aff` with text `top`, checks that the error is
+/// at `top.aff:line` and says `what`, and returns it.
+fn top_fails_at(test: &str, top: &str, line: usize, what: &str) -> (String, aff::AffError) {
+    let (msg, e) = load_err(test, &[("top.aff", top.as_bytes())]);
+    assert_at(&msg, "top.aff", line, what);
+    (msg, e)
+}
+
 fn assert_at(msg: &str, file: &str, line: usize, what: &str) {
     let at = format!("{file}:{line}: ");
     assert!(msg.contains(&at), "expected {at:?} in {msg:?}");
@@ -72,76 +80,78 @@ fn wrong_vertex_count_in_mesh() {
     let top = format!(
         "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 4\n0 0 0\n1 0 0\n0 1 0\ntriangles 1\n0 1 2\n"
     );
-    let (msg, _) = load_err("nverts", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 14, "mesh vertex 4 of 4");
+    let (msg, _) = top_fails_at("nverts", &top, 14, "mesh vertex 4 of 4");
     assert!(msg.contains("\"triangles\""), "{msg}");
 }
 
+/// Counts and numbers that do not fit: (test, text after the view, line,
+/// what the error says).
 #[test]
-fn mesh_index_out_of_range_and_missing_triangles_keyword() {
-    let top = format!(
-        "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 2\n0 1 2\n0 1 3\n"
-    );
-    let (msg, _) = load_err("index", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 16, "vertex index 3 out of range");
-    // Too many vertices declared the other way: four rows for `vertices 3`
-    // leaves a number where a section keyword must be (line 14).
-    let top = format!(
-        "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\ntriangles 1\n0 1 2\n"
-    );
-    let (msg, _) = load_err("extra", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 14, "count too small");
-}
-
-#[test]
-fn wrong_polygon_and_triangle_counts() {
-    // `p 4` with three vertices: the next command's letter is read as the
-    // twelfth coordinate (line 12).
-    let top = format!("{VIEW}p 4\n0 0 0\n1 0 0\n0 1 0\nl 0 5 0\n");
-    let (msg, _) = load_err("poly", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 12, "polygon vertex 4 of 4");
-    let top = format!("{VIEW}p 2\n0 0 0\n1 0 0\n");
-    let (msg, _) = load_err("poly2", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "polygon with 2 vertices");
-    // A 3-key spline channel (needs 4).
-    let top = format!(
-        "{VIEW}k spin\n{{\nrot 3\n0 0 1 0 0 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 180 0 0 0\n}}\n"
-    );
-    let (msg, _) = load_err("keys", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 10, "at least 4");
-}
-
-#[test]
-fn huge_counts_are_errors_not_allocation_failures() {
-    let top = format!("{VIEW}m\nvertices 999999999999999999\n0 0 0\n");
-    let (msg, _) = load_err("huge", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 11, "mesh vertex 2 of 999999999999999999");
-    let top = format!("{VIEW}p 99999999999\n");
-    let (msg, _) = load_err("hugep", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 9, "unexpected end of file");
-}
-
-#[test]
-fn bad_number() {
-    let top = format!("{VIEW}l 1 2 3x\n");
-    let (msg, e) = load_err("num", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "\"3x\"");
+fn count_and_number_errors() {
+    let mesh = "fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices";
+    for (name, body, line, what) in [
+        (
+            "index",
+            format!("{mesh} 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 2\n0 1 2\n0 1 3\n"),
+            16,
+            "vertex index 3 out of range",
+        ),
+        // Too many vertices declared the other way: four rows for
+        // `vertices 3` leaves a number where a section keyword must be.
+        (
+            "extra",
+            format!("{mesh} 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\ntriangles 1\n0 1 2\n"),
+            14,
+            "count too small",
+        ),
+        // `p 4` with three vertices: the next command's letter is read as
+        // the twelfth coordinate.
+        (
+            "poly",
+            "p 4\n0 0 0\n1 0 0\n0 1 0\nl 0 5 0\n".into(),
+            12,
+            "polygon vertex 4 of 4",
+        ),
+        (
+            "poly2",
+            "p 2\n0 0 0\n1 0 0\n".into(),
+            8,
+            "polygon with 2 vertices",
+        ),
+        // A 3-key spline channel (needs 4).
+        (
+            "keys",
+            "k spin\n{\nrot 3\n0 0 1 0 0 0 0 0\n1 0 1 0 90 0 0 0\n2 0 1 0 180 0 0 0\n}\n".into(),
+            10,
+            "at least 4",
+        ),
+        // Huge counts are errors, not allocation failures.
+        (
+            "huge",
+            "m\nvertices 999999999999999999\n0 0 0\n".into(),
+            11,
+            "mesh vertex 2 of 999999999999999999",
+        ),
+        (
+            "hugep",
+            "p 99999999999\n".into(),
+            9,
+            "unexpected end of file",
+        ),
+        // nan / inf are not numbers here; nor is a negative count.
+        ("nan", "b 0 nan 0\n".into(), 8, "\"nan\""),
+        ("negcount", "p -3\n".into(), 8, "\"-3\""),
+    ] {
+        top_fails_at(name, &format!("{VIEW}{body}"), line, what);
+    }
+    let (_, e) = top_fails_at("num", &format!("{VIEW}l 1 2 3x\n"), 8, "\"3x\"");
     assert!(matches!(*e.kind, AffErrorKind::BadNumber { .. }));
-    // nan / inf are not numbers here.
-    let top = format!("{VIEW}b 0 nan 0\n");
-    let (msg, _) = load_err("nan", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "\"nan\"");
-    // A negative count.
-    let top = format!("{VIEW}p -3\n");
-    let (msg, _) = load_err("negcount", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "\"-3\"");
 }
 
 #[test]
 fn missing_include_names_the_including_line() {
     let top = format!("{VIEW}\ni 0 nothere.aff\n");
-    let (msg, e) = load_err("inc", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 9, "nothere.aff");
+    let (_, e) = top_fails_at("inc", &top, 9, "nothere.aff");
     assert!(matches!(*e.kind, AffErrorKind::MissingInclude { .. }));
 }
 
@@ -164,8 +174,7 @@ fn error_inside_include_names_inner_file_and_chain() {
 #[test]
 fn recursive_include_is_an_error_not_a_stack_overflow() {
     let top = format!("{VIEW}i 0 top.aff\n");
-    let (msg, _) = load_err("rec", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "nested deeper");
+    top_fails_at("rec", &top, 8, "nested deeper");
 }
 
 #[test]
@@ -173,13 +182,11 @@ fn missing_texture() {
     let top = format!(
         "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 3\n0 0 0\n1 0 0\n0 1 0\ntexturecoords 3 gone.ppm\n0 0\n1 0\n0 1\ntriangles 1\n0 1 2 0 1 2\n"
     );
-    let (msg, e) = load_err("tex", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 14, "gone.ppm");
+    let (msg, e) = top_fails_at("tex", &top, 14, "gone.ppm");
     assert!(msg.contains("cannot read"), "{msg}");
     assert!(matches!(*e.kind, AffErrorKind::Texture { .. }));
     let top = format!("{VIEW}tt gone.ppm\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n");
-    let (msg, _) = load_err("tt", &[("top.aff", top.as_bytes())]);
-    assert_at(&msg, "top.aff", 8, "gone.ppm");
+    top_fails_at("tt", &top, 8, "gone.ppm");
 }
 
 #[test]
@@ -247,8 +254,7 @@ fn structure_errors() {
         ),
     ];
     for (name, text, line, what) in cases {
-        let (msg, _) = load_err(name, &[("top.aff", text.as_bytes())]);
-        assert_at(&msg, "top.aff", *line, what);
+        top_fails_at(name, text, *line, what);
     }
     // No `v` at all: the whole top file is named.
     let (msg, _) = load_err("noview", &[("top.aff", b"l 1 2 3\n")]);

@@ -1,6 +1,6 @@
 //! The CLI's render / compare / table1 commands end to end (small sizes).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn tmp(name: &str) -> PathBuf {
@@ -16,24 +16,34 @@ fn run(args: &[&str]) -> std::process::Output {
         .expect("run raymip-host")
 }
 
+/// `run(args)`, which must succeed.
+fn run_ok(args: &[&str]) -> std::process::Output {
+    let o = run(args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+/// `render --scene builtin:hall ARGS --out OUT`: must succeed; its
+/// `report.json`.
+fn render_hall(out: &Path, args: &[&str]) -> serde_json::Value {
+    run_ok(
+        &[
+            &["render", "--scene", "builtin:hall"],
+            args,
+            &["--out", out.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
+}
+
 #[test]
 fn render_writes_image_levels_and_reports() {
     let out = tmp("render");
-    let o = run(&[
-        "render",
-        "--scene",
-        "builtin:hall",
-        "--size",
-        "80x48",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = render_hall(&out, &["--size", "80x48"]);
     for f in ["image.png", "levels.png", "report.json", "report.md"] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(r["width"], 80);
     assert_eq!(r["method"], "table");
     assert_eq!(r["precision"], "fixed");
@@ -44,36 +54,23 @@ fn render_writes_image_levels_and_reports() {
 #[test]
 fn render_with_anisotropic_filtering() {
     let out = tmp("aniso");
-    let o = run(&[
-        "render",
-        "--scene",
-        "builtin:hall",
-        "--size",
-        "40x24",
-        "--method",
-        "raydiff",
-        "--filter",
-        "aniso",
-        "--max-aniso",
-        "8",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let aniso = ["--filter", "aniso", "--max-aniso"];
+    let r = render_hall(
+        &out,
+        &[
+            &["--size", "40x24", "--method", "raydiff"],
+            &aniso[..],
+            &["8"],
+        ]
+        .concat(),
+    );
     assert_eq!(r["max_aniso"], 8);
     let o = run(&[
-        "render",
-        "--scene",
-        "builtin:hall",
-        "--filter",
-        "aniso",
-        "--max-aniso",
-        "17",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        &["render", "--scene", "builtin:hall"],
+        &aniso[..],
+        &["17", "--out", out.to_str().unwrap()],
+    ]
+    .concat());
     assert!(!o.status.success());
     std::fs::remove_dir_all(&out).ok();
 }
@@ -81,7 +78,7 @@ fn render_with_anisotropic_filtering() {
 #[test]
 fn compare_and_table1_run_on_builtin_scenes() {
     let out = tmp("compare");
-    let o = run(&[
+    run_ok(&[
         "compare",
         "--scene",
         "builtin:glass",
@@ -94,10 +91,9 @@ fn compare_and_table1_run_on_builtin_scenes() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("diff_table_fixed_vs_float.png").is_file());
     assert!(out.join("compare.json").is_file());
-    let o = run(&[
+    let o = run_ok(&[
         "table1",
         "--scenes",
         "/nonexistent-raymip",
@@ -107,7 +103,6 @@ fn compare_and_table1_run_on_builtin_scenes() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = String::from_utf8_lossy(&o.stdout);
     assert!(s.contains("SKIP") && s.contains("builtin:mirrors"), "{s}");
     assert!(out.join("table1.md").is_file());
@@ -116,34 +111,23 @@ fn compare_and_table1_run_on_builtin_scenes() {
 
 #[test]
 fn bad_inputs_are_clear_errors() {
-    let o = run(&[
-        "render",
-        "--scene",
-        "builtin:nope",
-        "--out",
-        "/tmp/raymip-never",
-    ]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown built-in scene"));
-    let o = run(&[
-        "render",
-        "--scene",
-        "/no/such.aff",
-        "--out",
-        "/tmp/raymip-never",
-    ]);
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("/no/such.aff"));
-    let o = run(&[
-        "render",
-        "--scene",
-        "builtin:hall",
-        "--size",
-        "0x3",
-        "--out",
-        "/tmp/raymip-never",
-    ]);
-    assert!(!o.status.success());
+    let never = ["--out", "/tmp/raymip-never"];
+    for (args, says) in [
+        (
+            &["render", "--scene", "builtin:nope"][..],
+            "unknown built-in scene",
+        ),
+        (&["render", "--scene", "/no/such.aff"][..], "/no/such.aff"),
+        (
+            &["render", "--scene", "builtin:hall", "--size", "0x3"][..],
+            "",
+        ),
+    ] {
+        let o = run(&[args, &never[..]].concat());
+        assert!(!o.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
     let o = run(&["table1", "--scenes", "/nonexistent-raymip"]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));

@@ -175,63 +175,61 @@ fn sampler_state_options_through_binary() {
         assert!(ok, "{extra:?}: {err}");
         out
     };
-    // Mirror: u = 1.25 reads u = 0.75 (green); mirror-once: u = −0.25 → 0.25 (red).
-    assert_eq!(
-        run(&["--address", "mirror"], "1.25,0.25,0,2\n"),
-        "0,255,0,255\n"
-    );
-    assert_eq!(
-        run(&["--address", "mirror-once"], "-0.25,0.25,0,2\n"),
-        "255,0,0,255\n"
-    );
-    // Border per axis: u wraps, v outside reads the border colour.
-    assert_eq!(
-        run(
-            &["--address", "wrap,border", "--border", "10,20,30,40"],
-            "1.25,-0.5,0,2\n1.25,0.25,0,2\n"
+    for (options, input, want) in [
+        // Mirror: u = 1.25 reads u = 0.75 (green); mirror-once: u = −0.25 → 0.25 (red).
+        (
+            &["--address", "mirror"][..],
+            "1.25,0.25,0,2\n",
+            "0,255,0,255\n",
         ),
-        "10,20,30,40\n255,0,0,255\n"
-    );
-    // Bias +1 → level 1; min-lod 1 → level 1; max-lod 0 → level 0.
-    assert_eq!(
-        run(&["--bias", "1"], "0.25,0.25,0,2\n"),
-        "128,128,128,255\n"
-    );
-    assert_eq!(
-        run(&["--min-lod", "1"], "0.25,0.25,0,2\n"),
-        "128,128,128,255\n"
-    );
-    assert_eq!(
-        run(&["--max-lod", "0", "--bias", "-0.5"], "0.25,0.25,5,2\n"),
-        "255,0,0,255\n"
-    );
-    // Formats: L8 reads red as luminance, A8 keeps alpha only; RGB565 keeps
-    // 255 and 0 exactly.
-    assert_eq!(run(&["--format", "l8"], "0.75,0.25,0,2\n"), "0,0,0,255\n");
-    assert_eq!(run(&["--format", "a8"], "0.25,0.25,0,2\n"), "0,0,0,255\n");
-    assert_eq!(
-        run(&["--format", "rgb565"], "0.75,0.75,0,2\n"),
-        "255,255,255,255\n"
-    );
-    // BC1: the encoder's endpoints are the first two texels farthest apart
-    // (all pairs tie here: red and green), so red survives exactly.
-    assert_eq!(
-        run(&["--format", "bc1"], "0.25,0.25,0,2\n"),
-        "255,0,0,255\n"
-    );
-    // sRGB: a texel comes back as stored (decode + encode), linear output
-    // of half red/green = 255·(EOTF(1)/2) per channel: 127.5 → 128; the
-    // sRGB pyramid's level 1 is the linear mean of the four texels:
-    // red = (1 + 0 + 0 + 1)/4 = 0.5 linear → sRGB 188.
-    assert_eq!(run(&["--srgb"], "0.25,0.25,0,2\n"), "255,0,0,255\n");
-    assert_eq!(
-        run(&["--srgb", "--linear-output"], "0.5,0.25,0,1\n"),
-        "128,128,0,255\n"
-    );
-    assert_eq!(run(&["--srgb"], "0.5,0.5,1,2\n"), "188,188,188,255\n");
-    // Anisotropic line: 8:1 along u over the top row at lod 0 → probes
-    // spread evenly between red and green: half each (127.5 → 128).
-    assert_eq!(run(&[], "0.5,0.25,1,0.5,0,0,0.0625\n"), "128,128,0,255\n");
+        (
+            &["--address", "mirror-once"],
+            "-0.25,0.25,0,2\n",
+            "255,0,0,255\n",
+        ),
+        // Border per axis: u wraps, v outside reads the border colour.
+        (
+            &["--address", "wrap,border", "--border", "10,20,30,40"],
+            "1.25,-0.5,0,2\n1.25,0.25,0,2\n",
+            "10,20,30,40\n255,0,0,255\n",
+        ),
+        // Bias +1 → level 1; min-lod 1 → level 1; max-lod 0 → level 0.
+        (&["--bias", "1"], "0.25,0.25,0,2\n", "128,128,128,255\n"),
+        (&["--min-lod", "1"], "0.25,0.25,0,2\n", "128,128,128,255\n"),
+        (
+            &["--max-lod", "0", "--bias", "-0.5"],
+            "0.25,0.25,5,2\n",
+            "255,0,0,255\n",
+        ),
+        // Formats: L8 reads red as luminance, A8 keeps alpha only; RGB565
+        // keeps 255 and 0 exactly.
+        (&["--format", "l8"], "0.75,0.25,0,2\n", "0,0,0,255\n"),
+        (&["--format", "a8"], "0.25,0.25,0,2\n", "0,0,0,255\n"),
+        (
+            &["--format", "rgb565"],
+            "0.75,0.75,0,2\n",
+            "255,255,255,255\n",
+        ),
+        // BC1: the encoder's endpoints are the first two texels farthest
+        // apart (all pairs tie here: red and green), so red survives exactly.
+        (&["--format", "bc1"], "0.25,0.25,0,2\n", "255,0,0,255\n"),
+        // sRGB: a texel comes back as stored (decode + encode), linear
+        // output of half red/green = 255·(EOTF(1)/2) per channel: 127.5 →
+        // 128; the sRGB pyramid's level 1 is the linear mean of the four
+        // texels: red = (1 + 0 + 0 + 1)/4 = 0.5 linear → sRGB 188.
+        (&["--srgb"], "0.25,0.25,0,2\n", "255,0,0,255\n"),
+        (
+            &["--srgb", "--linear-output"],
+            "0.5,0.25,0,1\n",
+            "128,128,0,255\n",
+        ),
+        (&["--srgb"], "0.5,0.5,1,2\n", "188,188,188,255\n"),
+        // Anisotropic line: 8:1 along u over the top row at lod 0 → probes
+        // spread evenly between red and green: half each (127.5 → 128).
+        (&[], "0.5,0.25,1,0.5,0,0,0.0625\n", "128,128,0,255\n"),
+    ] {
+        assert_eq!(run(options, input), want, "{options:?} {input:?}");
+    }
     // Invalid options: clear errors.
     for (args, what) in [
         (vec!["--bias", "16"], "bias"),

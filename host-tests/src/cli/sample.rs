@@ -448,15 +448,42 @@ pub fn sample_lines<R: BufRead, W: Write>(
     pyramid: &OwnedPyramid,
     address: Address,
     input: R,
-    mut output: W,
+    output: W,
     input_name: &str,
 ) -> Result<usize, SampleError> {
-    let view = pyramid.pyramid().map_err(|error| SampleError::Pyramid {
+    let mut sampler = Sampler::new(view(pyramid, input_name)?, address);
+    sample_each_line(input, output, input_name, |line, line_err| {
+        let SampleLine::Lod { u, v, lod, mode } = line else {
+            return Err(line_err(
+                "anisotropic lines need the GPU-style sampler (sample_lines_state)".into(),
+            ));
+        };
+        sampler
+            .sample_f64(u, v, lod, mode)
+            .map_err(|e| line_err(e.to_string()))
+    })
+}
+
+/// The pyramid of `pyramid` to sample (`input_name` names the input in the
+/// error).
+fn view<'a>(pyramid: &'a OwnedPyramid, input_name: &str) -> Result<Pyramid<'a>, SampleError> {
+    pyramid.pyramid().map_err(|error| SampleError::Pyramid {
         path: PathBuf::from(input_name),
         error,
         levels: None,
-    })?;
-    let mut sampler = Sampler::new(view, address);
+    })
+}
+
+/// Reads `input` line by line, parses each line (errors name `input_name`
+/// and the line number), samples it with `sample` (given the line and its
+/// error constructor) and writes one `r,g,b,a` line to `output`, in order.
+/// Returns the number of samples written.
+fn sample_each_line<R: BufRead, W: Write>(
+    input: R,
+    mut output: W,
+    input_name: &str,
+    mut sample: impl FnMut(SampleLine, &dyn Fn(String) -> SampleError) -> Result<Texel, SampleError>,
+) -> Result<usize, SampleError> {
     let mut count = 0;
     for (i, line) in input.lines().enumerate() {
         let line = line?;
@@ -466,15 +493,7 @@ pub fn sample_lines<R: BufRead, W: Write>(
             message,
         };
         let text = line.strip_suffix('\r').unwrap_or(&line);
-        let SampleLine::Lod { u, v, lod, mode } = parse_line(text).map_err(line_err)? else {
-            return Err(line_err(
-                "anisotropic lines need the GPU-style sampler (sample_lines_state)".into(),
-            ));
-        };
-        let t = sampler
-            .sample_f64(u, v, lod, mode)
-            .map_err(|e| line_err(e.to_string()))?;
-        let [r, g, b, a] = t.to_le_bytes();
+        let [r, g, b, a] = sample(parse_line(text).map_err(line_err)?, &line_err)?.to_le_bytes();
         writeln!(output, "{r},{g},{b},{a}")?;
         count += 1;
     }
@@ -497,14 +516,10 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
     format: Format,
     legacy: Option<Address>,
     input: R,
-    mut output: W,
+    output: W,
     input_name: &str,
 ) -> Result<usize, SampleError> {
-    let view = pyramid.pyramid().map_err(|error| SampleError::Pyramid {
-        path: PathBuf::from(input_name),
-        error,
-        levels: None,
-    })?;
+    let view = view(pyramid, input_name)?;
     let mut original = legacy.map(|a| Sampler::new(view, a));
     let bytes = crate::reference::texformat::encode_pyramid(
         &pyramid.geometry,
@@ -516,16 +531,8 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
     let mut cache: Box<TexelCache<Image<'_>, 64, 4>> = Box::new(TexelCache::new(image));
     let mut sampler = TextureSampler::new(&mut *cache, state, format.space());
     let [au, av] = state.address();
-    let mut count = 0;
-    for (i, line) in input.lines().enumerate() {
-        let line = line?;
-        let line_err = |message: String| SampleError::Line {
-            input: input_name.to_string(),
-            line: i + 1,
-            message,
-        };
-        let text = line.strip_suffix('\r').unwrap_or(&line);
-        let t = match parse_line(text).map_err(line_err)? {
+    sample_each_line(input, output, input_name, |line, line_err| {
+        Ok(match line {
             SampleLine::Lod { u, v, lod, mode } => match original.as_mut() {
                 Some(o) => o
                     .sample_f64(u, v, lod, mode)
@@ -550,13 +557,8 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
                 };
                 sampler.sample_aniso(u, v, &fp, mode)
             }
-        };
-        let [r, g, b, a] = t.to_le_bytes();
-        writeln!(output, "{r},{g},{b},{a}")?;
-        count += 1;
-    }
-    output.flush()?;
-    Ok(count)
+        })
+    })
 }
 
 /// The whole command: read the texture, build the pyramid, sample `input`
