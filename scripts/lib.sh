@@ -42,8 +42,8 @@ QTIMEOUT=${QEMU_TIMEOUT:-120}
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
-# step TEXT...: a heading in the log.
-step() { printf '\n==> %s\n' "$*"; }
+# step TEXT...: a heading in the log, with the UTC time (the log shows where CI spends its time).
+step() { printf '\n==> %s  [%s]\n' "$*" "$(date -u +%T)"; }
 
 # die TEXT...: message to stderr, exit 1.
 die() {

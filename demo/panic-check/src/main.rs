@@ -21,6 +21,7 @@ use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::aniso::{Footprint, probes};
 use raymip::bc;
 use raymip::cache::{BlockCache, BlockLayout, TexelCache};
+use raymip::camera::PixelSpread;
 use raymip::ffi::{
     RmPathState, RmRayStack, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate,
     rm_path_advance, rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init,
@@ -45,7 +46,6 @@ use raymip::rng::{Rng, mix32};
 use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::srgb;
 use raymip::stochastic::StochasticMode;
-use raymip::camera::PixelSpread;
 use raymip::table::{Log2Pb, PbTable};
 use raymip::texture_sampler::TextureSampler;
 

@@ -14,11 +14,11 @@ use core::hint::black_box as bb;
 use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 
 use fixed::types::I2F30;
+use raymip::camera::PixelSpread;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, table_lod_clamped};
 use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
-use raymip::camera::PixelSpread;
 use raymip::table::{Log2Pb, PbTable};
 
 #[cfg(target_arch = "arm")]

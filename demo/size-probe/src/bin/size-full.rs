@@ -13,11 +13,11 @@ use raymip_size_probe as _;
 
 use fixed::types::{I2F30, I16F16, U1F31};
 use raymip::cache::TexelCache;
+use raymip::camera::PixelSpread;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, cone_lod, table_lod_clamped};
 use raymip::mip::{Geometry, Pyramid, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
-use raymip::camera::PixelSpread;
 use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
 
 #[cfg(target_arch = "arm")]
