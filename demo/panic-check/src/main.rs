@@ -38,8 +38,8 @@ use raymip::lod::{
     Lod, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
     table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
 };
-use raymip::log2_fast::log2_u32f32_fast;
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
+use raymip::log2_fast::log2_u32f32_fast;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::rng::{Rng, mix32};
