@@ -10,10 +10,12 @@ demo-T.out (demo output), static-T.txt (scripts/stack-sizes).
 
 Counts every call of each `rm_bench_*` / `rm_batch_*` wrapper from its entry
 to the return into `rm_budget_driver`, checks the ceilings below (exit 1 and
-FAIL lines when one is exceeded) and writes ROOT/BUDGETS.md, or with --check
-compares it with the checked-in file (exit 1 when stale; the block between
-the softcore markers belongs to another script and is kept verbatim and
-ignored by the comparison).
+FAIL lines when one is exceeded) and writes ROOT/BUDGETS.md and the
+sampler-budgets block of ROOT/README.md (TextureSampler instructions beside
+the errors of the README's sampler-accuracy block), or with --check
+compares both with the checked-in files (exit 1 when stale; the block
+between the softcore markers belongs to another script and is kept verbatim
+and ignored by the comparison).
 """
 import os
 import re
@@ -24,6 +26,40 @@ ISAS = [("m4", "Cortex-M4"), ("rv", "RV32IMAC"), ("rvzbb", "RV32IMAC+Zbb")]
 CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
          ("bilinear", "bilinear sample"), ("trilinear", "trilinear sample")]
 BEGIN, END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
+README_BEGIN, README_END = "<!-- sampler-budgets:begin -->", "<!-- sampler-budgets:end -->"
+
+# Wrappers that serve several rows, and how many calls each must show.
+CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 128,
+                "rm_bench_ts_rgb565": 64, "rm_bench_ts_bc1": 128, "rm_bench_ts_aniso": 192,
+                "rm_bench_geomlod": 128, "rm_batch_geomlod": 4}
+
+# TextureSampler rows: (key, label, wrapper, its calls of this row, the
+# sampler-accuracy cell of the README (format, filter) or None). The order
+# of the calls is the one of demo/firmware/src/bin/budget.rs.
+SAMPLER_ROWS = [
+    ("ts_bilinear", "RGBA8 bilinear (sampler state)", "rm_bench_ts_bilinear", slice(0, 64),
+     ("Rgba8", "bilinear")),
+    ("ts_trilinear", "RGBA8 trilinear (sampler state)", "rm_bench_ts_trilinear", slice(0, 64),
+     ("Rgba8", "trilinear")),
+    ("ts_srgb", "RGBA8 sRGB trilinear, re-encoded", "rm_bench_ts_trilinear", slice(64, 128),
+     ("Rgba8_SRGB (encoded)", "trilinear")),
+    ("ts_rgb565", "RGB565 trilinear", "rm_bench_ts_rgb565", slice(0, 64), ("Rgb565", "trilinear")),
+    ("ts_bc1_fill", "BC1 trilinear, cache filled (blocks decoded)", "rm_bench_ts_bc1",
+     slice(0, 128, 2), ("Bc1", "trilinear")),
+    ("ts_bc1_hit", "BC1 trilinear, cache hits", "rm_bench_ts_bc1", slice(1, 128, 2),
+     ("Bc1", "trilinear")),
+    ("ts_aniso2", "anisotropic 2× sample", "rm_bench_ts_aniso", slice(0, 64), None),
+    ("ts_aniso4", "anisotropic 4× sample", "rm_bench_ts_aniso", slice(64, 128), None),
+    ("ts_aniso16", "anisotropic 16× sample", "rm_bench_ts_aniso", slice(128, 192),
+     ("Rgba8", "anisotropic 16x (trilinear probes)")),
+]
+
+# Geometric LOD rows: (key, label, single-instance calls, batch calls
+# (32 then 64 instances)).
+GEOMLOD_ROWS = [
+    ("discrete", "discrete", slice(0, 64), slice(0, 2)),
+    ("stochastic", "stochastic, t = ½", slice(64, 128), slice(2, 4)),
+]
 
 # Goals of issue 10 (instructions per call, max over the 64 calls).
 GOALS = {
@@ -87,6 +123,25 @@ MISSED = {
         "per-channel blend (`mul`, `mla`, shift, merge). The 16 intermediate values exceed the "
         "registers: the loads/stores beyond the 8 texel reads are spills."
     ),
+}
+
+# Ceilings of the TextureSampler and geometric-LOD rows (max instructions
+# per call; geomlod: per instance, steady state): the first measurement's
+# maximum + 10 %, rounded up.
+TS_CEILINGS = {
+    "ts_bilinear": {"m4": 637, "rv": 659, "rvzbb": 636},
+    "ts_trilinear": {"m4": 1207, "rv": 1283, "rvzbb": 1239},
+    "ts_srgb": {"m4": 1341, "rv": 1498, "rvzbb": 1457},
+    "ts_rgb565": {"m4": 1676, "rv": 1888, "rvzbb": 1766},
+    "ts_bc1_fill": {"m4": 4798, "rv": 5258, "rvzbb": 5085},
+    "ts_bc1_hit": {"m4": 2177, "rv": 2529, "rvzbb": 2394},
+    "ts_aniso2": {"m4": 2983, "rv": 3144, "rvzbb": 3020},
+    "ts_aniso4": {"m4": 5291, "rv": 5514, "rvzbb": 5333},
+    "ts_aniso16": {"m4": 19035, "rv": 19517, "rvzbb": 18941},
+}
+GEOMLOD_CEILINGS = {
+    "discrete": {"m4": 97, "rv": 78, "rvzbb": 73},
+    "stochastic": {"m4": 117, "rv": 92, "rvzbb": 86},
 }
 
 SIZE_CEILING = 6144  # minimal .text, bytes
@@ -240,7 +295,7 @@ def without_softcore(text):
     return BLOCK.sub(lambda m: f"<!-- {m.group(1)}:begin --><!-- {m.group(1)}:end -->", text)
 
 
-def render(work, old_text):
+def render(work, old_text, readme):
     firsts = {k: {} for k, _ in ISAS}
     res = {k: count(work, k, firsts[k]) for k, _ in ISAS}
     ops = {k: mnemonics(work, k) for k, _ in ISAS}
@@ -254,6 +309,10 @@ def render(work, old_text):
             got = len(res[k].get("rm_batch_" + c, []))
             if got != 2:
                 sys.exit(f"budgets: {k} rm_batch_{c}: {got} calls traced, want 2")
+        for sym, want in CALLS_TRACED.items():
+            got = len(res[k].get(sym, []))
+            if got != want:
+                sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}")
     L = []
     w = L.append
     w("# raymip firmware budgets\n")
@@ -322,6 +381,56 @@ def render(work, old_text):
     w("|---|---|---|")
     for c, _ in CALLS:
         w(f"| {c} | {mi.get(c, '?')} | {mz.get(c, '?')} |")
+
+    ts = sampler_stats(res)
+    w("\n## GPU-style sampler (`TextureSampler`)\n")
+    w("`texture_sampler::TextureSampler` on the demo texture's geometry (32×32, 6 levels), counted")
+    w("like the calls above. Bilinear/trilinear rows: the same 64 inputs as `bilinear sample` /")
+    w("`trilinear sample`, with the state `inputs::sampler_state` (mirror on u, clamp-to-border on v,")
+    w("lod bias +¼, lod clamp [½, 4]); RGBA8 = the demo pyramid, sRGB = the same texels read as sRGB")
+    w("(decoded by table, filtered in 16-bit linear, re-encoded), RGB565 = the demo texture converted")
+    w("(expanded per texel read), BC1 = pseudo-random blocks through a `TexelCache<_, 8, 2>`: each")
+    w("input sampled twice, first with the cache emptied outside the counted call (every block the")
+    w("sample reads is decoded on its fill), then again (every texel read hits). Anisotropic rows:")
+    w("wrap, trilinear probes, 64 long footprints (`inputs::aniso`: minor axis 16 or 32 times")
+    w("shorter than the major, so the probe count is the cap: 2, 4 or 16). min / mean / max.\n")
+    w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb | ceiling M4 / RV32 / Zbb |")
+    w("|---|---|---|---|---|")
+    for key, label, _, _, _ in SAMPLER_ROWS:
+        row = [label] + [fmt(ts[k][key]) for k, _ in ISAS]
+        ceil = TS_CEILINGS.get(key)
+        row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
+        w("| " + " | ".join(row) + " |")
+        for k, _ in ISAS:
+            if ceil and ts[k][key][2] > ceil[k]:
+                bad.append(f"{k} {key}: max {ts[k][key][2]} instructions > ceiling {ceil[k]}")
+
+    gl = geomlod_stats(res)
+    recs = {k: kv(work, k, "geomlod") for k, _ in ISAS}
+    w("\n## Geometric LOD per instance (`geomlod::Selector::fill`)\n")
+    w("The instance records (id, LOD, 8-bit mask) of instances at pseudo-random camera-space depths")
+    w("over [−2, 70) (`inputs::instances`), 8 LODs from z_near = 2 to z_far = 66, bias −¼")
+    w("(`inputs::selector`), written into the caller's array. One instance: 64 calls of one")
+    w("instance each, min / mean / max. Per instance: one call with the first 32 and one with all")
+    w("64 instances, (count for 64 − count for 32) / 32. A stochastic instance in a transition")
+    w("writes two records.\n")
+    w("| mode | M4 one instance | M4 per instance | RV32 one instance | RV32 per instance "
+      "| Zbb one instance | Zbb per instance | records for 64 instances | ceiling per instance M4 / RV32 / Zbb |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    for key, label, _, _ in GEOMLOD_ROWS:
+        row = [label]
+        for k, _ in ISAS:
+            one, per = gl[k][key]
+            row += [fmt(one), f"{per:.1f}"]
+        row.append(recs["m4"].get(key, "?"))
+        ceil = GEOMLOD_CEILINGS.get(key)
+        row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
+        w("| " + " | ".join(row) + " |")
+        for k, _ in ISAS:
+            if ceil and gl[k][key][1] > ceil[k]:
+                bad.append(f"{k} geomlod {key}: {gl[k][key][1]:.1f} per instance > ceiling {ceil[k]}")
+        if len({recs[k].get(key) for k, _ in ISAS}) != 1:
+            bad.append(f"geomlod {key}: record counts differ between targets: {recs}")
 
     w("\n## Executed instruction mix\n")
     w("Where the instructions of one call go: the first of the 64 calls of each fixed-point wrapper,")
@@ -430,7 +539,75 @@ def render(work, old_text):
     for name, block in blocks(old_text).items():
         if name != "softcore":
             w("\n" + block)
-    return "\n".join(L) + "\n", bad
+    return "\n".join(L) + "\n", bad, replace_block(readme, readme_block(res, readme))
+
+
+def sampler_stats(res):
+    """{isa: {row key: (min, mean, max)}} of the TextureSampler rows."""
+    return {k: {key: stat(res[k][sym][sl]) for key, _, sym, sl, _ in SAMPLER_ROWS} for k, _ in ISAS}
+
+
+def geomlod_stats(res):
+    """{isa: {mode: ((min, mean, max) of one instance, steady per instance)}}."""
+    out = {}
+    for k, _ in ISAS:
+        out[k] = {}
+        for key, _, one, batch in GEOMLOD_ROWS:
+            c32, c64 = res[k]["rm_batch_geomlod"][batch]
+            out[k][key] = (stat(res[k]["rm_bench_geomlod"][one]), (c64 - c32) / 32)
+    return out
+
+
+TABLE_ROW = re.compile(r"^\|(.*)\|\s*$")
+
+
+def accuracy_cells(readme):
+    """{(format, filter): cell} of the sampler-accuracy block of the README
+    (written by the sampler_accuracy example): `measured / bound`."""
+    block = blocks(readme).get("sampler-accuracy", "")
+    header, out = None, {}
+    for line in block.splitlines():
+        m = TABLE_ROW.match(line.strip())
+        if not m:
+            continue
+        cells = [c.strip() for c in m.group(1).split("|")]
+        if all(set(c) <= set("-:") for c in cells):
+            continue
+        if header is None:
+            header = cells
+            continue
+        for h, c in zip(header[1:], cells[1:]):
+            out[(cells[0], h)] = c
+    return out
+
+
+def readme_block(res, readme):
+    """The README block (markers included): the TextureSampler rows' mean
+    instructions per target and their measured error."""
+    ts = sampler_stats(res)
+    acc = accuracy_cells(readme)
+    L = [README_BEGIN]
+    L.append("Instructions per `TextureSampler` call (mean, max in parentheses; `bash scripts/budgets`, "
+             "QEMU traces, BUDGETS.md \"GPU-style sampler\" for the inputs) and the largest error per "
+             "channel of that format and filter measured against the f64 reference over random states "
+             "(8-bit LSB, measured / bound; the table above):\n")
+    L.append("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb | max error vs f64 (LSB) |")
+    L.append("|---|---|---|---|---|")
+    for key, label, _, _, cell in SAMPLER_ROWS:
+        row = [label] + [f"{ts[k][key][1]:.1f} ({ts[k][key][2]})" for k, _ in ISAS]
+        row.append(acc.get(cell, "?") if cell else "—")
+        L.append("| " + " | ".join(row) + " |")
+    L.append(README_END)
+    return "\n".join(L)
+
+
+def replace_block(text, new):
+    """`text` with its sampler-budgets block replaced by `new` (the block
+    must exist)."""
+    i, j = text.find(README_BEGIN), text.find(README_END)
+    if i < 0 or j < i:
+        sys.exit(f"budgets: README.md has no {README_BEGIN} … {README_END} block")
+    return text[:i] + new + text[j + len(README_END):]
 
 
 def self_test():
@@ -450,21 +627,33 @@ def main():
     check = len(sys.argv) > 3 and sys.argv[3] == "--check"
     path = os.path.join(root, "BUDGETS.md")
     old = open(path).read() if os.path.exists(path) else ""
-    new, bad = render(work, old)
+    readme_path = os.path.join(root, "README.md")
+    readme = open(readme_path).read()
+    new, bad, new_readme = render(work, old, readme)
     status = 0
     if check:
+        import difflib
         if without_softcore(new) != without_softcore(old):
-            import difflib
             sys.stdout.writelines(difflib.unified_diff(
                 old.splitlines(True), new.splitlines(True), "BUDGETS.md (checked in)", "BUDGETS.md (measured)"))
             print("budgets: FAIL: BUDGETS.md is stale (run scripts/budgets and commit it)")
             status = 1
         else:
             print("budgets: BUDGETS.md is up to date")
+        if new_readme != readme:
+            sys.stdout.writelines(difflib.unified_diff(
+                readme.splitlines(True), new_readme.splitlines(True), "README.md (checked in)",
+                "README.md (measured)"))
+            print("budgets: FAIL: the sampler-budgets block of README.md is stale (run scripts/budgets)")
+            status = 1
+        else:
+            print("budgets: README.md sampler-budgets block is up to date")
     else:
         with open(path, "w") as f:
             f.write(new)
-        print("budgets: wrote BUDGETS.md")
+        with open(readme_path, "w") as f:
+            f.write(new_readme)
+        print("budgets: wrote BUDGETS.md and the sampler-budgets block of README.md")
     if bad:
         print("budgets: FAIL\n  " + "\n  ".join(bad))
         status = 1

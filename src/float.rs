@@ -152,6 +152,54 @@ impl<'a> SamplerF32<'a> {
     /// inputs give an unspecified texel (no panic).
     #[inline]
     pub fn sample(&self, u: f32, v: f32, lod: f32, mode: Mode) -> Texel {
+        pack(self.filter(u, v, lod, mode))
+    }
+
+    /// Anisotropic sample in f32 with the definitions of [`crate::aniso`]:
+    /// `axes` = the footprint `[(du/dx, dv/dx), (du/dy, dv/dy)]` in
+    /// normalized texture coordinates; with the axes in level-0 texels,
+    /// `minor' = max(|minor|, |major| / max_aniso)` (`max_aniso` clamped to
+    /// `1 ..= 16`), `N = min(max_aniso, ceil(|major| / minor'))` probes of
+    /// filter `mode` at lod `log2 minor'`, at `(u, v) + t_i·major` with
+    /// `t_i = (2i + 1 − N)/(2N)`; the unrounded probe values are averaged
+    /// and rounded once. Non-finite inputs give an unspecified texel (no
+    /// panic).
+    pub fn sample_aniso(
+        &self,
+        u: f32,
+        v: f32,
+        axes: [[f32; 2]; 2],
+        max_aniso: u8,
+        mode: Mode,
+    ) -> Texel {
+        let (w, h) = (self.geometry.width() as f32, self.geometry.height() as f32);
+        let len = |a: [f32; 2]| libm::hypotf(a[0] * w, a[1] * h);
+        let (la, lb) = (len(axes[0]), len(axes[1]));
+        let (major, l_major, l_minor) = if la >= lb {
+            (axes[0], la, lb)
+        } else {
+            (axes[1], lb, la)
+        };
+        let max = f32::from(max_aniso.clamp(1, 16));
+        let minor = l_minor.max(l_major / max).max(f32::MIN_POSITIVE);
+        // `as u8` saturates (NaN → 0, then 1).
+        let count = (libm::ceilf(l_major / minor).min(max) as u8).max(1);
+        let lod = libm::log2f(minor);
+        let n = f32::from(count);
+        let mut acc = [0.0f32; 4];
+        for i in 0..count {
+            let t = (2.0 * f32::from(i) + 1.0 - n) / (2.0 * n);
+            let c = self.filter(u + major[0] * t, v + major[1] * t, lod, mode);
+            for (a, x) in acc.iter_mut().zip(c) {
+                *a += x;
+            }
+        }
+        pack(acc.map(|a| a / n))
+    }
+
+    /// The filter's unrounded channel values (0..=255).
+    #[inline(always)]
+    fn filter(&self, u: f32, v: f32, lod: f32, mode: Mode) -> [f32; 4] {
         let (u, v) = (self.reduce(u), self.reduce(v));
         let top = f32::from(self.geometry.top_level());
         let lod = lod.max(0.0).min(top);
@@ -163,21 +211,21 @@ impl<'a> SamplerF32<'a> {
             Mode::Trilinear => {
                 let a = self.bilinear(u, v, l0);
                 if t == 0.0 {
-                    pack(a)
+                    a
                 } else {
                     let b = self.bilinear(u, v, l0.saturating_add(1));
-                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                    [0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t)
                 }
             }
-            Mode::BilinearNearestLevel => pack(self.bilinear(u, v, nearest_level)),
-            Mode::Nearest => self.nearest(u, v, nearest_level),
+            Mode::BilinearNearestLevel => self.bilinear(u, v, nearest_level),
+            Mode::Nearest => channels(self.nearest(u, v, nearest_level)),
             Mode::NearestTexelLinearLevel => {
                 let a = channels(self.nearest(u, v, l0));
                 if t == 0.0 {
-                    pack(a)
+                    a
                 } else {
                     let b = channels(self.nearest(u, v, l0.saturating_add(1)));
-                    pack([0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t))
+                    [0, 1, 2, 3].map(|c| a[c] + (b[c] - a[c]) * t)
                 }
             }
         }

@@ -10,6 +10,8 @@ use std::process::Command;
 
 use raymip::bilerp::BILERP_MAX_ERROR_LSB;
 use raymip::lod::LOD_MAX_ERROR;
+use raymip::texture_sampler::SAMPLER_MAX_ERROR_LSB;
+use raymip_host::reference::sampler_ref::ANISO_LOD_ERROR_LSB;
 use serde_json::Value;
 
 fn run(out: &Path) -> Vec<Value> {
@@ -161,5 +163,42 @@ fn quick_run_writes_everything_and_errors_are_sane() {
             "{filt}: RMS {a} after one frame, {b} accumulated"
         );
     }
+
+    // Anisotropic: the fixed rows within the sampler's bound plus the probe
+    // lod's error of their own exact filter, f32 within ½ LSB + f32
+    // rounding; more probes come closer to the 16× target; the capped
+    // fixed rows carry their BUDGETS.md counts.
+    let aniso_bound = SAMPLER_MAX_ERROR_LSB + ANISO_LOD_ERROR_LSB;
+    for cap in [1, 2, 4, 16] {
+        let filt = format!("anisotropic {cap}×");
+        let fx = find(&rows, "filter", "sample", "fixed accurate", Some(&filt));
+        let own = f(fx, "own_error_max").unwrap();
+        assert!(own <= aniso_bound, "{filt} fixed: {own}");
+        let fl = find(&rows, "filter", "sample", "f32 libm", Some(&filt));
+        let own = f(fl, "own_error_max").unwrap();
+        assert!(own <= 0.5 + 1.0 / 64.0, "{filt} f32: {own}");
+        if cap > 1 {
+            assert!(
+                f(fx, "instructions_m4").is_some(),
+                "BUDGETS.md counts not read: {fx}"
+            );
+        }
+    }
+    let rms = |cap: u32| {
+        let filt = format!("anisotropic {cap}×");
+        f(
+            find(&rows, "filter", "sample", "fixed accurate", Some(&filt)),
+            "error_rms",
+        )
+        .unwrap()
+    };
+    assert!(
+        rms(16) < rms(4) && rms(4) < rms(2) && rms(2) < rms(1),
+        "{} {} {} {}",
+        rms(1),
+        rms(2),
+        rms(4),
+        rms(16)
+    );
     std::fs::remove_dir_all(&out).ok();
 }

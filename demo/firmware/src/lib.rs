@@ -79,12 +79,18 @@ pub mod stack {
 /// The inputs of the budget calls (`src/bin/budget.rs`): a deterministic
 /// xorshift generator and one draw per call kind, so every measurement of
 /// the same calls (QEMU instruction traces, `minstret`, cycle counters on
-/// a soft core) sees the same 64 inputs in the same order.
+/// a soft core) sees the same 64 inputs in the same order; and the fixed
+/// configurations those calls use (sampler states, the texture of the
+/// BC1 row, the geometric-LOD selector).
 pub mod inputs {
     use fixed::types::{I16F16, U1F31};
+    use raymip::address::AddressMode;
+    use raymip::aniso::Footprint;
     use raymip::filter::TexCoord;
+    use raymip::geomlod::{Depth, LodBias, LodMode, LodRange, Selector, Transition};
     use raymip::lod::Lod;
     use raymip::raystack::{PathLength, Width};
+    use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
     use raymip::table::Log2Pb;
 
     /// Calls per measured function (and hits per batch).
@@ -142,4 +148,92 @@ pub mod inputs {
         let lod = Lod::from_bits((r.next() % (5 << 8)) as i16 | 1);
         (u, v, lod)
     }
+
+    /// The sampler state of the `TextureSampler` rows that are not
+    /// anisotropic: mirror on `u`, clamp-to-border on `v` (border
+    /// `0x80402010`), lod bias +¼, lod clamp `[½, 4]`, sRGB results
+    /// re-encoded. `None` cannot happen (the fields are in range).
+    #[must_use]
+    pub fn sampler_state() -> Option<SamplerState> {
+        SamplerState::new(SamplerDesc {
+            address_u: AddressMode::Mirror,
+            address_v: AddressMode::ClampToBorder,
+            border: 0x8040_2010,
+            lod_bias: Lod::from_bits(64),
+            min_lod: Lod::from_bits(128),
+            max_lod: Lod::from_bits(4 << 8),
+            max_anisotropy: 1,
+            srgb_output: SrgbOutput::Encoded,
+        })
+        .ok()
+    }
+
+    /// The sampler state of the anisotropic rows: wrap, no bias or clamp,
+    /// at most `max_aniso` probes (`None` outside `1 ..= 16`).
+    #[must_use]
+    pub fn aniso_state(max_aniso: u8) -> Option<SamplerState> {
+        SamplerState::new(SamplerDesc {
+            max_anisotropy: max_aniso,
+            ..SamplerDesc::default()
+        })
+        .ok()
+    }
+
+    /// Anisotropic sample: `u, v ∈ [0, 1)` and a long footprint: a major
+    /// axis with components in `[−1, 1)` (up to 32 texels per component on
+    /// the 32×32 demo texture) and a minor axis perpendicular to it, 16 or
+    /// 32 times shorter, so every cap up to 16× is reached (probe count =
+    /// the cap).
+    pub fn aniso(r: &mut Rng) -> (TexCoord, TexCoord, Footprint) {
+        let u = TexCoord::from_bits(i64::from(r.next()));
+        let v = TexCoord::from_bits(i64::from(r.next()));
+        let a = i64::from(r.next() as i32) << 1;
+        let b = i64::from(r.next() as i32) << 1;
+        let k = 4 + (r.next() & 1);
+        let fp = Footprint {
+            x: [TexCoord::from_bits(a), TexCoord::from_bits(b)],
+            y: [TexCoord::from_bits(-b >> k), TexCoord::from_bits(a >> k)],
+        };
+        (u, v, fp)
+    }
+
+    /// Pseudo-random bytes (the stored blocks of the BC1 row: every
+    /// 8-byte pattern is a valid BC1 block, both colour modes occur).
+    pub fn bytes<const L: usize>(r: &mut Rng) -> [u8; L] {
+        let mut b = [0u8; L];
+        for x in &mut b {
+            *x = (r.next() >> 24) as u8;
+        }
+        b
+    }
+
+    /// Instances of the geometric-LOD rows: ids counting from `first`,
+    /// camera-space depths over `[−2, 70)` scene units (16 fractional
+    /// bits; some before `z_near` and beyond `z_far` of [`selector`]).
+    pub fn instances<const L: usize>(r: &mut Rng, first: u32) -> [(u32, Depth); L] {
+        let mut out = [(0, Depth::ZERO); L];
+        for (i, x) in (first..).zip(out.iter_mut()) {
+            let z = i64::from(r.next() % (72 << 16)) - (2 << 16);
+            *x = (i, Depth::from_bits(z << 16));
+        }
+        out
+    }
+
+    /// The geometric-LOD selector of the budget rows: 8 LODs from
+    /// `z_near` = 2 to `z_far` = 66 scene units, bias −¼ level, in `mode`
+    /// (`None` cannot happen with these constants).
+    #[must_use]
+    pub fn selector(mode: LodMode) -> Option<Selector> {
+        let range = LodRange::new(
+            Depth::from_num(2),
+            Depth::from_num(66),
+            8,
+            LodBias::from_bits(-(1 << 14)),
+        )
+        .ok()?;
+        Selector::new(range, mode).ok()
+    }
+
+    /// The transition interval of the stochastic row: ½.
+    pub const TRANSITION: Transition = Transition::from_bits(1 << 15);
 }

@@ -52,7 +52,7 @@ fn bar(len: u64, show: bool) -> ProgressBar {
 /// Measures every stage.
 fn measure(s: &Settings) -> Result<(Vec<Row>, Vec<convergence::Curve>), String> {
     let per_scene = frame_stage::renders_per_scene(s);
-    let total = 4 + 2 + per_scene * s.scenes.len() as u64 + convergence::renders(s);
+    let total = 4 + 3 + per_scene * s.scenes.len() as u64 + convergence::renders(s);
     let b = bar(total, s.progress);
     let tick = || b.inc(1);
     b.set_message("LOD per hit");

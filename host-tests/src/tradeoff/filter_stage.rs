@@ -7,14 +7,27 @@
 //! implementation error).
 //! Stochastic rows come twice: one frame (one sample) and the mean of
 //! `Settings::accumulate` frames (the same per-frame cost).
+//!
+//! Anisotropic rows (caps 1×, 2×, 4×, 16×; fixed = the firmware
+//! `TextureSampler::sample_aniso`, f32 = `SamplerF32::sample_aniso`) run
+//! on their own inputs, long footprints ([`aniso_inputs`]: 16 to 32 times
+//! longer than wide, so every cap is reached): their error is measured
+//! against the exact f64 anisotropic 16× filter over the same footprint
+//! (`RefSampler::sample_aniso`, the best filter of that footprint: the
+//! chart axis for these rows) and against the exact f64 filter of the
+//! row's own cap.
 
 use raymip::address::AddressMode;
+use raymip::aniso::Footprint;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::float::SamplerF32;
+use raymip::format::ColorSpace;
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 use raymip::rng::Rng as FrameRng;
+use raymip::sampler_state::{SamplerDesc, SamplerState};
 use raymip::stochastic::StochasticMode;
+use raymip::texture_sampler::TextureSampler;
 
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
@@ -274,6 +287,107 @@ pub fn mean_of_frames(
         .collect()
 }
 
+/// One anisotropic input: position and footprint (exact in both I32F32
+/// and f64).
+pub type AnisoInput = (TexCoord, TexCoord, Footprint);
+
+/// `n` random anisotropic inputs on a `size`×`size` texture: `u, v ∈
+/// [0, 1)`, a minor axis of 0.5 to 4 texels in a random direction and a
+/// major axis perpendicular to it, 16 to 32 times longer.
+#[must_use]
+pub fn aniso_inputs(n: usize, size: u32, seed: u64) -> Vec<AnisoInput> {
+    let mut r = Rng(seed | 1);
+    let c = |x: f64| TexCoord::from_num(x);
+    (0..n)
+        .map(|_| {
+            let (u, v) = (c(r.unit()), c(r.unit()));
+            let phi = r.range(0.0, std::f64::consts::TAU);
+            let minor = r.range(0.5, 4.0) / f64::from(size);
+            let major = minor * r.range(16.0, 32.0);
+            let (dx, dy) = (phi.cos(), phi.sin());
+            let fp = Footprint {
+                x: [c(major * dx), c(major * dy)],
+                y: [c(-minor * dy), c(minor * dx)],
+            };
+            (u, v, fp)
+        })
+        .collect()
+}
+
+/// The footprint's axes in f64 (exact: I32F32 values).
+#[must_use]
+pub fn axes_f64(fp: &Footprint) -> [[f64; 2]; 2] {
+    [fp.x.map(|c| c.to_num()), fp.y.map(|c| c.to_num())]
+}
+
+/// The anisotropic caps of the rows.
+pub const ANISO_CAPS: [u8; 4] = [1, 2, 4, 16];
+
+/// Filter name of an anisotropic cap.
+#[must_use]
+pub fn aniso_name(cap: u8) -> String {
+    format!("anisotropic {cap}×")
+}
+
+/// The exact f64 anisotropic filter with at most `cap` probes at every
+/// input.
+fn exact_aniso(tex: &RefTexture, inp: &[AnisoInput], cap: u8) -> Vec<[f64; 4]> {
+    let mut state = ref_state();
+    state.max_aniso = u32::from(cap);
+    let r = RefSampler { tex, state };
+    inp.iter()
+        .map(|(u, v, fp)| r.sample_aniso(u.to_num(), v.to_num(), axes_f64(fp), Mode::Trilinear))
+        .collect()
+}
+
+/// Anisotropic rows: each cap fixed and f32 (error against the exact
+/// 16× filter and against the exact filter of the row's cap).
+fn anisotropic(tex: &TestTexture, rt: &RefTexture, inp: &[AnisoInput], reps: usize) -> Vec<Row> {
+    let target = exact_aniso(rt, inp, 16);
+    let p = Pyramid::new(tex.geometry, &tex.texels).unwrap_or_else(|e| panic!("{e}"));
+    let f32s = SamplerF32::new(tex.geometry, &tex.texels, Address::Wrap)
+        .unwrap_or_else(|| panic!("SamplerF32 over the test texture"));
+    let fin: Vec<(f32, f32, [[f32; 2]; 2])> = inp
+        .iter()
+        .map(|(u, v, fp)| {
+            let a = axes_f64(fp).map(|x| x.map(|c| c as f32));
+            (u.to_num(), v.to_num(), a)
+        })
+        .collect();
+    let mut out = Vec::new();
+    for cap in ANISO_CAPS {
+        let ex = Exact {
+            target: &target,
+            own: exact_aniso(rt, inp, cap),
+        };
+        let state = SamplerState::new(SamplerDesc {
+            max_anisotropy: cap,
+            ..SamplerDesc::default()
+        })
+        .unwrap_or_else(|e| panic!("aniso state {cap}: {e}"));
+        let mut s = TextureSampler::new(p, state, ColorSpace::Linear);
+        let (ns, got) = measure(
+            inp,
+            reps,
+            |(u, v, fp)| s.sample_aniso(u, v, &fp, Mode::Trilinear),
+            channels,
+        );
+        let name = aniso_name(cap);
+        let mut fw = row(&name, "fixed accurate", ns, &got, &ex);
+        // BUDGETS.md counts the capped rows ("anisotropic N× sample").
+        fw.budget_call = (cap > 1).then(|| (format!("{name} sample"), false));
+        out.push(fw);
+        let (ns, got) = measure(
+            &fin,
+            reps,
+            |(u, v, a)| f32s.sample_aniso(u, v, a, cap, Mode::Trilinear),
+            channels,
+        );
+        out.push(row(&name, "f32 libm", ns, &got, &ex));
+    }
+    out
+}
+
 /// Every filter row. `tick` is called after each group.
 pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
     let tex = TestTexture::random(s.texture_size, 0x5EED_7E57);
@@ -287,6 +401,9 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
     let mut out = deterministic(&tex, &r, &inp, s.repeats, &target);
     tick();
     out.extend(stochastic(&tex, &r, &inp, s.repeats, s.accumulate, &target));
+    tick();
+    let ainp = aniso_inputs(s.filter_inputs, s.texture_size, 0xA2150);
+    out.extend(anisotropic(&tex, &rt, &ainp, s.repeats));
     tick();
     out
 }

@@ -81,8 +81,8 @@ fn filter_table(rows: &[Row]) -> String {
         "RMS error vs own filter (LSB)",
         "M4 instr",
         "RV32 instr",
-        "max error vs trilinear (LSB)",
-        "RMS error vs trilinear (LSB)",
+        "max error vs target (LSB)",
+        "RMS error vs target (LSB)",
         "Pareto",
     ];
     table(
@@ -265,9 +265,9 @@ pub fn stage_chart(rows: &[Row], stage: Stage) -> Scatter {
             true,
         ),
         Stage::Filter => (
-            "Filter per sample: host time against RMS error vs exact f64 trilinear",
+            "Filter per sample: host time against RMS error vs the exact f64 target",
             "host ns per sample (log)",
-            "RMS error vs exact trilinear (8-bit LSB, log)",
+            "RMS error vs exact trilinear (anisotropic rows: exact 16× anisotropic) (8-bit LSB, log)",
             true,
         ),
         Stage::Frame => (
@@ -398,6 +398,44 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
     a.zip(b).map(|(a, b)| a / b)
 }
 
+/// Headline lines of the anisotropic filter rows: cost and error of each
+/// cap beside one trilinear probe (1×).
+fn aniso_headlines(rows: &[Row]) -> String {
+    let mut s = String::new();
+    let iso = find(
+        rows,
+        Stage::Filter,
+        "sample",
+        "fixed accurate",
+        Some("anisotropic 1×"),
+        1,
+    );
+    for cap in [2, 4, 16] {
+        let name = format!("anisotropic {cap}×");
+        let fx = find(
+            rows,
+            Stage::Filter,
+            "sample",
+            "fixed accurate",
+            Some(&name),
+            1,
+        );
+        if let (Some(iso), Some(fx)) = (iso, fx) {
+            let _ = writeln!(
+                s,
+                "- {name} per sample (footprints 16–32:1): host time ×{} of one trilinear probe (1×), {} / {} instructions on Cortex-M4 / RV32IMAC; RMS error vs the exact 16× filter {} LSB (1×: {} LSB), vs its own exact filter {} LSB.",
+                num(ratio(fx.time_ns, iso.time_ns), 2),
+                num(fx.instructions_m4, 0),
+                num(fx.instructions_rv32, 0),
+                num(Some(fx.error_rms), 2),
+                num(Some(iso.error_rms), 2),
+                num(fx.own_error_rms, 3),
+            );
+        }
+    }
+    s
+}
+
 /// Headline ratios, every number from `rows`.
 #[must_use]
 pub fn headlines(rows: &[Row], accumulate: u32) -> String {
@@ -464,6 +502,7 @@ pub fn headlines(rows: &[Row], accumulate: u32) -> String {
             );
         }
     }
+    s += &aniso_headlines(rows);
     if let Some(sc) = scenes(rows).first() {
         let t = find(
             rows,
@@ -517,7 +556,7 @@ pub fn markdown(
     );
     s += "### LOD per hit\n\nError of the lod against the f64 formula of the same method over the same inputs (rounded to the fixed-point input formats first). Instructions: mean per call from BUDGETS.md where a probe counts the call.\n\n";
     s += &lod_table(rows);
-    s += "\n### Filter per sample\n\nError per channel against the exact f64 trilinear filter at the same (u, v, lod) (the target every filter approximates; the chart's axis) and against the exact f64 version of the row's own filter (its expectation for a stochastic filter: the implementation error); a stochastic row with frames > 1 is the mean of that many frames' samples (the per-frame cost is unchanged).\n\n";
+    s += "\n### Filter per sample\n\nError per channel against the target, the exact f64 trilinear filter at the same (u, v, lod) (what every isotropic filter approximates; the chart's axis), and against the exact f64 version of the row's own filter (its expectation for a stochastic filter: the implementation error); a stochastic row with frames > 1 is the mean of that many frames' samples (the per-frame cost is unchanged). Anisotropic rows (at most N trilinear probes along the major axis) run on their own inputs, long footprints 16 to 32 times longer than wide with a minor axis of 0.5 to 4 texels; their target is the exact f64 anisotropic 16× filter of the same footprint, their own filter the exact f64 anisotropic filter with the row's cap (1× = one trilinear probe at the major axis's lod).\n\n";
     s += &filter_table(rows);
     for sc in scenes(rows) {
         let _ = write!(

@@ -17,6 +17,18 @@
 //!   results out, caller memory), called once with the first 32 and once
 //!   with all 64 inputs: the difference over 32 is the steady-state cost
 //!   per hit.
+//! * `rm_bench_ts_*`: the GPU-style `TextureSampler` (sampler state,
+//!   formats, sRGB, BC1 through the texel cache, anisotropic filtering) on
+//!   the demo texture's 32×32 geometry, states from
+//!   [`raymip_demo_firmware::inputs::sampler_state`] and
+//!   [`raymip_demo_firmware::inputs::aniso_state`]. A wrapper serving
+//!   several rows is called 64 times per row in a documented order (one
+//!   wrapper per signature: identical bodies would be merged by the
+//!   compiler into one symbol);
+//! * `rm_bench_geomlod` / `rm_batch_geomlod`: `geomlod::Selector::fill`
+//!   in discrete and stochastic mode, one instance per call (64 calls per
+//!   mode) and 32 / 64 instances per call (per instance = the difference
+//!   over 32).
 //!
 //! `scripts/budgets` counts the instructions executed from each wrapper's
 //! entry to its return from the QEMU execution trace (`-d exec,nochain`
@@ -31,14 +43,21 @@
 use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
+use raymip::aniso::Footprint;
+use raymip::cache::TexelCache;
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
+use raymip::format::{ColorSpace, Format, TexelFormat};
+use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
+use raymip::image::{Image, image_len};
 use raymip::lod::{Lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch};
-use raymip::mip::{Pyramid, Texel};
+use raymip::mip::{Geometry, Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
+use raymip::texture_sampler::TextureSampler;
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::stack;
+use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 use semihosting::{println, process};
 
 #[cfg(target_arch = "arm")]
@@ -53,6 +72,9 @@ type Tex = Sampler<Pyramid<'static>>;
 type LodIn = (PathLength, Log2Pb);
 type ConeIn = (Width, I16F16, Option<U1F31>);
 type SampleIn = (TexCoord, TexCoord, Lod);
+type Ts<S> = TextureSampler<S>;
+type Bc1Cache<'a> = TexelCache<Image<'a>, 8, 2>;
+type Instances = [(u32, Depth)];
 
 /// One table LOD.
 #[allow(unsafe_code)]
@@ -150,6 +172,84 @@ pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> 
     s.sample_batch(hits, Mode::Trilinear, out)
 }
 
+/// One bilinear sample through `TextureSampler` (RGBA8, state with
+/// mirror/border addressing, bias and lod clamp).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::BilinearNearestLevel)
+}
+
+/// One trilinear sample through `TextureSampler` of an RGBA8 pyramid:
+/// called 64 times on linear data, then 64 times on the same texels read
+/// as sRGB (decoded to linear, filtered, re-encoded).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One trilinear sample of an RGB565 image (decoded per texel read).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_rgb565(s: &mut Ts<Image<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One trilinear sample of a BC1 image through an 8×2-block texel cache,
+/// called in pairs: first with the cache emptied by the caller (every
+/// block the sample reads is filled, i.e. decoded), then the same sample
+/// again (every texel read hits).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One anisotropic sample (trilinear probes): called 64 times with at
+/// most 2 probes, then 4, then 16 (three samplers, one per cap).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_aniso(
+    s: &mut Ts<Pyramid<'_>>,
+    u: TexCoord,
+    v: TexCoord,
+    fp: &Footprint,
+) -> Texel {
+    s.sample_aniso(u, v, fp, Mode::Trilinear)
+}
+
+/// The instance records of one instance: called 64 times with the
+/// discrete selector, then 64 times with the stochastic one.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_geomlod(
+    sel: &Selector,
+    inst: (u32, Depth),
+    out: &mut [InstanceLod],
+) -> Result<usize, RecordsFull> {
+    sel.fill(core::iter::once(inst), out)
+}
+
+/// The instance records of a slice of instances: called with 32 and 64
+/// instances, discrete then stochastic.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_geomlod(
+    sel: &Selector,
+    inst: &Instances,
+    out: &mut [InstanceLod],
+) -> Result<usize, RecordsFull> {
+    sel.fill(inst.iter().copied(), out)
+}
+
 /// An empty call (baseline of the `minstret` call-inclusive counts).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
@@ -222,12 +322,28 @@ fn draw<I: Copy>(rng: &mut Rng, mut draw: impl FnMut(&mut Rng) -> I) -> [I; N] {
     out
 }
 
+/// The `TextureSampler` and geometric-LOD subjects (built in `main`).
+struct Parity<'a> {
+    /// RGBA8, [`inputs::sampler_state`], linear.
+    rgba: Ts<Pyramid<'a>>,
+    /// The same texels read as sRGB, results re-encoded.
+    srgb: Ts<Pyramid<'a>>,
+    /// The demo texture converted to RGB565.
+    rgb565: Ts<Image<'a>>,
+    /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
+    bc1: Ts<Bc1Cache<'a>>,
+    /// RGBA8, wrap, at most 2, 4 and 16 probes.
+    aniso: [Ts<Pyramid<'a>>; 3],
+    /// Discrete and stochastic (`t` = ½) geometric LOD.
+    geomlod: [(&'static str, Selector); 2],
+}
+
 /// The driver: every measured call happens here (the trace counter ends a
 /// call when execution is back inside this function).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>) {
+fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) {
     let mut rng = Rng(inputs::SEED);
     let empty_in = draw(&mut rng, Rng::next);
     let lod_in = draw(&mut rng, inputs::table_lod);
@@ -276,6 +392,48 @@ pub fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>) {
     }
     bb((&lod_out, &cone_out, &tex_out));
 
+    // TextureSampler: the bilinear/trilinear inputs above; BC1 in pairs
+    // (cache emptied here, outside the counted call; then the same sample).
+    let aniso_in = draw(&mut rng, inputs::aniso);
+    measure(&bil_in, |(u, v, l)| {
+        rm_bench_ts_bilinear(&mut par.rgba, u, v, l)
+    });
+    measure(&tri_in, |(u, v, l)| {
+        rm_bench_ts_trilinear(&mut par.rgba, u, v, l)
+    });
+    measure(&tri_in, |(u, v, l)| {
+        rm_bench_ts_trilinear(&mut par.srgb, u, v, l)
+    });
+    measure(&tri_in, |(u, v, l)| {
+        rm_bench_ts_rgb565(&mut par.rgb565, u, v, l)
+    });
+    measure(&tri_in, |(u, v, l)| {
+        par.bc1.source_mut().invalidate();
+        let a = rm_bench_ts_bc1(&mut par.bc1, u, v, l);
+        a ^ rm_bench_ts_bc1(&mut par.bc1, u, v, l)
+    });
+    for s in &mut par.aniso {
+        measure(&aniso_in, |(u, v, fp)| rm_bench_ts_aniso(s, u, v, &fp));
+    }
+
+    // Geometric LOD: one instance per call, then 32 and 64 per call.
+    let inst: [(u32, Depth); N] = inputs::instances(&mut rng, 0);
+    let mut rec = [InstanceLod::default(); 2 * N];
+    for (_, sel) in &par.geomlod {
+        measure(&inst, |x| {
+            rm_bench_geomlod(sel, x, &mut rec).unwrap_or(usize::MAX) as u32
+        });
+    }
+    for (name, sel) in &par.geomlod {
+        for n in [N / 2, N] {
+            let r = rm_batch_geomlod(sel, bb(&inst[..n]), &mut rec);
+            if n == N {
+                println!("geomlod {name}: {} records", r.unwrap_or(0));
+            }
+        }
+    }
+    bb(&rec);
+
     if cfg!(target_arch = "riscv32") {
         // Call-inclusive minus the empty call's count.
         let e = empty.min;
@@ -303,6 +461,40 @@ pub fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>) {
     }
 }
 
+/// Bytes of the RGB565 and BC1 images (demo texture geometry).
+const RGB565_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Rgb565);
+const BC1_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Bc1);
+
+/// The `TextureSampler` and geometric-LOD subjects over the demo texture
+/// `p` (geometry `g`), `rgb565` (its texels converted) and `bc1` (its
+/// blocks).
+fn parity<'a>(g: Geometry, p: Pyramid<'a>, rgb565: &'a [u8], bc1: &'a [u8]) -> Option<Parity<'a>> {
+    let state = inputs::sampler_state()?;
+    let rgb565 = Image::new(g, Format::linear(TexelFormat::Rgb565), rgb565).ok()?;
+    let bc1 = Image::new(g, Format::linear(TexelFormat::Bc1), bc1).ok()?;
+    let aniso = |n| {
+        Some(TextureSampler::new(
+            p,
+            inputs::aniso_state(n)?,
+            ColorSpace::Linear,
+        ))
+    };
+    Some(Parity {
+        rgba: TextureSampler::new(p, state, ColorSpace::Linear),
+        srgb: TextureSampler::new(p, state, ColorSpace::Srgb),
+        rgb565: TextureSampler::new(rgb565, state, ColorSpace::Linear),
+        bc1: TextureSampler::new(TexelCache::new(bc1), state, ColorSpace::Linear),
+        aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
+        geomlod: [
+            ("discrete", inputs::selector(LodMode::Discrete)?),
+            (
+                "stochastic",
+                inputs::selector(LodMode::Stochastic(inputs::TRANSITION))?,
+            ),
+        ],
+    })
+}
+
 #[entry]
 fn main() -> ! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
@@ -315,6 +507,17 @@ fn main() -> ! {
         process::exit(1)
     };
     let mut tex = Sampler::new(p, Address::Wrap);
-    rm_budget_driver(&mut tex, &texf);
+    let bc1: [u8; BC1_LEN] = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
+    let mut rgb565 = [0u8; RGB565_LEN];
+    for (b, &t) in rgb565
+        .chunks_exact_mut(2)
+        .zip(raymip_demo_scene::TEX0.iter())
+    {
+        b.copy_from_slice(&(TexelFormat::Rgb565.encode(t) as u16).to_le_bytes());
+    }
+    let Some(mut par) = parity(g, p, &rgb565, &bc1) else {
+        process::exit(1)
+    };
+    rm_budget_driver(&mut tex, &texf, &mut par);
     process::exit(0)
 }
