@@ -27,6 +27,7 @@ PAPER_FPS = (3.4, 6.4)
 PAPER_SIZE = (800, 480)
 
 CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
+         ("lod_fast", "table lod FAST"), ("cone_lod_fast", "cone lod FAST (with n·d)"),
          ("bilinear", "bilinear sample"), ("trilinear", "trilinear sample")]
 
 CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
@@ -138,7 +139,8 @@ def readme_block(calls, counters, render, rows):
     hz = PAPER_MHZ * 1e6
     lod = calls["lod"]["cycles"][1]
     tri = calls["trilinear"]["cycles"][1]
-    per = {"LOD alone (table lod)": lod, "LOD + trilinear": lod + tri}
+    fast = calls["lod_fast"]["cycles"][1]
+    per = {"LOD alone (table lod)": lod, "LOD alone (table lod FAST)": fast, "LOD + trilinear": lod + tri}
     L = [R_BEGIN]
     L.append("Written by `scripts/softcore` from its measurement (cycles: BUDGETS.md, soft-core block;")
     L.append("hits: `table1` at 800×480, animation time 0, up to 10 bounces); do not edit.\n")
@@ -154,7 +156,7 @@ def readme_block(calls, counters, render, rows):
         L.append("|---|---|---|---|---|---|")
         for r in rows:
             h = r["textured_hits"]
-            fps = [hz / (c * h) for c in per.values()]
+            fps = [hz / (c * h) for c in (lod, lod + tri)]
             cores = [f"{math.ceil(lo / f)}–{math.ceil(hi / f)}" for f in fps]
             L.append(f"| {r['scene']} | {h} | {fps[0]:.2f} | {fps[1]:.3f} | {cores[0]} | {cores[1]} |")
     else:

@@ -163,6 +163,7 @@ pub mod geomlod;
 pub mod image;
 pub mod lod;
 pub mod log2;
+pub mod log2_fast;
 pub mod mip;
 pub mod raystack;
 pub mod rng;

@@ -18,6 +18,17 @@
 //! accumulated bounces (log2 error ≤ 2⁻¹³, entry error ≤ 2⁻¹⁰, output
 //! rounding ≤ 2⁻⁹). It is monotonic non-decreasing in `Pl`.
 //!
+//! # ACCURATE and FAST paths
+//!
+//! | path | calls | log2 | error bound |
+//! |---|---|---|---|
+//! | ACCURATE (bit-identical on every target and to earlier releases) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
+//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_fast_batch`], [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//!
+//! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST path
+//! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
+//! Instruction counts per target are in `BUDGETS.md`.
+//!
 //! # Grazing angles
 //!
 //! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
@@ -30,6 +41,9 @@ use fixed::types::{I16F16, U1F31};
 use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::log2::{LOD_BIAS, log2_u1f31_biased};
+#[cfg(feature = "cone")]
+use crate::log2_fast::log2_u1f31_fast_biased;
+use crate::log2_fast::log2_u32f32_fast_parts;
 use crate::raystack::PathLength;
 #[cfg(feature = "cone")]
 use crate::raystack::Width;
@@ -118,6 +132,74 @@ pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) 
     let n = hits.len().min(out.len());
     for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
         *o = cone_lod(w, d, c);
+    }
+    n
+}
+
+/// FAST table method: [`table_lod`] with the 1024-entry log2 table read
+/// without interpolation ([`crate::log2_fast`]). Error ≤ [`LOD_MAX_ERROR`]
+/// `= 2⁻⁸` level (as the ACCURATE [`table_lod`]: log2 ≤ 2⁻¹⁰, entry ≤
+/// 2⁻¹⁰, output rounding ≤ 2⁻⁹), monotonic non-decreasing in `Pl`; results
+/// may differ from [`table_lod`] by one step (1/256 level), identical on
+/// every target. `None` for an untextured triangle; `Pl = 0` reads as 2⁻³².
+#[inline]
+#[must_use]
+pub fn table_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    if pb.is_untextured() {
+        return None;
+    }
+    let (lz, biased) = log2_u32f32_fast_parts(pl.to_bits());
+    // `(x − (lz << 16)) >> 8 = (x >> 8) − (lz << 8)`: the low byte of
+    // `lz << 16` is zero.
+    let d = ((biased as i32 - pb.to_i16f16().to_bits()) >> 8) - ((lz as i32) << 8);
+    Some(Lod::from_bits(d as i16))
+}
+
+/// FAST ray-cone method: [`cone_lod`] with both logarithms from the
+/// 1024-entry table without interpolation ([`crate::log2_fast`]). Error ≤
+/// [`LOD_MAX_ERROR`] `= 2⁻⁸` level against f64 of the same inputs (two
+/// log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`cone_lod`]
+/// by one step. Same clamps and saturation as [`cone_lod`]. Feature `cone`.
+#[cfg(feature = "cone")]
+#[inline]
+#[must_use]
+pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    // Overflow-free for the reasons given in `cone_lod`; the upper end
+    // `2³⁰ − 1` (a power-of-two range) is one `ssat` on the Cortex-M4.
+    let delta = delta.to_bits().clamp(-(1 << 30), (1 << 30) - 1);
+    let (lz, biased) = log2_u32f32_fast_parts(width.to_bits().unsigned_abs());
+    let mut l = delta + (biased as i32 - ((lz as i32) << 16));
+    if let Some(c) = n_dot_d {
+        let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+        l -= log2_u1f31_fast_biased(c) - LOD_BIAS as i32;
+    }
+    Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
+}
+
+/// Batch of [`table_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
+/// `out[i] = table_lod_fast(hits[i].0, hits[i].1)` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+/// Same results as the per-hit call, bit for bit; never panics.
+#[inline]
+pub fn table_lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(pl, pb)) in out.iter_mut().zip(hits) {
+        *o = table_lod_fast(pl, pb);
+    }
+    n
+}
+
+/// Batch of [`cone_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
+/// `out[i] = cone_lod_fast(w, Δ, n·d)` of `hits[i]` for
+/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+/// Same results as the per-hit call, bit for bit; never panics. Feature
+/// `cone`.
+#[cfg(feature = "cone")]
+#[inline]
+pub fn cone_lod_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
+        *o = cone_lod_fast(w, d, c);
     }
     n
 }
@@ -249,6 +331,60 @@ mod tests {
             table_lod_clamped(PathLength::ZERO, Log2Pb::DEGENERATE_UV, 11),
             Some(Lod::ZERO)
         );
+    }
+
+    /// FAST paths at the extremes: untextured, zero, the largest `Pl`,
+    /// the degenerate markers, grazing and saturated cones.
+    #[test]
+    fn fast_paths_at_the_extremes() {
+        let pb = Log2Pb::from_log2(I16F16::from_num(2));
+        assert_eq!(
+            table_lod_fast(PathLength::from_num(3), Log2Pb::UNTEXTURED),
+            None
+        );
+        assert_eq!(
+            table_lod_fast(PathLength::ZERO, pb),
+            Some(Lod::from_num(-34))
+        );
+        assert_eq!(
+            table_lod_fast(PathLength::DELTA, pb),
+            Some(Lod::from_num(-34))
+        );
+        assert_eq!(table_lod_fast(PathLength::MAX, pb), Some(Lod::from_num(30)));
+        assert_eq!(table_lod_fast(PathLength::from_num(4), pb), Some(Lod::ZERO));
+        for pl in [PathLength::ZERO, PathLength::from_num(1), PathLength::MAX] {
+            assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
+            assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
+            assert!(table_lod_fast(pl, Log2Pb::MIN).is_some());
+        }
+        #[cfg(feature = "cone")]
+        {
+            let (w, d) = (Width::from_num(1), I16F16::ZERO);
+            assert_eq!(cone_lod_fast(w, d, Some(U1F31::from_num(1))), Lod::ZERO);
+            assert_eq!(
+                cone_lod_fast(w, d, Some(U1F31::from_num(0.5))),
+                Lod::from_num(1)
+            );
+            assert_eq!(cone_lod_fast(w, d, Some(U1F31::ZERO)), Lod::from_num(16));
+            assert_eq!(cone_lod_fast(w, d, Some(U1F31::MAX)), Lod::ZERO);
+            assert_eq!(
+                cone_lod_fast(-Width::from_num(4), d, None),
+                Lod::from_num(2)
+            );
+            assert_eq!(
+                cone_lod_fast(Width::ZERO, I16F16::from_num(3), None),
+                Lod::from_num(-29)
+            );
+            assert_eq!(cone_lod_fast(Width::MAX, I16F16::MAX, None), Lod::MAX);
+            assert_eq!(
+                cone_lod_fast(Width::MIN, I16F16::MIN, Some(U1F31::MAX)),
+                Lod::MIN
+            );
+            assert_eq!(
+                cone_lod_fast(Width::ZERO, I16F16::MIN, Some(U1F31::ZERO)),
+                Lod::MIN
+            );
+        }
     }
 
     #[test]
@@ -398,6 +534,10 @@ mod tests {
             let got = table_lod(st.pl, pb).unwrap().to_num::<f64>();
             prop_assert!((got - want).abs() <= LOD_MAX_ERROR,
                 "table lod {} vs f64 {} (Pl {}, log2 Pb {})", got, want, pl, want_pb);
+            // The FAST path within the same bound (entry error included).
+            let fast = table_lod_fast(st.pl, pb).unwrap().to_num::<f64>();
+            prop_assert!((fast - want).abs() <= LOD_MAX_ERROR,
+                "fast table lod {} vs f64 {} (Pl {}, log2 Pb {})", fast, want, pl, want_pb);
             // Identity: cone with β = 0 and no normal term equals the table,
             // where the cone width is resolved (w ≥ 2^-20 scene units; its
             // step is 2^-32, see the module docs).
@@ -451,6 +591,61 @@ mod tests {
             prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod = {} vs f64 {}", l, want);
             let c2 = clamp_lod(l, 13);
             prop_assert!(c2 >= Lod::ZERO && c2 <= Lod::from_num(12));
+        }
+
+        /// FAST table lod against f64 over the whole input range: every
+        /// `Pl` bit pattern (octaves drawn uniformly), every textured entry
+        /// the table can hold (incl. the degenerate markers); within one
+        /// step of the ACCURATE path, and monotonic in `Pl`.
+        #[test]
+        fn table_lod_fast_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), e in (i32::MIN + 1)..) {
+            let p = (1u64 << n) | (m & ((1u64 << n) - 1));
+            let (pl, pb) = (PathLength::from_bits(p), Log2Pb::from_bits(e));
+            let got = table_lod_fast(pl, pb).unwrap();
+            let want = (p as f64).log2() - 32.0 - pb.to_i16f16().to_num::<f64>();
+            prop_assert!((got.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "fast {} vs f64 {}", got, want);
+            let acc = table_lod(pl, pb).unwrap();
+            prop_assert!((got.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", got, acc);
+            if p < u64::MAX {
+                prop_assert!(table_lod_fast(PathLength::from_bits(p + 1), pb).unwrap() >= got);
+            }
+        }
+
+        /// FAST cone lod against f64 over the whole input range (as
+        /// `cone_lod_never_panics_and_is_bounded` for the ACCURATE path).
+        #[test]
+        #[cfg(feature = "cone")]
+        fn cone_lod_fast_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), neg in any::<bool>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
+            let bits = ((1u64 << n) | (m & ((1u64 << n) - 1))) >> 1;
+            let w = if neg { -(bits as i64) } else { bits as i64 };
+            let l = cone_lod_fast(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            let lw = (w.unsigned_abs().max(1) as f64).log2() - 32.0;
+            let lc = c.map_or(0.0, |c| (f64::from(c.clamp(1 << 15, 1 << 31)) / 2f64.powi(31)).log2());
+            let want = (f64::from(d) / 65536.0 + lw - lc).clamp(Lod::MIN.to_num(), Lod::MAX.to_num());
+            prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod_fast = {} vs f64 {}", l, want);
+            let acc = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            prop_assert!((l.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", l, acc);
+        }
+
+        /// The batches equal the per-hit calls, also with unequal lengths.
+        #[test]
+        fn fast_batches_equal_per_hit_calls(hits in proptest::collection::vec((any::<u64>(), any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
+            let t: std::vec::Vec<_> = hits.iter().map(|&(p, b, ..)| (PathLength::from_bits(p), Log2Pb::from_bits(b))).collect();
+            let mut out = std::vec![Some(Lod::MAX); t.len().saturating_sub(extra)];
+            prop_assert_eq!(table_lod_fast_batch(&t, &mut out), out.len());
+            for (o, &(pl, pb)) in out.iter().zip(&t) {
+                prop_assert_eq!(*o, table_lod_fast(pl, pb));
+            }
+            #[cfg(feature = "cone")]
+            {
+                let c: std::vec::Vec<_> = hits.iter().map(|&(_, b, w, c)| (Width::from_bits(w), I16F16::from_bits(b), c.map(U1F31::from_bits))).collect();
+                let mut out = std::vec![Lod::MAX; c.len() + extra];
+                prop_assert_eq!(cone_lod_fast_batch(&c, &mut out), c.len());
+                for (o, &(w, d, n)) in out.iter().zip(&c) {
+                    prop_assert_eq!(*o, cone_lod_fast(w, d, n));
+                }
+                prop_assert!(out[c.len()..].iter().all(|&o| o == Lod::MAX));
+            }
         }
 
         #[test]

@@ -1,7 +1,7 @@
 //! `raymip-host tradeoff --quick` (CI): every file is written, every
 //! configuration has a time and an error, and the errors are sane: the
-//! f64 anchors have error 0, the firmware's accurate lods stay within
-//! their documented 2⁻⁸ levels, the fixed-point filters within their
+//! f64 anchors have error 0, the firmware's accurate and fast lods stay
+//! within their documented 2⁻⁸ levels, the fixed-point filters within their
 //! rounding bounds, the accumulated stochastic filters closer to their
 //! expectation than one frame.
 
@@ -123,6 +123,12 @@ fn quick_run_writes_everything_and_errors_are_sane() {
     for m in ["table", "cone", "cone+normal"] {
         let fx = f(find(&rows, "lod", m, "fixed accurate", None), "error_max").unwrap();
         assert!(fx <= LOD_MAX_ERROR && fx > 0.0, "{m} fixed: {fx}");
+        // The FAST path: the same documented bound.
+        let fast = f(find(&rows, "lod", m, "fixed fast", None), "error_max").unwrap();
+        assert!(
+            fast <= LOD_MAX_ERROR && fast > 0.0,
+            "{m} fixed fast: {fast}"
+        );
         let libm = f(find(&rows, "lod", m, "f32 libm", None), "error_max").unwrap();
         assert!(libm < 1e-4, "{m} f32: {libm}");
         let mitchell = f(find(&rows, "lod", m, "fixed mitchell", None), "error_max").unwrap();
@@ -131,11 +137,13 @@ fn quick_run_writes_everything_and_errors_are_sane() {
             "{m} mitchell: {mitchell}"
         );
     }
-    let table = find(&rows, "lod", "table", "fixed accurate", None);
-    assert!(
-        f(table, "instructions_m4").is_some(),
-        "BUDGETS.md counts not read: {table}"
-    );
+    for p in ["fixed accurate", "fixed fast"] {
+        let table = find(&rows, "lod", "table", p, None);
+        assert!(
+            f(table, "instructions_m4").is_some(),
+            "BUDGETS.md counts not read: {table}"
+        );
+    }
 
     // Filters: each fixed filter within the rounding bound of its own
     // exact filter; stochastic means converge toward their expectation.

@@ -36,9 +36,11 @@ use raymip::geomlod::{
 };
 use raymip::image::Image;
 use raymip::lod::{
-    Lod, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
+    Lod, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
+    table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
 };
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
+use raymip::log2_fast::log2_u32f32_fast;
 use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::rng::{Rng, mix32};
@@ -207,15 +209,22 @@ fn main() -> ! {
         bb(log2_u32f32(bb(PathLength::from_bits(99))));
         bb(log2_u16f16(bb(fixed::types::U16F16::from_bits(99))));
         bb(log2_u32(bb(99)));
+        bb(log2_u32f32_fast(bb(PathLength::from_bits(99))));
         // Pb table lookup and lod
         let pb = table.get(bb(3)).unwrap_or(Log2Pb::UNTEXTURED);
         let pl = bb(PathLength::from_bits(0x1_2345_6789));
         bb(table_lod(pl, pb));
         bb(table_lod_clamped(pl, pb, bb(7)));
+        bb(table_lod_fast(pl, pb));
         bb(clamp_lod(bb(Lod::from_bits(1000)), bb(200)));
         bb(pb.delta(&spread));
         bb(cone_lod(
             bb(Width::from_bits(77)),
+            bb(fixed::types::I16F16::from_bits(5)),
+            bb(Some(fixed::types::U1F31::from_bits(3))),
+        ));
+        bb(cone_lod_fast(
+            bb(Width::from_bits(-77)),
             bb(fixed::types::I16F16::from_bits(5)),
             bb(Some(fixed::types::U1F31::from_bits(3))),
         ));
@@ -249,8 +258,16 @@ fn main() -> ! {
             fixed::types::I16F16::from_bits(5),
             Some(fixed::types::U1F31::from_bits(3)),
         ); 4]);
+        bb(table_lod_fast_batch(
+            hits.get(..bb(4)).unwrap_or_default(),
+            lods.get_mut(..bb(3)).unwrap_or_default(),
+        ));
         let mut cone_out = [Lod::ZERO; 4];
         bb(cone_lod_batch(
+            cones.get(..bb(2)).unwrap_or_default(),
+            cone_out.get_mut(..bb(4)).unwrap_or_default(),
+        ));
+        bb(cone_lod_fast_batch(
             cones.get(..bb(2)).unwrap_or_default(),
             cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));

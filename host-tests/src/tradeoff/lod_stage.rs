@@ -4,7 +4,7 @@
 
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::float::{cone_lod_f32, table_lod_f32};
-use raymip::lod::{Lod, cone_lod, table_lod};
+use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
 use raymip::table::Log2Pb;
 
 use super::log2fx::{self, Log2Fx, Log2Tables};
@@ -83,6 +83,15 @@ impl Formula {
             Self::ConeNormal => Some("cone lod (with n·d)"),
         }
     }
+
+    /// The BUDGETS.md call that counts this formula's FAST firmware path.
+    fn budget_call_fast(self) -> Option<&'static str> {
+        match self {
+            Self::Table => Some("table lod FAST"),
+            Self::Cone => None,
+            Self::ConeNormal => Some("cone lod FAST (with n·d)"),
+        }
+    }
 }
 
 type FixedHit = (U32F32, Log2Pb, I32F32, I16F16, U1F31);
@@ -109,6 +118,24 @@ fn firmware(f: Formula, inp: &[FixedHit], reps: usize) -> (f64, Vec<f64>) {
         ),
         Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone_lod(w, d, None), l),
         Formula::ConeNormal => measure(inp, reps, |(_, _, w, d, c)| cone_lod(w, d, Some(c)), l),
+    }
+}
+
+/// `(ns per call, lods)` of the firmware's FAST path (`table_lod_fast`,
+/// `cone_lod_fast`: 1024-entry log2 table without interpolation).
+fn firmware_fast(f: Formula, inp: &[FixedHit], reps: usize) -> (f64, Vec<f64>) {
+    let l = |x: Lod| x.to_num::<f64>();
+    match f {
+        Formula::Table => measure(
+            inp,
+            reps,
+            |(pl, pb, ..)| table_lod_fast(pl, pb),
+            |o| o.map_or(f64::NAN, l),
+        ),
+        Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone_lod_fast(w, d, None), l),
+        Formula::ConeNormal => {
+            measure(inp, reps, |(_, _, w, d, c)| cone_lod_fast(w, d, Some(c)), l)
+        }
     }
 }
 
@@ -210,6 +237,9 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         let mut fw = row(f.name(), "fixed accurate", firmware(f, &fx, reps), &exact);
         fw.budget_call = f.budget_call().map(|c| (c.to_string(), false));
         out.push(fw);
+        let mut fast = row(f.name(), "fixed fast", firmware_fast(f, &fx, reps), &exact);
+        fast.budget_call = f.budget_call_fast().map(|c| (c.to_string(), false));
+        out.push(fast);
         for v in [Log2Fx::Lut16Lerp, Log2Fx::Lut256, Log2Fx::Mitchell] {
             out.push(row(
                 f.name(),

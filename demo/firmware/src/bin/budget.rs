@@ -7,6 +7,8 @@
 //!
 //! * `rm_bench_lod`: one table LOD (`log2 Pl − log2 Pb`, rounded);
 //! * `rm_bench_cone_lod`: one ray-cone LOD with the normal term;
+//! * `rm_bench_lod_fast`, `rm_bench_cone_lod_fast`: the same through the
+//!   FAST paths (`table_lod_fast`, `cone_lod_fast`);
 //! * `rm_bench_bilinear`: one bilinear sample at the nearest level;
 //! * `rm_bench_trilinear`: one trilinear sample (two bilinear levels and the
 //!   blend; the LOD always has a fractional part, so both levels are read);
@@ -50,7 +52,10 @@ use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::format::{ColorSpace, Format, TexelFormat};
 use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
 use raymip::image::{Image, image_len};
-use raymip::lod::{Lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch};
+use raymip::lod::{
+    Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
+    table_lod_fast, table_lod_fast_batch,
+};
 use raymip::mip::{Geometry, Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
@@ -85,6 +90,22 @@ pub fn rm_bench_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 #[inline(never)]
 pub fn rm_bench_cone_lod(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
     cone_lod(w, delta, n_dot_d)
+}
+
+/// One FAST table LOD (1024-entry log2 table, no interpolation).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    table_lod_fast(pl, pb)
+}
+
+/// One FAST ray-cone LOD with the normal term.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_cone_lod_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+    cone_lod_fast(w, delta, n_dot_d)
 }
 
 /// One bilinear sample at the nearest level.
@@ -149,6 +170,22 @@ pub fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
 #[inline(never)]
 pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
     cone_lod_batch(hits, out)
+}
+
+/// A batch of FAST table LODs.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_lod_fast(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
+    table_lod_fast_batch(hits, out)
+}
+
+/// A batch of FAST ray-cone LODs.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_cone_lod_fast(hits: &[ConeIn], out: &mut [Lod]) -> usize {
+    cone_lod_fast_batch(hits, out)
 }
 
 /// A batch of bilinear samples at the nearest level.
@@ -353,6 +390,12 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
     let (cone, cone_stack) = measure(&cone_in, |(w, d, c)| {
         rm_bench_cone_lod(w, d, c).to_bits() as u32
     });
+    let (lod_fast, lod_fast_stack) = measure(&lod_in, |(pl, pb)| {
+        rm_bench_lod_fast(pl, pb).map_or(0, |l| l.to_bits() as u32)
+    });
+    let (cone_fast, cone_fast_stack) = measure(&cone_in, |(w, d, c)| {
+        rm_bench_cone_lod_fast(w, d, c).to_bits() as u32
+    });
     let (bil, bil_stack) = measure(&bil_in, |(u, v, lod)| rm_bench_bilinear(tex, u, v, lod));
     let (tri, tri_stack) = measure(&tri_in, |(u, v, lod)| rm_bench_trilinear(tex, u, v, lod));
 
@@ -382,6 +425,8 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
     for n in [N / 2, N] {
         bb(rm_batch_lod(bb(&lod_in[..n]), &mut lod_out));
         bb(rm_batch_cone_lod(bb(&cone_in[..n]), &mut cone_out));
+        bb(rm_batch_lod_fast(bb(&lod_in[..n]), &mut lod_out));
+        bb(rm_batch_cone_lod_fast(bb(&cone_in[..n]), &mut cone_out));
         bb(rm_batch_bilinear(tex, bb(&bil_in[..n]), &mut tex_out));
         bb(rm_batch_trilinear(tex, bb(&tri_in[..n]), &mut tex_out));
     }
@@ -435,6 +480,8 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
         for (name, s) in [
             ("lod", lod),
             ("cone_lod", cone),
+            ("lod_fast", lod_fast),
+            ("cone_lod_fast", cone_fast),
             ("bilinear", bil),
             ("trilinear", tri),
         ] {
@@ -449,6 +496,8 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
     for (name, bytes) in [
         ("lod", lod_stack),
         ("cone_lod", cone_stack),
+        ("lod_fast", lod_fast_stack),
+        ("cone_lod_fast", cone_fast_stack),
         ("bilinear", bil_stack),
         ("trilinear", tri_stack),
     ] {

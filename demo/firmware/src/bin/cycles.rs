@@ -5,7 +5,8 @@
 //! The calls and their inputs are those of the QEMU budgets
 //! (`src/bin/budget.rs`): the same [`inputs`] draws, from the same seed, in
 //! the same order (empty call, table lod, cone lod, bilinear, trilinear), so
-//! each kind sees the same 64 inputs. Around every call the core's `cycle`
+//! each kind sees the same 64 inputs (the FAST lod paths reuse the table and
+//! cone lod inputs). Around every call the core's `cycle`
 //! and `instret` counters are read (`rdcycle`/`rdinstret`); each count is
 //! call-inclusive (argument moves, the call, the return) minus the same
 //! count around an empty call (the counter reads themselves). PicoRV32 is
@@ -21,7 +22,7 @@ use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::lod::{Lod, cone_lod, table_lod};
+use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
 use raymip::mip::{Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
@@ -44,6 +45,16 @@ fn lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 #[inline(never)]
 fn cone(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
     cone_lod(w, delta, n_dot_d)
+}
+
+#[inline(never)]
+fn lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    table_lod_fast(pl, pb)
+}
+
+#[inline(never)]
+fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+    cone_lod_fast(w, delta, n_dot_d)
 }
 
 #[inline(never)]
@@ -99,6 +110,11 @@ raymip_demo_entry::main! {
     let results = [
         ("lod", measure(&lod_in, |(pl, pb)| lod(pl, pb))),
         ("cone_lod", measure(&cone_in, |(w, d, c)| cone(w, d, c))),
+        ("lod_fast", measure(&lod_in, |(pl, pb)| lod_fast(pl, pb))),
+        (
+            "cone_lod_fast",
+            measure(&cone_in, |(w, d, c)| cone_fast(w, d, c)),
+        ),
         (
             "bilinear",
             measure(&bil_in, |(u, v, l)| bilinear(&mut tex, u, v, l)),
