@@ -32,9 +32,20 @@ CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
 
 CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
                      r"instret min (\d+) sum (\d+) max (\d+)$")
+BATCH_RE = re.compile(r"^batch (\w+): n32 cycles (\d+) instret (\d+) n64 cycles (\d+) instret (\d+)$")
 BASE_RE = re.compile(r"^baseline: cycles min (\d+) max (\d+) instret min (\d+) max (\d+)$")
 RENDER_RE = re.compile(r"^\s*render: (\d+) cycles, (\d+) instructions")
 SIM_RE = re.compile(r"soc-sim: exit code (\d+) after (\d+) cycles \(RAM (\d+) KiB\)")
+
+
+def parse_batches(text):
+    """{batch call: (cycles for 32 hits, instret for 32, cycles for 64, instret for 64)}."""
+    out = {}
+    for line in text.splitlines():
+        m = BATCH_RE.match(line.strip())
+        if m:
+            out[m.group(1)] = tuple(int(x) for x in m.group(2, 3, 4, 5))
+    return out
 
 
 def parse_cycles(text):
@@ -104,7 +115,7 @@ def si(x):
     return f"{x:.3g} "
 
 
-def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit):
+def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches):
     L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
     L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
     src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
@@ -124,6 +135,16 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
         c = calls[k]
         L.append(f"| {name} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | "
                  f"{c['cycles'][1] / c['instret'][1]:.2f} |")
+    L.append("\nBatch entry points (`table_lod_batch`, `cone_lod_batch`, their FAST twins, `Sampler::sample_batch`), each")
+    L.append("called once on the first 32 and once on all 64 inputs above, counters read around the call")
+    L.append("(minus the empty measurement): steady state per hit = (count for 64 − count for 32) / 32,")
+    L.append("amortised = count for 64 / 64 (call and loop set-up included).\n")
+    L.append("| batch call | cycles steady | cycles amortised | instructions steady | instructions amortised | CPI steady |")
+    L.append("|---|---|---|---|---|---|")
+    for k, name in CALLS:
+        c32, i32, c64, i64 = batches[k]
+        cs, is_ = (c64 - c32) / 32, (i64 - i32) / 32
+        L.append(f"| {name} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {i64 / 64:.1f} | {cs / is_:.2f} |")
     cyc, ins = render
     px = counters.get("pixels", 0)
     tex = counters.get("samples", 0)
@@ -186,6 +207,8 @@ def self_test():
                                "call lod: n 4 cycles min 10 sum 44 max 12 instret min 2 sum 10 max 3\n")
     assert base == (18, 18, 1, 1), base
     assert calls["lod"]["cycles"] == (10, 11.0, 12) and calls["lod"]["instret"] == (2, 2.5, 3)
+    assert parse_batches("batch lod: n32 cycles 100 instret 40 n64 cycles 196 instret 76\n") == \
+        {"lod": (100, 40, 196, 76)}
     c, r, ram = parse_demo("counters: pixels=3 hits=2 samples=1\n"
                            "render: 100 cycles, 20 instructions (rdcycle/rdinstret)\n"
                            "soc-sim: exit code 0 after 123 cycles (RAM 128 KiB)\n")
@@ -218,6 +241,10 @@ def main():
     missing = [k for k, _ in CALLS if k not in calls or calls[k]["n"] != 64]
     if missing or base is None:
         sys.exit(f"softcore.py: cycles.out lacks {missing or 'the baseline'}")
+    batches = parse_batches(rd("cycles.out"))
+    missing = [k for k, _ in CALLS if k not in batches]
+    if missing:
+        sys.exit(f"softcore.py: cycles.out lacks the batch lines of {missing}")
     counters, render, ram = parse_demo(rd("demo.out"))
     if not counters or render is None or ram is None:
         sys.exit("softcore.py: demo.out lacks the counters, render or soc-sim lines")
@@ -231,7 +258,7 @@ def main():
         for r in rows:
             if (r["width"], r["height"]) != PAPER_SIZE:
                 sys.exit(f"softcore.py: table1 row {r['scene']} is {r['width']}×{r['height']}")
-    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit)
+    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches)
     rb = readme_block(calls, counters, render, rows)
     changed = []
     for path, begin, end, block, anchor in [(a.budgets, B_BEGIN, B_END, bb, "## Code size"),

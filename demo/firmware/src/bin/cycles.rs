@@ -12,8 +12,16 @@
 //! count around an empty call (the counter reads themselves). PicoRV32 is
 //! deterministic: a second run prints the same numbers.
 //!
+//! Then the batch entry points (`table_lod_batch`, `cone_lod_batch`, their
+//! FAST twins, `Sampler::sample_batch` bilinear and trilinear), each called once on the
+//! first 32 and once on all 64 inputs of its kind, as the QEMU budgets do:
+//! the steady cost per hit is the difference over 32.
+//!
 //! Output, one line per call kind:
-//! `call NAME: n 64 cycles min A sum B max C instret min D sum E max F`.
+//! `call NAME: n 64 cycles min A sum B max C instret min D sum E max F`,
+//! and one per batch kind:
+//! `batch NAME: n32 cycles A instret B n64 cycles C instret D` (minus the
+//! empty measurement).
 #![no_std]
 #![no_main]
 #![forbid(unsafe_code)]
@@ -22,7 +30,10 @@ use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
+use raymip::lod::{
+    Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
+    table_lod_fast, table_lod_fast_batch,
+};
 use raymip::mip::{Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
@@ -65,6 +76,48 @@ fn bilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
 #[inline(never)]
 fn trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
     s.sample(u, v, lod, Mode::Trilinear)
+}
+
+#[inline(never)]
+fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    table_lod_batch(hits, out)
+}
+
+#[inline(never)]
+fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    cone_lod_batch(hits, out)
+}
+
+#[inline(never)]
+fn lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    table_lod_fast_batch(hits, out)
+}
+
+#[inline(never)]
+fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    cone_lod_fast_batch(hits, out)
+}
+
+#[inline(never)]
+fn sample_batch(
+    s: &mut Tex,
+    hits: &[(TexCoord, TexCoord, Lod)],
+    mode: Mode,
+    out: &mut [Texel],
+) -> usize {
+    s.sample_batch(hits, mode, out)
+}
+
+/// Cycles and instructions of one call of `call` (counter reads included).
+#[inline(always)]
+fn once(call: impl FnOnce() -> usize) -> (u32, u32) {
+    let c0 = cycles32();
+    let i0 = instret32();
+    let y = call();
+    let i1 = instret32();
+    let c1 = cycles32();
+    bb(y);
+    (c1.wrapping_sub(c0), i1.wrapping_sub(i0))
 }
 
 /// Draws the [`N`] inputs of one kind.
@@ -137,5 +190,46 @@ raymip_demo_entry::main! {
             cy.min, cy.sum, cy.max, ir.min, ir.sum, ir.max
         );
     }
+    // Batches: 32 then 64 hits of each kind, one call each.
+    let mut lod_out = [None; N];
+    let mut cone_out = [Lod::ZERO; N];
+    let mut tex_out = [Texel::default(); N];
+    let batch = |name: &str, f: &mut dyn FnMut(usize) -> (u32, u32)| {
+        let (c32, i32_) = f(32);
+        let (c64, i64_) = f(N);
+        let (bc, bi) = (base_cy.min, base_ir.min);
+        println!(
+            "batch {name}: n32 cycles {} instret {} n64 cycles {} instret {}",
+            c32.saturating_sub(bc),
+            i32_.saturating_sub(bi),
+            c64.saturating_sub(bc),
+            i64_.saturating_sub(bi)
+        );
+    };
+    batch("lod", &mut |n| {
+        once(|| lod_batch(bb(&lod_in[..n]), &mut lod_out))
+    });
+    batch("cone_lod", &mut |n| {
+        once(|| cone_batch(bb(&cone_in[..n]), &mut cone_out))
+    });
+    batch("lod_fast", &mut |n| {
+        once(|| lod_fast_batch(bb(&lod_in[..n]), &mut lod_out))
+    });
+    batch("cone_lod_fast", &mut |n| {
+        once(|| cone_fast_batch(bb(&cone_in[..n]), &mut cone_out))
+    });
+    batch("bilinear", &mut |n| {
+        once(|| {
+            sample_batch(
+                &mut tex,
+                bb(&bil_in[..n]),
+                Mode::BilinearNearestLevel,
+                &mut tex_out,
+            )
+        })
+    });
+    batch("trilinear", &mut |n| {
+        once(|| sample_batch(&mut tex, bb(&tri_in[..n]), Mode::Trilinear, &mut tex_out))
+    });
     exit(0)
 }
