@@ -66,9 +66,8 @@ fn assert_at(msg: &str, file: &str, line: usize, what: &str) {
 #[test]
 fn truncated_record() {
     let top = format!("{VIEW}fm 0.1 0.2 0.3\n  0.5 0.5\n");
-    let (msg, e) = load_err("trunc", &[("top.aff", top.as_bytes())]);
     // The file ends on line 10 (after the newline that closes line 9).
-    assert_at(&msg, "top.aff", 10, "unexpected end of file");
+    let (msg, e) = top_fails_at("trunc", &top, 10, "unexpected end of file");
     assert!(msg.contains("`fm` field 6 of 12"), "{msg}");
     assert!(matches!(*e.kind, AffErrorKind::UnexpectedEof { .. }));
 }

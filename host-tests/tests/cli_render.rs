@@ -145,37 +145,32 @@ fn table1_fails_on_a_scene_that_does_not_load() {
         "this is not AFF {{{\n",
     )
     .unwrap();
+    let table1 = |extra: &[&str]| {
+        let args = [
+            "table1",
+            "--scenes",
+            dir.to_str().unwrap(),
+            "--size",
+            "8x8",
+            "--builtin",
+        ];
+        let o = run(&[&args[..], extra].concat());
+        (
+            o.status.success(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
     // With the built-in scenes measurable beside it (the old code measured
     // those, printed the broken one and exited 0).
-    let o = run(&[
-        "table1",
-        "--scenes",
-        dir.to_str().unwrap(),
-        "--size",
-        "8x8",
-        "--builtin",
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success(),
-        "exit 0 with an unloadable scene; stderr: {err}"
-    );
+    let (ok, err) = table1(&[]);
+    assert!(!ok, "exit 0 with an unloadable scene; stderr: {err}");
     assert!(
         err.contains("broken") && err.contains("cannot be loaded"),
         "{err}"
     );
     // Skipped on request: the built-in scenes are still measured.
-    let o = run(&[
-        "table1",
-        "--scenes",
-        dir.to_str().unwrap(),
-        "--size",
-        "8x8",
-        "--builtin",
-        "--skip-unloadable",
-    ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{err}");
+    let (ok, err) = table1(&["--skip-unloadable"]);
+    assert!(ok, "{err}");
     assert!(err.contains("skipped") && err.contains("broken"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
