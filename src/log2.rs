@@ -35,7 +35,7 @@
 //! (one raw unit), so `log2 0 = −frac_bits` (−32 for U32F32): the lowest
 //! result of the format, reached without a branch. A zero path length thus
 //! selects the finest level once a caller clamps. Only
-//! [`log2_bits_u128`] (set-up code) returns [`LOG2_ZERO`].
+//! `log2_bits_u128` (crate-internal set-up code) returns [`LOG2_ZERO`].
 //!
 //! # Count leading zeros
 //!
@@ -52,7 +52,7 @@ use fixed::types::{I16F16, U16F16, U32F32};
 /// in units of one (log2 units, i.e. MIP levels): `2⁻¹³`.
 pub const LOG2_MAX_ERROR: f64 = 1.0 / 8192.0;
 
-/// Result of [`log2_bits_u128`] for a zero input (`log2 0 = −∞`): `I16F16::MIN`.
+/// Result of the crate-internal `log2_bits_u128` for a zero input (`log2 0 = −∞`): `I16F16::MIN`.
 pub const LOG2_ZERO: I16F16 = I16F16::MIN;
 
 /// `round(log2(1 + i/64) · 2^16)` for `i = 0..=64`.
@@ -84,7 +84,7 @@ pub fn clz32(x: u32) -> u32 {
 
 /// Portable count-leading-zeros for cores without a `clz` instruction: two
 /// compare-and-shift steps (16, 8 bits) and a 256-entry table of the
-/// leading zeros of the top byte ([`CLZ8`]). Equal to
+/// leading zeros of the top byte (the private table `CLZ8`). Equal to
 /// [`u32::leading_zeros`] for every input (tested).
 #[inline(always)]
 #[must_use]
