@@ -348,6 +348,31 @@ impl<'a> Prepared<'a> {
         out
     }
 
+    /// Traces the shadow ray from `origin` towards the sun with `mask`,
+    /// counting it and any hit whose instance the primary ray's mask
+    /// excludes; true when nothing blocks the sun.
+    fn sun_visible(
+        &self,
+        origin: V3,
+        sun: V3,
+        mask: u8,
+        primary_mask: u8,
+        st: &mut FrameStats,
+    ) -> bool {
+        let mut ss = TwoLevelStats::default();
+        let blocker = self
+            .tl
+            .query(origin, sun, (RAY_EPS, f64::INFINITY), mask, true, &mut ss);
+        st.add_traversal(&ss);
+        st.shadow += 1;
+        let Some(b) = blocker else { return true };
+        let bi = &self.tl.instances()[b.instance as usize];
+        st.mismatches += u64::from(!visible(bi.mask, primary_mask));
+        false
+    }
+
+    /// One path through pixel (`x`, `y`) in `frame`: its colour and the
+    /// LOD colour of its primary hit.
     #[allow(clippy::too_many_arguments)]
     fn path(
         &self,
@@ -424,18 +449,8 @@ impl<'a> Prepared<'a> {
                     MaskPolicy::PerRay => ray_mask(&mut rng),
                     MaskPolicy::PerPath => state.mask,
                 };
-                let mut ss = TwoLevelStats::default();
-                let blocker =
-                    self.tl
-                        .query(origin, sun, (RAY_EPS, f64::INFINITY), smask, true, &mut ss);
-                st.add_traversal(&ss);
-                st.shadow += 1;
-                match blocker {
-                    Some(b) => {
-                        let bi = &insts[b.instance as usize];
-                        st.mismatches += u64::from(!visible(bi.mask, primary_mask));
-                    }
-                    None => light += cos,
+                if self.sun_visible(origin, sun, smask, primary_mask, st) {
+                    light += cos;
                 }
             }
             color += (weight * albedo) * (light * (1.0 - reflect));
