@@ -304,35 +304,6 @@ fn bench_markdown(
     md
 }
 
-/// One line naming the machine, compiler and date of a measurement.
-#[must_use]
-pub fn machine_line() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|c| {
-            c.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let run = |cmd: &str, args: &[&str]| {
-        std::process::Command::new(cmd)
-            .args(args)
-            .output()
-            .ok()
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-            .filter(|s| !s.is_empty())
-            .unwrap_or_else(|| format!("{cmd}: unavailable"))
-    };
-    format!(
-        "{cpu}, {} hardware threads (shared with other jobs), {}, {}",
-        std::thread::available_parallelism().map_or(0, usize::from),
-        run("rustc", &["-V"]),
-        run("date", &["-u", "+%Y-%m-%d %H:%M UTC"]),
-    )
-}
-
 /// `geomlod-bench`: writes `bench.md` and `bench.json` into `out`.
 /// With `write`, the table also replaces the text between
 /// `<!-- geomlod-bench:begin -->` and `<!-- geomlod-bench:end -->` in each
@@ -348,7 +319,7 @@ pub fn cmd_bench(
     let (rows, md) = bench(size, repeats, bounces)?;
     let md = format!(
         "Measured on {} by `bash scripts/geomlod-bench` (`raymip-host geomlod-bench --size {}x{} --repeats {repeats} --bounces {bounces}`).\n\n{md}",
-        machine_line(),
+        super::output::machine_line(),
         size.0,
         size.1,
     );

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::instances::machine_line;
+use super::output::machine_line;
 use super::output::{write_between_markers, write_json, write_text};
 use crate::tradeoff::budgets::Budgets;
 use crate::tradeoff::report;
