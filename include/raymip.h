@@ -231,6 +231,18 @@ enum RmStatus rm_table_lod(uint64_t pl, int32_t entry_bits, int16_t *out);
 // than a head-on one. `RM_COS_ONE` (or more) leaves the normal term out.
 int16_t rm_cone_lod(int64_t width, int32_t delta, uint32_t n_dot_d);
 
+// Ray-cone triangle constant `Δ = −log2 Pb − log2 γ` (I16F16 bits, as
+// `rm_cone_lod` takes it) of table entry `entry_bits` (I16F16 bits) for a
+// camera with pixel spread angle `spread` (I2F30 bits, `0 < γ < 2`
+// radians); the same value as the Rust `Log2Pb::delta`, saturating.
+// Returns `Untextured` (and writes nothing) for `RM_UNTEXTURED`,
+// `BadAngle` for `γ ≤ 0`.
+//
+// # Safety
+// `out` is null (→ `NullPointer`) or points to a writable `int32_t`
+// (→ `Misaligned` if it is not aligned).
+enum RmStatus rm_delta(int32_t entry_bits, int32_t spread, int32_t *out);
+
 // `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
 int16_t rm_clamp_lod(int16_t lod, uint8_t levels);
 

@@ -437,6 +437,34 @@ pub extern "C" fn rm_cone_lod(width: i64, delta: i32, n_dot_d: u32) -> i16 {
     cone_lod(I32F32::from_bits(width), I16F16::from_bits(delta), Some(c)).to_bits()
 }
 
+/// Ray-cone triangle constant `Δ = −log2 Pb − log2 γ` (I16F16 bits, as
+/// [`rm_cone_lod`] takes it) of table entry `entry_bits` (I16F16 bits) for a
+/// camera with pixel spread angle `spread` (I2F30 bits, `0 < γ < 2`
+/// radians); the same value as the Rust `Log2Pb::delta`, saturating.
+/// Returns `Untextured` (and writes nothing) for [`RM_UNTEXTURED`],
+/// `BadAngle` for `γ ≤ 0`.
+///
+/// # Safety
+/// `out` is null (→ `NullPointer`) or points to a writable `int32_t`
+/// (→ `Misaligned` if it is not aligned).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_delta(entry_bits: i32, spread: i32, out: *mut i32) -> RmStatus {
+    if let Err(e) = check_ptr(out.cast_const(), false) {
+        return e;
+    }
+    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
+        return RmStatus::BadAngle;
+    };
+    match Log2Pb::from_bits(entry_bits).delta(&spread) {
+        Some(d) => {
+            // SAFETY: non-null, aligned, writable (caller).
+            unsafe { *out = d.to_bits() };
+            RmStatus::Ok
+        }
+        None => RmStatus::Untextured,
+    }
+}
+
 /// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_clamp_lod(lod: i16, levels: u8) -> i16 {
@@ -924,6 +952,38 @@ mod tests {
             cone_lod(w, I16F16::ZERO, None),
             cone_lod(w, I16F16::ZERO, Some(U1F31::from_bits(1 << 31)))
         );
+    }
+
+    /// `rm_delta` against the f64 formula `−log2 Pb − log2 γ` (γ rounded
+    /// to I2F30 first); bad input is reported and nothing is written.
+    #[test]
+    fn delta_matches_f64_and_rejects_bad_input() {
+        let gamma = 0.01f64;
+        let spread = I2F30::from_num(gamma).to_bits();
+        for pb in [-3.5f64, 0.0, 2.25, 11.0] {
+            let mut d = 0i32;
+            let entry = I16F16::from_num(pb).to_bits();
+            // SAFETY: a valid, aligned out pointer.
+            assert_eq!(unsafe { rm_delta(entry, spread, &mut d) }, RmStatus::Ok);
+            let want = -pb - I2F30::from_num(gamma).to_num::<f64>().log2();
+            let got = I16F16::from_bits(d).to_num::<f64>();
+            assert!((got - want).abs() < 1.0 / 4096.0, "{pb}: {got} vs {want}");
+        }
+        let mut d = 7i32;
+        // SAFETY: as above; null is reported, not dereferenced.
+        unsafe {
+            assert_eq!(
+                rm_delta(RM_UNTEXTURED, spread, &mut d),
+                RmStatus::Untextured
+            );
+            assert_eq!(rm_delta(0, 0, &mut d), RmStatus::BadAngle);
+            assert_eq!(rm_delta(0, -5, &mut d), RmStatus::BadAngle);
+            assert_eq!(
+                rm_delta(0, spread, core::ptr::null_mut()),
+                RmStatus::NullPointer
+            );
+        }
+        assert_eq!(d, 7);
     }
 
     /// Regression (issue 11, defect 3): pushing an entry of the same stack

@@ -87,6 +87,14 @@ static void test_table_and_lod(void) {
     /* Grazing: |n.d| clamps at 2^-16 (as the Rust cone_lod), 16 levels coarser, never dropped. */
     CHECK(rm_cone_lod(fx32(1.0), 0, 0) == 16 * 256, "cone grazing n.d=0: %d", rm_cone_lod(fx32(1.0), 0, 0));
     CHECK(rm_cone_lod(fx32(1.0), 0, 1) == 16 * 256, "cone grazing n.d=2^-31: %d", rm_cone_lod(fx32(1.0), 0, 1));
+    /* Delta = -log2 Pb - log2 gamma (gamma = 2^-10 rad: +10), the cone lod's triangle constant. */
+    int32_t delta = 0;
+    CHECK(rm_delta(entries[0], spread, &delta) == RM_STATUS_OK, "delta");
+    CHECK(fabs(i16f16(delta) - (10.0 - i16f16(entries[0]))) <= 1.0 / 65536, "delta %f", i16f16(delta));
+    delta = 7;
+    CHECK(rm_delta(RM_UNTEXTURED, spread, &delta) == RM_STATUS_UNTEXTURED && delta == 7, "delta untextured");
+    CHECK(rm_delta(entries[0], 0, &delta) == RM_STATUS_BAD_ANGLE && delta == 7, "delta bad angle");
+    CHECK(rm_delta(entries[0], spread, NULL) == RM_STATUS_NULL_POINTER, "delta null out");
     CHECK(rm_clamp_lod(1000, 3) == 512 && rm_clamp_lod(-5, 3) == 0 && rm_clamp_lod(300, 3) == 300, "clamp");
 }
 

@@ -24,9 +24,9 @@ use raymip::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::camera::PixelSpread;
 use raymip::ffi::{
     RM_SAMPLER_WORDS, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmTexture,
-    RmTriangle, rm_clamp_lod, rm_cone_lod, rm_mip_generate, rm_path_advance, rm_path_bounce,
-    rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop, rm_ray_stack_push,
-    rm_sample, rm_sampler_init, rm_table_build, rm_table_lod, rm_table_update,
+    RmTriangle, rm_clamp_lod, rm_cone_lod, rm_delta, rm_mip_generate, rm_path_advance,
+    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
+    rm_ray_stack_push, rm_sample, rm_sampler_init, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::format::{ColorSpace, Format, TexelFormat};
@@ -131,6 +131,10 @@ fn c_abi() {
     }
     bb(pyr);
     bb(rm_cone_lod(bb(1), bb(2), bb(3)));
+    let mut delta = 0i32;
+    // SAFETY: a valid, aligned out pointer.
+    bb(unsafe { rm_delta(bb(1), bb(2), &mut delta) });
+    bb(delta);
     bb(rm_clamp_lod(bb(1), bb(2)));
     bb(rm_pyramid_len(bb(1), bb(2), bb(3)));
     bb(out);
