@@ -109,17 +109,24 @@ pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
     Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
 }
 
+/// The loop of every batch entry point: `out[i] = f(hits[i])` for
+/// `i < n = min(hits.len(), out.len())`; returns `n`. Never panics.
+#[inline(always)]
+fn batch<I: Copy, O>(hits: &[I], out: &mut [O], f: impl Fn(I) -> O) -> usize {
+    let n = hits.len().min(out.len());
+    for (o, &h) in out.iter_mut().zip(hits) {
+        *o = f(h);
+    }
+    n
+}
+
 /// Batch of [`table_lod`]: `out[i] = table_lod(hits[i].0, hits[i].1)` for
 /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`
 /// (results past `n` are left untouched). Same results as the per-hit call,
 /// bit for bit; never panics.
 #[inline]
 pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    let n = hits.len().min(out.len());
-    for (o, &(pl, pb)) in out.iter_mut().zip(hits) {
-        *o = table_lod(pl, pb);
-    }
-    n
+    batch(hits, out, |(pl, pb)| table_lod(pl, pb))
 }
 
 /// Batch of [`cone_lod`]: `out[i] = cone_lod(w, Δ, n·d)` of `hits[i]` for
@@ -129,11 +136,7 @@ pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -
 #[cfg(feature = "cone")]
 #[inline]
 pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    let n = hits.len().min(out.len());
-    for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
-        *o = cone_lod(w, d, c);
-    }
-    n
+    batch(hits, out, |(w, d, c)| cone_lod(w, d, c))
 }
 
 /// FAST table method: [`table_lod`] with the 1024-entry log2 table read
@@ -182,11 +185,7 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
 /// Same results as the per-hit call, bit for bit; never panics.
 #[inline]
 pub fn table_lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    let n = hits.len().min(out.len());
-    for (o, &(pl, pb)) in out.iter_mut().zip(hits) {
-        *o = table_lod_fast(pl, pb);
-    }
-    n
+    batch(hits, out, |(pl, pb)| table_lod_fast(pl, pb))
 }
 
 /// Batch of [`cone_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
@@ -197,11 +196,7 @@ pub fn table_lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod
 #[cfg(feature = "cone")]
 #[inline]
 pub fn cone_lod_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    let n = hits.len().min(out.len());
-    for (o, &(w, d, c)) in out.iter_mut().zip(hits) {
-        *o = cone_lod_fast(w, d, c);
-    }
-    n
+    batch(hits, out, |(w, d, c)| cone_lod_fast(w, d, c))
 }
 
 /// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
