@@ -163,7 +163,7 @@ pub struct Sampler<S: TexelSource> {
     /// Per-level addressing when every level side is a power of two and
     /// the addressing is [`Address::Wrap`] (set up by [`Sampler::new`]);
     /// otherwise every entry is [`Pow2Level::OFF`].
-    pow2_wrap: [Pow2Level; MAX_LEVELS as usize],
+    pow2_wrap: [Pow2Level; MAX_LEVELS as usize + 1],
 }
 
 /// Addressing of one level of a power-of-two texture under
@@ -202,15 +202,15 @@ impl Pow2Level {
     /// The table for `g` when both sides are powers of two (then every
     /// level's are; levels past the top repeat the top level), else
     /// [`Pow2Level::OFF`] throughout.
-    fn table(g: &Geometry) -> [Self; MAX_LEVELS as usize] {
-        Self::pow2_table(g).unwrap_or([Self::OFF; MAX_LEVELS as usize])
+    fn table(g: &Geometry) -> [Self; MAX_LEVELS as usize + 1] {
+        Self::pow2_table(g).unwrap_or([Self::OFF; MAX_LEVELS as usize + 1])
     }
 
-    fn pow2_table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize]> {
+    fn pow2_table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize + 1]> {
         if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
             return None;
         }
-        let mut t = [Self::OFF; MAX_LEVELS as usize];
+        let mut t = [Self::OFF; MAX_LEVELS as usize + 1];
         for (k, e) in (0u8..).zip(t.iter_mut()) {
             let (w, h) = g.level_size(k);
             *e = Self {
@@ -392,7 +392,7 @@ impl<S: TexelSource> Sampler<S> {
         let geometry = source.geometry();
         let pow2_wrap = match address {
             Address::Wrap => Pow2Level::table(&geometry),
-            Address::Clamp => [Pow2Level::OFF; MAX_LEVELS as usize],
+            Address::Clamp => [Pow2Level::OFF; MAX_LEVELS as usize + 1],
         };
         Self {
             source,
@@ -446,15 +446,20 @@ impl<S: TexelSource> Sampler<S> {
     #[inline(always)]
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
-        let lower = (bits >> 8) as u8;
+        // `bits ≤ 3840`: the mask changes nothing and tells the compiler
+        // that `lower + 1 ≤ 16` indexes the level table without a check,
+        // next to `lower`'s entry (one address for both levels).
+        let lower = usize::from(bits >> 8) & 15;
         let t = u32::from(bits & 0xFF);
-        let a = self.bilinear_wide(u, v, lower);
+        let (ta, fxa, fya) = self.footprint(u, v, lower);
+        let a = bilerp::bilerp_in_range(ta, fxa, fya);
         if t == 0 {
             self.stats.fetched += 4;
             self.stats.skipped += 4;
             bilerp::round_wide_in_range(a)
         } else {
-            let b = self.bilinear_wide(u, v, lower + 1);
+            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
+            let b = bilerp::bilerp_in_range(tb, fxb, fyb);
             self.stats.fetched += 8;
             bilerp::blend_wide_in_range(a, b, t)
         }
@@ -465,7 +470,7 @@ impl<S: TexelSource> Sampler<S> {
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let level = Self::nearest_level(self.lod_bits(lod));
         self.stats.fetched += 4;
-        let (t, fx, fy) = self.footprint(u, v, level);
+        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
         bilerp::bilerp_rounded(t, fx, fy)
     }
 
@@ -499,7 +504,8 @@ impl<S: TexelSource> Sampler<S> {
     /// `hits[i] = (u, v, lod)` with filter `mode`, for
     /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
     /// Same results and fetch counters as `n` single calls; never panics.
-    #[inline]
+    /// Always inlined, so a constant `mode` compiles to its loop alone.
+    #[inline(always)]
     pub fn sample_batch(
         &mut self,
         hits: &[(TexCoord, TexCoord, Lod)],
@@ -559,15 +565,16 @@ impl<S: TexelSource> Sampler<S> {
     /// one bounds check per footprint ([`Pow2Level::footprint`]); every
     /// other case (and a texel slice shorter than the level) goes through
     /// the source's [`TexelSource::footprint`]. Both give the same texels.
+    /// `level ≤ 16` (the callers mask it; the table has an entry for 16,
+    /// a copy of 15, so that `level + 1` needs no check either).
     #[inline(always)]
-    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: u8) -> ([Texel; 4], u32, u32) {
-        if let Some(texels) = self.source.texel_slice() {
-            // `level ≤ top level < MAX_LEVELS = 16`: the mask keeps the read
-            // in bounds without a check.
-            if let Some(f) = self.pow2_wrap[usize::from(level) & 15].footprint(texels, u, v) {
-                return f;
-            }
+    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Texel; 4], u32, u32) {
+        if let Some(texels) = self.source.texel_slice()
+            && let Some(f) = self.pow2_wrap[level].footprint(texels, u, v)
+        {
+            return f;
         }
+        let level = level as u8;
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
@@ -576,17 +583,12 @@ impl<S: TexelSource> Sampler<S> {
 
     /// Bilinear value at `level` in 8.16 per channel, not counted in the
     /// fetch statistics (the caller counts).
-    #[inline(always)]
-    fn bilinear_wide(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
-        let (t, fx, fy) = self.footprint(u, v, level);
-        bilerp::bilerp_in_range(t, fx, fy)
-    }
-
     /// Bilinear value at `level` in 8.16 per channel (4 texels counted).
     #[inline(always)]
     pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
         self.stats.fetched += 4;
-        self.bilinear_wide(u, v, level)
+        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+        bilerp::bilerp_in_range(t, fx, fy)
     }
 
     /// Nearest texel at `level`.
@@ -882,13 +884,13 @@ mod tests {
         let buf = vec![0; g.len()];
         assert_eq!(
             Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Wrap).pow2_wrap,
-            [Pow2Level::OFF; 16]
+            [Pow2Level::OFF; 17]
         );
         let g = Geometry::new(8, 4, 2).unwrap();
         let buf = vec![0; g.len()];
         assert_eq!(
             Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Clamp).pow2_wrap,
-            [Pow2Level::OFF; 16]
+            [Pow2Level::OFF; 17]
         );
     }
 }
