@@ -180,7 +180,14 @@ fn errors_in_read_files_name_the_chain() {
     let include = format!("{VIEW}i 0 mid.aff\n");
     let texture = format!("{VIEW}\n\ntt bad.ppm\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n");
     type Files<'a> = &'a [(&'a str, &'a [u8])];
-    let cases: [(&str, &str, Files, (&str, usize, &str), &[&str]); 3] = [
+    type Case<'a> = (
+        &'a str,
+        &'a str,
+        Files<'a>,
+        (&'a str, usize, &'a str),
+        &'a [&'a str],
+    );
+    let cases: [Case; 3] = [
         (
             "chain",
             &include,
