@@ -15,6 +15,9 @@
 #                     and the options both share (semihosting carries output and exit code)
 #   QTIMEOUT          seconds before a hung guest is killed (120, or $QEMU_TIMEOUT)
 #   SUDO              "sudo" when not root, else empty (package installs)
+#   OVERFLOW_CHECKED  cargo --config options that turn overflow checks on in the
+#                     release profile for the workspace crates only (every
+#                     dependency is built as in a plain release build)
 # and the functions below (step, die, tmpdir, ensure_targets, demo_cargo,
 # qemu_arm, qemu_rv, apt_install).
 set -euo pipefail
@@ -38,6 +41,12 @@ QARM=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4)
 QRV=(qemu-system-riscv32 -machine virt -bios none)
 QCOMMON=(-nographic -monitor none -serial none -semihosting-config enable=on,target=native)
 QTIMEOUT=${QEMU_TIMEOUT:-120}
+
+OVERFLOW_CHECKED=()
+for _lib_p in raymip raymip-host raymip-ffi raymip-demo-scene; do
+    OVERFLOW_CHECKED+=(--config "profile.release.package.$_lib_p.overflow-checks=true")
+done
+unset _lib_p
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi

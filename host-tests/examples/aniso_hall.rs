@@ -14,7 +14,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, write_between_markers, write_png};
+use raymip_host::cli::output::{psnr, publish, write_option, write_png};
 use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
 
@@ -25,10 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .find_map(|a| raymip_host::cli::parse_size(a).ok())
         .unwrap_or((400, 240));
     let spp: u32 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(256);
-    let write = args
-        .iter()
-        .position(|a| a == "--write")
-        .and_then(|i| args.get(i + 1));
+    let write = write_option(&args);
     let prep = Prepared::new(load_scene("builtin:hall", 0.0)?, Some(size))?;
     let base = Options {
         method: Method::Raydiff,
@@ -89,10 +86,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             psnrs[0], psnrs[1]
         )?;
     }
-    print!("{table}");
-    if let Some(path) = write {
-        write_between_markers(std::path::Path::new(path), "aniso-hall", &table)?;
-        eprintln!("wrote {path}");
-    }
-    Ok(())
+    Ok(publish(&table, write, "aniso-hall")?)
 }

@@ -11,7 +11,7 @@
 
 use std::fmt::Write as _;
 
-use raymip_host::cli::output::write_between_markers;
+use raymip_host::cli::output::{publish, write_option};
 use raymip_host::reference::sampler_ref::{FILTERS, measure};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -20,10 +20,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .find(|a| a.parse::<usize>().is_ok())
         .map_or(Ok(20_000), |a| a.parse())?;
-    let write = args
-        .iter()
-        .position(|a| a == "--write")
-        .and_then(|i| args.get(i + 1));
+    let write = write_option(&args);
     let rows = measure(samples, 0x5EED_2026);
     let mut table = String::new();
     writeln!(
@@ -55,10 +52,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         table,
         "\n({ties} anisotropic samples whose probe count is a tie within 2⁻¹² in log2 were left out.)"
     )?;
-    print!("{table}");
-    if let Some(path) = write {
-        write_between_markers(std::path::Path::new(path), "sampler-accuracy", &table)?;
-        eprintln!("wrote {path}");
-    }
-    Ok(())
+    Ok(publish(&table, write, "sampler-accuracy")?)
 }

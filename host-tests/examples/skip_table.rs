@@ -14,19 +14,19 @@
 
 use std::fmt::Write as _;
 
+use raymip_host::cli::output::{cpu_model, publish, write_option};
+use raymip_host::cli::parse_size;
 use raymip_host::render::skip::{bit_identical, plan, render_trimmed};
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
 use raymip_host::scene::{builtin, default_bart_dir, load_scene_dir};
 
-const BEGIN: &str = "<!-- skipping:begin -->";
-const END: &str = "<!-- skipping:end -->";
 const REPEATS: usize = 3;
 
 /// A scene loader.
 type Load = Box<dyn Fn() -> Result<raymip_host::scene::Scene, String>>;
 
 fn cpu() -> String {
-    let model = raymip_host::cli::output::cpu_model();
+    let model = cpu_model();
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .and_then(|s| s.split_whitespace().next().map(str::to_string))
@@ -41,15 +41,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let size = args
         .iter()
-        .find_map(|a| {
-            let (w, h) = a.split_once('x')?;
-            Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?))
-        })
+        .find_map(|a| parse_size(a).ok())
         .unwrap_or((640, 384));
-    let write = args
-        .iter()
-        .position(|a| a == "--write")
-        .and_then(|i| args.get(i + 1));
+    let write = write_option(&args);
     let mut scenes: Vec<(String, Load)> = builtin::NAMES
         .iter()
         .map(|&n| {
@@ -135,15 +129,5 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if !note.is_empty() {
         writeln!(t, "\n{note}")?;
     }
-    print!("{t}");
-    if let Some(path) = write {
-        let text = std::fs::read_to_string(path)?;
-        let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END)) else {
-            return Err(format!("{path}: markers {BEGIN} / {END} not found").into());
-        };
-        let out = format!("{}{BEGIN}\n{t}{}", &text[..b], &text[e..]);
-        std::fs::write(path, out)?;
-        eprintln!("skip_table: wrote {path}");
-    }
-    Ok(())
+    Ok(publish(&t, write, "skipping")?)
 }

@@ -32,6 +32,10 @@ fn ppm() -> Vec<u8> {
 
 const VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n";
 
+/// A material and the start of a mesh (lines 8–10 after [`VIEW`]): the
+/// vertex count and rows follow.
+const MESH: &str = "fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices";
+
 /// Loads `top` from `files` (name, text) and returns the error text.
 fn load_err(test: &str, files: &[(&str, &[u8])]) -> (String, aff::AffError) {
     let d = dir(test);
@@ -72,26 +76,22 @@ fn truncated_record() {
     assert!(matches!(*e.kind, AffErrorKind::UnexpectedEof { .. }));
 }
 
-#[test]
-fn wrong_vertex_count_in_mesh() {
-    // `vertices 4` but only three rows (lines 11–13): the parser meets
-    // `triangles` on line 14 where the tenth coordinate should be.
-    let top = format!(
-        "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 4\n0 0 0\n1 0 0\n0 1 0\ntriangles 1\n0 1 2\n"
-    );
-    let (msg, _) = top_fails_at("nverts", &top, 14, "mesh vertex 4 of 4");
-    assert!(msg.contains("\"triangles\""), "{msg}");
-}
-
 /// Counts and numbers that do not fit: (test, text after the view, line,
 /// what the error says).
 #[test]
 fn count_and_number_errors() {
-    let mesh = "fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices";
     for (name, body, line, what) in [
+        // `vertices 4` but only three rows (lines 11–13): the parser meets
+        // `triangles` on line 14 where the tenth coordinate should be.
+        (
+            "nverts",
+            format!("{MESH} 4\n0 0 0\n1 0 0\n0 1 0\ntriangles 1\n0 1 2\n"),
+            14,
+            "(mesh vertex 4 of 4), found \"triangles\"",
+        ),
         (
             "index",
-            format!("{mesh} 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 2\n0 1 2\n0 1 3\n"),
+            format!("{MESH} 3\n0 0 0\n1 0 0\n0 1 0\ntriangles 2\n0 1 2\n0 1 3\n"),
             16,
             "vertex index 3 out of range",
         ),
@@ -99,7 +99,7 @@ fn count_and_number_errors() {
         // `vertices 3` leaves a number where a section keyword must be.
         (
             "extra",
-            format!("{mesh} 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\ntriangles 1\n0 1 2\n"),
+            format!("{MESH} 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\ntriangles 1\n0 1 2\n"),
             14,
             "count too small",
         ),
@@ -155,22 +155,6 @@ fn missing_include_names_the_including_line() {
 }
 
 #[test]
-fn error_inside_include_names_inner_file_and_chain() {
-    let top = format!("{VIEW}i 0 mid.aff\n");
-    let (msg, _) = load_err(
-        "chain",
-        &[
-            ("top.aff", top.as_bytes()),
-            ("mid.aff", b"% comment\ni 0 inner.aff\n"),
-            ("inner.aff", b"fm 1 1 1\n1 1 1\n0 0 0 1 zero 1\n"),
-        ],
-    );
-    assert_at(&msg, "inner.aff", 3, "\"zero\"");
-    assert!(msg.contains("mid.aff:2"), "{msg}");
-    assert!(msg.contains("top.aff:8"), "{msg}");
-}
-
-#[test]
 fn recursive_include_is_an_error_not_a_stack_overflow() {
     let top = format!("{VIEW}i 0 top.aff\n");
     top_fails_at("rec", &top, 8, "nested deeper");
@@ -179,7 +163,7 @@ fn recursive_include_is_an_error_not_a_stack_overflow() {
 #[test]
 fn missing_texture() {
     let top = format!(
-        "{VIEW}fm 1 1 1 1 1 1 0 0 0 1 0 1\nm\nvertices 3\n0 0 0\n1 0 0\n0 1 0\ntexturecoords 3 gone.ppm\n0 0\n1 0\n0 1\ntriangles 1\n0 1 2 0 1 2\n"
+        "{VIEW}{MESH} 3\n0 0 0\n1 0 0\n0 1 0\ntexturecoords 3 gone.ppm\n0 0\n1 0\n0 1\ntriangles 1\n0 1 2 0 1 2\n"
     );
     let (msg, e) = top_fails_at("tex", &top, 14, "gone.ppm");
     assert!(msg.contains("cannot read"), "{msg}");
@@ -188,27 +172,58 @@ fn missing_texture() {
     top_fails_at("tt", &top, 8, "gone.ppm");
 }
 
+/// Errors inside a file the top file reads: the inner file's location,
+/// and the include chain or the `tt` line that read it. (test, top text,
+/// the other files, where the error is, what else the message names.)
 #[test]
-fn bad_ppm_header() {
-    let top = format!("{VIEW}\n\ntt bad.ppm\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n");
-    let (msg, _) = load_err(
-        "ppm",
-        &[
-            ("top.aff", top.as_bytes()),
-            ("bad.ppm", b"P5\n2 1\n255\n\0\0"),
-        ],
+fn errors_in_read_files_name_the_chain() {
+    let include = format!("{VIEW}i 0 mid.aff\n");
+    let texture = format!("{VIEW}\n\ntt bad.ppm\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n");
+    type Files<'a> = &'a [(&'a str, &'a [u8])];
+    type Case<'a> = (
+        &'a str,
+        &'a str,
+        Files<'a>,
+        (&'a str, usize, &'a str),
+        &'a [&'a str],
     );
-    assert_at(&msg, "top.aff", 10, "bad.ppm");
-    assert!(msg.contains("bad.ppm:1: not a binary PPM"), "{msg}");
-    // Truncated raster.
-    let (msg, _) = load_err(
-        "ppm2",
-        &[
-            ("top.aff", top.as_bytes()),
-            ("bad.ppm", b"P6\n4 4\n255\n\0\0\0"),
-        ],
-    );
-    assert_at(&msg, "top.aff", 10, "truncated raster");
+    let cases: [Case; 3] = [
+        (
+            "chain",
+            &include,
+            &[
+                ("mid.aff", b"% comment\ni 0 inner.aff\n"),
+                ("inner.aff", b"fm 1 1 1\n1 1 1\n0 0 0 1 zero 1\n"),
+            ],
+            ("inner.aff", 3, "\"zero\""),
+            &["mid.aff:2", "top.aff:8"],
+        ),
+        // Bad PPM header.
+        (
+            "ppm",
+            &texture,
+            &[("bad.ppm", b"P5\n2 1\n255\n\0\0")],
+            ("top.aff", 10, "bad.ppm"),
+            &["bad.ppm:1: not a binary PPM"],
+        ),
+        // Truncated raster.
+        (
+            "ppm2",
+            &texture,
+            &[("bad.ppm", b"P6\n4 4\n255\n\0\0\0")],
+            ("top.aff", 10, "truncated raster"),
+            &[],
+        ),
+    ];
+    for (name, top, files, (file, line, what), also) in cases {
+        let mut all = vec![("top.aff", top.as_bytes())];
+        all.extend_from_slice(files);
+        let (msg, _) = load_err(name, &all);
+        assert_at(&msg, file, line, what);
+        for a in also {
+            assert!(msg.contains(a), "{name}: {msg}");
+        }
+    }
 }
 
 #[test]

@@ -2,20 +2,17 @@
 
 use std::path::Path;
 
-use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
+use raymip_host::cli::demo_data::{generate_data, stale_files};
 
-/// `demo/scene/src/data.rs` equals what the generator writes now.
+/// `demo/scene/src/data.rs` and the texture pyramids equal what the
+/// generator writes now.
 #[test]
 fn demo_data_is_up_to_date() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(DATA_PATH);
-    let on_disk = std::fs::read_to_string(&path).unwrap();
-    let fresh = generate_data_rs().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let stale = stale_files(&root, &generate_data().unwrap());
     assert!(
-        on_disk == fresh,
-        "{} is stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`",
-        path.display()
+        stale.is_empty(),
+        "{stale:?} stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`"
     );
 }
 

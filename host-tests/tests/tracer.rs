@@ -262,27 +262,13 @@ fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
         ior: 1.0,
     };
     let (splitter, floor) = (mat(0.05, 0.7, 0.3), mat(0.8, 0.0, 0.0));
-    let mut t = Vec::new();
-    for x in [-1.0, 1.0] {
-        t.extend(builtin::quad(
-            V3::new(x, -1.0, 1.0),
-            V3::new(0.0, 0.0, -101.0),
-            V3::new(0.0, 4.0, 0.0),
-            1.0,
-            1.0,
-            0,
-            None,
-        ));
-    }
-    t.extend(builtin::quad(
-        V3::new(-1.0, -1.0, 1.0),
-        V3::new(2.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -101.0),
-        2.0,
-        100.0,
-        1,
-        Some(0),
-    ));
+    // The panes x = ∓1 and the floor.
+    #[rustfmt::skip]
+    let t = builtin::quads(&[
+        ([-1.0, -1.0, 1.0], [0.0, 0.0, -101.0], [0.0, 4.0, 0.0],    [1.0, 1.0],   0, None),
+        ([1.0, -1.0, 1.0],  [0.0, 0.0, -101.0], [0.0, 4.0, 0.0],    [1.0, 1.0],   0, None),
+        ([-1.0, -1.0, 1.0], [2.0, 0.0, 0.0],    [0.0, 0.0, -101.0], [2.0, 100.0], 1, Some(0)),
+    ]);
     let scene = Scene {
         camera: Camera::looking_at(
             V3::new(0.0, 0.5, 0.0),

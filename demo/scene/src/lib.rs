@@ -27,6 +27,10 @@
 //! `data.rs` is written by `cargo run -p raymip-host --bin raymip-demo --
 //! gen-data` (host, with floats: the camera's pixel spread, the Pb table
 //! and the textures) and checked in; a host test fails when it is stale.
+//! The two texture pyramids are binary assets beside it (`tex0.bin`,
+//! `tex1.bin`: RGBA8888 texels as little-endian words), embedded with
+//! `include_bytes!` and turned into `[u32; N]` statics at compile time
+//! ([`le_words`]), so flash holds the same words as a literal table would.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -46,6 +50,21 @@ use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
 
 mod data;
 pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};
+
+/// The little-endian `u32` words of `bytes` (a generated binary asset),
+/// evaluated at compile time for the texture statics of `data.rs`; a length
+/// other than `4·N` bytes fails the build.
+const fn le_words<const N: usize>(bytes: &[u8]) -> [u32; N] {
+    assert!(bytes.len() == 4 * N, "asset length is not 4·N bytes");
+    let mut words = [0u32; N];
+    let mut i = 0;
+    while i < N {
+        let b = 4 * i;
+        words[i] = u32::from_le_bytes([bytes[b], bytes[b + 1], bytes[b + 2], bytes[b + 3]]);
+        i += 1;
+    }
+    words
+}
 
 /// Tile width in pixels.
 pub const WIDTH: u32 = 64;

@@ -2,8 +2,9 @@
 //!
 //! * `raymip-demo gen-data [--check]`: writes `demo/scene/src/data.rs` (the
 //!   camera's pixel spread, the Pb table and the textures as `static` data,
-//!   computed on the host with floats at set-up); `--check` only compares and
-//!   fails when the file is stale.
+//!   computed on the host with floats at set-up) and the texture pyramids it
+//!   embeds (`tex0.bin`, `tex1.bin`); `--check` only compares and fails when
+//!   a file is stale.
 //! * `raymip-demo render [--ppm FILE]`: renders the demo tile with the same
 //!   fixed-point code the firmware runs and prints the checksum and counter
 //!   lines the QEMU demos print (`scripts/test-all` compares them).
@@ -13,7 +14,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use raymip_host::cli::demo_data::{DATA_PATH, generate_data_rs};
+use raymip_host::cli::demo_data::{DATA_DIR, generate_data, stale_files};
 
 fn usage() -> ExitCode {
     eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity");
@@ -26,39 +27,36 @@ fn main() -> ExitCode {
     match args.first().map(String::as_str) {
         Some("gen-data") => {
             let check = args.get(1).map(String::as_str) == Some("--check");
-            let text = match generate_data_rs() {
-                Ok(t) => t,
+            let files = match generate_data() {
+                Ok(f) => f,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return ExitCode::FAILURE;
                 }
             };
-            let path = root.join(DATA_PATH);
             if check {
-                match std::fs::read_to_string(&path) {
-                    Ok(old) if old == text => {
-                        println!("{} is up to date", path.display());
-                        ExitCode::SUCCESS
-                    }
-                    Ok(_) => {
-                        eprintln!(
-                            "error: {} is stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`",
-                            path.display()
-                        );
-                        ExitCode::FAILURE
-                    }
-                    Err(e) => {
-                        eprintln!("error: {}: {e}", path.display());
-                        ExitCode::FAILURE
-                    }
+                let stale = stale_files(&root, &files);
+                for path in &stale {
+                    eprintln!(
+                        "error: {} is stale: run `cargo run -p raymip-host --bin raymip-demo -- gen-data`",
+                        path.display()
+                    );
                 }
-            } else if let Err(e) = std::fs::write(&path, text) {
-                eprintln!("error: {}: {e}", path.display());
-                ExitCode::FAILURE
-            } else {
-                println!("wrote {}", path.display());
-                ExitCode::SUCCESS
+                if !stale.is_empty() {
+                    return ExitCode::FAILURE;
+                }
+                println!("{} is up to date", root.join(DATA_DIR).display());
+                return ExitCode::SUCCESS;
             }
+            for f in &files {
+                let path = root.join(DATA_DIR).join(&f.name);
+                if let Err(e) = std::fs::write(&path, &f.bytes) {
+                    eprintln!("error: {}: {e}", path.display());
+                    return ExitCode::FAILURE;
+                }
+                println!("wrote {}", path.display());
+            }
+            ExitCode::SUCCESS
         }
         Some("render") => {
             let ppm = match (args.get(1).map(String::as_str), args.get(2)) {

@@ -1,15 +1,26 @@
-//! Generated data of the bare-metal demo scene (`demo/scene/src/data.rs`):
-//! what the host computes at set-up with floats and the firmware reads as
-//! `static` data in flash.
+//! Generated data of the bare-metal demo scene (`demo/scene/src/data.rs`
+//! and the texture pyramids `tex0.bin`, `tex1.bin` it embeds): what the host
+//! computes at set-up with floats and the firmware reads as `static` data in
+//! flash.
 
 use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 use raymip::camera::PixelSpread;
 use raymip::table::PbTable;
 use raymip_demo_scene::{FOV_Y_DEGREES, HEIGHT, TRIANGLES, triangles};
 
-/// Path of the generated file, relative to the repository root.
-pub const DATA_PATH: &str = "demo/scene/src/data.rs";
+/// Folder of the generated files, relative to the repository root.
+pub const DATA_DIR: &str = "demo/scene/src";
+
+/// One generated file: its name in [`DATA_DIR`] and its bytes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DataFile {
+    /// File name (`data.rs`, `tex0.bin`, …).
+    pub name: String,
+    /// Contents.
+    pub bytes: Vec<u8>,
+}
 
 /// The checksum line printed by the demos and the host render (compared by
 /// `scripts/test-all`).
@@ -46,8 +57,11 @@ impl std::fmt::Display for DataError {
 
 impl std::error::Error for DataError {}
 
-/// The text of `data.rs`.
-pub fn generate_data_rs() -> Result<String, DataError> {
+/// Every generated file: `data.rs` (the camera's pixel spread, the Pb
+/// table, the texture statics) and one `texN.bin` per texture (its MIP
+/// pyramid, level 0 first, as little-endian RGBA8888 words, embedded by
+/// `data.rs` with `include_bytes!`).
+pub fn generate_data() -> Result<Vec<DataFile>, DataError> {
     let fov = FOV_Y_DEGREES.to_radians();
     let spread = PixelSpread::from_fov_y(fov, HEIGHT).map_err(DataError::Camera)?;
     let mut entries = [raymip::table::Log2Pb::UNTEXTURED; TRIANGLES];
@@ -91,6 +105,7 @@ pub fn generate_data_rs() -> Result<String, DataError> {
     s.push_str("];\n");
     let g =
         raymip_demo_scene::tex_geometry().ok_or(DataError::Mip(raymip::mip::MipError::ZeroSize))?;
+    let mut files = Vec::new();
     for tex in 0..2u8 {
         let mut buf = vec![0u32; g.len()];
         let size = raymip_demo_scene::TEX_SIZE;
@@ -100,20 +115,41 @@ pub fn generate_data_rs() -> Result<String, DataError> {
             }
         }
         raymip::mip::generate(&g, &mut buf).map_err(DataError::Mip)?;
+        let name = format!("tex{tex}.bin");
         let _ = writeln!(
             s,
-            "/// Texture {tex}: {size}×{size} RGBA8888 MIP pyramid ({} levels, level 0 first), generated on the host.",
+            "/// Texture {tex}: {size}×{size} RGBA8888 MIP pyramid ({} levels, level 0 first), generated on the host\n\
+             /// (`{name}`: the texels as little-endian words).",
             g.levels()
         );
-        let _ = writeln!(s, "pub static TEX{tex}: [u32; {}] = [", buf.len());
-        for chunk in buf.chunks(8) {
-            s.push_str("   ");
-            for t in chunk {
-                let _ = write!(s, " {t:#010x},");
-            }
-            s.push('\n');
-        }
-        s.push_str("];\n");
+        let _ = writeln!(
+            s,
+            "pub static TEX{tex}: [u32; {}] = crate::le_words(include_bytes!(\"{name}\"));",
+            buf.len()
+        );
+        files.push(DataFile {
+            name,
+            bytes: buf.iter().flat_map(|t| t.to_le_bytes()).collect(),
+        });
     }
-    Ok(s)
+    files.insert(
+        0,
+        DataFile {
+            name: "data.rs".into(),
+            bytes: s.into_bytes(),
+        },
+    );
+    Ok(files)
+}
+
+/// The paths of the generated `files` whose copy below the repository root
+/// `root` differs from them (or cannot be read).
+#[must_use]
+pub fn stale_files(root: &Path, files: &[DataFile]) -> Vec<PathBuf> {
+    files
+        .iter()
+        .map(|f| (root.join(DATA_DIR).join(&f.name), f))
+        .filter(|(path, f)| std::fs::read(path).ok().as_deref() != Some(&f.bytes[..]))
+        .map(|(path, _)| path)
+        .collect()
 }

@@ -166,6 +166,30 @@ pub fn write_between_markers(path: &Path, name: &str, text: &str) -> Result<(), 
     std::fs::write(path, new).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The file named after `--write` in a measurement command's arguments.
+#[must_use]
+pub fn write_option(args: &[String]) -> Option<&Path> {
+    args.iter()
+        .position(|a| a == "--write")
+        .and_then(|i| args.get(i + 1))
+        .map(Path::new)
+}
+
+/// Prints the Markdown `table` of a measurement and, when `write` names a
+/// file (`--write FILE`), replaces its `NAME` block with it
+/// ([`write_between_markers`]).
+///
+/// # Errors
+/// As [`write_between_markers`].
+pub fn publish(table: &str, write: Option<&Path>, name: &str) -> Result<(), String> {
+    print!("{table}");
+    if let Some(path) = write {
+        write_between_markers(path, name, table)?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 /// The CPU model from `/proc/cpuinfo` ("unknown CPU" where there is none).
 #[must_use]
 pub fn cpu_model() -> String {

@@ -1357,7 +1357,7 @@ fn verdict(rows: &[Row]) -> Result<(), String> {
 /// zero-UV-area one, a floor seen at grazing incidence from 10⁻³ above it
 /// and two facing mirrors.
 fn degenerate_scene() -> crate::scene::Scene {
-    use crate::scene::builtin::{quad, tiles_texture};
+    use crate::scene::builtin::{quads, tiles_texture};
     use crate::scene::{Camera, Light, Material, Scene, Triangle, V3};
     let mat = |specular: f64| Material {
         ambient: V3::splat(0.2),
@@ -1394,26 +1394,13 @@ fn degenerate_scene() -> crate::scene::Scene {
             [[0.5, 0.5]; 3],
         ),
     ];
-    t.extend(quad(
-        V3::new(-50.0, 0.0, 5.0),
-        V3::new(100.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -200.0),
-        50.0,
-        100.0,
-        0,
-        Some(0),
-    ));
-    for z in [-6.0, 6.0] {
-        t.extend(quad(
-            V3::new(-3.0, 0.0, z),
-            V3::new(6.0, 0.0, 0.0),
-            V3::new(0.0, 3.0, 0.0),
-            1.0,
-            1.0,
-            1,
-            None,
-        ));
-    }
+    // A long floor and two panels at z = ∓6.
+    #[rustfmt::skip]
+    t.extend(quads(&[
+        ([-50.0, 0.0, 5.0], [100.0, 0.0, 0.0], [0.0, 0.0, -200.0], [50.0, 100.0], 0, Some(0)),
+        ([-3.0, 0.0, -6.0], [6.0, 0.0, 0.0],   [0.0, 3.0, 0.0],    [1.0, 1.0],    1, None),
+        ([-3.0, 0.0, 6.0],  [6.0, 0.0, 0.0],   [0.0, 3.0, 0.0],    [1.0, 1.0],    1, None),
+    ]));
     Scene {
         camera: Camera::looking_at(
             V3::new(0.0, 1.0e-3, 0.0),

@@ -130,6 +130,14 @@ fn mirror(k: f64, tint: V3) -> Material {
     }
 }
 
+/// A white point light at `position` with intensity `grey`.
+fn light(position: [f64; 3], grey: f64) -> Light {
+    Light {
+        position: position.into(),
+        color: V3::splat(grey),
+    }
+}
+
 fn glass_mat() -> Material {
     Material {
         ambient: V3::ZERO,
@@ -154,25 +162,29 @@ pub fn quad(
     texture: Option<u32>,
 ) -> [Triangle; 2] {
     let p1 = p0 + ex;
-    let p2 = p1 + ey;
-    let p3 = p0 + ey;
-    let uv = texture.map(|_| ([0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]));
-    [
-        Triangle {
-            p: [p0, p1, p2],
-            n: None,
-            uv: uv.map(|u| [u.0, u.1, u.2]),
-            material,
-            texture,
-        },
-        Triangle {
-            p: [p0, p2, p3],
-            n: None,
-            uv: uv.map(|u| [u.0, u.2, u.3]),
-            material,
-            texture,
-        },
-    ]
+    let corners = [p0, p1, p1 + ey, p0 + ey];
+    let uv = texture.map(|_| [[0.0, 0.0], [su, 0.0], [su, sv], [0.0, sv]]);
+    let tri = |k: [usize; 3]| Triangle {
+        p: k.map(|i| corners[i]),
+        n: None,
+        uv: uv.map(|u| k.map(|i| u[i])),
+        material,
+        texture,
+    };
+    [tri([0, 1, 2]), tri([0, 2, 3])]
+}
+
+/// One [`quad`] as a table row: `(p0, ex, ey, [su, sv], material, texture)`.
+pub type QuadRow = ([f64; 3], [f64; 3], [f64; 3], [f64; 2], u32, Option<u32>);
+
+/// The triangles of the quads `rows`, in order (two per row).
+#[must_use]
+pub fn quads(rows: &[QuadRow]) -> Vec<Triangle> {
+    rows.iter()
+        .flat_map(|&(p0, ex, ey, [su, sv], material, texture)| {
+            quad(p0.into(), ex.into(), ey.into(), su, sv, material, texture)
+        })
+        .collect()
 }
 
 /// A UV sphere with smooth (interpolated) normals: `nu` segments around,
@@ -239,58 +251,26 @@ fn camera(from: V3, at: V3, fov_y_deg: f64) -> Camera {
 /// The hall: floor 10 wide and 305 deep, walls 4 high, one mirror sphere.
 #[must_use]
 pub fn hall() -> Scene {
-    let materials = vec![
-        diffuse(V3::splat(0.9)),
-        diffuse(V3::splat(0.9)),
-        mirror(0.8, V3::new(0.9, 0.95, 1.0)),
-    ];
     let (len, z0) = (305.0, 5.0);
-    let mut triangles = Vec::new();
-    // Floor: 2×2 units per texture repeat.
-    triangles.extend(quad(
-        V3::new(-5.0, 0.0, z0),
-        V3::new(10.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -len),
-        5.0,
-        len / 2.0,
-        0,
-        Some(0),
-    ));
-    // Walls: one brick texture repeat per 4 (along) × 2.4 (up) units.
-    triangles.extend(quad(
-        V3::new(-5.0, 0.0, z0),
-        V3::new(0.0, 0.0, -len),
-        V3::new(0.0, 4.0, 0.0),
-        len / 4.0,
-        4.0 / 2.4,
-        1,
-        Some(1),
-    ));
-    triangles.extend(quad(
-        V3::new(5.0, 0.0, z0),
-        V3::new(0.0, 0.0, -len),
-        V3::new(0.0, 4.0, 0.0),
-        len / 4.0,
-        4.0 / 2.4,
-        1,
-        Some(1),
-    ));
+    // Floor: 2×2 units per texture repeat; walls: one brick texture repeat
+    // per 4 (along) × 2.4 (up) units.
+    #[rustfmt::skip]
+    let mut triangles = quads(&[
+        ([-5.0, 0.0, z0], [10.0, 0.0, 0.0], [0.0, 0.0, -len], [5.0, len / 2.0],       0, Some(0)),
+        ([-5.0, 0.0, z0], [0.0, 0.0, -len], [0.0, 4.0, 0.0],  [len / 4.0, 4.0 / 2.4], 1, Some(1)),
+        ([5.0, 0.0, z0],  [0.0, 0.0, -len], [0.0, 4.0, 0.0],  [len / 4.0, 4.0 / 2.4], 1, Some(1)),
+    ]);
     triangles.extend(sphere(V3::new(1.8, 0.9, -7.0), 0.9, 32, 16, 2));
     Scene {
         camera: camera(V3::new(0.0, 1.7, 4.0), V3::new(0.0, 1.2, -10.0), 50.0),
         background: V3::new(0.55, 0.7, 0.9),
         ambient: V3::splat(0.25),
-        lights: vec![
-            Light {
-                position: V3::new(0.0, 3.8, 0.0),
-                color: V3::splat(0.5),
-            },
-            Light {
-                position: V3::new(-2.0, 3.8, -30.0),
-                color: V3::splat(0.4),
-            },
+        lights: vec![light([0.0, 3.8, 0.0], 0.5), light([-2.0, 3.8, -30.0], 0.4)],
+        materials: vec![
+            diffuse(V3::splat(0.9)),
+            diffuse(V3::splat(0.9)),
+            mirror(0.8, V3::new(0.9, 0.95, 1.0)),
         ],
-        materials,
         textures: vec![tiles_texture(), bricks_texture()],
         triangles,
     }
@@ -300,68 +280,16 @@ pub fn hall() -> Scene {
 /// side walls, three mirror spheres.
 #[must_use]
 pub fn mirrors() -> Scene {
-    let materials = vec![
-        diffuse(V3::splat(0.9)),
-        diffuse(V3::splat(0.85)),
-        mirror(0.9, V3::new(1.0, 1.0, 1.0)),
-        mirror(0.85, V3::new(1.0, 0.85, 0.6)),
-        diffuse(V3::new(0.8, 0.8, 0.75)),
-    ];
-    let mut t = Vec::new();
-    t.extend(quad(
-        V3::new(-4.0, 0.0, 4.0),
-        V3::new(8.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -8.0),
-        4.0,
-        4.0,
-        0,
-        Some(0),
-    ));
-    t.extend(quad(
-        V3::new(-4.0, 3.5, 4.0),
-        V3::new(8.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -8.0),
-        1.0,
-        1.0,
-        4,
-        None,
-    ));
-    t.extend(quad(
-        V3::new(-4.0, 0.0, 4.0),
-        V3::new(0.0, 0.0, -8.0),
-        V3::new(0.0, 3.5, 0.0),
-        3.0,
-        1.5,
-        1,
-        Some(1),
-    ));
-    t.extend(quad(
-        V3::new(4.0, 0.0, 4.0),
-        V3::new(0.0, 0.0, -8.0),
-        V3::new(0.0, 3.5, 0.0),
-        3.0,
-        3.5 / 2.0,
-        1,
-        Some(2),
-    ));
-    t.extend(quad(
-        V3::new(-4.0, 0.0, -4.0),
-        V3::new(8.0, 0.0, 0.0),
-        V3::new(0.0, 3.5, 0.0),
-        1.0,
-        1.0,
-        2,
-        None,
-    ));
-    t.extend(quad(
-        V3::new(-4.0, 0.0, 4.0),
-        V3::new(8.0, 0.0, 0.0),
-        V3::new(0.0, 3.5, 0.0),
-        1.0,
-        1.0,
-        2,
-        None,
-    ));
+    // Floor, ceiling, textured side walls x = ∓4, mirrors z = −4 and +4.
+    #[rustfmt::skip]
+    let mut t = quads(&[
+        ([-4.0, 0.0, 4.0],  [8.0, 0.0, 0.0],  [0.0, 0.0, -8.0], [4.0, 4.0],       0, Some(0)),
+        ([-4.0, 3.5, 4.0],  [8.0, 0.0, 0.0],  [0.0, 0.0, -8.0], [1.0, 1.0],       4, None),
+        ([-4.0, 0.0, 4.0],  [0.0, 0.0, -8.0], [0.0, 3.5, 0.0],  [3.0, 1.5],       1, Some(1)),
+        ([4.0, 0.0, 4.0],   [0.0, 0.0, -8.0], [0.0, 3.5, 0.0],  [3.0, 3.5 / 2.0], 1, Some(2)),
+        ([-4.0, 0.0, -4.0], [8.0, 0.0, 0.0],  [0.0, 3.5, 0.0],  [1.0, 1.0],       2, None),
+        ([-4.0, 0.0, 4.0],  [8.0, 0.0, 0.0],  [0.0, 3.5, 0.0],  [1.0, 1.0],       2, None),
+    ]);
     t.extend(sphere(V3::new(-1.2, 0.8, -1.0), 0.8, 32, 16, 3));
     t.extend(sphere(V3::new(1.4, 0.6, 0.5), 0.6, 32, 16, 2));
     t.extend(sphere(V3::new(0.3, 0.45, -2.6), 0.45, 24, 12, 2));
@@ -369,17 +297,14 @@ pub fn mirrors() -> Scene {
         camera: camera(V3::new(-2.6, 1.8, 3.0), V3::new(0.8, 1.0, -4.0), 55.0),
         background: V3::ZERO,
         ambient: V3::splat(0.2),
-        lights: vec![
-            Light {
-                position: V3::new(0.0, 3.2, 0.0),
-                color: V3::splat(0.55),
-            },
-            Light {
-                position: V3::new(2.5, 3.0, 2.5),
-                color: V3::splat(0.35),
-            },
+        lights: vec![light([0.0, 3.2, 0.0], 0.55), light([2.5, 3.0, 2.5], 0.35)],
+        materials: vec![
+            diffuse(V3::splat(0.9)),
+            diffuse(V3::splat(0.85)),
+            mirror(0.9, V3::new(1.0, 1.0, 1.0)),
+            mirror(0.85, V3::new(1.0, 0.85, 0.6)),
+            diffuse(V3::new(0.8, 0.8, 0.75)),
         ],
-        materials,
         textures: vec![tiles_texture(), bricks_texture(), grid_texture()],
         triangles: t,
     }
@@ -389,31 +314,12 @@ pub fn mirrors() -> Scene {
 /// of a textured wall.
 #[must_use]
 pub fn glass() -> Scene {
-    let materials = vec![
-        diffuse(V3::splat(0.9)),
-        diffuse(V3::splat(0.9)),
-        glass_mat(),
-        diffuse(V3::new(0.2, 0.6, 0.3)),
-    ];
-    let mut t = Vec::new();
-    t.extend(quad(
-        V3::new(-30.0, 0.0, 10.0),
-        V3::new(60.0, 0.0, 0.0),
-        V3::new(0.0, 0.0, -60.0),
-        20.0,
-        20.0,
-        0,
-        Some(0),
-    ));
-    t.extend(quad(
-        V3::new(-30.0, 0.0, -12.0),
-        V3::new(60.0, 0.0, 0.0),
-        V3::new(0.0, 15.0, 0.0),
-        12.0,
-        15.0 / 2.4,
-        1,
-        Some(2),
-    ));
+    // Floor and back wall.
+    #[rustfmt::skip]
+    let mut t = quads(&[
+        ([-30.0, 0.0, 10.0],  [60.0, 0.0, 0.0], [0.0, 0.0, -60.0], [20.0, 20.0],      0, Some(0)),
+        ([-30.0, 0.0, -12.0], [60.0, 0.0, 0.0], [0.0, 15.0, 0.0],  [12.0, 15.0 / 2.4], 1, Some(2)),
+    ]);
     t.extend(sphere(V3::new(-1.6, 1.0, -2.0), 1.0, 48, 24, 2));
     t.extend(sphere(V3::new(1.2, 0.7, 0.2), 0.7, 40, 20, 2));
     t.extend(boxed(V3::new(2.2, 0.0, -4.5), V3::new(4.2, 2.2, -4.1), 2));
@@ -422,17 +328,13 @@ pub fn glass() -> Scene {
         camera: camera(V3::new(0.0, 2.2, 6.0), V3::new(0.0, 0.8, -3.0), 45.0),
         background: V3::new(0.6, 0.7, 0.85),
         ambient: V3::splat(0.25),
-        lights: vec![
-            Light {
-                position: V3::new(-4.0, 8.0, 6.0),
-                color: V3::splat(0.6),
-            },
-            Light {
-                position: V3::new(5.0, 6.0, -1.0),
-                color: V3::splat(0.3),
-            },
+        lights: vec![light([-4.0, 8.0, 6.0], 0.6), light([5.0, 6.0, -1.0], 0.3)],
+        materials: vec![
+            diffuse(V3::splat(0.9)),
+            diffuse(V3::splat(0.9)),
+            glass_mat(),
+            diffuse(V3::new(0.2, 0.6, 0.3)),
         ],
-        materials,
         textures: vec![tiles_texture(), bricks_texture(), grid_texture()],
         triangles: t,
     }

@@ -142,9 +142,7 @@ pub trait Draw {
     ///
     /// # Errors
     /// The backend's error as text.
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
 }
 
 fn err(e: impl std::fmt::Display) -> String {
@@ -184,10 +182,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     y_fmt: &dyn Fn(&f64) -> String,
-) -> Result<Panel2d<'a, DB>, String>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<Panel2d<'a, DB>, String> {
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(14)
@@ -210,23 +205,25 @@ where
 /// A chart panel over f64 axes.
 type Panel2d<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-/// `root` filled white under `title`: the area below the title.
-fn titled<DB: DrawingBackend>(
+/// `root` filled white under `title`, the area below split into a
+/// `(rows, columns)` grid whose first `n` cells are drawn by `panel(i, cell)`.
+fn draw_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
-) -> Result<DrawingArea<DB, Shift>, String>
-where
-    DB::ErrorType: 'static,
-{
+    grid: (usize, usize),
+    n: usize,
+    mut panel: impl FnMut(usize, &DrawingArea<DB, Shift>) -> Result<(), String>,
+) -> Result<(), String> {
     root.fill(&WHITE).map_err(err)?;
-    root.titled(title, ("sans-serif", 24)).map_err(err)
+    let below = root.titled(title, ("sans-serif", 24)).map_err(err)?;
+    for (i, cell) in below.split_evenly(grid).iter().enumerate().take(n) {
+        panel(i, cell)?;
+    }
+    Ok(())
 }
 
 /// The legend box, upper right.
-fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), String>
-where
-    DB::ErrorType: 'static,
-{
+fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), String> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
@@ -267,10 +264,7 @@ impl Scatter {
         &self,
         area: &DrawingArea<DB, Shift>,
         p: &Panel,
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
+    ) -> Result<(), String> {
         let log_y = self.axes.log_y;
         let floor = self.axes.y_floor;
         let ty = move |y: f64| if log_y { y.max(floor).log10() } else { y };
@@ -350,23 +344,16 @@ impl Scatter {
 }
 
 impl Draw for Scatter {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        let root = titled(root, &self.title)?;
-        let n = self.panels.len().max(1);
-        let (rows, cols) = if n == 1 {
-            (1, 1)
-        } else if n == 2 {
-            (1, 2)
-        } else {
-            (2, n.div_ceil(2))
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let n = self.panels.len();
+        let grid = match n {
+            0 | 1 => (1, 1),
+            2 => (1, 2),
+            _ => (2, n.div_ceil(2)),
         };
-        for (p, a) in self.panels.iter().zip(root.split_evenly((rows, cols))) {
-            self.panel(&a, p)?;
-        }
-        Ok(())
+        draw_panels(root, &self.title, grid, n, |i, a| {
+            self.panel(a, &self.panels[i])
+        })
     }
 }
 
@@ -387,10 +374,7 @@ impl Curves {
         area: &DrawingArea<DB, Shift>,
         title: &str,
         lines: &[Line],
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
+    ) -> Result<(), String> {
         let floor = self.axes.y_floor;
         let t = move |(x, y): (f64, f64)| (x.log10(), y.max(floor).log10());
         let all = || lines.iter().flat_map(|l| l.points.iter().map(|&p| t(p)));
@@ -416,15 +400,11 @@ impl Curves {
 }
 
 impl Draw for Curves {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        let root = titled(root, &self.title)?;
-        let n = self.panels.len().max(1);
-        for ((t, l), a) in self.panels.iter().zip(root.split_evenly((1, n))) {
-            self.panel(&a, t, l)?;
-        }
-        Ok(())
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let n = self.panels.len();
+        draw_panels(root, &self.title, (1, n.max(1)), n, |i, a| {
+            let (title, lines) = &self.panels[i];
+            self.panel(a, title, lines)
+        })
     }
 }

@@ -75,21 +75,15 @@ impl Formula {
         }
     }
 
-    /// The BUDGETS.md call that counts this formula's firmware path.
-    fn budget_call(self) -> Option<&'static str> {
-        match self {
-            Self::Table => Some("table lod"),
-            Self::Cone => None,
-            Self::ConeNormal => Some("cone lod (with n·d)"),
-        }
-    }
-
-    /// The BUDGETS.md call that counts this formula's FAST firmware path.
-    fn budget_call_fast(self) -> Option<&'static str> {
-        match self {
-            Self::Table => Some("table lod FAST"),
-            Self::Cone => None,
-            Self::ConeNormal => Some("cone lod FAST (with n·d)"),
+    /// The BUDGETS.md call that counts this formula's firmware path
+    /// (accurate, or FAST when `fast`).
+    fn budget_call(self, fast: bool) -> Option<&'static str> {
+        match (self, fast) {
+            (Self::Table, false) => Some("table lod"),
+            (Self::Table, true) => Some("table lod FAST"),
+            (Self::Cone, _) => None,
+            (Self::ConeNormal, false) => Some("cone lod (with n·d)"),
+            (Self::ConeNormal, true) => Some("cone lod FAST (with n·d)"),
         }
     }
 }
@@ -106,36 +100,27 @@ fn fixed_hit(h: &Hit) -> FixedHit {
     )
 }
 
-/// `(ns per call, lods)` of the firmware's accurate path.
-fn firmware(f: Formula, inp: &[FixedHit], reps: usize) -> (f64, Vec<f64>) {
+/// `(ns per call, lods)` of one firmware path: its `table` and `cone`
+/// functions (`table_lod`/`cone_lod`, or the FAST pair with the 1024-entry
+/// log2 table without interpolation), passed as function items so each is
+/// timed with its calls inlined as the firmware compiles them.
+fn firmware(
+    f: Formula,
+    inp: &[FixedHit],
+    reps: usize,
+    table: impl Fn(U32F32, Log2Pb) -> Option<Lod>,
+    cone: impl Fn(I32F32, I16F16, Option<U1F31>) -> Lod,
+) -> (f64, Vec<f64>) {
     let l = |x: Lod| x.to_num::<f64>();
     match f {
         Formula::Table => measure(
             inp,
             reps,
-            |(pl, pb, ..)| table_lod(pl, pb),
+            |(pl, pb, ..)| table(pl, pb),
             |o| o.map_or(f64::NAN, l),
         ),
-        Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone_lod(w, d, None), l),
-        Formula::ConeNormal => measure(inp, reps, |(_, _, w, d, c)| cone_lod(w, d, Some(c)), l),
-    }
-}
-
-/// `(ns per call, lods)` of the firmware's FAST path (`table_lod_fast`,
-/// `cone_lod_fast`: 1024-entry log2 table without interpolation).
-fn firmware_fast(f: Formula, inp: &[FixedHit], reps: usize) -> (f64, Vec<f64>) {
-    let l = |x: Lod| x.to_num::<f64>();
-    match f {
-        Formula::Table => measure(
-            inp,
-            reps,
-            |(pl, pb, ..)| table_lod_fast(pl, pb),
-            |o| o.map_or(f64::NAN, l),
-        ),
-        Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone_lod_fast(w, d, None), l),
-        Formula::ConeNormal => {
-            measure(inp, reps, |(_, _, w, d, c)| cone_lod_fast(w, d, Some(c)), l)
-        }
+        Formula::Cone => measure(inp, reps, |(_, _, w, d, _)| cone(w, d, None), l),
+        Formula::ConeNormal => measure(inp, reps, |(_, _, w, d, c)| cone(w, d, Some(c)), l),
     }
 }
 
@@ -234,12 +219,17 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
     let mut out = Vec::new();
     for f in [Formula::Table, Formula::Cone, Formula::ConeNormal] {
         let exact: Vec<f64> = hits.iter().map(|h| f.exact(h)).collect();
-        let mut fw = row(f.name(), "fixed accurate", firmware(f, &fx, reps), &exact);
-        fw.budget_call = f.budget_call().map(|c| (c.to_string(), false));
-        out.push(fw);
-        let mut fast = row(f.name(), "fixed fast", firmware_fast(f, &fx, reps), &exact);
-        fast.budget_call = f.budget_call_fast().map(|c| (c.to_string(), false));
-        out.push(fast);
+        for (fast, precision) in [(false, "fixed accurate"), (true, "fixed fast")] {
+            let lods = if fast {
+                firmware(f, &fx, reps, table_lod_fast, cone_lod_fast)
+            } else {
+                firmware(f, &fx, reps, table_lod, cone_lod)
+            };
+            out.push(Row {
+                budget_call: f.budget_call(fast).map(|c| (c.to_string(), false)),
+                ..row(f.name(), precision, lods, &exact)
+            });
+        }
         for v in [Log2Fx::Lut16Lerp, Log2Fx::Lut256, Log2Fx::Mitchell] {
             out.push(row(
                 f.name(),
@@ -249,7 +239,7 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
             ));
         }
         let mut libm = row(f.name(), "f32 libm", float32(f, false, &fl, reps), &exact);
-        libm.budget_call = f.budget_call().map(|c| (c.to_string(), true));
+        libm.budget_call = f.budget_call(false).map(|c| (c.to_string(), true));
         out.push(libm);
         out.push(row(
             f.name(),

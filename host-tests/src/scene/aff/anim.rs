@@ -498,6 +498,13 @@ mod tests {
             tcb: Tcb::default(),
         }
     }
+    /// Keys about `axis` at times 0, 1, 2, … with the angles `degs`.
+    fn keys_about(axis: V3, degs: &[f64]) -> Vec<RotKey> {
+        degs.iter()
+            .enumerate()
+            .map(|(i, &d)| rk(i as f64, axis, d))
+            .collect()
+    }
     fn close(a: V3, b: V3, eps: f64) -> bool {
         (0..3).all(|i| (a[i] - b[i]).abs() <= eps)
     }
@@ -570,15 +577,7 @@ mod tests {
         // Axis (0, 0, 2) as written: q = (cos 45°, 0, 0, 2 sin 45°), not
         // unit; every key equal so the spline returns q, and step 4
         // normalises the axis: 90° about +z maps x to y and y to −x.
-        let keys = [rk(0., V3::new(0., 0., 2.), 90.); 4];
-        let keys: Vec<_> = keys
-            .iter()
-            .enumerate()
-            .map(|(i, k)| RotKey {
-                time: i as f64,
-                ..*k
-            })
-            .collect();
+        let keys = keys_about(V3::new(0., 0., 2.), &[90.; 4]);
         let r = RotChannel::new(&keys).eval(1.5);
         assert!(close(
             r.vector(V3::new(1., 0., 0.)),
@@ -611,12 +610,7 @@ mod tests {
         // linearly: at s = 0.25, slerp(q_b,q_c) = 22.5°, slerp(A,B) =
         // −22.5 + 0.25·135 = 11.25°, blend h = 2·0.25·0.75 = 0.375 →
         // 22.5 + 0.375·(11.25 − 22.5) = 18.28125°. At s = 0.5 → 45°.
-        let keys = [
-            rk(0., V3::new(0., 0., 1.), 0.),
-            rk(1., V3::new(0., 0., 1.), 0.),
-            rk(2., V3::new(0., 0., 1.), 90.),
-            rk(3., V3::new(0., 0., 1.), 90.),
-        ];
+        let keys = keys_about(V3::new(0., 0., 1.), &[0., 0., 90., 90.]);
         let ch = RotChannel::new(&keys);
         assert!((angle_about_z(&ch.eval(1.25)) - 18.28125).abs() < 1e-9);
         assert!((angle_about_z(&ch.eval(1.5)) - 45.0).abs() < 1e-9);
@@ -629,12 +623,7 @@ mod tests {
         // 350° and 10° are 20° apart as rotations but their quaternions
         // (cos 175°, …) and (cos 5°, …) have a negative dot product; the
         // walk negates key 2 so the midpoint is 0° (= 360°), not 180°.
-        let keys = [
-            rk(0., V3::new(0., 0., 1.), 350.),
-            rk(1., V3::new(0., 0., 1.), 350.),
-            rk(2., V3::new(0., 0., 1.), 10.),
-            rk(3., V3::new(0., 0., 1.), 10.),
-        ];
+        let keys = keys_about(V3::new(0., 0., 1.), &[350., 350., 10., 10.]);
         let a = angle_about_z(&RotChannel::new(&keys).eval(1.5));
         assert!(a.abs() < 1e-9, "{a}");
     }
@@ -643,15 +632,7 @@ mod tests {
     fn non_unit_axes_never_give_nan() {
         // Axis length 1.077 (robots grip_rot2): interpolated w can exceed 1;
         // the clamp keeps the result a finite rotation.
-        let ax = V3::new(0.0, 1.077, 0.0);
-        let keys = [
-            rk(0., ax, 0.),
-            rk(1., ax, 0.),
-            rk(2., ax, 720.),
-            rk(3., ax, 720.),
-            rk(4., ax, 10.),
-            rk(5., ax, 10.),
-        ];
+        let keys = keys_about(V3::new(0.0, 1.077, 0.0), &[0., 0., 720., 720., 10., 10.]);
         let ch = RotChannel::new(&keys);
         for i in 0..=500 {
             let m = ch.eval(i as f64 * 0.01);

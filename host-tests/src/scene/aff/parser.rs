@@ -172,6 +172,21 @@ fn bad_number(path: &Path, t: &Token<'_>, what: &str) -> AffError {
     )
 }
 
+/// The `n` items of a mesh section, each read by `read`; a number/EOF error
+/// names the item (`mesh {item} {i} of {n}`).
+fn mesh_items<T>(
+    src: &mut Src<'_>,
+    n: usize,
+    item: &str,
+    mut read: impl FnMut(&mut Src<'_>) -> Result<T, AffError>,
+) -> Result<Vec<T>, AffError> {
+    let mut v = Vec::with_capacity(reserve(n));
+    for i in 0..n {
+        v.push(read(src).map_err(|e| context(e, || format!("mesh {item} {} of {n}", i + 1)))?);
+    }
+    Ok(v)
+}
+
 /// Adds context (e.g. "vertex 3 of 4") to a number/EOF error.
 fn context(mut e: AffError, ctx: impl FnOnce() -> String) -> AffError {
     match &mut *e.kind {
@@ -712,25 +727,12 @@ impl Parser {
     fn mesh(&mut self, src: &mut Src<'_>) -> Result<(), AffError> {
         src.keyword("vertices")?;
         let nv = src.count("vertex count")?;
-        let mut verts = Vec::with_capacity(reserve(nv));
-        for i in 0..nv {
-            verts.push(
-                src.v3("vertex coordinate")
-                    .map_err(|e| context(e, || format!("mesh vertex {} of {nv}", i + 1)))?,
-            );
-        }
+        let verts = mesh_items(src, nv, "vertex", |s| s.v3("vertex coordinate"))?;
         let mut kw = src.tok("`normals`, `texturecoords` or `triangles`")?;
         let mut normals = None;
         if kw.text == b"normals" {
             let nn = src.count("normal count")?;
-            let mut v = Vec::with_capacity(reserve(nn));
-            for i in 0..nn {
-                v.push(
-                    src.v3("normal component")
-                        .map_err(|e| context(e, || format!("mesh normal {} of {nn}", i + 1)))?,
-                );
-            }
-            normals = Some(v);
+            normals = Some(mesh_items(src, nn, "normal", |s| s.v3("normal component"))?);
             kw = src.tok("`texturecoords` or `triangles`")?;
         }
         let mut uvs = None;
@@ -738,14 +740,9 @@ impl Parser {
             let nt = src.count("texture coordinate count")?;
             let name = src.name("texture name")?;
             let tex = self.texture(src, &name)?;
-            let mut v = Vec::with_capacity(reserve(nt));
-            for i in 0..nt {
-                let ctx = || format!("mesh texture coordinate {} of {nt}", i + 1);
-                v.push([
-                    src.f64("texture coordinate").map_err(|e| context(e, ctx))?,
-                    src.f64("texture coordinate").map_err(|e| context(e, ctx))?,
-                ]);
-            }
+            let v = mesh_items(src, nt, "texture coordinate", |s| {
+                Ok([s.f64("texture coordinate")?, s.f64("texture coordinate")?])
+            })?;
             uvs = Some((v, tex));
             kw = src.tok("`triangles`")?;
         }
