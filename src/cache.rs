@@ -378,9 +378,19 @@ mod tests {
 
     #[test]
     fn morton_interleaves() {
-        assert_eq!(morton2(0, 0), 0);
-        assert_eq!(morton2(1, 0), 1);
-        assert_eq!(morton2(0, 1), 2);
+        // Bit i of x goes to bit 2i, bit i of y to bit 2i + 1 (16-bit
+        // coordinates), one bit at a time.
+        let interleave = |x: u32, y: u32| {
+            (0..16).fold(0u32, |m, i| {
+                m | ((x >> i) & 1) << (2 * i) | ((y >> i) & 1) << (2 * i + 1)
+            })
+        };
+        let coords = (0..=0xFFFF).step_by(257).chain([1, 2, 3, 0xFFFE, 0xFFFF]);
+        for x in coords.clone() {
+            for y in coords.clone() {
+                assert_eq!(morton2(x, y), interleave(x, y), "({x}, {y})");
+            }
+        }
         assert_eq!(morton2(3, 3), 15);
         assert_eq!(morton2(0xFFFF, 0), 0x5555_5555);
     }

@@ -310,6 +310,12 @@ fn check_ptr<T>(p: *const T, may_be_null: bool) -> Result<(), RmStatus> {
     }
 }
 
+/// The camera's pixel spread from its I2F30 `bits`; `BadAngle` unless
+/// `0 < γ < 2` radians.
+fn spread_from_bits(bits: i32) -> Result<PixelSpread, RmStatus> {
+    PixelSpread::from_angle(I2F30::from_bits(bits)).map_err(|_| RmStatus::BadAngle)
+}
+
 /// Computes table entries `start .. start + count` of `entries` (length
 /// `len`) from `tris[0 .. count]` for a camera with pixel spread angle
 /// `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
@@ -331,17 +337,13 @@ pub unsafe extern "C" fn rm_table_update(
     spread: i32,
     stats: *mut RmBuildStats,
 ) -> RmStatus {
-    for c in [
-        check_ptr(entries.cast_const(), len == 0),
-        check_ptr(tris, count == 0),
-        check_ptr(stats.cast_const(), true),
-    ] {
-        if let Err(e) = c {
-            return e;
-        }
-    }
-    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
-        return RmStatus::BadAngle;
+    let checked = check_ptr(entries.cast_const(), len == 0)
+        .and(check_ptr(tris, count == 0))
+        .and(check_ptr(stats.cast_const(), true))
+        .and(spread_from_bits(spread));
+    let spread = match checked {
+        Ok(s) => s,
+        Err(e) => return e,
     };
     let entries: &mut [Log2Pb] = if len == 0 {
         &mut []
@@ -449,11 +451,9 @@ pub extern "C" fn rm_cone_lod(width: i64, delta: i32, n_dot_d: u32) -> i16 {
 /// (→ `Misaligned` if it is not aligned).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_delta(entry_bits: i32, spread: i32, out: *mut i32) -> RmStatus {
-    if let Err(e) = check_ptr(out.cast_const(), false) {
-        return e;
-    }
-    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
-        return RmStatus::BadAngle;
+    let spread = match check_ptr(out.cast_const(), false).and(spread_from_bits(spread)) {
+        Ok(s) => s,
+        Err(e) => return e,
     };
     match Log2Pb::from_bits(entry_bits).delta(&spread) {
         Some(d) => {
@@ -556,11 +556,9 @@ pub unsafe extern "C" fn rm_ray_stack_pop(
 /// `out` is null (→ `NullPointer`) or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPathState) -> RmStatus {
-    if let Err(e) = check_ptr(out.cast_const(), false) {
-        return e;
-    }
-    let Ok(spread) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
-        return RmStatus::BadAngle;
+    let spread = match check_ptr(out.cast_const(), false).and(spread_from_bits(spread)) {
+        Ok(s) => s,
+        Err(e) => return e,
     };
     // SAFETY: non-null, writable (caller).
     unsafe { *out = PathState::primary(&spread, mask).into() };

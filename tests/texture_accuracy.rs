@@ -14,7 +14,7 @@ use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 
 mod common;
-use common::Rng;
+use common::{Rng, random_texture};
 
 /// A generated pyramid with random level 0, owned.
 struct Tex {
@@ -24,13 +24,7 @@ struct Tex {
 
 impl Tex {
     fn random(w: u32, h: u32, levels: u8, seed: u64) -> Self {
-        let g = Geometry::new(w, h, levels).unwrap();
-        let mut buf = vec![0; g.len()];
-        let mut rng = Rng(seed | 1);
-        for t in &mut buf[..(w * h) as usize] {
-            *t = rng.next_u64() as u32;
-        }
-        generate(&g, &mut buf).unwrap();
+        let (g, buf) = random_texture(w, h, levels, seed).unwrap();
         Tex { g, buf }
     }
     fn pyramid(&self) -> Pyramid<'_> {

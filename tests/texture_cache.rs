@@ -9,24 +9,13 @@ use proptest::prelude::*;
 use raymip::cache::{BLOCK, BlockCache, BlockLayout, TexelCache};
 use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
+use raymip::mip::{Geometry, Pyramid, TexelSource, full_levels};
 
 mod common;
-use common::Rng;
-
-fn texture(w: u32, h: u32, seed: u64) -> (Geometry, Vec<Texel>) {
-    let g = Geometry::new(w, h, full_levels(w, h)).unwrap();
-    let mut buf = vec![0; g.len()];
-    let mut rng = Rng(seed | 1);
-    for t in &mut buf[..(w * h) as usize] {
-        *t = rng.next_u64() as u32;
-    }
-    generate(&g, &mut buf).unwrap();
-    (g, buf)
-}
+use common::{Rng, random_texture};
 
 fn compare<const S: usize, const W: usize>(w: u32, h: u32) -> f64 {
-    let (g, buf) = texture(w, h, u64::from(w * h));
+    let (g, buf) = random_texture(w, h, full_levels(w, h), u64::from(w * h)).unwrap();
     let p = Pyramid::new(g, &buf).unwrap();
     let mut rng = Rng(7);
     let mut rate = 0.0;
@@ -164,7 +153,7 @@ fn block_index_dense_for_pot_and_bounded_for_npot() {
 
 #[test]
 fn texel_cache_reads_each_block_once_when_it_fits() {
-    let (g, buf) = texture(16, 16, 3);
+    let (g, buf) = random_texture(16, 16, full_levels(16, 16), 3).unwrap();
     let p = Pyramid::new(g, &buf).unwrap();
     let mut c: TexelCache<Pyramid<'_>, 32, 1> = TexelCache::new(p);
     for _ in 0..3 {

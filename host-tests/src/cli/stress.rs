@@ -119,6 +119,24 @@ fn clamp(s: impl Into<String>) -> Outcome {
 fn value(s: impl Into<String>) -> Outcome {
     Ok((Kind::Value, s.into()))
 }
+/// `err(what)` when a C ABI call returned the documented refusal `want`
+/// and `untouched` holds, else a failure naming the status.
+fn refused(s: RmStatus, want: RmStatus, untouched: bool, what: &str) -> Outcome {
+    if s == want && untouched {
+        err(what)
+    } else {
+        Err(format!("{s:?}"))
+    }
+}
+/// `value(ok)` when `got` is within `tol` of the f64 reference `want`, else
+/// a failure naming `what` and both numbers.
+fn near(what: &str, got: f64, want: f64, tol: f64, ok: String) -> Outcome {
+    if (got - want).abs() <= tol {
+        value(ok)
+    } else {
+        Err(format!("{what}{got} vs f64 {want}"))
+    }
+}
 
 #[derive(Default)]
 struct Runner {
@@ -242,11 +260,7 @@ fn camera(r: &mut Runner) {
                 (Ok(s), true) => {
                     let want = a.to_num::<f64>().log2();
                     let got = s.log2().to_num::<f64>();
-                    if (got - want).abs() <= 1e-4 {
-                        value(format!("log2 γ = {got:.4}"))
-                    } else {
-                        Err(format!("log2 γ {got} vs {want}"))
-                    }
+                    near("log2 γ ", got, want, 1e-4, format!("log2 γ = {got:.4}"))
                 }
                 (o, _) => Err(format!("{o:?}")),
             }
@@ -379,11 +393,8 @@ fn table_geometry(r: &mut Runner) {
             // Pb = sqrt(A_world/A_tex)/γ with A_world = h/2, A_tex = 256²/2.
             let want = ((h / 65536.0).sqrt() / spread().angle().to_num::<f64>()).log2();
             let got = e.to_i16f16().to_num::<f64>();
-            if (got - want).abs() <= 1.0 / 512.0 {
-                value(format!("log2 Pb = {got:.4} (f64 {want:.4})"))
-            } else {
-                Err(format!("log2 Pb {got} vs f64 {want}"))
-            }
+            let ok = format!("log2 Pb = {got:.4} (f64 {want:.4})");
+            near("log2 Pb ", got, want, 1.0 / 512.0, ok)
         },
     );
 }
@@ -402,11 +413,8 @@ fn table_limits(r: &mut Runner) {
             // Edges 2^32: A_world = 2^63, A_tex = 1/2: Pb = 2^32/γ.
             let want = 32.0 - spread().angle().to_num::<f64>().log2();
             let got = e.to_i16f16().to_num::<f64>();
-            if (got - want).abs() <= 1.0 / 512.0 {
-                value(format!("log2 Pb = {got:.4} (f64 {want:.4}), no overflow"))
-            } else {
-                Err(format!("log2 Pb {got}, f64 {want}"))
-            }
+            let ok = format!("log2 Pb = {got:.4} (f64 {want:.4}), no overflow");
+            near("log2 Pb ", got, want, 1.0 / 512.0, ok)
         },
     );
     for (name, w, h) in [("0×256 texture", 0, 256), ("256×0 texture", 256, 0)] {
@@ -479,11 +487,7 @@ fn lods(r: &mut Runner) {
                         let lp = pl.to_num::<f64>().max(2f64.powi(-32)).log2();
                         let want = lod_ref(lp - pb.to_i16f16().to_num::<f64>());
                         let got = l.to_num::<f64>();
-                        if (got - want).abs() <= 2.0 / 256.0 {
-                            value(format!("{got:.4}"))
-                        } else {
-                            Err(format!("{got} vs f64 {want}"))
-                        }
+                        near("", got, want, 2.0 / 256.0, format!("{got:.4}"))
                     }
                     o => Err(format!("{o:?}")),
                 }
@@ -544,12 +548,11 @@ fn cone_lods(r: &mut Runner) {
                     });
                     let raw = d.to_num::<f64>() + lw - ln;
                     let want = lod_ref(raw);
-                    if (got - want).abs() > 2.0 / 256.0 {
-                        Err(format!("{got} vs f64 {want}"))
-                    } else if want != raw {
+                    let within = near("", got, want, 2.0 / 256.0, format!("{got:.4}"))?;
+                    if want != raw {
                         clamp(format!("{got:.4} (saturated)"))
                     } else {
-                        value(format!("{got:.4}"))
+                        Ok(within)
                     }
                 });
             }
@@ -912,57 +915,53 @@ fn texture_limits(r: &mut Runner) {
     });
 }
 
+/// `rm_table_build` of `len` entries at `entries` from no triangles, no
+/// statistics.
+///
+/// # Safety
+/// `entries` is null, misaligned (both refused before any access) or valid
+/// for `len` writes.
+#[allow(unsafe_code)]
+unsafe fn build_empty(entries: *mut i32, len: usize, spread: i32) -> RmStatus {
+    // SAFETY: `entries` as this function's contract; no triangles, no stats.
+    unsafe {
+        ffi::rm_table_build(
+            entries,
+            len,
+            std::ptr::null(),
+            0,
+            spread,
+            std::ptr::null_mut(),
+        )
+    }
+}
+
 #[allow(unsafe_code)]
 fn c_abi(r: &mut Runner) {
     let sp = spread().angle().to_bits();
     r.case("null entries, len 4", "C ABI: rm_table_build", move || {
         // SAFETY: null is a documented input.
-        let s = unsafe {
-            ffi::rm_table_build(
-                std::ptr::null_mut(),
-                4,
-                std::ptr::null(),
-                0,
-                sp,
-                std::ptr::null_mut(),
-            )
-        };
-        if s == RmStatus::NullPointer {
-            err("NullPointer")
-        } else {
-            Err(format!("{s:?}"))
-        }
+        let s = unsafe { build_empty(std::ptr::null_mut(), 4, sp) };
+        refused(s, RmStatus::NullPointer, true, "NullPointer")
     });
     r.case("misaligned entries", "C ABI: rm_table_build", move || {
         let mut raw = [0i32; 4];
         let p = raw.as_mut_ptr().cast::<u8>().wrapping_add(1).cast::<i32>();
         // SAFETY: the misaligned pointer is refused before any access.
-        let s = unsafe { ffi::rm_table_build(p, 2, std::ptr::null(), 0, sp, std::ptr::null_mut()) };
-        if s == RmStatus::Misaligned && raw == [0; 4] {
-            err("Misaligned, nothing written")
-        } else {
-            Err(format!("{s:?}"))
-        }
+        let s = unsafe { build_empty(p, 2, sp) };
+        refused(
+            s,
+            RmStatus::Misaligned,
+            raw == [0; 4],
+            "Misaligned, nothing written",
+        )
     });
     for (name, bad) in [("spread 0", 0), ("spread i32::MIN", i32::MIN)] {
         r.case(name, "C ABI: rm_table_build", move || {
             let mut e = [0i32; 1];
-            // SAFETY: valid pointers.
-            let s = unsafe {
-                ffi::rm_table_build(
-                    e.as_mut_ptr(),
-                    1,
-                    std::ptr::null(),
-                    0,
-                    bad,
-                    std::ptr::null_mut(),
-                )
-            };
-            if s == RmStatus::BadAngle {
-                err("BadAngle")
-            } else {
-                Err(format!("{s:?}"))
-            }
+            // SAFETY: valid pointer, one entry.
+            let s = unsafe { build_empty(e.as_mut_ptr(), 1, bad) };
+            refused(s, RmStatus::BadAngle, true, "BadAngle")
         });
     }
     r.case("untextured entry, null out", "C ABI: rm_table_lod", || {
@@ -1038,11 +1037,12 @@ fn c_abi_lod(r: &mut Runner) {
         let before = buf.clone();
         // SAFETY: `buf` holds `len` texels.
         let s = unsafe { ffi::rm_mip_generate(buf.as_mut_ptr(), buf.len(), 64, 32, 7) };
-        if s == RmStatus::BufferTooShort && buf == before {
-            err("BufferTooShort, buffer untouched")
-        } else {
-            Err(format!("{s:?}"))
-        }
+        refused(
+            s,
+            RmStatus::BufferTooShort,
+            buf == before,
+            "BufferTooShort, buffer untouched",
+        )
     });
 }
 
@@ -1114,11 +1114,7 @@ fn c_abi_sample(r: &mut Runner) {
             };
             let mut out = 0u32;
             let s = sample_once(&short, 0, 0, 0, 0, &mut out);
-            if s == RmStatus::BufferTooShort && out == 0 {
-                err("BufferTooShort")
-            } else {
-                Err(format!("{s:?}"))
-            }
+            refused(s, RmStatus::BufferTooShort, out == 0, "BufferTooShort")
         },
     );
     r.case(

@@ -40,11 +40,8 @@ pub struct Counters {
 
 impl Counters {
     pub(crate) fn add(&mut self, o: &Counters) {
-        self.paths += o.paths;
-        self.rays += o.rays;
-        self.hits += o.hits;
-        self.textured_hits += o.textured_hits;
-        self.untextured_skipped += o.untextured_skipped;
+        add_fields!(self, o; paths, rays, hits, textured_hits, untextured_skipped, bounces,
+            stack_full, saturations, shadow_rays, fetched, fetch_skipped);
         for (a, b) in self.level_hist.iter_mut().zip(o.level_hist.iter()) {
             *a += b;
         }
@@ -54,13 +51,7 @@ impl Counters {
         for (a, b) in self.depth_hist.iter_mut().zip(o.depth_hist.iter()) {
             *a += b;
         }
-        self.bounces += o.bounces;
-        self.stack_full += o.stack_full;
         self.stack_peak = self.stack_peak.max(o.stack_peak);
-        self.saturations += o.saturations;
-        self.shadow_rays += o.shadow_rays;
-        self.fetched += o.fetched;
-        self.fetch_skipped += o.fetch_skipped;
     }
 
     /// Deepest depth with a hit.

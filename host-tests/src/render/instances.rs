@@ -224,17 +224,8 @@ impl FrameStats {
     }
 
     fn add(&mut self, o: &Self) {
-        self.primary += o.primary;
-        self.reflection += o.reflection;
-        self.shadow += o.shadow;
-        self.top_nodes += o.top_nodes;
-        self.instances_tested += o.instances_tested;
-        self.masked += o.masked;
-        self.bottom_nodes += o.bottom_nodes;
-        self.triangles += o.triangles;
-        self.mismatches += o.mismatches;
-        self.render_s += o.render_s;
-        self.cpu_s += o.cpu_s;
+        add_fields!(self, o; primary, reflection, shadow, top_nodes, instances_tested, masked,
+            bottom_nodes, triangles, mismatches, render_s, cpu_s);
     }
 
     /// All rays.

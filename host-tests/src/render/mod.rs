@@ -12,6 +12,14 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
+/// Sums counter structs field by field: `add_fields!(self, o; a, b.c)`
+/// adds `o.a` to `self.a` and `o.b.c` to `self.b.c`.
+macro_rules! add_fields {
+    ($s:ident, $o:ident; $($($f:ident).+),+ $(,)?) => {
+        $( $s.$($f).+ += $o.$($f).+; )+
+    };
+}
+
 pub mod bvh;
 pub mod camera;
 mod counters;

@@ -80,11 +80,7 @@ pub struct TwoLevelStats {
 impl TwoLevelStats {
     /// Sums counters.
     pub fn add(&mut self, o: &Self) {
-        self.top.nodes += o.top.nodes;
-        self.top.prims += o.top.prims;
-        self.bottom.nodes += o.bottom.nodes;
-        self.bottom.prims += o.bottom.prims;
-        self.masked += o.masked;
+        add_fields!(self, o; top.nodes, top.prims, bottom.nodes, bottom.prims, masked);
     }
 }
 

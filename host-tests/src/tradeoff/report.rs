@@ -24,7 +24,7 @@ fn yes(b: bool) -> &'static str {
 }
 
 /// A Markdown table of `header` and `rows` (cells already formatted).
-fn table(header: &[&str], rows: impl Iterator<Item = Vec<String>>) -> String {
+fn table(header: &[String], rows: impl Iterator<Item = Vec<String>>) -> String {
     let mut s = format!(
         "| {} |\n|{}\n",
         header.join(" | "),
@@ -36,105 +36,105 @@ fn table(header: &[&str], rows: impl Iterator<Item = Vec<String>>) -> String {
     s
 }
 
-/// The columns every stage's table ends with: target instructions,
-/// errors, Pareto.
-fn tail(r: &Row, digits: usize) -> [String; 5] {
-    [
-        num(r.instructions_m4, 1),
-        num(r.instructions_rv32, 1),
-        num(Some(r.error_max), digits),
-        num(Some(r.error_rms), digits),
-        yes(r.pareto).into(),
-    ]
-}
-
-/// The LOD table.
-fn lod_table(rows: &[Row]) -> String {
-    let h = [
-        "method",
-        "precision",
-        "host ns/call",
-        "M4 instr",
-        "RV32 instr",
-        "max error (levels)",
-        "RMS error (levels)",
-        "Pareto",
-    ];
+/// A stage's table: the `header` columns (`lead(row)` gives their cells),
+/// then the columns every stage ends with: target instructions, errors
+/// (`error`: against what and in which unit; `digits` decimals), Pareto.
+fn stage_table<'a>(
+    rows: impl Iterator<Item = &'a Row>,
+    header: &[&str],
+    error: &str,
+    digits: usize,
+    lead: impl Fn(&Row) -> Vec<String>,
+) -> String {
+    let mut h: Vec<String> = header.iter().map(|c| (*c).to_string()).collect();
+    h.extend([
+        "M4 instr".into(),
+        "RV32 instr".into(),
+        format!("max error {error}"),
+        format!("RMS error {error}"),
+        "Pareto".into(),
+    ]);
     table(
         &h,
-        rows.iter().filter(|r| r.stage == Stage::Lod).map(|r| {
-            let mut c = vec![r.method.clone(), r.precision.clone(), num(r.time_ns, 2)];
-            c.extend(tail(r, 5));
+        rows.map(|r| {
+            let mut c = lead(r);
+            c.extend([
+                num(r.instructions_m4, 1),
+                num(r.instructions_rv32, 1),
+                num(Some(r.error_max), digits),
+                num(Some(r.error_rms), digits),
+                yes(r.pareto).into(),
+            ]);
             c
         }),
     )
 }
 
+/// The LOD table.
+fn lod_table(rows: &[Row]) -> String {
+    stage_table(
+        rows.iter().filter(|r| r.stage == Stage::Lod),
+        &["method", "precision", "host ns/call"],
+        "(levels)",
+        5,
+        |r| vec![r.method.clone(), r.precision.clone(), num(r.time_ns, 2)],
+    )
+}
+
 /// The filter table.
 fn filter_table(rows: &[Row]) -> String {
-    let h = [
-        "filter",
-        "precision",
-        "frames",
-        "host ns/sample",
-        "max error vs own filter (LSB)",
-        "RMS error vs own filter (LSB)",
-        "M4 instr",
-        "RV32 instr",
-        "max error vs target (LSB)",
-        "RMS error vs target (LSB)",
-        "Pareto",
-    ];
-    table(
-        &h,
-        rows.iter().filter(|r| r.stage == Stage::Filter).map(|r| {
-            let mut c = vec![
+    stage_table(
+        rows.iter().filter(|r| r.stage == Stage::Filter),
+        &[
+            "filter",
+            "precision",
+            "frames",
+            "host ns/sample",
+            "max error vs own filter (LSB)",
+            "RMS error vs own filter (LSB)",
+        ],
+        "vs target (LSB)",
+        3,
+        |r| {
+            vec![
                 r.filter.clone().unwrap_or_default(),
                 r.precision.clone(),
                 r.frames.to_string(),
                 num(r.time_ns, 2),
                 num(r.own_error_max, 3),
                 num(r.own_error_rms, 3),
-            ];
-            c.extend(tail(r, 3));
-            c
-        }),
+            ]
+        },
     )
 }
 
 /// The frame table of one scene.
 fn frame_table(rows: &[Row], scene: &str) -> String {
-    let h = [
-        "method",
-        "precision",
-        "filter",
-        "frames",
-        "ms/frame",
-        "PSNR vs truth (dB)",
-        "PSNR vs f64 (dB)",
-        "M4 instr",
-        "RV32 instr",
-        "max error (LSB)",
-        "RMS error (LSB)",
-        "Pareto",
-    ];
-    table(
-        &h,
+    stage_table(
         rows.iter()
-            .filter(|r| r.stage == Stage::Frame && r.scene.as_deref() == Some(scene))
-            .map(|r| {
-                let mut c = vec![
-                    r.method.clone(),
-                    r.precision.clone(),
-                    r.filter.clone().unwrap_or_default(),
-                    r.frames.to_string(),
-                    num(r.time_ms, 2),
-                    num(r.psnr_truth_db, 2),
-                    num(r.psnr_float_db, 2),
-                ];
-                c.extend(tail(r, 2));
-                c
-            }),
+            .filter(|r| r.stage == Stage::Frame && r.scene.as_deref() == Some(scene)),
+        &[
+            "method",
+            "precision",
+            "filter",
+            "frames",
+            "ms/frame",
+            "PSNR vs truth (dB)",
+            "PSNR vs f64 (dB)",
+        ],
+        "(LSB)",
+        2,
+        |r| {
+            vec![
+                r.method.clone(),
+                r.precision.clone(),
+                r.filter.clone().unwrap_or_default(),
+                r.frames.to_string(),
+                num(r.time_ms, 2),
+                num(r.psnr_truth_db, 2),
+                num(r.psnr_float_db, 2),
+            ]
+        },
     )
 }
 
