@@ -8,6 +8,8 @@
 //! access in the `unsafe` glue is a crash.
 #![no_main]
 
+mod common;
+
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
@@ -291,12 +293,7 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
 }
 
 fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
-    let (w, h) = if u.ratio(7, 8)? {
-        (u.int_in_range(1..=24u32)?, u.int_in_range(1..=24u32)?)
-    } else {
-        (u.arbitrary()?, u.arbitrary()?)
-    };
-    let levels = u.arbitrary::<u8>()?;
+    let (w, h, levels) = common::pyramid_shape(u, 24)?;
     let n = rm_pyramid_len(w, h, levels);
     assert_eq!(n, pyramid_len(w, h, levels));
     if n > 4096 {

@@ -8,6 +8,8 @@
 //! direct one, a short buffer left unwritten.
 #![no_main]
 
+mod common;
+
 use fixed::types::{I16F16, I32F32, U1F31};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
@@ -197,13 +199,7 @@ fn check_clamped(l: Lod, levels: u8) {
 }
 
 fn pyramid(u: &mut Unstructured) -> Result<()> {
-    // Small sides mostly (generation is O(texels)), any sides sometimes.
-    let (w, h) = if u.ratio(7, 8)? {
-        (u.int_in_range(1..=40u32)?, u.int_in_range(1..=40u32)?)
-    } else {
-        (u.arbitrary()?, u.arbitrary()?)
-    };
-    let levels = u.arbitrary::<u8>()?;
+    let (w, h, levels) = common::pyramid_shape(u, 40)?;
     let want = pyramid_len(w, h, levels);
     let g = match Geometry::new(w, h, levels) {
         Ok(g) => g,
