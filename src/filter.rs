@@ -203,26 +203,25 @@ impl Pow2Level {
     /// level's are; levels past the top repeat the top level), else
     /// [`Pow2Level::OFF`] throughout.
     fn table(g: &Geometry) -> [Self; MAX_LEVELS as usize + 1] {
-        Self::pow2_table(g).unwrap_or([Self::OFF; MAX_LEVELS as usize + 1])
-    }
-
-    fn pow2_table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize + 1]> {
-        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
-            return None;
-        }
         let mut t = [Self::OFF; MAX_LEVELS as usize + 1];
-        for (k, e) in (0u8..).zip(t.iter_mut()) {
-            let (w, h) = g.level_size(k);
-            *e = Self {
-                offset: u32::try_from(g.level_offset(k)).ok()?,
-                w,
-                h,
-                cx: pow2_wrap_constant(w),
-                cy: pow2_wrap_constant(h),
-                log2_len: w.trailing_zeros() + h.trailing_zeros(),
-            };
+        if g.width().is_power_of_two() && g.height().is_power_of_two() {
+            for (k, e) in (0u8..).zip(t.iter_mut()) {
+                let (w, h) = g.level_size(k);
+                let (kx, ky) = (w.trailing_zeros(), h.trailing_zeros());
+                let Ok(offset) = u32::try_from(g.level_offset(k)) else {
+                    return [Self::OFF; MAX_LEVELS as usize + 1];
+                };
+                *e = Self {
+                    offset,
+                    w,
+                    h,
+                    cx: wrap_constant_log2(kx),
+                    cy: wrap_constant_log2(ky),
+                    log2_len: kx + ky,
+                };
+            }
         }
-        Some(t)
+        t
     }
 
     /// The level's first texel index: `offset` sign-extended, so that
@@ -264,11 +263,11 @@ impl Pow2Level {
     }
 }
 
-/// `(2¹⁹ − 2³¹)/size` as wrapping `u32` for a power-of-two `size ≤ 2¹⁹`
-/// (exact: the numerator is a multiple of 2¹⁹).
-fn pow2_wrap_constant(size: u32) -> u32 {
+/// `(2¹⁹ − 2³¹)/2^k` as wrapping `u32` for a power-of-two side `2^k`,
+/// `k ≤ 19` (exact: the numerator is a multiple of 2¹⁹).
+fn wrap_constant_log2(k: u32) -> u32 {
     const C: i32 = (1 << 19) + i32::MIN; // 2¹⁹ − 2³¹
-    C.wrapping_shr(size.trailing_zeros()) as u32
+    C.wrapping_shr(k) as u32
 }
 
 /// Bilinear footprint on one axis of a power-of-two side `size = 2^k`
@@ -784,7 +783,7 @@ mod tests {
                 ] {
                     let c = TexCoord::from_bits(bits);
                     assert_eq!(
-                        pow2_wrap_taps(c, size, pow2_wrap_constant(size)),
+                        pow2_wrap_taps(c, size, wrap_constant_log2(k)),
                         linear_taps(c, size, Address::Wrap),
                         "k {k} bits {bits:#x}"
                     );
