@@ -444,6 +444,30 @@ impl<S: TexelSource> Sampler<S> {
     #[cfg(feature = "trilinear")]
     #[inline(always)]
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        self.trilinear_counted(u, v, lod, |s, one_level| {
+            if one_level {
+                s.fetched += 4;
+                s.skipped += 4;
+            } else {
+                s.fetched += 8;
+            }
+        })
+    }
+
+    /// [`sample_trilinear`](Self::sample_trilinear) with the fetch counting
+    /// left to `count(stats, one_level)`, called once: `one_level` when the
+    /// blend weight is 0 (one level read, 4 texel reads skipped), else 8
+    /// texels were read. (Called in each branch, where the single call's
+    /// counter updates cost least; the batch counts once per batch.)
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    fn trilinear_counted(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mut count: impl FnMut(&mut FetchStats, bool),
+    ) -> Texel {
         let bits = self.lod_bits(lod);
         // `bits ≤ 3840`: the mask changes nothing and tells the compiler
         // that `lower + 1 ≤ 16` indexes the level table without a check,
@@ -453,13 +477,12 @@ impl<S: TexelSource> Sampler<S> {
         let (ta, fxa, fya) = self.footprint(u, v, lower);
         let a = bilerp::bilerp_in_range(ta, fxa, fya);
         if t == 0 {
-            self.stats.fetched += 4;
-            self.stats.skipped += 4;
+            count(&mut self.stats, true);
             bilerp::round_wide_in_range(a)
         } else {
             let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
             let b = bilerp::bilerp_in_range(tb, fxb, fyb);
-            self.stats.fetched += 8;
+            count(&mut self.stats, false);
             bilerp::blend_wide_in_range(a, b, t)
         }
     }
@@ -467,8 +490,14 @@ impl<S: TexelSource> Sampler<S> {
     /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
     #[inline(always)]
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-        let level = Self::nearest_level(self.lod_bits(lod));
         self.stats.fetched += 4;
+        self.bilinear_uncounted(u, v, lod)
+    }
+
+    /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
+    #[inline(always)]
+    fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let level = Self::nearest_level(self.lod_bits(lod));
         let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
         bilerp::bilerp_rounded(t, fx, fy)
     }
@@ -519,10 +548,29 @@ impl<S: TexelSource> Sampler<S> {
                 }
             };
         }
+        // `n ≤ isize::MAX`: the casts to `u64` are exact.
+        let texels = n as u64 * 4;
         match mode {
+            // The two filtered modes count once per batch (the same totals
+            // as per call), keeping the counters out of the loop.
             #[cfg(feature = "trilinear")]
-            Mode::Trilinear => each!(sample_trilinear),
-            Mode::BilinearNearestLevel => each!(sample_bilinear),
+            Mode::Trilinear => {
+                let mut one_level = 0usize;
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.trilinear_counted(u, v, lod, |_, one| {
+                        one_level += usize::from(one);
+                    });
+                }
+                let skipped = one_level as u64 * 4;
+                self.stats.fetched += 2 * texels - skipped;
+                self.stats.skipped += skipped;
+            }
+            Mode::BilinearNearestLevel => {
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.bilinear_uncounted(u, v, lod);
+                }
+                self.stats.fetched += texels;
+            }
             Mode::Nearest => each!(sample_nearest),
             #[cfg(feature = "trilinear")]
             Mode::NearestTexelLinearLevel => each!(sample_nearest_linear_level),
@@ -788,6 +836,65 @@ mod tests {
                         "k {k} bits {bits:#x}"
                     );
                 }
+            }
+        }
+    }
+
+    /// `sample_batch` gives the results and the fetch counters of single
+    /// calls for every mode (lods with and without a fraction, so both
+    /// trilinear branches and their counting), writes `min(hits, out)`
+    /// results and leaves the rest of `out` alone.
+    #[test]
+    fn batch_equals_single_calls() {
+        use crate::cache::TexelCache;
+        let g = Geometry::new(16, 8, 4).unwrap();
+        let mut buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(0x9E37_79B9))
+            .collect();
+        generate(&g, &mut buf).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let hits: Vec<(TexCoord, TexCoord, Lod)> = (0..50u32)
+            .map(|i| {
+                let lod = if i % 3 == 0 {
+                    i32::from(i as u8 % 4) * 256
+                } else {
+                    (i * 37 % 1000) as i32 - 100
+                };
+                (
+                    TexCoord::from_bits(i64::from(i.wrapping_mul(0x2F6B_1E3D)) << 1),
+                    TexCoord::from_bits(-i64::from(i.wrapping_mul(0x61C8_8647))),
+                    Lod::from_bits(lod as i16),
+                )
+            })
+            .collect();
+        for address in [Address::Wrap, Address::Clamp] {
+            for mode in [
+                Mode::Trilinear,
+                Mode::BilinearNearestLevel,
+                Mode::Nearest,
+                Mode::NearestTexelLinearLevel,
+            ] {
+                let mut single = Sampler::new(p, address);
+                let want: Vec<Texel> = hits
+                    .iter()
+                    .map(|&(u, v, lod)| single.sample(u, v, lod, mode))
+                    .collect();
+                let mut batch = Sampler::new(p, address);
+                let mut out = vec![7; hits.len() + 3];
+                assert_eq!(batch.sample_batch(&hits, mode, &mut out), hits.len());
+                assert_eq!(&out[..hits.len()], &want[..], "{address:?} {mode:?}");
+                assert_eq!(&out[hits.len()..], &[7; 3]);
+                assert_eq!(batch.stats(), single.stats(), "{address:?} {mode:?}");
+                // Shorter output: only that many hits, counted as such.
+                let mut short = Sampler::new(TexelCache::<_, 4, 2>::new(p), address);
+                let mut out = [0; 10];
+                assert_eq!(short.sample_batch(&hits, mode, &mut out), 10);
+                assert_eq!(&out[..], &want[..10]);
+                let mut ten = Sampler::new(p, address);
+                for &(u, v, lod) in &hits[..10] {
+                    ten.sample(u, v, lod, mode);
+                }
+                assert_eq!(short.stats(), ten.stats());
             }
         }
     }
