@@ -82,8 +82,8 @@ BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12}, "trilinear": {"m4": 12
 CEILINGS = {
     "lod": {"m4": 31, "rv": 52, "rvzbb": 33},
     "cone_lod": {"m4": 65, "rv": 105, "rvzbb": 68},
-    "bilinear": {"m4": 154, "rv": 179, "rvzbb": 175},
-    "trilinear": {"m4": 310, "rv": 348, "rvzbb": 345},
+    "bilinear": {"m4": 123, "rv": 178, "rvzbb": 172},
+    "trilinear": {"m4": 263, "rv": 354, "rvzbb": 349},
     "lod_fast": {"m4": 20, "rv": 42, "rvzbb": 26},
     "cone_lod_fast": {"m4": 40, "rv": 92, "rvzbb": 54},
 }
@@ -116,21 +116,40 @@ MISSED = {
         "clamps; on RV32IMAC twice the soft `clz`."
     ),
     "bilinear": (
-        "Bit-identical results need 12-bit weights, so two channels cannot share a 32-bit "
-        "register (255·4096 needs 20 bits per lane): the filter is per channel, 4 extracts and 4 "
-        "multiply-accumulates with the four 24-bit corner weights (4 more multiplies) plus the "
-        "rounding add, shift and merge. Addressing (power-of-two wrap, set up once): the level's "
-        "record (offset, width, height, two constants: 3 loads), per axis one add, one `umull` "
-        "(index in the high word, weight in the low word), mask and increment; two row "
-        "addresses (`mla`), four bounds-checked texel loads (`cmp`, `ite`, `ldrlo`, `movhs`: the "
-        "slice length is not known to the compiler), the lod clamp and nearest level, the 64-bit "
-        "fetch counter (`ldrd`, `adds`, `adc`, `strd`), and a frame saving eight registers."
+        "Bit-identical results need the 12-bit weights: a channel times a weight needs 20 bits, so "
+        "two channels cannot share a 32-bit register, and a FAST path that packs them (16-bit lanes, "
+        "so 8-bit weights) loses up to 255/512 ≈ 0.5 LSB per axis to the position rounding alone: "
+        "with the final rounding ½ its bound would be 1.5 LSB, above the 1.0 LSB a FAST path may "
+        "have, so there is none. Per call on the M4 (111): the filter, 53 — the four corner weights "
+        "from one multiply (`w₁₁ = fx·fy`, the others by `sub`/`rsb` with shifted operands; 9 with "
+        "the two weight extracts), per channel four byte extracts (`uxtb`/`ubfx`/`lsr`) and four "
+        "`mul`/`mla` (32), four rounding adds, 8 to merge the bytes; the addressing, 22 — per axis "
+        "coordinate plus level constant and one `umull` (index in the high word, weight in the low "
+        "word), the wrapped neighbour `(x₀ + 1) & (w − 1)` (3), `y₀·w + x` by two `mla`, the four "
+        "indices masked to the level (`and` ×4, `add w` ×2) and four plain `ldr` (no per-texel "
+        "check); one bounds check of the level, 6 (`1 << log2_len`, `adds`/`bhs`, `cmp`/`bhi`); the "
+        "level record, 6 (two address adds, four loads); the lod clamped to the stored levels and "
+        "the nearest level, 8; the 64-bit fetch counter, 4 (`ldrd`, `adds`, `adc`, `strd`); "
+        "argument loads and one spill, 4; the frame, 7 (nine registers saved). Reaching 90 needs 21 "
+        "fewer, more than the frame, counter, lod and level check together, or fewer than one "
+        "extract and one multiply-accumulate per texel and channel. RV32IMAC: no multiply-accumulate "
+        "(`mul` + `add`), no bit-field extract (channels 1 and 2 cost `slli` + `srli`), no "
+        "scaled-index load (every texel address is `and`, `slli`, `add`), the 64-bit product is "
+        "`mul` + `mulhu`, the counter's carry an `sltu`; Zbb changes none of these."
     ),
     "trilinear": (
-        "Two bilinear levels as above (the 8.16 intermediate of each level must be kept to stay "
-        "bit-identical, so the corner weights cannot be merged with the level weight) and a "
-        "per-channel blend (`mul`, `mla`, shift, merge). The 16 intermediate values exceed the "
-        "registers: the loads/stores beyond the 8 texel reads are spills."
+        "Two bilinear levels as above, each rounded to 8.16 (`add #128`, `lsr #8` per channel: the "
+        "intermediate must be kept to stay bit-identical, so the level weight cannot be folded into "
+        "the corner weights), then per channel the blend `2²³ + a·(256 − t) + b·t` (`mul`, `mla`, "
+        "the add folded into the merge). The second level's record sits next to the first (a "
+        "17-entry table: no second index computation). On the M4 (239): 48 multiplies (2 × 18 in "
+        "the filters, 8 in the blend, 4 `umull` for the taps), 46 extracts and shifts, and 25 "
+        "spill stores and reloads: the first level's four 8.16 values, the second level's four "
+        "texels and four weights and the four sums exceed the 13 usable registers. Without spills "
+        "and frame the filter arithmetic (2 × 41 for the two levels without their merges, 8 blend, "
+        "8 merge, 1 for `256 − t`) and two addressings (2 × ~34 with the level check) already "
+        "exceed 150. RV32IMAC as for bilinear, twice, and all 12 callee-saved registers are saved "
+        "and restored (24 loads/stores)."
     ),
 }
 

@@ -161,31 +161,56 @@ pub struct Sampler<S: TexelSource> {
     /// `clamp_lod(Lod::MAX, levels)` in I8F8 bits: the top stored level.
     top_lod: i16,
     /// Per-level addressing when every level side is a power of two and
-    /// the addressing is [`Address::Wrap`] (set up by [`Sampler::new`]).
-    pow2_wrap: Option<[Pow2Level; MAX_LEVELS as usize]>,
+    /// the addressing is [`Address::Wrap`] (set up by [`Sampler::new`]);
+    /// otherwise every entry is [`Pow2Level::OFF`].
+    pow2_wrap: [Pow2Level; MAX_LEVELS as usize + 1],
 }
 
 /// Addressing of one level of a power-of-two texture under
 /// [`Address::Wrap`]: the level's offset in texels, its width and height
-/// (`2^k ≤ 2¹⁵`) and the per-axis constant `c = (2¹⁹ − 2³¹)/2^k` of
-/// [`pow2_wrap_taps`] (wrapping `u32`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// (`2^k ≤ 2¹⁵`), `log2(width·height)` and the per-axis constant
+/// `c = (2¹⁹ − 2³¹)/2^k` of [`pow2_wrap_taps`] (wrapping `u32`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Pow2Level {
+    /// Offset of the level in the texel slice (`< 2³¹`); `u32::MAX` for
+    /// [`Pow2Level::OFF`].
     offset: u32,
     w: u32,
     h: u32,
     cx: u32,
     cy: u32,
+    /// `log2(w·h) ≤ 30`: the level holds `1 << log2_len` texels.
+    log2_len: u32,
 }
 
 impl Pow2Level {
+    /// No power-of-two addressing: the offset `u32::MAX`, read as the
+    /// level start `usize::MAX` (sign-extended, [`Pow2Level::start`]),
+    /// never lies in a slice (the range end wraps below its start),
+    /// so [`Pow2Level::footprint`] returns `None` and the sampler takes
+    /// the generic path. A table of these costs the per-hit path no test
+    /// of its own.
+    const OFF: Self = Self {
+        offset: u32::MAX,
+        w: 0,
+        h: 0,
+        cx: 0,
+        cy: 0,
+        log2_len: 0,
+    };
+
     /// The table for `g` when both sides are powers of two (then every
-    /// level's are); levels past the top repeat the top level.
-    fn table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize]> {
+    /// level's are; levels past the top repeat the top level), else
+    /// [`Pow2Level::OFF`] throughout.
+    fn table(g: &Geometry) -> [Self; MAX_LEVELS as usize + 1] {
+        Self::pow2_table(g).unwrap_or([Self::OFF; MAX_LEVELS as usize + 1])
+    }
+
+    fn pow2_table(g: &Geometry) -> Option<[Self; MAX_LEVELS as usize + 1]> {
         if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
             return None;
         }
-        let mut t = [Self::default(); MAX_LEVELS as usize];
+        let mut t = [Self::OFF; MAX_LEVELS as usize + 1];
         for (k, e) in (0u8..).zip(t.iter_mut()) {
             let (w, h) = g.level_size(k);
             *e = Self {
@@ -194,9 +219,48 @@ impl Pow2Level {
                 h,
                 cx: pow2_wrap_constant(w),
                 cy: pow2_wrap_constant(h),
+                log2_len: w.trailing_zeros() + h.trailing_zeros(),
             };
         }
         Some(t)
+    }
+
+    /// The level's first texel index: `offset` sign-extended, so that
+    /// [`Pow2Level::OFF`]'s `u32::MAX` becomes `usize::MAX` on every target
+    /// and real offsets (`< 2³¹`, the [`Geometry`] bound) are unchanged (no
+    /// instruction on a 32-bit target).
+    #[inline(always)]
+    fn start(&self) -> usize {
+        self.offset as i32 as isize as usize
+    }
+
+    /// The 2×2 footprint at `(u, v)` in this level of `texels` and its
+    /// weights `(fx, fy)`, as [`linear_taps`] and [`Pyramid::get`](crate::mip::Pyramid::get)
+    /// give them; `None` if the slice is shorter than the level (a
+    /// [`Pyramid`](crate::mip::Pyramid) rules that out). One bounds check for
+    /// the level (`offset + 2^log2_len ≤ len`); the four indices are
+    /// masked with `2^log2_len − 1`, which lets the compiler drop the
+    /// per-texel checks (it changes no index: each is below `w·h`).
+    #[inline(always)]
+    fn footprint(
+        &self,
+        texels: &[Texel],
+        u: TexCoord,
+        v: TexCoord,
+    ) -> Option<([Texel; 4], u32, u32)> {
+        let n = 1usize << (self.log2_len & 31);
+        let start = self.start();
+        let level = texels.get(start..start.wrapping_add(n))?;
+        let m = n - 1;
+        let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.cx);
+        let (y0, _, fy) = pow2_wrap_taps(v, self.h, self.cy);
+        let row0 = y0.wrapping_mul(self.w) as usize;
+        let w = self.w as usize;
+        let i00 = row0.wrapping_add(x0 as usize) & m;
+        let i10 = row0.wrapping_add(x1 as usize) & m;
+        let i01 = i00.wrapping_add(w) & m;
+        let i11 = i10.wrapping_add(w) & m;
+        Some(([level[i00], level[i10], level[i01], level[i11]], fx, fy))
     }
 }
 
@@ -328,7 +392,7 @@ impl<S: TexelSource> Sampler<S> {
         let geometry = source.geometry();
         let pow2_wrap = match address {
             Address::Wrap => Pow2Level::table(&geometry),
-            Address::Clamp => None,
+            Address::Clamp => [Pow2Level::OFF; MAX_LEVELS as usize + 1],
         };
         Self {
             source,
@@ -379,29 +443,34 @@ impl<S: TexelSource> Sampler<S> {
     /// `floor(lod) + 1`, blended by `frac(lod)` (one level when the
     /// fraction is 0). Feature `trilinear`.
     #[cfg(feature = "trilinear")]
-    #[inline]
+    #[inline(always)]
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let bits = self.lod_bits(lod);
-        let lower = (bits >> 8) as u8;
+        // `bits ≤ 3840`: the mask changes nothing and tells the compiler
+        // that `lower + 1 ≤ 16` indexes the level table without a check,
+        // next to `lower`'s entry (one address for both levels).
+        let lower = usize::from(bits >> 8) & 15;
         let t = u32::from(bits & 0xFF);
-        let a = self.bilinear_wide(u, v, lower);
+        let (ta, fxa, fya) = self.footprint(u, v, lower);
+        let a = bilerp::bilerp_in_range(ta, fxa, fya);
         if t == 0 {
             self.stats.fetched += 4;
             self.stats.skipped += 4;
             bilerp::round_wide_in_range(a)
         } else {
-            let b = self.bilinear_wide(u, v, lower + 1);
+            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
+            let b = bilerp::bilerp_in_range(tb, fxb, fyb);
             self.stats.fetched += 8;
             bilerp::blend_wide_in_range(a, b, t)
         }
     }
 
     /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
-    #[inline]
+    #[inline(always)]
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let level = Self::nearest_level(self.lod_bits(lod));
         self.stats.fetched += 4;
-        let (t, fx, fy) = self.footprint(u, v, level);
+        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
         bilerp::bilerp_rounded(t, fx, fy)
     }
 
@@ -435,7 +504,8 @@ impl<S: TexelSource> Sampler<S> {
     /// `hits[i] = (u, v, lod)` with filter `mode`, for
     /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
     /// Same results and fetch counters as `n` single calls; never panics.
-    #[inline]
+    /// Always inlined, so a constant `mode` compiles to its loop alone.
+    #[inline(always)]
     pub fn sample_batch(
         &mut self,
         hits: &[(TexCoord, TexCoord, Lod)],
@@ -491,28 +561,20 @@ impl<S: TexelSource> Sampler<S> {
 
     /// The 2×2 footprint at `level` and its weights `(fx, fy)` (counted in
     /// [`FetchStats::fetched`] by the caller). Power-of-two textures under
-    /// [`Address::Wrap`] read from memory with one address computation per
-    /// footprint ([`pow2_wrap_taps`]); every other case goes through the
-    /// source's [`TexelSource::footprint`]. Both give the same texels.
+    /// [`Address::Wrap`] read from memory with one address computation and
+    /// one bounds check per footprint ([`Pow2Level::footprint`]); every
+    /// other case (and a texel slice shorter than the level) goes through
+    /// the source's [`TexelSource::footprint`]. Both give the same texels.
+    /// `level ≤ 16` (the callers mask it; the table has an entry for 16,
+    /// a copy of 15, so that `level + 1` needs no check either).
     #[inline(always)]
-    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: u8) -> ([Texel; 4], u32, u32) {
-        if let (Some(levels), Some(texels)) = (&self.pow2_wrap, self.source.texel_slice()) {
-            // `level ≤ top level < MAX_LEVELS = 16`: the mask keeps the read
-            // in bounds without a check.
-            let l = levels[usize::from(level) & 15];
-            let (x0, x1, fx) = pow2_wrap_taps(u, l.w, l.cx);
-            let (y0, y1, fy) = pow2_wrap_taps(v, l.h, l.cy);
-            let row0 = l.offset.wrapping_add(y0.wrapping_mul(l.w));
-            let row1 = l.offset.wrapping_add(y1.wrapping_mul(l.w));
-            let get = |i: u32| texels.get(i as usize).copied().unwrap_or(0);
-            let t = [
-                get(row0.wrapping_add(x0)),
-                get(row0.wrapping_add(x1)),
-                get(row1.wrapping_add(x0)),
-                get(row1.wrapping_add(x1)),
-            ];
-            return (t, fx, fy);
+    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Texel; 4], u32, u32) {
+        if let Some(texels) = self.source.texel_slice()
+            && let Some(f) = self.pow2_wrap[level].footprint(texels, u, v)
+        {
+            return f;
         }
+        let level = level as u8;
         let (w, h) = self.geometry.level_size(level);
         let (x0, x1, fx) = linear_taps(u, w, self.address);
         let (y0, y1, fy) = linear_taps(v, h, self.address);
@@ -521,17 +583,12 @@ impl<S: TexelSource> Sampler<S> {
 
     /// Bilinear value at `level` in 8.16 per channel, not counted in the
     /// fetch statistics (the caller counts).
-    #[inline(always)]
-    fn bilinear_wide(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
-        let (t, fx, fy) = self.footprint(u, v, level);
-        bilerp::bilerp_in_range(t, fx, fy)
-    }
-
     /// Bilinear value at `level` in 8.16 per channel (4 texels counted).
     #[inline(always)]
     pub(crate) fn bilinear(&mut self, u: TexCoord, v: TexCoord, level: u8) -> Wide {
         self.stats.fetched += 4;
-        self.bilinear_wide(u, v, level)
+        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+        bilerp::bilerp_in_range(t, fx, fy)
     }
 
     /// Nearest texel at `level`.
@@ -736,6 +793,47 @@ mod tests {
         }
     }
 
+    /// A source whose texel slice is shorter than a level (which a
+    /// `Pyramid` rules out) falls back to the generic path for that level
+    /// and gives the same results as reading through `footprint`.
+    #[test]
+    fn short_texel_slice_falls_back_to_generic_path() {
+        struct Short<'a>(Pyramid<'a>, usize);
+        impl TexelSource for Short<'_> {
+            fn geometry(&self) -> Geometry {
+                self.0.geometry()
+            }
+            fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+                self.0.texel(level, x, y)
+            }
+            fn texel_slice(&self) -> Option<&[Texel]> {
+                self.0.texel_slice().map(|t| &t[..self.1])
+            }
+        }
+        let g = Geometry::new(8, 4, 3).unwrap();
+        let mut buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(0x9E37_79B9))
+            .collect();
+        generate(&g, &mut buf).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut reference = Sampler::new(p, Address::Wrap);
+        // Level 0 whole, level 1 cut short, level 2 missing.
+        for len in [0, 20, 33, g.len()] {
+            let mut short = Sampler::new(Short(p, len), Address::Wrap);
+            for i in 0..200u32 {
+                let u = TexCoord::from_bits(i64::from(i.wrapping_mul(0x2F6B_1E3D)));
+                let v = TexCoord::from_bits(i64::from(i.wrapping_mul(0x61C8_8647)) << 2);
+                let lod = Lod::from_bits((i * 7 % 700) as i16);
+                for mode in [Mode::Trilinear, Mode::BilinearNearestLevel] {
+                    assert_eq!(
+                        short.sample(u, v, lod, mode),
+                        reference.sample(u, v, lod, mode)
+                    );
+                }
+            }
+        }
+    }
+
     /// The power-of-two wrap path (addresses computed by the sampler) and
     /// the generic path through a cache (`TexelSource::footprint`, no
     /// texel slice) give the same texels for every mode.
@@ -756,7 +854,7 @@ mod tests {
             generate(&g, &mut buf).unwrap();
             let p = Pyramid::new(g, &buf).unwrap();
             let mut fast = Sampler::new(p, Address::Wrap);
-            assert!(fast.pow2_wrap.is_some());
+            assert_ne!(fast.pow2_wrap[0], Pow2Level::OFF);
             let mut generic = Sampler::new(TexelCache::<_, 4, 2>::new(p), Address::Wrap);
             let mut x = 12345u64;
             for _ in 0..if cfg!(miri) { 20 } else { 3000 } {
@@ -784,17 +882,15 @@ mod tests {
         // Non-power-of-two sides or clamp: no table.
         let g = Geometry::new(6, 4, 2).unwrap();
         let buf = vec![0; g.len()];
-        assert!(
-            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Wrap)
-                .pow2_wrap
-                .is_none()
+        assert_eq!(
+            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Wrap).pow2_wrap,
+            [Pow2Level::OFF; 17]
         );
         let g = Geometry::new(8, 4, 2).unwrap();
         let buf = vec![0; g.len()];
-        assert!(
-            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Clamp)
-                .pow2_wrap
-                .is_none()
+        assert_eq!(
+            Sampler::new(Pyramid::new(g, &buf).unwrap(), Address::Clamp).pow2_wrap,
+            [Pow2Level::OFF; 17]
         );
     }
 }
