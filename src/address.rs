@@ -25,49 +25,29 @@
 use crate::bilerp::WEIGHT_BITS;
 use crate::filter::TexCoord;
 
-/// What a sampler does with coordinates outside `[0, 1)`, per axis.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum AddressMode {
-    /// Repeat (D3D `WRAP`, Vulkan `REPEAT`).
-    #[default]
-    Wrap = 0,
-    /// Repeat, every other copy mirrored (D3D `MIRROR`, Vulkan
-    /// `MIRRORED_REPEAT`).
-    Mirror = 1,
-    /// Clamp texel indices to the edge (D3D `CLAMP`, Vulkan
-    /// `CLAMP_TO_EDGE`).
-    ClampToEdge = 2,
-    /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`,
-    /// Vulkan `MIRROR_CLAMP_TO_EDGE`).
-    MirrorOnce = 3,
-    /// Texels outside the level read the sampler's border colour (D3D
-    /// `BORDER`, Vulkan `CLAMP_TO_BORDER`).
-    ClampToBorder = 4,
+indexed_enum! {
+    /// What a sampler does with coordinates outside `[0, 1)`, per axis.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+    pub enum AddressMode {
+        /// Repeat (D3D `WRAP`, Vulkan `REPEAT`).
+        #[default]
+        Wrap = 0,
+        /// Repeat, every other copy mirrored (D3D `MIRROR`, Vulkan
+        /// `MIRRORED_REPEAT`).
+        Mirror = 1,
+        /// Clamp texel indices to the edge (D3D `CLAMP`, Vulkan
+        /// `CLAMP_TO_EDGE`).
+        ClampToEdge = 2,
+        /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`,
+        /// Vulkan `MIRROR_CLAMP_TO_EDGE`).
+        MirrorOnce = 3,
+        /// Texels outside the level read the sampler's border colour (D3D
+        /// `BORDER`, Vulkan `CLAMP_TO_BORDER`).
+        ClampToBorder = 4,
+    }
 }
 
 impl AddressMode {
-    /// Every mode, in index order.
-    pub const ALL: [Self; 5] = [
-        Self::Wrap,
-        Self::Mirror,
-        Self::ClampToEdge,
-        Self::MirrorOnce,
-        Self::ClampToBorder,
-    ];
-
-    /// The mode numbered `n` (0..=4, the discriminants), `None` otherwise.
-    #[must_use]
-    pub const fn from_index(n: u8) -> Option<Self> {
-        match n {
-            0 => Some(Self::Wrap),
-            1 => Some(Self::Mirror),
-            2 => Some(Self::ClampToEdge),
-            3 => Some(Self::MirrorOnce),
-            4 => Some(Self::ClampToBorder),
-            _ => None,
-        }
-    }
-
     /// `u` reduced (exactly) to the range that selects the same texels,
     /// in I32F32 bits: `[0, 2³²)` (wrap), `[0, 2³³)` (mirror),
     /// `[−2³², 2³³]` (clamp, border), `[−2³³, 2³³]` (mirror once).

@@ -3,33 +3,21 @@
 //! (`log2 Pb = −Δ − log2 γ`, see [`table`](crate::table)) and of the primary
 //! ray cone. Set up once per camera and image height.
 
-use core::fmt;
-
 use fixed::types::{I2F30, I16F16};
 
 use crate::log2::log2_bits;
 
-/// Errors of the camera set-up.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum CameraError {
-    /// The field of view was NaN or infinite.
-    NonFinite,
-    /// Field of view outside `(0, π)` radians or pixel spread outside `(0, 2)`.
-    BadAngle,
-    /// Image height was zero.
-    ZeroImageHeight,
-}
-
-impl core::error::Error for CameraError {}
-
-impl fmt::Display for CameraError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::NonFinite => "field of view is NaN or infinite",
-            Self::BadAngle => "field of view must be in (0, pi), pixel spread in (0, 2) radians",
-            Self::ZeroImageHeight => "image height is zero",
-        })
+unit_error! {
+    /// Errors of the camera set-up.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    #[non_exhaustive]
+    pub enum CameraError {
+        /// The field of view was NaN or infinite.
+        NonFinite => "field of view is NaN or infinite",
+        /// Field of view outside `(0, π)` radians or pixel spread outside `(0, 2)`.
+        BadAngle => "field of view must be in (0, pi), pixel spread in (0, 2) radians",
+        /// Image height was zero.
+        ZeroImageHeight => "image height is zero",
     }
 }
 

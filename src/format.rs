@@ -30,60 +30,37 @@ use core::fmt;
 
 use crate::mip::Texel;
 
-/// Storage format of a texture's texels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum TexelFormat {
-    /// 8 bits per channel, bytes r, g, b, a.
-    #[default]
-    Rgba8 = 0,
-    /// 16 bits: red 5, green 6, blue 5 (alpha 255).
-    Rgb565 = 1,
-    /// 16 bits: red 5, green 5, blue 5, alpha 1.
-    Rgba5551 = 2,
-    /// 16 bits: 4 bits per channel.
-    Rgba4444 = 3,
-    /// Luminance and alpha, 8 bits each.
-    La8 = 4,
-    /// Luminance, 8 bits.
-    L8 = 5,
-    /// Alpha, 8 bits (colour 0).
-    A8 = 6,
-    /// BC1 (DXT1): 8 bytes per 4×4 block, RGB + 1-bit alpha.
-    Bc1 = 7,
-    /// BC2 (DXT3): 16 bytes per block, explicit 4-bit alpha + BC1 colour.
-    Bc2 = 8,
-    /// BC3 (DXT5): 16 bytes per block, interpolated alpha + BC1 colour.
-    Bc3 = 9,
-    /// BC4: 8 bytes per block, one interpolated channel (red).
-    Bc4 = 10,
+indexed_enum! {
+    /// Storage format of a texture's texels.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+    pub enum TexelFormat {
+        /// 8 bits per channel, bytes r, g, b, a.
+        #[default]
+        Rgba8 = 0,
+        /// 16 bits: red 5, green 6, blue 5 (alpha 255).
+        Rgb565 = 1,
+        /// 16 bits: red 5, green 5, blue 5, alpha 1.
+        Rgba5551 = 2,
+        /// 16 bits: 4 bits per channel.
+        Rgba4444 = 3,
+        /// Luminance and alpha, 8 bits each.
+        La8 = 4,
+        /// Luminance, 8 bits.
+        L8 = 5,
+        /// Alpha, 8 bits (colour 0).
+        A8 = 6,
+        /// BC1 (DXT1): 8 bytes per 4×4 block, RGB + 1-bit alpha.
+        Bc1 = 7,
+        /// BC2 (DXT3): 16 bytes per block, explicit 4-bit alpha + BC1 colour.
+        Bc2 = 8,
+        /// BC3 (DXT5): 16 bytes per block, interpolated alpha + BC1 colour.
+        Bc3 = 9,
+        /// BC4: 8 bytes per block, one interpolated channel (red).
+        Bc4 = 10,
+    }
 }
 
 impl TexelFormat {
-    /// Every format, in index order.
-    pub const ALL: [Self; 11] = [
-        Self::Rgba8,
-        Self::Rgb565,
-        Self::Rgba5551,
-        Self::Rgba4444,
-        Self::La8,
-        Self::L8,
-        Self::A8,
-        Self::Bc1,
-        Self::Bc2,
-        Self::Bc3,
-        Self::Bc4,
-    ];
-
-    /// The format numbered `n` (the discriminants), `None` otherwise.
-    #[must_use]
-    pub const fn from_index(n: u8) -> Option<Self> {
-        if (n as usize) < Self::ALL.len() {
-            Some(Self::ALL[n as usize])
-        } else {
-            None
-        }
-    }
-
     /// Whether texels are stored in 4×4 compressed blocks (BC1–BC4).
     #[must_use]
     pub const fn is_block_compressed(self) -> bool {

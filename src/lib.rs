@@ -143,6 +143,9 @@
     rustdoc::broken_intra_doc_links
 )]
 
+#[macro_use]
+mod macros;
+
 pub mod address;
 pub mod analysis;
 pub mod aniso;

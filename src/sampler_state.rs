@@ -19,8 +19,6 @@
 //! * For sRGB textures: whether filtered results come back re-encoded to
 //!   sRGB or as linear values ([`SrgbOutput`]).
 
-use core::fmt;
-
 use crate::address::AddressMode;
 use crate::lod::{Lod, clamp_lod};
 use crate::mip::Texel;
@@ -77,29 +75,19 @@ impl Default for SamplerDesc {
     }
 }
 
-/// Why a [`SamplerDesc`] is rejected.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum SamplerStateError {
-    /// `lod_bias` outside `[−16, 16)`.
-    BiasOutOfRange,
-    /// `min_lod > max_lod`.
-    LodClampInverted,
-    /// `max_anisotropy` outside `1 ..= 16`.
-    BadAnisotropy,
-}
-
-impl fmt::Display for SamplerStateError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::BiasOutOfRange => f.write_str("lod bias outside [-16, 16)"),
-            Self::LodClampInverted => f.write_str("min lod above max lod"),
-            Self::BadAnisotropy => f.write_str("max anisotropy outside 1..=16"),
-        }
+unit_error! {
+    /// Why a [`SamplerDesc`] is rejected.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    #[non_exhaustive]
+    pub enum SamplerStateError {
+        /// `lod_bias` outside `[−16, 16)`.
+        BiasOutOfRange => "lod bias outside [-16, 16)",
+        /// `min_lod > max_lod`.
+        LodClampInverted => "min lod above max lod",
+        /// `max_anisotropy` outside `1 ..= 16`.
+        BadAnisotropy => "max anisotropy outside 1..=16",
     }
 }
-
-impl core::error::Error for SamplerStateError {}
 
 /// Validated sampler state (see the module docs). Build it once with
 /// [`SamplerState::new`]; per sample it is only read.

@@ -50,8 +50,6 @@
 //! | NaN/inf or out-of-range coordinate | [`TableError::NonFinite`] / [`TableError::OutOfRange`] from [`TexTriangle::from_f32`] | — |
 //! | zero texture width or height | [`TableError::ZeroTextureSize`] | — |
 
-use core::fmt;
-
 use fixed::types::{I16F16, I32F32};
 
 use crate::camera::PixelSpread;
@@ -69,30 +67,19 @@ pub type Delta = I16F16;
 /// arithmetic, in levels: 2⁻¹⁰.
 pub const TABLE_MAX_ERROR: f64 = 1.0 / 1024.0;
 
-/// Errors at the set-up API edge.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum TableError {
-    /// A coordinate was NaN or infinite.
-    NonFinite,
-    /// A coordinate does not fit I32F32 (|x| ≥ 2³¹).
-    OutOfRange,
-    /// Texture width or height was zero.
-    ZeroTextureSize,
-    /// More triangles than table entries (entries up to the end were written).
-    TableFull,
-}
-
-impl core::error::Error for TableError {}
-
-impl fmt::Display for TableError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::NonFinite => "coordinate is NaN or infinite",
-            Self::OutOfRange => "coordinate outside the I32F32 range (|x| >= 2^31)",
-            Self::ZeroTextureSize => "texture width or height is zero",
-            Self::TableFull => "more triangles than table entries",
-        })
+unit_error! {
+    /// Errors at the set-up API edge.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    #[non_exhaustive]
+    pub enum TableError {
+        /// A coordinate was NaN or infinite.
+        NonFinite => "coordinate is NaN or infinite",
+        /// A coordinate does not fit I32F32 (|x| ≥ 2³¹).
+        OutOfRange => "coordinate outside the I32F32 range (|x| >= 2^31)",
+        /// Texture width or height was zero.
+        ZeroTextureSize => "texture width or height is zero",
+        /// More triangles than table entries (entries up to the end were written).
+        TableFull => "more triangles than table entries",
     }
 }
 

@@ -157,83 +157,117 @@ fn assert_camera_at_key(s: &Scene, from: V3, axis: V3, deg: f64) {
     }
 }
 
-#[test]
-fn kitchen_loads_with_published_counts() {
-    let Some(dir) = bart() else { return };
-    let s = load(&dir, "kitchen", DEFAULT_TIME);
-    check_common(
-        &s,
-        &Expect {
-            triangles: 110_561,
-            textured: 5_328,
-            zero_area: 41,
-            zero_area_textured: 0,
-            zero_uv: 364,
-            textures: 8,
-            lights: 6,
-            materials: 27,
-            u: (-4.1, 62.1),
-            v: (-8.0, 2.8),
-            uv_tol: 0.051,
-        },
-    );
-    assert_eq!(s.background, V3::new(0.5, 0.5, 1.0));
-    assert_eq!(s.ambient, V3::splat(2.5));
-    assert_eq!(s.camera.fov_y_deg, 40.0);
-    assert_eq!(s.camera.hither, 0.01);
-    // t = 0 is exactly key 1 of kitchen.aff's `camera` track.
-    assert_camera_at_key(
-        &s,
-        V3::new(3.75, 2.3, 3.6),
-        V3::new(0.77895, -0.61838, -0.10410),
-        -31.77348,
-    );
-    let floor = s.textures.iter().find(|t| t.name == "floor.ppm").unwrap();
-    assert_eq!((floor.image.width, floor.image.height), (1044, 1044));
-    assert!(s.stats.unbound_tracks.is_empty());
+/// The published counts of `scene` (`kitchen` or `robots`): its column of
+/// the table in the scene folder's README, parsed here so that nothing is
+/// transcribed. The UV tolerance is half the last published digit.
+fn published(dir: &Path, scene: &str) -> Expect {
+    let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    let cells = |line: &str| -> Vec<String> {
+        line.trim()
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect()
+    };
+    let header = readme
+        .lines()
+        .find(|l| l.starts_with("| | kitchen"))
+        .expect("published table");
+    let col = cells(header)
+        .iter()
+        .position(|c| c.starts_with(scene))
+        .unwrap();
+    let row = |name: &str| -> String {
+        let line = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} |")))
+            .unwrap_or_else(|| panic!("row {name:?}"));
+        cells(line)[col].clone()
+    };
+    // The leading number of a cell and the one in brackets after it, if any.
+    let numbers = |cell: &str| -> (usize, usize) {
+        let int = |t: &str| -> usize {
+            let d: String = t.chars().take_while(char::is_ascii_digit).collect();
+            d.parse().unwrap_or(0)
+        };
+        let cell = cell.replace(',', "");
+        let bracket = cell.split_once('(').map_or(0, |(_, b)| int(b));
+        (int(&cell), bracket)
+    };
+    let (zero_area, zero_area_textured) = numbers(&row("zero-area triangles"));
+    // "u −4.1…62.1, v −8.0…2.8"
+    let uv = row("UV range (repeat wrap)").replace('\u{2212}', "-");
+    let range = |axis: &str| -> (f64, f64) {
+        let r = uv.split(", ").find_map(|p| p.strip_prefix(axis)).unwrap();
+        let (lo, hi) = r.split_once('\u{2026}').unwrap();
+        (lo.parse().unwrap(), hi.parse().unwrap())
+    };
+    let decimals = uv.split_once('.').map_or(0, |(_, f)| {
+        f.chars().take_while(char::is_ascii_digit).count()
+    });
+    Expect {
+        triangles: numbers(&row("triangles")).0,
+        textured: numbers(&row("of which textured")).0,
+        zero_area,
+        zero_area_textured,
+        zero_uv: numbers(&row("textured tris with zero UV area")).0,
+        textures: numbers(&row("textures used")).0,
+        lights: numbers(&row("lights")).0,
+        materials: numbers(&row("distinct materials")).0,
+        u: range("u "),
+        v: range("v "),
+        uv_tol: 0.51 * 10f64.powi(-(decimals as i32)),
+    }
 }
 
+/// Both scenes load with the published counts; at t = 0 the camera is at
+/// key 1 of the scene's `camera` track (key values from the scene files:
+/// kitchen.aff and Robot.aff, whose keys 0 and 1 are both at t = 0).
 #[test]
-fn robots_loads_with_published_counts() {
+fn scenes_load_with_published_counts() {
     let Some(dir) = bart() else { return };
-    let s = load(&dir, "robots", DEFAULT_TIME);
-    check_common(
-        &s,
-        &Expect {
-            triangles: 71_708,
-            textured: 65_786,
-            zero_area: 128,
-            zero_area_textured: 84,
-            zero_uv: 2_244,
-            textures: 44,
-            lights: 1,
-            materials: 62,
-            u: (-196.0, 219.0),
-            v: (-180.0, 328.0),
-            uv_tol: 0.51,
-        },
-    );
-    assert_eq!(s.background, V3::splat(0.0));
-    assert_eq!(s.lights[0].position, V3::new(1.0, 500.0, 1.0));
-    assert_eq!(s.camera.hither, 1.0);
-    // t = 0 is key 1 of Robot.aff's `camera` track (keys 0 and 1 both at 0).
-    assert_camera_at_key(
-        &s,
-        V3::new(-3.5, 2.0, -203.0),
-        V3::new(-0.85813, 0.513, -0.02546),
-        -6.6,
-    );
-    // Robot1/Robot2 use `x` names that have no `k` track: identity.
-    assert_eq!(
-        s.stats.unbound_tracks,
-        [
-            "grip_lift1",
-            "grip_rot1",
-            "gun_lift2",
-            "gun_rot2",
-            "head_rot2"
-        ]
-    );
+    for (scene, from, axis, deg) in [
+        (
+            "kitchen",
+            [3.75, 2.3, 3.6],
+            [0.77895, -0.61838, -0.10410],
+            -31.77348,
+        ),
+        (
+            "robots",
+            [-3.5, 2.0, -203.0],
+            [-0.85813, 0.513, -0.02546],
+            -6.6,
+        ),
+    ] {
+        let s = load(&dir, scene, DEFAULT_TIME);
+        check_common(&s, &published(&dir, scene));
+        assert_camera_at_key(&s, V3::from(from), V3::from(axis), deg);
+        if scene == "kitchen" {
+            assert_eq!(s.background, V3::new(0.5, 0.5, 1.0));
+            assert_eq!(s.ambient, V3::splat(2.5));
+            assert_eq!(s.camera.fov_y_deg, 40.0);
+            assert_eq!(s.camera.hither, 0.01);
+            let floor = s.textures.iter().find(|t| t.name == "floor.ppm").unwrap();
+            assert_eq!((floor.image.width, floor.image.height), (1044, 1044));
+            assert!(s.stats.unbound_tracks.is_empty());
+        } else {
+            assert_eq!(s.background, V3::splat(0.0));
+            assert_eq!(s.lights[0].position, V3::new(1.0, 500.0, 1.0));
+            assert_eq!(s.camera.hither, 1.0);
+            // Robot1/Robot2 use `x` names that have no `k` track: identity.
+            assert_eq!(
+                s.stats.unbound_tracks,
+                [
+                    "grip_lift1",
+                    "grip_rot1",
+                    "gun_lift2",
+                    "gun_rot2",
+                    "head_rot2"
+                ]
+            );
+        }
+    }
 }
 
 #[test]

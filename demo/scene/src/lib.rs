@@ -144,75 +144,55 @@ pub struct Quad {
     pub tri: usize,
 }
 
+impl Quad {
+    /// The rectangle `axis = c`, `a × b`, of `material`, first triangle
+    /// `tri` (a row of [`QUADS`]).
+    const fn new(
+        axis: usize,
+        c: i32,
+        a: [i32; 2],
+        b: [i32; 2],
+        material: Material,
+        tri: usize,
+    ) -> Self {
+        Self {
+            axis,
+            c,
+            a,
+            b,
+            material,
+            tri,
+        }
+    }
+}
+
 const fn q(units: i32) -> i32 {
     units * ONE
 }
 
-/// The scene.
+const fn textured(tex: u8, scale: i32, reflect: u32) -> Material {
+    Material::Textured {
+        tex,
+        scale,
+        reflect,
+    }
+}
+
+const fn mirror(reflect: u32, tint: [u8; 3]) -> Material {
+    Material::Mirror { reflect, tint }
+}
+
+/// The scene: floor y = −1 (texture 0, two repeats per unit, 1/4
+/// reflective), back wall z = −14 (texture 1, one repeat per 4 units),
+/// panel z = −6 (texture 1, one repeat per unit), right mirror x = 3, left
+/// mirror x = −3.
+#[rustfmt::skip]
 pub const QUADS: [Quad; 5] = [
-    // Floor y = −1: texture 0, two repeats per unit, 1/4 reflective.
-    Quad {
-        axis: 1,
-        c: q(-1),
-        a: [q(-3), q(3)],
-        b: [q(-14), q(-1)],
-        material: Material::Textured {
-            tex: 0,
-            scale: ONE / 2,
-            reflect: 64,
-        },
-        tri: 0,
-    },
-    // Back wall z = −14: texture 1, one repeat per 4 units.
-    Quad {
-        axis: 2,
-        c: q(-14),
-        a: [q(-3), q(3)],
-        b: [q(-1), q(3)],
-        material: Material::Textured {
-            tex: 1,
-            scale: ONE / 4,
-            reflect: 0,
-        },
-        tri: 2,
-    },
-    // Panel z = −6: texture 1, one repeat per unit.
-    Quad {
-        axis: 2,
-        c: q(-6),
-        a: [-ONE * 4 / 5, ONE * 4 / 5],
-        b: [q(-1), ONE * 3 / 5],
-        material: Material::Textured {
-            tex: 1,
-            scale: ONE,
-            reflect: 0,
-        },
-        tri: 4,
-    },
-    // Right mirror x = 3.
-    Quad {
-        axis: 0,
-        c: q(3),
-        a: [q(-1), q(3)],
-        b: [q(-14), q(-1)],
-        material: Material::Mirror {
-            reflect: 224,
-            tint: [40, 60, 90],
-        },
-        tri: 6,
-    },
-    // Left mirror x = −3.
-    Quad {
-        axis: 0,
-        c: q(-3),
-        a: [q(-1), q(3)],
-        b: [q(-14), q(-1)],
-        material: Material::Mirror {
-            reflect: 208,
-            tint: [90, 50, 40],
-        },
-        tri: 8,
-    },
+    Quad::new(1, q(-1),  [q(-3), q(3)],               [q(-14), q(-1)],      textured(0, ONE / 2, 64),  0),
+    Quad::new(2, q(-14), [q(-3), q(3)],               [q(-1), q(3)],        textured(1, ONE / 4, 0),   2),
+    Quad::new(2, q(-6),  [-ONE * 4 / 5, ONE * 4 / 5], [q(-1), ONE * 3 / 5], textured(1, ONE, 0),       4),
+    Quad::new(0, q(3),   [q(-1), q(3)],               [q(-14), q(-1)],      mirror(224, [40, 60, 90]), 6),
+    Quad::new(0, q(-3),  [q(-1), q(3)],               [q(-14), q(-1)],      mirror(208, [90, 50, 40]), 8),
 ];
 
 /// Number of triangles (Pb table entries).
