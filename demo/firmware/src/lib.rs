@@ -9,6 +9,21 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
 
+/// Measured entry points: each `fn name(args) -> Ret = callee;` becomes an
+/// `#[inline(never)]` function that calls `callee(args)`, so a measurement
+/// times one real call of the callee with its own code inlined into it.
+#[macro_export]
+macro_rules! measured_calls {
+    ($( fn $name:ident($($arg:ident: $ty:ty),* $(,)?) -> $ret:ty = $callee:path; )+) => {
+        $(
+            #[inline(never)]
+            fn $name($($arg: $ty),*) -> $ret {
+                $callee($($arg),*)
+            }
+        )+
+    };
+}
+
 // Output, exit and cycle counters on QEMU and on the soft core.
 pub mod console;
 pub mod counters;

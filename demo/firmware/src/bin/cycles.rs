@@ -39,7 +39,7 @@ use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
 use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
-use raymip_demo_firmware::{exit, println};
+use raymip_demo_firmware::{exit, measured_calls, println};
 
 type Tex = Sampler<Pyramid<'static>>;
 
@@ -48,24 +48,17 @@ fn empty(x: u32) -> u32 {
     x
 }
 
-#[inline(never)]
-fn lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod(pl, pb)
-}
-
-#[inline(never)]
-fn cone(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod(w, delta, n_dot_d)
-}
-
-#[inline(never)]
-fn lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod_fast(pl, pb)
-}
-
-#[inline(never)]
-fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod_fast(w, delta, n_dot_d)
+measured_calls! {
+    fn lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod;
+    fn cone(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod;
+    fn lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod_fast;
+    fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod_fast;
+    fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize = table_lod_batch;
+    fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize = cone_lod_batch;
+    fn lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize =
+        table_lod_fast_batch;
+    fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize =
+        cone_lod_fast_batch;
 }
 
 #[inline(never)]
@@ -76,26 +69,6 @@ fn bilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
 #[inline(never)]
 fn trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
     s.sample(u, v, lod, Mode::Trilinear)
-}
-
-#[inline(never)]
-fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    table_lod_batch(hits, out)
-}
-
-#[inline(never)]
-fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    cone_lod_batch(hits, out)
-}
-
-#[inline(never)]
-fn lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    table_lod_fast_batch(hits, out)
-}
-
-#[inline(never)]
-fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    cone_lod_fast_batch(hits, out)
 }
 
 #[inline(never)]
