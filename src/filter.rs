@@ -24,6 +24,14 @@
 //! [`BILERP_MAX_ERROR_LSB`](crate::bilerp::BILERP_MAX_ERROR_LSB) = 0.5625 LSB for
 //! bilinear and trilinear, exact for the nearest-texel modes.
 //!
+//! Two trilinear paths: ACCURATE [`Sampler::sample_trilinear`] (the one
+//! [`Mode::Trilinear`] uses; bit-identical on every target, bound
+//! 0.5625 LSB) and FAST [`Sampler::sample_trilinear_fast`] (both levels'
+//! eight texels in one multiply-accumulate chain per channel, 10-bit
+//! position weights; bound
+//! [`FAST_TRILINEAR_MAX_ERROR_LSB`](crate::bilerp::FAST_TRILINEAR_MAX_ERROR_LSB)
+//! = 0.8125 LSB, proof in [`crate::bilerp`]).
+//!
 //! # Precision for large coordinates
 //!
 //! [`TexCoord`] has 32 fractional bits at every magnitude and covers
@@ -452,6 +460,38 @@ impl<S: TexelSource> Sampler<S> {
                 s.fetched += 8;
             }
         })
+    }
+
+    /// FAST trilinear ([`Mode::Trilinear`] semantics, a different
+    /// kernel): the two levels' eight texels summed in one chain per
+    /// channel with the level weight folded into 10-bit corner weights
+    /// (`bilerp::trilerp_fast_level`); error bound
+    /// [`FAST_TRILINEAR_MAX_ERROR_LSB`](bilerp::FAST_TRILINEAR_MAX_ERROR_LSB)
+    /// = 0.8125 LSB per channel against the exact trilinear filter, where
+    /// the ACCURATE [`sample_trilinear`](Self::sample_trilinear) has
+    /// [`BILERP_MAX_ERROR_LSB`](bilerp::BILERP_MAX_ERROR_LSB) = 0.5625.
+    /// When the blend weight is 0 it returns the ACCURATE one-level value.
+    /// Fetch counters as [`sample_trilinear`](Self::sample_trilinear).
+    /// Results are the same on every target. Feature `trilinear`.
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    pub fn sample_trilinear_fast(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let bits = self.lod_bits(lod);
+        // As in `trilinear_counted`: `lower + 1 ≤ 16` needs no check.
+        let lower = usize::from(bits >> 8) & 15;
+        let t = u32::from(bits & 0xFF);
+        let (ta, fxa, fya) = self.footprint(u, v, lower);
+        if t == 0 {
+            self.stats.fetched += 4;
+            self.stats.skipped += 4;
+            bilerp::bilerp_rounded(ta, fxa, fya)
+        } else {
+            let s = (1 << bilerp::BLEND_BITS) - t;
+            let acc = bilerp::trilerp_fast_level(bilerp::FAST_ROUND, ta, fxa, fya, s);
+            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
+            self.stats.fetched += 8;
+            bilerp::trilerp_fast_texel(bilerp::trilerp_fast_level(acc, tb, fxb, fyb, t))
+        }
     }
 
     /// [`sample_trilinear`](Self::sample_trilinear) with the fetch counting

@@ -5,10 +5,13 @@
 //! Bounds: nearest-texel modes exact (nearest texel, nearest level) or
 //! within ½ LSB (nearest texel, linear level: one rounding of an exact
 //! blend); bilinear and trilinear ≤ `BILERP_MAX_ERROR_LSB` = 0.5625 LSB per
-//! channel (issue: ≤ 1, goal < 0.75).
+//! channel (issue: ≤ 1, goal < 0.75); the FAST trilinear path
+//! (`Sampler::sample_trilinear_fast`) ≤ `FAST_TRILINEAR_MAX_ERROR_LSB` =
+//! 0.8125 LSB against the same reference, and within the sum of both
+//! bounds of the ACCURATE one.
 
 use proptest::prelude::*;
-use raymip::bilerp::BILERP_MAX_ERROR_LSB;
+use raymip::bilerp::{BILERP_MAX_ERROR_LSB, FAST_TRILINEAR_MAX_ERROR_LSB};
 use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
 use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
@@ -103,9 +106,10 @@ fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: Address) -> [f64;
     }
 }
 
-/// Largest per-channel |fixed − reference| over the samples, per mode.
+/// Largest per-channel |fixed − reference| over the samples, per mode
+/// (in `MODES` order), then the FAST trilinear path.
 #[derive(Default, Debug)]
-struct Worst([f64; 4]);
+struct Worst([f64; 5]);
 
 const MODES: [Mode; 4] = [
     Mode::Trilinear,
@@ -143,7 +147,45 @@ fn check_samples(t: &Tex, samples: &[(TexCoord, TexCoord, Lod)], worst: &mut Wor
                     );
                 }
             }
+            check_fast(&mut s, t, (u, v, lod), a, &mut worst.0[4]);
         }
+    }
+}
+
+/// The FAST trilinear sample at `(u, v, lod)` (exact in f64) against the
+/// f64 reference (bound `FAST_TRILINEAR_MAX_ERROR_LSB`) and the ACCURATE
+/// sample (within the sum of both bounds); same fetch counters as the
+/// ACCURATE call. Updates `worst` with the largest reference error.
+fn check_fast(
+    s: &mut Sampler<Pyramid<'_>>,
+    t: &Tex,
+    (u, v, lod): (TexCoord, TexCoord, Lod),
+    a: Address,
+    worst: &mut f64,
+) {
+    let (uf, vf, lf) = (u.to_num::<f64>(), v.to_num::<f64>(), lod.to_num::<f64>());
+    let before = s.stats();
+    let accurate = s.sample_trilinear(u, v, lod);
+    let mid = s.stats();
+    let fast = s.sample_trilinear_fast(u, v, lod);
+    let after = s.stats();
+    assert_eq!(after.fetched - mid.fetched, mid.fetched - before.fetched);
+    assert_eq!(after.skipped - mid.skipped, mid.skipped - before.skipped);
+    let want = reference(t, uf, vf, lf, Mode::Trilinear, a);
+    for (c, &wc) in want.iter().enumerate() {
+        let (f, acc) = (
+            f64::from((fast >> (8 * c)) & 0xFF),
+            f64::from((accurate >> (8 * c)) & 0xFF),
+        );
+        let e = (f - wc).abs();
+        *worst = worst.max(e);
+        assert!(
+            e <= FAST_TRILINEAR_MAX_ERROR_LSB + 1e-9,
+            "{}x{} {a:?} FAST u={uf} v={vf} lod={lf} ch{c}: got {f} want {wc}",
+            t.g.width(),
+            t.g.height(),
+        );
+        assert!((f - acc).abs() <= FAST_TRILINEAR_MAX_ERROR_LSB + BILERP_MAX_ERROR_LSB);
     }
 }
 
@@ -218,8 +260,8 @@ fn run_levels(w: u32, h: u32, levels: u8, n: usize) -> Worst {
         &mut worst,
     );
     println!(
-        "{w}x{h} ({levels} levels): max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}",
-        worst.0[0], worst.0[1], worst.0[2], worst.0[3]
+        "{w}x{h} ({levels} levels): max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}, trilinear FAST {:.4}",
+        worst.0[0], worst.0[1], worst.0[2], worst.0[3], worst.0[4]
     );
     worst
 }
@@ -381,6 +423,48 @@ fn skip_rules_and_counts() {
     assert_eq!(s.stats().fetched, 0);
 }
 
+/// FAST trilinear at every lod step of the first two level pairs
+/// (`t = frac(lod)` over all of `0..=255`, plus the integral lods where
+/// `t = 0` and the top level), on black/white texels (all 0 or 255 per
+/// channel, the largest position error) and random texels, at texel
+/// centres and corners of both levels (weights 0 and 1) and random
+/// positions; power-of-two and not, wrap and clamp (`check_samples`).
+#[test]
+fn fast_trilinear_every_lod_step() {
+    for (w, h) in [(16u32, 8u32), (13, 7)] {
+        let levels = full_levels(w, h);
+        let g = Geometry::new(w, h, levels).unwrap();
+        let mut bw = vec![0u32; g.len()];
+        for (i, t) in bw.iter_mut().take((w * h) as usize).enumerate() {
+            *t = if (i * 7 / 3) % 2 == 0 {
+                0xFF00_FF00
+            } else {
+                0x00FF_00FF
+            };
+        }
+        generate(&g, &mut bw).unwrap();
+        for t in [Tex { g, buf: bw }, Tex::random(w, h, levels, 17)] {
+            let mut rng = Rng(u64::from(w) * 31 + 1);
+            let mut samples = Vec::new();
+            for lb in 0..=(i16::from(levels) * 256) {
+                let lod = Lod::from_bits(lb);
+                for d in [0.0, 0.5] {
+                    let i = (rng.next_u64() % u64::from(w)) as f64;
+                    let j = (rng.next_u64() % u64::from(h)) as f64;
+                    let q = |x: f64| TexCoord::from_num(x);
+                    samples.push((q((i + d) / f64::from(w)), q((j + d) / f64::from(h)), lod));
+                }
+                let u = TexCoord::from_bits((rng.next_u64() >> 30) as i64);
+                let v = TexCoord::from_bits((rng.next_u64() >> 30) as i64);
+                samples.push((u, v, lod));
+            }
+            let mut worst = Worst::default();
+            check_samples(&t, &samples, &mut worst);
+            println!("{w}x{h} every lod step: {worst:?}");
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
     /// Full input range: any I32F32 coordinates, any lod, never a panic,
@@ -408,6 +492,10 @@ proptest! {
                     prop_assert!(e <= bound(mode) + 1e-9, "{:?} {:?} {} {} {} ch{}: {}", a, mode, u, v, lod, c, e);
                 }
             }
+            let mut worst = 0.0;
+            check_fast(&mut s, &t, (exact(u, a), exact(v, a), lod), a, &mut worst);
+            // The FAST path reads only the addressed coordinate's bits too.
+            prop_assert_eq!(s.sample_trilinear_fast(u, v, lod), s.sample_trilinear_fast(exact(u, a), exact(v, a), lod));
         }
     }
 }

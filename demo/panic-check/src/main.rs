@@ -250,6 +250,10 @@ fn main() -> ! {
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
         }
+        // the FAST trilinear path
+        bb(trimmed.sample_trilinear_fast(u, v, lod));
+        bb(direct.sample_trilinear_fast(u, v, lod));
+        bb(cached.sample_trilinear_fast(u, v, lod));
         // batch entry points (slices of opaque length)
         let hits = bb([(pl, pb); 4]);
         let mut lods = [None; 3];
