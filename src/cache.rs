@@ -385,7 +385,9 @@ mod tests {
                 m | ((x >> i) & 1) << (2 * i) | ((y >> i) & 1) << (2 * i + 1)
             })
         };
-        let coords = (0..=0xFFFF).step_by(257).chain([1, 2, 3, 0xFFFE, 0xFFFF]);
+        // Every 257th coordinate (every 4369th under Miri) and the edges.
+        let step = if cfg!(miri) { 4369 } else { 257 };
+        let coords = (0..=0xFFFF).step_by(step).chain([1, 2, 3, 0xFFFE, 0xFFFF]);
         for x in coords.clone() {
             for y in coords.clone() {
                 assert_eq!(morton2(x, y), interleave(x, y), "({x}, {y})");
