@@ -18,9 +18,9 @@
 // normal term out (`log2 1 = 0` exactly).
 #define RM_COS_ONE 2147483648
 
-// Size of an `RmSampler` in 64-bit words (640 bytes: enough for the
+// Size of an `RmSampler` in 64-bit words (768 bytes: enough for the
 // sampler on 32- and 64-bit targets, checked at compile time).
-#define RM_SAMPLER_WORDS 80
+#define RM_SAMPLER_WORDS 96
 
 // Result codes of the C ABI (`0` = success, negative = error, positive =
 // a documented non-error outcome).
@@ -74,7 +74,7 @@ typedef uint8_t RmMode;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Addressing of `rm_sampler_init` (the numbering of the Rust `Address`).
+// Addressing of `rm_sampler_init`: wrap or clamp to edge on both axes.
 enum RmAddress
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t

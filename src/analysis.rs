@@ -25,8 +25,8 @@
 //!   `floor(lod) + 1`: levels `floor(min) ..= ceil(max)`.
 //!
 //! A pyramid that stores only those levels
-//! ([`Geometry::trimmed`](crate::mip::Geometry::trimmed),
-//! [`Pyramid::trim`](crate::mip::Pyramid::trim)) gives bit-identical
+//! ([`Geometry::trimmed`](crate::texture::storage::mip::Geometry::trimmed),
+//! [`Pyramid::trim`](crate::texture::storage::mip::Pyramid::trim)) gives bit-identical
 //! samples. A texture whose triangles no hit can reach (the caller gives no
 //! bounds), or that no textured triangle uses, needs no levels at all;
 //! [`mark_skipped`] turns the table entries of the triangles of such
@@ -51,10 +51,10 @@
 
 use core::fmt;
 
-use crate::filter::Mode;
 use crate::lod::{Lod, clamp_lod, table_lod};
 use crate::raystack::PathLength;
 use crate::table::Log2Pb;
+use crate::texture::Mode;
 
 /// The nearest and farthest accumulated path length `Pl` (scene units)
 /// any hit on a texture can have. `nearest ≤ farthest` is not required
@@ -269,8 +269,9 @@ pub fn mark_skipped(entries: &mut [Log2Pb], texture_of: &[u16], usage: &[Texture
 mod tests {
     extern crate std;
     use super::*;
-    use crate::filter::LevelSplit;
-    use crate::mip::Geometry;
+    use crate::texture::Sampler;
+    use crate::texture::storage::mip::Geometry;
+    use crate::texture::storage::mip::Pyramid;
     use fixed::types::I16F16;
     use proptest::prelude::*;
     use std::vec::Vec;
@@ -443,12 +444,9 @@ mod tests {
                         let (l0, l1) = read_levels(lod, mode, levels);
                         // The sampler's own level split agrees.
                         let g = Geometry::new(1 << (levels - 1), 1, levels).unwrap();
-                        let split = LevelSplit::new(lod, &g);
-                        let sampler = if matches!(mode, Mode::BilinearNearestLevel | Mode::Nearest) {
-                            (split.nearest, None)
-                        } else {
-                            (split.lower, (split.t != 0).then_some(split.lower + 1))
-                        };
+                        let texels = std::vec![0; g.len()];
+                        let s = Sampler::wrap(Pyramid::new(g, &texels).unwrap());
+                        let sampler = s.levels(lod, mode);
                         prop_assert_eq!(sampler, (l0, l1));
                         for l in core::iter::once(l0).chain(l1) {
                             prop_assert!(lr.first <= l && l <= lr.last,

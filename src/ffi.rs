@@ -43,11 +43,14 @@
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 
 use crate::camera::PixelSpread;
-use crate::filter::{Address, Mode, Sampler};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
-use crate::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
 use crate::table::{BuildStats, Log2Pb, PbTable, TableError, TexTriangle};
+use crate::texture::kernel::Precision;
+use crate::texture::sampler::dynamic::DynSampler;
+use crate::texture::storage::format::ColorSpace;
+use crate::texture::storage::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
+use crate::texture::{AddressMode, Mode, SamplerDesc, SamplerState};
 
 /// Result codes of the C ABI (`0` = success, negative = error, positive =
 /// a documented non-error outcome).
@@ -100,7 +103,7 @@ const _: () = assert!(
         && RmMode::NearestTexelLinearLevel as u8 == Mode::NearestTexelLinearLevel as u8
 );
 
-/// Addressing of [`rm_sampler_init`] (the numbering of the Rust `Address`).
+/// Addressing of [`rm_sampler_init`]: wrap or clamp to edge on both axes.
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmAddress {
@@ -109,9 +112,17 @@ pub enum RmAddress {
     /// Clamp to edge.
     Clamp = 1,
 }
-const _: () = assert!(
-    RmAddress::Wrap as u8 == Address::Wrap as u8 && RmAddress::Clamp as u8 == Address::Clamp as u8
-);
+
+impl RmAddress {
+    /// The address mode numbered `n` (0 wrap, 1 clamp to edge).
+    fn mode(n: u8) -> Option<AddressMode> {
+        match n {
+            0 => Some(AddressMode::Wrap),
+            1 => Some(AddressMode::ClampToEdge),
+            _ => None,
+        }
+    }
+}
 
 /// An [`RmMode`] as it crosses the boundary: any byte (an enum parameter
 /// holding a value outside the enum would be undefined behaviour in Rust),
@@ -644,9 +655,9 @@ pub unsafe extern "C" fn rm_mip_generate(
     }
 }
 
-/// Size of an [`RmSampler`] in 64-bit words (640 bytes: enough for the
+/// Size of an [`RmSampler`] in 64-bit words (768 bytes: enough for the
 /// sampler on 32- and 64-bit targets, checked at compile time).
-pub const RM_SAMPLER_WORDS: usize = 80;
+pub const RM_SAMPLER_WORDS: usize = 96;
 
 /// A texture sampler in caller memory: set up once per texture and
 /// addressing by [`rm_sampler_init`] (which checks the texture), then used
@@ -670,7 +681,7 @@ const SAMPLER_MAGIC: u64 = u64::from_le_bytes(*b"raymipSm");
 #[repr(C)]
 struct SamplerSlot {
     magic: u64,
-    sampler: Sampler<Pyramid<'static>>,
+    sampler: DynSampler<Pyramid<'static>>,
 }
 
 const _: () = assert!(
@@ -704,7 +715,7 @@ pub unsafe extern "C" fn rm_sampler_init(
     if let Err(e) = check_ptr(t.texels, false) {
         return e;
     }
-    let Some(address) = Address::from_index(address.0) else {
+    let Some(address) = RmAddress::mode(address.0) else {
         return RmStatus::OutOfRange;
     };
     let g = match Geometry::new(t.width, t.height, t.levels) {
@@ -720,7 +731,17 @@ pub unsafe extern "C" fn rm_sampler_init(
     };
     let slot = SamplerSlot {
         magic: SAMPLER_MAGIC,
-        sampler: Sampler::new(p, address),
+        sampler: DynSampler::new(
+            p,
+            SamplerState::new(SamplerDesc {
+                address_u: address,
+                address_v: address,
+                ..SamplerDesc::default()
+            })
+            .unwrap_or_default(),
+            ColorSpace::Linear,
+            Precision::Accurate,
+        ),
     };
     // SAFETY: non-null, aligned and large enough (checked above and at
     // compile time), writable (caller).
@@ -1155,7 +1176,7 @@ mod tests {
             w in 1u32..9, h in 1u32..9, seed in any::<u64>(), address in 0u8..3,
             samples in proptest::collection::vec((any::<i64>(), any::<i64>(), -512i16..4096, 0u8..5), 1..24),
         ) {
-            let levels = crate::mip::full_levels(w, h);
+            let levels = crate::texture::storage::mip::full_levels(w, h);
             let n = pyramid_len(w, h, levels);
             let mut x = seed;
             let texels: std::vec::Vec<u32> = (0..n)
@@ -1168,7 +1189,7 @@ mod tests {
             let mut sm = RmSampler { opaque: [0; RM_SAMPLER_WORDS] };
             // SAFETY: valid locals; `texels` outlives `sm`'s use.
             let st = unsafe { rm_sampler_init(&mut sm, &tex, RmAddressBits(address)) };
-            let Some(addr) = Address::from_index(address) else {
+            let Some(addr) = RmAddress::mode(address) else {
                 prop_assert_eq!(st, RmStatus::OutOfRange);
                 return Ok(());
             };
@@ -1180,7 +1201,7 @@ mod tests {
                 let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
                 match Mode::from_index(mode) {
                     Some(m) => {
-                        let fresh = Sampler::new(Pyramid::new(g, &texels).unwrap(), addr)
+                        let fresh = crate::texture::Sampler::with_address(Pyramid::new(g, &texels).unwrap(), addr)
                             .sample(I32F32::from_bits(u), I32F32::from_bits(v), I8F8::from_bits(lod), m);
                         prop_assert_eq!((s, out), (RmStatus::Ok, fresh));
                     }

@@ -9,14 +9,16 @@
 //! across targets. Cost of the feature: nothing unless called (the module
 //! adds no dependency: `libm` is already used at set-up).
 //!
-//! Definitions (as [`crate::lod`] and [`crate::filter`]):
+//! Definitions (as [`crate::lod`] and [`crate::texture::sampler`]):
 //! `lod = log2 Pl − log2 Pb`; `λ = Δ + log2|w| − log2 max(|n·d|, 2⁻¹⁶)`
-//! (`|n·d|` clamped to 1); texel centres at `(i + ½)/size`, wrap or clamp to
-//! edge, lod clamped to the stored levels, nearest level `floor(lod + ½)`,
+//! (`|n·d|` clamped to 1); texel centres at `(i + ½)/size`, any
+//! [`AddressMode`] on both axes (indices mapped by
+//! [`AddressMode::index`]; border texels are transparent black, the
+//! default border colour), lod clamped to the stored levels, nearest level `floor(lod + ½)`,
 //! blend weight `frac(lod)`.
 
-use crate::filter::{Address, Mode};
-use crate::mip::{Geometry, Texel};
+use crate::texture::storage::mip::{Geometry, Texel};
+use crate::texture::{AddressMode, Mode};
 
 /// `log2 Pl − log2 Pb` in f32 for a path length `pl > 0` (scene units) and
 /// the triangle's `log2 Pb`. `pl ≤ 0` or NaN gives NaN or −∞ (no check: the
@@ -40,12 +42,12 @@ pub fn cone_lod_f32(width: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
 }
 
 /// A pyramid sampled in f32 (same memory layout as
-/// [`Pyramid`](crate::mip::Pyramid)).
+/// [`Pyramid`](crate::texture::storage::mip::Pyramid)).
 #[derive(Clone, Copy, Debug)]
 pub struct SamplerF32<'a> {
     geometry: Geometry,
     texels: &'a [Texel],
-    address: Address,
+    address: AddressMode,
 }
 
 /// `floor` without a libm call (baseline x86-64 has no SSE4.1 `roundss`,
@@ -82,7 +84,7 @@ impl<'a> SamplerF32<'a> {
     /// A sampler over `texels` laid out as `geometry` describes. `None`
     /// when the slice is too short.
     #[must_use]
-    pub fn new(geometry: Geometry, texels: &'a [Texel], address: Address) -> Option<Self> {
+    pub fn new(geometry: Geometry, texels: &'a [Texel], address: AddressMode) -> Option<Self> {
         (texels.len() >= geometry.len()).then_some(Self {
             geometry,
             texels,
@@ -90,28 +92,27 @@ impl<'a> SamplerF32<'a> {
         })
     }
 
-    /// Index in `[−n, 2n]` (coordinates are reduced first) into `[0, n)`.
+    /// Index `i` of a level `n` wide, addressed (`None`: the border).
     #[inline(always)]
-    fn fix(&self, i: i32, n: u32) -> u32 {
-        let n = n as i32;
-        let i = match self.address {
-            Address::Wrap if i < 0 => i + n,
-            Address::Wrap if i >= n => i - n,
-            _ => i,
-        };
-        i.max(0).min(n - 1) as u32
+    fn fix(&self, i: i32, n: u32) -> Option<u32> {
+        self.address.index(i, n)
     }
 
     #[inline(always)]
     fn reduce(&self, u: f32) -> f32 {
         match self.address {
-            Address::Wrap => u - floor(u),
-            Address::Clamp => u.clamp(-1.0, 2.0),
+            AddressMode::Wrap => u - floor(u),
+            AddressMode::Mirror => u - 2.0 * floor(u * 0.5),
+            AddressMode::ClampToEdge | AddressMode::ClampToBorder => u.clamp(-1.0, 2.0),
+            AddressMode::MirrorOnce => u.clamp(-2.0, 2.0),
         }
     }
 
     #[inline(always)]
-    fn texel(&self, level: u8, x: u32, y: u32) -> Texel {
+    fn texel(&self, level: u8, x: Option<u32>, y: Option<u32>) -> Texel {
+        let (Some(x), Some(y)) = (x, y) else {
+            return 0;
+        };
         let (w, _) = self.geometry.level_size(level);
         let i = self.geometry.level_offset(level) + (y * w + x) as usize;
         self.texels.get(i).copied().unwrap_or(0)
@@ -155,7 +156,7 @@ impl<'a> SamplerF32<'a> {
         pack(self.filter(u, v, lod, mode))
     }
 
-    /// Anisotropic sample in f32 with the definitions of [`crate::aniso`]:
+    /// Anisotropic sample in f32 with the definitions of [`crate::texture::sampler::aniso`]:
     /// `axes` = the footprint `[(du/dx, dv/dx), (du/dy, dv/dy)]` in
     /// normalized texture coordinates; with the axes in level-0 texels,
     /// `minor' = max(|minor|, |major| / max_aniso)` (`max_aniso` clamped to

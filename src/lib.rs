@@ -20,11 +20,10 @@
 //! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
 //! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
 //! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
-//! | MIP pyramid in caller memory (set-up) | [`mip`] | level offset + texel index |
-//! | bilinear kernel (Bilerp) | [`bilerp`] | 12-bit weights, 32-bit integer lerps |
-//! | addressing, nearest / bilinear / trilinear | [`filter`] | 4–8 texel reads, 1–2 Bilerps |
-//! | stochastic level / texel choice (Pharr et al. 2024) | [`stochastic`] | 1–4 texel reads, no blend |
-//! | texel cache (4×4 blocks, Morton, LRU) | [`cache`] | tag compare per texel read |
+//! | texture storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
+//! | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
+//! | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
+//! | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
 //! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
 //! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
 //! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
@@ -37,7 +36,7 @@
 //! not call is not linked anyway; what a feature removes beyond that is
 //! the part every per-hit call carries (the cone update in
 //! [`PathState::advance`](raystack::PathState::advance), the linear-level
-//! arms of [`Sampler::sample`](filter::Sampler::sample)) and API surface.
+//! arms of [`Sampler::sample`](texture::Sampler::sample)) and API surface.
 //! Linked `.text` / `.rodata` per feature set on both targets:
 //! `BUDGETS.md`, "Feature sets" (written by `scripts/features`).
 //!
@@ -45,22 +44,15 @@
 //! |---|---|---|---|
 //! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`raystack::PathState`] is 16 bytes instead of 32 ([`raystack::PATH_STATE_BYTES`]) |
 //! | `trilinear` | yes | linear-between-levels modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`) | nearest-level modes only |
-//! | `cache` | yes | texel cache (`cache`) | the sampler reads memory directly |
+//! | `cache` | yes | texel cache, images in any format, BC decoding (`texture::storage::{cache, image}`) | the sampler reads RGBA8 pyramids in memory directly |
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
 //!
-//! GPU-sampler parity (D3D11 / Vulkan sampler objects), one concept each:
-//!
-//! | concept | module | per sample |
-//! |---|---|---|
-//! | address modes (wrap, mirror, clamp, mirror-once, border) | [`address`] | index mapping per tap |
-//! | sampler state (addressing, border, lod bias/clamp, anisotropy) | [`sampler_state`] | saturating add + clamps |
-//! | texel formats (RGBA8, 565, 5551, 4444, LA8, L8, A8; BC) | [`format`] | bit replication |
-//! | sRGB decode/encode, linear-space pyramids | [`srgb`] | table read / 8-step search |
-//! | BC1–BC4 block decoding (the cache's fill path) | [`bc`] | per block fill |
-//! | textures in any format in caller memory | [`image`] | level offset + decode |
-//! | anisotropic footprint → probes | [`aniso`] | two log2, ≤ 16 probes |
-//! | the sampler over all of them | [`texture_sampler`] | 16-bit linear filtering |
+//! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
+//! specialised at compile time by its key `K` (address mode per axis,
+//! colour space, precision tier: [`texture::Cfg`]); a configuration that
+//! does not use a feature carries none of its instructions. See
+//! [`texture`] for the tiers and their bounds.
 //!
 //! ```
 //! use fixed::types::U32F32;
@@ -96,13 +88,13 @@
 //! ```
 //!
 //! The texture half: a pyramid in a caller-provided buffer sized at compile
-//! time by [`mip::pyramid_len`], generated in place, then sampled per hit
-//! with a fixed-point [`lod::Lod`]:
+//! time by [`texture::storage::mip::pyramid_len`], generated in place, then
+//! sampled per hit with a fixed-point [`lod::Lod`]:
 //!
 //! ```
-//! use raymip::filter::{Address, Mode, Sampler, TexCoord};
 //! use raymip::lod::Lod;
-//! use raymip::mip::{generate, pyramid_len, Geometry, Pyramid, Texel};
+//! use raymip::texture::storage::mip::{generate, pyramid_len, Geometry, Pyramid, Texel};
+//! use raymip::texture::{Mode, Sampler, TexCoord};
 //!
 //! const W: u32 = 8;
 //! const H: u32 = 8;
@@ -117,7 +109,8 @@
 //! }
 //! let geometry = Geometry::new(W, H, LEVELS)?;
 //! generate(&geometry, &mut texels)?; // every coarser level is mid-gray
-//! let mut sampler = Sampler::new(Pyramid::new(geometry, &texels)?, Address::Wrap);
+//! // Wrap on both axes, linear data, ACCURATE: `Sampler<_, Cfg<Wrap>>`.
+//! let mut sampler = Sampler::wrap(Pyramid::new(geometry, &texels)?);
 //!
 //! // Centre of texel (0, 0) at lod 0: exactly that texel.
 //! let c = TexCoord::from_num(0.5 / 8.0);
@@ -146,35 +139,20 @@
 #[macro_use]
 mod macros;
 
-pub mod address;
 pub mod analysis;
-pub mod aniso;
-pub mod bc;
-pub mod bilerp;
-#[cfg(feature = "cache")]
-pub mod cache;
 pub mod camera;
 #[cfg(feature = "ffi")]
 pub mod ffi;
-pub mod filter;
 #[cfg(feature = "f32")]
 pub mod float;
-pub mod format;
 pub mod geomlod;
-// Images decode BC blocks as the texel cache's fill path.
-#[cfg(feature = "cache")]
-pub mod image;
 pub mod lod;
 pub mod log2;
 pub mod log2_fast;
-pub mod mip;
 pub mod raystack;
 pub mod rng;
-pub mod sampler_state;
-pub mod srgb;
-pub mod stochastic;
 pub mod table;
-pub mod texture_sampler;
+pub mod texture;
 
 // The harness's f64 reference of `log2 Pb`, shared by the unit tests.
 #[cfg(test)]
@@ -182,11 +160,11 @@ pub mod texture_sampler;
 mod pb_reference;
 
 // The everyday types, re-exported at the crate root.
-#[cfg(feature = "cache")]
-pub use cache::{BlockCache, BlockLayout, TexelCache};
 pub use camera::{CameraError, PixelSpread};
-pub use filter::{Address, Mode, Sampler, TexCoord};
 pub use lod::Lod;
-pub use mip::{Geometry, MipError, Pyramid, Texel};
 pub use raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
 pub use table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};
+#[cfg(feature = "cache")]
+pub use texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
+pub use texture::storage::mip::{Geometry, MipError, Pyramid, Texel};
+pub use texture::{AddressMode, Cfg, Mode, Sampler, SamplerState, TexCoord};

@@ -1,5 +1,7 @@
 //! RGBA8 wrap / clamp-to-edge results of the ACCURATE paths, bit for bit,
 //! against hashes recorded from the `filter::Sampler` of commit b4ea951
+//! (the static keys `Sampler::wrap` / `Sampler::clamp`, and the run-time
+//! form `Sampler::with_address`)
 //! (before the texture half became one sampler, issue 20): every filter
 //! mode, the batch entry point, stochastic filtering, direct pyramid reads
 //! and reads through a texel cache, on power-of-two and other sizes,
@@ -11,11 +13,12 @@
 //! configurations changes a hash. To find the first differing sample,
 //! check out b4ea951 and print the outputs of the same loop.
 
-use raymip::cache::TexelCache;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, TexelSource, full_levels};
-use raymip::stochastic::StochasticMode;
+use raymip::texture::sampler::Key;
+use raymip::texture::sampler::stochastic::StochasticMode;
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
+use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 
 mod common;
 use common::{Rng, random_texture};
@@ -111,9 +114,9 @@ const STOCHASTIC: [StochasticMode; 3] = [
 ];
 
 /// Hash of every ACCURATE result and counter of `make()`'s sampler.
-fn hash_all<S: TexelSource>(
+fn hash_all<S: TexelSource, K: Key>(
     samples: &[(TexCoord, TexCoord, Lod)],
-    mut make: impl FnMut() -> Sampler<S>,
+    mut make: impl FnMut() -> Sampler<S, K>,
 ) -> u64 {
     let mut h = Fnv::new();
     for mode in MODES {
@@ -254,9 +257,27 @@ fn hashes(w: u32, h: u32, levels: u8) -> [u64; 4] {
     let n = if cfg!(miri) { 8 } else { 400 };
     let samples = samples_for(&g, n, u64::from(w) << 8 ^ u64::from(h) ^ 0xA5);
     let mut out = [0u64; 4];
-    for (i, a) in [Address::Wrap, Address::Clamp].into_iter().enumerate() {
-        out[i] = hash_all(&samples, || Sampler::new(p, a));
-        out[2 + i] = hash_all(&samples, || Sampler::new(TexelCache::<_, 4, 2>::new(p), a));
+    let cached = || TexelCache::<_, 4, 2>::new(p);
+    out[0] = hash_all(&samples, || Sampler::wrap(p));
+    out[1] = hash_all(&samples, || Sampler::clamp(p));
+    out[2] = hash_all(&samples, || Sampler::wrap(cached()));
+    out[3] = hash_all(&samples, || Sampler::clamp(cached()));
+    // The run-time forms give the same results: the address matched per
+    // axis, and the key table of the C ABI.
+    for (i, a) in [AddressMode::Wrap, AddressMode::ClampToEdge]
+        .into_iter()
+        .enumerate()
+    {
+        assert_eq!(
+            hash_all(&samples, || Sampler::with_address(p, a)),
+            out[i],
+            "{a:?}"
+        );
+        assert_eq!(
+            hash_all(&samples, || Sampler::with_address(cached(), a)),
+            out[2 + i],
+            "{a:?} cached"
+        );
     }
     out
 }

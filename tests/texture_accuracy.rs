@@ -1,20 +1,27 @@
-//! Filtering against an f64 reference written here from the definitions
-//! (texel centres at (i + ½)/size, wrap = modulo, clamp = clamp to edge,
-//! lod clamped to the stored levels, nearest level = floor(lod + ½)).
+//! Filtering of linear RGBA8 data against an f64 reference written here
+//! from the definitions (texel centres at (i + ½)/size; every address mode
+//! as the Vulkan wrapping operation defines it, the border colour for
+//! clamp-to-border; lod clamped to the stored levels, nearest level =
+//! floor(lod + ½)), for both precision tiers.
 //!
 //! Bounds: nearest-texel modes exact (nearest texel, nearest level) or
 //! within ½ LSB (nearest texel, linear level: one rounding of an exact
-//! blend); bilinear and trilinear ≤ `BILERP_MAX_ERROR_LSB` = 0.5625 LSB per
-//! channel (issue: ≤ 1, goal < 0.75); the FAST trilinear path
-//! (`Sampler::sample_trilinear_fast`) ≤ `FAST_TRILINEAR_MAX_ERROR_LSB` =
-//! 0.8125 LSB against the same reference, and within the sum of both
-//! bounds of the ACCURATE one.
+//! blend), both tiers; bilinear and trilinear ≤ `BILERP_MAX_ERROR_LSB` =
+//! 0.5625 LSB per channel ACCURATE (goal < 0.75), ≤ `FAST_MAX_ERROR_LSB` =
+//! 2.40625 FAST. The run-time address form and the static keys give the
+//! same bits.
 
 use proptest::prelude::*;
-use raymip::bilerp::{BILERP_MAX_ERROR_LSB, FAST_TRILINEAR_MAX_ERROR_LSB};
-use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::texture::address::{AnyAxis, ClampToBorder, ClampToEdge, Wrap};
+use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
+use raymip::texture::kernel::fast::FAST_MAX_ERROR_LSB;
+use raymip::texture::kernel::{Fast, Linear};
+use raymip::texture::sampler::Key;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::texture::{
+    AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc, SamplerState, TexCoord,
+};
 
 mod common;
 use common::{Rng, random_texture};
@@ -32,6 +39,13 @@ impl Tex {
     }
     fn pyramid(&self) -> Pyramid<'_> {
         Pyramid::new(self.g, &self.buf).unwrap()
+    }
+    /// Channels of an addressed texel, or of the border colour.
+    fn at(&self, k: u32, x: Option<i64>, y: Option<i64>) -> [f64; 4] {
+        match (x, y) {
+            (Some(x), Some(y)) => self.texel(k, x, y),
+            _ => border(),
+        }
     }
     /// Channels of texel (x, y) of level k, straight from the buffer.
     fn texel(&self, k: u32, x: i64, y: i64) -> [f64; 4] {
@@ -52,22 +66,37 @@ fn ref_size(g: &Geometry, k: u32) -> (u32, u32) {
     ((g.width() >> k).max(1), (g.height() >> k).max(1))
 }
 
-/// Addressed integer index.
-fn addr(i: i64, n: u32, a: Address) -> i64 {
+/// Addressed integer index (`None`: the border colour), the Vulkan
+/// wrapping operation written independently of the firmware.
+fn addr(i: i64, n: u32, a: AddressMode) -> Option<i64> {
+    let n = i64::from(n);
     match a {
-        Address::Wrap => i.rem_euclid(i64::from(n)),
-        Address::Clamp => i.clamp(0, i64::from(n) - 1),
+        AddressMode::Wrap => Some(i.rem_euclid(n)),
+        AddressMode::Mirror => {
+            let m = i.rem_euclid(2 * n);
+            Some(if m < n { m } else { 2 * n - 1 - m })
+        }
+        AddressMode::ClampToEdge => Some(i.clamp(0, n - 1)),
+        AddressMode::MirrorOnce => Some((if i < 0 { -1 - i } else { i }).clamp(0, n - 1)),
+        AddressMode::ClampToBorder => (0..n).contains(&i).then_some(i),
     }
 }
 
-fn ref_nearest(t: &Tex, k: u32, u: f64, v: f64, a: Address) -> [f64; 4] {
+/// The border colour of every sampler here (linear RGBA8).
+const BORDER: Texel = 0x80FF_4010;
+
+fn border() -> [f64; 4] {
+    [0, 1, 2, 3].map(|c| f64::from((BORDER >> (8 * c)) & 0xFF))
+}
+
+fn ref_nearest(t: &Tex, k: u32, u: f64, v: f64, a: AddressMode) -> [f64; 4] {
     let (w, h) = ref_size(&t.g, k);
     let x = addr((u * f64::from(w)).floor() as i64, w, a);
     let y = addr((v * f64::from(h)).floor() as i64, h, a);
-    t.texel(k, x, y)
+    t.at(k, x, y)
 }
 
-fn ref_bilinear(t: &Tex, k: u32, u: f64, v: f64, a: Address) -> [f64; 4] {
+fn ref_bilinear(t: &Tex, k: u32, u: f64, v: f64, a: AddressMode) -> [f64; 4] {
     let (w, h) = ref_size(&t.g, k);
     let x = u * f64::from(w) - 0.5;
     let y = v * f64::from(h) - 0.5;
@@ -76,10 +105,10 @@ fn ref_bilinear(t: &Tex, k: u32, u: f64, v: f64, a: Address) -> [f64; 4] {
     let (xa, xb) = (addr(x0 as i64, w, a), addr(x0 as i64 + 1, w, a));
     let (ya, yb) = (addr(y0 as i64, h, a), addr(y0 as i64 + 1, h, a));
     let (p, q, r, s) = (
-        t.texel(k, xa, ya),
-        t.texel(k, xb, ya),
-        t.texel(k, xa, yb),
-        t.texel(k, xb, yb),
+        t.at(k, xa, ya),
+        t.at(k, xb, ya),
+        t.at(k, xa, yb),
+        t.at(k, xb, yb),
     );
     [0, 1, 2, 3].map(|c| {
         (1.0 - fy) * ((1.0 - fx) * p[c] + fx * q[c]) + fy * ((1.0 - fx) * r[c] + fx * s[c])
@@ -87,7 +116,7 @@ fn ref_bilinear(t: &Tex, k: u32, u: f64, v: f64, a: Address) -> [f64; 4] {
 }
 
 /// Reference sample; `u`, `v`, `lod` are the exact values of the fixed inputs.
-fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: Address) -> [f64; 4] {
+fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: AddressMode) -> [f64; 4] {
     let top = f64::from(t.g.levels() - 1);
     let lod = lod.clamp(0.0, top);
     let lower = lod.floor();
@@ -107,9 +136,9 @@ fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: Address) -> [f64;
 }
 
 /// Largest per-channel |fixed − reference| over the samples, per mode
-/// (in `MODES` order), then the FAST trilinear path.
+/// (in `MODES` order), ACCURATE then FAST.
 #[derive(Default, Debug)]
-struct Worst([f64; 5]);
+struct Worst([f64; 8]);
 
 const MODES: [Mode; 4] = [
     Mode::Trilinear,
@@ -118,74 +147,114 @@ const MODES: [Mode; 4] = [
     Mode::NearestTexelLinearLevel,
 ];
 
-fn bound(mode: Mode) -> f64 {
+fn bound(mode: Mode, fast: bool) -> f64 {
     match mode {
         Mode::Nearest => 0.0,
         Mode::NearestTexelLinearLevel => 0.5,
+        _ if fast => FAST_MAX_ERROR_LSB,
         _ => BILERP_MAX_ERROR_LSB,
     }
 }
 
-/// Samples (u, v, lod) in all modes and both addressings, checks bounds.
-fn check_samples(t: &Tex, samples: &[(TexCoord, TexCoord, Lod)], worst: &mut Worst) {
-    for a in [Address::Wrap, Address::Clamp] {
-        let mut s = Sampler::new(t.pyramid(), a);
-        for &(u, v, lod) in samples {
-            let (uf, vf, lf) = (u.to_num::<f64>(), v.to_num::<f64>(), lod.to_num::<f64>());
-            for (m, &mode) in MODES.iter().enumerate() {
-                let got = s.sample(u, v, lod, mode);
-                let want = reference(t, uf, vf, lf, mode, a);
-                for (c, &wc) in want.iter().enumerate() {
-                    let e = (f64::from((got >> (8 * c)) & 0xFF) - wc).abs();
-                    worst.0[m] = worst.0[m].max(e);
-                    assert!(
-                        e <= bound(mode) + 1e-9,
-                        "{}x{} {a:?} {mode:?} u={uf} v={vf} lod={lf} ch{c}: got {} want {wc}",
-                        t.g.width(),
-                        t.g.height(),
-                        (got >> (8 * c)) & 0xFF
-                    );
-                }
-            }
-            check_fast(&mut s, t, (u, v, lod), a, &mut worst.0[4]);
-        }
-    }
+/// The state of every sampler here: address mode `a` on both axes,
+/// [`BORDER`].
+fn state(a: AddressMode) -> SamplerState {
+    SamplerState::new(SamplerDesc {
+        address_u: a,
+        address_v: a,
+        border: BORDER,
+        ..SamplerDesc::default()
+    })
+    .unwrap()
 }
 
-/// The FAST trilinear sample at `(u, v, lod)` (exact in f64) against the
-/// f64 reference (bound `FAST_TRILINEAR_MAX_ERROR_LSB`) and the ACCURATE
-/// sample (within the sum of both bounds); same fetch counters as the
-/// ACCURATE call. Updates `worst` with the largest reference error.
-fn check_fast(
-    s: &mut Sampler<Pyramid<'_>>,
-    t: &Tex,
+type AccurateAny = Cfg<AnyAxis>;
+
+/// One sample through a fresh sampler of key `K`.
+fn one<K: Key>(
+    p: Pyramid<'_>,
+    st: SamplerState,
     (u, v, lod): (TexCoord, TexCoord, Lod),
-    a: Address,
-    worst: &mut f64,
-) {
-    let (uf, vf, lf) = (u.to_num::<f64>(), v.to_num::<f64>(), lod.to_num::<f64>());
-    let before = s.stats();
-    let accurate = s.sample_trilinear(u, v, lod);
-    let mid = s.stats();
-    let fast = s.sample_trilinear_fast(u, v, lod);
-    let after = s.stats();
-    assert_eq!(after.fetched - mid.fetched, mid.fetched - before.fetched);
-    assert_eq!(after.skipped - mid.skipped, mid.skipped - before.skipped);
-    let want = reference(t, uf, vf, lf, Mode::Trilinear, a);
-    for (c, &wc) in want.iter().enumerate() {
-        let (f, acc) = (
-            f64::from((fast >> (8 * c)) & 0xFF),
-            f64::from((accurate >> (8 * c)) & 0xFF),
+    mode: Mode,
+) -> Texel {
+    Sampler::<_, K>::with_state(p, st)
+        .unwrap()
+        .sample(u, v, lod, mode)
+}
+type FastAny = Cfg<AnyAxis, AnyAxis, Linear, Fast>;
+
+/// The sample of `mode` through the ACCURATE and FAST run-time-address
+/// samplers and, for wrap and clamp to edge, the static keys (which must
+/// give the same bits).
+fn both_tiers(
+    acc: &mut Sampler<Pyramid<'_>, AccurateAny>,
+    fast: &mut Sampler<Pyramid<'_>, FastAny>,
+    p: Pyramid<'_>,
+    (u, v, lod): (TexCoord, TexCoord, Lod),
+    mode: Mode,
+) -> [Texel; 2] {
+    let got = [acc.sample(u, v, lod, mode), fast.sample(u, v, lod, mode)];
+    let st = *acc.state();
+    let x = (u, v, lod);
+    let statics = match st.address()[0] {
+        AddressMode::Wrap => Some([
+            one::<Cfg<Wrap>>(p, st, x, mode),
+            one::<Cfg<Wrap, Wrap, Linear, Fast>>(p, st, x, mode),
+        ]),
+        AddressMode::ClampToEdge => Some([
+            one::<Cfg<ClampToEdge>>(p, st, x, mode),
+            one::<Cfg<ClampToEdge, ClampToEdge, Linear, Fast>>(p, st, x, mode),
+        ]),
+        AddressMode::ClampToBorder => Some([
+            one::<Cfg<ClampToBorder>>(p, st, x, mode),
+            one::<Cfg<ClampToBorder, ClampToBorder, Linear, Fast>>(p, st, x, mode),
+        ]),
+        _ => None,
+    };
+    if let Some(st) = statics {
+        assert_eq!(st, got, "static keys against the run-time address form");
+    }
+    got
+}
+
+/// Samples (u, v, lod) in all modes, every addressing and both tiers,
+/// checks bounds.
+fn check_samples(t: &Tex, samples: &[(TexCoord, TexCoord, Lod)], worst: &mut Worst) {
+    for a in AddressMode::ALL {
+        let p = t.pyramid();
+        let mut acc = Sampler::<_, AccurateAny>::with_state(p, state(a)).unwrap();
+        let mut fast = Sampler::<_, FastAny>::with_state(p, state(a)).unwrap();
+        for (n, &(u, v, lod)) in samples.iter().enumerate() {
+            let (uf, vf, lf) = (u.to_num::<f64>(), v.to_num::<f64>(), lod.to_num::<f64>());
+            for (m, &mode) in MODES.iter().enumerate() {
+                // The static keys on every 16th sample (they are slower to build).
+                let got = if n % 16 == 0 {
+                    both_tiers(&mut acc, &mut fast, p, (u, v, lod), mode)
+                } else {
+                    [acc.sample(u, v, lod, mode), fast.sample(u, v, lod, mode)]
+                };
+                let want = reference(t, uf, vf, lf, mode, a);
+                for (tier, g) in got.into_iter().enumerate() {
+                    for (c, &wc) in want.iter().enumerate() {
+                        let e = (f64::from((g >> (8 * c)) & 0xFF) - wc).abs();
+                        let w = &mut worst.0[m + 4 * tier];
+                        *w = w.max(e);
+                        assert!(
+                            e <= bound(mode, tier == 1) + 1e-9,
+                            "{}x{} {a:?} {mode:?} tier {tier} u={uf} v={vf} lod={lf} ch{c}: got {} want {wc}",
+                            t.g.width(),
+                            t.g.height(),
+                            (g >> (8 * c)) & 0xFF
+                        );
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            acc.stats(),
+            fast.stats(),
+            "{a:?}: both tiers read the same texels"
         );
-        let e = (f - wc).abs();
-        *worst = worst.max(e);
-        assert!(
-            e <= FAST_TRILINEAR_MAX_ERROR_LSB + 1e-9,
-            "{}x{} {a:?} FAST u={uf} v={vf} lod={lf} ch{c}: got {f} want {wc}",
-            t.g.width(),
-            t.g.height(),
-        );
-        assert!((f - acc).abs() <= FAST_TRILINEAR_MAX_ERROR_LSB + BILERP_MAX_ERROR_LSB);
     }
 }
 
@@ -260,8 +329,15 @@ fn run_levels(w: u32, h: u32, levels: u8, n: usize) -> Worst {
         &mut worst,
     );
     println!(
-        "{w}x{h} ({levels} levels): max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}, trilinear FAST {:.4}",
-        worst.0[0], worst.0[1], worst.0[2], worst.0[3], worst.0[4]
+        "{w}x{h} ({levels} levels): max error (LSB) trilinear {:.4}, bilinear {:.4}, nearest {:.4}, nearest-texel linear-level {:.4}; FAST {:.4}, {:.4}, {:.4}, {:.4}",
+        worst.0[0],
+        worst.0[1],
+        worst.0[2],
+        worst.0[3],
+        worst.0[4],
+        worst.0[5],
+        worst.0[6],
+        worst.0[7]
     );
     worst
 }
@@ -300,7 +376,7 @@ fn npot_sizes() {
 
 #[test]
 fn pot_sizes_and_goal() {
-    let mut all = [0.0f64; 4];
+    let mut all = [0.0f64; 8];
     for (w, h) in [(256, 256), (64, 16), (4096, 4096)] {
         let wst = run(w, h, 3000);
         for (a, b) in all.iter_mut().zip(wst.0) {
@@ -309,7 +385,7 @@ fn pot_sizes_and_goal() {
     }
     // Goal of the issue: < 0.75 LSB for bilinear and trilinear.
     assert!(all[0] < 0.75 && all[1] < 0.75, "{all:?}");
-    assert_eq!(all[2], 0.0);
+    assert_eq!((all[2], all[6]), (0.0, 0.0));
 }
 
 /// Worst-case kernel inputs: a black/white edge makes the weight error
@@ -342,11 +418,22 @@ fn high_contrast_edges() {
     println!("edges: {worst:?}");
 }
 
+/// `x` reduced as address mode `a` reduces coordinates (changing no
+/// texel it selects), in f64: exact for these operations.
+fn reduce(x: f64, a: AddressMode) -> f64 {
+    match a {
+        AddressMode::Wrap => x - x.floor(),
+        AddressMode::Mirror => x - 2.0 * (x / 2.0).floor(),
+        AddressMode::ClampToEdge | AddressMode::ClampToBorder => x.clamp(-1.0, 2.0),
+        AddressMode::MirrorOnce => x.clamp(-2.0, 2.0),
+    }
+}
+
 #[test]
 fn non_finite_and_huge_f64_inputs() {
     let t = Tex::random(16, 8, 5, 5);
-    for a in [Address::Wrap, Address::Clamp] {
-        let mut s = Sampler::new(t.pyramid(), a);
+    for a in AddressMode::ALL {
+        let mut s = Sampler::<_, AccurateAny>::with_state(t.pyramid(), state(a)).unwrap();
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             for mode in MODES {
                 assert_eq!(
@@ -372,10 +459,7 @@ fn non_finite_and_huge_f64_inputs() {
         ] {
             for mode in MODES {
                 let got = s.sample_f64(u, v, 1.25, mode).unwrap();
-                let (ru, rv) = match a {
-                    Address::Wrap => (u - u.floor(), v - v.floor()),
-                    Address::Clamp => (u.clamp(-1.0, 2.0), v.clamp(-1.0, 2.0)),
-                };
+                let (ru, rv) = (reduce(u, a), reduce(v, a));
                 let want = reference(
                     &t,
                     TexCoord::from_num(ru).to_num(),
@@ -385,7 +469,10 @@ fn non_finite_and_huge_f64_inputs() {
                     a,
                 );
                 for (c, &wc) in want.iter().enumerate() {
-                    assert!((f64::from((got >> (8 * c)) & 0xFF) - wc).abs() <= bound(mode) + 1e-9);
+                    assert!(
+                        (f64::from((got >> (8 * c)) & 0xFF) - wc).abs()
+                            <= bound(mode, false) + 1e-9
+                    );
                 }
             }
         }
@@ -405,7 +492,7 @@ fn non_finite_and_huge_f64_inputs() {
 #[test]
 fn skip_rules_and_counts() {
     let t = Tex::random(32, 32, 6, 1);
-    let mut s = Sampler::new(t.pyramid(), Address::Wrap);
+    let mut s = Sampler::wrap(t.pyramid());
     let u = TexCoord::from_num(0.4);
     for lod in [-2.0, 0.0, 1.0, 5.0, 9.0] {
         s.sample(u, u, Lod::from_num(lod), Mode::Trilinear);
@@ -477,25 +564,33 @@ proptest! {
         // Half the cases near [0, 1) to hit interesting texels, half over the full range.
         let (ub, vb) = if small { (ub % (3 << 32), vb % (3 << 32)) } else { (ub, vb) };
         let (u, v, lod) = (TexCoord::from_bits(ub), TexCoord::from_bits(vb), Lod::from_bits(lb));
-        // Coordinates beyond 2^21 are not exact in f64: reduce first (wrap) or clamp.
-        let exact = |x: TexCoord, a: Address| match a {
-            Address::Wrap => TexCoord::from_bits(x.to_bits() & 0xFFFF_FFFF),
-            Address::Clamp => x.clamp(TexCoord::from_num(-1), TexCoord::from_num(2)),
+        // Coordinates beyond 2^21 are not exact in f64: reduce first
+        // (exactly, on the bits) as the mode does.
+        let exact = |x: TexCoord, a: AddressMode| {
+            let b = x.to_bits();
+            TexCoord::from_bits(match a {
+                AddressMode::Wrap => b & 0xFFFF_FFFF,
+                AddressMode::Mirror => b & 0x1_FFFF_FFFF,
+                AddressMode::ClampToEdge | AddressMode::ClampToBorder => b.clamp(-(1 << 32), 2 << 32),
+                AddressMode::MirrorOnce => b.clamp(-(2 << 32), 2 << 32),
+            })
         };
-        for a in [Address::Wrap, Address::Clamp] {
-            let mut s = Sampler::new(t.pyramid(), a);
+        for a in AddressMode::ALL {
+            let p = t.pyramid();
+            let mut acc = Sampler::<_, AccurateAny>::with_state(p, state(a)).unwrap();
+            let mut fast = Sampler::<_, FastAny>::with_state(p, state(a)).unwrap();
             for mode in MODES {
-                let got = s.sample(u, v, lod, mode);
+                let got = both_tiers(&mut acc, &mut fast, p, (u, v, lod), mode);
                 let want = reference(&t, exact(u, a).to_num(), exact(v, a).to_num(), lod.to_num(), mode, a);
-                for (c, &wc) in want.iter().enumerate() {
-                    let e = (f64::from((got >> (8 * c)) & 0xFF) - wc).abs();
-                    prop_assert!(e <= bound(mode) + 1e-9, "{:?} {:?} {} {} {} ch{}: {}", a, mode, u, v, lod, c, e);
+                for (tier, g) in got.into_iter().enumerate() {
+                    for (c, &wc) in want.iter().enumerate() {
+                        let e = (f64::from((g >> (8 * c)) & 0xFF) - wc).abs();
+                        prop_assert!(e <= bound(mode, tier == 1) + 1e-9, "{:?} {:?} tier {} {} {} {} ch{}: {}", a, mode, tier, u, v, lod, c, e);
+                    }
                 }
+                // Only the reduced coordinate's bits matter.
+                prop_assert_eq!(got, [acc.sample(exact(u, a), exact(v, a), lod, mode), fast.sample(exact(u, a), exact(v, a), lod, mode)]);
             }
-            let mut worst = 0.0;
-            check_fast(&mut s, &t, (exact(u, a), exact(v, a), lod), a, &mut worst);
-            // The FAST path reads only the addressed coordinate's bits too.
-            prop_assert_eq!(s.sample_trilinear_fast(u, v, lod), s.sample_trilinear_fast(exact(u, a), exact(v, a), lod));
         }
     }
 }

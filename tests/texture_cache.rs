@@ -6,10 +6,10 @@
 use std::collections::HashSet;
 
 use proptest::prelude::*;
-use raymip::cache::{BLOCK, BlockCache, BlockLayout, TexelCache};
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, TexelSource, full_levels};
+use raymip::texture::storage::cache::{BLOCK, BlockCache, BlockLayout, TexelCache};
+use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
+use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 
 mod common;
 use common::{Rng, random_texture};
@@ -19,9 +19,9 @@ fn compare<const S: usize, const W: usize>(w: u32, h: u32) -> f64 {
     let p = Pyramid::new(g, &buf).unwrap();
     let mut rng = Rng(7);
     let mut rate = 0.0;
-    for a in [Address::Wrap, Address::Clamp] {
-        let mut plain = Sampler::new(p, a);
-        let mut cached = Sampler::new(TexelCache::<Pyramid<'_>, S, W>::new(p), a);
+    for a in [AddressMode::Wrap, AddressMode::ClampToEdge] {
+        let mut plain = Sampler::with_address(p, a);
+        let mut cached = Sampler::with_address(TexelCache::<Pyramid<'_>, S, W>::new(p), a);
         for i in 0..20_000u32 {
             // Mix coherent walks and random jumps.
             let (u, v) = if i % 3 == 0 {

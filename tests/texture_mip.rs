@@ -5,7 +5,9 @@
 //! every level within ½ LSB of the exact average (correct rounding).
 
 use proptest::prelude::*;
-use raymip::mip::{Geometry, MipError, Texel, full_levels, generate, pyramid_len};
+use raymip::texture::storage::mip::{
+    Geometry, MipError, Texel, full_levels, generate, pyramid_len,
+};
 
 mod common;
 use common::Rng;

@@ -5,7 +5,7 @@
 //!
 //! * **BC1** (8 bytes): colours `c₀, c₁` (RGB565, bytes 0–1 and 2–3), then
 //!   32 bits of 2-bit indices (texel `i` at bit `2i`). The endpoints expand
-//!   to RGB8 by bit replication ([`crate::format`]). If `c₀ > c₁` (as
+//!   to RGB8 by bit replication ([`crate::texture::storage::format`]). If `c₀ > c₁` (as
 //!   16-bit integers) the block has **four colours**: `c₂ = (2c₀ + c₁)/3`,
 //!   `c₃ = (c₀ + 2c₁)/3`; otherwise **three colours and transparent
 //!   black**: `c₂ = (c₀ + c₁)/2`, `c₃ = (0, 0, 0, 0)`. Alpha is 255 except
@@ -36,8 +36,8 @@
 //! uncached read decodes one texel ([`decode_texel`]). Both never panic: a
 //! byte slice shorter than the block reads as zeros.
 
-use crate::format::{TexelFormat, widen5, widen6};
-use crate::mip::Texel;
+use crate::texture::storage::format::{TexelFormat, widen5, widen6};
+use crate::texture::storage::mip::Texel;
 
 /// Texels per block (4 × 4).
 pub const BLOCK_TEXELS: usize = 16;

@@ -7,9 +7,9 @@
 //!
 //! | [`StochasticMode`] | texel reads | expectation |
 //! |---|---|---|
-//! | [`Trilinear`](StochasticMode::Trilinear) | 4 | [`Mode::Trilinear`](crate::filter::Mode::Trilinear) |
-//! | [`Bilinear`](StochasticMode::Bilinear) | 1 | [`Mode::BilinearNearestLevel`](crate::filter::Mode::BilinearNearestLevel) |
-//! | [`TrilinearBilinear`](StochasticMode::TrilinearBilinear) | 1 | [`Mode::Trilinear`](crate::filter::Mode::Trilinear) |
+//! | [`Trilinear`](StochasticMode::Trilinear) | 4 | [`Mode::Trilinear`](crate::texture::Mode::Trilinear) |
+//! | [`Bilinear`](StochasticMode::Bilinear) | 1 | [`Mode::BilinearNearestLevel`](crate::texture::Mode::BilinearNearestLevel) |
+//! | [`TrilinearBilinear`](StochasticMode::TrilinearBilinear) | 1 | [`Mode::Trilinear`](crate::texture::Mode::Trilinear) |
 //!
 //! against 8 reads for deterministic trilinear and 4 for bilinear.
 //!
@@ -42,7 +42,7 @@
 //!   to 1/4096 texel, `≤ 2·255/8192 <` [`MEAN_ERROR_TEXEL_LSB`] `= 0.0625`.
 //! * [`Trilinear`](StochasticMode::Trilinear): each sample is one bilinear
 //!   value rounded to 8 bits, so the expectation is within
-//!   [`BILERP_MAX_ERROR_LSB`](crate::bilerp::BILERP_MAX_ERROR_LSB) `= 0.5625` of `F`, the
+//!   [`BILERP_MAX_ERROR_LSB`](crate::texture::kernel::accurate::BILERP_MAX_ERROR_LSB) `= 0.5625` of `F`, the
 //!   bound of the deterministic filter.
 //!
 //! A single sample's error is not bounded below the texel contrast of the
@@ -53,10 +53,13 @@
 //! Allocation-free, float-free, panic-free (linked by `demo/panic-check`)
 //! and bit-identical on every target: integer compares and shifts only.
 
-use crate::bilerp;
-use crate::filter::{LevelSplit, Sampler, TexCoord, linear_taps};
+use super::{Key, Sampler};
 use crate::lod::Lod;
-use crate::mip::{Texel, TexelSource};
+use crate::texture::TexCoord;
+use crate::texture::address::Axis;
+use crate::texture::kernel::Kernel;
+use crate::texture::kernel::accurate as bilerp;
+use crate::texture::storage::mip::{Texel, TexelSource};
 
 /// Bias of the mean of the one-read modes against the exact filter, in
 /// 8-bit LSB per channel: the 1/4096-texel position rounding on two axes,
@@ -95,13 +98,14 @@ fn pick(field: u32, weight: u32) -> u32 {
     u32::from(field < weight)
 }
 
-impl<S: TexelSource> Sampler<S> {
+impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// One stochastic sample at `(u, v)` and level of detail `lod`
-    /// (clamped to the stored levels like [`sample`](Self::sample)) with
+    /// (through the lod window like [`sample`](Self::sample)) with
     /// `mode`, driven by 32 uniformly random `bits` (layout in the
-    /// [module docs](crate::stochastic)). Returns a stored texel (one-read
-    /// modes) or one rounded bilinear value. Never panics; counts the texel
-    /// reads in [`stats`](Self::stats).
+    /// [module docs](crate::texture::sampler::stochastic)). Returns a
+    /// stored texel (one-read modes; the border colour for a border tap)
+    /// or one rounded bilinear value of the key's kernel. Never panics;
+    /// counts the texel reads in [`stats`](Self::stats).
     #[inline]
     pub fn sample_stochastic(
         &mut self,
@@ -111,38 +115,40 @@ impl<S: TexelSource> Sampler<S> {
         mode: StochasticMode,
         bits: u32,
     ) -> Texel {
-        let split = LevelSplit::new(lod, &self.geometry);
+        let lod_bits = self.lod.apply(lod);
+        let (lower, t) = ((lod_bits >> 8) as u8, lod_bits & 0xFF);
+        let nearest = ((lod_bits + 0x80) >> 8) as u8;
         // `t = 0` (integer lod, top level) always picks `lower`, which is
         // then the only level; otherwise `lower + 1 ≤ top`.
-        let level = split
-            .lower
-            .wrapping_add(pick(bits & LEVEL_MASK, split.t) as u8);
+        let level = lower.wrapping_add(pick(bits & LEVEL_MASK, t) as u8);
         match mode {
-            StochasticMode::Trilinear => bilerp::round_wide_in_range(self.bilinear(u, v, level)),
-            StochasticMode::Bilinear => self.one_texel(u, v, split.nearest, bits),
+            StochasticMode::Trilinear => {
+                self.stats.fetched += 4;
+                let (l, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+                <K::Kernel as Kernel>::bilinear_texel(l, fx, fy)
+            }
+            StochasticMode::Bilinear => self.one_texel(u, v, nearest, bits),
             StochasticMode::TrilinearBilinear => self.one_texel(u, v, level, bits),
         }
     }
 
-    /// One texel of the bilinear footprint at `level`, chosen by the column
-    /// and row fields of `bits`.
+    /// One texel of the bilinear footprint at `level` (12-bit weights,
+    /// whatever the kernel's tier: the probabilities of the module docs),
+    /// chosen by the column and row fields of `bits`.
     #[inline(always)]
     fn one_texel(&mut self, u: TexCoord, v: TexCoord, level: u8, bits: u32) -> Texel {
         let (w, h) = self.geometry.level_size(level);
-        let (x0, x1, fx) = linear_taps(u, w, self.address);
-        let (y0, y1, fy) = linear_taps(v, h, self.address);
-        let x = if pick((bits >> COLUMN_SHIFT) & TAP_MASK, fx) == 1 {
-            x1
-        } else {
-            x0
-        };
-        let y = if pick((bits >> ROW_SHIFT) & TAP_MASK, fy) == 1 {
-            y1
-        } else {
-            y0
-        };
+        let xt = self.axes.0.mode().taps(u, w, bilerp::WEIGHT_BITS);
+        let yt = self.axes.1.mode().taps(v, h, bilerp::WEIGHT_BITS);
+        let cx = pick((bits >> COLUMN_SHIFT) & TAP_MASK, xt.f) as usize;
+        let cy = pick((bits >> ROW_SHIFT) & TAP_MASK, yt.f) as usize;
         self.stats.fetched += 1;
-        self.source.texel(level, x, y)
+        let t = self.source.texel(level, xt.i[cx & 1], yt.i[cy & 1]);
+        if xt.border[cx & 1] | yt.border[cy & 1] {
+            self.border_nearest
+        } else {
+            <K::Kernel as Kernel>::nearest(t)
+        }
     }
 }
 
@@ -150,9 +156,9 @@ impl<S: TexelSource> Sampler<S> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::bilerp::BILERP_MAX_ERROR_LSB;
-    use crate::filter::{Address, Mode};
-    use crate::mip::{Geometry, Pyramid, full_levels, generate};
+    use crate::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
+    use crate::texture::storage::mip::{Geometry, Pyramid, full_levels, generate};
+    use crate::texture::{AddressMode, Mode};
     use proptest::prelude::*;
     use std::vec;
     use std::vec::Vec;
@@ -185,16 +191,17 @@ mod tests {
 
     /// f64 reference of one axis: `(i₀, i₁, weight of i₁)` from the
     /// definitions (texel centres at (i + ½)/n, wrap = modulo, clamp to edge).
-    fn ref_axis(u: f64, n: u32, a: Address) -> (u32, u32, f64) {
+    fn ref_axis(u: f64, n: u32, a: AddressMode) -> (u32, u32, f64) {
         let u = match a {
-            Address::Wrap => u - u.floor(),
-            Address::Clamp => u.clamp(-1.0, 2.0),
+            AddressMode::Wrap => u - u.floor(),
+            AddressMode::ClampToEdge => u.clamp(-1.0, 2.0),
+            m => panic!("reference for wrap and clamp only, not {m:?}"),
         };
         let x = u * f64::from(n) - 0.5;
         let x0 = x.floor();
         let fix = |i: i64| match a {
-            Address::Wrap => i.rem_euclid(i64::from(n)) as u32,
-            Address::Clamp => i.clamp(0, i64::from(n) - 1) as u32,
+            AddressMode::Wrap => i.rem_euclid(i64::from(n)) as u32,
+            _ => i.clamp(0, i64::from(n) - 1) as u32,
         };
         (fix(x0 as i64), fix(x0 as i64 + 1), x - x0)
     }
@@ -207,7 +214,7 @@ mod tests {
         v: f64,
         lod: f64,
         mode: StochasticMode,
-        a: Address,
+        a: AddressMode,
     ) -> Vec<(u8, u32, u32, f64)> {
         let top = f64::from(g.levels() - 1);
         let l = lod.clamp(0.0, top);
@@ -277,7 +284,7 @@ mod tests {
         generate(&g, &mut buf).unwrap();
         assert_eq!(buf[4], red((447 + 2) / 4));
         let p = Pyramid::new(g, &buf).unwrap();
-        let mut s = Sampler::new(p, Address::Clamp);
+        let mut s = Sampler::with_address(p, AddressMode::ClampToEdge);
         let c = TexCoord::from_num(0.5);
         let q = Lod::from_num(0.25); // t = 64
         let m = StochasticMode::TrilinearBilinear;
@@ -312,13 +319,13 @@ mod tests {
     fn single_draws_match_f64_reference() {
         let mut r = Bits(0x1234_5678_9ABC_DEF1);
         for (w, h, a) in [
-            (16, 16, Address::Wrap),
-            (13, 7, Address::Clamp),
-            (64, 32, Address::Wrap),
+            (16, 16, AddressMode::Wrap),
+            (13, 7, AddressMode::ClampToEdge),
+            (64, 32, AddressMode::Wrap),
         ] {
             let (g, buf) = random_pyramid(w, h, u64::from(w * h));
             let p = Pyramid::new(g, &buf).unwrap();
-            let mut s = Sampler::new(p, a);
+            let mut s = Sampler::with_address(p, a);
             let mut checked = 0;
             for _ in 0..20_000 {
                 let u = f64::from(r.next()) / 2f64.powi(30) - 1.5;
@@ -380,11 +387,11 @@ mod tests {
         .enumerate()
         {
             let a = if i % 2 == 0 {
-                Address::Wrap
+                AddressMode::Wrap
             } else {
-                Address::Clamp
+                AddressMode::ClampToEdge
             };
-            let mut s = Sampler::new(p, a);
+            let mut s = Sampler::with_address(p, a);
             let (uq, vq, lq) = (
                 TexCoord::from_num(u),
                 TexCoord::from_num(v),
@@ -449,8 +456,8 @@ mod tests {
         ) {
             let (g, buf) = random_pyramid(w, h, u64::from(w * 41 + h));
             let p = Pyramid::new(g, &buf).unwrap();
-            let a = if wrap { Address::Wrap } else { Address::Clamp };
-            let mut s = Sampler::new(p, a);
+            let a = if wrap { AddressMode::Wrap } else { AddressMode::ClampToEdge };
+            let mut s = Sampler::with_address(p, a);
             let (u, v, l) = (TexCoord::from_bits(ub), TexCoord::from_bits(vb), Lod::from_bits(lb));
             let _ = s.sample_stochastic(u, v, l, StochasticMode::Trilinear, bits);
             prop_assert_eq!(s.stats().fetched, 4);

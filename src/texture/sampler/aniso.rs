@@ -30,9 +30,12 @@
 
 use fixed::types::I16F16;
 
-use crate::filter::TexCoord;
+use super::{Key, Sampler};
 use crate::lod::Lod;
 use crate::log2::log2_bits;
+use crate::texture::TexCoord;
+use crate::texture::kernel::Kernel;
+use crate::texture::storage::mip::{Texel, TexelSource};
 
 /// A pixel's footprint: the two axis vectors in normalized texture
 /// coordinates (change of `(u, v)` per pixel step in x and in y). Any
@@ -66,57 +69,137 @@ const LOG2_K: [i32; 16] = [
     242512, 249519, 256042, 262144,
 ];
 
-/// Axis component `c` (normalized, I32F32 bits) times `size` texels, in
-/// texels with 16 fractional bits, clamped to `|x| < 2¹⁵`.
+/// Largest axis component [`probes`] takes, `2¹⁵` in normalized units
+/// (I32F32 bits `2⁴⁷`): larger components are clamped to it (a footprint
+/// that long covers every texel of any texture thousands of times).
+const AXIS_LIMIT: i64 = 1 << 47;
+
+/// `ceil(2³²/N)` for `N = 2 … 16` (entry `N − 1`; entry 0, `N = 1`, is
+/// unused: [`div_small`] returns `c` itself).
+const RECIP: [u32; 16] = {
+    let mut r = [0u32; 16];
+    let mut n = 2u64;
+    while n <= 16 {
+        r[(n - 1) as usize] = (1u64 << 32).div_ceil(n) as u32;
+        n += 1;
+    }
+    r
+};
+
+/// `c / N` for `|c| ≤ 2⁴⁷` and `N = 1 … 16` (`N = 1`: `c`) by the reciprocal
+/// [`RECIP`]: `floor(c·R / 2³²)` from one 32×32-bit and one small
+/// multiply, within `1 + |c|·2⁻⁶⁴` of the exact quotient in I32F32 units
+/// (`R` overestimates `2³²/N` by less than 1). No division on the
+/// per-sample path.
 #[inline(always)]
-fn texels(c: TexCoord, size: u32) -> i64 {
+fn div_small(c: i64, n: u8) -> i64 {
+    if n <= 1 {
+        return c;
+    }
+    let r = RECIP.get(usize::from(n).wrapping_sub(1)).copied().unwrap_or(0);
+    let hi = c >> 32;
+    let lo = u64::from(c as u32) * u64::from(r);
+    hi * i64::from(r) + (lo >> 32) as i64
+}
+
+/// Axis component `c` (normalized, I32F32 bits, clamped to
+/// [`AXIS_LIMIT`]) times `size ≤ 2¹⁵` texels, in texels with 16 fractional
+/// bits, clamped to `|x| < 2¹⁵`.
+#[inline(always)]
+fn texels(c: i64, size: u32) -> i64 {
     const LIMIT: i64 = (1 << 31) - 1;
-    (c.to_bits().saturating_mul(i64::from(size)) >> 16).clamp(-LIMIT, LIMIT)
+    let size = size.min(crate::texture::storage::mip::MAX_SIZE);
+    ((c * i64::from(size)) >> 16).clamp(-LIMIT, LIMIT)
 }
 
 /// Squared length (U32F32 bits) of a texel-space vector with 16
-/// fractional bits per component (`< 2⁶³`).
+/// fractional bits per component (`|x|, |y| < 2³¹`: one 32×32-bit
+/// multiply each, the sum `< 2⁶³`).
 #[inline(always)]
 fn len2(x: i64, y: i64) -> u64 {
-    x.unsigned_abs() * x.unsigned_abs() + y.unsigned_abs() * y.unsigned_abs()
+    let (x, y) = (x.unsigned_abs() as u32, y.unsigned_abs() as u32);
+    u64::from(x) * u64::from(x) + u64::from(y) * u64::from(y)
 }
 
 /// Probe count, lod and probe positions of the footprint `fp` on a
 /// `width × height` level 0 with at most `max_aniso` probes (clamped to
-/// `1 ..= 16`). Never panics.
+/// `1 ..= 16`). Axis components beyond [`AXIS_LIMIT`] are clamped to it.
+/// Never panics.
 #[must_use]
 pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes {
     let max = max_aniso.clamp(1, 16);
-    let lx = len2(texels(fp.x[0], width), texels(fp.x[1], height));
-    let ly = len2(texels(fp.y[0], width), texels(fp.y[1], height));
-    let (major, l_major, l_minor) = if lx >= ly {
-        (fp.x, lx, ly)
-    } else {
-        (fp.y, ly, lx)
-    };
+    let c = |x: TexCoord| x.to_bits().clamp(-AXIS_LIMIT, AXIS_LIMIT);
+    let (ax, ay) = ([c(fp.x[0]), c(fp.x[1])], [c(fp.y[0]), c(fp.y[1])]);
+    let lx = len2(texels(ax[0], width), texels(ax[1], height));
+    let ly = len2(texels(ay[0], width), texels(ay[1], height));
+    let (major, l_major, l_minor) = if lx >= ly { (ax, lx, ly) } else { (ay, ly, lx) };
     // log2 of the lengths: half the log2 of the squares (I16F16 bits).
     let log_major = log2_bits(l_major, 32).to_bits() >> 1;
     let log_minor = log2_bits(l_minor, 32).to_bits() >> 1;
     let log_max = LOG2_K.get(usize::from(max) - 1).copied().unwrap_or(0);
     let log_minor = log_minor.max(log_major - log_max);
     let ratio = log_major - log_minor;
-    let mut count = max;
-    for (k, &l) in (1u8..=max).zip(LOG2_K.iter()) {
-        if ratio <= l {
-            count = k;
-            break;
-        }
-    }
+    // The first k with ratio ≤ log2 k: one more than the number of table
+    // entries below the ratio (a binary search), at most `max`.
+    let below = LOG2_K.partition_point(|&l| l < ratio) as u8;
+    let count = below.saturating_add(1).min(max);
     // I16F16 → I8F8, rounded, saturating.
     let lod = Lod::saturating_from_num(I16F16::from_bits(log_minor));
-    let n = i64::from(count);
-    let step = major.map(|c| TexCoord::from_bits(c.to_bits().checked_div(n).unwrap_or(0)));
-    let first = step.map(|s| TexCoord::from_bits(s.to_bits().saturating_mul(1 - n) >> 1));
+    let step = major.map(|c| TexCoord::from_bits(div_small(c, count)));
+    let first = step.map(|s| TexCoord::from_bits(s.to_bits().wrapping_mul(1 - i64::from(count)) >> 1));
     Probes {
         count,
         lod,
         first,
         step,
+    }
+}
+
+impl<S: TexelSource, K: Key> Sampler<S, K> {
+    /// Anisotropic sample at `(u, v)` over the footprint `fp`: up to the
+    /// state's maximum anisotropy trilinear probes (bilinear in the
+    /// nearest level without the `trilinear` feature) along the major
+    /// axis ([`probes`]), all at the minor axis's lod (through the lod
+    /// window), averaged with equal weights and rounded once by the key's
+    /// kernel. With `max_anisotropy` 1 it is one probe. The lod, its
+    /// window and the level choice are computed once per sample; each
+    /// probe costs an addressing and the filter. Never panics.
+    pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
+        let p = probes(
+            fp,
+            self.geometry.width(),
+            self.geometry.height(),
+            self.state.max_anisotropy(),
+        );
+        let bits = self.lod.apply(p.lod);
+        #[cfg(feature = "trilinear")]
+        let (lower, t) = ((bits >> 8) as usize & 15, bits & 0xFF);
+        #[cfg(not(feature = "trilinear"))]
+        let (lower, t) = (((bits + 0x80) >> 8) as usize & 15, 0);
+        let n = u32::from(p.count.max(1));
+        let mut sum = [0u32; 4];
+        let (mut pu, mut pv) = (u.saturating_add(p.first[0]), v.saturating_add(p.first[1]));
+        for _ in 0..n {
+            let (ta, fxa, fya) = self.footprint(pu, pv, lower);
+            let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya);
+            let value = if t == 0 {
+                <K::Kernel as Kernel>::probe(a)
+            } else {
+                let (tb, fxb, fyb) = self.footprint(pu, pv, lower + 1);
+                let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb);
+                <K::Kernel as Kernel>::probe_blend(a, b, t)
+            };
+            for (s, x) in sum.iter_mut().zip(value) {
+                *s = s.wrapping_add(x);
+            }
+            pu = pu.saturating_add(p.step[0]);
+            pv = pv.saturating_add(p.step[1]);
+        }
+        let per_probe = if t == 0 { 4 } else { 8 };
+        self.stats.fetched += u64::from(n * per_probe);
+        self.stats.skipped +=
+            u64::from(n * (8 - per_probe)) * u64::from(cfg!(feature = "trilinear"));
+        <K::Kernel as Kernel>::probe_mean(sum, n)
     }
 }
 

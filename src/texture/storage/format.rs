@@ -12,7 +12,7 @@
 //! | [`La8`](TexelFormat::La8) | 2 | bytes l, a | `(l, l, l, a)` |
 //! | [`L8`](TexelFormat::L8) | 1 | byte l | `(l, l, l, 255)` |
 //! | [`A8`](TexelFormat::A8) | 1 | byte a | `(0, 0, 0, a)` |
-//! | [`Bc1`](TexelFormat::Bc1) … [`Bc4`](TexelFormat::Bc4) | 8 / 16 / 16 / 8 per 4×4 block | see [`crate::bc`] | |
+//! | [`Bc1`](TexelFormat::Bc1) … [`Bc4`](TexelFormat::Bc4) | 8 / 16 / 16 / 8 per 4×4 block | see [`crate::texture::storage::bc`] | |
 //!
 //! An `n`-bit channel widens to 8 bits by **bit replication** (the value's
 //! bits repeated from the top: `x·2^(8−n) | x >> (2n − 8)` for `n ≥ 4`,
@@ -24,11 +24,11 @@
 //! [`Format`] adds the colour space: sRGB variants exist for the 8-bit
 //! colour formats ([`Rgba8`](TexelFormat::Rgba8), [`La8`](TexelFormat::La8),
 //! [`L8`](TexelFormat::L8)) and BC1–BC3 (as in Vulkan); their RGB channels
-//! are decoded to linear by [`crate::srgb`] before filtering, alpha never.
+//! are decoded to linear by [`crate::texture::storage::srgb`] before filtering, alpha never.
 
 use core::fmt;
 
-use crate::mip::Texel;
+use crate::texture::storage::mip::Texel;
 
 indexed_enum! {
     /// Storage format of a texture's texels.
@@ -90,7 +90,7 @@ impl TexelFormat {
 
     /// Expands one stored uncompressed texel (its bytes as a little-endian
     /// word, `unit_bytes` long, higher bytes ignored) to RGBA8 by bit
-    /// replication. BC formats return 0 (use [`crate::bc`]).
+    /// replication. BC formats return 0 (use [`crate::texture::storage::bc`]).
     #[inline]
     #[must_use]
     pub fn decode(self, raw: u32) -> Texel {
@@ -144,6 +144,48 @@ impl TexelFormat {
         }
     }
 }
+
+/// A texel format as a type: what an [`Image`](crate::texture::storage::image::Image)
+/// decodes with. The marker types ([`Rgba8`], [`Rgb565`], … [`Bc4`]) are
+/// zero-sized and give their [`TexelFormat`] as a constant, so an image of
+/// one of them carries that format's decode alone; [`AnyFormat`] holds the
+/// format as a value (the run-time form: the decode is a `match`, which a
+/// [`TexelCache`](crate::texture::storage::cache::TexelCache) in front of
+/// the image runs once per 4×4 block fill instead of per texel).
+pub trait PixelFormat: Copy + fmt::Debug + Send + Sync + 'static {
+    /// The format.
+    fn texel(self) -> TexelFormat;
+}
+
+/// Any [`TexelFormat`], chosen at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct AnyFormat(pub TexelFormat);
+
+impl PixelFormat for AnyFormat {
+    #[inline(always)]
+    fn texel(self) -> TexelFormat {
+        self.0
+    }
+}
+
+macro_rules! pixel_formats {
+    ($($name:ident),*) => {$(
+        #[doc = concat!("[`TexelFormat::", stringify!($name), "`] as a type.")]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+        pub struct $name;
+
+        impl PixelFormat for $name {
+            #[inline(always)]
+            fn texel(self) -> TexelFormat {
+                TexelFormat::$name
+            }
+        }
+    )*};
+}
+
+pixel_formats!(
+    Rgba8, Rgb565, Rgba5551, Rgba4444, La8, L8, A8, Bc1, Bc2, Bc3, Bc4
+);
 
 /// 4-bit channel (low bits of `x`) to 8 bits: `x·17`.
 #[inline(always)]

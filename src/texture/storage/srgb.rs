@@ -27,7 +27,7 @@
 //! steepest slope (12.92·255 LSB per unit, 0.05 LSB per L16 step).
 
 #[cfg(feature = "mipgen")]
-use crate::mip::{Geometry, MipError, Texel, generate_mapped};
+use crate::texture::storage::mip::{Geometry, MipError, Texel, generate_mapped};
 
 /// Linear L16 value (65535 = 1.0) of every 8-bit sRGB code.
 pub const DECODE: [u16; 256] = [
@@ -84,7 +84,7 @@ pub const ENCODE_THRESHOLDS: [u32; 256] = [
 /// Error bound of a re-encoded filtered result against the f64 sRGB
 /// encoding of the exact linear filter, in 8-bit sRGB LSB (with
 /// 12-bit bilinear weights the position error adds to it; see
-/// `crate::texture_sampler`).
+/// `crate::texture::kernel::srgb`).
 pub const SRGB_ENCODE_MAX_ERROR_LSB: f64 = 0.55;
 
 /// 8-bit sRGB code of a linear 16.8 value `x` (65535·256 = 1.0; larger
@@ -110,7 +110,7 @@ pub fn decode(c: u8) -> u16 {
 }
 
 /// Fills levels `1 .. levels` of an sRGB RGBA8 pyramid from level 0 like
-/// [`mip::generate`](crate::mip::generate), but averaging RGB in linear
+/// [`mip::generate`](crate::texture::storage::mip::generate), but averaging RGB in linear
 /// space (decoded by [`DECODE`], the exact box weights of `mip`, re-encoded
 /// once by [`encode`] after rounding to 16.8); alpha is averaged as stored
 /// and rounded half up.

@@ -16,16 +16,18 @@
 //! As a [`TexelSource`] an image decodes each texel on read (a BC texel
 //! decodes its block's palette: slow, for tests and cache-less use). As a
 //! [`TexelMemory`] it decodes a whole 4×4 block per cache fill, so a
-//! [`TexelCache`](crate::cache::TexelCache) in front of a BC image is the
+//! [`TexelCache`](crate::texture::storage::cache::TexelCache) in front of a BC image is the
 //! block decoder: the cache holds decoded RGBA8 texels. sRGB data stays
-//! encoded here; the sampler ([`crate::texture_sampler`]) linearizes it.
+//! encoded here; the sampler ([`crate::texture::kernel::srgb`]) linearizes it.
 
 use core::fmt;
 
-use crate::bc::{self, BLOCK_TEXELS};
-use crate::cache::{BLOCK, TexelMemory};
-use crate::format::{Format, TexelFormat};
-use crate::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
+use crate::texture::storage::bc::{self, BLOCK_TEXELS};
+use crate::texture::storage::cache::{BLOCK, TexelMemory};
+use crate::texture::storage::format::{
+    AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, TexelFormat,
+};
+use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
 
 /// Bytes of level `k` of a `width × height` texture in `format`.
 const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64 {
@@ -43,11 +45,11 @@ const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64
 }
 
 /// Bytes of levels `0 .. levels` of a `width × height` texture in `format`
-/// (levels limited to [`full_levels`](crate::mip::full_levels); 0 for a
+/// (levels limited to [`full_levels`](crate::texture::storage::mip::full_levels); 0 for a
 /// zero side; saturates at `usize::MAX`).
 #[must_use]
 pub const fn image_len(width: u32, height: u32, levels: u8, format: TexelFormat) -> usize {
-    let full = crate::mip::full_levels(width, height);
+    let full = crate::texture::storage::mip::full_levels(width, height);
     let n = if levels < full { levels } else { full };
     let mut total = 0u64;
     let mut k = 0;
@@ -83,22 +85,76 @@ impl fmt::Display for ImageTooShort {
 
 impl core::error::Error for ImageTooShort {}
 
-/// A texture in caller memory in any [`Format`] (see the module docs).
+/// A texture in caller memory (see the module docs) in the pixel format
+/// `F`: a marker type such as [`Rgb565`](crate::texture::storage::format::Rgb565)
+/// (the decode of that format alone, [`Image::typed`]) or [`AnyFormat`]
+/// (chosen at run time, [`Image::new`]).
 #[derive(Clone, Copy, Debug)]
-pub struct Image<'a> {
+pub struct Image<'a, F: PixelFormat = AnyFormat> {
     geometry: Geometry,
+    kind: F,
     format: Format,
     bytes: &'a [u8],
     /// Byte offset of each level; entries past `levels` hold the total.
     offsets: [usize; MAX_LEVELS as usize + 1],
 }
 
-impl<'a> Image<'a> {
-    /// Wraps `bytes` (at least [`image_len`] long; extra bytes ignored).
+impl<'a> Image<'a, AnyFormat> {
+    /// Wraps `bytes` (at least [`image_len`] long; extra bytes ignored) in
+    /// `format`, chosen at run time.
     ///
     /// # Errors
     /// [`ImageTooShort`].
     pub fn new(geometry: Geometry, format: Format, bytes: &'a [u8]) -> Result<Self, ImageTooShort> {
+        Self::with_kind(geometry, AnyFormat(format.texel()), format, bytes)
+    }
+}
+
+/// Why [`Image::typed`] refuses its input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageError {
+    /// The byte slice is shorter than the levels need.
+    TooShort(ImageTooShort),
+    /// The format has no sRGB variant.
+    NoSrgb(NoSrgbVariant),
+}
+
+impl fmt::Display for ImageError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooShort(e) => e.fmt(f),
+            Self::NoSrgb(e) => e.fmt(f),
+        }
+    }
+}
+
+impl core::error::Error for ImageError {}
+
+impl<'a, F: PixelFormat + Default> Image<'a, F> {
+    /// Wraps `bytes` (at least [`image_len`] long) in the format `F` with
+    /// colour space `space`.
+    ///
+    /// # Errors
+    /// [`ImageError::TooShort`], [`ImageError::NoSrgb`] (sRGB for a format
+    /// without an sRGB variant).
+    pub fn typed(
+        geometry: Geometry,
+        space: ColorSpace,
+        bytes: &'a [u8],
+    ) -> Result<Self, ImageError> {
+        let kind = F::default();
+        let format = Format::new(kind.texel(), space).map_err(ImageError::NoSrgb)?;
+        Self::with_kind(geometry, kind, format, bytes).map_err(ImageError::TooShort)
+    }
+}
+
+impl<'a, F: PixelFormat> Image<'a, F> {
+    fn with_kind(
+        geometry: Geometry,
+        kind: F,
+        format: Format,
+        bytes: &'a [u8],
+    ) -> Result<Self, ImageTooShort> {
         let mut offsets = [0usize; MAX_LEVELS as usize + 1];
         let mut total = 0usize;
         for (k, o) in (0u8..).zip(offsets.iter_mut()) {
@@ -116,6 +172,7 @@ impl<'a> Image<'a> {
         }
         Ok(Self {
             geometry,
+            kind,
             format,
             bytes,
             offsets,
@@ -148,7 +205,7 @@ impl<'a> Image<'a> {
         let (w, h) = self.geometry.level_size(level);
         let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
         let (bx, by) = (bx.min(bw - 1) as usize, by.min(bh - 1) as usize);
-        let unit = self.format.texel().unit_bytes() as usize;
+        let unit = self.kind.texel().unit_bytes() as usize;
         let at = self.level_offset(level) + (by * bw as usize + bx) * unit;
         self.bytes.get(at..).unwrap_or(&[])
     }
@@ -160,7 +217,7 @@ impl<'a> Image<'a> {
     pub fn get(&self, level: u8, x: u32, y: u32) -> Texel {
         let (w, h) = self.geometry.level_size(level);
         let (x, y) = (x.min(w - 1), y.min(h - 1));
-        let f = self.format.texel();
+        let f = self.kind.texel();
         if f.is_block_compressed() {
             let block = self.block_bytes(level, x / BLOCK, y / BLOCK);
             bc::decode_texel(f, block, ((y % BLOCK) * BLOCK + x % BLOCK) as usize)
@@ -176,7 +233,7 @@ impl<'a> Image<'a> {
     }
 }
 
-impl TexelSource for Image<'_> {
+impl<F: PixelFormat> TexelSource for Image<'_, F> {
     #[inline]
     fn geometry(&self) -> Geometry {
         self.geometry
@@ -188,7 +245,7 @@ impl TexelSource for Image<'_> {
     }
 }
 
-impl TexelMemory for Image<'_> {
+impl<F: PixelFormat> TexelMemory for Image<'_, F> {
     fn geometry(&self) -> Geometry {
         self.geometry
     }
@@ -197,7 +254,7 @@ impl TexelMemory for Image<'_> {
     /// decoder as the cache's fill path), uncompressed ones texel by texel
     /// (edge texels repeated beyond the level's edge).
     fn read_block(&mut self, level: u8, bx: u32, by: u32, out: &mut [Texel; BLOCK_TEXELS]) {
-        let f = self.format.texel();
+        let f = self.kind.texel();
         if f.is_block_compressed() {
             bc::decode_block(f, self.block_bytes(level, bx, by), out);
         } else {
@@ -217,8 +274,8 @@ impl TexelMemory for Image<'_> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::cache::TexelCache;
-    use crate::format::ColorSpace;
+    use crate::texture::storage::cache::TexelCache;
+    use crate::texture::storage::format::ColorSpace;
     use std::vec::Vec;
 
     #[test]

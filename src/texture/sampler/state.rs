@@ -15,13 +15,13 @@
 //!   ```
 //!
 //!   8 fractional lod bits, as D3D11 requires (Vulkan asks for 6).
-//! * Maximum anisotropy `1 ..= 16` ([`crate::aniso`]).
+//! * Maximum anisotropy `1 ..= 16` ([`crate::texture::sampler::aniso`]).
 //! * For sRGB textures: whether filtered results come back re-encoded to
 //!   sRGB or as linear values ([`SrgbOutput`]).
 
-use crate::address::AddressMode;
 use crate::lod::{Lod, clamp_lod};
-use crate::mip::Texel;
+use crate::texture::address::AddressMode;
+use crate::texture::storage::mip::Texel;
 
 /// Largest supported maximum anisotropy (16×, as D3D11 and Vulkan).
 pub const MAX_ANISOTROPY: u8 = 16;

@@ -7,7 +7,7 @@
 //! texel. [`pyramid_len`] is a `const fn`, so storage can be a `static`:
 //!
 //! ```
-//! use raymip::mip::{pyramid_len, Texel};
+//! use raymip::texture::storage::mip::{pyramid_len, Texel};
 //! // 256×128 texels with all 9 levels: 32768 + 8192 + … + 2 + 1 texels.
 //! const LEN: usize = pyramid_len(256, 128, 9);
 //! assert_eq!(LEN, 43_691);
@@ -406,7 +406,7 @@ pub fn generate(geometry: &Geometry, buf: &mut [Texel]) -> Result<(), MipError> 
 /// filter sums `weight · value` per channel (integer weights), and
 /// `encode(sums, den)` turns the sums and the common denominator `den ≥ 1`
 /// into the output texel. [`generate`] uses the 8-bit channels as they
-/// are; sRGB pyramids (`crate::srgb`) filter in linear space.
+/// are; sRGB pyramids (`crate::texture::storage::srgb`) filter in linear space.
 #[cfg(feature = "mipgen")]
 pub(crate) fn generate_mapped(
     geometry: &Geometry,
@@ -461,7 +461,7 @@ pub(crate) fn generate_mapped(
 }
 
 /// Read access to stored texels: the fetch stage's view of a pyramid
-/// (directly in memory, or through a [`TexelCache`](crate::cache::TexelCache)).
+/// (directly in memory, or through a [`TexelCache`](crate::texture::storage::cache::TexelCache)).
 pub trait TexelSource {
     /// The pyramid's geometry.
     fn geometry(&self) -> Geometry;
@@ -482,7 +482,7 @@ pub trait TexelSource {
         ]
     }
     /// The whole pyramid in memory (layout of the module docs), when the
-    /// source reads memory directly: lets a [`Sampler`](crate::filter::Sampler)
+    /// source reads memory directly: lets a [`Sampler`](crate::texture::Sampler)
     /// compute texel addresses itself (one address per 2×2 footprint).
     /// Sources that must see every read (a cache) return `None`, the default.
     #[inline]

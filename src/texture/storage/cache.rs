@@ -32,7 +32,7 @@
 //! its last use; a miss replaces an empty way, else the way with the
 //! smallest stamp. Counters: [`CacheStats`].
 
-use crate::mip::{Geometry, MAX_LEVELS, Pyramid, Texel, TexelSource};
+use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Pyramid, Texel, TexelSource};
 
 /// Side of a cache block in texels (4 × 4 RGBA8 texels = 64 bytes).
 pub const BLOCK: u32 = 4;

@@ -46,48 +46,28 @@
 //! Against the exact real-valued filter at the exact sample position, per
 //! channel, in 8-bit LSB: final rounding ½, the 8.16 intermediate 2⁻¹⁷, and
 //! the texel position rounded to 1/4096 texel per axis (done by the caller,
-//! [`crate::filter`]), at most `255 · 2⁻¹³` per axis. Total
+//! [`crate::texture::address`]), at most `255 · 2⁻¹³` per axis. Total
 //! `0.5 + 2·255/8192 + 2⁻¹⁷ < 0.5623 ≤` [`BILERP_MAX_ERROR_LSB`] `= 0.5625`, for
 //! bilinear and trilinear alike (the blend of two values each within
 //! `0.0623` stays within it).
 //!
-//! # FAST trilinear
+//! # 16-bit lanes (sRGB)
 //!
-//! `Sampler::sample_trilinear_fast` (the ACCURATE path is
-//! `Sampler::sample_trilinear`, bounds above) folds the level weight into
-//! the corner weights: per level the position weights are rounded to
-//! [`FAST_WEIGHT_BITS`] = 10 bits, `x = (fx + 2) >> 2`, `y = (fy + 2) >> 2`,
-//! and with `s = 256 − t` (lower level) or `t` (upper level) and
-//! `a = x·s`: `W₁₁ = floor(a·y/16)`, `W₁₀ = 64a − W₁₁`,
-//! `W₀₁ = 64·y·s − W₁₁`, `W₀₀ = 2¹⁶s − 64a − W₀₁` (three multiplies per
-//! level). The eight weights sum to exactly 2²⁴; per channel one chain of
-//! eight multiply-accumulates `X = 2²³ + Σ₈ texel·W ≤ 255·2²⁴ + 2²³ < 2³²`,
-//! result `X >> 24`. No per-level intermediate is rounded, so its results
-//! are not the ACCURATE ones. When `t = 0` it returns the ACCURATE
-//! one-level value (within 0.5625).
-//!
-//! ## Error bound (proof)
-//!
-//! Against the exact trilinear filter at the exact position with the
-//! exact level weight `t/256`, per channel, in LSB:
-//! * final rounding: `≤ ½`;
-//! * weights: per level the four `W` differ from `s·w/16` by `+e, −e,
-//!   +e, −e` with `0 ≤ e < 1`, so `|Σ texel·ΔW| < 2·255` units of
-//!   `2⁻²⁴`, for both levels `< 1020·2⁻²⁴ < 0.0001`;
-//! * position: the caller's 12-bit weight is within `2⁻¹³` texel of the
-//!   exact position, the rounding to 10 bits moves it by at most
-//!   `2/4096 = 2⁻¹¹`: within `5·2⁻¹³` per axis. The bilinear surface of
-//!   one level changes by at most 255 per texel along each axis, so each
-//!   level's value moves by at most `2·255·5·2⁻¹³ < 0.3113`, and the
-//!   convex level blend keeps that bound.
-//!
-//! Total `< 0.5 + 0.3113 + 0.0001 = 0.8114 ≤`
-//! [`FAST_TRILINEAR_MAX_ERROR_LSB`] `= 0.8125` (ACCURATE:
-//! [`BILERP_MAX_ERROR_LSB`] `= 0.5625`). Both bounds hold against the
-//! same exact value, so FAST and ACCURATE differ by at most 1.375 LSB
-//! (integers: by at most 1).
+//! sRGB texels are decoded to 16-bit linear channels ([`crate::texture::storage::srgb::DECODE`],
+//! 65535 = 1.0) before filtering, and a 16-bit channel times a 24-bit
+//! weight does not fit 32 bits. The same corner sum then runs with
+//! 16-bit corner weights from 16-bit position weights ([`Lin16`],
+//! `corner_weights16`): `W₁₁ = (fx·fy + 2¹⁵) >> 16`, `W₁₀ = fx − W₁₁`,
+//! `W₀₁ = fy − W₁₁`, `W₀₀ = 2¹⁶ − fx − W₀₁` (all non-negative, sum
+//! exactly 2¹⁶), `X = Σ c·W ≤ 65535·2¹⁶`, one level's value
+//! `(X + 2⁷) >> 8` in 16.8 (the same shift as the 8.16 value of 8-bit
+//! lanes) and the level blend `(a·(256 − t) + b·t + 2⁷) >> 8`, again 16.8.
+//! Error of the 16.8 result against the exact linear filter, in units of
+//! full scale: position `2·2⁻¹⁷`, weights `|c₀₀ − c₁₀ − c₀₁ + c₁₁|·2⁻¹⁷ ≤ 2⁻¹⁶`,
+//! the two 16.8 roundings `< 2⁻²³`, below `3.1·10⁻⁵` in all
+//! (the sRGB bound that follows is in [`super::srgb`]).
 
-use crate::mip::Texel;
+use crate::texture::storage::mip::Texel;
 
 /// Fractional bits of the bilinear weights.
 pub const WEIGHT_BITS: u32 = 12;
@@ -112,6 +92,77 @@ fn ch(t: Texel, c: usize) -> u32 {
     (t >> (8 * c)) & 0xFF
 }
 
+/// A texel as the ACCURATE kernel filters it: four channels of 8 bits
+/// (an RGBA8 [`Texel`]) or 16 bits ([`Lin16`]).
+pub(crate) trait Lanes: Copy {
+    /// Channel `c` (0 = r … 3 = a), `< 2^BITS`.
+    fn ch(self, c: usize) -> u32;
+}
+
+impl Lanes for Texel {
+    #[inline(always)]
+    fn ch(self, c: usize) -> u32 {
+        ch(self, c)
+    }
+}
+
+/// Four 16-bit linear channels (65535 = 1.0), two per word:
+/// `[r | g << 16, b | a << 16]` (decoded sRGB texels, [`super::srgb`]).
+pub type Lin16 = [u32; 2];
+
+impl Lanes for Lin16 {
+    #[inline(always)]
+    fn ch(self, c: usize) -> u32 {
+        (self[(c >> 1) & 1] >> (16 * (c & 1))) & 0xFFFF
+    }
+}
+
+/// The corner weights of 16-bit lanes from 16-bit position weights
+/// `fx, fy ≤ 65535` (module docs): `W₁₁ = (fx·fy + 2¹⁵) >> 16`,
+/// `W₁₀ = fx − W₁₁`, `W₀₁ = fy − W₁₁`, `W₀₀ = 2¹⁶ − fx − W₀₁`; each
+/// `≥ 0` (`W₁₁ ≤ min(fx, fy)`, and `W₀₀` is within ½ of
+/// `(2¹⁶ − fx)(2¹⁶ − fy)/2¹⁶ ≥ 2⁻¹⁶`), sum exactly 2¹⁶, each within ½ of
+/// its exact value (`W₁₁`, `W₀₀` off by `+e`, `W₁₀`, `W₀₁` by `−e`).
+#[inline(always)]
+pub(crate) fn corner_weights16(fx: u32, fy: u32) -> [u32; 4] {
+    let w11 = fx.wrapping_mul(fy).wrapping_add(1 << 15) >> 16;
+    let w10 = fx.wrapping_sub(w11);
+    let w01 = fy.wrapping_sub(w11);
+    let w00 = (1u32 << 16).wrapping_sub(fx).wrapping_sub(w01);
+    [w00, w10, w01, w11]
+}
+
+/// One level's bilinear value of lanes `t` with the corner weights `w`
+/// of [`corner_weights`] (8-bit lanes) or [`corner_weights16`] (16-bit): `(X + 2⁷) >> 8` per channel (8.16 for 8-bit
+/// lanes, 16.8 for 16-bit lanes; `X < 2³²`).
+#[inline(always)]
+pub(crate) fn bilerp_lanes<L: Lanes>(t: [L; 4], w: [u32; 4]) -> Wide {
+    let mut out = [0u32; 4];
+    for (c, o) in out.iter_mut().enumerate() {
+        *o = corner_sum(t, w, c, 1 << 7) >> 8;
+    }
+    out
+}
+
+/// The level blend of two [`bilerp_lanes`] values kept at their
+/// precision: `(a·(256 − t) + b·t + 2⁷) >> 8` per channel (`a, b < 2²⁴`,
+/// `t ≤ 256`: the sum is below 2³²). For 8-bit lanes its
+/// `(x + 2¹⁵) >> 16` is [`blend_wide_in_range`] bit for bit (a floor of
+/// an integer plus an integer composes).
+#[inline(always)]
+pub(crate) fn blend_keep(a: Wide, b: Wide, t: u32) -> Wide {
+    let s = (1u32 << BLEND_BITS).wrapping_sub(t);
+    let mut out = [0u32; 4];
+    for (c, o) in out.iter_mut().enumerate() {
+        *o = a[c]
+            .wrapping_mul(s)
+            .wrapping_add(b[c].wrapping_mul(t))
+            .wrapping_add(1 << 7)
+            >> 8;
+    }
+    out
+}
+
 /// Bilinear interpolation of the 2×2 footprint `t00` (x0, y0), `t10`
 /// (x1, y0), `t01` (x0, y1), `t11` (x1, y1) with weights `fx, fy` in
 /// `[0, 4096]` (values above 4096 are clamped); result in 8.16 per channel.
@@ -126,12 +177,7 @@ pub fn bilerp(t00: Texel, t10: Texel, t01: Texel, t11: Texel, fx: u32, fy: u32) 
 /// [`corner_sum`] (`≤ 255·2²⁴`, so nothing overflows).
 #[inline(always)]
 pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
-    let w = corner_weights(fx, fy);
-    let mut out = [0u32; 4];
-    for (c, o) in out.iter_mut().enumerate() {
-        *o = corner_sum(t, w, c, 1 << 7) >> 8;
-    }
-    out
+    bilerp_lanes(t, corner_weights(fx, fy))
 }
 
 /// The four corner weights `[(4096 − fx)(4096 − fy), fx(4096 − fy),
@@ -139,7 +185,7 @@ pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
 /// (each `≤ 2²⁴`, sum `2²⁴`), from one multiply: `w₁₁ = fx·fy`,
 /// `w₁₀ = 2¹²fx − w₁₁`, `w₀₁ = 2¹²fy − w₁₁`, `w₀₀ = 2²⁴ − 2¹²fx − w₀₁`.
 #[inline(always)]
-fn corner_weights(fx: u32, fy: u32) -> [u32; 4] {
+pub(crate) fn corner_weights(fx: u32, fy: u32) -> [u32; 4] {
     let w11 = fx.wrapping_mul(fy);
     let w10 = (fx << WEIGHT_BITS).wrapping_sub(w11);
     let w01 = (fy << WEIGHT_BITS).wrapping_sub(w11);
@@ -152,16 +198,16 @@ fn corner_weights(fx: u32, fy: u32) -> [u32; 4] {
 /// `r + Σᵢ tᵢ[c]·wᵢ` for channel `c` with the [`corner_weights`] `w`:
 /// the exact `X = top·(4096 − fy) + bot·fy` of the module docs (expand
 /// `top` and `bot`) plus `r`. `X ≤ 255·2²⁴`, and the callers' `r` is a
-/// rounding constant `≤ 2²³ + 2⁷` or ([`trilerp_fast_level`]) one level's sum
-/// with the other level's share of the 2²⁴ weight left, so the sum is
-/// below `2³²` and the wrapping operations never wrap. One chain of multiply-accumulates (`mla` on the
-/// M4) starting from `r`.
+/// rounding constant `≤ 2²³ + 2⁷`, so the sum is below `2³²` and the
+/// wrapping operations never wrap (for 16-bit lanes likewise with the
+/// 16-bit weights: `X ≤ 65535·2¹⁶`). One chain of multiply-accumulates
+/// (`mla` on the M4) starting from `r`.
 #[inline(always)]
-fn corner_sum(t: [Texel; 4], w: [u32; 4], c: usize, r: u32) -> u32 {
-    r.wrapping_add(ch(t[0], c).wrapping_mul(w[0]))
-        .wrapping_add(ch(t[1], c).wrapping_mul(w[1]))
-        .wrapping_add(ch(t[2], c).wrapping_mul(w[2]))
-        .wrapping_add(ch(t[3], c).wrapping_mul(w[3]))
+fn corner_sum<L: Lanes>(t: [L; 4], w: [u32; 4], c: usize, r: u32) -> u32 {
+    r.wrapping_add(t[0].ch(c).wrapping_mul(w[0]))
+        .wrapping_add(t[1].ch(c).wrapping_mul(w[1]))
+        .wrapping_add(t[2].ch(c).wrapping_mul(w[2]))
+        .wrapping_add(t[3].ch(c).wrapping_mul(w[3]))
 }
 
 /// [`bilerp_in_range`] rounded to a texel in one step, bit-identical to
@@ -237,106 +283,6 @@ pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32) -> Texel {
         out |= r << (8 * c);
     }
     out
-}
-
-/// Fractional bits of the position weights of the FAST trilinear kernel
-/// (see the module docs).
-pub const FAST_WEIGHT_BITS: u32 = 10;
-
-/// Documented error bound of the FAST trilinear kernel
-/// ([`Sampler::sample_trilinear_fast`](crate::filter::Sampler::sample_trilinear_fast))
-/// against the exact f64 trilinear filter, in 8-bit LSB per channel:
-/// 0.8125 (proof in the [module docs](self)). The ACCURATE path's bound is
-/// [`BILERP_MAX_ERROR_LSB`].
-pub const FAST_TRILINEAR_MAX_ERROR_LSB: f64 = 0.8125;
-
-/// The four corner weights of one level of the FAST kernel, scaled by the
-/// level weight `s ∈ [0, 256]`: position weights rounded to 10 bits,
-/// `x = (fx + 2) >> 2`, `y = (fy + 2) >> 2` (`fx, fy ≤ 4096` in 1/4096,
-/// so `x, y ≤ 1024`), `a = x·s ≤ 2¹⁸`, then
-/// `W₁₁ = floor(a·y / 16)`, `W₁₀ = 64a − W₁₁`, `W₀₁ = 64·y·s − W₁₁`,
-/// `W₀₀ = 2¹⁶s − 64a − W₀₁`. They sum to exactly `2¹⁶·s`; each differs
-/// from its exact value `s·w/16` (`w` the 10-bit corner weight, sum 2²⁰)
-/// by `e ∈ [0, 1)` in magnitude (`W₁₁` and `W₀₀` low by `e`, `W₁₀` and
-/// `W₀₁` high by `e`, one `e` for all four), so none is negative
-/// (`W₀₀ > s·w₀₀/16 − 1 ≥ −1`). `a·y ≤ 2²⁸`: no overflow.
-#[inline(always)]
-fn fast_level_weights(fx: u32, fy: u32, s: u32) -> [u32; 4] {
-    let x = fx.wrapping_add(2) >> 2;
-    let y = fy.wrapping_add(2) >> 2;
-    let a = x.wrapping_mul(s);
-    let w11 = a.wrapping_mul(y) >> 4;
-    let w10 = (a << 6).wrapping_sub(w11);
-    let w01 = (y.wrapping_mul(s) << 6).wrapping_sub(w11);
-    let w00 = (s << 16).wrapping_sub(a << 6).wrapping_sub(w01);
-    [w00, w10, w01, w11]
-}
-
-/// One level of the FAST trilinear kernel: `acc + Σ₄ texel·W` per channel
-/// for the footprint `t` with its 12-bit position weights (`≤ 4096`) and
-/// the level weight `s ≤ 256` folded into the corner weights
-/// ([`fast_level_weights`]). Started from [`FAST_ROUND`] for the lower
-/// level (`s = 256 − t`) and continued with the upper level (`s = t`), it
-/// is ONE chain of eight multiply-accumulates per channel (the eight
-/// weights sum to exactly 2²⁴): `X = 2²³ + Σ₈ texel·W ≤ 255·2²⁴ + 2²³ < 2³²`,
-/// result `X >> 24` ([`trilerp_fast_texel`], nearest, ties up). The lower
-/// level is summed before the upper footprint is read, so its texels and
-/// weights are dead by then (fewer live registers). No per-level intermediate is rounded, so
-/// the results are not those of the ACCURATE kernel
-/// ([`bilerp_in_range`] and [`blend_wide_in_range`]).
-///
-/// Error bound: [`FAST_TRILINEAR_MAX_ERROR_LSB`] (proof in the module docs).
-#[inline(always)]
-pub(crate) fn trilerp_fast_level(
-    acc: [u32; 4],
-    t: [Texel; 4],
-    fx: u32,
-    fy: u32,
-    s: u32,
-) -> [u32; 4] {
-    let w = fast_level_weights(fx, fy, s);
-    let mut out = acc;
-    for (c, o) in out.iter_mut().enumerate() {
-        *o = corner_sum(t, w, c, *o);
-    }
-    out
-}
-
-/// The start value of [`trilerp_fast_level`]'s sums: the rounding
-/// constant 2²³ per channel.
-pub(crate) const FAST_ROUND: [u32; 4] = [1 << 23; 4];
-
-/// The texel of [`trilerp_fast_level`]'s final sums (both levels added):
-/// `X >> 24` per channel (`X ≤ 255·2²⁴ + 2²³`, so each is `≤ 255`).
-#[inline(always)]
-pub(crate) fn trilerp_fast_texel(acc: [u32; 4]) -> Texel {
-    let mut out = 0u32;
-    for (c, &x) in acc.iter().enumerate() {
-        out |= (x >> 24) << (8 * c);
-    }
-    out
-}
-
-/// [`trilerp_fast_level`] of both levels, then [`trilerp_fast_texel`].
-#[cfg(test)]
-#[allow(clippy::too_many_arguments)]
-fn trilerp_fast(
-    ta: [Texel; 4],
-    fxa: u32,
-    fya: u32,
-    tb: [Texel; 4],
-    fxb: u32,
-    fyb: u32,
-    t: u32,
-) -> Texel {
-    let acc = trilerp_fast_level(
-        FAST_ROUND,
-        ta,
-        fxa,
-        fya,
-        (1u32 << BLEND_BITS).wrapping_sub(t),
-    );
-    trilerp_fast_texel(trilerp_fast_level(acc, tb, fxb, fyb, t))
 }
 
 /// Level blend of two texels (nearest texel, linear between levels),
@@ -507,63 +453,6 @@ mod tests {
                     want |= ((a[c] * (256 - t) + b[c] * t + (1 << 23)) >> 24) << (8 * c);
                 }
                 assert_eq!(blend_wide_in_range(a, b, t), want, "{a:x?} {b:x?} {t}");
-            }
-        }
-    }
-
-    /// The FAST level weights: non-negative, summing to exactly `2¹⁶·s`,
-    /// each within 1 of the exact `s·w/16` with the 10-bit corner weights
-    /// `w` of the rounded positions, for a stride through `fx, fy ∈
-    /// [0, 4096]` with both ends and every `s ∈ [0, 256]` (every 32nd
-    /// under Miri).
-    #[test]
-    fn fast_level_weights_sum_and_error() {
-        let step = if cfg!(miri) { 1023 } else { 37 };
-        let axis = || {
-            (0..=4096u32)
-                .step_by(step)
-                .chain([1, 2, 3, 4094, 4095, 4096])
-        };
-        for fx in axis() {
-            for fy in axis() {
-                let (x, y) = (f64::from((fx + 2) / 4), f64::from((fy + 2) / 4));
-                let exact = [
-                    (1024.0 - x) * (1024.0 - y),
-                    x * (1024.0 - y),
-                    (1024.0 - x) * y,
-                    x * y,
-                ];
-                for s in (0..=256u32).step_by(if cfg!(miri) { 32 } else { 1 }) {
-                    let w = fast_level_weights(fx, fy, s);
-                    assert_eq!(
-                        w.iter().map(|&v| u64::from(v)).sum::<u64>(),
-                        u64::from(s) << 16
-                    );
-                    for (&got, &e) in w.iter().zip(&exact) {
-                        let want = e * f64::from(s) / 16.0;
-                        assert!(
-                            got <= 1 << 24 && (f64::from(got) - want).abs() < 1.0,
-                            "{fx} {fy} {s}"
-                        );
-                    }
-                }
-            }
-        }
-    }
-
-    /// FAST trilinear on constant footprints returns the constant (the
-    /// weights sum to 2²⁴ exactly), for every `t` and extreme weights.
-    #[test]
-    fn fast_trilinear_of_constants() {
-        for t in (0..=256u32).step_by(if cfg!(miri) { 32 } else { 1 }) {
-            for (fx, fy) in [(0, 0), (4096, 4096), (0, 4096), (2047, 2049), (4095, 1)] {
-                for v in [0u32, 0x8040_20FF, u32::MAX, 0x0102_0304] {
-                    assert_eq!(
-                        trilerp_fast([v; 4], fx, fy, [v; 4], fy, fx, t),
-                        v,
-                        "{t} {v:x}"
-                    );
-                }
             }
         }
     }

@@ -1,0 +1,302 @@
+//! Filter kernels: one arithmetic definition per precision tier, chosen by
+//! type.
+//!
+//! | kernel ([`Kernel`] for `(C, P)`) | lanes | position weights | module | bound vs exact f64 |
+//! |---|---|---|---|---|
+//! | `(Linear, Accurate)` | RGBA8, one channel per multiply | 12 bits | [`accurate`] | 0.5625 LSB |
+//! | `(Linear, Fast)` | RGBA8, two channels per multiply | 8 bits | [`fast`] | 2.40625 LSB |
+//! | `(Srgb, _)`, `(SrgbToLinear, _)` | 16-bit linear, one channel per multiply | 16 bits | [`accurate`] + [`srgb`] | 0.6875 sRGB LSB / 0.5101 LSB |
+//!
+//! The sRGB kernels are the same for both tiers: with 8-bit weights the
+//! position error alone, times the sRGB curve's slope near black
+//! (12.92), would exceed 20 LSB, so a FAST sRGB sampler filters as the
+//! ACCURATE one does (documented, not silent: [`Kernel::TIER`]).
+//!
+//! A [`Kernel`] works on a texel footprint the sampler has read and
+//! addressed; it never reads memory.
+
+use core::fmt::Debug;
+
+use crate::texture::storage::mip::Texel;
+
+pub mod accurate;
+pub mod fast;
+pub mod srgb;
+
+/// Colour space `Linear`: UNORM data, filtered as stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Linear;
+
+/// Colour space `Srgb`: RGB decoded to linear before filtering, results
+/// re-encoded to sRGB (what a GPU writes to an sRGB target).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Srgb;
+
+/// Colour space `SrgbToLinear`: RGB decoded to linear before filtering,
+/// results returned linear (what a shader reads from an sRGB view).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SrgbToLinear;
+
+/// Precision tier ACCURATE (the default): 12-bit position weights, the
+/// bounds of [`accurate`], bit-identical on every target.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Accurate;
+
+/// Precision tier FAST: GPU precision (D3D11's 8 sub-texel and 8 lod
+/// fraction bits), two channels per register, bound
+/// [`fast::FAST_MAX_ERROR_LSB`]; bit-identical on every target too.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Fast;
+
+/// The precision tier of a kernel, as a value (tables, the C ABI).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Precision {
+    /// [`Accurate`].
+    #[default]
+    Accurate = 0,
+    /// [`Fast`].
+    Fast = 1,
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl<C, P> Sealed for (C, P) {}
+}
+
+/// A filter kernel: the arithmetic of one colour space and precision
+/// tier on texel footprints (implemented for the pairs `(C, P)` of the
+/// table above; sealed).
+pub trait Kernel: sealed::Sealed + 'static {
+    /// Fractional bits of the position weights the addressing computes
+    /// (12 ACCURATE, 8 FAST, 16 for 16-bit lanes).
+    const WEIGHT_BITS: u32;
+    /// The tier the results have (an sRGB FAST kernel filters ACCURATE).
+    const TIER: Precision;
+    /// A texel as filtered (an RGBA8 word, or decoded 16-bit lanes).
+    type Lanes: Copy + Debug;
+    /// One level's filtered value before the final rounding.
+    type Wide: Copy + Debug;
+
+    /// A stored texel as lanes.
+    fn load(t: Texel) -> Self::Lanes;
+    /// The border colour (linear RGBA8, never decoded) as lanes.
+    fn load_border(t: Texel) -> Self::Lanes;
+    /// A stored texel as a nearest-texel result (identity but for
+    /// sRGB data returned linear).
+    fn nearest(t: Texel) -> Texel;
+    /// The border colour as a nearest-texel result.
+    fn border_nearest(t: Texel) -> Texel;
+    /// One level's bilinear value of the footprint `l` (`t00, t10, t01,
+    /// t11`) with position weights `fx, fy < 2^WEIGHT_BITS`.
+    fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide;
+    /// [`bilinear`](Self::bilinear) rounded to a result texel.
+    fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Texel;
+    /// A level value rounded to a result texel.
+    fn round(w: Self::Wide) -> Texel;
+    /// The blend of two levels' values with the 8-bit lod fraction
+    /// `t ∈ [1, 255]`, rounded to a result texel.
+    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel;
+    /// The blend of two nearest texels' lanes, rounded.
+    fn blend_nearest(a: Self::Lanes, b: Self::Lanes, t: u32) -> Texel;
+    /// A level value as a probe value that sums over 16 probes: four
+    /// channels with 16 fractional bits (8.16 for 8-bit results, 16.8
+    /// linear for sRGB data).
+    fn probe(w: Self::Wide) -> [u32; 4];
+    /// [`blend`](Self::blend) as a probe value.
+    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4];
+    /// The mean of `n ∈ [1, 16]` probe values (their channel sums),
+    /// rounded to a result texel.
+    fn probe_mean(sum: [u32; 4], n: u32) -> Texel;
+}
+
+/// `(Σ + n/2) / n` per channel: the rounded mean of `n ≥ 1` probe values.
+#[inline(always)]
+fn mean(sum: [u32; 4], n: u32) -> [u32; 4] {
+    let n = n.max(1);
+    sum.map(|s| s.wrapping_add(n / 2) / n)
+}
+
+impl Kernel for (Linear, Accurate) {
+    const WEIGHT_BITS: u32 = accurate::WEIGHT_BITS;
+    const TIER: Precision = Precision::Accurate;
+    type Lanes = Texel;
+    type Wide = accurate::Wide;
+
+    #[inline(always)]
+    fn load(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn load_border(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn nearest(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn border_nearest(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
+        accurate::bilerp_in_range(l, fx, fy)
+    }
+    #[inline(always)]
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+        accurate::bilerp_rounded(l, fx, fy)
+    }
+    #[inline(always)]
+    fn round(w: Self::Wide) -> Texel {
+        accurate::round_wide_in_range(w)
+    }
+    #[inline(always)]
+    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
+        accurate::blend_wide_in_range(a, b, t)
+    }
+    #[inline(always)]
+    fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
+        accurate::blend_texels(a, b, t)
+    }
+    #[inline(always)]
+    fn probe(w: Self::Wide) -> [u32; 4] {
+        w
+    }
+    #[inline(always)]
+    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
+        accurate::blend_keep(a, b, t)
+    }
+    #[inline(always)]
+    fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
+        accurate::round_wide_in_range(mean(sum, n))
+    }
+}
+
+impl Kernel for (Linear, Fast) {
+    const WEIGHT_BITS: u32 = fast::FAST_WEIGHT_BITS;
+    const TIER: Precision = Precision::Fast;
+    type Lanes = Texel;
+    type Wide = fast::Wide;
+
+    #[inline(always)]
+    fn load(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn load_border(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn nearest(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn border_nearest(t: Texel) -> Texel {
+        t
+    }
+    #[inline(always)]
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
+        fast::bilinear(l, fx, fy)
+    }
+    #[inline(always)]
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+        fast::round(fast::bilinear(l, fx, fy))
+    }
+    #[inline(always)]
+    fn round(w: Self::Wide) -> Texel {
+        fast::round(w)
+    }
+    #[inline(always)]
+    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
+        fast::blend(a, b, t)
+    }
+    #[inline(always)]
+    fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
+        accurate::blend_texels(a, b, t)
+    }
+    #[inline(always)]
+    fn probe(w: Self::Wide) -> [u32; 4] {
+        fast::unpack(w)
+    }
+    #[inline(always)]
+    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
+        fast::blend_unpacked(a, b, t)
+    }
+    #[inline(always)]
+    fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
+        accurate::round_wide_in_range(mean(sum, n))
+    }
+}
+
+/// The sRGB kernels: 16-bit lanes and weights ([`accurate`]), the output
+/// stage `OUT` ([`srgb::encode_output`] or [`srgb::linear_output`]), the
+/// same for both tiers.
+macro_rules! srgb_kernel {
+    ($space:ty, $out:path, $nearest:expr, $border:expr) => {
+        impl<P: 'static> Kernel for ($space, P) {
+            const WEIGHT_BITS: u32 = 16;
+            const TIER: Precision = Precision::Accurate;
+            type Lanes = accurate::Lin16;
+            type Wide = accurate::Wide;
+
+            #[inline(always)]
+            fn load(t: Texel) -> accurate::Lin16 {
+                srgb::load(t)
+            }
+            #[inline(always)]
+            fn load_border(t: Texel) -> accurate::Lin16 {
+                srgb::load_linear(t)
+            }
+            #[inline(always)]
+            fn nearest(t: Texel) -> Texel {
+                $nearest(t)
+            }
+            #[inline(always)]
+            fn border_nearest(t: Texel) -> Texel {
+                $border(t)
+            }
+            #[inline(always)]
+            fn bilinear(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Self::Wide {
+                accurate::bilerp_lanes(l, accurate::corner_weights16(fx, fy))
+            }
+            #[inline(always)]
+            fn bilinear_texel(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Texel {
+                $out(Self::bilinear(l, fx, fy))
+            }
+            #[inline(always)]
+            fn round(w: Self::Wide) -> Texel {
+                $out(w)
+            }
+            #[inline(always)]
+            fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
+                $out(accurate::blend_keep(a, b, t))
+            }
+            #[inline(always)]
+            fn blend_nearest(a: accurate::Lin16, b: accurate::Lin16, t: u32) -> Texel {
+                $out(accurate::blend_keep(srgb::widen(a), srgb::widen(b), t))
+            }
+            #[inline(always)]
+            fn probe(w: Self::Wide) -> [u32; 4] {
+                w
+            }
+            #[inline(always)]
+            fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
+                accurate::blend_keep(a, b, t)
+            }
+            #[inline(always)]
+            fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
+                $out(mean(sum, n))
+            }
+        }
+    };
+}
+
+srgb_kernel!(Srgb, srgb::encode_output, |t| t, |t| srgb::encode_output(
+    srgb::widen(srgb::load_linear(t))
+));
+srgb_kernel!(
+    SrgbToLinear,
+    srgb::linear_output,
+    |t| srgb::linear_output(srgb::widen(srgb::load(t))),
+    |t| t
+);

@@ -1,0 +1,137 @@
+//! The texture half of the unit: texture storage, addressing, the filter
+//! kernels and the one [`Sampler`] over all of them.
+//!
+//! | stage | module | per sample |
+//! |---|---|---|
+//! | storage: pyramids, images in any format, BC blocks, the texel cache, sRGB | [`storage`] | level offset, texel decode or cache tag compare |
+//! | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`address`] | one multiply per axis and level |
+//! | filter kernels, one per precision tier | [`kernel`] | 4 or 8 texels, one multiply-accumulate chain |
+//! | the sampler (state, modes, batches, anisotropy, stochastic filtering) | [`sampler`] | lod window, level choice, footprint, kernel |
+//!
+//! # One sampler, specialised at compile time
+//!
+//! A [`Sampler<S, K>`](Sampler) reads a texel source `S` (a
+//! [`Pyramid`] in memory, an [`Image`](storage::image::Image) in a typed
+//! pixel format, or a [`TexelCache`](storage::cache::TexelCache) in front
+//! of either) with a *key* `K` ([`Cfg<U, V, C, P>`](sampler::Cfg)): the
+//! address mode of each axis (`U`, `V`: [`address::Wrap`],
+//! [`address::ClampToEdge`], …), the colour space (`C`:
+//! [`kernel::Linear`], [`kernel::Srgb`], [`kernel::SrgbToLinear`]) and
+//! the precision tier (`P`: [`kernel::Accurate`], the default, or
+//! [`kernel::Fast`]). Each is a type, so a configuration that does not use
+//! a feature carries none of its instructions: a wrap sampler has no
+//! border test, a linear one no sRGB table, an RGBA8 pyramid no texel
+//! decode. Lod bias and clamps, the border colour and the anisotropy
+//! limit come from a [`SamplerState`] validated once at set-up. The C ABI
+//! and the harness's CLI use [`DynSampler`](sampler::dynamic::DynSampler),
+//! which picks one specialised sampler from a small table of keys once at
+//! set-up, not per texel.
+//!
+//! # Precision tiers
+//!
+//! | tier | weights | per channel | bound vs the exact f64 filter |
+//! |---|---|---|---|
+//! | ACCURATE ([`kernel::Accurate`], default) | 12-bit position, 24-bit corner weights, exact 8-bit level weight | one chain of four multiply-accumulates per texel footprint | [`kernel::accurate::BILERP_MAX_ERROR_LSB`] = 0.5625 LSB (linear); sRGB re-encoded [`kernel::srgb::SRGB_MAX_ERROR_LSB`] = 1.4 |
+//! | FAST ([`kernel::Fast`]) | 8 sub-texel bits (D3D11's minimum), 8-bit corner weights, 8-bit level weight | two channels per 32-bit register | [`kernel::fast::FAST_MAX_ERROR_LSB`] (proof in [`kernel::fast`]) |
+//!
+//! Both tiers give the same bits on every target. ACCURATE RGBA8 results
+//! under wrap and clamp-to-edge are those of the earlier `filter::Sampler`
+//! bit for bit (tested against hashes recorded from it).
+
+use core::fmt;
+
+use fixed::types::I32F32;
+
+pub mod address;
+pub mod kernel;
+pub mod sampler;
+pub mod storage;
+
+pub use address::AddressMode;
+pub use sampler::state::{SamplerDesc, SamplerState};
+pub use sampler::{Cfg, Sampler};
+pub use storage::mip::{Geometry, Pyramid, Texel, TexelSource};
+
+/// A normalized texture coordinate (I32F32: range `[−2³¹, 2³¹)`, step
+/// 2⁻³²). `u = 0` is the left edge, `u = 1` the right edge of every
+/// level; texel `i` of a level `w` wide has its centre at `(i + ½)/w`.
+pub type TexCoord = I32F32;
+
+/// Filter mode, numbered as in the `sample` command. The linear-level
+/// modes (0 and 3) need the `trilinear` feature.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Bilinear within a level, linear between levels.
+    #[cfg(feature = "trilinear")]
+    Trilinear = 0,
+    /// Bilinear within the nearest level `floor(lod + ½)`.
+    BilinearNearestLevel = 1,
+    /// Nearest texel of the nearest level.
+    Nearest = 2,
+    /// Nearest texel in each of two levels, linear between levels.
+    #[cfg(feature = "trilinear")]
+    NearestTexelLinearLevel = 3,
+}
+
+impl Mode {
+    /// The mode numbered `n` (0..=3), `None` otherwise (and for 0 and 3
+    /// without the `trilinear` feature).
+    #[must_use]
+    pub const fn from_index(n: u8) -> Option<Self> {
+        match n {
+            #[cfg(feature = "trilinear")]
+            0 => Some(Self::Trilinear),
+            1 => Some(Self::BilinearNearestLevel),
+            2 => Some(Self::Nearest),
+            #[cfg(feature = "trilinear")]
+            3 => Some(Self::NearestTexelLinearLevel),
+            _ => None,
+        }
+    }
+}
+
+/// Texel-read counters of a [`Sampler`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FetchStats {
+    /// Texels read from the source (4 per bilinear level, 1 per
+    /// nearest-texel level; border texels are not reads).
+    pub fetched: u64,
+    /// Texel reads avoided because the second level of a linear-level mode
+    /// could not change the result (blend weight 0): 4 per skipped
+    /// bilinear level, 1 per skipped nearest-texel level.
+    pub skipped: u64,
+}
+
+/// Errors at the float edge of the sampler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FilterError {
+    /// A coordinate or lod is NaN or infinite.
+    NonFinite,
+    /// A coordinate lies outside the [`TexCoord`] range `[−2³¹, 2³¹)`.
+    OutOfRange,
+}
+
+impl fmt::Display for FilterError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite => f.write_str("texture coordinate or lod is NaN or infinite"),
+            Self::OutOfRange => f.write_str("texture coordinate outside [-2^31, 2^31)"),
+        }
+    }
+}
+
+impl core::error::Error for FilterError {}
+
+/// Converts a float coordinate to a [`TexCoord`] (rounded to nearest 2⁻³²).
+/// Set-up/host convenience (uses floats).
+///
+/// # Errors
+/// [`FilterError::NonFinite`] for NaN/±inf, [`FilterError::OutOfRange`]
+/// for `|x| ≥ 2³¹`.
+pub fn tex_coord_from_f64(x: f64) -> Result<TexCoord, FilterError> {
+    if !x.is_finite() {
+        return Err(FilterError::NonFinite);
+    }
+    TexCoord::checked_from_num(x).ok_or(FilterError::OutOfRange)
+}

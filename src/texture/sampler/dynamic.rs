@@ -1,0 +1,216 @@
+//! The run-time-configured sampler for the C ABI and the harness's CLI:
+//! a small static table of keys, one of which is picked once at set-up
+//! from a [`SamplerState`], a colour space and a [`Precision`]; every
+//! sample then runs that key's specialised code (one `match` per call on
+//! the stored variant, none per texel).
+//!
+//! | [`DynKey`] | key | when |
+//! |---|---|---|
+//! | `WrapAccurate` / `WrapFast` | `Cfg<Wrap, Wrap, Linear, _>` | linear data, wrap on both axes |
+//! | `ClampAccurate` / `ClampFast` | `Cfg<ClampToEdge, ClampToEdge, Linear, _>` | linear data, clamp-to-edge on both axes |
+//! | `AnyAccurate` / `AnyFast` | `Cfg<AnyAxis, AnyAxis, Linear, _>` | linear data, any other pair of modes |
+//! | `Srgb` | `Cfg<AnyAxis, AnyAxis, Srgb>` | sRGB data, results re-encoded (both tiers: the sRGB kernel is one) |
+//! | `SrgbToLinear` | `Cfg<AnyAxis, AnyAxis, SrgbToLinear>` | sRGB data, results linear |
+//!
+//! Results are those of the static sampler with the same key, bit for
+//! bit (tested). A firmware that knows its textures names the static
+//! [`Sampler`] type instead and links one key's code.
+
+use super::aniso::Footprint;
+use super::stochastic::StochasticMode;
+use super::{Cfg, Sampler, SamplerState, SrgbOutput};
+use crate::lod::Lod;
+use crate::texture::address::{AddressMode, AnyAxis, ClampToEdge, Wrap};
+use crate::texture::kernel::{Fast, Linear, Precision, Srgb, SrgbToLinear};
+use crate::texture::storage::format::ColorSpace;
+use crate::texture::storage::mip::{Geometry, Texel, TexelSource};
+use crate::texture::{FetchStats, Mode, TexCoord};
+
+/// Which entry of the key table a [`DynSampler`] runs (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DynKey {
+    /// Wrap, linear, ACCURATE.
+    WrapAccurate,
+    /// Clamp-to-edge, linear, ACCURATE.
+    ClampAccurate,
+    /// Any modes, linear, ACCURATE.
+    AnyAccurate,
+    /// Wrap, linear, FAST.
+    WrapFast,
+    /// Clamp-to-edge, linear, FAST.
+    ClampFast,
+    /// Any modes, linear, FAST.
+    AnyFast,
+    /// Any modes, sRGB re-encoded.
+    Srgb,
+    /// Any modes, sRGB to linear.
+    SrgbToLinear,
+}
+
+impl DynKey {
+    /// The entry for address modes `[u, v]`, colour space `space`, sRGB
+    /// result encoding `output` and tier `precision`.
+    #[must_use]
+    pub fn select(
+        address: [AddressMode; 2],
+        space: ColorSpace,
+        output: SrgbOutput,
+        precision: Precision,
+    ) -> Self {
+        let fast = precision == Precision::Fast;
+        match (space, output, address) {
+            (ColorSpace::Srgb, SrgbOutput::Encoded, _) => Self::Srgb,
+            (ColorSpace::Srgb, SrgbOutput::Linear, _) => Self::SrgbToLinear,
+            (_, _, [AddressMode::Wrap, AddressMode::Wrap]) if fast => Self::WrapFast,
+            (_, _, [AddressMode::Wrap, AddressMode::Wrap]) => Self::WrapAccurate,
+            (_, _, [AddressMode::ClampToEdge, AddressMode::ClampToEdge]) if fast => Self::ClampFast,
+            (_, _, [AddressMode::ClampToEdge, AddressMode::ClampToEdge]) => Self::ClampAccurate,
+            _ if fast => Self::AnyFast,
+            _ => Self::AnyAccurate,
+        }
+    }
+}
+
+/// A sampler whose key is chosen at run time (module docs).
+#[derive(Debug)]
+#[allow(missing_docs, clippy::large_enum_variant)]
+pub enum DynSampler<S: TexelSource> {
+    WrapAccurate(Sampler<S, Cfg<Wrap>>),
+    ClampAccurate(Sampler<S, Cfg<ClampToEdge>>),
+    AnyAccurate(Sampler<S, Cfg<AnyAxis>>),
+    WrapFast(Sampler<S, Cfg<Wrap, Wrap, Linear, Fast>>),
+    ClampFast(Sampler<S, Cfg<ClampToEdge, ClampToEdge, Linear, Fast>>),
+    AnyFast(Sampler<S, Cfg<AnyAxis, AnyAxis, Linear, Fast>>),
+    Srgb(Sampler<S, Cfg<AnyAxis, AnyAxis, Srgb>>),
+    SrgbToLinear(Sampler<S, Cfg<AnyAxis, AnyAxis, SrgbToLinear>>),
+}
+
+/// `$s` bound to the variant's sampler in every arm.
+macro_rules! each {
+    ($self:expr, $s:ident => $e:expr) => {
+        match $self {
+            DynSampler::WrapAccurate($s) => $e,
+            DynSampler::ClampAccurate($s) => $e,
+            DynSampler::AnyAccurate($s) => $e,
+            DynSampler::WrapFast($s) => $e,
+            DynSampler::ClampFast($s) => $e,
+            DynSampler::AnyFast($s) => $e,
+            DynSampler::Srgb($s) => $e,
+            DynSampler::SrgbToLinear($s) => $e,
+        }
+    };
+}
+
+impl<S: TexelSource> DynSampler<S> {
+    /// The sampler of the key [`DynKey::select`] picks for `state`'s
+    /// address modes and sRGB output, `space` and `precision`, over
+    /// `source`. Never fails (every state has a key).
+    pub fn new(source: S, state: SamplerState, space: ColorSpace, precision: Precision) -> Self {
+        let key = DynKey::select(state.address(), space, state.srgb_output(), precision);
+        let [mu, mv] = state.address();
+        let any = (AnyAxis(mu), AnyAxis(mv));
+        match key {
+            DynKey::WrapAccurate => Self::WrapAccurate(Sampler::build(source, state, (Wrap, Wrap))),
+            DynKey::ClampAccurate => {
+                Self::ClampAccurate(Sampler::build(source, state, (ClampToEdge, ClampToEdge)))
+            }
+            DynKey::AnyAccurate => Self::AnyAccurate(Sampler::build(source, state, any)),
+            DynKey::WrapFast => Self::WrapFast(Sampler::build(source, state, (Wrap, Wrap))),
+            DynKey::ClampFast => {
+                Self::ClampFast(Sampler::build(source, state, (ClampToEdge, ClampToEdge)))
+            }
+            DynKey::AnyFast => Self::AnyFast(Sampler::build(source, state, any)),
+            DynKey::Srgb => Self::Srgb(Sampler::build(source, state, any)),
+            DynKey::SrgbToLinear => Self::SrgbToLinear(Sampler::build(source, state, any)),
+        }
+    }
+
+    /// The key this sampler runs.
+    #[must_use]
+    pub fn key(&self) -> DynKey {
+        match self {
+            Self::WrapAccurate(_) => DynKey::WrapAccurate,
+            Self::ClampAccurate(_) => DynKey::ClampAccurate,
+            Self::AnyAccurate(_) => DynKey::AnyAccurate,
+            Self::WrapFast(_) => DynKey::WrapFast,
+            Self::ClampFast(_) => DynKey::ClampFast,
+            Self::AnyFast(_) => DynKey::AnyFast,
+            Self::Srgb(_) => DynKey::Srgb,
+            Self::SrgbToLinear(_) => DynKey::SrgbToLinear,
+        }
+    }
+
+    /// [`Sampler::sample`] of the selected key.
+    #[inline]
+    pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
+        each!(self, s => s.sample(u, v, lod, mode))
+    }
+
+    /// [`Sampler::sample_batch`] of the selected key.
+    pub fn sample_batch(
+        &mut self,
+        hits: &[(TexCoord, TexCoord, Lod)],
+        mode: Mode,
+        out: &mut [Texel],
+    ) -> usize {
+        each!(self, s => s.sample_batch(hits, mode, out))
+    }
+
+    /// [`Sampler::sample_aniso`] of the selected key.
+    pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
+        each!(self, s => s.sample_aniso(u, v, fp))
+    }
+
+    /// [`Sampler::sample_stochastic`] of the selected key.
+    pub fn sample_stochastic(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mode: StochasticMode,
+        bits: u32,
+    ) -> Texel {
+        each!(self, s => s.sample_stochastic(u, v, lod, mode, bits))
+    }
+
+    /// The precision tier of the results.
+    #[must_use]
+    pub fn precision(&self) -> Precision {
+        each!(self, s => s.precision())
+    }
+
+    /// The sampler state.
+    #[must_use]
+    pub fn state(&self) -> &SamplerState {
+        each!(self, s => s.state())
+    }
+
+    /// The source's geometry.
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        each!(self, s => s.geometry())
+    }
+
+    /// Fetch counters.
+    #[must_use]
+    pub fn stats(&self) -> FetchStats {
+        each!(self, s => s.stats())
+    }
+
+    /// Zeroes the fetch counters.
+    pub fn reset_stats(&mut self) {
+        each!(self, s => s.reset_stats());
+    }
+
+    /// The texel source.
+    #[must_use]
+    pub fn source(&self) -> &S {
+        each!(self, s => s.source())
+    }
+
+    /// The texel source, mutable.
+    #[must_use]
+    pub fn source_mut(&mut self) -> &mut S {
+        each!(self, s => s.source_mut())
+    }
+}

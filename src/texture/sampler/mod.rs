@@ -1,0 +1,1028 @@
+//! The sampler: one type for every texel source, address mode, colour
+//! space, filter mode and precision tier, specialised at compile time by
+//! its key [`Cfg`].
+//!
+//! * **Addressing** ([`crate::texture::address`]): per axis, reduced
+//!   exactly on the fixed-point bits, then scaled by the level size:
+//!   nearest texel `i = floor(u·w)`, bilinear `x = u·w − ½` rounded to the
+//!   kernel's weight step, `i₀ = floor(x)`, `i₁ = i₀ + 1`, each index
+//!   mapped by the axis's mode. Power-of-two wrapped axes use one multiply
+//!   for index and weight; power-of-two textures in memory are read with
+//!   one bounds check per level.
+//! * **Levels**: the lod (I8F8) goes through the [`SamplerState`]'s
+//!   window, `clamp(lod + bias, min_lod, max_lod)`, then to the stored
+//!   levels `[0, levels − 1]` (both folded into one `[lo, hi]` clamp at
+//!   set-up). Nearest-level modes use level `floor(lod + ½)`; linear-level
+//!   modes `floor(lod)` and the next with weight `frac(lod)` (8 bits,
+//!   exact). When that weight is 0 only one level is read and the avoided
+//!   reads are counted in [`FetchStats::skipped`].
+//! * **Kernel** ([`crate::texture::kernel`]): chosen by the key's colour
+//!   space and tier; the sampler hands it addressed footprints.
+//!
+//! Everything a key does not name costs nothing: without a border axis
+//! there is no border select, without sRGB no decode table, an RGBA8
+//! pyramid has no texel decode.
+//!
+//! # Precision for large coordinates
+//!
+//! [`TexCoord`] has 32 fractional bits at every magnitude and covers
+//! `|u| < 2³¹`; wrapping takes the fractional part of the bits exactly, so
+//! the firmware path is exact for every representable coordinate. Precision
+//! is lost only where floats come in: an `f64` coordinate `|u| ≥ 2²¹` is
+//! itself quantized more coarsely than 2⁻³². [`Sampler::sample_f64`]
+//! reduces wrapped coordinates in f64 (exactly) before converting, so it
+//! accepts any finite value; [`tex_coord_from_f64`] rejects values outside
+//! the [`TexCoord`] range.
+
+use core::fmt;
+use core::marker::PhantomData;
+
+use crate::lod::Lod;
+use crate::texture::address::{AddressMode, AnyAxis, Axis, AxisTaps, ClampToEdge, Wrap};
+use crate::texture::address::{pow2_wrap_taps, wrap_constant};
+use crate::texture::kernel::{Accurate, Kernel, Linear, Precision};
+use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
+use crate::texture::{FetchStats, FilterError, Mode, TexCoord, tex_coord_from_f64};
+
+pub mod aniso;
+pub mod dynamic;
+pub mod state;
+pub mod stochastic;
+
+pub use state::{SamplerDesc, SamplerState, SrgbOutput};
+
+/// What a [`Sampler`] is specialised for (implemented by [`Cfg`]).
+pub trait Key: 'static {
+    /// Address mode of `u`.
+    type U: Axis;
+    /// Address mode of `v`.
+    type V: Axis;
+    /// The filter kernel (colour space and precision tier).
+    type Kernel: Kernel;
+}
+
+/// A sampler key: address mode of `u` ([`Wrap`],
+/// [`Mirror`](crate::texture::address::Mirror),
+/// [`ClampToEdge`],
+/// [`MirrorOnce`](crate::texture::address::MirrorOnce),
+/// [`ClampToBorder`](crate::texture::address::ClampToBorder) or
+/// [`AnyAxis`]), of `v` (default: as `u`), colour space `C`
+/// ([`Linear`], [`Srgb`](crate::texture::kernel::Srgb),
+/// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
+/// tier `P` ([`Accurate`], [`Fast`](crate::texture::kernel::Fast)).
+/// `Cfg` alone is wrap, linear, ACCURATE.
+pub struct Cfg<U = Wrap, V = U, C = Linear, P = Accurate>(PhantomData<KeyParts<U, V, C, P>>);
+
+/// The parts of a [`Cfg`] (a `fn` pointer type: no auto-trait or drop
+/// obligations on them).
+type KeyParts<U, V, C, P> = fn() -> (U, V, C, P);
+
+impl<U, V, C, P> fmt::Debug for Cfg<U, V, C, P> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("Cfg")
+    }
+}
+
+impl<U: Axis, V: Axis, C: 'static, P: 'static> Key for Cfg<U, V, C, P>
+where
+    (C, P): Kernel,
+{
+    type U = U;
+    type V = V;
+    type Kernel = (C, P);
+}
+
+/// The kernel of key `K`.
+type Kern<K> = <K as Key>::Kernel;
+/// The lanes of key `K`'s kernel.
+type Lanes<K> = <Kern<K> as Kernel>::Lanes;
+
+/// Why a [`SamplerState`] does not fit a sampler's key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SamplerError {
+    /// The state's address mode of `u` is not the key's.
+    AddressU(AddressMode),
+    /// The state's address mode of `v` is not the key's.
+    AddressV(AddressMode),
+}
+
+impl fmt::Display for SamplerError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::AddressU(m) => write!(f, "address mode {m:?} of u is not the sampler key's"),
+            Self::AddressV(m) => write!(f, "address mode {m:?} of v is not the sampler key's"),
+        }
+    }
+}
+
+impl core::error::Error for SamplerError {}
+
+/// Addressing of one level: offset in texels, width and height, the
+/// per-axis constants of [`pow2_wrap_taps`] and `log2(w·h)` when both
+/// sides are powers of two and the source is in memory (set up once),
+/// else [`Level::OFF`]'s offset.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Level {
+    /// Offset of the level in the texel slice (`< 2³¹`); `u32::MAX` when
+    /// the level is not read through the slice path.
+    offset: u32,
+    w: u32,
+    h: u32,
+    cx: u32,
+    cy: u32,
+    /// `log2(w·h) ≤ 30`: the level holds `1 << log2_len` texels.
+    log2_len: u32,
+}
+
+impl Level {
+    /// No slice path: the offset `u32::MAX`, read as the level start
+    /// `usize::MAX` (sign-extended, [`Level::start`]), never lies in a
+    /// slice (the range end wraps below its start), so [`Level::slice`]
+    /// returns `None` and the sampler takes the generic path. A table of
+    /// these costs the per-sample path no test of its own.
+    const OFF: Self = Self {
+        offset: u32::MAX,
+        w: 0,
+        h: 0,
+        cx: 0,
+        cy: 0,
+        log2_len: 0,
+    };
+
+    /// The table for `g` and `bits` weight bits when both sides are
+    /// powers of two (then every level's are; levels past the top repeat
+    /// the top level), else [`Level::OFF`] throughout.
+    fn table(g: &Geometry, bits: u32) -> [Self; MAX_LEVELS as usize + 1] {
+        let mut t = [Self::OFF; MAX_LEVELS as usize + 1];
+        if g.width().is_power_of_two() && g.height().is_power_of_two() {
+            for (k, e) in (0u8..).zip(t.iter_mut()) {
+                let (w, h) = g.level_size(k);
+                let (kx, ky) = (w.trailing_zeros(), h.trailing_zeros());
+                let Ok(offset) = u32::try_from(g.level_offset(k)) else {
+                    return [Self::OFF; MAX_LEVELS as usize + 1];
+                };
+                *e = Self {
+                    offset,
+                    w,
+                    h,
+                    cx: wrap_constant(kx, bits),
+                    cy: wrap_constant(ky, bits),
+                    log2_len: kx + ky,
+                };
+            }
+        }
+        t
+    }
+
+    /// The level's first texel index: `offset` sign-extended, so that
+    /// [`Level::OFF`]'s `u32::MAX` becomes `usize::MAX` on every target
+    /// and real offsets (`< 2³¹`, the [`Geometry`] bound) are unchanged (no
+    /// instruction on a 32-bit target).
+    #[inline(always)]
+    fn start(&self) -> usize {
+        self.offset as i32 as isize as usize
+    }
+
+    /// The level's texels in `texels`, `None` for [`Level::OFF`] or a
+    /// slice shorter than the level (a [`Pyramid`](crate::texture::Pyramid)
+    /// rules that out): one bounds check.
+    #[inline(always)]
+    fn slice<'t>(&self, texels: &'t [Texel]) -> Option<&'t [Texel]> {
+        let n = 1usize << (self.log2_len & 31);
+        let start = self.start();
+        texels.get(start..start.wrapping_add(n))
+    }
+}
+
+/// Taps of one axis on a power-of-two level: the one-multiply form for a
+/// wrapped axis, else the mode's general taps.
+#[inline(always)]
+fn level_taps(mode: AddressMode, coord: TexCoord, size: u32, c: u32, bits: u32) -> AxisTaps {
+    if mode == AddressMode::Wrap {
+        let (i0, i1, f) = pow2_wrap_taps(coord, size, c, bits);
+        AxisTaps {
+            i: [i0, i1],
+            f,
+            border: [false; 2],
+        }
+    } else {
+        mode.taps(coord, size, bits)
+    }
+}
+
+/// The lod window of a [`SamplerState`] on `levels` stored levels, in I8F8
+/// bits: `clamp(clamp(λ + bias, min, max), 0, top) = clamp(λ + bias, lo, hi)`
+/// with `lo = clamp(min, 0, top)`, `hi = clamp(max, 0, top)` (clamps
+/// compose so for `min ≤ max`), and `λ + bias` needs no saturation in
+/// `i32`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct LodWindow {
+    bias: i32,
+    lo: i32,
+    hi: i32,
+}
+
+impl LodWindow {
+    fn new(state: &SamplerState, geometry: &Geometry) -> Self {
+        let top = i32::from(geometry.top_level()) << 8;
+        let d = state.desc();
+        let clamp = |x: Lod| i32::from(x.to_bits()).clamp(0, top);
+        Self {
+            bias: i32::from(d.lod_bias.to_bits()),
+            lo: clamp(d.min_lod),
+            hi: clamp(d.max_lod),
+        }
+    }
+
+    /// The window applied to `lod`: I8F8 bits in `[0, top·256] ⊂ [0, 3840]`.
+    #[inline(always)]
+    fn apply(&self, lod: Lod) -> u32 {
+        // `max`/`min`, not `clamp`: no panic branch. `0 ≤ lo ≤ hi` by
+        // set-up, so the result is non-negative and the cast exact.
+        (i32::from(lod.to_bits()) + self.bias)
+            .max(self.lo)
+            .min(self.hi) as u32
+    }
+}
+
+/// Samples a [`TexelSource`] with the key `K` (module docs).
+pub struct Sampler<S: TexelSource, K: Key = Cfg> {
+    source: S,
+    geometry: Geometry,
+    state: SamplerState,
+    axes: (K::U, K::V),
+    lod: LodWindow,
+    /// The border colour as the kernel's lanes and as a nearest result.
+    border: Lanes<K>,
+    border_nearest: Texel,
+    stats: FetchStats,
+    /// Per-level addressing; entry 16 repeats the top level so that
+    /// `lower + 1` needs no check.
+    levels: [Level; MAX_LEVELS as usize + 1],
+}
+
+impl<S: TexelSource + fmt::Debug, K: Key> fmt::Debug for Sampler<S, K> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Sampler")
+            .field("source", &self.source)
+            .field("address", &self.address())
+            .field("tier", &Kern::<K>::TIER)
+            .field("state", &self.state)
+            .field("stats", &self.stats)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<S: TexelSource> Sampler<S, Cfg<Wrap>> {
+    /// A wrapping, linear, ACCURATE sampler over `source` with the default
+    /// state (no bias, no clamp): the plain sampler of the earlier
+    /// `filter::Sampler` (`Address::Wrap`), bit for bit.
+    pub fn wrap(source: S) -> Self {
+        Self::new(source)
+    }
+}
+
+impl<S: TexelSource> Sampler<S, Cfg<ClampToEdge>> {
+    /// A clamp-to-edge, linear, ACCURATE sampler over `source` with the
+    /// default state (the earlier `filter::Sampler` with `Address::Clamp`).
+    pub fn clamp(source: S) -> Self {
+        Self::new(source)
+    }
+}
+
+impl<S: TexelSource> Sampler<S, Cfg<AnyAxis>> {
+    /// A linear, ACCURATE sampler with address mode `mode` on both axes
+    /// chosen at run time (matched once per axis and level, not per
+    /// texel) and the default state.
+    pub fn with_address(source: S, mode: AddressMode) -> Self {
+        let desc = SamplerDesc {
+            address_u: mode,
+            address_v: mode,
+            ..SamplerDesc::default()
+        };
+        let state = SamplerState::new(desc).unwrap_or_default();
+        Self::build(source, state, (AnyAxis(mode), AnyAxis(mode)))
+    }
+}
+
+impl<S: TexelSource, K: Key> Sampler<S, K> {
+    /// A sampler over `source` with the default state for the key (its
+    /// address modes; [`AnyAxis`] axes wrap). Never fails.
+    pub fn new(source: S) -> Self {
+        let u = K::U::default();
+        let v = K::V::default();
+        let desc = SamplerDesc {
+            address_u: u.mode(),
+            address_v: v.mode(),
+            ..SamplerDesc::default()
+        };
+        let state = SamplerState::new(desc).unwrap_or_default();
+        Self::build(source, state, (u, v))
+    }
+
+    /// A sampler over `source` with `state` (lod bias and clamps, border
+    /// colour, anisotropy; its address modes must be the key's unless the
+    /// key's axis is [`AnyAxis`]).
+    ///
+    /// # Errors
+    /// [`SamplerError`] naming the axis whose mode the key cannot take.
+    pub fn with_state(source: S, state: SamplerState) -> Result<Self, SamplerError> {
+        let [mu, mv] = state.address();
+        let u = K::U::from_mode(mu).ok_or(SamplerError::AddressU(mu))?;
+        let v = K::V::from_mode(mv).ok_or(SamplerError::AddressV(mv))?;
+        Ok(Self::build(source, state, (u, v)))
+    }
+
+    fn build(source: S, state: SamplerState, axes: (K::U, K::V)) -> Self {
+        let geometry = source.geometry();
+        let levels = if source.texel_slice().is_some() {
+            Level::table(&geometry, Kern::<K>::WEIGHT_BITS)
+        } else {
+            [Level::OFF; MAX_LEVELS as usize + 1]
+        };
+        Self {
+            lod: LodWindow::new(&state, &geometry),
+            border: Kern::<K>::load_border(state.border()),
+            border_nearest: Kern::<K>::border_nearest(state.border()),
+            source,
+            geometry,
+            state,
+            axes,
+            stats: FetchStats::default(),
+            levels,
+        }
+    }
+
+    /// Filtered texel at `(u, v)` and level of detail `lod` (through the
+    /// state's lod window) with filter `mode`. Never panics. Dispatches to
+    /// [`sample_trilinear`](Self::sample_trilinear),
+    /// [`sample_bilinear`](Self::sample_bilinear),
+    /// [`sample_nearest`](Self::sample_nearest) and
+    /// [`sample_nearest_linear_level`](Self::sample_nearest_linear_level)
+    /// (always inlined, so a constant `mode` costs no dispatch).
+    #[inline(always)]
+    pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
+        match mode {
+            #[cfg(feature = "trilinear")]
+            Mode::Trilinear => self.sample_trilinear(u, v, lod),
+            Mode::BilinearNearestLevel => self.sample_bilinear(u, v, lod),
+            Mode::Nearest => self.sample_nearest(u, v, lod),
+            #[cfg(feature = "trilinear")]
+            Mode::NearestTexelLinearLevel => self.sample_nearest_linear_level(u, v, lod),
+        }
+    }
+
+    /// The nearest level `floor(lod + ½)` of windowed lod bits (at most
+    /// `top·256`, so the result is at most the top level).
+    #[inline(always)]
+    fn nearest_level(bits: u32) -> u8 {
+        ((bits + 0x80) >> 8) as u8
+    }
+
+    /// [`Mode::Trilinear`]: bilinear in levels `floor(lod)` and
+    /// `floor(lod) + 1`, blended by `frac(lod)` (one level when the
+    /// fraction is 0). Feature `trilinear`.
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        self.trilinear_counted(u, v, lod, |s, one_level| {
+            if one_level {
+                s.fetched += 4;
+                s.skipped += 4;
+            } else {
+                s.fetched += 8;
+            }
+        })
+    }
+
+    /// [`sample_trilinear`](Self::sample_trilinear) with the fetch counting
+    /// left to `count(stats, one_level)`, called once: `one_level` when the
+    /// blend weight is 0 (one level read, 4 texel reads skipped), else 8
+    /// texels were read. (Called in each branch, where the single call's
+    /// counter updates cost least; the batch counts once per batch.)
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    fn trilinear_counted(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        mut count: impl FnMut(&mut FetchStats, bool),
+    ) -> Texel {
+        let bits = self.lod.apply(lod);
+        // `bits ≤ 3840`: the mask changes nothing and tells the compiler
+        // that `lower + 1 ≤ 16` indexes the level table without a check,
+        // next to `lower`'s entry (one address for both levels).
+        let lower = (bits >> 8) as usize & 15;
+        let t = bits & 0xFF;
+        let (ta, fxa, fya) = self.footprint(u, v, lower);
+        let a = Kern::<K>::bilinear(ta, fxa, fya);
+        if t == 0 {
+            count(&mut self.stats, true);
+            Kern::<K>::round(a)
+        } else {
+            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
+            let b = Kern::<K>::bilinear(tb, fxb, fyb);
+            count(&mut self.stats, false);
+            Kern::<K>::blend(a, b, t)
+        }
+    }
+
+    /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
+    #[inline(always)]
+    pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        self.stats.fetched += 4;
+        self.bilinear_uncounted(u, v, lod)
+    }
+
+    /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
+    #[inline(always)]
+    fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let level = Self::nearest_level(self.lod.apply(lod));
+        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+        Kern::<K>::bilinear_texel(t, fx, fy)
+    }
+
+    /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
+    #[inline]
+    pub fn sample_nearest(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let level = Self::nearest_level(self.lod.apply(lod));
+        let (t, border) = self.nearest(u, v, level);
+        if border {
+            self.border_nearest
+        } else {
+            Kern::<K>::nearest(t)
+        }
+    }
+
+    /// [`Mode::NearestTexelLinearLevel`]: nearest texel in levels
+    /// `floor(lod)` and `floor(lod) + 1`, blended by `frac(lod)`. Feature
+    /// `trilinear`.
+    #[cfg(feature = "trilinear")]
+    #[inline]
+    pub fn sample_nearest_linear_level(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        let bits = self.lod.apply(lod);
+        let lower = (bits >> 8) as u8;
+        let t = bits & 0xFF;
+        let (a, a_border) = self.nearest(u, v, lower);
+        if t == 0 {
+            self.stats.skipped += 1;
+            if a_border {
+                self.border_nearest
+            } else {
+                Kern::<K>::nearest(a)
+            }
+        } else {
+            let (b, b_border) = self.nearest(u, v, lower + 1);
+            let la = self.lanes(a, a_border);
+            let lb = self.lanes(b, b_border);
+            Kern::<K>::blend_nearest(la, lb, t)
+        }
+    }
+
+    /// A texel as lanes, or the border colour's.
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    fn lanes(&self, t: Texel, border: bool) -> Lanes<K> {
+        if border {
+            self.border
+        } else {
+            Kern::<K>::load(t)
+        }
+    }
+
+    /// Batch of [`sample`](Self::sample): `out[i]` = the sample at
+    /// `hits[i] = (u, v, lod)` with filter `mode`, for
+    /// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
+    /// Same results and fetch counters as `n` single calls; never panics.
+    /// Always inlined, so a constant `mode` compiles to its loop alone.
+    #[inline(always)]
+    pub fn sample_batch(
+        &mut self,
+        hits: &[(TexCoord, TexCoord, Lod)],
+        mode: Mode,
+        out: &mut [Texel],
+    ) -> usize {
+        let n = hits.len().min(out.len());
+        macro_rules! each {
+            ($f:ident) => {
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.$f(u, v, lod);
+                }
+            };
+        }
+        // `n ≤ isize::MAX`: the casts to `u64` are exact.
+        let texels = n as u64 * 4;
+        match mode {
+            // The two filtered modes count once per batch (the same totals
+            // as per call), keeping the counters out of the loop.
+            #[cfg(feature = "trilinear")]
+            Mode::Trilinear => {
+                let mut one_level = 0usize;
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.trilinear_counted(u, v, lod, |_, one| {
+                        one_level += usize::from(one);
+                    });
+                }
+                let skipped = one_level as u64 * 4;
+                self.stats.fetched += 2 * texels - skipped;
+                self.stats.skipped += skipped;
+            }
+            Mode::BilinearNearestLevel => {
+                for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
+                    *o = self.bilinear_uncounted(u, v, lod);
+                }
+                self.stats.fetched += texels;
+            }
+            Mode::Nearest => each!(sample_nearest),
+            #[cfg(feature = "trilinear")]
+            Mode::NearestTexelLinearLevel => each!(sample_nearest_linear_level),
+        }
+        n
+    }
+
+    /// [`sample`](Self::sample) with float inputs: a set-up/host
+    /// convenience, not for the per-hit path (it uses floats). Coordinates
+    /// are reduced in f64 first as the axis's mode reduces them (exact), so
+    /// any finite value works. `lod` is rounded to 1/256 and goes through
+    /// the lod window like [`sample`](Self::sample).
+    ///
+    /// # Errors
+    /// [`FilterError::NonFinite`] when `u`, `v` or `lod` is NaN or ±inf.
+    pub fn sample_f64(
+        &mut self,
+        u: f64,
+        v: f64,
+        lod: f64,
+        mode: Mode,
+    ) -> Result<Texel, FilterError> {
+        if !(u.is_finite() && v.is_finite() && lod.is_finite()) {
+            return Err(FilterError::NonFinite);
+        }
+        let u = tex_coord_from_f64(reduce_f64(self.axes.0.mode(), u))?;
+        let v = tex_coord_from_f64(reduce_f64(self.axes.1.mode(), v))?;
+        let lod = Lod::saturating_from_num(lod);
+        Ok(self.sample(u, v, lod, mode))
+    }
+
+    /// The 2×2 footprint at `level` as the kernel's lanes (border taps
+    /// replaced by the border colour) and its weights `(fx, fy)` (counted
+    /// by the caller). Power-of-two textures in memory are read with one
+    /// address computation and one bounds check per footprint; every other
+    /// case (and a texel slice shorter than the level) goes through the
+    /// source's [`TexelSource::footprint`]. Both give the same texels.
+    /// `level ≤ 16` (the callers mask it; the table has an entry for 16,
+    /// a copy of 15, so that `level + 1` needs no check either).
+    #[inline(always)]
+    fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Lanes<K>; 4], u32, u32) {
+        let bits = Kern::<K>::WEIGHT_BITS;
+        let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
+        let l = self.levels[level];
+        let (xt, yt, t) = if let Some(texels) = self.source.texel_slice()
+            && let Some(lv) = l.slice(texels)
+        {
+            let xt = level_taps(mu, u, l.w, l.cx, bits);
+            let yt = level_taps(mv, v, l.h, l.cy, bits);
+            let m = lv.len().wrapping_sub(1);
+            let w = l.w as usize;
+            let row0 = (yt.i[0] as usize).wrapping_mul(w);
+            let i00 = row0.wrapping_add(xt.i[0] as usize) & m;
+            let i10 = row0.wrapping_add(xt.i[1] as usize) & m;
+            // A wrapped row `j₁ = (j₀ + 1) mod h` is `j₀·w + w` masked;
+            // other modes compute their row.
+            let (i01, i11) = if mv == AddressMode::Wrap {
+                (i00.wrapping_add(w) & m, i10.wrapping_add(w) & m)
+            } else {
+                let row1 = (yt.i[1] as usize).wrapping_mul(w);
+                (
+                    row1.wrapping_add(xt.i[0] as usize) & m,
+                    row1.wrapping_add(xt.i[1] as usize) & m,
+                )
+            };
+            (xt, yt, [lv[i00], lv[i10], lv[i01], lv[i11]])
+        } else {
+            let level = level as u8;
+            let (w, h) = self.geometry.level_size(level);
+            let xt = mu.taps(u, w, bits);
+            let yt = mv.taps(v, h, bits);
+            let t = self.source.footprint(level, xt.i, yt.i);
+            (xt, yt, t)
+        };
+        let mut lanes = t.map(Kern::<K>::load);
+        if K::U::MAY_BORDER || K::V::MAY_BORDER {
+            let out = [
+                xt.border[0] | yt.border[0],
+                xt.border[1] | yt.border[0],
+                xt.border[0] | yt.border[1],
+                xt.border[1] | yt.border[1],
+            ];
+            for (l, o) in lanes.iter_mut().zip(out) {
+                if o {
+                    *l = self.border;
+                }
+            }
+        }
+        (lanes, xt.f, yt.f)
+    }
+
+    /// Nearest texel at `level` (counted) and whether it is the border.
+    #[inline(always)]
+    fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> (Texel, bool) {
+        let (w, h) = self.geometry.level_size(level);
+        let (x, bx) = self.axes.0.mode().nearest_tap(u, w);
+        let (y, by) = self.axes.1.mode().nearest_tap(v, h);
+        self.stats.fetched += 1;
+        (self.source.texel(level, x, y), bx | by)
+    }
+
+    /// The levels a sample with `lod` and `mode` reads: the nearest level
+    /// for the nearest-level modes, `floor(lod)` and (when `frac(lod) ≠ 0`)
+    /// the next one for the linear-level modes, after the lod window.
+    /// The split every sampling path uses.
+    #[must_use]
+    pub fn levels(&self, lod: Lod, mode: Mode) -> (u8, Option<u8>) {
+        let bits = self.lod.apply(lod);
+        match mode {
+            Mode::BilinearNearestLevel | Mode::Nearest => (Self::nearest_level(bits), None),
+            #[cfg(feature = "trilinear")]
+            Mode::Trilinear | Mode::NearestTexelLinearLevel => {
+                let lower = (bits >> 8) as u8;
+                (lower, (bits & 0xFF != 0).then_some(lower + 1))
+            }
+        }
+    }
+
+    /// The address modes of `u` and `v`.
+    #[must_use]
+    pub fn address(&self) -> [AddressMode; 2] {
+        [self.axes.0.mode(), self.axes.1.mode()]
+    }
+
+    /// The precision tier of the results.
+    #[must_use]
+    pub fn precision(&self) -> Precision {
+        Kern::<K>::TIER
+    }
+
+    /// The sampler state.
+    #[must_use]
+    pub fn state(&self) -> &SamplerState {
+        &self.state
+    }
+
+    /// The source's geometry (read once at construction).
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// Fetch counters since construction or the last
+    /// [`reset_stats`](Self::reset_stats).
+    #[must_use]
+    pub fn stats(&self) -> FetchStats {
+        self.stats
+    }
+
+    /// Zeroes the fetch counters.
+    pub fn reset_stats(&mut self) {
+        self.stats = FetchStats::default();
+    }
+
+    /// The texel source.
+    #[must_use]
+    pub fn source(&self) -> &S {
+        &self.source
+    }
+
+    /// The texel source, mutable (e.g. to read cache counters).
+    #[must_use]
+    pub fn source_mut(&mut self) -> &mut S {
+        &mut self.source
+    }
+
+    /// Gives the texel source back.
+    #[must_use]
+    pub fn into_source(self) -> S {
+        self.source
+    }
+}
+
+/// `x` reduced in f64 as `mode` reduces coordinates (exact: `x − floor(x)`
+/// and `x − 2·floor(x/2)` are exact in binary floating point), for
+/// [`Sampler::sample_f64`].
+fn reduce_f64(mode: AddressMode, x: f64) -> f64 {
+    match mode {
+        AddressMode::Wrap => x - libm::floor(x),
+        AddressMode::Mirror => x - 2.0 * libm::floor(x / 2.0),
+        AddressMode::ClampToEdge | AddressMode::ClampToBorder => x.clamp(-1.0, 2.0),
+        AddressMode::MirrorOnce => x.clamp(-2.0, 2.0),
+    }
+}
+#[cfg(all(test, feature = "trilinear", feature = "mipgen"))]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::texture::address::AddressMode;
+    use crate::texture::storage::mip::{Pyramid, generate};
+    use crate::texture::{FetchStats, FilterError, Mode, TexCoord, tex_coord_from_f64};
+    use std::vec;
+    use std::vec::Vec;
+
+    fn c(x: f64) -> TexCoord {
+        TexCoord::from_num(x)
+    }
+
+    /// Storage for `g` with hashed level-0 texels (`i·0x9E3779B9 ^ salt`)
+    /// and the levels above generated from them.
+    fn hashed_pyramid(g: &Geometry, salt: u32) -> Vec<Texel> {
+        let mut buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(0x9E37_79B9) ^ salt)
+            .collect();
+        generate(g, &mut buf).unwrap();
+        buf
+    }
+
+    fn gray(v: u8) -> Texel {
+        u32::from_le_bytes([v, v, v, 255])
+    }
+
+    #[test]
+    fn centres_return_texels() {
+        let g = Geometry::new(4, 2, 3).unwrap();
+        let mut buf: Vec<Texel> = (0..g.len() as u32).map(|i| gray((i * 20) as u8)).collect();
+        generate(&g, &mut buf).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Sampler::wrap(p);
+        for y in 0..2u32 {
+            for x in 0..4u32 {
+                let u = c((f64::from(x) + 0.5) / 4.0);
+                let v = c((f64::from(y) + 0.5) / 2.0);
+                let want = p.get(0, x, y);
+                for mode in [Mode::Trilinear, Mode::BilinearNearestLevel, Mode::Nearest] {
+                    assert_eq!(s.sample(u, v, Lod::ZERO, mode), want, "{x},{y} {mode:?}");
+                }
+            }
+        }
+        assert_eq!(s.stats().skipped, 8 * 4);
+    }
+
+    #[test]
+    fn wrap_seam_and_clamp_edge() {
+        let g = Geometry::new(2, 1, 1).unwrap();
+        let buf = [gray(0), gray(200)];
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut w = Sampler::wrap(p);
+        let mut k = Sampler::clamp(p);
+        // u = 0: halfway between texel 1 (wrapped) and texel 0.
+        assert_eq!(
+            w.sample(c(0.0), c(0.5), Lod::ZERO, Mode::Trilinear),
+            gray(100)
+        );
+        assert_eq!(
+            k.sample(c(0.0), c(0.5), Lod::ZERO, Mode::Trilinear),
+            gray(0)
+        );
+        assert_eq!(
+            k.sample(c(1e6), c(-1e6), Lod::ZERO, Mode::Trilinear),
+            gray(200)
+        );
+        assert_eq!(
+            w.sample(c(-1e6 + 0.75), c(0.5), Lod::ZERO, Mode::Nearest),
+            gray(200)
+        );
+        assert_eq!(
+            w.sample(TexCoord::MIN, TexCoord::MAX, Lod::MAX, Mode::Trilinear),
+            w.sample(c(0.0), c(1.0 - 1e-9), Lod::ZERO, Mode::Trilinear)
+        );
+    }
+
+    #[test]
+    fn trilinear_blends_levels() {
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let buf = vec![gray(0), gray(0), gray(0), gray(0), gray(100)];
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Sampler::clamp(p);
+        let half = Lod::from_num(0.5);
+        assert_eq!(s.sample(c(0.25), c(0.25), half, Mode::Trilinear), gray(50));
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), half, Mode::NearestTexelLinearLevel),
+            gray(50)
+        );
+        assert_eq!(s.sample(c(0.25), c(0.25), half, Mode::Nearest), gray(100));
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), Lod::from_num(0.49), Mode::Nearest),
+            gray(0)
+        );
+        assert_eq!(
+            s.stats(),
+            FetchStats {
+                fetched: 8 + 2 + 1 + 1,
+                skipped: 0
+            }
+        );
+        assert_eq!(
+            s.sample(c(0.25), c(0.25), Lod::from_num(9), Mode::Trilinear),
+            gray(100)
+        );
+        assert_eq!(s.stats().skipped, 4);
+        assert_eq!(
+            s.sample_f64(f64::NAN, 0.0, 0.0, Mode::Trilinear),
+            Err(FilterError::NonFinite)
+        );
+        assert_eq!(
+            s.sample_f64(0.0, 0.0, f64::INFINITY, Mode::Trilinear),
+            Err(FilterError::NonFinite)
+        );
+        assert_eq!(
+            s.sample_f64(1e300, -1e300, 1e300, Mode::Nearest),
+            Ok(gray(100))
+        );
+        assert_eq!(tex_coord_from_f64(3e9), Err(FilterError::OutOfRange));
+        assert_eq!(tex_coord_from_f64(-0.25), Ok(c(-0.25)));
+    }
+
+    #[test]
+    fn pow2_wrap_taps_equal_general_taps() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for k in 0..=15u32 {
+            let size = 1u32 << k;
+            for n in 0..if cfg!(miri) { 20 } else { 4000u64 } {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                // Random bits, and the seam/edge values of this size.
+                let edge = (n % (2 * u64::from(size) + 1)) << (31 - k);
+                for bits in [
+                    x as i64,
+                    edge as i64,
+                    -(edge as i64),
+                    (x as i64) >> (n % 40),
+                ] {
+                    let c = TexCoord::from_bits(bits);
+                    for b in [8, 12, 16] {
+                        let t = AddressMode::Wrap.taps(c, size, b);
+                        assert_eq!(
+                            pow2_wrap_taps(c, size, wrap_constant(k, b), b),
+                            (t.i[0], t.i[1], t.f),
+                            "k {k} bits {bits:#x} weight bits {b}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// `sample_batch` gives the results and the fetch counters of single
+    /// calls for every mode (lods with and without a fraction, so both
+    /// trilinear branches and their counting), writes `min(hits, out)`
+    /// results and leaves the rest of `out` alone.
+    #[test]
+    fn batch_equals_single_calls() {
+        use crate::texture::storage::cache::TexelCache;
+        let g = Geometry::new(16, 8, 4).unwrap();
+        let buf = hashed_pyramid(&g, 0);
+        let p = Pyramid::new(g, &buf).unwrap();
+        let hits: Vec<(TexCoord, TexCoord, Lod)> = (0..50u32)
+            .map(|i| {
+                let lod = if i % 3 == 0 {
+                    i32::from(i as u8 % 4) * 256
+                } else {
+                    (i * 37 % 1000) as i32 - 100
+                };
+                (
+                    TexCoord::from_bits(i64::from(i.wrapping_mul(0x2F6B_1E3D)) << 1),
+                    TexCoord::from_bits(-i64::from(i.wrapping_mul(0x61C8_8647))),
+                    Lod::from_bits(lod as i16),
+                )
+            })
+            .collect();
+        for address in [AddressMode::Wrap, AddressMode::ClampToEdge] {
+            for mode in [
+                Mode::Trilinear,
+                Mode::BilinearNearestLevel,
+                Mode::Nearest,
+                Mode::NearestTexelLinearLevel,
+            ] {
+                let mut single = Sampler::with_address(p, address);
+                let want: Vec<Texel> = hits
+                    .iter()
+                    .map(|&(u, v, lod)| single.sample(u, v, lod, mode))
+                    .collect();
+                let mut batch = Sampler::with_address(p, address);
+                let mut out = vec![7; hits.len() + 3];
+                assert_eq!(batch.sample_batch(&hits, mode, &mut out), hits.len());
+                assert_eq!(&out[..hits.len()], &want[..], "{address:?} {mode:?}");
+                assert_eq!(&out[hits.len()..], &[7; 3]);
+                assert_eq!(batch.stats(), single.stats(), "{address:?} {mode:?}");
+                // Shorter output: only that many hits, counted as such.
+                let mut short = Sampler::with_address(TexelCache::<_, 4, 2>::new(p), address);
+                let mut out = [0; 10];
+                assert_eq!(short.sample_batch(&hits, mode, &mut out), 10);
+                assert_eq!(&out[..], &want[..10]);
+                let mut ten = Sampler::with_address(p, address);
+                for &(u, v, lod) in &hits[..10] {
+                    ten.sample(u, v, lod, mode);
+                }
+                assert_eq!(short.stats(), ten.stats());
+            }
+        }
+    }
+
+    /// A source whose texel slice is shorter than a level (which a
+    /// `Pyramid` rules out) falls back to the generic path for that level
+    /// and gives the same results as reading through `footprint`.
+    #[test]
+    fn short_texel_slice_falls_back_to_generic_path() {
+        struct Short<'a>(Pyramid<'a>, usize);
+        impl TexelSource for Short<'_> {
+            fn geometry(&self) -> Geometry {
+                self.0.geometry()
+            }
+            fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+                self.0.texel(level, x, y)
+            }
+            fn texel_slice(&self) -> Option<&[Texel]> {
+                self.0.texel_slice().map(|t| &t[..self.1])
+            }
+        }
+        let g = Geometry::new(8, 4, 3).unwrap();
+        let buf = hashed_pyramid(&g, 0);
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut reference = Sampler::wrap(p);
+        // Level 0 whole, level 1 cut short, level 2 missing.
+        for len in [0, 20, 33, g.len()] {
+            let mut short = Sampler::wrap(Short(p, len));
+            for i in 0..if cfg!(miri) { 40 } else { 200u32 } {
+                let u = TexCoord::from_bits(i64::from(i.wrapping_mul(0x2F6B_1E3D)));
+                let v = TexCoord::from_bits(i64::from(i.wrapping_mul(0x61C8_8647)) << 2);
+                let lod = Lod::from_bits((i * 7 % 700) as i16);
+                for mode in [Mode::Trilinear, Mode::BilinearNearestLevel] {
+                    assert_eq!(
+                        short.sample(u, v, lod, mode),
+                        reference.sample(u, v, lod, mode)
+                    );
+                }
+            }
+        }
+    }
+
+    /// The power-of-two wrap path (addresses computed by the sampler) and
+    /// the generic path through a cache (`TexelSource::footprint`, no
+    /// texel slice) give the same texels for every mode.
+    #[test]
+    fn pow2_wrap_path_equals_generic_path() {
+        use crate::texture::storage::cache::TexelCache;
+        for (w, h, levels) in [
+            (32u32, 32u32, 6u8),
+            (64, 4, 7),
+            (1, 16, 5),
+            (8, 1, 2),
+            (1, 1, 1),
+        ] {
+            let g = Geometry::new(w, h, levels).unwrap();
+            let buf = hashed_pyramid(&g, 0x5A5A_1234);
+            let p = Pyramid::new(g, &buf).unwrap();
+            let mut fast = Sampler::wrap(p);
+            assert_ne!(fast.levels[0], Level::OFF);
+            let mut generic = Sampler::wrap(TexelCache::<_, 4, 2>::new(p));
+            let mut x = 12345u64;
+            for _ in 0..if cfg!(miri) { 20 } else { 3000 } {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let u = TexCoord::from_bits((x as i64) >> (x % 29));
+                let v = TexCoord::from_bits(((x >> 3) as i64).wrapping_mul(7) >> (x % 31));
+                let lod = Lod::from_bits(((x >> 40) % 2400) as i16 - 200);
+                for mode in [
+                    Mode::Trilinear,
+                    Mode::BilinearNearestLevel,
+                    Mode::Nearest,
+                    Mode::NearestTexelLinearLevel,
+                ] {
+                    assert_eq!(
+                        fast.sample(u, v, lod, mode),
+                        generic.sample(u, v, lod, mode),
+                        "{w}x{h} {mode:?} {u} {v} {lod}"
+                    );
+                }
+            }
+            assert_eq!(fast.stats(), generic.stats());
+        }
+        // Non-power-of-two sides, or a source not in memory: no table.
+        let g = Geometry::new(6, 4, 2).unwrap();
+        let buf = vec![0; g.len()];
+        assert_eq!(
+            Sampler::wrap(Pyramid::new(g, &buf).unwrap()).levels,
+            [Level::OFF; 17]
+        );
+        let g = Geometry::new(8, 4, 2).unwrap();
+        let buf = vec![0; g.len()];
+        let p = Pyramid::new(g, &buf).unwrap();
+        assert_ne!(Sampler::clamp(p).levels[0], Level::OFF);
+        assert_eq!(
+            Sampler::clamp(TexelCache::<_, 4, 2>::new(p)).levels,
+            [Level::OFF; 17]
+        );
+    }
+}

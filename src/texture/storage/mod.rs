@@ -1,0 +1,20 @@
+//! Texture storage: how texels sit in caller memory and come out as RGBA8.
+//!
+//! | module | holds |
+//! |---|---|
+//! | [`mip`] | [`Geometry`](mip::Geometry), RGBA8 [`Pyramid`](mip::Pyramid)s, in-place generation, the [`TexelSource`](mip::TexelSource) trait |
+//! | [`format`] | texel formats as types ([`format::PixelFormat`]) and as values ([`format::TexelFormat`]), colour spaces |
+//! | [`image`] | a texture in any format in caller memory ([`image::Image`]) |
+//! | [`bc`] | BC1–BC4 block decoding (the cache's fill path) |
+//! | [`cache`] | the texel cache (4×4 blocks, Morton order, LRU) |
+//! | [`srgb`] | sRGB decode/encode tables, linear-space pyramids |
+
+pub mod bc;
+#[cfg(feature = "cache")]
+pub mod cache;
+pub mod format;
+// Images decode BC blocks as the texel cache's fill path.
+#[cfg(feature = "cache")]
+pub mod image;
+pub mod mip;
+pub mod srgb;
