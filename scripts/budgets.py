@@ -38,7 +38,7 @@ BEGIN, END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 README_BEGIN, README_END = "<!-- sampler-budgets:begin -->", "<!-- sampler-budgets:end -->"
 
 # Wrappers that serve several rows, and how many calls each must show.
-CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 128,
+CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 64, "rm_bench_ts_srgb": 64,
                 "rm_bench_ts_rgb565": 64, "rm_bench_ts_bc1": 128, "rm_bench_ts_aniso": 192,
                 "rm_bench_geomlod": 128, "rm_batch_geomlod": 4}
 
@@ -50,7 +50,7 @@ SAMPLER_ROWS = [
      ("Rgba8", "bilinear")),
     ("ts_trilinear", "RGBA8 trilinear (sampler state)", "rm_bench_ts_trilinear", slice(0, 64),
      ("Rgba8", "trilinear")),
-    ("ts_srgb", "RGBA8 sRGB trilinear, re-encoded", "rm_bench_ts_trilinear", slice(64, 128),
+    ("ts_srgb", "RGBA8 sRGB trilinear, re-encoded", "rm_bench_ts_srgb", slice(0, 64),
      ("Rgba8_SRGB (encoded)", "trilinear")),
     ("ts_rgb565", "RGB565 trilinear", "rm_bench_ts_rgb565", slice(0, 64), ("Rgb565", "trilinear")),
     ("ts_bc1_fill", "BC1 trilinear, cache filled (blocks decoded)", "rm_bench_ts_bc1",

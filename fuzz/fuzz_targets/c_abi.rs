@@ -15,11 +15,11 @@ use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use raymip::camera::PixelSpread;
 use raymip::ffi::*;
-use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
-use raymip::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::raystack::PathState;
 use raymip::table::{Log2Pb, PbTable};
+use raymip::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
+use raymip::texture::{AddressMode, Mode, Sampler};
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);
@@ -338,7 +338,11 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
     };
     // SAFETY: valid texture (outlives `sm`) and sampler storage.
     let init = unsafe { rm_sampler_init(&mut sm, &tex, RmAddressBits(address)) };
-    let a = Address::from_index(address);
+    let a = match address {
+        0 => Some(AddressMode::Wrap),
+        1 => Some(AddressMode::ClampToEdge),
+        _ => None,
+    };
     let p = match (a, Pyramid::new(g, &buf[..tex.len])) {
         (Some(a), Ok(p)) => {
             assert_eq!(init, RmStatus::Ok);
@@ -366,7 +370,7 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
         match Mode::from_index(mode) {
             Some(m) => {
                 // A Rust sampler built afresh for every sample.
-                let want = Sampler::new(p.1, p.0).sample(
+                let want = Sampler::with_address(p.1, p.0).sample(
                     I32F32::from_bits(uu),
                     I32F32::from_bits(vv),
                     I8F8::from_bits(lod),

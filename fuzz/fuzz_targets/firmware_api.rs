@@ -13,13 +13,13 @@ mod common;
 use fixed::types::{I16F16, I32F32, U1F31};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use raymip::cache::TexelCache;
 use raymip::camera::PixelSpread;
-use raymip::filter::{Address, Mode, Sampler};
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
-use raymip::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
+use raymip::texture::{AddressMode, Mode, Sampler};
 
 const TABLE: usize = 8;
 const STACK: usize = 4;
@@ -236,16 +236,16 @@ fn pyramid(u: &mut Unstructured) -> Result<()> {
         Err(e) => panic!("generate: {e:?}"),
     }
     let pyr = Pyramid::new(g, &buf).expect("exact length");
-    let mut direct = Sampler::new(pyr, Address::Wrap);
-    let mut cached = Sampler::new(TexelCache::<_, 4, 2>::new(pyr), Address::Wrap);
+    let mut direct = Sampler::with_address(pyr, AddressMode::Wrap);
+    let mut cached = Sampler::with_address(TexelCache::<_, 4, 2>::new(pyr), AddressMode::Wrap);
     for _ in 0..u.int_in_range(1..=16)? {
         let address = if u.arbitrary()? {
-            Address::Wrap
+            AddressMode::Wrap
         } else {
-            Address::Clamp
+            AddressMode::ClampToEdge
         };
-        direct = Sampler::new(direct.into_source(), address);
-        cached = Sampler::new(cached.into_source(), address);
+        direct = Sampler::with_address(direct.into_source(), address);
+        cached = Sampler::with_address(cached.into_source(), address);
         let uu = I32F32::from_bits(u.arbitrary()?);
         let vv = I32F32::from_bits(u.arbitrary()?);
         let lod = Lod::from_bits(u.arbitrary()?);

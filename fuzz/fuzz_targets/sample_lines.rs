@@ -14,10 +14,10 @@ use std::sync::OnceLock;
 use clap::ValueEnum;
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use raymip::filter::Address;
+use raymip::texture::AddressMode;
 use raymip_host::cli::sample::{
-    AddressArg, FormatArg, OwnedPyramid, SampleArgs, SampleError, build_pyramid, sample_lines,
-    sample_lines_state,
+    AddressArg, FormatArg, OwnedPyramid, PrecisionArg, SampleArgs, SampleError, build_pyramid,
+    sample_lines, sample_lines_state,
 };
 use raymip_host::scene::ppm::RgbImage;
 
@@ -71,6 +71,7 @@ fn args(u: &mut Unstructured) -> Result<SampleArgs> {
         min_lod: opt_f64(u)?,
         max_lod: opt_f64(u)?,
         max_aniso: u.arbitrary()?,
+        precision: *u.choose(PrecisionArg::value_variants())?,
     })
 }
 
@@ -104,7 +105,7 @@ fuzz_target!(|data: &[u8]| {
     let p = pyramid();
     if !a.uses_sampler_state() {
         let mut out = Vec::new();
-        let addr = a.address[0].legacy().unwrap_or(Address::Wrap);
+        let addr = a.address[0].plain().unwrap_or(AddressMode::Wrap);
         let r = sample_lines(p, addr, input, &mut out, "<fuzz>");
         check(input, r, &out);
         return;
@@ -113,6 +114,12 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let mut out = Vec::new();
-    let r = sample_lines_state(p, state, format, None, input, &mut out, "<fuzz>");
+    let r = sample_lines_state(
+        p,
+        (state, format, a.precision.precision()),
+        input,
+        &mut out,
+        "<fuzz>",
+    );
     check(input, r, &out);
 });

@@ -8,10 +8,10 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group};
-use raymip::cache::TexelCache;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
+use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 use raymip_host::reference::texf32::SamplerF32;
 use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
 
@@ -28,8 +28,8 @@ fn bench(c: &mut Criterion) {
     let inp = random_inputs(N);
     let fixed_in = to_fixed(&inp);
     let pyramid = Pyramid::new(g, &buf).expect("pyramid");
-    let mut fixed = Sampler::new(pyramid, Address::Wrap);
-    let float = SamplerF32::new(g, &buf, Address::Wrap).expect("f32 sampler");
+    let mut fixed = Sampler::wrap(pyramid);
+    let float = SamplerF32::new(g, &buf, AddressMode::Wrap).expect("f32 sampler");
 
     let mut grp = c.benchmark_group("texture");
     grp.throughput(Throughput::Elements(N as u64));
@@ -62,7 +62,7 @@ fn bench(c: &mut Criterion) {
 fn scanline_hit_rate(g: Geometry, buf: &[Texel], lod: u32, level: u8) -> (f64, u64, u64) {
     let pyramid = Pyramid::new(g, buf).expect("pyramid");
     let cache: TexelCache<Pyramid<'_>, 64, 4> = TexelCache::new(pyramid);
-    let mut s = Sampler::new(cache, Address::Wrap);
+    let mut s = Sampler::wrap(cache);
     let pixels = SIZE >> lod;
     let l = Lod::from_num(level);
     for y in 0..pixels {

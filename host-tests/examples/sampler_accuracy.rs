@@ -1,5 +1,5 @@
-//! Writes the README table of the GPU-style sampler's error per format and
-//! filter, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
+//! Writes the README table of the sampler's error per format, filter and
+//! precision tier, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
 //!
 //! ```sh
 //! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write README.md]
@@ -11,6 +11,7 @@
 
 use std::fmt::Write as _;
 
+use raymip::texture::kernel::Precision;
 use raymip_host::cli::output::{publish, write_option};
 use raymip_host::reference::sampler_ref::{FILTERS, measure};
 
@@ -21,20 +22,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .find(|a| a.parse::<usize>().is_ok())
         .map_or(Ok(20_000), |a| a.parse())?;
     let write = write_option(&args);
-    let rows = measure(samples, 0x5EED_2026);
+    let mut rows = measure(samples, 0x5EED_2026, Precision::Accurate);
+    rows.extend(measure(samples, 0x5EED_2027, Precision::Fast));
     let mut table = String::new();
     writeln!(
         table,
         "Max error per channel in 8-bit LSB against the f64 reference (measured / documented bound), {samples} random samples per cell (`cargo run --release -p raymip-host --example sampler_accuracy -- {samples} --write README.md`):\n"
     )?;
-    write!(table, "| format |")?;
+    write!(table, "| format | tier |")?;
     for f in FILTERS {
         write!(table, " {f} |")?;
     }
     writeln!(table)?;
-    writeln!(table, "|---|{}", "---|".repeat(FILTERS.len()))?;
+    writeln!(table, "|---|---|{}", "---|".repeat(FILTERS.len()))?;
     for chunk in rows.chunks(FILTERS.len()) {
-        write!(table, "| {} |", chunk[0].format)?;
+        let tier = match chunk[0].precision {
+            Precision::Accurate => "ACCURATE",
+            Precision::Fast => "FAST",
+        };
+        write!(table, "| {} | {tier} |", chunk[0].format)?;
         for r in chunk {
             if r.max_error > r.bound {
                 return Err(format!(

@@ -12,8 +12,8 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use raymip::filter::{Address, Mode, Sampler};
-use raymip::mip::Pyramid;
+use raymip::texture::storage::mip::Pyramid;
+use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip_host::reference::texf32::SamplerF32;
 use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
 
@@ -30,8 +30,8 @@ fn main() -> ExitCode {
     let Ok(p) = Pyramid::new(g, &buf) else {
         return ExitCode::FAILURE;
     };
-    let mut fixed = Sampler::new(p, Address::Wrap);
-    let Some(float) = SamplerF32::new(g, &buf, Address::Wrap) else {
+    let mut fixed = Sampler::wrap(p);
+    let Some(float) = SamplerF32::new(g, &buf, AddressMode::Wrap) else {
         return ExitCode::FAILURE;
     };
     black_box((&fin, &inp));

@@ -1,4 +1,4 @@
-//! BC1–BC4: the firmware decoder (`raymip::bc`) against an independent
+//! BC1–BC4: the firmware decoder (`raymip::texture::storage::bc`) against an independent
 //! decoder from crates.io (`texture2ddecoder`, test-only dependency), bit
 //! for bit, over random blocks and every mode edge; and the harness encoder
 //! (`raymip_host::reference::texformat`) round trip.
@@ -10,9 +10,9 @@
 //! 0↔1 and 2↔3 exchanged, which is the same four-colour palette; equal
 //! endpoints make every entry the endpoint).
 
-use raymip::bc::{decode_block, decode_texel};
-use raymip::format::TexelFormat;
-use raymip::mip::Texel;
+use raymip::texture::storage::bc::{decode_block, decode_texel};
+use raymip::texture::storage::format::TexelFormat;
+use raymip::texture::storage::mip::Texel;
 use raymip_host::reference::Rng;
 use raymip_host::reference::texformat::encode_block;
 

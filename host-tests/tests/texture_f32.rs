@@ -3,9 +3,9 @@
 //! exact), and the same texel for nearest modes except where f32 rounding
 //! of `u·w` crosses a texel boundary (rare; counted).
 
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, full_levels, generate};
+use raymip::texture::storage::mip::{Geometry, Pyramid, full_levels, generate};
+use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 use raymip_host::reference::texf32::SamplerF32;
 
 #[test]
@@ -26,8 +26,8 @@ fn f32_matches_fixed() {
     generate(&g, &mut buf).unwrap();
     let mut mismatched_nearest = 0;
     let n = 20_000;
-    for a in [Address::Wrap, Address::Clamp] {
-        let mut fixed = Sampler::new(Pyramid::new(g, &buf).unwrap(), a);
+    for a in [AddressMode::Wrap, AddressMode::ClampToEdge] {
+        let mut fixed = Sampler::with_address(Pyramid::new(g, &buf).unwrap(), a);
         let float = SamplerF32::new(g, &buf, a).unwrap();
         for _ in 0..n {
             // Inputs exactly representable in f32 and in the fixed formats.
@@ -74,7 +74,7 @@ fn f32_aniso_matches_f64_reference() {
 
     let tex = TestTexture::random(32, 0xA2150);
     let rt = tex.reference();
-    let float = SamplerF32::new(tex.geometry, &tex.texels, Address::Wrap).unwrap();
+    let float = SamplerF32::new(tex.geometry, &tex.texels, AddressMode::Wrap).unwrap();
     let mut r = Rng(77);
     let (mut ties, n) = (0, 5_000);
     for i in 0..n {

@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
-use raymip::filter::Address;
+use raymip::texture::AddressMode;
 use raymip_host::cli::sample::{SampleError, build_pyramid, sample_lines};
 use raymip_host::scene::ppm::{RgbImage, write_ppm};
 
@@ -20,7 +20,7 @@ fn image() -> RgbImage {
     }
 }
 
-fn run_lib(input: &str, address: Address) -> (Result<usize, SampleError>, String) {
+fn run_lib(input: &str, address: AddressMode) -> (Result<usize, SampleError>, String) {
     let p = build_pyramid(&image(), None, &PathBuf::from("test.ppm")).unwrap();
     let mut out = Vec::new();
     let r = sample_lines(&p, address, input.as_bytes(), &mut out, "<stdin>");
@@ -32,7 +32,7 @@ fn modes_and_levels() {
     let input = "0.25,0.25,0,2\n0.75,0.25,0,0\n0.25,0.75,0,1\n0.75,0.75,0,3\n\
                  0.5,0.25,0,0\n0,0.25,0,0\n0.25,0.25,1,0\n0.25,0.25,0.5,3\n0.25,0.25,0.5,0\n\
                  1e6,-1e6,0,2\n0.25, 0.25 ,9,2\r\n";
-    let (r, out) = run_lib(input, Address::Wrap);
+    let (r, out) = run_lib(input, AddressMode::Wrap);
     assert_eq!(r.unwrap(), 11);
     let want = [
         "255,0,0,255",     // texel centre (0,0), nearest
@@ -52,7 +52,7 @@ fn modes_and_levels() {
 
 #[test]
 fn clamp_addressing() {
-    let (r, out) = run_lib("0,0.25,0,0\n-5,7,0,1\n", Address::Clamp);
+    let (r, out) = run_lib("0,0.25,0,0\n-5,7,0,1\n", AddressMode::ClampToEdge);
     assert_eq!(r.unwrap(), 2);
     assert_eq!(out, "255,0,0,255\n0,0,255,255\n"); // (-1, 2) clamps to texel (0, 1)
 }
@@ -69,7 +69,7 @@ fn malformed_lines_name_the_line() {
         ("0.5,0.5,0,0,1\n", 1, "found 5"),
         ("0.5,0.5,0,-1\n", 1, "mode"),
     ] {
-        let (r, out) = run_lib(input, Address::Wrap);
+        let (r, out) = run_lib(input, AddressMode::Wrap);
         let e = r.unwrap_err();
         let msg = e.to_string();
         assert!(msg.starts_with(&format!("<stdin>:{line}: ")), "{msg}");
@@ -224,8 +224,20 @@ fn sampler_state_options_through_binary() {
         ),
         (&["--srgb"], "0.5,0.5,1,2\n", "188,188,188,255\n"),
         // Anisotropic line: 8:1 along u over the top row at lod 0 → probes
-        // spread evenly between red and green: half each (127.5 → 128).
-        (&[], "0.5,0.25,1,0.5,0,0,0.0625\n", "128,128,0,255\n"),
+        // spread evenly between red and green: half each (127.5 → 128),
+        // in both tiers (FAST: 8-bit weights, exact here).
+        (&[], "0.5,0.25,0,0.5,0,0,0.0625\n", "128,128,0,255\n"),
+        (
+            &["--precision", "fast"],
+            "0.5,0.25,0,0.5,0,0,0.0625\n",
+            "128,128,0,255\n",
+        ),
+        // FAST: a quarter texel between red and green at 8 sub-texel bits.
+        (
+            &["--precision", "fast"],
+            "0.375,0.25,0,1\n",
+            "191,64,0,255\n",
+        ),
     ] {
         assert_eq!(run(options, input), want, "{options:?} {input:?}");
     }

@@ -1,19 +1,22 @@
-//! The GPU-style sampler (`raymip::texture_sampler`) against the f64
+//! The sampler (`raymip::texture::Sampler`, every key of its run-time
+//! form, both precision tiers) against the f64
 //! reference (`raymip_host::reference::sampler_ref`) for every texel format, sRGB
 //! (re-encoded and linear), address mode (random per axis, with border
 //! colours), lod bias/clamp and filter, including anisotropic filtering;
 //! every row must stay within its documented bound.
 
+use raymip::texture::kernel::Precision;
 use raymip_host::reference::sampler_ref::measure;
 
 #[test]
 fn every_format_and_filter_within_bound() {
-    let rows = measure(400, 0x5EED_1234);
-    assert_eq!(rows.len(), (11 + 6 * 2) * 5);
+    let mut rows = measure(400, 0x5EED_1234, Precision::Accurate);
+    rows.extend(measure(400, 0x5EED_4321, Precision::Fast));
+    assert_eq!(rows.len(), 2 * (11 + 6 * 2) * 5);
     for r in &rows {
         eprintln!(
-            "{:<28} {:<36} max {:.3} bound {:.3} ties {}",
-            r.format, r.filter, r.max_error, r.bound, r.ties
+            "{:?} {:<28} {:<36} max {:.3} bound {:.3} ties {}",
+            r.precision, r.format, r.filter, r.max_error, r.bound, r.ties
         );
     }
     for r in &rows {

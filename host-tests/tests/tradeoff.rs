@@ -8,9 +8,8 @@
 use std::path::Path;
 use std::process::Command;
 
-use raymip::bilerp::BILERP_MAX_ERROR_LSB;
 use raymip::lod::LOD_MAX_ERROR;
-use raymip::texture_sampler::SAMPLER_MAX_ERROR_LSB;
+use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip_host::reference::sampler_ref::ANISO_LOD_ERROR_LSB;
 use serde_json::Value;
 
@@ -176,7 +175,7 @@ fn quick_run_writes_everything_and_errors_are_sane() {
     // lod's error of their own exact filter, f32 within ½ LSB + f32
     // rounding; more probes come closer to the 16× target; the capped
     // fixed rows carry their BUDGETS.md counts.
-    let aniso_bound = SAMPLER_MAX_ERROR_LSB + ANISO_LOD_ERROR_LSB;
+    let aniso_bound = BILERP_MAX_ERROR_LSB + ANISO_LOD_ERROR_LSB;
     for cap in [1, 2, 4, 16] {
         let filt = format!("anisotropic {cap}×");
         let fx = find(&rows, "filter", "sample", "fixed accurate", Some(&filt));

@@ -99,14 +99,14 @@ pub mod stack {
 /// BC1 row, the geometric-LOD selector).
 pub mod inputs {
     use fixed::types::{I16F16, U1F31};
-    use raymip::address::AddressMode;
-    use raymip::aniso::Footprint;
-    use raymip::filter::TexCoord;
     use raymip::geomlod::{Depth, LodBias, LodMode, LodRange, Selector, Transition};
     use raymip::lod::Lod;
     use raymip::raystack::{PathLength, Width};
-    use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
     use raymip::table::Log2Pb;
+    use raymip::texture::TexCoord;
+    use raymip::texture::address::AddressMode;
+    use raymip::texture::sampler::aniso::Footprint;
+    use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 
     /// Calls per measured function (and hits per batch).
     pub const N: usize = 64;

@@ -16,11 +16,7 @@ use core::hint::black_box as bb;
 
 use cortex_m_rt::entry;
 use panic_never as _;
-use raymip::address::AddressMode;
 use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
-use raymip::aniso::{Footprint, probes};
-use raymip::bc;
-use raymip::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::camera::PixelSpread;
 use raymip::ffi::{
     RM_SAMPLER_WORDS, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmTexture,
@@ -28,27 +24,33 @@ use raymip::ffi::{
     rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
     rm_ray_stack_push, rm_sample, rm_sampler_init, rm_table_build, rm_table_lod, rm_table_update,
 };
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::format::{ColorSpace, Format, TexelFormat};
 use raymip::geomlod::{
     Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
     transition_step, visible,
 };
-use raymip::image::Image;
 use raymip::lod::{
     Lod, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
     table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
 };
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::log2_fast::log2_u32f32_fast;
-use raymip::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::rng::{Rng, mix32};
-use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-use raymip::srgb;
-use raymip::stochastic::StochasticMode;
 use raymip::table::{Log2Pb, PbTable};
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::address::AddressMode;
+use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
+use raymip::texture::kernel::{Fast, Linear, Precision, SrgbToLinear};
+use raymip::texture::sampler::aniso::{Footprint, probes};
+use raymip::texture::sampler::dynamic::DynSampler;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture::sampler::stochastic::StochasticMode;
+use raymip::texture::storage::bc;
+use raymip::texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
+use raymip::texture::storage::format::{ColorSpace, Format, Rgb565, TexelFormat};
+use raymip::texture::storage::image::Image;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource};
+use raymip::texture::storage::srgb;
+use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
 static BYTES: [u8; 4096] = [0x5A; 4096];
@@ -169,13 +171,13 @@ fn main() -> ! {
         loop {}
     };
     let mut records = [InstanceLod::default(); 8];
-    let mut direct = Sampler::new(pyramid, Address::Wrap);
+    let mut direct = Sampler::wrap(pyramid);
     // A trimmed pyramid (levels 2..=4 of the same texels).
     let Ok(trimmed) = pyramid.trim(bb(2), bb(4)) else {
         loop {}
     };
-    let mut trimmed = Sampler::new(trimmed, Address::Wrap);
-    let mut cached = Sampler::new(TexelCache::<_, 16, 2>::new(pyramid), Address::Clamp);
+    let mut trimmed = Sampler::wrap(trimmed);
+    let mut cached = Sampler::clamp(TexelCache::<_, 16, 2>::new(pyramid));
     let mut tags: BlockCache<32, 4> = BlockCache::new();
     // The GPU-style sampler: state, every format (through the cache: BC
     // decode on fill), sRGB, border, anisotropy.
@@ -197,8 +199,29 @@ fn main() -> ! {
     let Ok(image) = Image::new(geometry, format, &BYTES) else {
         loop {}
     };
-    let mut gpu = TextureSampler::new(TexelCache::<_, 16, 2>::new(image), state, format.space());
-    let mut gpu_direct = TextureSampler::new(image, state, bb(ColorSpace::Linear));
+    // Every key of the run-time table (one `match` per call), over the
+    // cache of a BC3 sRGB image.
+    let mut gpu = DynSampler::new(
+        TexelCache::<_, 16, 2>::new(image),
+        state,
+        format.space(),
+        bb(Precision::Fast),
+    );
+    let Ok(mut gpu_direct) =
+        Sampler::<_, Cfg<ClampToBorder, Mirror, SrgbToLinear>>::with_state(image, state)
+    else {
+        loop {}
+    };
+    // Typed formats and the FAST tier.
+    let Ok(rgb565) = Image::<Rgb565>::typed(geometry, ColorSpace::Linear, &BYTES) else {
+        loop {}
+    };
+    let Ok(mut typed) = Sampler::<_, Cfg<ClampToBorder, Mirror>>::with_state(rgb565, state) else {
+        loop {}
+    };
+    let mut direct_fast: Sampler<_, Cfg<Wrap, Wrap, Linear, Fast>> = Sampler::new(pyramid);
+    let mut cached_fast: Sampler<_, Cfg<Mirror, ClampToBorder, Linear, Fast>> =
+        Sampler::new(TexelCache::<_, 16, 2>::new(pyramid));
     let modes = [
         Mode::Trilinear,
         Mode::BilinearNearestLevel,
@@ -250,10 +273,12 @@ fn main() -> ! {
             bb(direct.sample(u, v, lod, bb(m)));
             bb(cached.sample(u, v, lod, bb(m)));
         }
-        // the FAST trilinear path
-        bb(trimmed.sample_trilinear_fast(u, v, lod));
-        bb(direct.sample_trilinear_fast(u, v, lod));
-        bb(cached.sample_trilinear_fast(u, v, lod));
+        // the FAST tier, typed formats
+        for &m in &modes {
+            bb(direct_fast.sample(u, v, lod, bb(m)));
+            bb(cached_fast.sample(u, v, lod, bb(m)));
+            bb(typed.sample(u, v, lod, bb(m)));
+        }
         // batch entry points (slices of opaque length)
         let hits = bb([(pl, pb); 4]);
         let mut lods = [None; 3];
@@ -314,10 +339,25 @@ fn main() -> ! {
         });
         for &m in &modes {
             bb(gpu.sample(u, v, lod, bb(m)));
-            bb(gpu.sample_aniso(u, v, &fp, bb(m)));
             bb(gpu_direct.sample(u, v, lod, bb(m)));
-            bb(gpu_direct.sample_aniso(u, v, &fp, bb(m)));
+            bb(gpu.sample_batch(
+                samples.get(..bb(3)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(4)).unwrap_or_default(),
+            ));
+            bb(direct_fast.sample_batch(
+                samples.get(..bb(4)).unwrap_or_default(),
+                bb(m),
+                texels.get_mut(..bb(3)).unwrap_or_default(),
+            ));
         }
+        bb(gpu.sample_aniso(u, v, &fp));
+        bb(gpu_direct.sample_aniso(u, v, &fp));
+        bb(direct.sample_aniso(u, v, &fp));
+        bb(direct_fast.sample_aniso(u, v, &fp));
+        bb(typed.sample_aniso(u, v, &fp));
+        bb(gpu.sample_stochastic(u, v, lod, bb(StochasticMode::Bilinear), bb(7)));
+        bb(direct_fast.sample_stochastic(u, v, lod, bb(StochasticMode::Trilinear), bb(9)));
         bb(probes(&fp, bb(512), bb(64), bb(8)));
         bb(state.lod(lod, bb(7)));
         bb(bb(AddressMode::MirrorOnce).index(bb(-77), bb(5)));

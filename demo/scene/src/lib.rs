@@ -40,13 +40,13 @@ use core::fmt;
 pub mod parity;
 
 use fixed::types::I2F30;
-use raymip::cache::TexelCache;
 use raymip::camera::PixelSpread;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, clamp_lod, table_lod};
-use raymip::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
 use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
+use raymip::texture::{Mode, Sampler, TexCoord};
 
 mod data;
 pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};
@@ -85,7 +85,8 @@ pub const TEX_SIZE: u32 = 32;
 /// Number of MIP levels of the demo textures (32 → 1).
 pub const TEX_LEVELS: u8 = 6;
 /// Texels of one demo pyramid (32² + 16² + … + 1).
-pub const TEX_LEN: usize = raymip::mip::pyramid_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS);
+pub const TEX_LEN: usize =
+    raymip::texture::storage::mip::pyramid_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS);
 /// Cache of texture 0 (sets × ways of 4×4-texel blocks).
 pub type Tex0Cache = TexelCache<Pyramid<'static>, 8, 2>;
 
@@ -446,7 +447,7 @@ pub fn tex_geometry() -> Option<Geometry> {
 }
 
 /// Pyramid texels that differ between `stored` and a pyramid regenerated
-/// from its level 0 with [`raymip::mip::generate`] (run at start-up on
+/// from its level 0 with [`raymip::texture::storage::mip::generate`] (run at start-up on
 /// each target: MIP generation must be bit-identical too).
 #[must_use]
 pub fn regenerate_mismatches(stored: &[Texel; TEX_LEN]) -> u32 {
@@ -528,8 +529,8 @@ impl Renderer {
             // The static table is what the firmware uses (flash data).
             table: static_table(),
             spread,
-            tex0: Sampler::new(TexelCache::new(p0), Address::Wrap),
-            tex1: Sampler::new(p1, Address::Wrap),
+            tex0: Sampler::wrap(TexelCache::new(p0)),
+            tex1: Sampler::wrap(p1),
             counters,
         })
     }

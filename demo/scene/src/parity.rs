@@ -1,6 +1,8 @@
-//! Cross-target check of the GPU-style sampler (`raymip::texture_sampler`):
-//! a fixed set of samples over every texel format, colour space, address
-//! mode, sampler state and filter (anisotropic included), hashed. The
+//! Cross-target check of the sampler in its run-time form
+//! (`raymip::texture::sampler::dynamic::DynSampler`, every key of its
+//! table): a fixed set of samples over every texel format, colour space,
+//! address mode, sampler state, filter (anisotropic included) and
+//! precision tier, hashed. The
 //! firmware binary `parity` prints the line on Cortex-M4 and RV32IMAC under
 //! QEMU, `raymip-demo parity` on the host; `scripts/demos` requires the
 //! three lines to be identical.
@@ -9,16 +11,17 @@
 //! byte pattern is a valid texel in every format, BC blocks included), read
 //! directly and through a texel cache (BC: block decode on fill).
 
-use raymip::address::AddressMode;
-use raymip::aniso::Footprint;
-use raymip::cache::TexelCache;
-use raymip::filter::{Mode, TexCoord};
-use raymip::format::{ColorSpace, Format, TexelFormat};
-use raymip::image::{Image, image_len};
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, TexelSource};
-use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::address::AddressMode;
+use raymip::texture::kernel::Precision;
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::sampler::dynamic::DynSampler;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
+use raymip::texture::storage::image::{Image, image_len};
+use raymip::texture::storage::mip::{Geometry, TexelSource};
+use raymip::texture::{Mode, TexCoord};
 
 use crate::Fnv1a;
 
@@ -62,7 +65,7 @@ impl Lcg {
 const PER_CONFIG: u32 = 8;
 
 /// Feeds `n` samples of every filter (and 2 anisotropic ones) to `h`.
-fn run<S: TexelSource>(s: &mut TextureSampler<S>, rng: &mut Lcg, h: &mut Fnv1a) -> u32 {
+fn run<S: TexelSource>(s: &mut DynSampler<S>, rng: &mut Lcg, h: &mut Fnv1a) -> u32 {
     let mut count = 0;
     for _ in 0..PER_CONFIG {
         // u, v in [−4, 4), lod in [−2, 14).
@@ -84,7 +87,7 @@ fn run<S: TexelSource>(s: &mut TextureSampler<S>, rng: &mut Lcg, h: &mut Fnv1a) 
                 TexCoord::from_bits(rng.signed(28)),
             ],
         };
-        h.write(&s.sample_aniso(u, v, &fp, Mode::Trilinear).to_le_bytes());
+        h.write(&s.sample_aniso(u, v, &fp).to_le_bytes());
         count += 1;
     }
     count
@@ -122,11 +125,13 @@ pub fn checksum() -> Option<ParityLine> {
                     },
                 })
                 .ok()?;
-                let mut direct = TextureSampler::new(image, state, space);
-                samples += run(&mut direct, &mut rng, &mut h);
-                let cache: TexelCache<_, 4, 2> = TexelCache::new(image);
-                let mut cached = TextureSampler::new(cache, state, space);
-                samples += run(&mut cached, &mut rng, &mut h);
+                for precision in [Precision::Accurate, Precision::Fast] {
+                    let mut direct = DynSampler::new(image, state, space, precision);
+                    samples += run(&mut direct, &mut rng, &mut h);
+                    let cache: TexelCache<_, 4, 2> = TexelCache::new(image);
+                    let mut cached = DynSampler::new(cache, state, space, precision);
+                    samples += run(&mut cached, &mut rng, &mut h);
+                }
             }
         }
     }

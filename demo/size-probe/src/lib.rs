@@ -10,7 +10,8 @@ pub const TEX_SIZE: u32 = 32;
 /// Stored levels of that texture (32×32 down to 1×1).
 pub const TEX_LEVELS: u8 = 6;
 /// Texels of that pyramid.
-pub const TEX_LEN: usize = raymip::mip::pyramid_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS);
+pub const TEX_LEN: usize =
+    raymip::texture::storage::mip::pyramid_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS);
 
 /// The feature-set probes' pyramid: a fixed pseudo-random pattern (the
 /// size of the code that reads it does not depend on its values).

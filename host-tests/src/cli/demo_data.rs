@@ -42,7 +42,7 @@ pub enum DataError {
     /// The Pb table could not be built.
     Table(raymip::table::TableError),
     /// A texture pyramid could not be built.
-    Mip(raymip::mip::MipError),
+    Mip(raymip::texture::storage::mip::MipError),
 }
 
 impl std::fmt::Display for DataError {
@@ -103,8 +103,9 @@ pub fn generate_data() -> Result<Vec<DataFile>, DataError> {
         }
     }
     s.push_str("];\n");
-    let g =
-        raymip_demo_scene::tex_geometry().ok_or(DataError::Mip(raymip::mip::MipError::ZeroSize))?;
+    let g = raymip_demo_scene::tex_geometry().ok_or(DataError::Mip(
+        raymip::texture::storage::mip::MipError::ZeroSize,
+    ))?;
     let mut files = Vec::new();
     for tex in 0..2u8 {
         let mut buf = vec![0u32; g.len()];
@@ -114,7 +115,7 @@ pub fn generate_data() -> Result<Vec<DataFile>, DataError> {
                 buf[(y * size + x) as usize] = raymip_demo_scene::texture_level0(tex, x, y);
             }
         }
-        raymip::mip::generate(&g, &mut buf).map_err(DataError::Mip)?;
+        raymip::texture::storage::mip::generate(&g, &mut buf).map_err(DataError::Mip)?;
         let name = format!("tex{tex}.bin");
         let _ = writeln!(
             s,

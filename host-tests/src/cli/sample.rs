@@ -5,36 +5,40 @@
 //! 1 = bilinear + nearest level, 2 = nearest texel + nearest level,
 //! 3 = nearest texel + linear between levels), or, for an anisotropic
 //! sample, `u,v,mode,dudx,dvdx,dudy,dvdy` (the footprint's two axis vectors
-//! in normalized texture coordinates; the probes use `mode`). Output lines
+//! in normalized texture coordinates; trilinear probes, mode 0). Output lines
 //! are `r,g,b,a` (0–255). Any malformed line (wrong field count, bad
 //! number, NaN/inf, unknown mode, blank) stops the command with an error
 //! naming the line; nothing is skipped silently.
 //!
-//! With only `--address wrap|clamp` the command runs the original
-//! `raymip::filter::Sampler` (RGBA8, unchanged outputs). Any GPU-sampler
-//! option (`--address` with another mode or two axes, `--border`,
-//! `--format`, `--srgb`, `--linear-output`, `--bias`, `--min-lod`,
-//! `--max-lod`, `--max-aniso`) or an anisotropic line selects
-//! `raymip::texture_sampler::TextureSampler`: the PPM becomes an RGBA8
-//! pyramid (generated in linear space with `--srgb`), converted to
-//! `--format` (BC by the harness encoder) and read through a 16 KiB texel
-//! cache (BC blocks decoded on fill).
+//! Every line goes through the one firmware sampler in its run-time form
+//! (`raymip::texture::sampler::dynamic::DynSampler`: the specialised key
+//! for the options, picked once), in the precision tier of `--precision`
+//! (accurate, the default, or fast). With RGBA8 and no other sampler
+//! option it reads the pyramid in memory directly (the outputs of the
+//! earlier plain sampler, bit for bit); with `--format`, `--srgb` or any
+//! other state option (`--address` with another mode or two axes,
+//! `--border`, `--linear-output`, `--bias`, `--min-lod`, `--max-lod`) the
+//! PPM becomes an RGBA8 pyramid (generated in linear space with `--srgb`),
+//! converted to `--format` (BC by the harness encoder) and read through a
+//! 16 KiB texel cache (BC blocks decoded on fill).
 
 use std::fmt;
 use std::io::{self, BufRead, Write};
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use raymip::address::AddressMode;
-use raymip::aniso::Footprint;
-use raymip::cache::TexelCache;
-use raymip::filter::{Address, Mode, Sampler, TexCoord, tex_coord_from_f64};
-use raymip::format::{ColorSpace, Format, TexelFormat};
-use raymip::image::Image;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
-use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::address::AddressMode;
+use raymip::texture::kernel::Precision;
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::sampler::dynamic::DynSampler;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
+use raymip::texture::storage::image::Image;
+use raymip::texture::storage::mip::TexelSource;
+use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
+use raymip::texture::{Mode, TexCoord, tex_coord_from_f64};
 
 use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 
@@ -68,10 +72,10 @@ impl AddressArg {
 
     /// The original sampler's addressing, for wrap and clamp.
     #[must_use]
-    pub fn legacy(self) -> Option<Address> {
+    pub fn plain(self) -> Option<AddressMode> {
         match self {
-            Self::Wrap => Some(Address::Wrap),
-            Self::Clamp => Some(Address::Clamp),
+            Self::Wrap => Some(AddressMode::Wrap),
+            Self::Clamp => Some(AddressMode::ClampToEdge),
             _ => None,
         }
     }
@@ -180,6 +184,31 @@ pub struct SampleArgs {
     /// Maximum anisotropy 1..=16 for anisotropic lines.
     #[arg(long, default_value_t = 16)]
     pub max_aniso: u8,
+    /// Precision tier: accurate (12-bit weights, ≤ 0.5625 LSB) or fast
+    /// (GPU precision: 8 sub-texel bits, ≤ 2.40625 LSB; sRGB data filters
+    /// accurate in both).
+    #[arg(long, value_enum, default_value_t = PrecisionArg::Accurate)]
+    pub precision: PrecisionArg,
+}
+
+/// Precision tier on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PrecisionArg {
+    /// ACCURATE (default).
+    Accurate,
+    /// FAST.
+    Fast,
+}
+
+impl PrecisionArg {
+    /// The firmware tier.
+    #[must_use]
+    pub fn precision(self) -> Precision {
+        match self {
+            Self::Accurate => Precision::Accurate,
+            Self::Fast => Precision::Fast,
+        }
+    }
 }
 
 /// The line format, printed by `sample --help`.
@@ -189,7 +218,8 @@ Input lines (stdin), decimal numbers, comma-separated:
   u,v,mode,dudx,dvdx,dudy,dvdy      anisotropic sample over the footprint
                                     (du/dx, dv/dx), (du/dy, dv/dy) in
                                     normalized coordinates; up to
-                                    --max-aniso probes of `mode`
+                                    --max-aniso trilinear probes
+                                    (mode must be 0)
 mode: 0 trilinear, 1 bilinear + nearest level, 2 nearest texel + nearest
 level, 3 nearest texel + linear between levels.
 Output lines (stdout): r,g,b,a (0-255), one per input line.
@@ -202,7 +232,7 @@ impl SampleArgs {
     #[must_use]
     pub fn uses_sampler_state(&self) -> bool {
         self.address.len() > 1
-            || self.address.iter().any(|a| a.legacy().is_none())
+            || self.address.iter().any(|a| a.plain().is_none())
             || self.border.is_some()
             || self.format != FormatArg::Rgba8
             || self.srgb
@@ -437,30 +467,74 @@ fn coord(x: f64, mode: AddressMode) -> Result<TexCoord, String> {
     tex_coord_from_f64(r).map_err(|e| e.to_string())
 }
 
-/// Samples every line of `input` (`u,v,lod,mode`) from `pyramid` and writes
-/// `r,g,b,a` lines to `output`, in order. `input_name` names the input in
-/// errors. Returns the number of samples written.
+/// Samples every line of `input` (`u,v,lod,mode`, or anisotropic lines)
+/// from `pyramid` in memory with address mode `address` on both axes and
+/// the default state, ACCURATE, and writes `r,g,b,a` lines to `output`, in
+/// order. `input_name` names the input in errors. Returns the number of
+/// samples written.
 ///
 /// # Errors
 /// [`SampleError::Line`] for the first malformed line (earlier results are
 /// already written), [`SampleError::Io`] for read/write failures.
 pub fn sample_lines<R: BufRead, W: Write>(
     pyramid: &OwnedPyramid,
-    address: Address,
+    address: AddressMode,
     input: R,
     output: W,
     input_name: &str,
 ) -> Result<usize, SampleError> {
-    let mut sampler = Sampler::new(view(pyramid, input_name)?, address);
+    let state = SamplerState::new(SamplerDesc {
+        address_u: address,
+        address_v: address,
+        ..SamplerDesc::default()
+    })
+    .map_err(|e| SampleError::Options(e.to_string()))?;
+    let sampler = DynSampler::new(
+        view(pyramid, input_name)?,
+        state,
+        ColorSpace::Linear,
+        Precision::Accurate,
+    );
+    run_lines(sampler, input, output, input_name)
+}
+
+/// Samples every line of `input` with `sampler` (coordinates reduced in
+/// f64 as its address modes reduce them) and writes `r,g,b,a` lines.
+fn run_lines<S: TexelSource, R: BufRead, W: Write>(
+    mut sampler: DynSampler<S>,
+    input: R,
+    output: W,
+    input_name: &str,
+) -> Result<usize, SampleError> {
+    let [au, av] = sampler.state().address();
     sample_each_line(input, output, input_name, |line, line_err| {
-        let SampleLine::Lod { u, v, lod, mode } = line else {
-            return Err(line_err(
-                "anisotropic lines need the GPU-style sampler (sample_lines_state)".into(),
-            ));
-        };
-        sampler
-            .sample_f64(u, v, lod, mode)
-            .map_err(|e| line_err(e.to_string()))
+        Ok(match line {
+            SampleLine::Lod { u, v, lod, mode } => {
+                let (u, v) = (
+                    coord(u, au).map_err(line_err)?,
+                    coord(v, av).map_err(line_err)?,
+                );
+                sampler.sample(u, v, Lod::saturating_from_num(lod), mode)
+            }
+            SampleLine::Aniso { u, v, mode, axes } => {
+                let (u, v) = (
+                    coord(u, au).map_err(line_err)?,
+                    coord(v, av).map_err(line_err)?,
+                );
+                if mode != Mode::Trilinear {
+                    return Err(line_err(format!(
+                        "anisotropic lines take trilinear probes (mode 0), not mode {}",
+                        mode as u8
+                    )));
+                }
+                let a = |x: f64| TexCoord::saturating_from_num(x);
+                let fp = Footprint {
+                    x: [a(axes[0][0]), a(axes[0][1])],
+                    y: [a(axes[1][0]), a(axes[1][1])],
+                };
+                sampler.sample_aniso(u, v, &fp)
+            }
+        })
     })
 }
 
@@ -501,26 +575,20 @@ fn sample_each_line<R: BufRead, W: Write>(
     Ok(count)
 }
 
-/// Samples every line of `input` through the GPU-style sampler over
-/// `pyramid` (RGBA8; generated in linear space for sRGB) converted to
-/// `format`, with `state`; writes `r,g,b,a` lines. Returns the count.
-/// With `legacy = Some(address)`, `u,v,lod,mode` lines go through the
-/// original `filter::Sampler` instead (anisotropic lines always use the
-/// GPU-style sampler).
+/// Samples every line of `input` through the sampler of `state`,
+/// `format` and `precision` over `pyramid` (RGBA8; generated in linear
+/// space for sRGB) converted to `format` and read through a texel cache;
+/// writes `r,g,b,a` lines. Returns the count.
 ///
 /// # Errors
 /// As [`sample_lines`].
 pub fn sample_lines_state<R: BufRead, W: Write>(
     pyramid: &OwnedPyramid,
-    state: SamplerState,
-    format: Format,
-    legacy: Option<Address>,
+    (state, format, precision): (SamplerState, Format, Precision),
     input: R,
     output: W,
     input_name: &str,
 ) -> Result<usize, SampleError> {
-    let view = view(pyramid, input_name)?;
-    let mut original = legacy.map(|a| Sampler::new(view, a));
     let bytes = crate::reference::texformat::encode_pyramid(
         &pyramid.geometry,
         &pyramid.texels,
@@ -529,36 +597,8 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
     let image = Image::new(pyramid.geometry, format, &bytes)
         .map_err(|e| SampleError::Options(e.to_string()))?;
     let mut cache: Box<TexelCache<Image<'_>, 64, 4>> = Box::new(TexelCache::new(image));
-    let mut sampler = TextureSampler::new(&mut *cache, state, format.space());
-    let [au, av] = state.address();
-    sample_each_line(input, output, input_name, |line, line_err| {
-        Ok(match line {
-            SampleLine::Lod { u, v, lod, mode } => match original.as_mut() {
-                Some(o) => o
-                    .sample_f64(u, v, lod, mode)
-                    .map_err(|e| line_err(e.to_string()))?,
-                None => {
-                    let (u, v) = (
-                        coord(u, au).map_err(line_err)?,
-                        coord(v, av).map_err(line_err)?,
-                    );
-                    sampler.sample(u, v, Lod::saturating_from_num(lod), mode)
-                }
-            },
-            SampleLine::Aniso { u, v, mode, axes } => {
-                let (u, v) = (
-                    coord(u, au).map_err(line_err)?,
-                    coord(v, av).map_err(line_err)?,
-                );
-                let a = |x: f64| TexCoord::saturating_from_num(x);
-                let fp = Footprint {
-                    x: [a(axes[0][0]), a(axes[0][1])],
-                    y: [a(axes[1][0]), a(axes[1][1])],
-                };
-                sampler.sample_aniso(u, v, &fp, mode)
-            }
-        })
-    })
+    let sampler = DynSampler::new(&mut *cache, state, format.space(), precision);
+    run_lines(sampler, input, output, input_name)
 }
 
 /// The whole command: read the texture, build the pyramid, sample `input`
@@ -575,20 +615,28 @@ pub fn run<R: BufRead, W: Write>(
     let img = read_ppm(&args.texture).map_err(SampleError::Texture)?;
     let (state, format) = args.state().map_err(SampleError::Options)?;
     let mut pyramid = build_pyramid(&img, args.levels, &args.texture)?;
-    let legacy = args
-        .address
-        .first()
-        .and_then(|a| a.legacy())
-        .filter(|_| !args.uses_sampler_state());
+    let precision = args.precision.precision();
+    if !args.uses_sampler_state() {
+        // RGBA8 in memory, wrap or clamp, no state: read directly.
+        let view = view(&pyramid, "<stdin>")?;
+        let sampler = DynSampler::new(view, state, ColorSpace::Linear, precision);
+        return run_lines(sampler, input, output, "<stdin>");
+    }
     if args.srgb {
         // Regenerate the levels in linear space.
-        raymip::srgb::generate(&pyramid.geometry, &mut pyramid.texels).map_err(|error| {
-            SampleError::Pyramid {
+        raymip::texture::storage::srgb::generate(&pyramid.geometry, &mut pyramid.texels).map_err(
+            |error| SampleError::Pyramid {
                 path: args.texture.clone(),
                 error,
                 levels: args.levels,
-            }
-        })?;
+            },
+        )?;
     }
-    sample_lines_state(&pyramid, state, format, legacy, input, output, "<stdin>")
+    sample_lines_state(
+        &pyramid,
+        (state, format, precision),
+        input,
+        output,
+        "<stdin>",
+    )
 }

@@ -30,12 +30,14 @@ use raymip::ffi::{
     self, RM_UNTEXTURED, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmStatus,
     RmTexture,
 };
-use raymip::filter::{Address, FilterError, Mode, Sampler, TexCoord};
 use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::lod::{Lod, MIN_COS, clamp_lod, cone_lod, table_lod};
-use raymip::mip::{self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len};
 use raymip::raystack::{DEFAULT_CAPACITY, PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::texture::storage::mip::{
+    self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len,
+};
+use raymip::texture::{AddressMode, FilterError, Mode, Sampler, TexCoord};
 
 use super::output::write_between_markers;
 
@@ -650,8 +652,9 @@ fn sampler(r: &mut Runner) {
             let buf = &buf;
             r.case(name, edge, move || {
                 let mut seen = Vec::new();
-                for a in [Address::Wrap, Address::Clamp] {
-                    let mut s = Sampler::new(Pyramid::new(g, buf).map_err(|e| e.to_string())?, a);
+                for a in [AddressMode::Wrap, AddressMode::ClampToEdge] {
+                    let mut s =
+                        Sampler::with_address(Pyramid::new(g, buf).map_err(|e| e.to_string())?, a);
                     for m in MODES {
                         let mut args = [0.3, 0.6, 1.2];
                         args[which] = x;
@@ -676,7 +679,7 @@ fn sampler(r: &mut Runner) {
                     _ => "sampler: SamplerF32::sample lod (float baseline)",
                 },
                 move || {
-                    for a in [Address::Wrap, Address::Clamp] {
+                    for a in [AddressMode::Wrap, AddressMode::ClampToEdge] {
                         let s = SamplerF32::new(g, buf, a).ok_or("SamplerF32::new")?;
                         for m in MODES {
                             let mut args = [0.3f32, 0.6, 1.2];
@@ -710,9 +713,11 @@ fn sampler(r: &mut Runner) {
                 format!("{cn}, {ln}"),
                 "sampler: Sampler::sample",
                 move || {
-                    for a in [Address::Wrap, Address::Clamp] {
-                        let mut s =
-                            Sampler::new(Pyramid::new(g, buf).map_err(|e| e.to_string())?, a);
+                    for a in [AddressMode::Wrap, AddressMode::ClampToEdge] {
+                        let mut s = Sampler::with_address(
+                            Pyramid::new(g, buf).map_err(|e| e.to_string())?,
+                            a,
+                        );
                         for m in MODES {
                             let t = s.sample(c, c, l, m);
                             if !in_range(t) {
@@ -837,10 +842,7 @@ fn textures(r: &mut Runner) {
                 if !buf.iter().all(|&t| in_range(t)) {
                     return Err("a generated texel out of range".into());
                 }
-                let mut s = Sampler::new(
-                    Pyramid::new(g, &buf).map_err(|e| e.to_string())?,
-                    Address::Wrap,
-                );
+                let mut s = Sampler::wrap(Pyramid::new(g, &buf).map_err(|e| e.to_string())?);
                 for l in [Lod::MIN, Lod::ZERO, Lod::from_num(levels), Lod::MAX] {
                     for m in MODES {
                         for c in [TexCoord::ZERO, TexCoord::from_num(0.999), TexCoord::MAX] {

@@ -13,7 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use raymip::cache::BlockCache;
+use raymip::texture::storage::cache::BlockCache;
 use serde::Serialize;
 use serde_json::json;
 

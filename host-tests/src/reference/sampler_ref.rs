@@ -1,4 +1,5 @@
-//! f64 reference of the GPU-style sampler (`raymip::texture_sampler`):
+//! f64 reference of the sampler (`raymip::texture::Sampler`, measured
+//! through its run-time form `DynSampler` so that every key is reached):
 //! every option — address modes, border colour, lod bias and clamps,
 //! texel formats, sRGB, BC1–BC4, anisotropic filtering — written here
 //! from the definitions (Vulkan "wrapping operation", D3D11 lod order,
@@ -12,15 +13,19 @@
 //! ([`RefTexture::from_rgba8`]); `tests/bc_decode.rs` checks the firmware
 //! decoder bit for bit.
 
-use raymip::address::AddressMode;
-use raymip::cache::TexelCache;
-use raymip::filter::{Mode, TexCoord};
-use raymip::format::{ColorSpace, Format, TexelFormat};
-use raymip::image::Image;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Texel};
-use raymip::sampler_state::{SamplerDesc, SamplerState, SrgbOutput};
-use raymip::texture_sampler::{SAMPLER_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB, TextureSampler};
+use raymip::texture::address::AddressMode;
+use raymip::texture::kernel::Precision;
+use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
+use raymip::texture::kernel::fast::FAST_MAX_ERROR_LSB;
+use raymip::texture::kernel::srgb::{SRGB_LINEAR_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB};
+use raymip::texture::sampler::dynamic::DynSampler;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
+use raymip::texture::storage::image::Image;
+use raymip::texture::storage::mip::{Geometry, Texel};
+use raymip::texture::{Mode, TexCoord};
 
 use super::Rng;
 
@@ -86,7 +91,7 @@ pub struct RefTexture {
 }
 
 impl RefTexture {
-    /// From RGBA8 texels in the `raymip::mip` pyramid layout.
+    /// From RGBA8 texels in the `raymip::texture::storage::mip` pyramid layout.
     #[must_use]
     pub fn from_rgba8(geometry: &Geometry, texels: &[Texel]) -> Self {
         Self::from_fn(geometry, |level, x, y| {
@@ -96,7 +101,7 @@ impl RefTexture {
         })
     }
 
-    /// From uncompressed `bytes` in the `raymip::image` layout of `format`.
+    /// From uncompressed `bytes` in the `raymip::texture::storage::image` layout of `format`.
     #[must_use]
     pub fn from_bytes(geometry: &Geometry, format: TexelFormat, bytes: &[u8]) -> Self {
         let unit = format.unit_bytes() as usize;
@@ -136,7 +141,7 @@ impl RefTexture {
 /// Sampler options of the reference (all in f64).
 #[derive(Clone, Copy, Debug)]
 pub struct RefState {
-    /// Address modes of u and v.
+    /// AddressMode modes of u and v.
     pub address: [AddressMode; 2],
     /// Border colour, channel values 0..=255 (linear).
     pub border: [f64; 4],
@@ -344,6 +349,8 @@ pub struct AccuracyRow {
     pub max_error: f64,
     /// The documented bound for this row.
     pub bound: f64,
+    /// The precision tier asked for.
+    pub precision: Precision,
 }
 
 /// The filters of the accuracy table.
@@ -355,7 +362,7 @@ pub const FILTERS: [&str; 5] = [
     "anisotropic 16x (trilinear probes)",
 ];
 
-/// Measures the firmware `TextureSampler` against [`RefSampler`] for every
+/// Measures the firmware sampler of tier `precision` against [`RefSampler`] for every
 /// format (linear, and sRGB re-encoded and linear where it exists) and
 /// filter, over `samples` random samples each: random 24×20 RGBA8 level 0
 /// (pyramid by `mip::generate`, or `srgb::generate` for sRGB), converted
@@ -364,10 +371,10 @@ pub const FILTERS: [&str; 5] = [
 /// [−3, 3], lods in [−2, 8], anisotropic footprints with axes up to ±0.5
 /// (up to 12 texels), through the texel cache. The reference reads the
 /// stored bytes with its own decoder for uncompressed formats; BC texel
-/// values come from `raymip::bc`, which `tests/bc_decode.rs` proves
+/// values come from `raymip::texture::storage::bc`, which `tests/bc_decode.rs` proves
 /// bit-identical to an independent decoder.
 #[must_use]
-pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
+pub fn measure(samples: usize, seed: u64, precision: Precision) -> Vec<AccuracyRow> {
     let mut rng = Rng(seed.max(1));
     let geometry = Geometry::new(24, 20, 5).expect("geometry");
     let mut rows = Vec::new();
@@ -386,9 +393,10 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
                 .map(|_| (rng.unit() * 4_294_967_296.0) as u32)
                 .collect();
             if space == ColorSpace::Srgb {
-                raymip::srgb::generate(&geometry, &mut texels).expect("srgb pyramid");
+                raymip::texture::storage::srgb::generate(&geometry, &mut texels)
+                    .expect("srgb pyramid");
             } else {
-                raymip::mip::generate(&geometry, &mut texels).expect("pyramid");
+                raymip::texture::storage::mip::generate(&geometry, &mut texels).expect("pyramid");
             }
             let bytes = crate::reference::texformat::encode_pyramid(&geometry, &texels, format);
             let fmt = Format::new(format, space).expect("format");
@@ -399,7 +407,7 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
                 let mut ties = 0;
                 for _ in 0..samples {
                     let Some((got, want)) =
-                        sample_pair(&mut rng, fi, image, &reference, space, out)
+                        sample_pair(&mut rng, fi, image, &reference, (space, out, precision))
                     else {
                         ties += 1;
                         continue;
@@ -414,7 +422,8 @@ pub fn measure(samples: usize, seed: u64) -> Vec<AccuracyRow> {
                     samples,
                     ties,
                     max_error,
-                    bound: error_bound(fi, space, out),
+                    bound: error_bound(fi, space, out, precision),
+                    precision,
                 });
             }
         }
@@ -444,13 +453,15 @@ fn reference_texture(
     }
 }
 
-/// Documented bound of filter `fi` (index into [`FILTERS`]).
-fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput) -> f64 {
+/// Documented bound of filter `fi` (index into [`FILTERS`]) for the
+/// tier `precision` (sRGB data filters ACCURATE in both tiers).
+fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput, precision: Precision) -> f64 {
     let encoded = space == ColorSpace::Srgb && out == SrgbOutput::Encoded;
-    let base = if encoded {
-        SRGB_MAX_ERROR_LSB
-    } else {
-        SAMPLER_MAX_ERROR_LSB
+    let base = match (space, out, precision) {
+        (ColorSpace::Srgb, SrgbOutput::Encoded, _) => SRGB_MAX_ERROR_LSB,
+        (ColorSpace::Srgb, SrgbOutput::Linear, _) => SRGB_LINEAR_MAX_ERROR_LSB,
+        (_, _, Precision::Fast) => FAST_MAX_ERROR_LSB,
+        (_, _, Precision::Accurate) => BILERP_MAX_ERROR_LSB,
     };
     match fi {
         // sRGB: the decoded (or border) value is rounded once.
@@ -497,12 +508,11 @@ fn sample_pair(
     fi: usize,
     image: Image<'_>,
     reference: &RefTexture,
-    space: ColorSpace,
-    out: SrgbOutput,
+    (space, out, precision): (ColorSpace, SrgbOutput, Precision),
 ) -> Option<(Texel, [f64; 4])> {
     let (desc, address) = random_state(rng, out);
     let state = SamplerState::new(desc).expect("state");
-    let mut fw = TextureSampler::new(TexelCache::<_, 8, 2>::new(image), state, space);
+    let mut fw = DynSampler::new(TexelCache::<_, 8, 2>::new(image), state, space, precision);
     let rs = RefSampler {
         tex: reference,
         state: RefState {
@@ -551,9 +561,9 @@ fn sample_pair(
     if tie {
         return None;
     }
-    let fp = raymip::aniso::Footprint { x: ax, y: ay };
+    let fp = raymip::texture::sampler::aniso::Footprint { x: ax, y: ay };
     Some((
-        fw.sample_aniso(u, v, &fp, Mode::Trilinear),
+        fw.sample_aniso(u, v, &fp),
         rs.sample_aniso(uf, vf, axes, Mode::Trilinear),
     ))
 }

@@ -1,5 +1,5 @@
 //! Test data in every firmware texel format: RGBA8 pyramids converted to
-//! the byte layout of `raymip::image` (uncompressed formats quantized by
+//! the byte layout of `raymip::texture::storage::image` (uncompressed formats quantized by
 //! `TexelFormat::encode`, BC1–BC4 by a simple block encoder written here).
 //!
 //! The BC encoder is deliberately simple (quality is not the point, being
@@ -10,12 +10,12 @@
 //! mode with index 3 (transparent black) for those texels; BC2 alpha is
 //! `round(a/17)`; BC3 alpha and BC4 red use the min/max as the two values
 //! in eight-value mode and the nearest of the eight. Decoding is the
-//! firmware's (`raymip::bc`), itself checked against an independent
+//! firmware's (`raymip::texture::storage::bc`), itself checked against an independent
 //! decoder in `tests/bc_decode.rs`.
 
-use raymip::bc;
-use raymip::format::TexelFormat;
-use raymip::mip::{Geometry, Texel};
+use raymip::texture::storage::bc;
+use raymip::texture::storage::format::TexelFormat;
+use raymip::texture::storage::mip::{Geometry, Texel};
 
 /// Channel `c` of `t`.
 fn ch(t: Texel, c: usize) -> i32 {
@@ -152,11 +152,11 @@ pub fn encode_block(format: TexelFormat, texels: &[Texel; 16]) -> Vec<u8> {
     }
 }
 
-/// Converts an RGBA8 pyramid (`raymip::mip` layout, every level present)
-/// to the byte layout of `raymip::image::Image` in `format`.
+/// Converts an RGBA8 pyramid (`raymip::texture::storage::mip` layout, every level present)
+/// to the byte layout of `raymip::texture::storage::image::Image` in `format`.
 #[must_use]
 pub fn encode_pyramid(geometry: &Geometry, texels: &[Texel], format: TexelFormat) -> Vec<u8> {
-    let mut out = Vec::with_capacity(raymip::image::image_len(
+    let mut out = Vec::with_capacity(raymip::texture::storage::image::image_len(
         geometry.width(),
         geometry.height(),
         geometry.levels(),

@@ -2,9 +2,9 @@
 //! `examples/texture_icount.rs`: a random pyramid and random sample
 //! positions, so both measure the same thing.
 
-use raymip::filter::TexCoord;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, MipError, Texel, full_levels, generate};
+use raymip::texture::TexCoord;
+use raymip::texture::storage::mip::{Geometry, MipError, Texel, full_levels, generate};
 
 use super::Rng;
 
@@ -12,7 +12,7 @@ use super::Rng;
 /// bench workload: [`random_texture`] with a fixed seed).
 ///
 /// # Errors
-/// When `size` is 0 or above [`raymip::mip::MAX_SIZE`].
+/// When `size` is 0 or above [`raymip::texture::storage::mip::MAX_SIZE`].
 pub fn random_pyramid(size: u32) -> Result<(Geometry, Vec<Texel>), MipError> {
     random_texture(size, size, full_levels(size, size), 0x9E37_79B9_7F4A_7C15)
 }

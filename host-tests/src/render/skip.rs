@@ -22,10 +22,10 @@
 //! pyramids (see `raymip::analysis` on cones).
 
 use raymip::analysis::{LevelRange, LodRange, PathBounds, TextureUse, analyse, mark_skipped};
-use raymip::filter::Mode;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, TexelSource};
 use raymip::raystack::PathLength;
+use raymip::texture::Mode;
+use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource};
 use serde::Serialize;
 
 use super::texunit::MipTexture;

@@ -2,26 +2,24 @@
 //! the two texture units of a render ([`Unit`]):
 //!
 //! * [`FirmwareUnit`]: the firmware texture unit, one
-//!   `raymip::filter::Sampler` per texture (fixed point: [`TexCoord`],
+//!   `raymip::texture::Sampler` per texture (fixed point: [`TexCoord`],
 //!   [`Lod`], [`Mode`] in, a texel out; wrap addressing), which also records
 //!   the texel-block address of every fetch for the cache study;
 //! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
 //!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
 //!
-//! Anisotropic filtering (`Options::aniso`): the firmware unit uses one
-//! `raymip::texture_sampler::TextureSampler` per texture (wrap, the given
-//! maximum anisotropy), the float unit averages its own trilinear samples
-//! at the probes of `reference::sampler_ref::aniso_probes`.
+//! Anisotropic filtering (`Options::aniso`): the firmware unit's samplers
+//! carry the maximum anisotropy in their state and sample the footprint
+//! (`Sampler::sample_aniso`), the float unit averages its own trilinear
+//! samples at the probes of `reference::sampler_ref::aniso_probes`.
 
-use raymip::aniso::Footprint;
-use raymip::cache::BlockLayout;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
-use raymip::format::ColorSpace;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
-use raymip::sampler_state::{SamplerDesc, SamplerState};
-use raymip::stochastic::StochasticMode;
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
+use raymip::texture::sampler::stochastic::StochasticMode;
+use raymip::texture::storage::cache::BlockLayout;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
+use raymip::texture::{Mode, Sampler, TexCoord};
 
 use super::Method;
 use super::lod::HitLod;
@@ -39,7 +37,7 @@ pub enum Filter {
     Bilinear,
     /// Nearest texel of the nearest level.
     Nearest,
-    /// A firmware stochastic filter (`raymip::stochastic`), driven by the
+    /// A firmware stochastic filter (`raymip::texture::sampler::stochastic`), driven by the
     /// random bits passed to [`Unit::sample`]. The f64 unit has no
     /// stochastic mode: it returns the filter's expectation (trilinear for
     /// the level-choosing modes, bilinear for stochastic bilinear).
@@ -73,7 +71,7 @@ pub struct FetchLog {
 impl FetchLog {
     /// Adds a sampler's counters and moves the block addresses its
     /// recorder logged.
-    fn take(&mut self, st: raymip::filter::FetchStats, source: &mut Recorder<'_>) {
+    fn take(&mut self, st: raymip::texture::FetchStats, source: &mut Recorder<'_>) {
         self.fetched += st.fetched;
         self.skipped += st.skipped;
         if let (Some(all), Some(b)) = (self.blocks.as_mut(), source.blocks.as_mut()) {
@@ -423,7 +421,6 @@ impl TexelSource for Recorder<'_> {
 #[derive(Debug)]
 pub struct FirmwareUnit<'a> {
     samplers: Vec<Option<Sampler<Recorder<'a>>>>,
-    aniso: Vec<Option<TextureSampler<Recorder<'a>>>>,
 }
 
 impl<'a> FirmwareUnit<'a> {
@@ -439,33 +436,23 @@ impl<'a> FirmwareUnit<'a> {
                 blocks: record.then(Vec::new),
             })
         };
+        // Wrap on both axes (the default), the maximum anisotropy of the
+        // render (1 = isotropic; only `sample_aniso` reads it).
+        let state = SamplerState::new(SamplerDesc {
+            max_anisotropy: aniso.unwrap_or(1).clamp(1, 16),
+            ..SamplerDesc::default()
+        })
+        .unwrap_or_default();
         let samplers = textures
             .iter()
-            .map(|tex| Some(Sampler::new(source(tex)?, Address::Wrap)))
+            .map(|tex| Sampler::with_state(source(tex)?, state).ok())
             .collect();
-        let state = aniso.and_then(|max| {
-            SamplerState::new(SamplerDesc {
-                max_anisotropy: max.clamp(1, 16),
-                ..SamplerDesc::default()
-            })
-            .ok()
-        });
-        let aniso = textures
-            .iter()
-            .map(|tex| {
-                Some(TextureSampler::new(
-                    source(tex)?,
-                    state?,
-                    ColorSpace::Linear,
-                ))
-            })
-            .collect();
-        Self { samplers, aniso }
+        Self { samplers }
     }
 
     /// One anisotropic sample of texture `tex` through the firmware
-    /// `TextureSampler` (trilinear probes); fetches go to `log`. Texel 0
-    /// for an unknown texture or without anisotropy.
+    /// sampler (trilinear probes); fetches go to `log`. Texel 0 for an
+    /// unknown texture.
     pub fn sample_aniso(
         &mut self,
         tex: usize,
@@ -474,10 +461,10 @@ impl<'a> FirmwareUnit<'a> {
         fp: &Footprint,
         log: &mut FetchLog,
     ) -> Texel {
-        let Some(Some(sampler)) = self.aniso.get_mut(tex) else {
+        let Some(Some(sampler)) = self.samplers.get_mut(tex) else {
             return 0;
         };
-        let t = sampler.sample_aniso(u, v, fp, Mode::Trilinear);
+        let t = sampler.sample_aniso(u, v, fp);
         log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
         t
@@ -504,7 +491,7 @@ impl<'a> FirmwareUnit<'a> {
         t
     }
 
-    /// One stochastic sample (`raymip::stochastic`) of texture `tex` with
+    /// One stochastic sample (`raymip::texture::sampler::stochastic`) of texture `tex` with
     /// the random `bits`; fetches go to `log`. Texel 0 for an unknown
     /// texture.
     #[allow(clippy::too_many_arguments)]

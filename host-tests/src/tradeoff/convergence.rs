@@ -93,7 +93,7 @@ fn frame_curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, String> {
     let mut out = Vec::new();
     for m in STOCHASTIC {
         let det = match filter_stage::expectation(m) {
-            raymip::filter::Mode::BilinearNearestLevel => Filter::Bilinear,
+            raymip::texture::Mode::BilinearNearestLevel => Filter::Bilinear,
             _ => Filter::Trilinear,
         };
         let target = rgb(det, 0);

@@ -8,8 +8,11 @@
 //! Stochastic rows come twice: one frame (one sample) and the mean of
 //! `Settings::accumulate` frames (the same per-frame cost).
 //!
+//! Bilinear and trilinear come in both precision tiers of the firmware
+//! sampler ("fixed accurate", "fixed FAST").
+//!
 //! Anisotropic rows (caps 1×, 2×, 4×, 16×; fixed = the firmware
-//! `TextureSampler::sample_aniso`, f32 = `SamplerF32::sample_aniso`) run
+//! `Sampler::sample_aniso`, f32 = `SamplerF32::sample_aniso`) run
 //! on their own inputs, long footprints ([`aniso_inputs`]: 16 to 32 times
 //! longer than wide, so every cap is reached): their error is measured
 //! against the exact f64 anisotropic 16× filter over the same footprint
@@ -17,17 +20,16 @@
 //! chart axis for these rows) and against the exact f64 filter of the
 //! row's own cap.
 
-use raymip::address::AddressMode;
-use raymip::aniso::Footprint;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::float::SamplerF32;
-use raymip::format::ColorSpace;
 use raymip::lod::Lod;
-use raymip::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 use raymip::rng::Rng as FrameRng;
-use raymip::sampler_state::{SamplerDesc, SamplerState};
-use raymip::stochastic::StochasticMode;
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::address::{AddressMode, Wrap};
+use raymip::texture::kernel::{Fast, Linear};
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
+use raymip::texture::sampler::stochastic::StochasticMode;
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
 
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
@@ -58,11 +60,22 @@ impl TestTexture {
         Self { geometry, texels }
     }
 
-    /// A firmware sampler over it (wrap addressing).
+    /// The pyramid.
+    #[must_use]
+    pub fn pyramid(&self) -> Pyramid<'_> {
+        Pyramid::new(self.geometry, &self.texels).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// A firmware sampler over it (wrap addressing, ACCURATE).
     #[must_use]
     pub fn sampler(&self) -> Sampler<Pyramid<'_>> {
-        let p = Pyramid::new(self.geometry, &self.texels).unwrap_or_else(|e| panic!("{e}"));
-        Sampler::new(p, Address::Wrap)
+        Sampler::wrap(self.pyramid())
+    }
+
+    /// A firmware sampler over it (wrap addressing, FAST).
+    #[must_use]
+    pub fn sampler_fast(&self) -> Sampler<Pyramid<'_>, Cfg<Wrap, Wrap, Linear, Fast>> {
+        Sampler::new(self.pyramid())
     }
 
     /// The exact f64 reference over the same texels (wrap, no bias).
@@ -187,11 +200,14 @@ fn exact(r: &RefSampler, inp: &[Input], mode: Mode) -> Vec<[f64; 4]> {
         .collect()
 }
 
-/// The BUDGETS.md call that counts a mode's firmware path.
-fn budget_call(m: Mode) -> Option<&'static str> {
-    match m {
-        Mode::Trilinear => Some("trilinear sample"),
-        Mode::BilinearNearestLevel => Some("bilinear sample"),
+/// The BUDGETS.md call that counts a mode's firmware path (ACCURATE, or
+/// FAST).
+fn budget_call(m: Mode, fast: bool) -> Option<&'static str> {
+    match (m, fast) {
+        (Mode::Trilinear, false) => Some("trilinear sample"),
+        (Mode::BilinearNearestLevel, false) => Some("bilinear sample"),
+        (Mode::Trilinear, true) => Some("trilinear sample FAST"),
+        (Mode::BilinearNearestLevel, true) => Some("bilinear sample FAST"),
         _ => None,
     }
 }
@@ -205,7 +221,7 @@ fn deterministic(
     target: &[[f64; 4]],
 ) -> Vec<Row> {
     let mut out = Vec::new();
-    let f32s = SamplerF32::new(tex.geometry, &tex.texels, Address::Wrap)
+    let f32s = SamplerF32::new(tex.geometry, &tex.texels, AddressMode::Wrap)
         .unwrap_or_else(|| panic!("SamplerF32 over the test texture"));
     let fin: Vec<(f32, f32, f32)> = inp
         .iter()
@@ -218,10 +234,17 @@ fn deterministic(
         };
         let mut s = tex.sampler();
         let (ns, got) = measure(inp, reps, |(u, v, l)| s.sample(u, v, l, mode), channels);
-        let call = budget_call(mode);
+        let call = budget_call(mode, false);
         let mut fw = row(mode_name(mode), "fixed accurate", ns, &got, &ex);
         fw.budget_call = call.map(|c| (c.to_string(), false));
         out.push(fw);
+        if let Some(fast_call) = budget_call(mode, true) {
+            let mut s = tex.sampler_fast();
+            let (ns, got) = measure(inp, reps, |(u, v, l)| s.sample(u, v, l, mode), channels);
+            let mut fw = row(mode_name(mode), "fixed FAST", ns, &got, &ex);
+            fw.budget_call = Some((fast_call.to_string(), false));
+            out.push(fw);
+        }
         let (ns, got) = measure(&fin, reps, |(u, v, l)| f32s.sample(u, v, l, mode), channels);
         let mut fl = row(mode_name(mode), "f32 libm", ns, &got, &ex);
         fl.budget_call = call.map(|c| (c.to_string(), true));
@@ -345,7 +368,7 @@ fn exact_aniso(tex: &RefTexture, inp: &[AnisoInput], cap: u8) -> Vec<[f64; 4]> {
 fn anisotropic(tex: &TestTexture, rt: &RefTexture, inp: &[AnisoInput], reps: usize) -> Vec<Row> {
     let target = exact_aniso(rt, inp, 16);
     let p = Pyramid::new(tex.geometry, &tex.texels).unwrap_or_else(|e| panic!("{e}"));
-    let f32s = SamplerF32::new(tex.geometry, &tex.texels, Address::Wrap)
+    let f32s = SamplerF32::new(tex.geometry, &tex.texels, AddressMode::Wrap)
         .unwrap_or_else(|| panic!("SamplerF32 over the test texture"));
     let fin: Vec<(f32, f32, [[f32; 2]; 2])> = inp
         .iter()
@@ -365,13 +388,10 @@ fn anisotropic(tex: &TestTexture, rt: &RefTexture, inp: &[AnisoInput], reps: usi
             ..SamplerDesc::default()
         })
         .unwrap_or_else(|e| panic!("aniso state {cap}: {e}"));
-        let mut s = TextureSampler::new(p, state, ColorSpace::Linear);
-        let (ns, got) = measure(
-            inp,
-            reps,
-            |(u, v, fp)| s.sample_aniso(u, v, &fp, Mode::Trilinear),
-            channels,
-        );
+        let mut s = Sampler::wrap(p);
+        s = Sampler::with_state(s.into_source(), state)
+            .unwrap_or_else(|e| panic!("aniso sampler {cap}: {e}"));
+        let (ns, got) = measure(inp, reps, |(u, v, fp)| s.sample_aniso(u, v, &fp), channels);
         let name = aniso_name(cap);
         let mut fw = row(&name, "fixed accurate", ns, &got, &ex);
         // BUDGETS.md counts the capped rows ("anisotropic N× sample").

@@ -41,7 +41,7 @@ fn filter_name(f: Filter) -> &'static str {
 fn expectation(f: Filter) -> Filter {
     match f {
         Filter::Stochastic(m) => match super::filter_stage::expectation(m) {
-            raymip::filter::Mode::BilinearNearestLevel => Filter::Bilinear,
+            raymip::texture::Mode::BilinearNearestLevel => Filter::Bilinear,
             _ => Filter::Trilinear,
         },
         f => f,

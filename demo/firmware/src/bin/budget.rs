@@ -48,21 +48,23 @@
 use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
-use raymip::aniso::Footprint;
-use raymip::cache::TexelCache;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
-use raymip::format::{ColorSpace, Format, TexelFormat};
 use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
-use raymip::image::{Image, image_len};
 use raymip::lod::{
     Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
     table_lod_fast, table_lod_fast_batch,
 };
-use raymip::mip::{Geometry, Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
-use raymip::texture_sampler::TextureSampler;
+use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
+use raymip::texture::kernel::{Fast, Linear, Srgb};
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::{Bc1, Rgb565};
+use raymip::texture::storage::format::{ColorSpace, TexelFormat};
+use raymip::texture::storage::image::{Image, image_len};
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
+use raymip::texture::{AddressMode, Cfg, Mode, Sampler, TexCoord};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::stack;
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
@@ -72,11 +74,13 @@ use semihosting::{println, process};
 const PAINT: usize = 2048;
 
 type Tex = Sampler<Pyramid<'static>>;
+type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
 type LodIn = (PathLength, Log2Pb);
 type ConeIn = (Width, I16F16, Option<U1F31>);
 type SampleIn = (TexCoord, TexCoord, Lod);
-type Ts<S> = TextureSampler<S>;
-type Bc1Cache<'a> = TexelCache<Image<'a>, 8, 2>;
+/// The state rows' key: mirror on u, clamp-to-border on v.
+type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
+type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
 type Instances = [(u32, Depth)];
 
 /// One table LOD.
@@ -127,12 +131,12 @@ pub fn rm_bench_trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Te
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
-/// One FAST trilinear sample (`Sampler::sample_trilinear_fast`).
+/// One FAST trilinear sample (the FAST tier's wrap sampler).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_trilinear_fast(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample_trilinear_fast(u, v, lod)
+pub fn rm_bench_trilinear_fast(s: &mut TexFast, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
 }
 
 /// One table LOD in f32.
@@ -224,9 +228,7 @@ pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, l
     s.sample(u, v, lod, Mode::BilinearNearestLevel)
 }
 
-/// One trilinear sample through `TextureSampler` of an RGBA8 pyramid:
-/// called 64 times on linear data, then 64 times on the same texels read
-/// as sRGB (decoded to linear, filtered, re-encoded).
+/// One trilinear sample of an RGBA8 pyramid with the state key.
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
@@ -234,11 +236,30 @@ pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, 
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
+/// One trilinear sample of the same texels read as sRGB (decoded to
+/// linear, filtered, re-encoded).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_srgb(
+    s: &mut Ts<Pyramid<'_>, Srgb>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
 /// One trilinear sample of an RGB565 image (decoded per texel read).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_rgb565(s: &mut Ts<Image<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+pub fn rm_bench_ts_rgb565(
+    s: &mut Ts<Image<'_, Rgb565>>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
@@ -259,12 +280,12 @@ pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: 
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_ts_aniso(
-    s: &mut Ts<Pyramid<'_>>,
+    s: &mut Sampler<Pyramid<'_>>,
     u: TexCoord,
     v: TexCoord,
     fp: &Footprint,
 ) -> Texel {
-    s.sample_aniso(u, v, fp, Mode::Trilinear)
+    s.sample_aniso(u, v, fp)
 }
 
 /// The instance records of one instance: called 64 times with the
@@ -370,13 +391,13 @@ struct Parity<'a> {
     /// RGBA8, [`inputs::sampler_state`], linear.
     rgba: Ts<Pyramid<'a>>,
     /// The same texels read as sRGB, results re-encoded.
-    srgb: Ts<Pyramid<'a>>,
+    srgb: Ts<Pyramid<'a>, Srgb>,
     /// The demo texture converted to RGB565.
-    rgb565: Ts<Image<'a>>,
+    rgb565: Ts<Image<'a, Rgb565>>,
     /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
     bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
-    aniso: [Ts<Pyramid<'a>>; 3],
+    aniso: [Sampler<Pyramid<'a>>; 3],
     /// Discrete and stochastic (`t` = ½) geometric LOD.
     geomlod: [(&'static str, Selector); 2],
 }
@@ -386,7 +407,12 @@ struct Parity<'a> {
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) {
+fn rm_budget_driver(
+    tex: &mut Tex,
+    texfast: &mut TexFast,
+    texf: &SamplerF32<'_>,
+    par: &mut Parity<'_>,
+) {
     let mut rng = Rng(inputs::SEED);
     let empty_in = draw(&mut rng, Rng::next);
     let lod_in = draw(&mut rng, inputs::table_lod);
@@ -410,7 +436,7 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
     let (bil, bil_stack) = measure(&bil_in, |(u, v, lod)| rm_bench_bilinear(tex, u, v, lod));
     let (tri, tri_stack) = measure(&tri_in, |(u, v, lod)| rm_bench_trilinear(tex, u, v, lod));
     let (tri_fast, tri_fast_stack) = measure(&tri_in, |(u, v, lod)| {
-        rm_bench_trilinear_fast(tex, u, v, lod)
+        rm_bench_trilinear_fast(texfast, u, v, lod)
     });
 
     // The same stages in f32 on the same inputs (converted here, outside
@@ -456,7 +482,7 @@ fn rm_budget_driver(tex: &mut Tex, texf: &SamplerF32<'_>, par: &mut Parity<'_>) 
         rm_bench_ts_trilinear(&mut par.rgba, u, v, l)
     });
     measure(&tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear(&mut par.srgb, u, v, l)
+        rm_bench_ts_srgb(&mut par.srgb, u, v, l)
     });
     measure(&tri_in, |(u, v, l)| {
         rm_bench_ts_rgb565(&mut par.rgb565, u, v, l)
@@ -530,20 +556,14 @@ const BC1_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Bc
 /// blocks).
 fn parity<'a>(g: Geometry, p: Pyramid<'a>, rgb565: &'a [u8], bc1: &'a [u8]) -> Option<Parity<'a>> {
     let state = inputs::sampler_state()?;
-    let rgb565 = Image::new(g, Format::linear(TexelFormat::Rgb565), rgb565).ok()?;
-    let bc1 = Image::new(g, Format::linear(TexelFormat::Bc1), bc1).ok()?;
-    let aniso = |n| {
-        Some(TextureSampler::new(
-            p,
-            inputs::aniso_state(n)?,
-            ColorSpace::Linear,
-        ))
-    };
+    let rgb565 = Image::typed(g, ColorSpace::Linear, rgb565).ok()?;
+    let bc1 = Image::typed(g, ColorSpace::Linear, bc1).ok()?;
+    let aniso = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
     Some(Parity {
-        rgba: TextureSampler::new(p, state, ColorSpace::Linear),
-        srgb: TextureSampler::new(p, state, ColorSpace::Srgb),
-        rgb565: TextureSampler::new(rgb565, state, ColorSpace::Linear),
-        bc1: TextureSampler::new(TexelCache::new(bc1), state, ColorSpace::Linear),
+        rgba: Sampler::with_state(p, state).ok()?,
+        srgb: Sampler::with_state(p, state).ok()?,
+        rgb565: Sampler::with_state(rgb565, state).ok()?,
+        bc1: Sampler::with_state(TexelCache::new(bc1), state).ok()?,
         aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
         geomlod: [
             ("discrete", inputs::selector(LodMode::Discrete)?),
@@ -562,10 +582,10 @@ raymip_demo_entry::main! {
     let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
         process::exit(1)
     };
-    let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, Address::Wrap) else {
+    let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, AddressMode::Wrap) else {
         process::exit(1)
     };
-    let mut tex = Sampler::new(p, Address::Wrap);
+    let mut tex = Sampler::wrap(p);
     let bc1: [u8; BC1_LEN] = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
     let mut rgb565 = [0u8; RGB565_LEN];
     for (b, &t) in rgb565
@@ -577,6 +597,7 @@ raymip_demo_entry::main! {
     let Some(mut par) = parity(g, p, &rgb565, &bc1) else {
         process::exit(1)
     };
-    rm_budget_driver(&mut tex, &texf, &mut par);
+    let mut texfast = Sampler::new(p);
+    rm_budget_driver(&mut tex, &mut texfast, &texf, &mut par);
     process::exit(0)
 }

@@ -29,14 +29,14 @@
 use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{
     Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
     table_lod_fast, table_lod_fast_batch,
 };
-use raymip::mip::{Pyramid, Texel};
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
+use raymip::texture::storage::mip::{Pyramid, Texel};
+use raymip::texture::{Mode, Sampler, TexCoord};
 use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, measured_calls, println};
@@ -123,7 +123,7 @@ raymip_demo_entry::main! {
     let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
         exit(1)
     };
-    let mut tex = Sampler::new(p, Address::Wrap);
+    let mut tex = Sampler::wrap(p);
 
     let mut rng = Rng(inputs::SEED);
     let empty_in = draw(&mut rng, Rng::next);

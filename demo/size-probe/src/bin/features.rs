@@ -15,11 +15,11 @@ use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 
 use fixed::types::I2F30;
 use raymip::camera::PixelSpread;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, table_lod_clamped};
-use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread};
 use raymip::table::{Log2Pb, PbTable};
+use raymip::texture::storage::mip::{Geometry, Pyramid};
+use raymip::texture::{Mode, Sampler, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -48,7 +48,7 @@ raymip_demo_entry::main! {
     let texels = {
         let mut buf = [0u32; TEX_LEN];
         buf.copy_from_slice(bb(&TEX));
-        let _ = bb(raymip::mip::generate(&g, &mut buf));
+        let _ = bb(raymip::texture::storage::mip::generate(&g, &mut buf));
         buf
     };
     #[cfg(not(feature = "mipgen"))]
@@ -56,9 +56,9 @@ raymip_demo_entry::main! {
     let Ok(p) = Pyramid::new(g, &texels[..]) else {
         exit(1)
     };
-    let mut direct = Sampler::new(p, Address::Wrap);
+    let mut direct = Sampler::wrap(p);
     #[cfg(feature = "cache")]
-    let mut cached = Sampler::new(raymip::cache::TexelCache::<_, 8, 2>::new(p), Address::Clamp);
+    let mut cached = Sampler::clamp(raymip::texture::storage::cache::TexelCache::<_, 8, 2>::new(p));
     let mut stack: RayStack = RayStack::new();
     let st = PathState::primary(&spread, bb(0xFF))
         .advance(bb(PathLength::from_bits(1 << 33)))

@@ -12,13 +12,13 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use fixed::types::{I2F30, I16F16, U1F31};
-use raymip::cache::TexelCache;
 use raymip::camera::PixelSpread;
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::{Lod, cone_lod, table_lod_clamped};
-use raymip::mip::{Geometry, Pyramid, generate};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::mip::{Geometry, Pyramid, generate};
+use raymip::texture::{Mode, Sampler, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -50,8 +50,8 @@ raymip_demo_entry::main! {
     let Ok(p) = Pyramid::new(g, &buf) else {
         exit(1)
     };
-    let mut direct = Sampler::new(p, Address::Wrap);
-    let mut cached = Sampler::new(TexelCache::<_, 8, 2>::new(p), Address::Clamp);
+    let mut direct = Sampler::wrap(p);
+    let mut cached = Sampler::clamp(TexelCache::<_, 8, 2>::new(p));
     let mut stack: RayStack = RayStack::new();
     let st = PathState::primary(&spread, bb(0xFF))
         .advance(bb(PathLength::from_bits(1 << 33)))

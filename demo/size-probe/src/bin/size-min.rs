@@ -9,11 +9,11 @@
 use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
-use raymip::filter::{Address, Mode, Sampler, TexCoord};
 use raymip::lod::table_lod_clamped;
-use raymip::mip::{Geometry, Pyramid};
 use raymip::raystack::PathLength;
 use raymip::table::{Log2Pb, PbTable};
+use raymip::texture::storage::mip::{Geometry, Pyramid};
+use raymip::texture::{Mode, Sampler, TexCoord};
 
 raymip_demo_entry::main! {
     let mut entries = bb([Log2Pb::UNTEXTURED; 4]);
@@ -24,7 +24,7 @@ raymip_demo_entry::main! {
     let Ok(p) = Pyramid::new(g, bb(&raymip_demo_scene::TEX0)) else {
         semihosting::process::exit(1)
     };
-    let mut s = Sampler::new(p, Address::Wrap);
+    let mut s = Sampler::wrap(p);
     let pb = table.get(bb(1)).unwrap_or(Log2Pb::UNTEXTURED);
     let lod = table_lod_clamped(bb(PathLength::from_bits(1 << 33)), pb, g.levels());
     let t = lod.map_or(0, |l| {
