@@ -183,7 +183,10 @@ impl AddressMode {
             // Reduced `u ∈ [0, 2)`: `i ∈ [−1, 2n]`; `min(i, 2n − 1 − i)`
             // mirrors the second copy, and −1 and 2n (both copies' seam
             // neighbours) go to 0.
-            Self::Mirror => (clamp(i.min(n.wrapping_mul(2).wrapping_sub(1).wrapping_sub(i))), false),
+            Self::Mirror => (
+                clamp(i.min(n.wrapping_mul(2).wrapping_sub(1).wrapping_sub(i))),
+                false,
+            ),
             Self::ClampToEdge => (clamp(i), false),
             // `i ^ (i >> 31)` is `−1 − i` for negative `i`.
             Self::MirrorOnce => (clamp(i ^ (i >> 31)), false),
@@ -462,7 +465,11 @@ mod tests {
                         }
                         let i = ((m.reduce(c) * i64::from(size)) >> 32) as i32;
                         let (j, b) = m.nearest_tap(c, size);
-                        assert_eq!((!b).then_some(j), m.index(i, size), "{m:?} {size} {bits:#x}");
+                        assert_eq!(
+                            (!b).then_some(j),
+                            m.index(i, size),
+                            "{m:?} {size} {bits:#x}"
+                        );
                     }
                 }
             }

@@ -96,7 +96,10 @@ fn div_small(c: i64, n: u8) -> i64 {
     if n <= 1 {
         return c;
     }
-    let r = RECIP.get(usize::from(n).wrapping_sub(1)).copied().unwrap_or(0);
+    let r = RECIP
+        .get(usize::from(n).wrapping_sub(1))
+        .copied()
+        .unwrap_or(0);
     let hi = c >> 32;
     let lo = u64::from(c as u32) * u64::from(r);
     hi * i64::from(r) + (lo >> 32) as i64
@@ -146,7 +149,8 @@ pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes 
     // I16F16 → I8F8, rounded, saturating.
     let lod = Lod::saturating_from_num(I16F16::from_bits(log_minor));
     let step = major.map(|c| TexCoord::from_bits(div_small(c, count)));
-    let first = step.map(|s| TexCoord::from_bits(s.to_bits().wrapping_mul(1 - i64::from(count)) >> 1));
+    let first =
+        step.map(|s| TexCoord::from_bits(s.to_bits().wrapping_mul(1 - i64::from(count)) >> 1));
     Probes {
         count,
         lod,
