@@ -106,7 +106,7 @@ fn div_small(c: i64, n: u8) -> i64 {
 }
 
 /// Axis component `c` (normalized, I32F32 bits, clamped to
-/// [`AXIS_LIMIT`]) times `size ≤ 2¹⁵` texels, in texels with 16 fractional
+/// `±2⁴⁷`, i.e. `±2¹⁵` normalized units) times `size ≤ 2¹⁵` texels, in texels with 16 fractional
 /// bits, clamped to `|x| < 2¹⁵`.
 #[inline(always)]
 fn texels(c: i64, size: u32) -> i64 {
@@ -126,7 +126,8 @@ fn len2(x: i64, y: i64) -> u64 {
 
 /// Probe count, lod and probe positions of the footprint `fp` on a
 /// `width × height` level 0 with at most `max_aniso` probes (clamped to
-/// `1 ..= 16`). Axis components beyond [`AXIS_LIMIT`] are clamped to it.
+/// `1 ..= 16`). Axis components beyond `±2¹⁵` normalized units are clamped
+/// to it.
 /// Never panics.
 #[must_use]
 pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes {
