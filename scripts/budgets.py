@@ -41,6 +41,16 @@ README_BEGIN, README_END = "<!-- sampler-budgets:begin -->", "<!-- sampler-budge
 CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 64, "rm_bench_ts_srgb": 64,
                 "rm_bench_ts_rgb565": 64, "rm_bench_ts_bc1": 128, "rm_bench_ts_aniso": 192,
                 "rm_bench_geomlod": 128, "rm_batch_geomlod": 4}
+# Ray differentials (feature `raydiff`, issue 21): (key, label), wrapper
+# `rm_bench_<key>`, 64 calls each.
+RD_ROWS = [("rd_primary", "primary set-up from the camera"),
+           ("rd_transfer", "transfer to a hit"),
+           ("rd_reflect", "reflection (shading-normal differentials)"),
+           ("rd_refract", "refraction (shading-normal differentials)"),
+           ("rd_footprint", "footprint (two texture-space axes)"),
+           ("rd_lod", "lod from the footprint (larger axis)"),
+           ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
+CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
 
 # TextureSampler rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
@@ -78,7 +88,23 @@ GOALS = {
     "trilinear": {"m4": 150, "rv": 200, "rvzbb": 180},
 }
 GOALS.update({f: GOALS[a] for f, a in FAST_OF.items()})
-BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12}, "trilinear": {"m4": 120}}
+BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12, "rv": 20}, "trilinear": {"m4": 120}}
+# Ceilings on the steady state per hit of a batch, checked in CI (issue 21:
+# the FAST table batch reads the ray stack's normalised Pl): the goal where
+# it is met, else the achieved value + 10 % (reason in BATCH_MISSED).
+BATCH_CEILINGS = {"lod_fast": {"m4": 15, "rv": 20, "rvzbb": 20}}
+BATCH_MISSED = {
+    "lod_fast": (
+        "Cortex-M4 14.0 per hit against the goal of 12 (RV32IMAC 16.0 and Zbb 16.0 meet their 20). "
+        "With the leading-zero count moved to `PathState::advance`, the loop body (unrolled four "
+        "times) is per hit: two loads (key word and `log2 Pb`), the untextured test (`cmp` against "
+        "the marker and a branch), the index mask (`bfc`), the table read, one add and one "
+        "subtract, the shift to I8F8, and the `Option<Lod>` written as two half-word stores with "
+        "its tag in a register (`movs`, `strh`, `strh`): 13, plus the loop counter and branches "
+        "shared by four hits. The remaining two are the `Option` result (tag and value cannot "
+        "be written as one word in safe Rust) and the untextured branch; ceiling = achieved + 10 %."
+    ),
+}
 
 # Ceilings checked in CI: the goal where it is met, else the achieved
 # maximum + 10 % (the reason is in the "Goals missed" section below).
@@ -459,8 +485,12 @@ def render(work, old_text, readme):
     w("results out, caller memory), each called once with the first 32 and once with all 64 inputs")
     w("above. Steady state per hit = (count for 64 − count for 32) / 32; amortised = count for")
     w("64 / 64 (call and loop set-up included).\n")
-    w("| batch call | M4 steady | M4 amortised | RV32 steady | RV32 amortised | Zbb steady | Zbb amortised | goal M4 steady |")
-    w("|---|---|---|---|---|---|---|---|")
+    w("The FAST table batch reads the normalised `Pl` that every ray-stack entry keeps")
+    w("(`PathState::pl_norm`, made by `PathState::advance` with the segment's one leading-zero")
+    w("count; converted outside the counted call here), so its loop has no leading-zero count.\n")
+    w("| batch call | M4 steady | M4 amortised | RV32 steady | RV32 amortised | Zbb steady | Zbb amortised "
+      "| goal steady M4 / RV32 | ceiling steady M4 / RV32 / Zbb |")
+    w("|---|---|---|---|---|---|---|---|---|")
     for c, label in ALL_CALLS:
         if c in FAST_OF and c not in FAST_BATCHED:
             continue
@@ -468,9 +498,16 @@ def render(work, old_text, readme):
         for k, _ in ISAS:
             c32, c64 = res[k]["rm_batch_" + c]
             row += [f"{(c64 - c32) / 32:.1f}", f"{c64 / 64:.1f}"]
-        g = BATCH_GOALS.get(c, {}).get("m4")
-        row.append(f"≤ {g}" if g else "—")
+            ceil = BATCH_CEILINGS.get(c, {}).get(k)
+            if ceil is not None and (c64 - c32) / 32 > ceil:
+                bad.append(f"{k} batch {c}: {(c64 - c32) / 32:.1f} per hit > ceiling {ceil}")
+        g = BATCH_GOALS.get(c, {})
+        row.append(" / ".join(f"≤ {g[k]}" if k in g else "—" for k in ("m4", "rv")) if g else "—")
+        ceil = BATCH_CEILINGS.get(c)
+        row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
         w("| " + " | ".join(row) + " |")
+    for c, text in BATCH_MISSED.items():
+        w(f"\n**{dict(ALL_CALLS)[c]} batch, goal missed.** {text}")
 
     mi, mz = kv(work, "rv", "minstret"), kv(work, "rvzbb", "minstret")
     w("\nCross-check on RV32 with `minstret` under `-icount shift=0`, read before and after each call:")
@@ -504,6 +541,37 @@ def render(work, old_text, readme):
         for k, _ in ISAS:
             if ceil and ts[k][key][2] > ceil[k]:
                 bad.append(f"{k} {key}: max {ts[k][key][2]} instructions > ceiling {ceil[k]}")
+
+    w("\n## Ray differentials (feature `raydiff`)\n")
+    w("`raymip::raydiff` (Igehy's ray differentials in fixed point), each stage its own wrapper, 64")
+    w("calls on `inputs::raydiff` (a primary-like state, directions near `(±½, ±½, −0.7)`, normals")
+    w("near `+z` with small differentials), the footprint and lod on one 4 × 3 triangle of the demo")
+    w("texture size; counted like the calls above. min / mean / max.\n")
+    w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb |")
+    w("|---|---|---|---|")
+    for key, label in RD_ROWS:
+        w(f"| {label} | " + " | ".join(fmt(stat(res[k]["rm_bench_" + key])) for k, _ in ISAS) + " |")
+    mean = lambda k, c: stat(res[k]["rm_bench_" + c])[1]
+    w("\nPer textured hit beside the other methods (means): ray-traced differentials = transfer +")
+    w("footprint + lod; G-buffer differentials (first hit) = G-buffer set-up + footprint + lod; the")
+    w("ratio is to the cone lod with the normal term (accurate; the talk measured about 3× and 2×")
+    w("on a GPU). A bounce adds a reflection or refraction to the ray-traced path.\n")
+    w("| method per hit | " + " | ".join(f"{isa} | ratio to cone" for _, isa in ISAS) + " |")
+    w("|---|" + "---|---|" * len(ISAS))
+    per = {
+        "table lod FAST (batch, steady)": lambda k: (res[k]["rm_batch_lod_fast"][1] - res[k]["rm_batch_lod_fast"][0]) / 32,
+        "table lod": lambda k: mean(k, "lod"),
+        "cone lod (with n·d)": lambda k: mean(k, "cone_lod"),
+        "ray differentials, ray-traced": lambda k: mean(k, "rd_transfer") + mean(k, "rd_footprint") + mean(k, "rd_lod"),
+        "ray differentials, G-buffer": lambda k: mean(k, "rd_gbuffer") + mean(k, "rd_footprint") + mean(k, "rd_lod"),
+    }
+    for label, f in per.items():
+        w(f"| {label} | " + " | ".join(f"{f(k):.1f} | {f(k) / mean(k, 'cone_lod'):.2f}" for k, _ in ISAS) + " |")
+    ps = {k: kv(work, k, "path state") for k, _ in ISAS}
+    w(f"\nRay-stack entry (`PathState`) with the feature (and `cone`): {ps['m4'].get('raydiff', '?')} on")
+    w(f"the Cortex-M4, {ps['rv'].get('raydiff', '?')} on RV32IMAC (printed by the budget binary); without it")
+    w("the sizes of the \"Feature sets\" section (`raystack::PATH_STATE_BYTES`, checked at")
+    w("compile time on every target).")
 
     gl = geomlod_stats(res)
     recs = {k: kv(work, k, "geomlod") for k, _ in ISAS}

@@ -276,12 +276,17 @@ impl From<PathState> for RmPathState {
 
 impl From<RmPathState> for PathState {
     fn from(s: RmPathState) -> Self {
+        let pl = U32F32::from_bits(s.pl);
         Self {
-            pl: U32F32::from_bits(s.pl),
+            pl,
+            pl_norm: crate::log2_fast::NormPl::new(pl),
             cone: RayCone {
                 width: I32F32::from_bits(s.cone_width),
                 spread: I2F30::from_bits(s.cone_spread),
             },
+            // The C ABI carries no ray differentials.
+            #[cfg(feature = "raydiff")]
+            diff: crate::raydiff::RayDiff::ZERO,
             mask: s.mask,
             depth: s.depth,
             saturated: s.saturated != 0,

@@ -149,6 +149,8 @@ pub mod geomlod;
 pub mod lod;
 pub mod log2;
 pub mod log2_fast;
+#[cfg(feature = "raydiff")]
+pub mod raydiff;
 pub mod raystack;
 pub mod rng;
 pub mod table;

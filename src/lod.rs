@@ -23,7 +23,7 @@
 //! | path | calls | log2 | error bound |
 //! |---|---|---|---|
 //! | ACCURATE (bit-identical on every target and to earlier releases) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
-//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_fast_batch`], [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
 //!
 //! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST path
 //! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
@@ -43,7 +43,7 @@ use crate::log2::log2_u32f32_parts;
 use crate::log2::{LOD_BIAS, log2_u1f31_biased};
 #[cfg(feature = "cone")]
 use crate::log2_fast::log2_u1f31_fast_biased;
-use crate::log2_fast::log2_u32f32_fast_parts;
+use crate::log2_fast::{NormPl, log2_u32f32_fast_parts};
 use crate::raystack::PathLength;
 #[cfg(feature = "cone")]
 use crate::raystack::Width;
@@ -179,13 +179,36 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
     Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
 }
 
-/// Batch of [`table_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
-/// `out[i] = table_lod_fast(hits[i].0, hits[i].1)` for
-/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
-/// Same results as the per-hit call, bit for bit; never panics.
+/// FAST table method from a normalised path length ([`NormPl`], kept in
+/// every ray-stack entry as [`crate::raystack::PathState::pl_norm`]): no
+/// leading-zero count, one table read and two additions. Bit-identical to
+/// [`table_lod_fast`] of the path length the key was made from (tested for
+/// every table index and octave), so within [`LOD_MAX_ERROR`] `= 2⁻⁸`
+/// level of f64 and monotonic in `Pl`. `None` for an untextured triangle.
+/// Never panics (any key word is safe).
 #[inline]
-pub fn table_lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    batch(hits, out, |(pl, pb)| table_lod_fast(pl, pb))
+#[must_use]
+pub fn table_lod_norm(pl: NormPl, pb: Log2Pb) -> Option<Lod> {
+    if pb.is_untextured() {
+        return None;
+    }
+    // log2 Pl + 0x80 − log2 Pb in I16F16 bits; the I8F8 result is bits 8..24.
+    let d = pl
+        .log2_rounding_bits()
+        .wrapping_sub(pb.to_i16f16().to_bits());
+    Some(Lod::from_bits((d >> 8) as i16))
+}
+
+/// Batch of the FAST table method (error ≤ [`LOD_MAX_ERROR`]) from
+/// normalised path lengths: `out[i] = table_lod_norm(hits[i].0, hits[i].1)`
+/// (equal to [`table_lod_fast`] of the path lengths the keys were made
+/// from) for `i < n = min(hits.len(), out.len())`, in caller memory;
+/// returns `n`. Same results as the per-hit call, bit for bit; never
+/// panics. The keys come from the ray stack
+/// ([`crate::raystack::PathState::pl_norm`]) or [`NormPl::new`].
+#[inline]
+pub fn table_lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    batch(hits, out, |(pl, pb)| table_lod_norm(pl, pb))
 }
 
 /// Batch of [`cone_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
@@ -347,7 +370,24 @@ mod tests {
         );
         assert_eq!(table_lod_fast(PathLength::MAX, pb), Some(Lod::from_num(30)));
         assert_eq!(table_lod_fast(PathLength::from_num(4), pb), Some(Lod::ZERO));
+        assert_eq!(
+            table_lod_norm(NormPl::new(PathLength::from_num(3)), Log2Pb::UNTEXTURED),
+            None
+        );
+        assert_eq!(table_lod_norm(NormPl::ZERO, pb), Some(Lod::from_num(-34)));
+        for bits in [i32::MIN, -1, 0, 1023, i32::MAX] {
+            let _ = table_lod_norm(NormPl::from_bits(bits), Log2Pb::DEGENERATE_UV);
+        }
         for pl in [PathLength::ZERO, PathLength::from_num(1), PathLength::MAX] {
+            for m in [
+                Log2Pb::DEGENERATE_GEOMETRY,
+                Log2Pb::DEGENERATE_UV,
+                Log2Pb::MIN,
+                Log2Pb::MAX,
+                pb,
+            ] {
+                assert_eq!(table_lod_norm(NormPl::new(pl), m), table_lod_fast(pl, m));
+            }
             assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
             assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
             assert!(table_lod_fast(pl, Log2Pb::MIN).is_some());
@@ -601,6 +641,7 @@ mod tests {
             prop_assert!((got.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "fast {} vs f64 {}", got, want);
             let acc = table_lod(pl, pb).unwrap();
             prop_assert!((got.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", got, acc);
+            prop_assert_eq!(table_lod_norm(NormPl::new(pl), pb), Some(got));
             if p < u64::MAX {
                 prop_assert!(table_lod_fast(PathLength::from_bits(p + 1), pb).unwrap() >= got);
             }
@@ -626,8 +667,9 @@ mod tests {
         #[test]
         fn fast_batches_equal_per_hit_calls(hits in proptest::collection::vec((any::<u64>(), any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
             let t: std::vec::Vec<_> = hits.iter().map(|&(p, b, ..)| (PathLength::from_bits(p), Log2Pb::from_bits(b))).collect();
+            let k: std::vec::Vec<_> = t.iter().map(|&(pl, pb)| (NormPl::new(pl), pb)).collect();
             let mut out = std::vec![Some(Lod::MAX); t.len().saturating_sub(extra)];
-            prop_assert_eq!(table_lod_fast_batch(&t, &mut out), out.len());
+            prop_assert_eq!(table_lod_fast_batch(&k, &mut out), out.len());
             for (o, &(pl, pb)) in out.iter().zip(&t) {
                 prop_assert_eq!(*o, table_lod_fast(pl, pb));
             }

@@ -116,6 +116,90 @@ pub fn log2_u32f32_fast(x: U32F32) -> I16F16 {
     I16F16::from_bits(biased as i32 - ((lz as i32) << 16) - 0x80)
 }
 
+/// `log2(1 + (i + ½)/1024) + 0x80` in I16F16 bits minus `i`, for
+/// `i = 0..1024`: [`FAST_TABLE`] re-based for a [`NormPl`] word, whose low
+/// ten bits hold `i` (so `word + NORM_TABLE[word & 1023]` is the FAST
+/// `log2 Pl` plus the I8F8 rounding offset, with no mask of the exponent).
+const NORM_TABLE: [i32; 1 << INDEX_BITS] = {
+    let mut t = [0i32; 1 << INDEX_BITS];
+    let mut i = 0;
+    while i < t.len() {
+        t[i] = (FAST_TABLE[i] - LOD_BIAS) as i32 + 0x80 - i as i32;
+        i += 1;
+    }
+    t
+};
+
+/// An accumulated path length `Pl` normalised for the FAST log2: its binary
+/// exponent `e = ⌊log2 Pl⌋ ∈ [−32, 31]` in the upper half-word and the ten
+/// mantissa bits after the leading one (the index of the FAST 1024-entry table
+/// `i ∈ 0..1024`) in the low bits, one `i32` `(e << 16) | i`.
+///
+/// Made once per segment by [`NormPl::new`] (the leading-zero count) and
+/// kept beside `Pl` in every ray-stack entry
+/// ([`crate::raystack::PathState::pl_norm`]), so a lod from it
+/// ([`crate::lod::table_lod_norm`], [`crate::lod::table_lod_fast_batch`])
+/// is one table read and two additions. `Pl = 0` is read as 2⁻³² (as
+/// [`log2_u32f32_fast`]). Any bit pattern is a valid key (the index is
+/// masked), so [`NormPl::from_bits`] cannot make a read out of bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NormPl(i32);
+
+/// [`NormPl::ZERO`], the key of the default (zero) path length.
+impl Default for NormPl {
+    fn default() -> Self {
+        Self::ZERO
+    }
+}
+
+impl NormPl {
+    /// The key of `Pl = 0` (read as 2⁻³²: exponent −32, index 0).
+    pub const ZERO: Self = Self(-32 << 16);
+
+    /// Normalises a U32F32 path length (one leading-zero count). Never panics.
+    #[inline]
+    #[must_use]
+    pub fn new(pl: U32F32) -> Self {
+        let (m, lz) = normalise64(pl.to_bits());
+        // lz ∈ 0..=63: exponent 31 − lz ∈ [−32, 31].
+        let e = 31 - lz as i32;
+        Self((e << 16) | ((m >> (31 - INDEX_BITS)) & ((1 << INDEX_BITS) - 1)) as i32)
+    }
+
+    /// The raw word `(e << 16) | i`.
+    #[inline]
+    #[must_use]
+    pub const fn to_bits(self) -> i32 {
+        self.0
+    }
+
+    /// A key from its raw word (any value; the low ten bits are the index).
+    #[inline]
+    #[must_use]
+    pub const fn from_bits(bits: i32) -> Self {
+        Self(bits)
+    }
+
+    /// FAST `log2 Pl` plus the I8F8 rounding offset `0x80`, in I16F16
+    /// bits: one table read and one addition, within
+    /// [`FAST_LOG2_MAX_ERROR`] of `log2 Pl` (bit-identical to
+    /// [`log2_u32f32_fast`] `+ 0x80` of the path length it was made from).
+    #[inline(always)]
+    pub(crate) fn log2_rounding_bits(self) -> i32 {
+        // The index is below 1024: the read is in bounds and the check folds away.
+        self.0
+            .wrapping_add(NORM_TABLE[(self.0 & ((1 << INDEX_BITS) - 1)) as usize])
+    }
+
+    /// FAST `log2 Pl` (range `[−32, 32)`), within [`FAST_LOG2_MAX_ERROR`];
+    /// equal to [`log2_u32f32_fast`] of the path length it was made from.
+    #[inline]
+    #[must_use]
+    pub fn log2(self) -> I16F16 {
+        I16F16::from_bits(self.log2_rounding_bits().wrapping_sub(0x80))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -208,6 +292,32 @@ mod tests {
         }
     }
 
+    /// The normalised key gives the FAST log2 bit for bit, at every
+    /// octave's interval boundaries and zero.
+    #[test]
+    fn norm_pl_equals_fast_log2_at_every_boundary() {
+        for n in 0..64u32 {
+            let base = 1u64 << n;
+            for i in 0..=1024u64 {
+                let b = base.saturating_add(((u128::from(base) * u128::from(i)) / 1024) as u64);
+                for x in [b.saturating_sub(1), b] {
+                    let pl = U32F32::from_bits(x);
+                    assert_eq!(NormPl::new(pl).log2(), log2_u32f32_fast(pl), "{x:#x}");
+                }
+            }
+        }
+        assert_eq!(NormPl::new(U32F32::ZERO), NormPl::ZERO);
+        // Every index of the re-based table against f64.
+        for i in 0..1024i32 {
+            let want =
+                (1.0 + (f64::from(i) + 0.5) / 1024.0).log2() * 65536.0 + 128.0 - f64::from(i);
+            assert!(
+                (f64::from(NORM_TABLE[i as usize]) - want).abs() <= 0.5 + 1e-6,
+                "entry {i}"
+            );
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         /// Uniform over the octaves (a plain `any::<u64>()` would put half
@@ -220,6 +330,19 @@ mod tests {
             if x < u64::MAX {
                 prop_assert!(f(x) <= f(x + 1));
             }
+        }
+
+        /// Any key word is safe, and a key from a path length is within
+        /// the FAST bound of f64.
+        #[test]
+        fn norm_pl_any_bits_and_f64(bits in any::<i32>(), n in 0u32..64, m in any::<u64>()) {
+            let _ = NormPl::from_bits(bits).log2();
+            let x = (1u64 << n) | (m & ((1u64 << n) - 1));
+            let k = NormPl::new(U32F32::from_bits(x));
+            prop_assert_eq!(NormPl::from_bits(k.to_bits()), k);
+            let got = k.log2().to_num::<f64>();
+            prop_assert!((got - reference(x)).abs() <= FAST_LOG2_MAX_ERROR, "{:#x}: {} vs {}", x, got, reference(x));
+            prop_assert_eq!(k.to_bits() >> 16, n as i32 - 32);
         }
 
         #[test]

@@ -52,6 +52,7 @@ use core::fmt;
 use fixed::types::{I2F30, I32F32, U32F32};
 
 use crate::camera::PixelSpread;
+use crate::log2_fast::NormPl;
 
 /// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units.
 pub type PathLength = U32F32;
@@ -162,9 +163,23 @@ fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
 pub struct PathState {
     /// Accumulated path length `Pl` from the camera (scene units).
     pub pl: PathLength,
+    /// `Pl` normalised for the FAST table lod: [`NormPl::new`]`(pl)`, kept
+    /// by [`PathState::primary`] and [`PathState::advance`] (the one
+    /// leading-zero count of a segment is made there, so
+    /// [`crate::lod::table_lod_norm`] and
+    /// [`crate::lod::table_lod_fast_batch`] need none per hit). A caller
+    /// that writes `pl` directly sets this to `NormPl::new(pl)` too. Lies
+    /// in the padding of the entry: [`PATH_STATE_BYTES`] is unchanged.
+    pub pl_norm: NormPl,
     /// Ray-cone state (feature `cone`).
     #[cfg(feature = "cone")]
     pub cone: RayCone,
+    /// Ray differentials of the path's current ray (feature `raydiff`):
+    /// zero in [`PathState::primary`]; the caller sets them up
+    /// ([`crate::raydiff::RayDiff::primary`]) and updates them at each hit
+    /// (transfer, then reflection or refraction for a continuation).
+    #[cfg(feature = "raydiff")]
+    pub diff: crate::raydiff::RayDiff,
     /// 8-bit ray mask of the path.
     pub mask: u8,
     /// Bounces so far (0 for a primary ray; saturates at 255).
@@ -182,18 +197,22 @@ impl PathState {
         let _ = spread;
         Self {
             pl: PathLength::ZERO,
+            pl_norm: NormPl::ZERO,
             #[cfg(feature = "cone")]
             cone: RayCone {
                 width: Width::ZERO,
                 spread: spread.angle(),
             },
+            #[cfg(feature = "raydiff")]
+            diff: crate::raydiff::RayDiff::ZERO,
             mask,
             depth: 0,
             saturated: false,
         }
     }
 
-    /// After a hit at distance `t`: `Pl += t`, `w += γ·t` (saturating, flagged).
+    /// After a hit at distance `t`: `Pl += t` (and its [`NormPl`]), `w += γ·t`
+    /// (saturating, flagged).
     #[inline]
     #[must_use]
     pub fn advance(self, t: PathLength) -> Self {
@@ -207,6 +226,7 @@ impl PathState {
         let c_sat = false;
         Self {
             pl,
+            pl_norm: NormPl::new(pl),
             #[cfg(feature = "cone")]
             cone,
             saturated: self.saturated | pl_sat | c_sat,
@@ -236,8 +256,14 @@ impl PathState {
 
 /// Bytes of one [`PathState`] (one ray-stack entry) on every target:
 /// 32 with the `cone` feature (the cone is a 16-byte aligned pair), 16
-/// without (checked at compile time on every target).
-pub const PATH_STATE_BYTES: usize = if cfg!(feature = "cone") { 32 } else { 16 };
+/// without; the `raydiff` feature adds the 72-byte differential state
+/// (104 with `cone`, 88 without). Checked at compile time on every target.
+pub const PATH_STATE_BYTES: usize = match (cfg!(feature = "cone"), cfg!(feature = "raydiff")) {
+    (true, false) => 32,
+    (false, false) => 16,
+    (true, true) => 104,
+    (false, true) => 88,
+};
 const _: () = assert!(core::mem::size_of::<PathState>() == PATH_STATE_BYTES);
 
 /// A push onto a full stack: the rejected state and its caller payload are
@@ -355,6 +381,21 @@ mod tests {
 
     fn spread(g: f64) -> PixelSpread {
         PixelSpread::from_angle(I2F30::from_num(g)).unwrap()
+    }
+
+    /// The normalised `Pl` in every entry is the one of its `Pl`, after
+    /// any sequence of segments (saturation included) and by default.
+    #[test]
+    fn pl_norm_follows_pl() {
+        assert_eq!(PathState::default().pl_norm, NormPl::new(PathLength::ZERO));
+        let spread = PixelSpread::from_angle(Spread::from_num(0.001)).unwrap();
+        let mut st = PathState::primary(&spread, 0);
+        assert_eq!(st.pl_norm, NormPl::new(st.pl));
+        for t in [0u64, 1, 3 << 20, 1 << 32, 7 << 40, u64::MAX / 3, u64::MAX] {
+            st = st.advance(PathLength::from_bits(t)).bounce(Spread::ZERO);
+            assert_eq!(st.pl_norm, NormPl::new(st.pl), "after +{t:#x}");
+        }
+        assert!(st.saturated);
     }
 
     #[test]

@@ -143,6 +143,12 @@ impl TexTriangle {
     }
 
     /// `log2` of twice the world area (`log2 |e₁×e₂|`), or `None` for zero area.
+    /// Positions, UVs and texture size (ray-differential set-up).
+    #[cfg(feature = "raydiff")]
+    pub(crate) fn parts(&self) -> ([[Coord; 3]; 3], [[Coord; 2]; 3], u32, u32) {
+        (self.p, self.uv, self.width, self.height)
+    }
+
     fn log2_twice_area(&self) -> Option<I16F16> {
         let d = |a: Coord, b: Coord| i128::from(b.to_bits()) - i128::from(a.to_bits());
         let [p0, p1, p2] = self.p;

@@ -72,6 +72,27 @@ fn render_with_anisotropic_filtering() {
     ]
     .concat());
     assert!(!o.status.success());
+    // The table and cone methods have no footprint: refused, never a
+    // silent switch to ray differentials.
+    for m in ["table", "cone"] {
+        let o = run(&[
+            &[
+                "render",
+                "--scene",
+                "builtin:hall",
+                "--size",
+                "8x8",
+                "--method",
+                m,
+            ],
+            &aniso[..],
+            &["4", "--out", out.to_str().unwrap()],
+        ]
+        .concat());
+        assert!(!o.status.success(), "{m}");
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains("--method raydiff"), "{m}: {e}");
+    }
     std::fs::remove_dir_all(&out).ok();
 }
 

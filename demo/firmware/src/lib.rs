@@ -108,6 +108,17 @@ pub mod inputs {
     use raymip::texture::sampler::aniso::Footprint;
     use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 
+    /// One ray-differential input: state, direction, hit distance, normal
+    /// and its differential (feature `raydiff`).
+    #[cfg(feature = "raydiff")]
+    pub type RayDiffIn = (
+        raymip::raydiff::RayDiff,
+        raymip::raydiff::UnitVec,
+        PathLength,
+        raymip::raydiff::UnitVec,
+        [raymip::raydiff::DirDiff; 3],
+    );
+
     /// Calls per measured function (and hits per batch).
     pub const N: usize = 64;
 
@@ -251,4 +262,28 @@ pub mod inputs {
 
     /// The transition interval of the stochastic row: ½.
     pub const TRANSITION: Transition = Transition::from_bits(1 << 15);
+
+    /// Ray differentials (feature `raydiff`): one ray of a primary-like
+    /// state (`|∂O|` up to 2⁻⁶, `|∂D|` up to 2⁻⁸), direction roughly
+    /// `(±½, ±½, −0.7)`, a normal near `+z` with small differentials, hit
+    /// distance in [1, 65) scene units.
+    #[cfg(feature = "raydiff")]
+    pub fn raydiff(r: &mut Rng) -> RayDiffIn {
+        use fixed::types::{I2F30, I32F32};
+        let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
+        let d = [f(2), f(2), I2F30::from_num(-0.7)];
+        let n = [f(4), f(4), I2F30::from_num(0.99)];
+        let dn = [f(10), f(10), f(10)];
+        let dd = [[f(9), f(9), f(9)], [f(9), f(9), f(9)]];
+        let mut g = |_| I32F32::from_bits(i64::from(r.next() as i32) >> 7);
+        let o = [core::array::from_fn(&mut g), core::array::from_fn(&mut g)];
+        let t = PathLength::from_bits(u64::from(r.next() >> 6) + (1 << 32));
+        let s = raymip::raydiff::RayDiff {
+            dodx: o[0],
+            dody: o[1],
+            dddx: dd[0],
+            dddy: dd[1],
+        };
+        (s, d, t, n, dn)
+    }
 }

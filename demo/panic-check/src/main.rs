@@ -30,10 +30,10 @@ use raymip::geomlod::{
 };
 use raymip::lod::{
     Lod, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
-    table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
+    table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch, table_lod_norm,
 };
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
-use raymip::log2_fast::log2_u32f32_fast;
+use raymip::log2_fast::{NormPl, log2_u32f32_fast};
 use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::rng::{Rng, mix32};
 use raymip::table::{Log2Pb, PbTable};
@@ -291,8 +291,10 @@ fn main() -> ! {
             fixed::types::I16F16::from_bits(5),
             Some(fixed::types::U1F31::from_bits(3)),
         ); 4]);
+        let norm_hits = bb([(NormPl::from_bits(bb(-7)), pb); 4]);
+        bb(table_lod_norm(NormPl::new(pl), pb));
         bb(table_lod_fast_batch(
-            hits.get(..bb(4)).unwrap_or_default(),
+            norm_hits.get(..bb(4)).unwrap_or_default(),
             lods.get_mut(..bb(3)).unwrap_or_default(),
         ));
         let mut cone_out = [Lod::ZERO; 4];
@@ -304,6 +306,53 @@ fn main() -> ! {
             cones.get(..bb(2)).unwrap_or_default(),
             cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));
+        // Ray differentials (feature `raydiff`): every per-hit operation.
+        {
+            use raymip::raydiff::footprint::RayDiffTriangle;
+            use raymip::raydiff::gbuffer::{GSample, axis, first_hit};
+            use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+            let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
+            let s = bb(RayDiff {
+                dodx: [PosDiff::from_bits(bb(7)); 3],
+                dody: [PosDiff::from_bits(bb(-9)); 3],
+                dddx: [DirDiff::from_bits(bb(3)); 3],
+                dddy: [DirDiff::from_bits(bb(-5)); 3],
+            });
+            let (d, n, dn) = (v3(1 << 29), v3(-(1 << 29)), v3(bb(11)));
+            let s = bb(s.transfer(d, pl, n).0);
+            bb(s.reflect(d, n, dn, dn));
+            bb(s.refract(
+                d,
+                n,
+                dn,
+                dn,
+                Eta::from_bits(bb(1 << 28)),
+                fixed::types::I2F30::from_bits(bb(0)),
+            ));
+            bb(RayDiff::primary(d, n, dn, dn));
+            let c = |x: i64| raymip::table::Coord::from_bits(bb(x));
+            if let Ok(t) = raymip::table::TexTriangle::new(
+                [
+                    [c(0), c(1), c(2)],
+                    [c(3 << 32), c(0), c(5)],
+                    [c(0), c(7 << 30), c(0)],
+                ],
+                [[c(0), c(0)], [c(1 << 32), c(0)], [c(0), c(1 << 32)]],
+                bb(64),
+                bb(32),
+            ) {
+                let tri = bb(RayDiffTriangle::new(&t));
+                let fp = bb(tri.footprint(s.dodx, s.dody));
+                bb(tri.lod(&fp));
+            }
+            let g = bb(GSample {
+                p: s.dodx,
+                n,
+                t: pl,
+            });
+            bb(axis(&g, Some(&g), None));
+            bb(first_hit(&s, &g, [Some(&g), None, Some(&g), None]));
+        }
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];
         for &m in &modes {

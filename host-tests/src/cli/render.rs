@@ -13,6 +13,7 @@ use crate::scene::{builtin, load_scene};
 
 /// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
 pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), String> {
+    opts.validate()?;
     let t0 = Instant::now();
     let scene = load_scene(spec, time)?;
     let load_s = t0.elapsed().as_secs_f64();

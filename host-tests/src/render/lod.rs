@@ -4,7 +4,9 @@
 
 use fixed::types::U1F31;
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
+use raymip::raydiff::footprint::RayDiffTriangle;
 use raymip::raystack::PathState;
+use raymip::texture::sampler::aniso::Footprint;
 
 use super::texunit::MipTexture;
 use super::tracer::Ctx;
@@ -95,20 +97,27 @@ impl Ctx<'_> {
                 let nd = q.n_dot_d.clamp(2f64.powi(-16), 1.0);
                 Some(HitLod::Float(delta + w.log2() - nd.log2()))
             }
-            Method::Raydiff => {
-                let l = raydiff_lod(q);
-                Some(if fixed {
-                    HitLod::Fixed(Lod::saturating_from_num(l))
-                } else {
-                    HitLod::Float(l)
-                })
+            // Fixed: the firmware ray differentials carried by the path
+            // state (transferred to this hit), footprint and lod in fixed
+            // point; float: the f64 ones.
+            Method::Raydiff if fixed => {
+                let t = prep.rd_tris[q.tri]?;
+                Some(HitLod::Fixed(t.lod(&fixed_footprint(&t, q.state))))
             }
+            Method::Raydiff => Some(HitLod::Float(raydiff_lod(q))),
         }
     }
 }
 
+/// The firmware footprint of a hit (normalized texture coordinates per
+/// pixel) from the fixed-point ray differentials of `state`, transferred to
+/// the hit.
+pub(crate) fn fixed_footprint(t: &RayDiffTriangle, state: &PathState) -> Footprint {
+    t.footprint(state.diff.dodx, state.diff.dody)
+}
+
 /// The pixel footprint's two axes in normalized texture coordinates from
-/// the ray differentials (pbrt): `[(du/dx, dv/dx), (du/dy, dv/dy)]`.
+/// the f64 ray differentials (pbrt): `[(du/dx, dv/dx), (du/dy, dv/dy)]`.
 pub(crate) fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
     let uv = q.uv;
     let axis = |(a, b): (f64, f64)| {

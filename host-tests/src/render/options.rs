@@ -10,7 +10,8 @@ pub enum Method {
     Table,
     /// Ray cones (Akenine-Möller et al., RTG ch. 20), with the |n·d| term.
     Cone,
-    /// Ray differentials (Igehy 1999), f64 only.
+    /// Ray differentials (Igehy 1999): the firmware's fixed-point ones
+    /// (`raymip::raydiff`) in fixed precision, f64 in float precision.
     Raydiff,
     /// No LOD: bilinear in level 0.
     Mip0,
@@ -73,8 +74,32 @@ pub struct Options {
     pub progress: bool,
     /// Anisotropic filtering with at most this many probes (1..=16) over
     /// the ray-differential footprint (pbrt-style axes; never a ray-cone
-    /// ellipse); `None` = isotropic (trilinear at the method's lod).
+    /// ellipse): the firmware's fixed-point footprint in fixed precision,
+    /// the f64 one in float precision. Only [`Method::Raydiff`] has a
+    /// footprint: [`Options::validate`] refuses it with any other method
+    /// (the CLI reports that error); a library caller that sets it anyway
+    /// gets isotropic filtering at the chosen method's lod (never a switch
+    /// of method). `None` = isotropic (trilinear at the method's lod).
     pub aniso: Option<u8>,
+}
+
+impl Options {
+    /// Checks that the options go together.
+    ///
+    /// # Errors
+    /// Anisotropic filtering with a method other than [`Method::Raydiff`]:
+    /// the table and cone methods give an isotropic lod and no footprint
+    /// axes.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.aniso.is_some() && self.method != Method::Raydiff {
+            return Err(format!(
+                "--filter aniso needs the footprint axes of --method raydiff; --method {} gives an \
+                 isotropic lod only (use --filter trilinear, or --method raydiff)",
+                self.method.name()
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for Options {

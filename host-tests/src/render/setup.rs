@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use raymip::camera::PixelSpread;
+use raymip::raydiff::footprint::RayDiffTriangle;
 use raymip::table::{Log2Pb, PbTable, TexTriangle};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -42,6 +43,9 @@ pub struct Prepared {
     pub pb_fixed: Vec<Log2Pb>,
     /// f64 `log2 Pb` per triangle (NaN = untextured).
     pub pb_float: Vec<f64>,
+    /// Firmware ray-differential constant per triangle (`None` =
+    /// untextured), from the same fixed-point triangles as `pb_fixed`.
+    pub rd_tris: Vec<Option<RayDiffTriangle>>,
     /// Scene bounding-box diagonal (for ray offsets).
     pub scale: f64,
     /// Set-up timings.
@@ -79,7 +83,7 @@ impl Prepared {
         assign_block_bases(&mut textures);
         let pyramids_s = t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
-        let (pb_fixed, pb_float) = pb_tables(&scene, &cam, &spread)?;
+        let (pb_fixed, pb_float, rd_tris) = pb_tables(&scene, &cam, &spread)?;
         let table_s = t0.elapsed().as_secs_f64();
         let scale = scene_scale(&scene);
         Ok(Self {
@@ -90,6 +94,7 @@ impl Prepared {
             textures,
             pb_fixed,
             pb_float,
+            rd_tris,
             scale,
             times: SetupTimes {
                 bvh_s,
@@ -128,13 +133,14 @@ fn check_references(scene: &Scene) -> Result<(), String> {
     Ok(())
 }
 
-/// The firmware Pb table (built by `PbTable::build` from the triangles in
-/// f32, as a controller receives them) and the f64 one (NaN = untextured).
-fn pb_tables(
-    scene: &Scene,
-    cam: &CameraFrame,
-    spread: &PixelSpread,
-) -> Result<(Vec<Log2Pb>, Vec<f64>), String> {
+/// Per-triangle LOD tables: the firmware Pb table (built by
+/// `PbTable::build` from the triangles in f32, as a controller receives
+/// them), the f64 one (NaN = untextured) and the firmware ray-differential
+/// constants of the same fixed-point triangles.
+type LodTables = (Vec<Log2Pb>, Vec<f64>, Vec<Option<RayDiffTriangle>>);
+
+/// See [`LodTables`].
+fn pb_tables(scene: &Scene, cam: &CameraFrame, spread: &PixelSpread) -> Result<LodTables, String> {
     let mut tex_tris = Vec::with_capacity(scene.triangles.len());
     let mut pb_float = Vec::with_capacity(scene.triangles.len());
     for (i, t) in scene.triangles.iter().enumerate() {
@@ -160,11 +166,15 @@ fn pb_tables(
             }
         }
     }
+    let rd_tris = tex_tris
+        .iter()
+        .map(|t| t.as_ref().map(RayDiffTriangle::new))
+        .collect();
     let mut pb_fixed = vec![Log2Pb::UNTEXTURED; scene.triangles.len()];
     PbTable::new(&mut pb_fixed)
         .build(tex_tris, spread)
         .map_err(|e| format!("Pb table: {e}"))?;
-    Ok((pb_fixed, pb_float))
+    Ok((pb_fixed, pb_float, rd_tris))
 }
 
 /// Scene bounding-box diagonal (1 for an empty scene, at least 10⁻⁹).

@@ -233,6 +233,28 @@ impl<'a> Unit<'a> {
         }
     }
 
+    /// [`Unit::sample_aniso`] over a firmware footprint (the fixed-point
+    /// ray differentials' axes): passed to the firmware unit unchanged, read
+    /// exactly as f64 by the f64 unit.
+    pub fn sample_aniso_footprint(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        fp: &Footprint,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        match self {
+            Self::Firmware(unit) => {
+                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), fp, log))
+            }
+            Self::Float(unit) => {
+                let a = |c: [TexCoord; 2]| c.map(|x| x.to_num::<f64>());
+                unit.sample_aniso(tex, u, v, [a(fp.x), a(fp.y)], log)
+            }
+        }
+    }
+
     /// One filtered sample of texture `tex` at `(u, v)` in texture repeats
     /// (wrap addressing) as linear RGB in 0..1. A fixed-point lod goes to
     /// the firmware unit unchanged; each unit is fed its own arithmetic.

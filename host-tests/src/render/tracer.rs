@@ -1,10 +1,11 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
-use fixed::types::U32F32;
+use fixed::types::{I2F30, U32F32};
+use raymip::raydiff::{RayDiff, UnitVec};
 use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
-use super::lod::{LodQuery, raydiff_axes};
+use super::lod::{LodQuery, fixed_footprint, raydiff_axes};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
 use crate::scene::{Material, Triangle, V3};
@@ -25,6 +26,10 @@ struct Diff {
 /// so that no setting drops one (256 entries of 232 bytes, ≈ 58 KiB of the
 /// tracing thread's stack).
 pub const STACK_CAPACITY: usize = stack_bound(u8::MAX, 2);
+
+/// A continuation ray with the firmware ray differentials of its path
+/// state (zero unless they are carried).
+type Continuation = (Ray, RayDiff);
 
 /// Host side of one ray (the payload of its ray-stack entry; the firmware
 /// [`PathState`] beside it carries the fixed-point Pl and cone).
@@ -152,8 +157,21 @@ impl Ctx<'_> {
         let mut stack: RayStack<Ray, STACK_CAPACITY> = RayStack::new();
         let mut color = V3::ZERO;
         let mut first_lod = f64::NAN;
+        let mut state = PathState::primary(&prep.spread, 0xFF);
+        if self.firmware_raydiff() {
+            // Firmware set-up: unit direction, forward axis and the change of
+            // the unnormalised direction per pixel (its forward part is 1).
+            let (d, sat) = RayDiff::primary(
+                unit_q(ray.d),
+                unit_q(prep.cam.fwd),
+                unit_q(dxv),
+                unit_q(dyv),
+            );
+            state.diff = d;
+            self.counters.saturations += u64::from(sat);
+        }
         // The primary state always fits an empty stack.
-        let _ = stack.push_with(PathState::primary(&prep.spread, 0xFF), ray);
+        let _ = stack.push_with(state, ray);
         while let Some((state, ray)) = stack.pop_with() {
             self.segment(state, ray, &mut stack, &mut color, &mut first_lod);
         }
@@ -182,13 +200,20 @@ impl Ctx<'_> {
         if let Some(c) = self.counters.depth_hist.get_mut(depth) {
             *c += 1;
         }
-        let state = state.advance(U32F32::saturating_from_num(hit.t));
-        if state.saturated {
-            self.counters.saturations += 1;
-        }
+        let t_fixed = U32F32::saturating_from_num(hit.t);
+        let mut state = state.advance(t_fixed);
         let tri = &scene.triangles[hit.tri as usize];
         let mat = &scene.materials[tri.material as usize];
         let f = HitFrame::new(tri, &ray, &hit);
+        if self.firmware_raydiff() {
+            // Firmware transfer to the hit plane (geometric normal).
+            let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(f.ng));
+            state.diff = d;
+            state.saturated |= sat;
+        }
+        if state.saturated {
+            self.counters.saturations += 1;
+        }
         let pl = ray.pl + f.t;
         let width = ray.width + ray.spread * f.t;
         let kd = self.texture(hit.tri as usize, &f, &ray, &state, pl, width, first_lod);
@@ -197,20 +222,22 @@ impl Ctx<'_> {
         if usize::from(state.depth) >= usize::from(self.opts.bounces) {
             return;
         }
-        let (refr, refl) = self.continuations(mat, &f, &ray, pl, width);
+        let (refr, refl) = self.continuations(mat, &f, &ray, pl, width, &state);
         let beta = surface_spread(&f, width);
         let beta_fixed = Spread::saturating_from_num(beta);
-        let refl = refl.map(|mut r| {
+        let refl = refl.map(|(mut r, d)| {
             r.spread += if self.opts.precision == Precision::Fixed {
                 beta_fixed.to_num::<f64>()
             } else {
                 beta
             };
-            (r, beta_fixed)
+            (r, d, beta_fixed)
         });
-        let refr = refr.map(|r| (r, Spread::ZERO));
-        for (r, b) in [refr, refl].into_iter().flatten() {
-            if stack.push_with(state.bounce(b), r).is_ok() {
+        let refr = refr.map(|(r, d)| (r, d, Spread::ZERO));
+        for (r, d, b) in [refr, refl].into_iter().flatten() {
+            let mut next = state.bounce(b);
+            next.diff = d;
+            if stack.push_with(next, r).is_ok() {
                 self.counters.bounces += 1;
             } else {
                 self.counters.stack_full += 1;
@@ -265,10 +292,22 @@ impl Ctx<'_> {
             *first_lod = lod.to_f64();
         }
         let c = match self.opts.aniso {
-            Some(_) if Filter::of(self.opts.method) == Filter::Trilinear => {
-                let axes = raydiff_axes(&query);
-                self.unit
-                    .sample_aniso(x as usize, u, vv, axes, &mut self.log)
+            // Only ray differentials give footprint axes (other methods:
+            // `Options::validate` refuses aniso; set anyway, isotropic at
+            // the method's lod below). Fixed: the firmware footprint.
+            Some(_) if self.opts.method == Method::Raydiff => {
+                match prep.rd_tris[tri_index].filter(|_| self.firmware_raydiff()) {
+                    Some(t) => {
+                        let fp = fixed_footprint(&t, state);
+                        self.unit
+                            .sample_aniso_footprint(x as usize, u, vv, &fp, &mut self.log)
+                    }
+                    None => {
+                        let axes = raydiff_axes(&query);
+                        self.unit
+                            .sample_aniso(x as usize, u, vv, axes, &mut self.log)
+                    }
+                }
             }
             _ => {
                 let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
@@ -320,6 +359,12 @@ impl Ctx<'_> {
         local
     }
 
+    /// True when the firmware ray differentials are carried (fixed
+    /// precision, ray-differential method).
+    fn firmware_raydiff(&self) -> bool {
+        self.opts.precision == Precision::Fixed && self.opts.method == Method::Raydiff
+    }
+
     /// Ray offset along the normal (scene-relative).
     fn eps(&self) -> f64 {
         self.prep.eps()
@@ -336,14 +381,17 @@ impl Ctx<'_> {
         ray: &Ray,
         pl: f64,
         width: f64,
-    ) -> (Option<Ray>, Option<Ray>) {
+        state: &PathState,
+    ) -> (Option<Continuation>, Option<Continuation>) {
+        let fw = self.firmware_raydiff();
+        let (dq, nq, dnxq, dnyq) = (unit_q(ray.d), unit_q(f.ns), unit_q(f.dnx), unit_q(f.dny));
         let eps = self.eps();
         let ns = f.ns;
         let face_ng = f.face_ng;
         let mut refl_w = ray.weight * mat.specular;
         let trans_w = ray.weight * mat.transmission;
         let cosi = -ray.d.dot(ns);
-        let mut refr: Option<Ray> = None;
+        let mut refr: Option<Continuation> = None;
         if trans_w.max_element() > 1e-3 {
             let eta = if f.entering {
                 1.0 / mat.ior.max(1e-3)
@@ -369,7 +417,17 @@ impl Ctx<'_> {
                     let dmu = (eta - eta * eta * cosi / sk) * dcos;
                     ((dd * eta) + (ns * dmu)) + (dn * mu)
                 };
-                refr = Some(ray.continued(f.p + face_ng * -eps, dir, trans_w, (pl, width), f, dtr));
+                let fd = if fw {
+                    let eta_q = raymip::raydiff::Eta::saturating_from_num(eta);
+                    let ct = fixed::types::I2F30::saturating_from_num(sk);
+                    state.diff.refract(dq, nq, dnxq, dnyq, eta_q, ct).0
+                } else {
+                    RayDiff::ZERO
+                };
+                refr = Some((
+                    ray.continued(f.p + face_ng * -eps, dir, trans_w, (pl, width), f, dtr),
+                    fd,
+                ));
             }
         }
         let refl = (refl_w.max_element() > 1e-3).then(|| {
@@ -384,7 +442,15 @@ impl Ctx<'_> {
                 let ddn = dd.dot(ns) + ray.d.dot(dn);
                 dd - (((dn * dn_) + (ns * ddn)) * 2.0)
             };
-            ray.continued(f.p + face_ng * eps, dir, refl_w, (pl, width), f, drf)
+            let fd = if fw {
+                state.diff.reflect(dq, nq, dnxq, dnyq).0
+            } else {
+                RayDiff::ZERO
+            };
+            (
+                ray.continued(f.p + face_ng * eps, dir, refl_w, (pl, width), f, drf),
+                fd,
+            )
         });
         (refr, refl)
     }
@@ -544,4 +610,16 @@ fn surface_spread(f: &HitFrame, width: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// An f64 vector as the firmware's I2F30 components (saturating; a
+/// non-finite component reads as 0).
+fn unit_q(v: V3) -> UnitVec {
+    v.to_array().map(|x| {
+        if x.is_finite() {
+            I2F30::saturating_from_num(x)
+        } else {
+            I2F30::ZERO
+        }
+    })
 }

@@ -54,6 +54,7 @@ use raymip::lod::{
     Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
     table_lod_fast, table_lod_fast_batch,
 };
+use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
@@ -76,6 +77,7 @@ const PAINT: usize = 2048;
 type Tex = Sampler<Pyramid<'static>>;
 type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
 type LodIn = (PathLength, Log2Pb);
+type LodNormIn = (NormPl, Log2Pb);
 type ConeIn = (Width, I16F16, Option<U1F31>);
 type SampleIn = (TexCoord, TexCoord, Lod);
 /// The state rows' key: mirror on u, clamp-to-border on v.
@@ -191,7 +193,7 @@ pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_batch_lod_fast(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
+pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [Option<Lod>]) -> usize {
     table_lod_fast_batch(hits, out)
 }
 
@@ -376,6 +378,93 @@ fn measure<I: Copy>(inputs: &[I], mut call: impl FnMut(I) -> u32) -> (Stat, usiz
     (s, stack::used(top, PAINT))
 }
 
+/// Ray differentials (feature `raydiff`): the primary set-up, one
+/// transfer, a reflection, a refraction, the footprint, its lod and the
+/// G-buffer first-hit set-up, each its own wrapper.
+#[cfg(feature = "raydiff")]
+mod rd {
+    use fixed::types::I2F30;
+    use raymip::lod::Lod;
+    use raymip::raydiff::footprint::RayDiffTriangle;
+    use raymip::raydiff::gbuffer::{GSample, first_hit};
+    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+    use raymip::raystack::PathLength;
+    use raymip::texture::sampler::aniso::Footprint;
+
+    /// Primary-ray set-up from the camera axes.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_primary(
+        d: UnitVec,
+        f: UnitVec,
+        r: [DirDiff; 3],
+        u: [DirDiff; 3],
+    ) -> RayDiff {
+        RayDiff::primary(d, f, r, u).0
+    }
+
+    /// One transfer to a hit.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
+        s.transfer(d, t, n).0
+    }
+
+    /// One reflection.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+        s.reflect(d, n, dn, dn).0
+    }
+
+    /// One refraction (η = 1/1.5, cos θₜ = 0.9).
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+        s.refract(
+            d,
+            n,
+            dn,
+            dn,
+            Eta::from_bits(0x0AAA_AAAB),
+            I2F30::from_bits(0x3999_999A),
+        )
+        .0
+    }
+
+    /// The footprint of a transferred state.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_footprint(
+        t: &RayDiffTriangle,
+        dpx: [PosDiff; 3],
+        dpy: [PosDiff; 3],
+    ) -> Footprint {
+        t.footprint(dpx, dpy)
+    }
+
+    /// The lod of a footprint.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
+        t.lod(fp)
+    }
+
+    /// G-buffer first-hit set-up from four neighbours.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
+        first_hit(p, c, nb).0
+    }
+}
+
 /// `N` inputs drawn by `draw`.
 fn draw<I: Copy>(rng: &mut Rng, mut draw: impl FnMut(&mut Rng) -> I) -> [I; N] {
     let first = draw(rng);
@@ -462,10 +551,13 @@ fn rm_budget_driver(
     let mut lod_out = [None; N];
     let mut cone_out = [Lod::ZERO; N];
     let mut tex_out = [0; N];
+    // The FAST batch reads the normalised Pl a ray-stack entry keeps
+    // (`PathState::pl_norm`, made by `advance`): converted here.
+    let lod_norm_in = lod_in.map(|(pl, pb)| (NormPl::new(pl), pb));
     for n in [N / 2, N] {
         bb(rm_batch_lod(bb(&lod_in[..n]), &mut lod_out));
         bb(rm_batch_cone_lod(bb(&cone_in[..n]), &mut cone_out));
-        bb(rm_batch_lod_fast(bb(&lod_in[..n]), &mut lod_out));
+        bb(rm_batch_lod_fast(bb(&lod_norm_in[..n]), &mut lod_out));
         bb(rm_batch_cone_lod_fast(bb(&cone_in[..n]), &mut cone_out));
         bb(rm_batch_bilinear(tex, bb(&bil_in[..n]), &mut tex_out));
         bb(rm_batch_trilinear(tex, bb(&tri_in[..n]), &mut tex_out));
@@ -514,6 +606,9 @@ fn rm_budget_driver(
     }
     bb(&rec);
 
+    #[cfg(feature = "raydiff")]
+    raydiff_rows();
+
     if cfg!(target_arch = "riscv32") {
         // Call-inclusive minus the empty call's count.
         let e = empty.min;
@@ -545,6 +640,72 @@ fn rm_budget_driver(
     ] {
         println!("stack {name}: {bytes} bytes");
     }
+}
+
+/// The ray-differential rows (own generator: the other rows' inputs are
+/// unchanged): 64 calls of each `rm_bench_rd_*` wrapper, and the ray-stack
+/// entry size with the feature.
+#[cfg(feature = "raydiff")]
+#[inline(always)]
+fn raydiff_rows() {
+    use raymip::raydiff::footprint::RayDiffTriangle;
+    use raymip::raydiff::gbuffer::GSample;
+    use raymip::table::{Coord, TexTriangle};
+    let mut rng = Rng(inputs::SEED ^ 0xD1FF);
+    let rd_in = draw(&mut rng, inputs::raydiff);
+    let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
+    let Ok(tri) = TexTriangle::new(
+        [[c(0), c(0), c(0)], [c(4), c(0), c(1)], [c(0), c(3), c(0)]],
+        [[c(0), c(0)], [c(2), c(0)], [c(0), c(1)]],
+        TEX_SIZE,
+        TEX_SIZE,
+    ) else {
+        process::exit(1)
+    };
+    let tri = RayDiffTriangle::new(&tri);
+    let h = |x: u32| x & 0xFFFF;
+    measure(&rd_in, |(s, d, _, n, _)| {
+        h(rd::rm_bench_rd_primary(d, n, s.dddx, s.dddy).dddx[0].to_bits() as u32)
+    });
+    measure(&rd_in, |(s, d, t, n, _)| {
+        h(rd::rm_bench_rd_transfer(&s, d, t, n).dodx[0].to_bits() as u32)
+    });
+    measure(&rd_in, |(s, d, _, n, dn)| {
+        h(rd::rm_bench_rd_reflect(&s, d, n, dn).dddx[0].to_bits() as u32)
+    });
+    measure(&rd_in, |(s, d, _, n, dn)| {
+        h(rd::rm_bench_rd_refract(&s, d, n, dn).dddx[0].to_bits() as u32)
+    });
+    measure(&rd_in, |(s, ..)| {
+        h(rd::rm_bench_rd_footprint(&tri, s.dodx, s.dody).x[0].to_bits() as u32)
+    });
+    let fps = rd_in.map(|(s, ..)| tri.footprint(s.dodx, s.dody));
+    measure(&fps, |fp| rd::rm_bench_rd_lod(&tri, &fp).to_bits() as u32);
+    let g = rd_in.map(|(s, d, t, n, _)| GSample {
+        p: s.dodx,
+        n: d,
+        t: t.min(PathLength::from_bits(u64::from(n[0].to_bits() as u32))),
+    });
+    measure(&rd_in, |(s, _, t, n, _)| {
+        let cen = GSample { p: s.dody, n, t };
+        let i = (t.to_bits() as usize) % (N - 4);
+        h(rd::rm_bench_rd_gbuffer(
+            &s,
+            &cen,
+            [
+                Some(&g[i]),
+                Some(&g[i + 1]),
+                Some(&g[i + 2]),
+                Some(&g[i + 3]),
+            ],
+        )
+        .dodx[0]
+            .to_bits() as u32)
+    });
+    println!(
+        "path state raydiff: {} bytes",
+        core::mem::size_of::<raymip::raystack::PathState>()
+    );
 }
 
 /// Bytes of the RGB565 and BC1 images (demo texture geometry).

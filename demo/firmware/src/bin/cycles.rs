@@ -33,6 +33,7 @@ use raymip::lod::{
     Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
     table_lod_fast, table_lod_fast_batch,
 };
+use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
 use raymip::texture::storage::mip::{Pyramid, Texel};
@@ -55,7 +56,7 @@ measured_calls! {
     fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod_fast;
     fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize = table_lod_batch;
     fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize = cone_lod_batch;
-    fn lod_fast_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize =
+    fn lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [Option<Lod>]) -> usize =
         table_lod_fast_batch;
     fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize =
         cone_lod_fast_batch;
@@ -165,6 +166,8 @@ raymip_demo_entry::main! {
     }
     // Batches: 32 then 64 hits of each kind, one call each.
     let mut lod_out = [None; N];
+    // The FAST batch reads the ray stack's normalised Pl (made outside the count).
+    let lod_norm_in = lod_in.map(|(pl, pb)| (NormPl::new(pl), pb));
     let mut cone_out = [Lod::ZERO; N];
     let mut tex_out = [Texel::default(); N];
     let batch = |name: &str, f: &mut dyn FnMut(usize) -> (u32, u32)| {
@@ -186,7 +189,7 @@ raymip_demo_entry::main! {
         once(|| cone_batch(bb(&cone_in[..n]), &mut cone_out))
     });
     batch("lod_fast", &mut |n| {
-        once(|| lod_fast_batch(bb(&lod_in[..n]), &mut lod_out))
+        once(|| lod_fast_batch(bb(&lod_norm_in[..n]), &mut lod_out))
     });
     batch("cone_lod_fast", &mut |n| {
         once(|| cone_fast_batch(bb(&cone_in[..n]), &mut cone_out))
