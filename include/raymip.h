@@ -18,9 +18,10 @@
 // normal term out (`log2 1 = 0` exactly).
 #define RM_COS_ONE 2147483648
 
-// Size of an `RmSampler` in 64-bit words (768 bytes: enough for the
-// sampler on 32- and 64-bit targets, checked at compile time).
-#define RM_SAMPLER_WORDS 96
+// Size of an `RmSampler` in 64-bit words (1024 bytes: enough for the
+// sampler of a pyramid or an image on 32- and 64-bit targets, checked at
+// compile time; 808 bytes are used on x86-64).
+#define RM_SAMPLER_WORDS 128
 
 // Result codes of the C ABI (`0` = success, negative = error, positive =
 // a documented non-error outcome).
@@ -74,7 +75,8 @@ typedef uint8_t RmMode;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Addressing of `rm_sampler_init`: wrap or clamp to edge on both axes.
+// Addressing of a texture axis: `rm_sampler_init` takes one for both
+// axes, `RmSamplerDesc` one per axis.
 enum RmAddress
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
@@ -84,12 +86,98 @@ enum RmAddress
   RM_ADDRESS_WRAP = 0,
   // Clamp to edge.
   RM_ADDRESS_CLAMP = 1,
+  // Repeat, every other copy mirrored (D3D `MIRROR`).
+  RM_ADDRESS_MIRROR = 2,
+  // Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`).
+  RM_ADDRESS_MIRROR_ONCE = 3,
+  // Texels outside the level read the border colour (D3D `BORDER`).
+  RM_ADDRESS_BORDER = 4,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum RmAddress RmAddress;
 #else
 typedef uint8_t RmAddress;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// Precision tier of a sampler (`RmSamplerDesc::precision`).
+enum RmPrecision
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // ACCURATE (default): linear filtering ≤ 0.5625 LSB from the exact
+  // f64 filter, sRGB re-encoded ≤ 0.6875 LSB; bit-identical on every
+  // target.
+  RM_PRECISION_ACCURATE = 0,
+  // FAST: GPU precision (8-bit sub-texel weights and lod fraction),
+  // bound stated in the Rust `texture::kernel` docs; bit-identical on
+  // every target.
+  RM_PRECISION_FAST = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum RmPrecision RmPrecision;
+#else
+typedef uint8_t RmPrecision;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// Result encoding of an sRGB texture (`RmSamplerDesc::srgb_output`).
+enum RmSrgbOutput
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // Re-encoded to sRGB (what a GPU writes to an sRGB render target).
+  RM_SRGB_OUTPUT_ENCODED = 0,
+  // Linear, rounded to 8 bits (what a shader reads from an sRGB view).
+  RM_SRGB_OUTPUT_LINEAR = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum RmSrgbOutput RmSrgbOutput;
+#else
+typedef uint8_t RmSrgbOutput;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// Pixel format of an `RmImage` (the numbering of the Rust
+// `TexelFormat`).
+enum RmFormat
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // 8 bits per channel, bytes r, g, b, a.
+  RM_FORMAT_RGBA8 = 0,
+  // 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
+  RM_FORMAT_RGB565 = 1,
+  // 16 bits: red 5, green 5, blue 5, alpha 1.
+  RM_FORMAT_RGBA5551 = 2,
+  // 16 bits: 4 bits per channel.
+  RM_FORMAT_RGBA4444 = 3,
+  // Luminance and alpha, 8 bits each.
+  RM_FORMAT_LA8 = 4,
+  // Luminance, 8 bits.
+  RM_FORMAT_L8 = 5,
+  // Alpha, 8 bits (colour 0).
+  RM_FORMAT_A8 = 6,
+  // BC1 (DXT1): 8 bytes per 4×4 block.
+  RM_FORMAT_BC1 = 7,
+  // BC2 (DXT3): 16 bytes per block.
+  RM_FORMAT_BC2 = 8,
+  // BC3 (DXT5): 16 bytes per block.
+  RM_FORMAT_BC3 = 9,
+  // BC4: 8 bytes per block, one channel (red).
+  RM_FORMAT_BC4 = 10,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum RmFormat RmFormat;
+#else
+typedef uint8_t RmFormat;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
@@ -155,6 +243,33 @@ typedef struct RmRayStack {
   uint32_t len;
 } RmRayStack;
 
+// Sampler settings of `rm_sampler_init_desc` and
+// `rm_sampler_init_image`. `rm_sampler_desc_default` fills the
+// defaults (wrap on both axes, transparent black border, no bias, no lod
+// clamp, isotropic, sRGB re-encoded, ACCURATE); every field is checked at
+// set-up, none per sample.
+typedef struct RmSamplerDesc {
+  // Border colour (RGBA8888, linear) of `RM_ADDRESS_BORDER`.
+  uint32_t border;
+  // LOD bias, I8F8 bits, `[−16, 16)` levels.
+  int16_t lod_bias;
+  // Lower lod clamp, I8F8 bits (at most `max_lod`).
+  int16_t min_lod;
+  // Upper lod clamp, I8F8 bits.
+  int16_t max_lod;
+  // Address mode of `u` (`RM_ADDRESS_*`).
+  RmAddress address_u;
+  // Address mode of `v` (`RM_ADDRESS_*`).
+  RmAddress address_v;
+  // Maximum anisotropy of `rm_sample_aniso`, `1 ..= 16` (1 =
+  // isotropic).
+  uint8_t max_anisotropy;
+  // Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`).
+  uint8_t srgb_output;
+  // Precision tier (`RM_PRECISION_*`).
+  uint8_t precision;
+} RmSamplerDesc;
+
 // A texture sampler in caller memory: set up once per texture and
 // addressing by `rm_sampler_init` (which checks the texture), then used
 // by `rm_sample` for every hit without rebuilding the pyramid geometry
@@ -181,6 +296,51 @@ typedef struct RmTexture {
   // Stored levels (1 ..= full chain).
   uint8_t levels;
 } RmTexture;
+
+// A texture in any `RmFormat` in caller memory: the levels from level 0
+// (finest) on, each row-major (BC formats: rows of 4×4 blocks, 8 or 16
+// bytes each), `rm_image_len` bytes in all. 16-bit texels are
+// little-endian.
+typedef struct RmImage {
+  // The texel bytes.
+  const uint8_t *bytes;
+  // Number of bytes at `bytes`.
+  size_t len;
+  // Level-0 width in texels.
+  uint32_t width;
+  // Level-0 height in texels.
+  uint32_t height;
+  // Stored levels (1 ..= full chain).
+  uint8_t levels;
+  // Pixel format (`RM_FORMAT_*`).
+  uint8_t format;
+  // 0: linear channels; 1: sRGB-encoded colour (alpha linear; not for
+  // `RM_FORMAT_A8` and `RM_FORMAT_BC4`).
+  uint8_t srgb;
+} RmImage;
+
+// One sample of `rm_sample_batch`.
+typedef struct RmHit {
+  // `u`, I32F32 bits (normalised; texel centres at `(i + 0.5)/width`).
+  int64_t u;
+  // `v`, I32F32 bits.
+  int64_t v;
+  // Level of detail, I8F8 bits.
+  int16_t lod;
+} RmHit;
+
+// Screen-space derivatives of the texture coordinates for
+// `rm_sample_aniso`, I32F32 bits (normalised texture units per pixel).
+typedef struct RmFootprint {
+  // `∂u/∂x`.
+  int64_t dudx;
+  // `∂v/∂x`.
+  int64_t dvdx;
+  // `∂u/∂y`.
+  int64_t dudy;
+  // `∂v/∂y`.
+  int64_t dvdy;
+} RmFootprint;
 
 #ifdef __cplusplus
 extern "C" {
@@ -309,10 +469,23 @@ enum RmStatus rm_mip_generate(uint32_t *texels,
                               uint32_t height,
                               uint8_t levels);
 
+// Writes the default `RmSamplerDesc` to `out` (see its docs). Returns
+// `NullPointer` or `Misaligned`.
+//
+// # Safety
+// `out` is null (→ `NullPointer`) or points to a writable
+// `RmSamplerDesc`.
+enum RmStatus rm_sampler_desc_default(struct RmSamplerDesc *out);
+
+// Bytes an `RmImage` of `format` with `levels` levels (capped at the
+// full chain) of a `width × height` level 0 needs; 0 for a zero side or
+// an unknown format.
+size_t rm_image_len(uint32_t width, uint32_t height, uint8_t levels, uint8_t format);
+
 // Sets up `sampler` for the pyramid `tex` with addressing `address`
-// (`RM_ADDRESS_WRAP` or `RM_ADDRESS_CLAMP`): checks the texture once
-// (size, levels, length) and stores what `rm_sample` needs. On error
-// `sampler` is left unchanged.
+// (`RM_ADDRESS_*`, both axes) and otherwise default settings: checks the
+// texture once (size, levels, length) and stores what `rm_sample`
+// needs. On error `sampler` is left unchanged.
 //
 // Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
 // or a side above 32768), `ZeroSize` or `BufferTooShort`.
@@ -325,25 +498,93 @@ enum RmStatus rm_sampler_init(struct RmSampler *sampler,
                               const struct RmTexture *tex,
                               RmAddress address);
 
+// Sets up `sampler` for the RGBA8 pyramid `tex` with the settings `desc`
+// (address mode per axis, border, bias and clamps, anisotropy, tier),
+// checked once here: every sample then runs the specialised path of the
+// configuration (the Rust `DynSampler` key table). On error `sampler` is
+// left unchanged.
+//
+// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, level
+// count or a side above 32768), `ZeroSize` or `BufferTooShort`.
+//
+// # Safety
+// `sampler`, `tex` and `desc` are null (→ `NullPointer`) or valid;
+// `tex->texels` points to `tex->len` readable texels that stay valid and
+// unchanged while the sampler is used.
+enum RmStatus rm_sampler_init_desc(struct RmSampler *sampler,
+                                   const struct RmTexture *tex,
+                                   const struct RmSamplerDesc *desc);
+
+// Sets up `sampler` for the image `img` (any `RmFormat`, linear or
+// sRGB) with the settings `desc`, checked once here. Formats are decoded
+// per texel read (BC1–BC4 decode the texel's block; a Rust firmware puts
+// a texel cache in front). On error `sampler` is left unchanged.
+//
+// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, the
+// format, an sRGB flag the format has no variant for, level count or a
+// side above 32768), `ZeroSize` or `BufferTooShort`.
+//
+// # Safety
+// `sampler`, `img` and `desc` are null (→ `NullPointer`) or valid;
+// `img->bytes` points to `img->len` readable bytes that stay valid and
+// unchanged while the sampler is used.
+enum RmStatus rm_sampler_init_image(struct RmSampler *sampler,
+                                    const struct RmImage *img,
+                                    const struct RmSamplerDesc *desc);
+
 // Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
-// `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the stored
-// levels) with filter `mode` (`RM_MODE_*`) from the texture `sampler` was
-// set up with; writes RGBA8888 to `out`. The same texel as the Rust
-// `Sampler::sample`. Returns `NullPointer`, `Misaligned`, `Uninitialised`
-// (`sampler` not written by `rm_sampler_init`; a zeroed one is
-// recognised) or `OutOfRange` (mode).
+// `(i + 0.5)/size`) and lod `lod` (I8F8 bits; the sampler's bias and
+// clamps apply, then the stored levels) with filter `mode` (`RM_MODE_*`)
+// from the texture `sampler` was set up with; writes RGBA8888 to `out`.
+// The same texel as the Rust `Sampler::sample` of that configuration.
+// Returns `NullPointer`, `Misaligned`, `Uninitialised` (`sampler` not
+// written by an init function; a zeroed one is recognised) or
+// `OutOfRange` (mode).
 //
 // # Safety
 // `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
-// zeroed or set up by `rm_sampler_init` (and not written since), and
-// its texels are still valid. Not for two threads at once on one sampler
-// (it keeps fetch counters).
+// zeroed or set up by an init function (and not written since), and its
+// texels are still valid. Not for two threads at once on one sampler (it
+// keeps fetch counters).
 enum RmStatus rm_sample(struct RmSampler *sampler,
                         int64_t u,
                         int64_t v,
                         int16_t lod,
                         RmMode mode,
                         uint32_t *out);
+
+// `out[i]` = `rm_sample` of `hits[i]` with filter `mode`, for
+// `i < n`: the same texels and counters as `n` single calls, one status
+// for all. Returns `NullPointer` (either array null with `n > 0`),
+// `Misaligned`, `Uninitialised` or `OutOfRange` (mode); on error nothing
+// is written.
+//
+// # Safety
+// `sampler` as for `rm_sample`; `hits` points to `n` readable
+// `RmHit`s and `out` to `n` writable texels (either may be null only
+// when `n` is 0), neither inside the sampler.
+enum RmStatus rm_sample_batch(struct RmSampler *sampler,
+                              const struct RmHit *hits,
+                              size_t n,
+                              RmMode mode,
+                              uint32_t *out);
+
+// Anisotropic filtered texel at `(u, v)` for the pixel footprint `fp`
+// (the texture-coordinate derivatives): up to the sampler's
+// `max_anisotropy` trilinear probes along the footprint's major axis at
+// the lod of its minor axis (the Rust `Sampler::sample_aniso`); writes
+// RGBA8888 to `out`. Returns `NullPointer`, `Misaligned` or
+// `Uninitialised`.
+//
+// # Safety
+// `sampler` as for `rm_sample`; `fp` points to a readable
+// `RmFootprint` and `out` to a writable texel (neither inside the
+// sampler).
+enum RmStatus rm_sample_aniso(struct RmSampler *sampler,
+                              int64_t u,
+                              int64_t v,
+                              const struct RmFootprint *fp,
+                              uint32_t *out);
 
 #ifdef __cplusplus
 }  // extern "C"

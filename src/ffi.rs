@@ -47,9 +47,12 @@ use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
 use crate::table::{BuildStats, Log2Pb, PbTable, TableError, TexTriangle};
 use crate::texture::kernel::Precision;
+use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
-use crate::texture::storage::format::ColorSpace;
-use crate::texture::storage::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
+use crate::texture::sampler::state::SrgbOutput;
+use crate::texture::storage::format::{AnyFormat, ColorSpace, Format, TexelFormat};
+use crate::texture::storage::image::{Image, image_len};
+use crate::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, generate, pyramid_len};
 use crate::texture::{AddressMode, Mode, SamplerDesc, SamplerState};
 
 /// Result codes of the C ABI (`0` = success, negative = error, positive =
@@ -103,7 +106,8 @@ const _: () = assert!(
         && RmMode::NearestTexelLinearLevel as u8 == Mode::NearestTexelLinearLevel as u8
 );
 
-/// Addressing of [`rm_sampler_init`]: wrap or clamp to edge on both axes.
+/// Addressing of a texture axis: [`rm_sampler_init`] takes one for both
+/// axes, [`RmSamplerDesc`] one per axis.
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmAddress {
@@ -111,18 +115,101 @@ pub enum RmAddress {
     Wrap = 0,
     /// Clamp to edge.
     Clamp = 1,
+    /// Repeat, every other copy mirrored (D3D `MIRROR`).
+    Mirror = 2,
+    /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`).
+    MirrorOnce = 3,
+    /// Texels outside the level read the border colour (D3D `BORDER`).
+    Border = 4,
 }
 
 impl RmAddress {
-    /// The address mode numbered `n` (0 wrap, 1 clamp to edge).
+    /// The address mode numbered `n` (the discriminants above).
     fn mode(n: u8) -> Option<AddressMode> {
         match n {
             0 => Some(AddressMode::Wrap),
             1 => Some(AddressMode::ClampToEdge),
+            2 => Some(AddressMode::Mirror),
+            3 => Some(AddressMode::MirrorOnce),
+            4 => Some(AddressMode::ClampToBorder),
             _ => None,
         }
     }
 }
+
+/// Precision tier of a sampler ([`RmSamplerDesc::precision`]).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmPrecision {
+    /// ACCURATE (default): linear filtering ≤ 0.5625 LSB from the exact
+    /// f64 filter, sRGB re-encoded ≤ 0.6875 LSB; bit-identical on every
+    /// target.
+    Accurate = 0,
+    /// FAST: GPU precision (8-bit sub-texel weights and lod fraction),
+    /// bound stated in the Rust `texture::kernel` docs; bit-identical on
+    /// every target.
+    Fast = 1,
+}
+
+/// Result encoding of an sRGB texture ([`RmSamplerDesc::srgb_output`]).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmSrgbOutput {
+    /// Re-encoded to sRGB (what a GPU writes to an sRGB render target).
+    Encoded = 0,
+    /// Linear, rounded to 8 bits (what a shader reads from an sRGB view).
+    Linear = 1,
+}
+
+/// Pixel format of an [`RmImage`] (the numbering of the Rust
+/// `TexelFormat`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmFormat {
+    /// 8 bits per channel, bytes r, g, b, a.
+    Rgba8 = 0,
+    /// 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
+    Rgb565 = 1,
+    /// 16 bits: red 5, green 5, blue 5, alpha 1.
+    Rgba5551 = 2,
+    /// 16 bits: 4 bits per channel.
+    Rgba4444 = 3,
+    /// Luminance and alpha, 8 bits each.
+    La8 = 4,
+    /// Luminance, 8 bits.
+    L8 = 5,
+    /// Alpha, 8 bits (colour 0).
+    A8 = 6,
+    /// BC1 (DXT1): 8 bytes per 4×4 block.
+    Bc1 = 7,
+    /// BC2 (DXT3): 16 bytes per block.
+    Bc2 = 8,
+    /// BC3 (DXT5): 16 bytes per block.
+    Bc3 = 9,
+    /// BC4: 8 bytes per block, one channel (red).
+    Bc4 = 10,
+}
+const _: () = {
+    let c = [
+        RmFormat::Rgba8,
+        RmFormat::Rgb565,
+        RmFormat::Rgba5551,
+        RmFormat::Rgba4444,
+        RmFormat::La8,
+        RmFormat::L8,
+        RmFormat::A8,
+        RmFormat::Bc1,
+        RmFormat::Bc2,
+        RmFormat::Bc3,
+        RmFormat::Bc4,
+    ];
+    assert!(c.len() == TexelFormat::ALL.len());
+    let mut i = 0;
+    while i < c.len() {
+        assert!(c[i] as u8 == TexelFormat::ALL[i] as u8);
+        i += 1;
+    }
+};
 
 /// An [`RmMode`] as it crosses the boundary: any byte (an enum parameter
 /// holding a value outside the enum would be undefined behaviour in Rust),
@@ -660,9 +747,10 @@ pub unsafe extern "C" fn rm_mip_generate(
     }
 }
 
-/// Size of an [`RmSampler`] in 64-bit words (768 bytes: enough for the
-/// sampler on 32- and 64-bit targets, checked at compile time).
-pub const RM_SAMPLER_WORDS: usize = 96;
+/// Size of an [`RmSampler`] in 64-bit words (1024 bytes: enough for the
+/// sampler of a pyramid or an image on 32- and 64-bit targets, checked at
+/// compile time; 808 bytes are used on x86-64).
+pub const RM_SAMPLER_WORDS: usize = 128;
 
 /// A texture sampler in caller memory: set up once per texture and
 /// addressing by [`rm_sampler_init`] (which checks the texture), then used
@@ -678,15 +766,33 @@ pub struct RmSampler {
     pub opaque: [u64; RM_SAMPLER_WORDS],
 }
 
-/// Marks an [`RmSampler`] written by [`rm_sampler_init`] ("raymipSm").
+/// Marks an [`RmSampler`] written by [`rm_sampler_init`],
+/// [`rm_sampler_init_desc`] or [`rm_sampler_init_image`] ("raymipSm").
 const SAMPLER_MAGIC: u64 = u64::from_le_bytes(*b"raymipSm");
+
+/// The texture behind a sampler: an RGBA8 pyramid or an image in any
+/// format. One `match` per call picks it (none per texel).
+enum SlotSampler {
+    Pyramid(DynSampler<Pyramid<'static>>),
+    Image(DynSampler<Image<'static, AnyFormat>>),
+}
+
+/// `$s` bound to the slot's [`DynSampler`] in both arms.
+macro_rules! each_slot {
+    ($slot:expr, $s:ident => $e:expr) => {
+        match $slot {
+            SlotSampler::Pyramid($s) => $e,
+            SlotSampler::Image($s) => $e,
+        }
+    };
+}
 
 /// What an [`RmSampler`] holds: the magic word, then the Rust sampler over
 /// the caller's texels (their lifetime is the caller's promise).
 #[repr(C)]
 struct SamplerSlot {
     magic: u64,
-    sampler: DynSampler<Pyramid<'static>>,
+    sampler: SlotSampler,
 }
 
 const _: () = assert!(
@@ -694,10 +800,199 @@ const _: () = assert!(
         && core::mem::align_of::<SamplerSlot>() <= core::mem::align_of::<RmSampler>()
 );
 
+/// Sampler settings of [`rm_sampler_init_desc`] and
+/// [`rm_sampler_init_image`]. [`rm_sampler_desc_default`] fills the
+/// defaults (wrap on both axes, transparent black border, no bias, no lod
+/// clamp, isotropic, sRGB re-encoded, ACCURATE); every field is checked at
+/// set-up, none per sample.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmSamplerDesc {
+    /// Border colour (RGBA8888, linear) of `RM_ADDRESS_BORDER`.
+    pub border: u32,
+    /// LOD bias, I8F8 bits, `[−16, 16)` levels.
+    pub lod_bias: i16,
+    /// Lower lod clamp, I8F8 bits (at most `max_lod`).
+    pub min_lod: i16,
+    /// Upper lod clamp, I8F8 bits.
+    pub max_lod: i16,
+    /// Address mode of `u` (`RM_ADDRESS_*`).
+    pub address_u: RmAddressBits,
+    /// Address mode of `v` (`RM_ADDRESS_*`).
+    pub address_v: RmAddressBits,
+    /// Maximum anisotropy of [`rm_sample_aniso`], `1 ..= 16` (1 =
+    /// isotropic).
+    pub max_anisotropy: u8,
+    /// Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`).
+    pub srgb_output: u8,
+    /// Precision tier (`RM_PRECISION_*`).
+    pub precision: u8,
+}
+
+impl Default for RmSamplerDesc {
+    fn default() -> Self {
+        let d = SamplerDesc::default();
+        Self {
+            border: d.border,
+            lod_bias: d.lod_bias.to_bits(),
+            min_lod: d.min_lod.to_bits(),
+            max_lod: d.max_lod.to_bits(),
+            address_u: RmAddressBits(RmAddress::Wrap as u8),
+            address_v: RmAddressBits(RmAddress::Wrap as u8),
+            max_anisotropy: d.max_anisotropy,
+            srgb_output: RmSrgbOutput::Encoded as u8,
+            precision: RmPrecision::Accurate as u8,
+        }
+    }
+}
+
+impl RmSamplerDesc {
+    /// The validated state and tier, or `OutOfRange` naming nothing more
+    /// (C has the field ranges in the header).
+    fn state(&self) -> Result<(SamplerState, Precision), RmStatus> {
+        let (Some(address_u), Some(address_v)) = (
+            RmAddress::mode(self.address_u.0),
+            RmAddress::mode(self.address_v.0),
+        ) else {
+            return Err(RmStatus::OutOfRange);
+        };
+        let srgb_output = match self.srgb_output {
+            0 => SrgbOutput::Encoded,
+            1 => SrgbOutput::Linear,
+            _ => return Err(RmStatus::OutOfRange),
+        };
+        let precision = match self.precision {
+            0 => Precision::Accurate,
+            1 => Precision::Fast,
+            _ => return Err(RmStatus::OutOfRange),
+        };
+        let state = SamplerState::new(SamplerDesc {
+            address_u,
+            address_v,
+            border: self.border,
+            lod_bias: I8F8::from_bits(self.lod_bias),
+            min_lod: I8F8::from_bits(self.min_lod),
+            max_lod: I8F8::from_bits(self.max_lod),
+            max_anisotropy: self.max_anisotropy,
+            srgb_output,
+        })
+        .map_err(|_| RmStatus::OutOfRange)?;
+        Ok((state, precision))
+    }
+}
+
+/// A texture in any [`RmFormat`] in caller memory: the levels from level 0
+/// (finest) on, each row-major (BC formats: rows of 4×4 blocks, 8 or 16
+/// bytes each), `rm_image_len` bytes in all. 16-bit texels are
+/// little-endian.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RmImage {
+    /// The texel bytes.
+    pub bytes: *const u8,
+    /// Number of bytes at `bytes`.
+    pub len: usize,
+    /// Level-0 width in texels.
+    pub width: u32,
+    /// Level-0 height in texels.
+    pub height: u32,
+    /// Stored levels (1 ..= full chain).
+    pub levels: u8,
+    /// Pixel format (`RM_FORMAT_*`).
+    pub format: u8,
+    /// 0: linear channels; 1: sRGB-encoded colour (alpha linear; not for
+    /// `RM_FORMAT_A8` and `RM_FORMAT_BC4`).
+    pub srgb: u8,
+}
+
+/// One sample of [`rm_sample_batch`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RmHit {
+    /// `u`, I32F32 bits (normalised; texel centres at `(i + 0.5)/width`).
+    pub u: i64,
+    /// `v`, I32F32 bits.
+    pub v: i64,
+    /// Level of detail, I8F8 bits.
+    pub lod: i16,
+}
+
+/// Screen-space derivatives of the texture coordinates for
+/// [`rm_sample_aniso`], I32F32 bits (normalised texture units per pixel).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RmFootprint {
+    /// `∂u/∂x`.
+    pub dudx: i64,
+    /// `∂v/∂x`.
+    pub dvdx: i64,
+    /// `∂u/∂y`.
+    pub dudy: i64,
+    /// `∂v/∂y`.
+    pub dvdy: i64,
+}
+
+/// Writes the default [`RmSamplerDesc`] to `out` (see its docs). Returns
+/// `NullPointer` or `Misaligned`.
+///
+/// # Safety
+/// `out` is null (→ `NullPointer`) or points to a writable
+/// [`RmSamplerDesc`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sampler_desc_default(out: *mut RmSamplerDesc) -> RmStatus {
+    if let Err(e) = check_ptr(out.cast_const(), false) {
+        return e;
+    }
+    // SAFETY: non-null, aligned (checked), writable (caller).
+    unsafe { out.write(RmSamplerDesc::default()) };
+    RmStatus::Ok
+}
+
+/// Bytes an [`RmImage`] of `format` with `levels` levels (capped at the
+/// full chain) of a `width × height` level 0 needs; 0 for a zero side or
+/// an unknown format.
+#[unsafe(no_mangle)]
+pub extern "C" fn rm_image_len(width: u32, height: u32, levels: u8, format: u8) -> usize {
+    match TexelFormat::from_index(format) {
+        Some(f) if width > 0 && height > 0 => image_len(width, height, levels, f),
+        _ => 0,
+    }
+}
+
+/// Writes `slot` into `sampler`.
+///
+/// # Safety
+/// `sampler` is non-null, aligned and writable.
+unsafe fn write_slot(sampler: *mut RmSampler, sampler_slot: SlotSampler) {
+    let slot = SamplerSlot {
+        magic: SAMPLER_MAGIC,
+        sampler: sampler_slot,
+    };
+    // SAFETY: non-null, aligned and large enough (caller; size and
+    // alignment checked at compile time), writable (caller).
+    unsafe { sampler.cast::<SamplerSlot>().write(slot) };
+}
+
+/// The pyramid of `tex` after its checks.
+///
+/// # Safety
+/// As [`rm_sampler_init`]'s `tex`.
+unsafe fn pyramid_of(tex: *const RmTexture) -> Result<Pyramid<'static>, RmStatus> {
+    check_ptr(tex, false)?;
+    // SAFETY: non-null, aligned (checked), valid (caller).
+    let t = unsafe { tex.read() };
+    check_ptr(t.texels, false)?;
+    let g = Geometry::new(t.width, t.height, t.levels).map_err(mip_status)?;
+    // SAFETY: non-null, aligned (checked), `len` readable texels that
+    // outlive every use of the sampler (caller).
+    let texels = unsafe { core::slice::from_raw_parts(t.texels, t.len) };
+    Pyramid::new(g, texels).map_err(mip_status)
+}
+
 /// Sets up `sampler` for the pyramid `tex` with addressing `address`
-/// (`RM_ADDRESS_WRAP` or `RM_ADDRESS_CLAMP`): checks the texture once
-/// (size, levels, length) and stores what [`rm_sample`] needs. On error
-/// `sampler` is left unchanged.
+/// (`RM_ADDRESS_*`, both axes) and otherwise default settings: checks the
+/// texture once (size, levels, length) and stores what [`rm_sample`]
+/// needs. On error `sampler` is left unchanged.
 ///
 /// Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
 /// or a side above 32768), `ZeroSize` or `BufferTooShort`.
@@ -712,61 +1007,149 @@ pub unsafe extern "C" fn rm_sampler_init(
     tex: *const RmTexture,
     address: RmAddressBits,
 ) -> RmStatus {
-    if let Err(e) = check_ptr(sampler.cast_const(), false).and(check_ptr(tex, false)) {
+    let desc = RmSamplerDesc {
+        address_u: address,
+        address_v: address,
+        ..RmSamplerDesc::default()
+    };
+    // SAFETY: the caller's guarantees are this function's; `desc` is a
+    // valid local.
+    unsafe { rm_sampler_init_desc(sampler, tex, &desc) }
+}
+
+/// Sets up `sampler` for the RGBA8 pyramid `tex` with the settings `desc`
+/// (address mode per axis, border, bias and clamps, anisotropy, tier),
+/// checked once here: every sample then runs the specialised path of the
+/// configuration (the Rust `DynSampler` key table). On error `sampler` is
+/// left unchanged.
+///
+/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, level
+/// count or a side above 32768), `ZeroSize` or `BufferTooShort`.
+///
+/// # Safety
+/// `sampler`, `tex` and `desc` are null (→ `NullPointer`) or valid;
+/// `tex->texels` points to `tex->len` readable texels that stay valid and
+/// unchanged while the sampler is used.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sampler_init_desc(
+    sampler: *mut RmSampler,
+    tex: *const RmTexture,
+    desc: *const RmSamplerDesc,
+) -> RmStatus {
+    if let Err(e) = check_ptr(sampler.cast_const(), false).and(check_ptr(desc, false)) {
         return e;
     }
     // SAFETY: non-null, aligned (checked), valid (caller).
-    let t = unsafe { tex.read() };
-    if let Err(e) = check_ptr(t.texels, false) {
-        return e;
-    }
-    let Some(address) = RmAddress::mode(address.0) else {
-        return RmStatus::OutOfRange;
+    let (state, precision) = match unsafe { desc.read() }.state() {
+        Ok(x) => x,
+        Err(e) => return e,
     };
-    let g = match Geometry::new(t.width, t.height, t.levels) {
-        Ok(g) => g,
-        Err(e) => return mip_status(e),
-    };
-    // SAFETY: non-null, aligned (checked), `len` readable texels that
-    // outlive every use of the sampler (caller).
-    let texels = unsafe { core::slice::from_raw_parts(t.texels, t.len) };
-    let p = match Pyramid::new(g, texels) {
+    // SAFETY: `tex` as the caller guarantees.
+    let p = match unsafe { pyramid_of(tex) } {
         Ok(p) => p,
-        Err(e) => return mip_status(e),
+        Err(e) => return e,
     };
-    let slot = SamplerSlot {
-        magic: SAMPLER_MAGIC,
-        sampler: DynSampler::new(
-            p,
-            SamplerState::new(SamplerDesc {
-                address_u: address,
-                address_v: address,
-                ..SamplerDesc::default()
-            })
-            .unwrap_or_default(),
-            ColorSpace::Linear,
-            Precision::Accurate,
-        ),
-    };
-    // SAFETY: non-null, aligned and large enough (checked above and at
-    // compile time), writable (caller).
-    unsafe { sampler.cast::<SamplerSlot>().write(slot) };
+    let s = DynSampler::new(p, state, ColorSpace::Linear, precision);
+    // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
+    unsafe { write_slot(sampler, SlotSampler::Pyramid(s)) };
     RmStatus::Ok
 }
 
+/// Sets up `sampler` for the image `img` (any [`RmFormat`], linear or
+/// sRGB) with the settings `desc`, checked once here. Formats are decoded
+/// per texel read (BC1–BC4 decode the texel's block; a Rust firmware puts
+/// a texel cache in front). On error `sampler` is left unchanged.
+///
+/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, the
+/// format, an sRGB flag the format has no variant for, level count or a
+/// side above 32768), `ZeroSize` or `BufferTooShort`.
+///
+/// # Safety
+/// `sampler`, `img` and `desc` are null (→ `NullPointer`) or valid;
+/// `img->bytes` points to `img->len` readable bytes that stay valid and
+/// unchanged while the sampler is used.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sampler_init_image(
+    sampler: *mut RmSampler,
+    img: *const RmImage,
+    desc: *const RmSamplerDesc,
+) -> RmStatus {
+    if let Err(e) = check_ptr(sampler.cast_const(), false)
+        .and(check_ptr(img, false))
+        .and(check_ptr(desc, false))
+    {
+        return e;
+    }
+    // SAFETY: non-null, aligned (checked), valid (caller).
+    let (state, precision) = match unsafe { desc.read() }.state() {
+        Ok(x) => x,
+        Err(e) => return e,
+    };
+    // SAFETY: non-null, aligned (checked), valid (caller).
+    let m = unsafe { img.read() };
+    if let Err(e) = check_ptr(m.bytes, false) {
+        return e;
+    }
+    let space = match m.srgb {
+        0 => ColorSpace::Linear,
+        1 => ColorSpace::Srgb,
+        _ => return RmStatus::OutOfRange,
+    };
+    let Some(texel) = TexelFormat::from_index(m.format) else {
+        return RmStatus::OutOfRange;
+    };
+    let Ok(format) = Format::new(texel, space) else {
+        return RmStatus::OutOfRange;
+    };
+    let g = match Geometry::new(m.width, m.height, m.levels) {
+        Ok(g) => g,
+        Err(e) => return mip_status(e),
+    };
+    // SAFETY: non-null (checked), `len` readable bytes that outlive every
+    // use of the sampler (caller); `u8` needs no alignment.
+    let bytes = unsafe { core::slice::from_raw_parts(m.bytes, m.len) };
+    let Ok(image) = Image::new(g, format, bytes) else {
+        return RmStatus::BufferTooShort;
+    };
+    let s = DynSampler::new(image, state, space, precision);
+    // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
+    unsafe { write_slot(sampler, SlotSampler::Image(s)) };
+    RmStatus::Ok
+}
+
+/// The set-up sampler behind `sampler`, or `NullPointer`, `Misaligned`,
+/// `Uninitialised`.
+///
+/// # Safety
+/// `sampler` is null or valid and zeroed or set up by an init function;
+/// no other reference to it is live for `'a`.
+unsafe fn slot_of<'a>(sampler: *mut RmSampler) -> Result<&'a mut SlotSampler, RmStatus> {
+    check_ptr(sampler.cast_const(), false)?;
+    let slot = sampler.cast::<SamplerSlot>();
+    // SAFETY: non-null, aligned (checked), readable (caller); only the
+    // `u64` magic word is read (any bits are valid), no reference is made.
+    if unsafe { (&raw const (*slot).magic).read() } != SAMPLER_MAGIC {
+        return Err(RmStatus::Uninitialised);
+    }
+    // SAFETY: written by an init function (magic, caller); no other
+    // reference to it is live; its texels are valid (caller).
+    Ok(unsafe { &mut (*slot).sampler })
+}
+
 /// Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
-/// `(i + 0.5)/size`) and lod `lod` (I8F8 bits, clamped to the stored
-/// levels) with filter `mode` (`RM_MODE_*`) from the texture `sampler` was
-/// set up with; writes RGBA8888 to `out`. The same texel as the Rust
-/// `Sampler::sample`. Returns `NullPointer`, `Misaligned`, `Uninitialised`
-/// (`sampler` not written by [`rm_sampler_init`]; a zeroed one is
-/// recognised) or `OutOfRange` (mode).
+/// `(i + 0.5)/size`) and lod `lod` (I8F8 bits; the sampler's bias and
+/// clamps apply, then the stored levels) with filter `mode` (`RM_MODE_*`)
+/// from the texture `sampler` was set up with; writes RGBA8888 to `out`.
+/// The same texel as the Rust `Sampler::sample` of that configuration.
+/// Returns `NullPointer`, `Misaligned`, `Uninitialised` (`sampler` not
+/// written by an init function; a zeroed one is recognised) or
+/// `OutOfRange` (mode).
 ///
 /// # Safety
 /// `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
-/// zeroed or set up by [`rm_sampler_init`] (and not written since), and
-/// its texels are still valid. Not for two threads at once on one sampler
-/// (it keeps fetch counters).
+/// zeroed or set up by an init function (and not written since), and its
+/// texels are still valid. Not for two threads at once on one sampler (it
+/// keeps fetch counters).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_sample(
     sampler: *mut RmSampler,
@@ -776,29 +1159,126 @@ pub unsafe extern "C" fn rm_sample(
     mode: RmModeBits,
     out: *mut u32,
 ) -> RmStatus {
-    if let Err(e) = check_ptr(sampler.cast_const(), false).and(check_ptr(out.cast_const(), false)) {
+    if let Err(e) = check_ptr(out.cast_const(), false) {
         return e;
     }
-    let slot = sampler.cast::<SamplerSlot>();
-    // SAFETY: non-null, aligned (checked), readable (caller); only the
-    // `u64` magic word is read (any bits are valid), no reference is made.
-    if unsafe { (&raw const (*slot).magic).read() } != SAMPLER_MAGIC {
-        return RmStatus::Uninitialised;
-    }
+    // SAFETY: as the caller guarantees; the borrow ends in this function.
+    let slot = match unsafe { slot_of(sampler) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
     let Some(mode) = Mode::from_index(mode.0) else {
         return RmStatus::OutOfRange;
     };
-    // SAFETY: written by `rm_sampler_init` (magic, caller); no other
-    // reference to it is live; its texels are valid (caller).
-    let slot = unsafe { &mut *slot };
-    let texel = slot.sampler.sample(
+    let (u, v, lod) = (
         I32F32::from_bits(u),
         I32F32::from_bits(v),
         I8F8::from_bits(lod),
-        mode,
     );
+    let texel = each_slot!(slot, s => s.sample(u, v, lod, mode));
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended (an `out` inside it would corrupt it).
+    unsafe { *out = texel };
+    RmStatus::Ok
+}
+
+/// Hits per chunk of [`rm_sample_batch`] (converted on the stack, then
+/// sampled by the Rust batch loop).
+const BATCH_CHUNK: usize = 16;
+
+/// `out[i]` = [`rm_sample`] of `hits[i]` with filter `mode`, for
+/// `i < n`: the same texels and counters as `n` single calls, one status
+/// for all. Returns `NullPointer` (either array null with `n > 0`),
+/// `Misaligned`, `Uninitialised` or `OutOfRange` (mode); on error nothing
+/// is written.
+///
+/// # Safety
+/// `sampler` as for [`rm_sample`]; `hits` points to `n` readable
+/// [`RmHit`]s and `out` to `n` writable texels (either may be null only
+/// when `n` is 0), neither inside the sampler.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sample_batch(
+    sampler: *mut RmSampler,
+    hits: *const RmHit,
+    n: usize,
+    mode: RmModeBits,
+    out: *mut u32,
+) -> RmStatus {
+    if let Err(e) = check_ptr(hits, n == 0).and(check_ptr(out.cast_const(), n == 0)) {
+        return e;
+    }
+    // SAFETY: as the caller guarantees; the borrow ends in this function.
+    let slot = match unsafe { slot_of(sampler) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let Some(mode) = Mode::from_index(mode.0) else {
+        return RmStatus::OutOfRange;
+    };
+    if n == 0 {
+        return RmStatus::Ok;
+    }
+    // SAFETY: non-null, aligned (checked), `n` readable hits and `n`
+    // writable texels, disjoint from each other and from the sampler
+    // (caller).
+    let (hits, out) = unsafe {
+        (
+            core::slice::from_raw_parts(hits, n),
+            core::slice::from_raw_parts_mut(out, n),
+        )
+    };
+    let mut buf = [(I32F32::ZERO, I32F32::ZERO, I8F8::ZERO); BATCH_CHUNK];
+    for (h, o) in hits.chunks(BATCH_CHUNK).zip(out.chunks_mut(BATCH_CHUNK)) {
+        for (b, x) in buf.iter_mut().zip(h) {
+            *b = (
+                I32F32::from_bits(x.u),
+                I32F32::from_bits(x.v),
+                I8F8::from_bits(x.lod),
+            );
+        }
+        let k = h.len().min(BATCH_CHUNK);
+        each_slot!(&mut *slot, s => s.sample_batch(buf.get(..k).unwrap_or(&[]), mode, o));
+    }
+    RmStatus::Ok
+}
+
+/// Anisotropic filtered texel at `(u, v)` for the pixel footprint `fp`
+/// (the texture-coordinate derivatives): up to the sampler's
+/// `max_anisotropy` trilinear probes along the footprint's major axis at
+/// the lod of its minor axis (the Rust `Sampler::sample_aniso`); writes
+/// RGBA8888 to `out`. Returns `NullPointer`, `Misaligned` or
+/// `Uninitialised`.
+///
+/// # Safety
+/// `sampler` as for [`rm_sample`]; `fp` points to a readable
+/// [`RmFootprint`] and `out` to a writable texel (neither inside the
+/// sampler).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sample_aniso(
+    sampler: *mut RmSampler,
+    u: i64,
+    v: i64,
+    fp: *const RmFootprint,
+    out: *mut u32,
+) -> RmStatus {
+    if let Err(e) = check_ptr(fp, false).and(check_ptr(out.cast_const(), false)) {
+        return e;
+    }
+    // SAFETY: non-null, aligned (checked), readable (caller).
+    let f = unsafe { fp.read() };
+    // SAFETY: as the caller guarantees; the borrow ends in this function.
+    let slot = match unsafe { slot_of(sampler) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let fp = Footprint {
+        x: [I32F32::from_bits(f.dudx), I32F32::from_bits(f.dvdx)],
+        y: [I32F32::from_bits(f.dudy), I32F32::from_bits(f.dvdy)],
+    };
+    let (u, v) = (I32F32::from_bits(u), I32F32::from_bits(v));
+    let texel: Texel = each_slot!(slot, s => s.sample_aniso(u, v, &fp));
+    // SAFETY: non-null, aligned (checked), writable (caller); the borrow
+    // of the sampler has ended.
     unsafe { *out = texel };
     RmStatus::Ok
 }
@@ -808,6 +1288,19 @@ mod tests {
     extern crate std;
     use super::*;
     use proptest::prelude::*;
+
+    /// `n` pseudo-random words (a 64-bit LCG from `seed`).
+    fn lcg_texels(seed: u64, n: usize) -> std::vec::Vec<u32> {
+        let mut x = seed;
+        (0..n)
+            .map(|_| {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (x >> 32) as u32
+            })
+            .collect()
+    }
 
     fn ok_lod(pl: u64, e: i32) -> (RmStatus, i16) {
         let mut out = i16::MIN;
@@ -1178,18 +1671,12 @@ mod tests {
         /// `OutOfRange`.
         #[test]
         fn set_up_sampler_equals_fresh_rust_sampler(
-            w in 1u32..9, h in 1u32..9, seed in any::<u64>(), address in 0u8..3,
+            w in 1u32..9, h in 1u32..9, seed in any::<u64>(), address in 0u8..7,
             samples in proptest::collection::vec((any::<i64>(), any::<i64>(), -512i16..4096, 0u8..5), 1..24),
         ) {
             let levels = crate::texture::storage::mip::full_levels(w, h);
             let n = pyramid_len(w, h, levels);
-            let mut x = seed;
-            let texels: std::vec::Vec<u32> = (0..n)
-                .map(|_| {
-                    x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                    (x >> 32) as u32
-                })
-                .collect();
+            let texels = lcg_texels(seed, n);
             let tex = RmTexture { texels: texels.as_ptr(), len: n, width: w, height: h, levels };
             let mut sm = RmSampler { opaque: [0; RM_SAMPLER_WORDS] };
             // SAFETY: valid locals; `texels` outlives `sm`'s use.
@@ -1212,6 +1699,124 @@ mod tests {
                     }
                     None => prop_assert_eq!(s, RmStatus::OutOfRange),
                 }
+            }
+        }
+
+        /// A sampler set up from an `RmSamplerDesc` (any address pair,
+        /// border, bias, clamps, anisotropy, tier) samples, batches and
+        /// filters anisotropically exactly as the Rust sampler of the same
+        /// settings; out-of-range fields are `OutOfRange` and leave the
+        /// sampler unchanged.
+        #[test]
+        fn desc_sampler_equals_rust(
+            w in 1u32..17, h in 1u32..17, seed in any::<u64>(),
+            au in 0u8..6, av in 0u8..6, border in any::<u32>(),
+            bias in -5000i16..5000, lo in any::<i16>(), hi in any::<i16>(),
+            aniso in 0u8..18, srgb_output in 0u8..3, precision in 0u8..3, mode in 0u8..4,
+            samples in proptest::collection::vec((any::<i64>(), any::<i64>(), -512i16..4096, any::<[i32; 4]>()), 1..20),
+        ) {
+            let levels = crate::texture::storage::mip::full_levels(w, h);
+            let n = pyramid_len(w, h, levels);
+            let texels = lcg_texels(seed, n);
+            let tex = RmTexture { texels: texels.as_ptr(), len: n, width: w, height: h, levels };
+            let desc = RmSamplerDesc {
+                border, lod_bias: bias, min_lod: lo, max_lod: hi,
+                address_u: RmAddressBits(au), address_v: RmAddressBits(av),
+                max_anisotropy: aniso, srgb_output, precision,
+            };
+            let mut sm = RmSampler { opaque: [0x77; RM_SAMPLER_WORDS] };
+            // SAFETY: valid locals; `texels` outlives `sm`'s use.
+            let st = unsafe { rm_sampler_init_desc(&mut sm, &tex, &desc) };
+            // The Rust settings, built here from the C fields' documented meaning.
+            let want = (|| {
+                let state = SamplerState::new(SamplerDesc {
+                    address_u: RmAddress::mode(au)?,
+                    address_v: RmAddress::mode(av)?,
+                    border,
+                    lod_bias: I8F8::from_bits(bias),
+                    min_lod: I8F8::from_bits(lo),
+                    max_lod: I8F8::from_bits(hi),
+                    max_anisotropy: aniso,
+                    srgb_output: [SrgbOutput::Encoded, SrgbOutput::Linear].get(usize::from(srgb_output)).copied()?,
+                }).ok()?;
+                let precision = [Precision::Accurate, Precision::Fast].get(usize::from(precision)).copied()?;
+                Some((state, precision))
+            })();
+            let Some((state, prec)) = want else {
+                prop_assert_eq!(st, RmStatus::OutOfRange);
+                prop_assert!(sm.opaque.iter().all(|&x| x == 0x77), "a rejected set-up wrote the sampler");
+                return Ok(());
+            };
+            prop_assert_eq!(st, RmStatus::Ok);
+            let g = Geometry::new(w, h, levels).unwrap();
+            let mut rust = DynSampler::new(Pyramid::new(g, &texels).unwrap(), state, ColorSpace::Linear, prec);
+            let m = Mode::from_index(mode).unwrap();
+            let hits: std::vec::Vec<RmHit> = samples.iter().map(|&(u, v, lod, _)| RmHit { u, v, lod }).collect();
+            let mut batch = std::vec![0u32; hits.len()];
+            // SAFETY: `sm` set up above; `hits` and `batch` valid, of length `hits.len()`.
+            let sb = unsafe { rm_sample_batch(&mut sm, hits.as_ptr(), hits.len(), RmModeBits(mode), batch.as_mut_ptr()) };
+            prop_assert_eq!(sb, RmStatus::Ok);
+            for (i, &(u, v, lod, d)) in samples.iter().enumerate() {
+                let (fu, fv) = (I32F32::from_bits(u), I32F32::from_bits(v));
+                let want = rust.sample(fu, fv, I8F8::from_bits(lod), m);
+                let mut out = 0u32;
+                // SAFETY: `sm` set up above, `out` a valid local.
+                let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
+                prop_assert_eq!((s, out, batch[i]), (RmStatus::Ok, want, want));
+                // Footprints up to ±8 texture widths per pixel.
+                let [a, b, c, e] = d.map(|x| i64::from(x) << 3);
+                let fp = RmFootprint { dudx: a, dvdx: b, dudy: c, dvdy: e };
+                let want = rust.sample_aniso(fu, fv, &Footprint {
+                    x: [I32F32::from_bits(a), I32F32::from_bits(b)],
+                    y: [I32F32::from_bits(c), I32F32::from_bits(e)],
+                });
+                // SAFETY: as above; `fp` a valid local.
+                let s = unsafe { rm_sample_aniso(&mut sm, u, v, &fp, &mut out) };
+                prop_assert_eq!((s, out), (RmStatus::Ok, want));
+            }
+        }
+
+        /// An image in any format and colour space samples exactly as the
+        /// Rust sampler over the same `Image`; wrong formats, sRGB flags
+        /// and short buffers are refused.
+        #[test]
+        fn image_sampler_equals_rust(
+            w in 1u32..13, h in 1u32..13, seed in any::<u64>(), format in 0u8..12, srgb in 0u8..3,
+            precision in 0u8..2, short in any::<bool>(),
+            samples in proptest::collection::vec((any::<i64>(), any::<i64>(), -512i16..4096, 0u8..4), 1..16),
+        ) {
+            let levels = crate::texture::storage::mip::full_levels(w, h);
+            let len = rm_image_len(w, h, levels, format);
+            let words = lcg_texels(seed, len / 4 + 1);
+            let bytes: std::vec::Vec<u8> = words.iter().flat_map(|x| x.to_le_bytes()).take(len).collect();
+            let given = if short && len > 0 { len - 1 } else { len };
+            let img = RmImage { bytes: bytes.as_ptr(), len: given, width: w, height: h, levels, format, srgb };
+            let desc = RmSamplerDesc { precision, ..RmSamplerDesc::default() };
+            let mut sm = RmSampler { opaque: [0; RM_SAMPLER_WORDS] };
+            // SAFETY: valid locals; `bytes` outlives `sm`'s use.
+            let st = unsafe { rm_sampler_init_image(&mut sm, &img, &desc) };
+            let space = [ColorSpace::Linear, ColorSpace::Srgb].get(usize::from(srgb)).copied();
+            let fmt = TexelFormat::from_index(format).zip(space).and_then(|(f, s)| Format::new(f, s).ok());
+            let Some(fmt) = fmt else {
+                prop_assert_eq!(st, RmStatus::OutOfRange);
+                return Ok(());
+            };
+            if short {
+                prop_assert_eq!(st, RmStatus::BufferTooShort);
+                return Ok(());
+            }
+            prop_assert_eq!(st, RmStatus::Ok);
+            let g = Geometry::new(w, h, levels).unwrap();
+            let prec = [Precision::Accurate, Precision::Fast][usize::from(precision)];
+            let state = SamplerState::new(SamplerDesc::default()).unwrap();
+            let mut rust = DynSampler::new(Image::new(g, fmt, &bytes).unwrap(), state, fmt.space(), prec);
+            for (u, v, lod, mode) in samples {
+                let m = Mode::from_index(mode).unwrap();
+                let want = rust.sample(I32F32::from_bits(u), I32F32::from_bits(v), I8F8::from_bits(lod), m);
+                let mut out = 0u32;
+                // SAFETY: `sm` set up above, `out` a valid local.
+                let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
+                prop_assert_eq!((s, out), (RmStatus::Ok, want));
             }
         }
 

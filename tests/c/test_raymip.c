@@ -227,10 +227,180 @@ static void test_sampling(void) {
     CHECK(rm_sampler_init(&bad, &bad_levels, RM_ADDRESS_WRAP) == RM_STATUS_OUT_OF_RANGE, "bad levels");
 }
 
+/* Exact bilinear (double) of channel c of a W x W wrapped level-0 RGBA8
+ * texture at normalised (u, v): the reference of the filter bounds. */
+static double bilinear_ref(const uint32_t *t, int w, double u, double v, int c) {
+    double x = u * w - 0.5, y = v * w - 0.5;
+    double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    double acc = 0.0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            int xi = (((int)x0 + i) % w + w) % w, yj = (((int)y0 + j) % w + w) % w;
+            double wgt = (i ? fx : 1.0 - fx) * (j ? fy : 1.0 - fy);
+            acc += wgt * ((t[yj * w + xi] >> (8 * c)) & 0xFF);
+        }
+    return acc;
+}
+
+static double channel_err(uint32_t got, const uint32_t *t, int w, double u, double v) {
+    double worst = 0.0;
+    for (int c = 0; c < 4; c++) {
+        double e = fabs((double)((got >> (8 * c)) & 0xFF) - bilinear_ref(t, w, u, v, c));
+        if (e > worst) worst = e;
+    }
+    return worst;
+}
+
+/* Sampler state through RmSamplerDesc (address per axis, border, bias,
+ * clamps, FAST), images in other formats, batches and anisotropy. The
+ * expected texels come from the addressing rules and formulas here. */
+static void test_sampler_state(void) {
+    enum { W = 8, N = 8 * 8 + 4 * 4 + 2 * 2 + 1 };
+    uint32_t t[N];
+    uint32_t x = 12345u;
+    for (int i = 0; i < N; i++) {
+        x = x * 1103515245u + 12345u;
+        t[i] = x ^ (x >> 13);
+    }
+    RmTexture tex = {t, N, W, W, 4};
+    RmSamplerDesc d;
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    CHECK(d.address_u == RM_ADDRESS_WRAP && d.precision == RM_PRECISION_ACCURATE && d.max_anisotropy == 1, "defaults");
+    RmSampler s;
+    uint32_t out = 0;
+    const double h = 0.5 / W; /* half a texel */
+
+    /* Border on both axes: outside [0, 1) the border colour, inside the texel. */
+    d.address_u = RM_ADDRESS_BORDER;
+    d.address_v = RM_ADDRESS_BORDER;
+    d.border = 0x11223344u;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OK, "init border");
+    rm_sample(&s, fx32(-0.5), fx32(0.5), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == 0x11223344u, "border left %08lx", (unsigned long)out);
+    rm_sample(&s, fx32(0.5), fx32(1.5), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == 0x11223344u, "border below %08lx", (unsigned long)out);
+    rm_sample(&s, fx32(3 * 2 * h), fx32(5 * 2 * h), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == t[5 * W + 3], "border inside %08lx", (unsigned long)out);
+
+    /* Mirror on u, clamp on v: u = -x reads texel of x, u in [1, 2) reads
+     * 2 - u; v beyond the edge reads the last row. */
+    d.address_u = RM_ADDRESS_MIRROR;
+    d.address_v = RM_ADDRESS_CLAMP;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OK, "init mirror/clamp");
+    rm_sample(&s, fx32(-(2 * 2 * h + h)), fx32(1 * 2 * h + h), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == t[1 * W + 2], "mirror negative %08lx", (unsigned long)out);
+    rm_sample(&s, fx32(1.0 + 2 * h + h), fx32(3.0), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == t[(W - 1) * W + (W - 2)], "mirror past 1, clamp v %08lx", (unsigned long)out);
+
+    /* Bias +1 level: nearest at lod 0 reads level 1; max_lod 0 pins level 0. */
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    d.lod_bias = 256;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OK, "init bias");
+    rm_sample(&s, fx32(5 * 2 * h + h), fx32(2 * 2 * h + h), 0, RM_MODE_NEAREST, &out);
+    CHECK(out == t[W * W + (2 / 2) * (W / 2) + 5 / 2], "bias +1 %08lx", (unsigned long)out);
+    d.lod_bias = 0;
+    d.max_lod = 0;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OK, "init max lod");
+    rm_sample(&s, fx32(5 * 2 * h + h), fx32(2 * 2 * h + h), 9 * 256, RM_MODE_NEAREST, &out);
+    CHECK(out == t[2 * W + 5], "max lod 0 %08lx", (unsigned long)out);
+
+    /* ACCURATE and FAST bilinear against the exact double filter on a
+     * 1/64-texel grid (exact in both tiers' sub-texel bits): ACCURATE
+     * <= 0.5625 LSB, FAST <= 2.40625 LSB (the bounds of the Rust docs). */
+    RmSampler acc, fast;
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    CHECK(rm_sampler_init_desc(&acc, &tex, &d) == RM_STATUS_OK, "init accurate");
+    d.precision = RM_PRECISION_FAST;
+    CHECK(rm_sampler_init_desc(&fast, &tex, &d) == RM_STATUS_OK, "init fast");
+    double worst_acc = 0.0, worst_fast = 0.0;
+    for (int i = 0; i < 400; i++) {
+        double u = (double)((i * 37) % (64 * W)) / (64.0 * W), v = (double)((i * 91 + 7) % (64 * W)) / (64.0 * W);
+        uint32_t a = 0, f = 0;
+        rm_sample(&acc, fx32(u), fx32(v), 0, RM_MODE_BILINEAR_NEAREST_LEVEL, &a);
+        rm_sample(&fast, fx32(u), fx32(v), 0, RM_MODE_BILINEAR_NEAREST_LEVEL, &f);
+        double ea = channel_err(a, t, W, u, v), ef = channel_err(f, t, W, u, v);
+        if (ea > worst_acc) worst_acc = ea;
+        if (ef > worst_fast) worst_fast = ef;
+    }
+    CHECK(worst_acc <= 0.5625, "ACCURATE bilinear error %f LSB", worst_acc);
+    CHECK(worst_fast <= 2.40625, "FAST bilinear error %f LSB", worst_fast);
+
+    /* A batch gives the texels of single calls. */
+    RmHit hits[40];
+    uint32_t batch[40];
+    for (int i = 0; i < 40; i++) {
+        hits[i].u = fx32(i / 13.0 - 0.6);
+        hits[i].v = fx32(i / 7.0 - 1.1);
+        hits[i].lod = (int16_t)(i * 41 - 200);
+    }
+    CHECK(rm_sample_batch(&fast, hits, 40, RM_MODE_TRILINEAR, batch) == RM_STATUS_OK, "batch");
+    int same = 1;
+    for (int i = 0; i < 40; i++) {
+        rm_sample(&fast, hits[i].u, hits[i].v, hits[i].lod, RM_MODE_TRILINEAR, &out);
+        same &= out == batch[i];
+    }
+    CHECK(same, "batch differs from single calls");
+    CHECK(rm_sample_batch(&fast, NULL, 0, RM_MODE_TRILINEAR, NULL) == RM_STATUS_OK, "empty batch");
+    CHECK(rm_sample_batch(&fast, NULL, 3, RM_MODE_TRILINEAR, batch) == RM_STATUS_NULL_POINTER, "null batch");
+
+    /* Anisotropic, 4x: a footprint 4 texels long in u, 1 in v gives four
+     * level-0 bilinear probes at -1.5, -0.5, 0.5, 1.5 texels, averaged. */
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    d.max_anisotropy = 4;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OK, "init aniso");
+    RmFootprint fp = {fx32(4.0 / W), 0, 0, fx32(1.0 / W)};
+    double worst_aniso = 0.0;
+    for (int i = 0; i < 50; i++) {
+        double u = (double)((i * 53) % (16 * W)) / (16.0 * W), v = (double)((i * 29 + 3) % (16 * W)) / (16.0 * W);
+        CHECK(rm_sample_aniso(&s, fx32(u), fx32(v), &fp, &out) == RM_STATUS_OK, "aniso status");
+        for (int c = 0; c < 4; c++) {
+            double want = 0.0;
+            for (int k = 0; k < 4; k++) want += bilinear_ref(t, W, u + (k - 1.5) / W, v, c) / 4.0;
+            double e = fabs((double)((out >> (8 * c)) & 0xFF) - want);
+            if (e > worst_aniso) worst_aniso = e;
+        }
+    }
+    CHECK(worst_aniso <= 1.0, "aniso 4x error %f LSB", worst_aniso);
+    CHECK(rm_sample_aniso(&s, 0, 0, NULL, &out) == RM_STATUS_NULL_POINTER, "aniso null footprint");
+
+    /* An RGB565 image: nearest texels decode by bit replication, alpha 255. */
+    uint8_t px[4 * 4 * 2 + 2 * 2 * 2 + 2];
+    size_t len = rm_image_len(4, 4, 3, RM_FORMAT_RGB565);
+    CHECK(len == sizeof px, "image len %zu", len);
+    for (size_t i = 0; i < sizeof px; i++) px[i] = (uint8_t)(i * 37 + 11);
+    RmImage img = {px, sizeof px, 4, 4, 3, RM_FORMAT_RGB565, 0};
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    CHECK(rm_sampler_init_image(&s, &img, &d) == RM_STATUS_OK, "init rgb565");
+    same = 1;
+    for (int y = 0; y < 4; y++)
+        for (int xx = 0; xx < 4; xx++) {
+            unsigned p = px[2 * (y * 4 + xx)] | (unsigned)px[2 * (y * 4 + xx) + 1] << 8;
+            unsigned r = p >> 11, g = (p >> 5) & 63, b = p & 31;
+            uint32_t want = ((r << 3) | (r >> 2)) | ((g << 2) | (g >> 4)) << 8 | ((b << 3) | (b >> 2)) << 16 | 0xFFu << 24;
+            rm_sample(&s, fx32((xx + 0.5) / 4), fx32((y + 0.5) / 4), 0, RM_MODE_NEAREST, &out);
+            same &= out == want;
+        }
+    CHECK(same, "rgb565 nearest texels");
+    img.len = sizeof px - 1;
+    CHECK(rm_sampler_init_image(&s, &img, &d) == RM_STATUS_BUFFER_TOO_SHORT, "short image");
+    img.len = sizeof px;
+    img.format = 99;
+    CHECK(rm_sampler_init_image(&s, &img, &d) == RM_STATUS_OUT_OF_RANGE, "bad format");
+    img.format = RM_FORMAT_A8;
+    img.srgb = 1;
+    CHECK(rm_sampler_init_image(&s, &img, &d) == RM_STATUS_OUT_OF_RANGE, "A8 has no sRGB variant");
+    d.lod_bias = 16 * 256;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OUT_OF_RANGE, "bias out of range");
+    CHECK(rm_sampler_desc_default(&d) == RM_STATUS_OK, "desc default");
+    d.max_anisotropy = 17;
+    CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OUT_OF_RANGE, "anisotropy out of range");
+}
+
 int main(void) {
     test_table_and_lod();
     test_ray_stack();
     test_sampling();
+    test_sampler_state();
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;
 }

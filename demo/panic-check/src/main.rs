@@ -19,10 +19,12 @@ use panic_never as _;
 use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::camera::PixelSpread;
 use raymip::ffi::{
-    RM_SAMPLER_WORDS, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmTexture,
-    RmTriangle, rm_clamp_lod, rm_cone_lod, rm_delta, rm_mip_generate, rm_path_advance,
-    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
-    rm_ray_stack_push, rm_sample, rm_sampler_init, rm_table_build, rm_table_lod, rm_table_update,
+    RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage, RmModeBits, RmPathState,
+    RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod,
+    rm_delta, rm_image_len, rm_mip_generate, rm_path_advance, rm_path_bounce, rm_path_primary,
+    rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop, rm_ray_stack_push, rm_sample,
+    rm_sample_aniso, rm_sample_batch, rm_sampler_desc_default, rm_sampler_init,
+    rm_sampler_init_desc, rm_sampler_init_image, rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::geomlod::{
     Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
@@ -111,6 +113,41 @@ fn c_abi() {
             opaque: [0; RM_SAMPLER_WORDS],
         };
         bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
+        bb(rm_sample(
+            &mut sampler,
+            bb(5),
+            bb(6),
+            bb(lod),
+            RmModeBits(bb(0)),
+            &mut out,
+        ));
+        let mut desc = RmSamplerDesc::default();
+        bb(rm_sampler_desc_default(&mut desc));
+        let desc = bb(desc);
+        bb(rm_sampler_init_desc(&mut sampler, &tex, &desc));
+        let hits = bb([RmHit::default(); 3]);
+        let mut texels = [0u32; 3];
+        bb(rm_sample_batch(
+            &mut sampler,
+            hits.as_ptr(),
+            bb(3),
+            RmModeBits(bb(0)),
+            texels.as_mut_ptr(),
+        ));
+        bb(texels);
+        let fp = bb(RmFootprint::default());
+        bb(rm_sample_aniso(&mut sampler, bb(5), bb(6), &fp, &mut out));
+        let img = bb(RmImage {
+            bytes: BYTES.as_ptr(),
+            len: BYTES.len(),
+            width: 16,
+            height: 16,
+            levels: 5,
+            format: bb(1),
+            srgb: bb(0),
+        });
+        bb(rm_image_len(bb(16), bb(16), bb(5), bb(7)));
+        bb(rm_sampler_init_image(&mut sampler, &img, &desc));
         bb(rm_sample(
             &mut sampler,
             bb(5),
