@@ -11,8 +11,8 @@ demo-T.out (demo output), static-T.txt (scripts/stack-sizes).
 Counts every call of each `rm_bench_*` / `rm_batch_*` wrapper from its entry
 to the return into `rm_budget_driver`, checks the ceilings below (exit 1 and
 FAIL lines when one is exceeded) and writes ROOT/BUDGETS.md and the
-sampler-budgets block of ROOT/README.md (TextureSampler instructions beside
-the errors of the README's sampler-accuracy block), or with --check
+sampler-budgets block of ROOT/docs/texture-sampling.md (TextureSampler instructions beside
+the errors of docs/texture-sampling.md's sampler-accuracy block), or with --check
 compares both with the checked-in files (exit 1 when stale; the block
 between the softcore markers belongs to another script and is kept verbatim
 and ignored by the comparison).
@@ -775,7 +775,7 @@ def replace_block(text, new):
     must exist)."""
     i, j = text.find(README_BEGIN), text.find(README_END)
     if i < 0 or j < i:
-        sys.exit(f"budgets: README.md has no {README_BEGIN} … {README_END} block")
+        sys.exit(f"budgets: docs/texture-sampling.md has no {README_BEGIN} … {README_END} block")
     return text[:i] + new + text[j + len(README_END):]
 
 
@@ -796,7 +796,7 @@ def main():
     check = len(sys.argv) > 3 and sys.argv[3] == "--check"
     path = os.path.join(root, "BUDGETS.md")
     old = open(path).read() if os.path.exists(path) else ""
-    readme_path = os.path.join(root, "README.md")
+    readme_path = os.path.join(root, "docs", "texture-sampling.md")
     readme = open(readme_path).read()
     new, bad, new_readme = render(work, old, readme)
     status = 0
@@ -811,18 +811,18 @@ def main():
             print("budgets: BUDGETS.md is up to date")
         if new_readme != readme:
             sys.stdout.writelines(difflib.unified_diff(
-                readme.splitlines(True), new_readme.splitlines(True), "README.md (checked in)",
-                "README.md (measured)"))
-            print("budgets: FAIL: the sampler-budgets block of README.md is stale (run scripts/budgets)")
+                readme.splitlines(True), new_readme.splitlines(True), "docs/texture-sampling.md (checked in)",
+                "docs/texture-sampling.md (measured)"))
+            print("budgets: FAIL: the sampler-budgets block of docs/texture-sampling.md is stale (run scripts/budgets)")
             status = 1
         else:
-            print("budgets: README.md sampler-budgets block is up to date")
+            print("budgets: docs/texture-sampling.md sampler-budgets block is up to date")
     else:
         with open(path, "w") as f:
             f.write(new)
         with open(readme_path, "w") as f:
             f.write(new_readme)
-        print("budgets: wrote BUDGETS.md and the sampler-budgets block of README.md")
+        print("budgets: wrote BUDGETS.md and the sampler-budgets block of docs/texture-sampling.md")
     if bad:
         print("budgets: FAIL\n  " + "\n  ".join(bad))
         status = 1

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Formats the soft-core measurement of scripts/softcore into BUDGETS.md (the
-block between <!-- softcore:begin --> and <!-- softcore:end -->) and README.md
+block between <!-- softcore:begin --> and <!-- softcore:end -->) and docs/bare-metal.md
 (the throughput comparison between <!-- softcore-throughput:begin --> and
 <!-- softcore-throughput:end -->). Every number comes from the files in
 --work: demo.out (the demo tile on the model: counters, render cycles,

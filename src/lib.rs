@@ -161,6 +161,12 @@ pub mod texture;
 #[path = "../host-tests/src/reference/pb.rs"]
 mod pb_reference;
 
+// The README's Rust example runs as a doctest (`cargo test --doc`), so the
+// front page cannot drift from the API.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;
+
 // The everyday types, re-exported at the crate root.
 pub use camera::{CameraError, PixelSpread};
 pub use lod::Lod;

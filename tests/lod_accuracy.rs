@@ -1,6 +1,6 @@
 //! Measured accuracy of the LOD stages against an f64 reference written
 //! here, over many random triangles, cameras and paths. Prints the measured
-//! maxima (quoted in the README) and checks the documented bounds.
+//! maxima (quoted in docs/accuracy.md) and checks the documented bounds.
 
 use fixed::types::{I32F32, U1F31};
 use raymip::camera::PixelSpread;

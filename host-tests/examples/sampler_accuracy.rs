@@ -1,8 +1,8 @@
-//! Writes the README table of the sampler's error per format, filter and
+//! Writes the docs/texture-sampling.md table of the sampler's error per format, filter and
 //! precision tier, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
 //!
 //! ```sh
-//! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write README.md]
+//! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write docs/texture-sampling.md]
 //! ```
 //!
 //! Prints the Markdown table; with `--write FILE` it replaces the text
@@ -27,7 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut table = String::new();
     writeln!(
         table,
-        "Max error per channel in 8-bit LSB against the f64 reference (measured / documented bound), {samples} random samples per cell (`cargo run --release -p raymip-host --example sampler_accuracy -- {samples} --write README.md`):\n"
+        "Max error per channel in 8-bit LSB against the f64 reference (measured / documented bound), {samples} random samples per cell (`cargo run --release -p raymip-host --example sampler_accuracy -- {samples} --write docs/texture-sampling.md`):\n"
     )?;
     write!(table, "| format | tier |")?;
     for f in FILTERS {

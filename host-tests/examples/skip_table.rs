@@ -1,10 +1,10 @@
-//! Writes the README table of what each scene doesn't need (issue 13): per
+//! Writes the docs/skipping.md table of what each scene doesn't need (issue 13): per
 //! scene, the pyramid bytes the set-up analysis lets a table-method render
 //! leave out, the per-hit skips, and the render time with full and with
 //! trimmed pyramids (best of `REPEATS` each), checked bit-identical.
 //!
 //! ```sh
-//! cargo run --release -p raymip-host --example skip_table -- [WxH] [--write README.md]
+//! cargo run --release -p raymip-host --example skip_table -- [WxH] [--write docs/skipping.md]
 //! ```
 //!
 //! Scenes: every built-in scene and BART kitchen and robots (left out, with a
@@ -80,7 +80,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     writeln!(
         t,
         "Table method, firmware fixed point, {}×{}, 10 bounces; render times best of {REPEATS} \
-         (`cargo run --release -p raymip-host --example skip_table -- {}x{} --write README.md`; \
+         (`cargo run --release -p raymip-host --example skip_table -- {}x{} --write docs/skipping.md`; \
          machine: {}).\n",
         size.0,
         size.1,

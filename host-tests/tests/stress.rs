@@ -1,6 +1,6 @@
 //! `raymip-host stress` (issue 11): the command exits 0, its totals add up
 //! with nothing panicked or misbehaved, every class of the issue is
-//! present, and the README block is what `--write-readme` writes now.
+//! present, and the docs/reliability.md block is what `--write-readme` writes now.
 
 use std::path::Path;
 use std::process::Command;
@@ -87,20 +87,20 @@ fn totals_count_misbehaviour_and_panics() {
     assert!(stress::markdown(&rows).contains("PANICKED"));
 }
 
-/// The README's block equals what `stress --write-readme` writes now.
+/// The docs/reliability.md block equals what `stress --write-readme` writes now.
 #[test]
 fn readme_block_is_current() {
-    let readme = Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md");
+    let readme = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/reliability.md");
     let now = std::fs::read_to_string(&readme).unwrap();
     let dir = std::env::temp_dir().join(format!("raymip-stress-readme-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let copy = dir.join("README.md");
+    let copy = dir.join("reliability.md");
     std::fs::write(&copy, &now).unwrap();
     stress::cmd_stress_quiet(&copy).unwrap();
     let fresh = std::fs::read_to_string(&copy).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(
         fresh == now,
-        "README.md stress block is stale: run `cargo run --release -p raymip-host -- stress --write-readme README.md`"
+        "docs/reliability.md stress block is stale: run `cargo run --release -p raymip-host -- stress --write-readme docs/reliability.md`"
     );
 }

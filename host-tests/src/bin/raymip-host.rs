@@ -130,7 +130,7 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
         /// Also write the table between `<!-- geomlod-bench:begin/end -->`
-        /// markers in these files (README.md, BENCHMARKS.md).
+        /// markers in these files (docs/geometric-lod.md, BENCHMARKS.md).
         #[arg(long)]
         write: Vec<PathBuf>,
     },
@@ -170,7 +170,7 @@ enum Command {
         #[arg(long, value_parser = parse_size)]
         size: Option<(u32, u32)>,
         /// Also write the charts into ROOT/docs/tradeoff/ and the
-        /// `tradeoff` blocks of ROOT/BENCHMARKS.md and ROOT/README.md.
+        /// `tradeoff` blocks of ROOT/BENCHMARKS.md and ROOT/docs/tradeoff.md.
         #[arg(long, value_name = "ROOT")]
         publish: Option<PathBuf>,
     },
@@ -181,7 +181,7 @@ enum Command {
     /// panicked or did not return its documented result.
     Stress {
         /// Also write the totals between `<!-- stress:begin/end -->`
-        /// markers of this file (README.md).
+        /// markers of this file (docs/reliability.md).
         #[arg(long)]
         write_readme: Option<PathBuf>,
     },

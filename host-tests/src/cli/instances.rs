@@ -307,7 +307,7 @@ fn bench_markdown(
 /// `geomlod-bench`: writes `bench.md` and `bench.json` into `out`.
 /// With `write`, the table also replaces the text between
 /// `<!-- geomlod-bench:begin -->` and `<!-- geomlod-bench:end -->` in each
-/// file (README.md, BENCHMARKS.md).
+/// file (docs/geometric-lod.md, BENCHMARKS.md).
 pub fn cmd_bench(
     size: (u32, u32),
     repeats: u32,

@@ -1292,7 +1292,7 @@ pub fn edges(rows: &[Row]) -> usize {
 /// panicked or misbehaved.
 ///
 /// # Errors
-/// A panicked or misbehaving case (named), or the README not written.
+/// A panicked or misbehaving case (named), or the docs/reliability.md block not written.
 pub fn cmd_stress(readme: Option<&Path>) -> Result<(), String> {
     let rows = run();
     print!("{}", markdown(&rows));
@@ -1303,7 +1303,7 @@ pub fn cmd_stress(readme: Option<&Path>) -> Result<(), String> {
 }
 
 /// `stress --write-readme PATH` without the table on stdout (the test that
-/// the README block is current).
+/// the docs/reliability.md block is current).
 ///
 /// # Errors
 /// As [`cmd_stress`].
@@ -1315,7 +1315,7 @@ pub fn cmd_stress_quiet(readme: &Path) -> Result<(), String> {
 
 fn write_readme(rows: &[Row], path: &Path) -> Result<(), String> {
     let text = format!(
-        "Measured by `raymip-host stress --write-readme README.md` ({} {}): {} API edges, **{}**.\n",
+        "Measured by `raymip-host stress --write-readme docs/reliability.md` ({} {}): {} API edges, **{}**.\n",
         std::env::consts::ARCH,
         std::env::consts::OS,
         edges(rows),

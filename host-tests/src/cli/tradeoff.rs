@@ -3,7 +3,7 @@
 //! `tradeoff.json` (one object per configuration), `tradeoff.md`, the
 //! Pareto charts (`pareto-lod`, `pareto-texture`, `pareto-frame`) and the
 //! stochastic convergence chart as PNG and SVG, and with `--publish` the
-//! generated blocks of BENCHMARKS.md and README.md and the charts in
+//! generated blocks of BENCHMARKS.md and docs/tradeoff.md and the charts in
 //! `docs/tradeoff/`.
 
 use std::path::{Path, PathBuf};
@@ -30,7 +30,7 @@ pub struct Args {
     pub bart: PathBuf,
     /// Frame size override.
     pub size: Option<(u32, u32)>,
-    /// Project root whose BENCHMARKS.md, README.md and docs/tradeoff/
+    /// Project root whose BENCHMARKS.md, docs/tradeoff.md and docs/tradeoff/
     /// `--publish` writes (`None`: no publishing).
     pub publish: Option<PathBuf>,
 }
@@ -68,7 +68,7 @@ fn measure(s: &Settings) -> Result<(Vec<Row>, Vec<convergence::Curve>), String> 
 }
 
 /// Copies the charts to `root/docs/tradeoff/` and writes the `tradeoff`
-/// blocks of `root/BENCHMARKS.md` and `root/README.md`.
+/// blocks of `root/BENCHMARKS.md` and `root/docs/tradeoff.md`.
 fn publish(
     root: &Path,
     out: &Path,
@@ -89,11 +89,11 @@ fn publish(
     let body = report::markdown(rows, curves, m, s.accumulate, "docs/tradeoff/", cmd);
     write_between_markers(&root.join("BENCHMARKS.md"), "tradeoff", &body)?;
     let readme = format!(
-        "Machine: {}. Written by `{cmd}`; tables in BENCHMARKS.md.\n\n{}\n![LOD per hit](docs/tradeoff/pareto-lod.png)\n\n![Filter per sample](docs/tradeoff/pareto-texture.png)\n\n![Whole frame](docs/tradeoff/pareto-frame.png)\n\n![Stochastic convergence](docs/tradeoff/stochastic-convergence.png)\n",
+        "Machine: {}. Written by `{cmd}`; tables in [BENCHMARKS.md](../BENCHMARKS.md).\n\n{}\n![LOD per hit](tradeoff/pareto-lod.png)\n\n![Filter per sample](tradeoff/pareto-texture.png)\n\n![Whole frame](tradeoff/pareto-frame.png)\n\n![Stochastic convergence](tradeoff/stochastic-convergence.png)\n",
         m,
         report::headlines(rows, s.accumulate)
     );
-    write_between_markers(&root.join("README.md"), "tradeoff", &readme)
+    write_between_markers(&root.join("docs/tradeoff.md"), "tradeoff", &readme)
 }
 
 /// `tradeoff`: measures, writes the files into `args.out`, publishes when

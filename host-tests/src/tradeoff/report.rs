@@ -1,5 +1,5 @@
 //! Output of a trade-off run: `tradeoff.json`, `tradeoff.md`, the charts,
-//! and the generated blocks of BENCHMARKS.md and README.md.
+//! and the generated blocks of BENCHMARKS.md and docs/tradeoff.md.
 
 use std::fmt::Write as _;
 use std::path::Path;
