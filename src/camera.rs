@@ -23,6 +23,17 @@ unit_error! {
 
 /// The pixel spread angle `γ` of a camera (radians, I2F30, range `(0, 2)`)
 /// with its log2 precomputed.
+///
+/// # Example
+/// ```
+/// use raymip::PixelSpread;
+/// // 60° vertical field of view over 480 rows: γ ≈ 2·tan(30°)/480 radians.
+/// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
+/// let expected = (2.0 * 30f64.to_radians().tan() / 480.0).atan();
+/// assert!((spread.angle().to_num::<f64>() - expected).abs() < 1e-6);
+/// assert!(PixelSpread::from_fov_y(f64::NAN, 480).is_err());
+/// # Ok::<(), raymip::CameraError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelSpread {
     angle: I2F30,

@@ -159,6 +159,19 @@ fn mul_spread(g: Spread, t: PathLength) -> (Width, bool) {
 /// mask (stochastic LOD: chosen once per path, kept on every bounce) and its
 /// depth. [`PATH_STATE_BYTES`] per entry: 32 with the `cone` feature, 16
 /// without (no cone state carried, no `γ·t` per advance).
+///
+/// # Example
+/// ```
+/// use raymip::{PathLength, PathState, PixelSpread, Spread};
+/// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
+/// // A primary ray (ray mask 0xFF) hits at t = 100, bounces off a flat mirror
+/// // (spread β = 0) and travels 47 more: the path length Pl is the sum.
+/// let hit = PathState::primary(&spread, 0xFF).advance(PathLength::from_num(100));
+/// let next = hit.bounce(Spread::ZERO).advance(PathLength::from_num(47));
+/// assert_eq!(next.pl, PathLength::from_num(147));
+/// assert_eq!(next.depth, hit.depth + 1);
+/// # Ok::<(), raymip::CameraError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct PathState {
     /// Accumulated path length `Pl` from the camera (scene units).
@@ -285,6 +298,21 @@ impl<T> fmt::Display for StackFull<T> {
 /// ray (origin, direction, weight) so that the caller keeps no second stack
 /// in lockstep. At a hit push both the reflection and the refraction
 /// branch; `pop` continues the most recently pushed one, then the other.
+///
+/// # Example
+/// ```
+/// use raymip::{PathState, PixelSpread, RayStack};
+/// let spread = PixelSpread::from_fov_y(1.0, 480)?;
+/// let primary = PathState::primary(&spread, 0xFF);
+/// // Capacity 2, each entry carrying a caller payload (here a branch name).
+/// let mut stack: RayStack<&str, 2> = RayStack::new();
+/// stack.push_with(primary, "reflection")?;
+/// stack.push_with(primary, "refraction")?;
+/// assert!(stack.push_with(primary, "third").is_err()); // full: nothing lost
+/// assert_eq!(stack.pop_with().map(|(_, p)| p), Some("refraction"));
+/// assert_eq!(stack.len(), 1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct RayStack<T = (), const N: usize = DEFAULT_CAPACITY> {
     entries: heapless::Vec<(PathState, T), N>,

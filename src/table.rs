@@ -85,6 +85,17 @@ unit_error! {
 
 /// A textured triangle as the table needs it: world positions, UVs and the
 /// size of its texture's level 0.
+///
+/// # Example
+/// ```
+/// use raymip::{TableError, TexTriangle};
+/// let p = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+/// let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+/// assert!(TexTriangle::from_f32(p, uv, 256, 256).is_ok());
+/// assert_eq!(TexTriangle::from_f32(p, uv, 0, 256), Err(TableError::ZeroTextureSize));
+/// let far = [[3e9, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+/// assert_eq!(TexTriangle::from_f32(far, uv, 8, 8), Err(TableError::OutOfRange));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TexTriangle {
     p: [[Coord; 3]; 3],
@@ -232,6 +243,19 @@ fn half(x: I16F16) -> I16F16 {
 /// `[−64, 64]` (Pb from 5·10⁻²⁰ to 1.8·10¹⁹ scene units), or one of three
 /// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`](crate::lod::Lod)
 /// range without saturating arithmetic on the per-hit path.
+///
+/// # Example
+/// ```
+/// use raymip::lod::table_lod;
+/// use raymip::{Log2Pb, PathLength};
+/// // Entries round-trip through their raw bits (C tables, flash images).
+/// let e = Log2Pb::from_bits(-3 << 16); // log2 Pb = −3: Pb = 1/8 scene unit
+/// assert_eq!(Log2Pb::from_bits(e.to_bits()), e);
+/// // lod = log2 Pl − log2 Pb: at Pl = 1, three levels.
+/// assert_eq!(table_lod(PathLength::ONE, e).map(|l| l.to_num::<f64>()), Some(3.0));
+/// // An untextured triangle has no lod.
+/// assert_eq!(table_lod(PathLength::ONE, Log2Pb::UNTEXTURED), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[repr(transparent)]
 pub struct Log2Pb(I16F16);
@@ -340,6 +364,22 @@ pub struct BuildStats {
 
 /// The per-triangle table in caller-provided storage (one [`Log2Pb`],
 /// 4 bytes, per triangle).
+///
+/// # Example
+/// ```
+/// use raymip::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+/// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
+/// let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+/// let tri = TexTriangle::from_f32([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], uv, 64, 64)?;
+/// // Caller memory: 4 bytes per triangle, built once at set-up.
+/// let mut entries = [Log2Pb::UNTEXTURED; 2];
+/// let mut table = PbTable::new(&mut entries);
+/// let stats = table.build([Some(tri), None], &spread)?;
+/// assert_eq!((stats.textured, stats.untextured), (1, 1));
+/// assert_eq!(table.get(1), Some(Log2Pb::UNTEXTURED));
+/// assert_eq!(table.get(2), None); // out of range
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug)]
 pub struct PbTable<'a> {
     entries: &'a mut [Log2Pb],

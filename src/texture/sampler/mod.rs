@@ -247,6 +247,25 @@ impl LodWindow {
 }
 
 /// Samples a [`TexelSource`] with the key `K` (module docs).
+///
+/// # Example
+/// ```
+/// use raymip::texture::address::ClampToEdge;
+/// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// let texels = [0xFF00_0000u32, 0xFFFF_FFFF, 0xFFFF_FFFF, 0xFF00_0000]; // 2×2, one level
+/// let pyramid = Pyramid::new(Geometry::new(2, 2, 1)?, &texels)?;
+/// // Specialised at compile time: wrap, linear, ACCURATE.
+/// let mut wrap = Sampler::wrap(pyramid);
+/// let (u, v) = (TexCoord::from_num(0.25), TexCoord::from_num(0.25)); // texel (0, 0)'s centre
+/// assert_eq!(wrap.sample(u, v, Lod::ZERO, Mode::BilinearNearestLevel), 0xFF00_0000);
+/// // The same through a key naming the address mode per axis.
+/// let mut clamp: Sampler<_, Cfg<ClampToEdge>> = Sampler::new(pyramid);
+/// let left = TexCoord::from_num(-0.5); // outside [0, 1): the edge texel
+/// assert_eq!(clamp.sample(left, v, Lod::ZERO, Mode::Nearest), 0xFF00_0000);
+/// // Wrapped, u = −0.5 is u = 0.5: texel (1, 0).
+/// assert_eq!(wrap.sample(left, v, Lod::ZERO, Mode::Nearest), 0xFFFF_FFFF);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     source: S,
     geometry: Geometry,

@@ -91,6 +91,29 @@ unit_error! {
 
 /// Validated sampler state (see the module docs). Build it once with
 /// [`SamplerState::new`]; per sample it is only read.
+///
+/// # Example
+/// ```
+/// use raymip::texture::address::AnyAxis;
+/// use raymip::texture::{AddressMode, SamplerDesc};
+/// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, SamplerState, TexCoord};
+/// let state = SamplerState::new(SamplerDesc {
+///     address_u: AddressMode::ClampToBorder,
+///     address_v: AddressMode::ClampToBorder,
+///     border: 0xFF00_FF00, // opaque green
+///     lod_bias: Lod::from_num(0.5),
+///     ..SamplerDesc::default()
+/// })?;
+/// // Validation happens here, once: a bias outside [−16, 16) is refused.
+/// let bad = SamplerDesc { lod_bias: Lod::from_num(20), ..SamplerDesc::default() };
+/// assert!(SamplerState::new(bad).is_err());
+/// let texels = [0xFFFF_FFFFu32; 4];
+/// let pyramid = Pyramid::new(Geometry::new(2, 2, 1)?, &texels)?;
+/// let mut s: Sampler<_, Cfg<AnyAxis>> = Sampler::with_state(pyramid, state)?;
+/// let out = TexCoord::from_num(1.5);
+/// assert_eq!(s.sample(out, out, Lod::ZERO, Mode::Nearest), 0xFF00_FF00);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct SamplerState {
     desc: SamplerDesc,

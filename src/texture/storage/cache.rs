@@ -63,6 +63,15 @@ pub(crate) const fn morton2(x: u32, y: u32) -> u32 {
 
 /// Block numbering of one pyramid (see module docs): per-level offsets and
 /// padded block-grid sizes.
+///
+/// # Example
+/// ```
+/// use raymip::{BlockLayout, Geometry};
+/// // 8×8 level 0: 2×2 blocks of 4×4; levels 1 and 2 (4×4, 2×2) one block each.
+/// let layout = BlockLayout::new(&Geometry::new(8, 8, 3)?);
+/// assert_eq!(layout.len(), 4 + 1 + 1);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BlockLayout {
     geometry: Geometry,
@@ -176,6 +185,18 @@ impl CacheStats {
 /// Holds no data: use it alone to model a cache (hit rates), or through
 /// [`TexelCache`]. `SETS` and `WAYS` must be ≥ 1 (checked at compile
 /// time); power-of-two `SETS` make the set index a mask.
+///
+/// # Example
+/// ```
+/// use raymip::BlockCache;
+/// let mut tags: BlockCache<1, 2> = BlockCache::new(); // one set, two ways
+/// assert!(!tags.access(7)); // miss
+/// assert!(tags.access(7)); // hit
+/// assert!(!tags.access(8)); // miss: both ways in use
+/// assert!(!tags.access(9)); // miss: evicts 7, the least recently used
+/// assert!(!tags.access(7));
+/// assert_eq!((tags.stats().hits, tags.stats().misses), (1, 4));
+/// ```
 #[derive(Clone, Debug)]
 pub struct BlockCache<const SETS: usize, const WAYS: usize> {
     tags: [[u32; WAYS]; SETS],
@@ -295,6 +316,22 @@ impl TexelMemory for Pyramid<'_> {
 /// front of a [`TexelMemory`]; itself a [`TexelSource`], returning exactly
 /// what the memory holds. One access per texel read. Size of the data:
 /// `SETS · WAYS · 64` bytes (e.g. 64 × 4 = 16 KiB).
+///
+/// # Example
+/// ```
+/// use raymip::{Geometry, Lod, Mode, Pyramid, Sampler, TexCoord, TexelCache};
+/// let texels: Vec<u32> = (0..64).collect(); // 8×8, one level
+/// let pyramid = Pyramid::new(Geometry::new(8, 8, 1)?, &texels)?;
+/// // 4 sets × 2 ways of 4×4-texel blocks (512 bytes of data) in front of memory.
+/// let cache: TexelCache<_, 4, 2> = TexelCache::new(pyramid);
+/// let mut cached = Sampler::wrap(cache);
+/// let mut direct = Sampler::wrap(pyramid);
+/// let (u, v) = (TexCoord::from_num(0.3), TexCoord::from_num(0.7));
+/// let mode = Mode::BilinearNearestLevel;
+/// // The cache returns exactly what memory holds.
+/// assert_eq!(cached.sample(u, v, Lod::ZERO, mode), direct.sample(u, v, Lod::ZERO, mode));
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Debug)]
 pub struct TexelCache<M: TexelMemory, const SETS: usize, const WAYS: usize> {
     memory: M,

@@ -130,6 +130,20 @@ impl core::error::Error for MipError {}
 
 /// Size and level layout of a pyramid: width, height (1 ..= [`MAX_SIZE`])
 /// and stored levels (1 ..= [`full_levels`]), with precomputed level offsets.
+///
+/// # Example
+/// ```
+/// use raymip::Geometry;
+/// use raymip::texture::storage::mip::{full_levels, pyramid_len};
+/// // A 16×8 texture with every level down to 1×1: 16×8 + 8×4 + 4×2 + 2×1 + 1×1 texels.
+/// let g = Geometry::new(16, 8, full_levels(16, 8))?;
+/// assert_eq!(g.levels(), 5);
+/// assert_eq!(g.len(), 128 + 32 + 8 + 2 + 1);
+/// assert_eq!(g.len(), pyramid_len(16, 8, 5));
+/// assert_eq!(g.level_size(2), (4, 2));
+/// assert!(Geometry::new(16, 8, 6).is_err()); // more levels than the size has
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Geometry {
     width: u32,
@@ -493,6 +507,22 @@ pub trait TexelSource {
 
 /// A pyramid: geometry plus a borrowed texel slice laid out as in the
 /// module docs.
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::mip::generate;
+/// use raymip::{Geometry, Pyramid};
+/// let g = Geometry::new(2, 2, 2)?;
+/// // Level 0 (2×2) given, level 1 (1×1) generated in place: the 2×2 box mean.
+/// let mut texels = [0xFF00_0000, 0xFF00_0000, 0xFFFF_FFFF, 0xFFFF_FFFF, 0];
+/// generate(&g, &mut texels)?;
+/// let pyramid = Pyramid::new(g, &texels)?;
+/// assert_eq!(pyramid.get(0, 0, 1), 0xFFFF_FFFF);
+/// let mean = pyramid.get(1, 0, 0);
+/// assert!((mean & 0xFF).abs_diff(0x80) <= 1 && mean >> 24 == 0xFF);
+/// assert!(Pyramid::new(g, &texels[..4]).is_err()); // buffer too short
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Pyramid<'a> {
     geometry: Geometry,
