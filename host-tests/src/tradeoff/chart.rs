@@ -3,9 +3,11 @@
 //! `ab_glyph` with DejaVu Sans embedded from the `dejavu` crate, so no
 //! system font or fontconfig is needed.
 //!
-//! * [`scatter`]: time (log axis) against error, one colour per series,
-//!   every point labelled, the Pareto front joined by a line and drawn
-//!   filled (other points hollow); one panel per group (e.g. scene).
+//! * [`Scatter`]: time (log axis) against error, one colour per series
+//!   (legend), the Pareto front joined by a line and drawn filled (other
+//!   points hollow); only Pareto points labelled, each label placed where it
+//!   meets no other label and no marker or left out ([`place_labels`]; a
+//!   chart with overlapping labels is an error); one panel per group.
 //! * [`curves`]: lines on log–log axes (convergence over frames).
 
 use std::path::Path;
@@ -331,15 +333,185 @@ impl Scatter {
                 .map_err(err)?
                 .label(name.as_str())
                 .legend(move |(x, y)| Circle::new((x + 9, y), 5, c.filled()));
-            let font = ("sans-serif", 12).into_font().color(&c);
-            chart
-                .draw_series(pts.iter().map(|q| {
-                    EmptyElement::at((tx(q.x), ty(q.y)))
-                        + Text::new(q.label.clone(), (8, -14), font.clone())
-                }))
-                .map_err(err)?;
         }
+        labels(&self.series(), area, &mut chart, p, &tx, &ty)?;
         legend(&mut chart)
+    }
+}
+
+/// Draws the labels of `p`'s points on `chart` (see [`place_labels`]).
+fn labels<DB: DrawingBackend>(
+    series: &[String],
+    area: &DrawingArea<DB, Shift>,
+    chart: &mut Panel2d<'_, DB>,
+    p: &Panel,
+    tx: &dyn Fn(f64) -> f64,
+    ty: &dyn Fn(f64) -> f64,
+) -> Result<(), String> {
+    // Labels: the Pareto points only (the rest are told apart by colour,
+    // the legend and the full table in tradeoff.md), each placed where
+    // its box meets no other label and no marker, or left out.
+    let labelled: Vec<&Point> = p.points.iter().filter(|q| q.front).collect();
+    let markers: Vec<(i32, i32)> = p
+        .points
+        .iter()
+        .map(|q| chart.backend_coord(&(tx(q.x), ty(q.y))))
+        .collect();
+    let font = ("sans-serif", LABEL_FONT).into_font();
+    let mut sizes = Vec::with_capacity(labelled.len());
+    for q in &labelled {
+        let (w, h) = area
+            .estimate_text_size(&q.label, &plotters::style::TextStyle::from(font.clone()))
+            .map_err(err)?;
+        sizes.push((w as i32, h as i32));
+    }
+    let anchors: Vec<(i32, i32)> = labelled
+        .iter()
+        .map(|q| chart.backend_coord(&(tx(q.x), ty(q.y))))
+        .collect();
+    let boxes = place_labels(&anchors, &sizes, &markers);
+    if let Some((a, b)) = first_overlap(&boxes) {
+        return Err(format!("chart {:?}: labels {a} and {b} overlap", p.title));
+    }
+    for (q, (b, &(px, py))) in labelled.iter().zip(boxes.iter().zip(&anchors)) {
+        let Some(b) = b else { continue };
+        let si = series.iter().position(|s| s == &q.series).unwrap_or(0);
+        let f = font.clone().color(&colour(si));
+        chart
+            .draw_series(std::iter::once(
+                EmptyElement::at((tx(q.x), ty(q.y)))
+                    + Text::new(q.label.clone(), (b.0 - px, b.1 - py), f),
+            ))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Point size of the labels beside chart points.
+const LABEL_FONT: f64 = 12.0;
+
+/// Half the side of the square kept free around each marker (pixels).
+const MARKER_HALF: i32 = 7;
+
+/// A label box in pixels: `(left, top, right, bottom)`, right and bottom
+/// exclusive.
+pub type LabelBox = (i32, i32, i32, i32);
+
+fn overlap(a: LabelBox, b: LabelBox) -> bool {
+    a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+}
+
+/// For each label of size `sizes[i]` at the point `anchors[i]` (pixels),
+/// the first of eight places around the point (right, left, above, below
+/// and the corners) whose box meets no box placed before it and no marker
+/// of `markers` (squares of side `2·MARKER_HALF`; the label's own point
+/// included); `None` (label left out) when every place is taken.
+#[must_use]
+pub fn place_labels(
+    anchors: &[(i32, i32)],
+    sizes: &[(i32, i32)],
+    markers: &[(i32, i32)],
+) -> Vec<Option<LabelBox>> {
+    let g = MARKER_HALF + 2;
+    let mut placed: Vec<LabelBox> = Vec::new();
+    let mut out = Vec::with_capacity(anchors.len());
+    for (&(px, py), &(w, h)) in anchors.iter().zip(sizes) {
+        let candidates = [
+            (px + g, py - h / 2),
+            (px - g - w, py - h / 2),
+            (px - w / 2, py - g - h),
+            (px - w / 2, py + g),
+            (px + g, py - g - h),
+            (px + g, py + g),
+            (px - g - w, py - g - h),
+            (px - g - w, py + g),
+        ];
+        let free = |b: LabelBox| {
+            placed.iter().all(|&o| !overlap(b, o))
+                && markers.iter().all(|&(mx, my)| {
+                    !overlap(
+                        b,
+                        (
+                            mx - MARKER_HALF,
+                            my - MARKER_HALF,
+                            mx + MARKER_HALF,
+                            my + MARKER_HALF,
+                        ),
+                    )
+                })
+        };
+        let chosen = candidates
+            .iter()
+            .map(|&(x, y)| (x, y, x + w, y + h))
+            .find(|&b| free(b));
+        if let Some(b) = chosen {
+            placed.push(b);
+        }
+        out.push(chosen);
+    }
+    out
+}
+
+/// The first pair `(i, j)` of placed boxes that overlap, if any.
+#[must_use]
+pub fn first_overlap(boxes: &[Option<LabelBox>]) -> Option<(usize, usize)> {
+    for (i, a) in boxes.iter().enumerate() {
+        for (j, b) in boxes.iter().enumerate().skip(i + 1) {
+            if let (Some(a), Some(b)) = (a, b)
+                && overlap(*a, *b)
+            {
+                return Some((i, j));
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod label_tests {
+    use super::*;
+
+    #[test]
+    fn a_lone_label_goes_right_of_its_point() {
+        let b = place_labels(&[(100, 100)], &[(40, 12)], &[(100, 100)]);
+        assert_eq!(b, vec![Some((109, 94, 149, 106))]);
+    }
+
+    #[test]
+    fn crowded_labels_never_overlap_each_other_or_a_marker() {
+        // 60 points on a 6-pixel grid (far denser than a label): most
+        // labels must be left out, none may overlap.
+        let pts: Vec<(i32, i32)> = (0..60)
+            .map(|i| (200 + (i % 10) * 6, 200 + (i / 10) * 6))
+            .collect();
+        let sizes = vec![(50, 12); pts.len()];
+        let boxes = place_labels(&pts, &sizes, &pts);
+        assert_eq!(first_overlap(&boxes), None);
+        let placed: Vec<LabelBox> = boxes.iter().flatten().copied().collect();
+        assert!(!placed.is_empty() && placed.len() < pts.len());
+        for b in &placed {
+            for &(mx, my) in &pts {
+                let m = (
+                    mx - MARKER_HALF,
+                    my - MARKER_HALF,
+                    mx + MARKER_HALF,
+                    my + MARKER_HALF,
+                );
+                assert!(!overlap(*b, m), "{b:?} covers the marker at ({mx}, {my})");
+            }
+        }
+    }
+
+    #[test]
+    fn overlap_is_detected() {
+        assert_eq!(
+            first_overlap(&[Some((0, 0, 10, 10)), None, Some((9, 9, 20, 20))]),
+            Some((0, 2))
+        );
+        assert_eq!(
+            first_overlap(&[Some((0, 0, 10, 10)), Some((10, 0, 20, 10))]),
+            None
+        );
     }
 }
 
