@@ -194,6 +194,19 @@ pub mod inputs {
         .ok()
     }
 
+    /// The state of the wrap rows of the sampler matrix: wrap on both axes,
+    /// with the bias and lod clamp of [`sampler_state`] (lod bias +¼, lod
+    /// clamp `[½, 4]`). `None` cannot happen (the fields are in range).
+    #[must_use]
+    pub fn wrap_state() -> Option<SamplerState> {
+        SamplerState::new(SamplerDesc {
+            address_u: AddressMode::Wrap,
+            address_v: AddressMode::Wrap,
+            ..*sampler_state()?.desc()
+        })
+        .ok()
+    }
+
     /// The sampler state of the anisotropic rows: wrap, no bias or clamp,
     /// at most `max_aniso` probes (`None` outside `1 ..= 16`).
     #[must_use]

@@ -58,7 +58,7 @@ use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
-use raymip::texture::kernel::{Fast, Linear, Srgb};
+use raymip::texture::kernel::{Accurate, Fast, Linear, Srgb};
 use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, Rgb565};
@@ -83,6 +83,10 @@ type SampleIn = (TexCoord, TexCoord, Lod);
 /// The state rows' key: mirror on u, clamp-to-border on v.
 type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
 type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
+/// The state rows' key at the FAST tier.
+type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
+/// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
+type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
 type Instances = [(u32, Depth)];
 
 /// One table LOD.
@@ -290,6 +294,75 @@ pub fn rm_bench_ts_aniso(
     s.sample_aniso(u, v, fp)
 }
 
+/// The sampler matrix of issue 20: one wrapper per call, key and tier.
+/// The wrap rows (RGBA8, wrap on both axes, lod bias and clamp set:
+/// [`inputs::wrap_state`]) have the type of the plain rows, so they call
+/// the plain rows' wrappers a second time (a second wrapper of the same
+/// type would be merged with the first by the compiler), plus
+/// `rm_bench_bilinear_fast` / `rm_batch_*_fast` for the FAST bilinear and
+/// batches; `rm_bench_ts_*_fast`: the FAST tier of the `rm_bench_ts_*`
+/// rows above (mirror/border key).
+macro_rules! sample_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        $(#[$m])*
+        #[allow(unsafe_code)]
+        #[unsafe(no_mangle)]
+        #[inline(never)]
+        pub fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+            s.sample(u, v, lod, $mode)
+        }
+    };
+}
+sample_wrapper!(
+    /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
+    rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
+sample_wrapper!(
+    /// RGBA8 bilinear, mirror/border key, FAST.
+    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
+sample_wrapper!(
+    /// RGBA8 trilinear, mirror/border key, FAST.
+    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
+sample_wrapper!(
+    /// RGB565 trilinear, mirror/border key, FAST.
+    rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
+sample_wrapper!(
+    /// BC1 trilinear through the texel cache, mirror/border key, FAST
+    /// (called in pairs like [`rm_bench_ts_bc1`]).
+    rm_bench_ts_bc1_fast, TsF<Bc1Cache<'_>>, Mode::Trilinear);
+
+/// One anisotropic sample at the FAST tier (trilinear probes), called like
+/// [`rm_bench_ts_aniso`].
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_aniso_fast(
+    s: &mut Tw<'_, Fast>,
+    u: TexCoord,
+    v: TexCoord,
+    fp: &Footprint,
+) -> Texel {
+    s.sample_aniso(u, v, fp)
+}
+
+/// Batches of the wrap rows (32, then 64 hits per call).
+macro_rules! batch_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        $(#[$m])*
+        #[allow(unsafe_code)]
+        #[unsafe(no_mangle)]
+        #[inline(never)]
+        pub fn $name(s: &mut $ty, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+            s.sample_batch(hits, $mode, out)
+        }
+    };
+}
+batch_wrapper!(
+    /// Batch: RGBA8 bilinear, wrap, bias and clamp set, FAST.
+    rm_batch_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
+batch_wrapper!(
+    /// Batch: RGBA8 trilinear, wrap, bias and clamp set, FAST.
+    rm_batch_trilinear_fast, Tw<'_, Fast>, Mode::Trilinear);
+
 /// The instance records of one instance: called 64 times with the
 /// discrete selector, then 64 times with the stochastic one.
 #[allow(unsafe_code)]
@@ -487,6 +560,12 @@ struct Parity<'a> {
     bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
     aniso: [Sampler<Pyramid<'a>>; 3],
+    /// The same at the FAST tier.
+    aniso_fast: [Tw<'a, Fast>; 3],
+    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
+    wrap: (Tex, TexFast),
+    /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
+    fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
     /// Discrete and stochastic (`t` = ½) geometric LOD.
     geomlod: [(&'static str, Selector); 2],
 }
@@ -587,6 +666,7 @@ fn rm_budget_driver(
     for s in &mut par.aniso {
         measure(&aniso_in, |(u, v, fp)| rm_bench_ts_aniso(s, u, v, &fp));
     }
+    matrix_rows(par, &bil_in, &tri_in, &aniso_in);
 
     // Geometric LOD: one instance per call, then 32 and 64 per call.
     let inst: [(u32, Depth); N] = inputs::instances(&mut rng, 0);
@@ -639,6 +719,46 @@ fn rm_budget_driver(
         ("trilinear_fast", tri_fast_stack),
     ] {
         println!("stack {name}: {bytes} bytes");
+    }
+}
+
+/// The sampler matrix of issue 20 (after the other rows: no generator
+/// draws, their inputs unchanged): the wrap rows (single calls, then
+/// batches of 32 and 64 hits), the FAST tier of the mirror/border rows,
+/// and anisotropic FAST.
+#[inline(always)]
+fn matrix_rows(
+    par: &mut Parity<'_>,
+    bil_in: &[SampleIn; N],
+    tri_in: &[SampleIn; N],
+    aniso_in: &[(TexCoord, TexCoord, Footprint); N],
+) {
+    let (wa, wf) = &mut par.wrap;
+    measure(bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
+    measure(tri_in, |(u, v, l)| rm_bench_trilinear(wa, u, v, l));
+    measure(bil_in, |(u, v, l)| rm_bench_bilinear_fast(wf, u, v, l));
+    measure(tri_in, |(u, v, l)| rm_bench_trilinear_fast(wf, u, v, l));
+    let mut out = [0; N];
+    for n in [N / 2, N] {
+        bb(rm_batch_bilinear(wa, bb(&bil_in[..n]), &mut out));
+        bb(rm_batch_trilinear(wa, bb(&tri_in[..n]), &mut out));
+        bb(rm_batch_bilinear_fast(wf, bb(&bil_in[..n]), &mut out));
+        bb(rm_batch_trilinear_fast(wf, bb(&tri_in[..n]), &mut out));
+    }
+    bb(&out);
+    let (rgba, rgb565, bc1) = &mut par.fast;
+    measure(bil_in, |(u, v, l)| rm_bench_ts_bilinear_fast(rgba, u, v, l));
+    measure(tri_in, |(u, v, l)| {
+        rm_bench_ts_trilinear_fast(rgba, u, v, l)
+    });
+    measure(tri_in, |(u, v, l)| rm_bench_ts_rgb565_fast(rgb565, u, v, l));
+    measure(tri_in, |(u, v, l)| {
+        bc1.source_mut().invalidate();
+        let a = rm_bench_ts_bc1_fast(bc1, u, v, l);
+        a ^ rm_bench_ts_bc1_fast(bc1, u, v, l)
+    });
+    for s in &mut par.aniso_fast {
+        measure(aniso_in, |(u, v, fp)| rm_bench_ts_aniso_fast(s, u, v, &fp));
     }
 }
 
@@ -715,17 +835,34 @@ const BC1_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Bc
 /// The `TextureSampler` and geometric-LOD subjects over the demo texture
 /// `p` (geometry `g`), `rgb565` (its texels converted) and `bc1` (its
 /// blocks).
-fn parity<'a>(g: Geometry, p: Pyramid<'a>, rgb565: &'a [u8], bc1: &'a [u8]) -> Option<Parity<'a>> {
+fn parity<'a>(
+    g: Geometry,
+    p: Pyramid<'static>,
+    rgb565: &'a [u8],
+    bc1: &'a [u8],
+) -> Option<Parity<'a>> {
     let state = inputs::sampler_state()?;
     let rgb565 = Image::typed(g, ColorSpace::Linear, rgb565).ok()?;
     let bc1 = Image::typed(g, ColorSpace::Linear, bc1).ok()?;
     let aniso = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
+    let anisof = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
+    let wrap = inputs::wrap_state()?;
     Some(Parity {
         rgba: Sampler::with_state(p, state).ok()?,
         srgb: Sampler::with_state(p, state).ok()?,
         rgb565: Sampler::with_state(rgb565, state).ok()?,
         bc1: Sampler::with_state(TexelCache::new(bc1), state).ok()?,
         aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
+        aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
+        wrap: (
+            Sampler::with_state(p, wrap).ok()?,
+            Sampler::with_state(p, wrap).ok()?,
+        ),
+        fast: (
+            Sampler::with_state(p, state).ok()?,
+            Sampler::with_state(rgb565, state).ok()?,
+            Sampler::with_state(TexelCache::new(bc1), state).ok()?,
+        ),
         geomlod: [
             ("discrete", inputs::selector(LodMode::Discrete)?),
             (
