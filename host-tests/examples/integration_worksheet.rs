@@ -17,6 +17,7 @@
 
 use std::fmt::Write as _;
 use std::mem::size_of;
+use std::path::Path;
 
 use raymip::raystack::{PATH_STATE_BYTES, stack_bound};
 use raymip::texture::storage::mip::pyramid_len;
@@ -26,25 +27,9 @@ use raymip_host::cli::parse_size;
 use raymip_host::render::skip::plan;
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
+use raymip_host::tradeoff::budgets::Budgets;
 
 const BOUNCES: u8 = 10;
-
-/// Mean of the `min / mean / max` cell of `isa_col` (1 = Cortex-M4) in the
-/// row `label` of BUDGETS.md's first table ("Instructions per call").
-fn budget_mean(budgets: &str, label: &str, isa_col: usize) -> Result<f64, String> {
-    let row = budgets
-        .lines()
-        .find(|l| l.starts_with(&format!("| {label} |")))
-        .ok_or_else(|| format!("BUDGETS.md: no row \"{label}\""))?;
-    let cell = row
-        .split('|')
-        .nth(isa_col + 1)
-        .ok_or_else(|| format!("BUDGETS.md row \"{label}\": no column {isa_col}"))?;
-    cell.split('/')
-        .nth(1)
-        .and_then(|m| m.trim().parse().ok())
-        .ok_or_else(|| format!("BUDGETS.md row \"{label}\": \"{cell}\" is not min / mean / max"))
-}
 
 fn kib(bytes: u64) -> String {
     format!("{:.1} KiB", bytes as f64 / 1024.0)
@@ -66,9 +51,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-    let budgets = std::fs::read_to_string(format!("{root}/BUDGETS.md"))?;
-    let lod_m4 = budget_mean(&budgets, "table lod", 1)?;
-    let tri_m4 = budget_mean(&budgets, "trilinear sample", 1)?;
+    let budgets = Budgets::load(Path::new(&format!("{root}/BUDGETS.md")));
+    let m4 = |call: &str| {
+        budgets
+            .get(call, false)
+            .0
+            .ok_or_else(|| format!("BUDGETS.md: no Cortex-M4 count for \"{call}\""))
+    };
+    let (lod_m4, tri_m4) = (m4("table lod")?, m4("trilinear sample")?);
 
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
