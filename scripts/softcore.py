@@ -7,6 +7,14 @@ block between <!-- softcore:begin --> and <!-- softcore:end -->) and docs/bare-m
 soc-sim's summary line), cycles.out (per-call cycles), size-*.txt (`size -A`)
 and table1/table1.json (textured hits per frame of the BART scenes).
 
+With the texture co-processor (issue 23) the same files prefixed `pcpi-`
+(the SoC with ENABLE_TEX = 1, firmware feature `pcpi`) and tb.out (the
+co-processor's bit-level testbench) give the co-processor rows of the
+block, and --docs names docs/softcore.md, whose comparison with the
+hardware paper (between <!-- softcore-paper:begin --> and
+<!-- softcore-paper:end -->) also uses the FPGA figures scripts/fpga keeps
+in BUDGETS.md (the `fpga-data` comment of its block).
+
 --check writes nothing and reports differences (exit 1 on them only with
 RAYMIP_BUDGETS_STRICT=1). --self-test checks the parsers on fixed text.
 """
@@ -20,6 +28,14 @@ import sys
 
 B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
+D_BEGIN, D_END = "<!-- softcore-paper:begin -->", "<!-- softcore-paper:end -->"
+FPGA_DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
+TB_RE = re.compile(r"tb-pcpi-tex: (\d+) vectors \((\d+) tex.log2pl, (\d+) tex.lod\), (\d+) mismatches, latency (\d+) cycles")
+
+# The hardware paper's logic: 88 % of a Virtex-5 LX330 (51 840 slices of
+# four 6-input LUTs and four flip-flops: 207 360 LUT6).
+PAPER_LOGIC_PCT = 88
+LX330_LUT6 = 207360
 
 # The hardware paper's FPGA prototype: clock and frame rate range at 800×480.
 PAPER_MHZ = 84
@@ -115,7 +131,7 @@ def si(x):
     return f"{x:.3g} "
 
 
-def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches):
+def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc=None):
     L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
     L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
     src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
@@ -152,6 +168,28 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
     L.append(f"samples; checksum equal to the host's): {cyc} cycles, {ins} instructions, CPI {cyc / ins:.2f};")
     L.append(f"{cyc / px:.0f} cycles per pixel. Image {image} bytes (`size -A`, loaded sections) + {stack}")
     L.append(f"bytes of stack painted under the render, of the {ram} KiB RAM.")
+    if pc is not None:
+        pcalls, pbatches, pcounters, prender, tb = pc
+        L.append("\n### With the texture co-processor\n")
+        L.append("The same measurement on the SoC with `ENABLE_TEX = 1` (`demo/softcore/pcpi_tex.v` on the")
+        L.append("core's PCPI port: `tex.log2pl`, `tex.lod`) and the firmware built with feature `pcpi`")
+        L.append("(`src/pcpi.rs`: table lod = both instructions, cone lod's two log2 = `tex.log2pl`; the")
+        L.append("FAST lods and the filters are unchanged). Demo tile: checksum and counters equal to the host's.")
+        if tb:
+            L.append(f"Co-processor alone (`tb_pcpi_tex.cpp`): {tb[0]} reference vectors from the software paths")
+            L.append(f"({tb[1]} `tex.log2pl`, {tb[2]} `tex.lod`), {tb[3]} mismatching bits; result {tb[4]} cycles after `pcpi_valid`.\n")
+        L.append("| call | cycles without | cycles with co-processor | instructions with | CPI with | batch steady without | batch steady with |")
+        L.append("|---|---|---|---|---|---|---|")
+        for k, name in CALLS:
+            c, q = calls[k], pcalls[k]
+            b0 = (batches[k][2] - batches[k][0]) / 32
+            b1 = (pbatches[k][2] - pbatches[k][0]) / 32
+            L.append(f"| {name} | {c['cycles'][1]:.1f} | {fmt3(q['cycles'])} | {fmt3(q['instret'])} | "
+                     f"{q['cycles'][1] / q['instret'][1]:.2f} | {b0:.1f} | {b1:.1f} |")
+        lod0 = calls["lod"]["cycles"][1] + calls["trilinear"]["cycles"][1]
+        lod1 = pcalls["lod"]["cycles"][1] + pcalls["trilinear"]["cycles"][1]
+        L.append(f"\nLOD + trilinear per textured hit: {lod0:.1f} → {lod1:.1f} cycles. Demo tile: "
+                 f"{render[0]} → {prender[0]} cycles ({prender[0] / pcounters.get('pixels', 1):.0f} per pixel).")
     L.append(B_END)
     return "\n".join(L)
 
@@ -189,6 +227,58 @@ def readme_block(calls, counters, render, rows):
     L.append(f"trilinear through the texel cache) takes {cyc / px:.0f} cycles per pixel on the soft core:")
     L.append(f"{hz / frame:.3f} frames/s at {PAPER_SIZE[0]}×{PAPER_SIZE[1]} and {PAPER_MHZ} MHz for a scene as simple as the demo's.")
     L.append(R_END)
+    return "\n".join(L)
+
+
+def paper_block(calls, pcalls, rows, fpga):
+    """docs/softcore.md: the hardware paper's comparison redone at the clock
+    and with the logic that scripts/fpga measured (fpga: the `fpga-data`
+    dict of BUDGETS.md, or None)."""
+    L = [D_BEGIN]
+    L.append("Written by `scripts/softcore` from its cycle counts and the FPGA figures of `scripts/fpga`")
+    L.append("(BUDGETS.md); do not edit.\n")
+    if not fpga:
+        L.append("(No FPGA figures in BUDGETS.md yet: run `scripts/fpga`.)")
+        L.append(D_END)
+        return "\n".join(L)
+    work = {"without co-processor": calls, "with co-processor": pcalls}
+    L.append(f"Clock: the maximum frequency nextpnr-ice40 reports for the SoC on the {fpga['device']} "
+             f"(seed {fpga['seed']}); the paper's prototype ran at {PAPER_MHZ} MHz on a Virtex-5 LX330.\n")
+    L.append("| SoC | MHz | logic cells | LUT4 | flip-flops | DSPs | cycles, LOD + trilinear | "
+             "textured hits/s per core | at the paper's 84 MHz |")
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    per = {}
+    for (name, c), key in zip(work.items(), ("plain", "pcpi")):
+        v = fpga["variants"][key]
+        cyc = c["lod"]["cycles"][1] + c["trilinear"]["cycles"][1]
+        hz = v["mhz"] * 1e6 if v.get("mhz") else None
+        per[key] = (cyc, hz, v)
+        L.append(f"| {name} | {v['mhz'] if v.get('mhz') else '—'} | {v['lc']} / {fpga['lc_total']} | {v['lut']} | "
+                 f"{v['ff']} | {v['dsp']} | {cyc:.1f} | {si(hz / cyc) if hz else '—'} | {si(PAPER_MHZ * 1e6 / cyc)} |")
+    if rows:
+        lo, hi = PAPER_FPS
+        L.append(f"\nCores for the paper's {lo}–{hi} frames/s at {PAPER_SIZE[0]}×{PAPER_SIZE[1]} (textured hits "
+                 "per frame from `table1`; LOD + trilinear per hit, nothing else of the frame):\n")
+        L.append("| scene | textured hits / frame | SoC | cores at its clock | LUT4 for those cores | "
+                 "share of the paper's logic (88 % of the LX330's 207 360 LUT6) |")
+        L.append("|---|---|---|---|---|---|")
+        budget = PAPER_LOGIC_PCT / 100 * LX330_LUT6
+        for r in rows:
+            h = r["textured_hits"]
+            for key, label in (("plain", "without"), ("pcpi", "with co-processor")):
+                cyc, hz, v = per[key]
+                if not hz:
+                    continue
+                fps = hz / (cyc * h)
+                n = (math.ceil(lo / fps), math.ceil(hi / fps))
+                luts = (n[0] * v["lut"], n[1] * v["lut"])
+                L.append(f"| {r['scene']} | {h} | {label} | {n[0]}–{n[1]} | {luts[0]}–{luts[1]} | "
+                         f"{100 * luts[0] / budget:.0f}–{100 * luts[1] / budget:.0f} % |")
+        L.append("\nA Virtex-5 LUT6 holds more logic than an iCE40 LUT4, so the last column understates")
+        L.append("the soft cores' share; it counts only the LOD and filter work the paper's logic does.")
+    else:
+        L.append("\n(BART scenes not found when this was written: no per-scene rows.)")
+    L.append(D_END)
     return "\n".join(L)
 
 
@@ -231,6 +321,7 @@ def main():
     ap.add_argument("--rustc")
     ap.add_argument("--budgets")
     ap.add_argument("--readme")
+    ap.add_argument("--docs")
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     if a.self_test:
@@ -258,13 +349,31 @@ def main():
         for r in rows:
             if (r["width"], r["height"]) != PAPER_SIZE:
                 sys.exit(f"softcore.py: table1 row {r['scene']} is {r['width']}×{r['height']}")
-    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches)
+    pc = None
+    if os.path.exists(os.path.join(a.work, "pcpi-cycles.out")):
+        pcalls, _ = parse_cycles(rd("pcpi-cycles.out"))
+        pbatches = parse_batches(rd("pcpi-cycles.out"))
+        pcounters, prender, _ = parse_demo(rd("pcpi-demo.out"))
+        missing = [k for k, _ in CALLS if k not in pcalls or k not in pbatches]
+        if missing or prender is None:
+            sys.exit(f"softcore.py: pcpi-cycles.out / pcpi-demo.out lack {missing or 'the render line'}")
+        tb = None
+        if os.path.exists(os.path.join(a.work, "tb.out")):
+            m = TB_RE.search(rd("tb.out"))
+            tb = tuple(int(x) for x in m.groups()) if m else None
+        pc = (pcalls, pbatches, pcounters, prender, tb)
+    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc)
     rb = readme_block(calls, counters, render, rows)
+    targets = [(a.budgets, B_BEGIN, B_END, bb, "## Code size"), (a.readme, R_BEGIN, R_END, rb, None)]
+    if a.docs and pc is not None:
+        m = FPGA_DATA_RE.search(open(a.budgets).read())
+        fpga = json.loads(m.group(1)) if m else None
+        db = paper_block(calls, pc[0], rows, fpga)
+        targets.append((a.docs, D_BEGIN, D_END, db, None))
     changed = []
-    for path, begin, end, block, anchor in [(a.budgets, B_BEGIN, B_END, bb, "## Code size"),
-                                            (a.readme, R_BEGIN, R_END, rb, None)]:
+    for path, begin, end, block, anchor in targets:
         old = open(path).read()
-        if R_BEGIN == begin and not rows and begin in old:
+        if begin in (R_BEGIN, D_BEGIN) and not rows and begin in old:
             print(f"softcore.py: no BART rows: {os.path.basename(path)} left as it is")
             continue
         new = replace_block(old, begin, end, block, anchor)
@@ -283,6 +392,8 @@ def main():
             print(f"softcore.py: wrote {os.path.basename(path)}")
     print(bb)
     print(rb)
+    if a.docs and pc is not None:
+        print(targets[-1][3])
     if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":
         return 1
     return 0

@@ -47,6 +47,7 @@
 //! | `cache` | yes | texel cache, images in any format, BC decoding (`texture::storage::{cache, image}`) | the sampler reads RGBA8 pyramids in memory directly |
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
+//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod (`pcpi`, riscv32 only; no effect on other targets) | software log2 |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
 //! specialised at compile time by its key `K` (address mode per axis,
@@ -124,10 +125,17 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![no_std]
-// Safe Rust only; with the `ffi` feature the C ABI module (and only it) may
-// use `unsafe` for caller pointers: `deny` there, `forbid` otherwise.
-#![cfg_attr(not(feature = "ffi"), forbid(unsafe_code))]
-#![cfg_attr(feature = "ffi", deny(unsafe_code))]
+// Safe Rust only; with the `ffi` feature the C ABI module may use `unsafe`
+// for caller pointers, and with `pcpi` on riscv32 the co-processor module
+// for its one-instruction `asm!` wrappers: `deny` then, `forbid` otherwise.
+#![cfg_attr(
+    not(any(feature = "ffi", all(feature = "pcpi", target_arch = "riscv32"))),
+    forbid(unsafe_code)
+)]
+#![cfg_attr(
+    any(feature = "ffi", all(feature = "pcpi", target_arch = "riscv32")),
+    deny(unsafe_code)
+)]
 #![deny(
     missing_docs,
     missing_debug_implementations,
@@ -149,6 +157,8 @@ pub mod geomlod;
 pub mod lod;
 pub mod log2;
 pub mod log2_fast;
+#[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+pub mod pcpi;
 #[cfg(feature = "raydiff")]
 pub mod raydiff;
 pub mod raystack;

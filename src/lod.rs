@@ -40,7 +40,9 @@ use fixed::types::{I16F16, U1F31};
 
 use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
-use crate::log2::{LOD_BIAS, log2_u1f31_biased};
+use crate::log2::LOD_BIAS;
+#[cfg(all(feature = "cone", not(all(feature = "pcpi", target_arch = "riscv32"))))]
+use crate::log2::log2_u1f31_biased;
 #[cfg(feature = "cone")]
 use crate::log2_fast::log2_u1f31_fast_biased;
 use crate::log2_fast::{NormPl, log2_u32f32_fast_parts};
@@ -73,6 +75,27 @@ pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 #[inline]
 #[must_use]
 pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    // Feature `pcpi` on riscv32: `tex.log2pl` and `tex.lod`, the same bits
+    // (the untextured marker comes back as `pcpi::UNTEXTURED`).
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    {
+        use crate::pcpi;
+        let r = pcpi::lod(pcpi::log2pl(pl.to_bits()), pb.to_bits());
+        if r == pcpi::UNTEXTURED {
+            None
+        } else {
+            Some(Lod::from_bits(r as i16))
+        }
+    }
+    #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
+    table_lod_soft(pl, pb)
+}
+
+/// The software [`table_lod`] (every target; without feature `pcpi` the
+/// only one).
+#[cfg_attr(all(feature = "pcpi", target_arch = "riscv32"), allow(dead_code))]
+#[inline(always)]
+fn table_lod_soft(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     if pb.is_untextured() {
         return None;
     }
@@ -98,14 +121,33 @@ pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
     // exceeds 2^30 bits the sum lies beyond ±2^29 bits either way, far past
     // the ±2^23 bits that `Lod` holds, so both saturate to the same end.
     let delta = delta.to_bits().clamp(-(1 << 30), 1 << 30);
-    let (lz, biased) = log2_u32f32_parts(width.to_bits().unsigned_abs());
-    // log2|w| + 0x80 (the I8F8 rounding offset) + Δ.
-    let mut l = delta + (biased as i32 - ((lz as i32) << 16));
-    if let Some(c) = n_dot_d {
-        let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
-        // Both terms carry LOD_BIAS: it cancels.
-        l -= log2_u1f31_biased(c) - LOD_BIAS as i32;
-    }
+    // Feature `pcpi` on riscv32: both logarithms from `tex.log2pl`, the
+    // same bits: log2|w| + 0x80 directly, and for `c` (U1F31, read as the
+    // U32F32 value `c · 2⁻³²`, which has the same mantissa and 32 more
+    // leading zeros) `log2_u1f31_biased(c) − LOD_BIAS = tex.log2pl(c) +
+    // (1 << 16) − 0x80`.
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    let l = {
+        use crate::pcpi::log2pl;
+        let mut l = delta + log2pl(width.to_bits().unsigned_abs());
+        if let Some(c) = n_dot_d {
+            let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+            l -= log2pl(u64::from(c)) + (1 << 16) - 0x80;
+        }
+        l
+    };
+    #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
+    let l = {
+        let (lz, biased) = log2_u32f32_parts(width.to_bits().unsigned_abs());
+        // log2|w| + 0x80 (the I8F8 rounding offset) + Δ.
+        let mut l = delta + (biased as i32 - ((lz as i32) << 16));
+        if let Some(c) = n_dot_d {
+            let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
+            // Both terms carry LOD_BIAS: it cancels.
+            l -= log2_u1f31_biased(c) - LOD_BIAS as i32;
+        }
+        l
+    };
     Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
 }
 

@@ -268,7 +268,13 @@ pub(crate) fn log2_u32f32_parts(bits: u64) -> (u32, u32) {
 
 /// log2 of a U1F31 raw value in I16F16 bits plus [`LOD_BIAS`]:
 /// `log2_bits(u64::from(x), 31) + LOD_BIAS`, for `x ≠ 0`.
-#[cfg_attr(not(feature = "cone"), allow(dead_code))]
+#[cfg_attr(
+    any(
+        not(feature = "cone"),
+        all(feature = "pcpi", target_arch = "riscv32")
+    ),
+    allow(dead_code)
+)]
 #[inline(always)]
 pub(crate) fn log2_u1f31_biased(x: u32) -> i32 {
     let (m, lz) = normalise32(x);

@@ -2,6 +2,9 @@
 // memory-mapped console and exit register. Simulated by Verilator with the
 // C++ driver sim.cpp (scripts/softcore builds and runs it).
 //
+// Parameter ENABLE_TEX = 1 adds the texture co-processor (pcpi_tex.v,
+// custom-0 instructions) on the PCPI port; 0 (default) is the plain core.
+//
 // Core configuration (issue 15): RV32IMC, ENABLE_FAST_MUL (single-cycle
 // multiplier, DSP blocks on an FPGA), ENABLE_DIV, BARREL_SHIFTER,
 // COMPRESSED_ISA, ENABLE_COUNTERS (+ 64-bit: rdcycle[h], rdinstret[h]). No
@@ -26,7 +29,11 @@ module soc #(
     // 128 KiB: e.g. the four SPRAM blocks of an iCE40 UP5K, or 29 of the
     // 36 Kib block RAMs of an Artix-7 35T. memory.x next to this file must
     // state the same length.
-    parameter integer RAM_BYTES = 128 * 1024
+    parameter integer RAM_BYTES = 128 * 1024,
+    // 1: the texture co-processor pcpi_tex.v on the core's PCPI port
+    // (ENABLE_PCPI; custom-0 instructions tex.log2pl and tex.lod, issue
+    // 23). 0: the plain core, no PCPI logic.
+    parameter integer ENABLE_TEX = 0
 ) (
     input  wire        clk,
     input  wire        resetn,
@@ -50,7 +57,17 @@ module soc #(
     wire [ 3:0] mem_wstrb;
     reg  [31:0] mem_rdata;
 
+    wire        pcpi_valid;
+    wire [31:0] pcpi_insn;
+    wire [31:0] pcpi_rs1;
+    wire [31:0] pcpi_rs2;
+    wire        pcpi_wr;
+    wire [31:0] pcpi_rd;
+    wire        pcpi_wait;
+    wire        pcpi_ready;
+
     picorv32 #(
+        .ENABLE_PCPI(ENABLE_TEX),
         .ENABLE_COUNTERS(1),
         .ENABLE_COUNTERS64(1),
         .ENABLE_REGS_16_31(1),
@@ -80,19 +97,41 @@ module soc #(
         .mem_la_addr(),
         .mem_la_wdata(),
         .mem_la_wstrb(),
-        .pcpi_valid(),
-        .pcpi_insn(),
-        .pcpi_rs1(),
-        .pcpi_rs2(),
-        .pcpi_wr(1'b0),
-        .pcpi_rd(32'b0),
-        .pcpi_wait(1'b0),
-        .pcpi_ready(1'b0),
+        .pcpi_valid(pcpi_valid),
+        .pcpi_insn(pcpi_insn),
+        .pcpi_rs1(pcpi_rs1),
+        .pcpi_rs2(pcpi_rs2),
+        .pcpi_wr(pcpi_wr),
+        .pcpi_rd(pcpi_rd),
+        .pcpi_wait(pcpi_wait),
+        .pcpi_ready(pcpi_ready),
         .irq(32'b0),
         .eoi(),
         .trace_valid(),
         .trace_data()
     );
+
+    generate
+        if (ENABLE_TEX != 0) begin : tex
+            pcpi_tex cop (
+                .clk(clk),
+                .resetn(resetn),
+                .pcpi_valid(pcpi_valid),
+                .pcpi_insn(pcpi_insn),
+                .pcpi_rs1(pcpi_rs1),
+                .pcpi_rs2(pcpi_rs2),
+                .pcpi_wr(pcpi_wr),
+                .pcpi_rd(pcpi_rd),
+                .pcpi_wait(pcpi_wait),
+                .pcpi_ready(pcpi_ready)
+            );
+        end else begin : no_tex
+            assign pcpi_wr = 1'b0;
+            assign pcpi_rd = 32'b0;
+            assign pcpi_wait = 1'b0;
+            assign pcpi_ready = 1'b0;
+        end
+    endgenerate
 
     // The RAM; sim.cpp loads the firmware image into it before reset ends.
     reg [31:0] ram[0:RAM_WORDS-1] /*verilator public*/;

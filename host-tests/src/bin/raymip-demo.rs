@@ -10,6 +10,9 @@
 //!   lines the QEMU demos print (`scripts/test-all` compares them).
 //! * `raymip-demo parity`: prints the GPU-style sampler's parity line (the
 //!   firmware `parity` binary prints the same on both targets).
+//! * `raymip-demo pcpi-vectors FILE`: writes the texture co-processor's
+//!   reference vectors (`raymip_host::cli::pcpi_vectors`) for the
+//!   Verilator testbench of `demo/softcore/pcpi_tex.v`.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -17,7 +20,9 @@ use std::process::ExitCode;
 use raymip_host::cli::demo_data::{DATA_DIR, generate_data, stale_files};
 
 fn usage() -> ExitCode {
-    eprintln!("usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity");
+    eprintln!(
+        "usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity | pcpi-vectors FILE"
+    );
     ExitCode::from(2)
 }
 
@@ -56,6 +61,18 @@ fn main() -> ExitCode {
                 }
                 println!("wrote {}", path.display());
             }
+            ExitCode::SUCCESS
+        }
+        Some("pcpi-vectors") => {
+            let Some(path) = args.get(1) else {
+                return usage();
+            };
+            let v = raymip_host::cli::pcpi_vectors::vectors();
+            if let Err(e) = std::fs::write(path, &v) {
+                eprintln!("error: {path}: {e}");
+                return ExitCode::FAILURE;
+            }
+            println!("pcpi-vectors: {} vectors written to {path}", v.lines().count());
             ExitCode::SUCCESS
         }
         Some("render") => {

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod demo_data;
 pub mod instances;
 pub mod output;
+pub mod pcpi_vectors;
 pub mod render;
 pub mod sample;
 pub mod stress;

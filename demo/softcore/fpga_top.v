@@ -1,0 +1,44 @@
+// FPGA top level of the raymip soft-core SoC for the area and clock figures
+// of scripts/fpga (issue 23): soc.v with its console, exit and fault
+// signals reduced to the pins a 48-pin iCE40 UP5K package offers. The core,
+// the co-processor (ENABLE_TEX) and the RAM are those the Verilator runs
+// use; only the RAM size differs (RAM_BYTES, set by scripts/fpga: the
+// SoC's 128 KiB would be the UP5K's four SPRAM blocks, which Yosys 0.23
+// does not infer, so the flow maps a smaller RAM to block RAM).
+`timescale 1 ns / 1 ps
+`default_nettype none
+
+module fpga_top #(
+    parameter integer RAM_BYTES = 8 * 1024,
+    parameter integer ENABLE_TEX = 0
+) (
+    input  wire       clk,
+    input  wire       resetn,
+    output wire       trap,
+    output wire       con_valid,
+    output wire [7:0] con_byte,
+    output wire       exit_valid,
+    output wire       exit_nonzero,
+    output wire       fault
+);
+    wire [31:0] exit_code;
+    wire [31:0] fault_addr;
+    assign exit_nonzero = |exit_code;
+
+    soc #(
+        .RAM_BYTES(RAM_BYTES),
+        .ENABLE_TEX(ENABLE_TEX)
+    ) soc (
+        .clk(clk),
+        .resetn(resetn),
+        .trap(trap),
+        .con_valid(con_valid),
+        .con_byte(con_byte),
+        .exit_valid(exit_valid),
+        .exit_code(exit_code),
+        .fault(fault),
+        .fault_addr(fault_addr)
+    );
+endmodule
+
+`default_nettype wire

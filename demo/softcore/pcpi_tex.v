@@ -1,0 +1,214 @@
+// raymip texture co-processor for PicoRV32: custom-0 instructions on the
+// Pico Co-Processor Interface (PCPI). Our own RTL (issue 23); soc.v
+// instantiates it when built with `-DRAYMIP_PCPI` (ENABLE_PCPI on the core).
+//
+// Instructions (R-type, opcode custom-0 = 0001011, funct7 = 0):
+//
+//   funct3 0  tex.log2pl rd, rs1, rs2
+//             rs1 = low word, rs2 = high word of a path length Pl in U32F32
+//             (scene units, the firmware's `PathLength`). rd = log2 Pl in
+//             I16F16 bits plus 0x80 (the I8F8 rounding offset of a lod),
+//             exactly `biased − (lz << 16)` of the firmware's
+//             `log2_u32f32_parts` (src/log2.rs): lz = leading zeros of the
+//             64-bit value (63 for zero: Pl = 0 reads as 2⁻³²), the 32-bit
+//             mantissa m = top word of Pl << lz, index m[30:25] into the
+//             64 intervals of round(log2(1 + i/64)·2¹⁶), weight m[24:9],
+//             interval value base + ((slope·weight + 2¹⁵) >> 16), biased by
+//             (31 << 16) + 0x80. Range: [−32·2¹⁶ + 0x80, 32·2¹⁶ + 0x80].
+//
+//   funct3 1  tex.lod rd, rs1, rs2
+//             rs1 = the tex.log2pl result, rs2 = log2 Pb of the hit triangle
+//             (I16F16 bits, the firmware's `Log2Pb`, markers included).
+//             rd = the table lod `((rs1 − rs2) >> 8)` truncated to I8F8 and
+//             sign-extended to 32 bits, as the firmware's `table_lod`; for
+//             the untextured marker rs2 = 0x8000_0000 (`Log2Pb::UNTEXTURED`,
+//             `table_lod` returns None) rd = 0x8000_0000, a value no I8F8
+//             lod sign-extends to. The degenerate markers (±95 levels) are
+//             ordinary entries: their lods saturate as in software (≥ 63 /
+//             ≤ −63 levels).
+//
+// Any other custom-0 funct3/funct7 is not claimed (the core then traps as
+// on any illegal instruction). Timing: operands registered, then the
+// normalisation registered, then the table read, multiply and adds into
+// pcpi_rd: pcpi_ready in the third cycle after pcpi_valid is first seen
+// (PicoRV32 times out after 16); pcpi_wait is held meanwhile. Every output bit is checked
+// against vectors written by the Rust firmware code (tb_pcpi_tex.cpp,
+// scripts/softcore).
+`timescale 1 ns / 1 ps
+`default_nettype none
+
+module pcpi_tex (
+    input  wire        clk,
+    input  wire        resetn,
+    input  wire        pcpi_valid,
+    /* verilator lint_off UNUSEDSIGNAL */  // register numbers: the core's business
+    input  wire [31:0] pcpi_insn,
+    /* verilator lint_on UNUSEDSIGNAL */
+    input  wire [31:0] pcpi_rs1,
+    input  wire [31:0] pcpi_rs2,
+    output reg         pcpi_wr,
+    output reg  [31:0] pcpi_rd,
+    output wire        pcpi_wait,
+    output reg         pcpi_ready
+);
+    localparam [6:0] CUSTOM0 = 7'b0001011;
+    localparam [31:0] UNTEXTURED = 32'h8000_0000;
+    localparam [31:0] LOD_BIAS = (32'd31 << 16) + 32'h80;
+
+    wire is_tex = pcpi_valid && pcpi_insn[6:0] == CUSTOM0 && pcpi_insn[31:25] == 7'd0;
+    wire is_log2pl = is_tex && pcpi_insn[14:12] == 3'd0;
+    wire is_lod = is_tex && pcpi_insn[14:12] == 3'd1;
+    wire claimed = is_log2pl || is_lod;
+
+    // Normalisation of the 64-bit path length: six shift-if-zero steps
+    // (32, 16, 8, 4, 2, 1) give the leading-zero count and the shifted
+    // value together; zero gives lz = 63 and m = 0 (whose interval value
+    // equals that of m = 2³¹, as in software).
+    function [37:0] normalise(input [63:0] x);
+        reg [63:0] v;
+        reg [5:0] n;
+        begin
+            v = x;
+            n = 6'd0;
+            if (v[63:32] == 32'd0) begin v = v << 32; n = n + 6'd32; end
+            if (v[63:48] == 16'd0) begin v = v << 16; n = n + 6'd16; end
+            if (v[63:56] == 8'd0) begin v = v << 8; n = n + 6'd8; end
+            if (v[63:60] == 4'd0) begin v = v << 4; n = n + 6'd4; end
+            if (v[63:62] == 2'd0) begin v = v << 2; n = n + 6'd2; end
+            if (v[63] == 1'b0) begin v = v << 1; n = n + 6'd1; end
+            normalise = {n, v[63:32]};
+        end
+    endfunction
+
+    // round(log2(1 + i/64)·2¹⁶) (base) and the step to the next entry (slope).
+    reg [16:0] base;
+    reg [10:0] slope;
+    reg [5:0] idx;
+    always @* begin
+        case (idx)
+            6'd0: begin base = 17'd0; slope = 11'd1466; end
+            6'd1: begin base = 17'd1466; slope = 11'd1443; end
+            6'd2: begin base = 17'd2909; slope = 11'd1422; end
+            6'd3: begin base = 17'd4331; slope = 11'd1401; end
+            6'd4: begin base = 17'd5732; slope = 11'd1380; end
+            6'd5: begin base = 17'd7112; slope = 11'd1361; end
+            6'd6: begin base = 17'd8473; slope = 11'd1341; end
+            6'd7: begin base = 17'd9814; slope = 11'd1322; end
+            6'd8: begin base = 17'd11136; slope = 11'd1304; end
+            6'd9: begin base = 17'd12440; slope = 11'd1287; end
+            6'd10: begin base = 17'd13727; slope = 11'd1269; end
+            6'd11: begin base = 17'd14996; slope = 11'd1252; end
+            6'd12: begin base = 17'd16248; slope = 11'd1236; end
+            6'd13: begin base = 17'd17484; slope = 11'd1220; end
+            6'd14: begin base = 17'd18704; slope = 11'd1205; end
+            6'd15: begin base = 17'd19909; slope = 11'd1189; end
+            6'd16: begin base = 17'd21098; slope = 11'd1174; end
+            6'd17: begin base = 17'd22272; slope = 11'd1161; end
+            6'd18: begin base = 17'd23433; slope = 11'd1146; end
+            6'd19: begin base = 17'd24579; slope = 11'd1132; end
+            6'd20: begin base = 17'd25711; slope = 11'd1119; end
+            6'd21: begin base = 17'd26830; slope = 11'd1106; end
+            6'd22: begin base = 17'd27936; slope = 11'd1093; end
+            6'd23: begin base = 17'd29029; slope = 11'd1080; end
+            6'd24: begin base = 17'd30109; slope = 11'd1069; end
+            6'd25: begin base = 17'd31178; slope = 11'd1056; end
+            6'd26: begin base = 17'd32234; slope = 11'd1045; end
+            6'd27: begin base = 17'd33279; slope = 11'd1033; end
+            6'd28: begin base = 17'd34312; slope = 11'd1022; end
+            6'd29: begin base = 17'd35334; slope = 11'd1012; end
+            6'd30: begin base = 17'd36346; slope = 11'd1000; end
+            6'd31: begin base = 17'd37346; slope = 11'd990; end
+            6'd32: begin base = 17'd38336; slope = 11'd980; end
+            6'd33: begin base = 17'd39316; slope = 11'd970; end
+            6'd34: begin base = 17'd40286; slope = 11'd960; end
+            6'd35: begin base = 17'd41246; slope = 11'd950; end
+            6'd36: begin base = 17'd42196; slope = 11'd941; end
+            6'd37: begin base = 17'd43137; slope = 11'd931; end
+            6'd38: begin base = 17'd44068; slope = 11'd922; end
+            6'd39: begin base = 17'd44990; slope = 11'd914; end
+            6'd40: begin base = 17'd45904; slope = 11'd905; end
+            6'd41: begin base = 17'd46809; slope = 11'd896; end
+            6'd42: begin base = 17'd47705; slope = 11'd888; end
+            6'd43: begin base = 17'd48593; slope = 11'd879; end
+            6'd44: begin base = 17'd49472; slope = 11'd872; end
+            6'd45: begin base = 17'd50344; slope = 11'd863; end
+            6'd46: begin base = 17'd51207; slope = 11'd856; end
+            6'd47: begin base = 17'd52063; slope = 11'd848; end
+            6'd48: begin base = 17'd52911; slope = 11'd840; end
+            6'd49: begin base = 17'd53751; slope = 11'd833; end
+            6'd50: begin base = 17'd54584; slope = 11'd826; end
+            6'd51: begin base = 17'd55410; slope = 11'd819; end
+            6'd52: begin base = 17'd56229; slope = 11'd811; end
+            6'd53: begin base = 17'd57040; slope = 11'd805; end
+            6'd54: begin base = 17'd57845; slope = 11'd798; end
+            6'd55: begin base = 17'd58643; slope = 11'd791; end
+            6'd56: begin base = 17'd59434; slope = 11'd785; end
+            6'd57: begin base = 17'd60219; slope = 11'd778; end
+            6'd58: begin base = 17'd60997; slope = 11'd772; end
+            6'd59: begin base = 17'd61769; slope = 11'd765; end
+            6'd60: begin base = 17'd62534; slope = 11'd760; end
+            6'd61: begin base = 17'd63294; slope = 11'd753; end
+            6'd62: begin base = 17'd64047; slope = 11'd747; end
+            6'd63: begin base = 17'd64794; slope = 11'd742; end
+            default: begin base = 17'd0; slope = 11'd0; end
+        endcase
+    end
+
+    // Three registered steps: the operands (the cycle after valid), the
+    // normalised value, the result (with pcpi_ready). The operands are
+    // registered first so that the normalisation chain starts at a
+    // flip-flop of this module, not at the core's register file.
+    reg        busy;     // an instruction is in flight (until valid drops)
+    reg  [1:0] stage;    // 0 idle, 1 operands registered, 2 normalised
+    reg        op_lod;
+    reg [63:0] x;        // tex.log2pl operand
+    reg  [5:0] lz;
+    /* verilator lint_off UNUSEDSIGNAL */  // m[31] is the leading one, m[8:0] below the weight
+    reg [31:0] m;
+    /* verilator lint_on UNUSEDSIGNAL */
+    reg [31:0] a, b;     // tex.lod operands
+
+    wire [37:0] norm = normalise(x);
+    always @* idx = m[30:25];
+    wire [26:0] prod = slope * m[24:9];  // ≤ 1466·65535 < 2²⁷
+    /* verilator lint_off UNUSEDSIGNAL */  // rounded away / outside the I8F8 lod
+    wire [26:0] rnd = prod + 27'h8000;
+    wire [31:0] log2pl = LOD_BIAS + {15'd0, base} + {21'd0, rnd[26:16]} - {10'd0, lz, 16'd0};
+    wire [31:0] diff = a - b;
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [31:0] lod = b == UNTEXTURED ? UNTEXTURED : {{16{diff[23]}}, diff[23:8]};
+
+    assign pcpi_wait = claimed && !pcpi_ready;
+
+    always @(posedge clk) begin
+        pcpi_ready <= 1'b0;
+        pcpi_wr    <= 1'b0;
+        if (!resetn) begin
+            busy  <= 1'b0;
+            stage <= 2'd0;
+        end else if (stage == 2'd0) begin
+            // A new instruction only after the previous one's valid has
+            // dropped (the core clears pcpi_valid the cycle after ready).
+            if (claimed && !busy) begin
+                busy   <= 1'b1;
+                stage  <= 2'd1;
+                op_lod <= is_lod;
+                x <= {pcpi_rs2, pcpi_rs1};
+                a <= pcpi_rs1;
+                b <= pcpi_rs2;
+            end else if (!pcpi_valid) begin
+                busy <= 1'b0;
+            end
+        end else if (stage == 2'd1) begin
+            stage   <= 2'd2;
+            {lz, m} <= norm;
+        end else begin
+            stage      <= 2'd0;
+            pcpi_ready <= 1'b1;
+            pcpi_wr    <= 1'b1;
+            pcpi_rd    <= op_lod ? lod : log2pl;
+        end
+    end
+endmodule
+
+`default_nettype wire

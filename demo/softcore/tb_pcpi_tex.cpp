@@ -1,0 +1,132 @@
+// Verilator testbench of the texture co-processor pcpi_tex.v alone (issue
+// 23): drives its PCPI port as PicoRV32 does and checks every output bit
+// against reference vectors written by the firmware's software paths
+// (`raymip-demo pcpi-vectors FILE`, host-tests/src/cli/pcpi_vectors.rs).
+//
+// Usage: tb-pcpi-tex VECTORS
+// Each vector `OP RS1 RS2 RD` (hex): the instruction tex.* with funct3 OP
+// is presented with pcpi_valid held high (pcpi_insn, pcpi_rs1, pcpi_rs2
+// stable) until pcpi_ready; then pcpi_wr must be 1 and pcpi_rd equal RD in
+// all 32 bits, pcpi_ready must have come within 16 cycles (PicoRV32's PCPI
+// time-out) with pcpi_wait high until then, and valid drops the next cycle
+// as the core drops it. Unclaimed encodings (other funct3, funct7 or
+// opcode) must never raise pcpi_ready, pcpi_wr or pcpi_wait.
+// Prints `tb-pcpi-tex: N vectors, 0 mismatches` and exits 0, else lists
+// the first mismatches and exits 1.
+#include <cinttypes>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+
+#include "Vpcpi_tex.h"
+#include "verilated.h"
+
+namespace {
+
+uint32_t insn(uint32_t funct3, uint32_t funct7, uint32_t opcode) {
+    // rd = x10, rs1 = x11, rs2 = x12 (the co-processor ignores the numbers).
+    return funct7 << 25 | 12u << 20 | 11u << 15 | funct3 << 12 | 10u << 7 | opcode;
+}
+
+struct Tb {
+    std::unique_ptr<VerilatedContext> ctx = std::make_unique<VerilatedContext>();
+    std::unique_ptr<Vpcpi_tex> top = std::make_unique<Vpcpi_tex>(ctx.get());
+    void tick() {
+        top->clk = 1;
+        top->eval();
+        top->clk = 0;
+        top->eval();
+    }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: tb-pcpi-tex VECTORS\n");
+        return 2;
+    }
+    FILE* f = std::fopen(argv[1], "r");
+    if (!f) {
+        std::perror(argv[1]);
+        return 2;
+    }
+    Tb tb;
+    auto& t = *tb.top;
+    t.clk = 0;
+    t.resetn = 0;
+    t.pcpi_valid = 0;
+    for (int i = 0; i < 4; ++i) tb.tick();
+    t.resetn = 1;
+    tb.tick();
+
+    unsigned op;
+    uint32_t rs1, rs2, want;
+    uint64_t n = 0, bad = 0, max_lat = 0;
+    int ops[2] = {0, 0};
+    while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
+        ++n;
+        if (op < 2) ++ops[op];
+        t.pcpi_insn = insn(op, 0, 0x0b);
+        t.pcpi_rs1 = rs1;
+        t.pcpi_rs2 = rs2;
+        t.pcpi_valid = 1;
+        t.eval();
+        int lat = 0;
+        bool ok = true;
+        while (!t.pcpi_ready && lat < 16) {
+            if (!t.pcpi_wait) ok = false;  // must hold wait while busy
+            tb.tick();
+            ++lat;
+        }
+        uint32_t got = t.pcpi_rd;
+        if (!t.pcpi_ready || !t.pcpi_wr || got != want || !ok) {
+            if (++bad <= 10)
+                std::fprintf(stderr,
+                             "mismatch: op %u rs1 %08x rs2 %08x: rd %08x (want %08x) ready %d "
+                             "wr %d after %d cycles, wait held %d\n",
+                             op, rs1, rs2, got, want, int(t.pcpi_ready), int(t.pcpi_wr), lat,
+                             int(ok));
+        }
+        if (uint64_t(lat) > max_lat) max_lat = lat;
+        // The core takes the result at this edge and drops valid after it.
+        tb.tick();
+        t.pcpi_valid = 0;
+        t.eval();
+        if (t.pcpi_ready) {
+            if (++bad <= 10) std::fprintf(stderr, "ready held longer than one cycle\n");
+        }
+        tb.tick();
+    }
+    std::fclose(f);
+
+    // Encodings the co-processor must leave alone.
+    const uint32_t other[] = {insn(2, 0, 0x0b), insn(7, 0, 0x0b), insn(0, 1, 0x0b),
+                              insn(1, 0x40, 0x0b), insn(0, 0, 0x2b), insn(0, 1, 0x33)};
+    for (uint32_t w : other) {
+        t.pcpi_insn = w;
+        t.pcpi_rs1 = 0x1234;
+        t.pcpi_rs2 = 0x5678;
+        t.pcpi_valid = 1;
+        for (int c = 0; c < 20; ++c) {
+            t.eval();
+            if (t.pcpi_ready || t.pcpi_wr || t.pcpi_wait) {
+                if (++bad <= 10) std::fprintf(stderr, "encoding %08x claimed\n", w);
+                break;
+            }
+            tb.tick();
+        }
+        t.pcpi_valid = 0;
+        tb.tick();
+        tb.tick();
+    }
+    t.final();
+    if (n == 0 || ops[0] == 0 || ops[1] == 0) {
+        std::fprintf(stderr, "tb-pcpi-tex: %s has no vectors of both instructions\n", argv[1]);
+        return 1;
+    }
+    std::printf("tb-pcpi-tex: %" PRIu64 " vectors (%d tex.log2pl, %d tex.lod), %" PRIu64
+                " mismatches, latency %" PRIu64 " cycles after valid\n",
+                n, ops[0], ops[1], bad, max_lat);
+    return bad == 0 ? 0 : 1;
+}

@@ -1,0 +1,175 @@
+#!/usr/bin/env python3
+"""Formats the FPGA measurement of scripts/fpga into BUDGETS.md (the block
+between <!-- fpga:begin --> and <!-- fpga:end -->, which carries the figures
+as a `<!-- fpga-data: {...} -->` comment for scripts/softcore.py) and
+docs/softcore.md (<!-- fpga-docs:begin --> … <!-- fpga-docs:end -->). Every
+number comes from the files in --work: stat-0/1.txt (Yosys `stat` of the
+SoC without / with the co-processor) and, with --pnr, pnr-0/1.log
+(nextpnr-ice40: logic cells, maximum frequency) and pnr-*.seconds.
+
+Without --pnr the place-and-route figures are kept from BUDGETS.md for a
+variant whose synthesis figures are unchanged, and dropped otherwise.
+--check writes nothing and reports differences (exit 1 on them only with
+RAYMIP_BUDGETS_STRICT=1). --self-test checks the parsers on fixed text.
+"""
+import argparse
+import difflib
+import json
+import os
+import re
+import sys
+
+B_BEGIN, B_END = "<!-- fpga:begin -->", "<!-- fpga:end -->"
+D_BEGIN, D_END = "<!-- fpga-docs:begin -->", "<!-- fpga-docs:end -->"
+DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
+CELL_RE = re.compile(r"^\s+(SB_\w+)\s+(\d+)\s*$")
+LC_RE = re.compile(r"ICESTORM_LC:\s+(\d+)/\s*(\d+)")
+MHZ_RE = re.compile(r"Max frequency for clock '[^']*': ([\d.]+) MHz")
+VARIANTS = (("plain", "0", "without co-processor"), ("pcpi", "1", "with co-processor (`ENABLE_TEX = 1`)"))
+SYNTH_KEYS = ("lut", "ff", "carry", "dsp", "bram")
+
+
+def parse_stat(text):
+    """Yosys `stat` of an iCE40 netlist: LUT4s, flip-flops (every SB_DFF*),
+    carry cells, DSPs (SB_MAC16), block RAMs (SB_RAM40_4K)."""
+    cells = {}
+    for line in text.splitlines():
+        m = CELL_RE.match(line)
+        if m:
+            cells[m.group(1)] = cells.get(m.group(1), 0) + int(m.group(2))
+    return {"lut": cells.get("SB_LUT4", 0),
+            "ff": sum(v for k, v in cells.items() if k.startswith("SB_DFF")),
+            "carry": cells.get("SB_CARRY", 0),
+            "dsp": cells.get("SB_MAC16", 0),
+            "bram": cells.get("SB_RAM40_4K", 0)}
+
+
+def parse_pnr(text):
+    """(logic cells used, of total, max MHz: the last report, after routing)."""
+    lc = LC_RE.findall(text)
+    mhz = MHZ_RE.findall(text)
+    if not lc or not mhz:
+        return None
+    return int(lc[-1][0]), int(lc[-1][1]), float(mhz[-1])
+
+
+def replace_block(text, begin, end, block, after=None):
+    i, j = text.find(begin), text.find(end)
+    if i >= 0 and j > i:
+        return text[:i] + block + text[j + len(end):]
+    if after and after in text:
+        k = text.index(after) + len(after)
+        return text[:k] + "\n\n" + block + text[k:]
+    return text.rstrip("\n") + "\n\n" + block + "\n"
+
+
+def table(data):
+    L = ["| SoC | LUT4 | flip-flops | carry | DSPs (SB_MAC16) | block RAMs | logic cells | max clock |",
+         "|---|---|---|---|---|---|---|---|"]
+    for key, _, name in VARIANTS:
+        v = data["variants"][key]
+        lc = f"{v['lc']} / {data['lc_total']} ({100 * v['lc'] / data['lc_total']:.0f} %)" if v.get("lc") else "not placed"
+        mhz = f"{v['mhz']:.2f} MHz" if v.get("mhz") else "—"
+        L.append(f"| {name} | {v['lut']} | {v['ff']} | {v['carry']} | {v['dsp']} | {v['bram']} | {lc} | {mhz} |")
+    p, q = data["variants"]["plain"], data["variants"]["pcpi"]
+    L.append(f"\nThe co-processor: +{q['lut'] - p['lut']} LUT4, +{q['ff'] - p['ff']} flip-flops, "
+             f"+{q['carry'] - p['carry']} carry cells, +{q['dsp'] - p['dsp']} DSP"
+             + (f", +{q['lc'] - p['lc']} logic cells." if p.get("lc") and q.get("lc") else "."))
+    return L
+
+
+def budgets_block(a, data):
+    L = [B_BEGIN, "## Soft core on an FPGA (Yosys + nextpnr-ice40)\n"]
+    L.append("Written by `scripts/fpga` (synthesis run by `scripts/test-all`; place and route with `--pnr`);")
+    L.append(f"do not edit. The SoC of the soft-core block above in `demo/softcore/fpga_top.v`, {a.yosys},")
+    L.append(f"`synth_ice40 -dsp`; {a.nextpnr}, `--up5k --package sg48 --seed {data['seed']}`. RAM {data['ram_bytes']} bytes")
+    L.append("of block RAM instead of the simulated 128 KiB (the UP5K's SPRAM, not inferred by this Yosys);")
+    L.append("core and co-processor logic as simulated.\n")
+    L += table(data)
+    secs = [data["variants"][k].get("pnr_s") for k, _, _ in VARIANTS]
+    if all(secs):
+        L.append(f"Place and route took {secs[0]} s and {secs[1]} s on this machine (not run in CI).")
+    L.append(f"<!-- fpga-data: {json.dumps(data, sort_keys=True)} -->")
+    L.append(B_END)
+    return "\n".join(L)
+
+
+def docs_block(data):
+    L = [D_BEGIN, "Written by `scripts/fpga` (figures also in BUDGETS.md); do not edit.\n"]
+    L.append(f"iCE40 UP5K, Yosys `synth_ice40 -dsp`, nextpnr-ice40 seed {data['seed']}; RAM "
+             f"{data['ram_bytes']} bytes of block RAM (see `scripts/fpga`).\n")
+    L += table(data)
+    L.append(D_END)
+    return "\n".join(L)
+
+
+def self_test():
+    s = parse_stat("   Number of cells: 9\n     SB_CARRY  7\n     SB_DFF 2\n     SB_DFFE   3\n"
+                   "     SB_LUT4 10\n     SB_MAC16 1\n     SB_RAM40_4K 4\n")
+    assert s == {"lut": 10, "ff": 5, "carry": 7, "dsp": 1, "bram": 4}, s
+    p = parse_pnr("Info: \t ICESTORM_LC:  3738/ 5280    70%\n"
+                  "Info: Max frequency for clock 'clk$glb': 22.46 MHz (PASS at 12.00 MHz)\n"
+                  "Info: Max frequency for clock 'clk$glb': 22.39 MHz (PASS at 12.00 MHz)\n")
+    assert p == (3738, 5280, 22.39), p
+    t = f"a\n{B_BEGIN}\nx\n{B_END}\nb"
+    assert replace_block(t, B_BEGIN, B_END, "Y") == "a\nY\nb"
+    assert replace_block("a\nEND\nb", B_BEGIN, B_END, "Y", "END") == "a\nEND\n\nY\nb"
+    print("fpga.py: self-test passed")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs"):
+        ap.add_argument(f"--{k}")
+    ap.add_argument("--ram", type=int)
+    ap.add_argument("--check", action="store_true")
+    ap.add_argument("--pnr", action="store_true")
+    ap.add_argument("--self-test", action="store_true")
+    a = ap.parse_args()
+    if a.self_test:
+        self_test()
+        return 0
+    old_text = open(a.budgets).read()
+    m = DATA_RE.search(old_text)
+    old = json.loads(m.group(1)) if m else None
+    data = {"device": "iCE40 UP5K (sg48)", "seed": 1, "lc_total": 5280, "ram_bytes": a.ram, "variants": {}}
+    for key, n, _ in VARIANTS:
+        v = parse_stat(open(os.path.join(a.work, f"stat-{n}.txt")).read())
+        if v["lut"] == 0:
+            sys.exit(f"fpga.py: stat-{n}.txt has no SB_LUT4 count")
+        if a.pnr:
+            p = parse_pnr(open(os.path.join(a.work, f"pnr-{n}.log")).read())
+            if p is None:
+                sys.exit(f"fpga.py: pnr-{n}.log has no utilisation / frequency")
+            v["lc"], data["lc_total"], v["mhz"] = p
+            v["pnr_s"] = int(open(os.path.join(a.work, f"pnr-{n}.seconds")).read())
+        elif old and key in old["variants"] and all(old["variants"][key].get(k) == v[k] for k in SYNTH_KEYS):
+            for k in ("lc", "mhz", "pnr_s"):
+                if old["variants"][key].get(k) is not None:
+                    v[k] = old["variants"][key][k]
+        else:
+            print(f"fpga.py: {key}: synthesis figures changed: run scripts/fpga --pnr for its clock")
+        data["variants"][key] = v
+    changed = []
+    for path, begin, end, block, after in [(a.budgets, B_BEGIN, B_END, budgets_block(a, data), "<!-- softcore:end -->"),
+                                           (a.docs, D_BEGIN, D_END, docs_block(data), None)]:
+        text = open(path).read()
+        new = replace_block(text, begin, end, block, after)
+        if new == text:
+            print(f"fpga.py: {os.path.basename(path)} is up to date")
+            continue
+        changed.append(path)
+        if a.check:
+            print(f"fpga.py: {os.path.basename(path)} differs from this measurement (run scripts/fpga --pnr and commit it):")
+            sys.stdout.writelines(difflib.unified_diff(text.splitlines(True), new.splitlines(True), path, path + " (measured)"))
+        else:
+            open(path, "w").write(new)
+            print(f"fpga.py: wrote {os.path.basename(path)}")
+    print(budgets_block(a, data))
+    if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
