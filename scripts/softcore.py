@@ -253,7 +253,7 @@ def paper_block(calls, pcalls, rows, fpga):
         cyc = c["lod"]["cycles"][1] + c["trilinear"]["cycles"][1]
         hz = v["mhz"] * 1e6 if v.get("mhz") else None
         per[key] = (cyc, hz, v)
-        L.append(f"| {name} | {v['mhz'] if v.get('mhz') else '—'} | {v['lc']} / {fpga['lc_total']} | {v['lut']} | "
+        L.append(f"| {name} | {v['mhz'] if v.get('mhz') else '—'} | {v.get('lc', 'not placed')} / {fpga['lc_total']} | {v['lut']} | "
                  f"{v['ff']} | {v['dsp']} | {cyc:.1f} | {si(hz / cyc) if hz else '—'} | {si(PAPER_MHZ * 1e6 / cyc)} |")
     if rows:
         lo, hi = PAPER_FPS

@@ -38,11 +38,11 @@ use fixed::types::I8F8;
 #[cfg(feature = "cone")]
 use fixed::types::{I16F16, U1F31};
 
-use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::log2::LOD_BIAS;
 #[cfg(all(feature = "cone", not(all(feature = "pcpi", target_arch = "riscv32"))))]
 use crate::log2::log2_u1f31_biased;
+use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::log2_fast::log2_u1f31_fast_biased;
 use crate::log2_fast::{NormPl, log2_u32f32_fast_parts};

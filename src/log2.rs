@@ -269,10 +269,7 @@ pub(crate) fn log2_u32f32_parts(bits: u64) -> (u32, u32) {
 /// log2 of a U1F31 raw value in I16F16 bits plus [`LOD_BIAS`]:
 /// `log2_bits(u64::from(x), 31) + LOD_BIAS`, for `x ≠ 0`.
 #[cfg_attr(
-    any(
-        not(feature = "cone"),
-        all(feature = "pcpi", target_arch = "riscv32")
-    ),
+    any(not(feature = "cone"), all(feature = "pcpi", target_arch = "riscv32")),
     allow(dead_code)
 )]
 #[inline(always)]

@@ -72,7 +72,10 @@ fn main() -> ExitCode {
                 eprintln!("error: {path}: {e}");
                 return ExitCode::FAILURE;
             }
-            println!("pcpi-vectors: {} vectors written to {path}", v.lines().count());
+            println!(
+                "pcpi-vectors: {} vectors written to {path}",
+                v.lines().count()
+            );
             ExitCode::SUCCESS
         }
         Some("render") => {

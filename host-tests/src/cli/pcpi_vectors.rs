@@ -109,15 +109,33 @@ pub fn vectors() -> String {
     let pbs = entries(64);
     let mut out = String::new();
     for &p in &pls {
-        let _ = writeln!(out, "0 {:08x} {:08x} {:08x}", p as u32, (p >> 32) as u32, log2pl(p));
+        let _ = writeln!(
+            out,
+            "0 {:08x} {:08x} {:08x}",
+            p as u32,
+            (p >> 32) as u32,
+            log2pl(p)
+        );
     }
     // tex.lod: every entry with a spread of path lengths, then random pairs.
     for (k, &p) in pls.iter().enumerate() {
         let pb = pbs[k % pbs.len()];
-        let _ = writeln!(out, "1 {:08x} {:08x} {:08x}", log2pl(p), pb.to_bits() as u32, lod(p, pb));
+        let _ = writeln!(
+            out,
+            "1 {:08x} {:08x} {:08x}",
+            log2pl(p),
+            pb.to_bits() as u32,
+            lod(p, pb)
+        );
         if k % 97 == 0 {
             for &pb in &pbs[..10] {
-                let _ = writeln!(out, "1 {:08x} {:08x} {:08x}", log2pl(p), pb.to_bits() as u32, lod(p, pb));
+                let _ = writeln!(
+                    out,
+                    "1 {:08x} {:08x} {:08x}",
+                    log2pl(p),
+                    pb.to_bits() as u32,
+                    lod(p, pb)
+                );
             }
         }
     }
@@ -136,11 +154,17 @@ mod tests {
         for p in path_lengths() {
             let got = f64::from(log2pl(p).wrapping_sub(0x80) as i32) / 65536.0;
             let want = (p.max(1) as f64).log2() - 32.0;
-            assert!((got - want).abs() <= raymip::log2::LOG2_MAX_ERROR, "{p:#x}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= raymip::log2::LOG2_MAX_ERROR,
+                "{p:#x}: {got} vs {want}"
+            );
             for pb in [Log2Pb::MIN, Log2Pb::MAX, Log2Pb::from_bits(0x12345)] {
                 let l = f64::from(lod(p, pb) as i32) / 256.0;
                 let want = want - f64::from(pb.to_bits()) / 65536.0;
-                assert!((l - want).abs() <= raymip::lod::LOD_MAX_ERROR, "{p:#x}: {l} vs {want}");
+                assert!(
+                    (l - want).abs() <= raymip::lod::LOD_MAX_ERROR,
+                    "{p:#x}: {l} vs {want}"
+                );
             }
             assert_eq!(lod(p, Log2Pb::UNTEXTURED), 0x8000_0000);
         }
@@ -152,7 +176,13 @@ mod tests {
         let n0 = v.lines().filter(|l| l.starts_with("0 ")).count();
         let n1 = v.lines().filter(|l| l.starts_with("1 ")).count();
         assert!(n0 > 20_000 && n1 > n0, "{n0} {n1}");
-        assert!(v.contains("0 00000000 00000000 ffe00080"), "zero reads as 2^-32");
-        assert!(v.lines().any(|l| l.starts_with("1 ") && l.ends_with(" 80000000")));
+        assert!(
+            v.contains("0 00000000 00000000 ffe00080"),
+            "zero reads as 2^-32"
+        );
+        assert!(
+            v.lines()
+                .any(|l| l.starts_with("1 ") && l.ends_with(" 80000000"))
+        );
     }
 }
