@@ -945,7 +945,7 @@ def readme_block(res, readme):
     acc = accuracy_cells(readme)
     L = [README_BEGIN]
     L.append("Instructions per `TextureSampler` call (mean, max in parentheses; `bash scripts/budgets`, "
-             "QEMU traces, BUDGETS.md \"GPU-style sampler\" for the inputs) and the largest error per "
+             "QEMU traces, BUDGETS.md \"Sampler matrix\" for the inputs) and the largest error per "
              "channel of that format and filter measured against the f64 reference over random states "
              "(8-bit LSB, measured / bound; the table above):\n")
     L.append("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb | max error vs f64 (LSB) |")
