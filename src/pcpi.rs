@@ -36,8 +36,8 @@
 //! and changes no other register, CSR or the stack, so the blocks are
 //! declared `pure, nomem, nostack` (the compiler may merge or drop calls,
 //! as for any pure function). On the hardware it is built for, an
-//! instruction always completes (the co-processor answers in three cycles,
-//! within PicoRV32's 16-cycle PCPI time-out); the remaining hazard, running
+//! instruction always completes (the co-processor answers in at most four
+//! cycles, within PicoRV32's 16-cycle PCPI time-out); the remaining hazard, running
 //! the firmware on a core without the co-processor, traps (illegal
 //! instruction) rather than corrupting state, and is excluded by building
 //! the feature only for that SoC.

@@ -28,10 +28,12 @@
 //             ≤ −63 levels).
 //
 // Any other custom-0 funct3/funct7 is not claimed (the core then traps as
-// on any illegal instruction). Timing: operands registered, then the
-// normalisation registered, then the table read, multiply and adds into
-// pcpi_rd: pcpi_ready in the third cycle after pcpi_valid is first seen
-// (PicoRV32 times out after 16); pcpi_wait is held meanwhile. Every output bit is checked
+// on any illegal instruction). Timing: operands registered; tex.lod then
+// answers (pcpi_ready two cycles after pcpi_valid is first seen);
+// tex.log2pl registers the coarse (32, 16, 8) and the fine (4, 2, 1)
+// normalisation steps, then the table read, multiply and adds into pcpi_rd
+// (pcpi_ready four cycles after pcpi_valid; PicoRV32 times out after 16);
+// pcpi_wait is held meanwhile. Every output bit is checked
 // against vectors written by the Rust firmware code (tb_pcpi_tex.cpp,
 // scripts/softcore).
 `timescale 1 ns / 1 ps
@@ -63,8 +65,10 @@ module pcpi_tex (
     // Normalisation of the 64-bit path length: six shift-if-zero steps
     // (32, 16, 8, 4, 2, 1) give the leading-zero count and the shifted
     // value together; zero gives lz = 63 and m = 0 (whose interval value
-    // equals that of m = 2³¹, as in software).
-    function [37:0] normalise(input [63:0] x);
+    // equals that of m = 2³¹, as in software). Two pipeline stages: the
+    // coarse steps (32, 16, 8) keep the top 39 bits (the fine steps shift
+    // by at most 7), the fine steps (4, 2, 1) the top 32.
+    function [44:0] normalise_coarse(input [63:0] x);
         reg [63:0] v;
         reg [5:0] n;
         begin
@@ -73,10 +77,20 @@ module pcpi_tex (
             if (v[63:32] == 32'd0) begin v = v << 32; n = n + 6'd32; end
             if (v[63:48] == 16'd0) begin v = v << 16; n = n + 6'd16; end
             if (v[63:56] == 8'd0) begin v = v << 8; n = n + 6'd8; end
-            if (v[63:60] == 4'd0) begin v = v << 4; n = n + 6'd4; end
-            if (v[63:62] == 2'd0) begin v = v << 2; n = n + 6'd2; end
-            if (v[63] == 1'b0) begin v = v << 1; n = n + 6'd1; end
-            normalise = {n, v[63:32]};
+            normalise_coarse = {n, v[63:25]};
+        end
+    endfunction
+
+    function [37:0] normalise_fine(input [44:0] c);
+        reg [38:0] v;
+        reg [5:0] n;
+        begin
+            n = c[44:39];
+            v = c[38:0];
+            if (v[38:35] == 4'd0) begin v = v << 4; n = n + 6'd4; end
+            if (v[38:37] == 2'd0) begin v = v << 2; n = n + 6'd2; end
+            if (v[38] == 1'b0) begin v = v << 1; n = n + 6'd1; end
+            normalise_fine = {n, v[38:7]};
         end
     endfunction
 
@@ -154,21 +168,22 @@ module pcpi_tex (
         endcase
     end
 
-    // Three registered steps: the operands (the cycle after valid), the
-    // normalised value, the result (with pcpi_ready). The operands are
-    // registered first so that the normalisation chain starts at a
-    // flip-flop of this module, not at the core's register file.
+    // Registered steps: the operands (the cycle after valid); for tex.lod
+    // then the result (with pcpi_ready, two cycles after valid); for
+    // tex.log2pl the coarse and the fine normalisation, then the result
+    // (four cycles after valid). The operands are registered first so that
+    // no path starts at the core's register file.
     reg        busy;     // an instruction is in flight (until valid drops)
-    reg  [1:0] stage;    // 0 idle, 1 operands registered, 2 normalised
+    reg  [1:0] stage;    // 0 idle, 1 operands registered, 2 coarse, 3 fine normalised
     reg        op_lod;
     reg [63:0] x;        // tex.log2pl operand
+    reg [44:0] coarse;   // {lz so far, top 39 bits}
     reg  [5:0] lz;
     /* verilator lint_off UNUSEDSIGNAL */  // m[31] is the leading one, m[8:0] below the weight
     reg [31:0] m;
     /* verilator lint_on UNUSEDSIGNAL */
     reg [31:0] a, b;     // tex.lod operands
 
-    wire [37:0] norm = normalise(x);
     always @* idx = m[30:25];
     wire [26:0] prod = slope * m[24:9];  // ≤ 1466·65535 < 2²⁷
     /* verilator lint_off UNUSEDSIGNAL */  // rounded away / outside the I8F8 lod
@@ -200,13 +215,23 @@ module pcpi_tex (
                 busy <= 1'b0;
             end
         end else if (stage == 2'd1) begin
-            stage   <= 2'd2;
-            {lz, m} <= norm;
+            if (op_lod) begin
+                stage      <= 2'd0;
+                pcpi_ready <= 1'b1;
+                pcpi_wr    <= 1'b1;
+                pcpi_rd    <= lod;
+            end else begin
+                stage  <= 2'd2;
+                coarse <= normalise_coarse(x);
+            end
+        end else if (stage == 2'd2) begin
+            stage   <= 2'd3;
+            {lz, m} <= normalise_fine(coarse);
         end else begin
             stage      <= 2'd0;
             pcpi_ready <= 1'b1;
             pcpi_wr    <= 1'b1;
-            pcpi_rd    <= op_lod ? lod : log2pl;
+            pcpi_rd    <= log2pl;
         end
     end
 endmodule
