@@ -38,3 +38,25 @@ fn every_format_and_filter_within_bound() {
         );
     }
 }
+
+/// The fuzz target's case function (`fuzz/fuzz_targets/sampler_ref.rs`)
+/// over a few hundred byte patterns: every configuration it reaches stays
+/// within its bound, and the cases are not all ties.
+#[test]
+fn fuzz_cases_within_bound() {
+    use raymip_host::reference::sampler_ref::fuzz_case;
+    let mut compared = 0;
+    for i in 0u32..300 {
+        let k = i.wrapping_mul(0x9E37_79B9);
+        let mut bytes = [0u8; 12];
+        bytes[..4].copy_from_slice(&i.to_le_bytes().map(|b| b.wrapping_mul(7)));
+        bytes[0] = (i % 13) as u8;
+        bytes[3] = (i / 13 % 5) as u8;
+        bytes[4..8].copy_from_slice(&k.to_le_bytes());
+        if let Some((case, error, bound)) = fuzz_case(&bytes) {
+            assert!(error <= bound, "{case}: {error} > {bound}");
+            compared += 1;
+        }
+    }
+    assert!(compared > 250, "only {compared} of 300 cases compared");
+}

@@ -389,16 +389,7 @@ pub fn measure(samples: usize, seed: u64, precision: Precision) -> Vec<AccuracyR
             &[(ColorSpace::Linear, SrgbOutput::Encoded, "")]
         };
         for &(space, out, suffix) in spaces {
-            let mut texels: Vec<Texel> = (0..geometry.len())
-                .map(|_| (rng.unit() * 4_294_967_296.0) as u32)
-                .collect();
-            if space == ColorSpace::Srgb {
-                raymip::texture::storage::srgb::generate(&geometry, &mut texels)
-                    .expect("srgb pyramid");
-            } else {
-                raymip::texture::storage::mip::generate(&geometry, &mut texels).expect("pyramid");
-            }
-            let bytes = crate::reference::texformat::encode_pyramid(&geometry, &texels, format);
+            let bytes = random_image_bytes(&mut rng, &geometry, format, space);
             let fmt = Format::new(format, space).expect("format");
             let image = Image::new(geometry, fmt, &bytes).expect("image");
             let reference = reference_texture(&geometry, format, &image, &bytes);
@@ -412,9 +403,7 @@ pub fn measure(samples: usize, seed: u64, precision: Precision) -> Vec<AccuracyR
                         ties += 1;
                         continue;
                     };
-                    for (g, w) in got.to_le_bytes().iter().zip(want) {
-                        max_error = max_error.max((f64::from(*g) - w).abs());
-                    }
+                    max_error = max_error.max(channel_error(got, want));
                 }
                 rows.push(AccuracyRow {
                     format: format!("{format:?}{suffix}"),
@@ -429,6 +418,84 @@ pub fn measure(samples: usize, seed: u64, precision: Precision) -> Vec<AccuracyR
         }
     }
     rows
+}
+
+/// The largest channel difference between a firmware texel and the
+/// reference's channels (8-bit LSB).
+fn channel_error(got: Texel, want: [f64; 4]) -> f64 {
+    got.to_le_bytes()
+        .iter()
+        .zip(want)
+        .map(|(g, w)| (f64::from(*g) - w).abs())
+        .fold(0.0, f64::max)
+}
+
+/// A pseudo-random pyramid of `geometry` (levels generated from random
+/// level-0 texels, in sRGB space when `space` is sRGB) stored as `format`.
+fn random_image_bytes(
+    rng: &mut Rng,
+    geometry: &Geometry,
+    format: TexelFormat,
+    space: ColorSpace,
+) -> Vec<u8> {
+    let mut texels: Vec<Texel> = (0..geometry.len())
+        .map(|_| (rng.unit() * 4_294_967_296.0) as u32)
+        .collect();
+    if space == ColorSpace::Srgb {
+        raymip::texture::storage::srgb::generate(geometry, &mut texels).expect("srgb pyramid");
+    } else {
+        raymip::texture::storage::mip::generate(geometry, &mut texels).expect("pyramid");
+    }
+    crate::reference::texformat::encode_pyramid(geometry, &texels, format)
+}
+
+/// One case of the `sampler_ref` fuzz target: the run-time-configured
+/// sampler ([`DynSampler`] through a texel cache) against [`RefSampler`].
+/// The first four bytes of `bytes` choose the format, the colour space
+/// (linear, sRGB re-encoded, sRGB linear), the tier and the filter; the
+/// next eight seed the texels, the sampler state (address modes per axis,
+/// border, bias, lod clamps) and the sample position, lod or footprint, as
+/// in [`measure`] (missing bytes read as zero). Returns
+/// `(case, error, bound)`: the largest channel error in 8-bit LSB and the
+/// documented bound of that configuration, or `None` for an anisotropic
+/// footprint whose probe count is a rounding tie.
+#[must_use]
+pub fn fuzz_case(bytes: &[u8]) -> Option<(String, f64, f64)> {
+    let mut b = [0u8; 12];
+    for (d, s) in b.iter_mut().zip(bytes) {
+        *d = *s;
+    }
+    let format = TexelFormat::ALL[usize::from(b[0]) % TexelFormat::ALL.len()];
+    let (space, out) = match (format.has_srgb(), b[1] % 3) {
+        (true, 1) => (ColorSpace::Srgb, SrgbOutput::Encoded),
+        (true, 2) => (ColorSpace::Srgb, SrgbOutput::Linear),
+        _ => (ColorSpace::Linear, SrgbOutput::Encoded),
+    };
+    let precision = if b[2] & 1 == 0 {
+        Precision::Accurate
+    } else {
+        Precision::Fast
+    };
+    let fi = usize::from(b[3]) % FILTERS.len();
+    let mut seed = [0u8; 8];
+    seed.copy_from_slice(&b[4..]);
+    let mut rng = Rng(u64::from_le_bytes(seed).max(1));
+    let geometry = Geometry::new(24, 20, 5).expect("geometry");
+    let bytes = random_image_bytes(&mut rng, &geometry, format, space);
+    let image = Image::new(
+        geometry,
+        Format::new(format, space).expect("format"),
+        &bytes,
+    )
+    .expect("image");
+    let reference = reference_texture(&geometry, format, &image, &bytes);
+    let (got, want) = sample_pair(&mut rng, fi, image, &reference, (space, out, precision))?;
+    let case = format!("{format:?} {space:?} {out:?} {precision:?} {}", FILTERS[fi]);
+    Some((
+        case,
+        channel_error(got, want),
+        error_bound(fi, space, out, precision),
+    ))
 }
 
 /// The reference's view of `image`: its own decode of the stored bytes,
