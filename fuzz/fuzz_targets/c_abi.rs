@@ -332,7 +332,8 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
         levels,
     };
     // One sampler set up for the texture, then up to 8 samples through it.
-    let address = u.int_in_range(0..=2u8)?;
+    // 0..=4 name the five modes (`RmAddress`), 5 is out of range.
+    let address = u.int_in_range(0..=5u8)?;
     let mut sm = RmSampler {
         opaque: [0; RM_SAMPLER_WORDS],
     };
@@ -341,6 +342,9 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
     let a = match address {
         0 => Some(AddressMode::Wrap),
         1 => Some(AddressMode::ClampToEdge),
+        2 => Some(AddressMode::Mirror),
+        3 => Some(AddressMode::MirrorOnce),
+        4 => Some(AddressMode::ClampToBorder),
         _ => None,
     };
     let p = match (a, Pyramid::new(g, &buf[..tex.len])) {
