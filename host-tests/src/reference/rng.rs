@@ -1,6 +1,6 @@
 //! The one test random-number generator: xorshift64 (Marsaglia 2003),
 //! deterministic from its seed. Dependency-free so that the firmware's
-//! integration tests (`tests/common/mod.rs` at the root) include this same
+//! integration tests (`tests/firmware/common/mod.rs` at the root) include this same
 //! file.
 
 /// Deterministic xorshift64 generator (the seed must be non-zero).

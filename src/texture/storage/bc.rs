@@ -29,7 +29,7 @@
 //! palettes as real-valued fractions of the endpoints and lets hardware
 //! round within a tolerance; this integer form is the one common software
 //! decoders implement and is tested bit-exact against one (the
-//! `texture2ddecoder` crate, in `host-tests/tests/bc_decode.rs`), over
+//! `texture2ddecoder` crate, in `host-tests/tests/harness/bc_decode.rs`), over
 //! random blocks and every mode edge.
 //!
 //! The texel cache decodes a whole block on a fill ([`decode_block`]); an

@@ -3,11 +3,11 @@
 //! from their home in `host-tests/src/reference`.
 #![allow(dead_code, unused_imports)]
 
-#[path = "../../host-tests/src/reference/pb.rs"]
+#[path = "../../../host-tests/src/reference/pb.rs"]
 mod pb;
-#[path = "../../host-tests/src/reference/rng.rs"]
+#[path = "../../../host-tests/src/reference/rng.rs"]
 mod rng;
-#[path = "../../host-tests/src/reference/workload.rs"]
+#[path = "../../../host-tests/src/reference/workload.rs"]
 mod workload;
 
 pub use pb::log2_pb_f64;

@@ -23,7 +23,7 @@ use raymip::texture::{
     AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc, SamplerState, TexCoord,
 };
 
-mod common;
+use crate::common;
 use common::{Rng, random_texture};
 
 /// A generated pyramid with random level 0, owned.

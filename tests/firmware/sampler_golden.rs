@@ -20,7 +20,7 @@ use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
 use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 
-mod common;
+use crate::common;
 use common::{Rng, random_texture};
 
 /// FNV-1a, 64 bit.

@@ -9,7 +9,7 @@ use raymip::texture::storage::mip::{
     Geometry, MipError, Texel, full_levels, generate, pyramid_len,
 };
 
-mod common;
+use crate::common;
 use common::Rng;
 
 fn channel(t: Texel, c: usize) -> f64 {

@@ -9,7 +9,7 @@ use raymip::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::raystack::{PathLength, PathState, Spread};
 use raymip::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
 
-mod common;
+use crate::common;
 use common::{Rng, log2_pb_f64};
 
 #[test]

@@ -11,7 +11,7 @@ use raymip::texture::storage::cache::{BLOCK, BlockCache, BlockLayout, TexelCache
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
 use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
 
-mod common;
+use crate::common;
 use common::{Rng, random_texture};
 
 fn compare<const S: usize, const W: usize>(w: u32, h: u32) -> f64 {
