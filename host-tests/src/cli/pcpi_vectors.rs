@@ -118,8 +118,7 @@ pub fn vectors() -> String {
         );
     }
     // tex.lod: every entry with a spread of path lengths, then random pairs.
-    for (k, &p) in pls.iter().enumerate() {
-        let pb = pbs[k % pbs.len()];
+    let mut lod_line = |p: u64, pb: Log2Pb| {
         let _ = writeln!(
             out,
             "1 {:08x} {:08x} {:08x}",
@@ -127,15 +126,12 @@ pub fn vectors() -> String {
             pb.to_bits() as u32,
             lod(p, pb)
         );
+    };
+    for (k, &p) in pls.iter().enumerate() {
+        lod_line(p, pbs[k % pbs.len()]);
         if k % 97 == 0 {
             for &pb in &pbs[..10] {
-                let _ = writeln!(
-                    out,
-                    "1 {:08x} {:08x} {:08x}",
-                    log2pl(p),
-                    pb.to_bits() as u32,
-                    lod(p, pb)
-                );
+                lod_line(p, pb);
             }
         }
     }
