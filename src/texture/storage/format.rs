@@ -158,6 +158,18 @@ pub trait PixelFormat: Copy + fmt::Debug + Send + Sync + 'static {
 }
 
 /// Any [`TexelFormat`], chosen at run time.
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{AnyFormat, PixelFormat, Rgb565, TexelFormat};
+/// // A format read from a texture header at run time.
+/// let header_byte = 5;
+/// let any = AnyFormat(TexelFormat::from_index(header_byte).ok_or("bad format")?);
+/// assert_eq!(any.texel(), TexelFormat::L8);
+/// // The same decode as the marker type of that format.
+/// assert_eq!(AnyFormat(TexelFormat::Rgb565).texel(), Rgb565.texel());
+/// # Ok::<(), &str>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct AnyFormat(pub TexelFormat);
 
@@ -208,7 +220,7 @@ pub(crate) fn widen6(x: u32) -> u32 {
     (x << 2) | (x >> 4)
 }
 
-/// Colour space of a texture's colour channels.
+/// Colour space of a texture's colour channels. Example: [`Format`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ColorSpace {
     /// Values are linear (UNORM).
@@ -220,13 +232,26 @@ pub enum ColorSpace {
 }
 
 /// A texel format with its colour space, validated.
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{ColorSpace, Format, NoSrgbVariant, TexelFormat};
+/// let albedo = Format::new(TexelFormat::Bc1, ColorSpace::Srgb)?;
+/// assert_eq!((albedo.texel(), albedo.space()), (TexelFormat::Bc1, ColorSpace::Srgb));
+/// assert_eq!(Format::linear(TexelFormat::Rgb565).space(), ColorSpace::Linear);
+/// // RGB565 exists as UNORM only (as in Vulkan).
+/// let err = Format::new(TexelFormat::Rgb565, ColorSpace::Srgb).unwrap_err();
+/// assert_eq!(err, NoSrgbVariant(TexelFormat::Rgb565));
+/// assert_eq!(err.to_string(), "Rgb565 has no sRGB variant (only RGBA8, LA8, L8, BC1-BC3)");
+/// # Ok::<(), NoSrgbVariant>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Format {
     texel: TexelFormat,
     space: ColorSpace,
 }
 
-/// A format/colour-space pair that does not exist.
+/// A format/colour-space pair that does not exist. Example: [`Format`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NoSrgbVariant(pub TexelFormat);
 
