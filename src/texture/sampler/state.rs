@@ -26,7 +26,8 @@ use crate::texture::storage::mip::Texel;
 /// Largest supported maximum anisotropy (16×, as D3D11 and Vulkan).
 pub const MAX_ANISOTROPY: u8 = 16;
 
-/// What an sRGB texture's filtered result is returned as.
+/// What an sRGB texture's filtered result is returned as. Example:
+/// [`DynSampler`](crate::texture::sampler::dynamic::DynSampler).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SrgbOutput {
     /// Re-encoded to sRGB (what a GPU writes to an sRGB render target).
