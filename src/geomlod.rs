@@ -299,12 +299,13 @@ pub struct InstanceLod {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition};
+/// use raymip::geomlod::{Depth, InstanceLod, LodBias, LodMode, LodRange, RecordsFull, Selector};
+/// use raymip::geomlod::Transition;
 /// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// let selector = Selector::new(range, LodMode::Stochastic(Transition::ONE))?;
 /// // Depth 12 is l = 1.5, mid-transition: two records (LODs 1 and 2).
 /// let mut out = [InstanceLod::default(); 1];
-/// let err = selector.fill([(5, Depth::from_num(12))], &mut out).unwrap_err();
+/// let err: RecordsFull = selector.fill([(5, Depth::from_num(12))], &mut out).unwrap_err();
 /// assert_eq!((err.needed, err.capacity), (2, 1));
 /// assert_eq!(err.to_string(), "instance record array too small: 2 records needed, room for 1");
 /// assert_eq!(out[0].lod, 1); // the first record was written
