@@ -152,6 +152,24 @@ impl TexelFormat {
 /// format as a value (the run-time form: the decode is a `match`, which a
 /// [`TexelCache`](crate::texture::storage::cache::TexelCache) in front of
 /// the image runs once per 4×4 block fill instead of per texel).
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{A8, Bc1, Bc2, Bc3, Bc4, L8, La8, PixelFormat};
+/// use raymip::texture::storage::format::{Rgb565, Rgba4444, Rgba5551, Rgba8, TexelFormat};
+/// // Bytes per texel (per 4×4 block for BC), from the layouts in the module docs.
+/// assert_eq!(Rgba8.texel().unit_bytes(), 4);
+/// for two in [Rgb565.texel(), Rgba5551.texel(), Rgba4444.texel(), La8.texel()] {
+///     assert_eq!(two.unit_bytes(), 2);
+/// }
+/// assert_eq!((L8.texel().unit_bytes(), A8.texel().unit_bytes()), (1, 1));
+/// assert_eq!((Bc1.texel().unit_bytes(), Bc4.texel().unit_bytes()), (8, 8));
+/// assert_eq!((Bc2.texel().unit_bytes(), Bc3.texel().unit_bytes()), (16, 16));
+/// assert_eq!(Bc3.texel(), TexelFormat::Bc3);
+/// // RGBA4444 widens each 4-bit channel by bit replication (x·17):
+/// // 0x1234 → r 0x11, g 0x22, b 0x33, a 0x44.
+/// assert_eq!(Rgba4444.texel().decode(0x1234), 0x4433_2211);
+/// ```
 pub trait PixelFormat: Copy + fmt::Debug + Send + Sync + 'static {
     /// The format.
     fn texel(self) -> TexelFormat;
