@@ -59,6 +59,9 @@ use crate::texture::Mode;
 /// The nearest and farthest accumulated path length `Pl` (scene units)
 /// any hit on a texture can have. `nearest ≤ farthest` is not required
 /// (they are ordered on use).
+///
+/// Example: [`analyse`] (with [`TextureUse`], [`LodRange`], [`LevelRange`]
+/// and [`AnalysisStats`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PathBounds {
     /// Lower bound of `Pl` over every hit on the texture.
@@ -67,7 +70,7 @@ pub struct PathBounds {
     pub farthest: PathLength,
 }
 
-/// An inclusive range of [`Lod`] values (`min ≤ max`).
+/// An inclusive range of [`Lod`] values (`min ≤ max`). Example: [`analyse`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LodRange {
     /// Smallest lod any hit can have.
@@ -76,7 +79,7 @@ pub struct LodRange {
     pub max: Lod,
 }
 
-/// An inclusive range of MIP levels (`first ≤ last`).
+/// An inclusive range of MIP levels (`first ≤ last`). Example: [`analyse`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LevelRange {
     /// Finest level read.
@@ -93,7 +96,7 @@ impl LevelRange {
     }
 }
 
-/// One texture's part of the analysis.
+/// One texture's part of the analysis. Example: [`analyse`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TextureUse {
     /// Textured triangles that use the texture (entries other than
@@ -104,7 +107,7 @@ pub struct TextureUse {
     pub lod: Option<LodRange>,
 }
 
-/// Counts of an [`analyse`] pass.
+/// Counts of an [`analyse`] pass (example there).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct AnalysisStats {
     /// Triangles with a texture entry.
@@ -118,6 +121,23 @@ pub struct AnalysisStats {
 }
 
 /// Errors of the analysis (bad caller slices).
+///
+/// # Example
+/// ```
+/// use raymip::analysis::{AnalysisError, PathBounds, TextureUse, analyse};
+/// use raymip::{Log2Pb, PathLength};
+/// let entries = [Log2Pb::from_bits(0); 3];
+/// let bounds = [Some(PathBounds { nearest: PathLength::ONE, farthest: PathLength::ONE })];
+/// let mut out = [TextureUse::default()];
+/// // Three table entries but texture ids for only two of them.
+/// let err = analyse(&entries, &[0, 0], &bounds, &mut out).unwrap_err();
+/// assert_eq!(err, AnalysisError::TextureIdsTooShort);
+/// assert_eq!(err.to_string(), "fewer texture ids than table entries");
+/// // Triangle 2 names texture 1, but `out` has room for texture 0 only.
+/// let err = analyse(&entries, &[0, 0, 1], &bounds, &mut out).unwrap_err();
+/// assert_eq!(err, AnalysisError::BadTexture { triangle: 2 });
+/// assert_eq!(err.to_string(), "triangle 2 names a texture that does not exist");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum AnalysisError {
@@ -156,6 +176,45 @@ impl core::error::Error for AnalysisError {}
 /// [`AnalysisError::TextureIdsTooShort`], [`AnalysisError::LengthMismatch`]
 /// (`bounds.len() != out.len()`), [`AnalysisError::BadTexture`] (`out` is
 /// left partly written).
+///
+/// # Example
+/// ```
+/// use raymip::analysis::{AnalysisStats, LevelRange, LodRange, PathBounds, TextureUse, analyse};
+/// use raymip::{Lod, Log2Pb, Mode, PathLength};
+/// // Texture 0 on two triangles, log2 Pb = 0 and 1; triangle 2 untextured;
+/// // triangle 3 uses texture 1, which the caller knows no hit can reach.
+/// let entries = [
+///     Log2Pb::from_bits(0),
+///     Log2Pb::from_bits(1 << 16), // I16F16 bits of 1.0
+///     Log2Pb::UNTEXTURED,
+///     Log2Pb::from_bits(0),
+/// ];
+/// let texture_of = [0, 0, 0, 1];
+/// let bounds = [
+///     Some(PathBounds { nearest: PathLength::from_num(4), farthest: PathLength::from_num(16) }),
+///     None,
+/// ];
+/// let mut usage = [TextureUse::default(); 2];
+/// let stats = analyse(&entries, &texture_of, &bounds, &mut usage)?;
+/// assert_eq!(
+///     stats,
+///     AnalysisStats { textured: 3, untextured: 1, textures_sampled: 1, textures_skipped: 1 }
+/// );
+/// // lod = log2 Pl − log2 Pb: nearest log2 4 − 1 = 1, farthest log2 16 − 0 = 4.
+/// let range = usage[0].lod.ok_or("texture 0 is reached")?;
+/// assert_eq!(range, LodRange { min: Lod::from_num(1), max: Lod::from_num(4) });
+/// assert_eq!(usage[0].triangles, 2);
+/// assert_eq!(usage[1], TextureUse { triangles: 1, lod: None });
+/// // An 8-level pyramid: trilinear reads floor(1) ..= ceil(4), nearest-level
+/// // floor(1 + ½) ..= floor(4 + ½): levels 1 to 4 either way, 4 of 8 stored.
+/// let levels = range.levels(Mode::Trilinear, 8);
+/// assert_eq!(levels, LevelRange { first: 1, last: 4 });
+/// assert_eq!(levels.count(), 4);
+/// assert_eq!(range.levels(Mode::BilinearNearestLevel, 8), levels);
+/// // A 3-level pyramid clamps lods to [0, 2]: levels 1 to 2.
+/// assert_eq!(range.levels(Mode::Trilinear, 3), LevelRange { first: 1, last: 2 });
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn analyse(
     entries: &[Log2Pb],
     texture_of: &[u16],

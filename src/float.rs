@@ -43,6 +43,24 @@ pub fn cone_lod_f32(width: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
 
 /// A pyramid sampled in f32 (same memory layout as
 /// [`Pyramid`](crate::texture::storage::mip::Pyramid)).
+///
+/// # Example
+/// ```
+/// use raymip::float::SamplerF32;
+/// use raymip::{AddressMode, Geometry, Mode};
+/// // A 2×1 texture, opaque black then white.
+/// let texels = [0xFF00_0000u32, 0xFFFF_FFFF];
+/// let geometry = Geometry::new(2, 1, 1)?;
+/// let sampler = SamplerF32::new(geometry, &texels, AddressMode::ClampToEdge).ok_or("short")?;
+/// // Midway between the texel centres ¼ and ¾: ½·0 + ½·255 = 127.5,
+/// // rounded half up to 128 (alpha stays 255).
+/// assert_eq!(sampler.sample(0.5, 0.5, 0.0, Mode::BilinearNearestLevel), 0xFF80_8080);
+/// // At texel 0's centre: texel 0 exactly.
+/// assert_eq!(sampler.sample(0.25, 0.5, 0.0, Mode::BilinearNearestLevel), 0xFF00_0000);
+/// // A slice shorter than the geometry's texel count is refused.
+/// assert!(SamplerF32::new(geometry, &texels[..1], AddressMode::Wrap).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct SamplerF32<'a> {
     geometry: Geometry,

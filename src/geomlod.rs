@@ -49,14 +49,17 @@ use core::fmt;
 
 use fixed::types::{I16F16, I32F32, U16F16};
 
-/// Camera-space depth of an instance (its reference point): I32F32 scene units.
+/// Camera-space depth of an instance (its reference point): I32F32 scene
+/// units. Example: [`Selector`].
 pub type Depth = I32F32;
-/// Geometric LOD parameter `l`: U16F16 levels, in `[0, L − 1]`.
+/// Geometric LOD parameter `l`: U16F16 levels, in `[0, L − 1]`. Example:
+/// [`Selector`].
 pub type GeomLod = U16F16;
-/// LOD bias: I16F16 levels (added before clamping).
+/// LOD bias: I16F16 levels (added before clamping). Example: [`Selector`].
 pub type LodBias = I16F16;
 /// Transition interval `t`: U16F16 in `[0, 1]` (0 = discrete step, 1 = the
-/// whole interval between two LODs is a cross-dissolve).
+/// whole interval between two LODs is a cross-dissolve). Example:
+/// [`Selector`].
 pub type Transition = U16F16;
 
 /// Most LODs a mesh may have: 8, one per instance-mask bit.
@@ -67,6 +70,25 @@ pub const MAX_LEVELS: u8 = 8;
 pub const LOD_PARAM_MAX_ERROR: f64 = 1.0 / 32768.0;
 
 /// A set-up error of [`LodRange::new`] or [`Selector::new`].
+///
+/// # Example
+/// ```
+/// use raymip::geomlod::{ConfigError, Depth, LodBias, LodMode, LodRange, Selector, Transition};
+/// let (near, far) = (Depth::from_num(1), Depth::from_num(33));
+/// let err = LodRange::new(near, far, 0, LodBias::ZERO).unwrap_err();
+/// assert_eq!(err, ConfigError::Levels(0));
+/// assert_eq!(err.to_string(), "0 LODs: need 1 to 8");
+/// // z_far must lie beyond z_near.
+/// let err = LodRange::new(far, near, 4, LodBias::ZERO).unwrap_err();
+/// assert_eq!(err, ConfigError::EmptyRange);
+/// assert_eq!(err.to_string(), "LOD depth range empty: z_far must exceed z_near");
+/// // A transition interval of 2 is longer than the interval between two LODs.
+/// let range = LodRange::new(near, far, 4, LodBias::ZERO)?;
+/// let err = Selector::new(range, LodMode::Stochastic(Transition::from_num(2))).unwrap_err();
+/// assert_eq!(err, ConfigError::Transition(Transition::from_num(2)));
+/// assert_eq!(err.to_string(), "transition interval 2: must lie in [0, 1]");
+/// # Ok::<(), ConfigError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum ConfigError {
@@ -92,6 +114,22 @@ impl fmt::Display for ConfigError {
 
 /// The depth-to-LOD mapping: `l = L·(z − z_near)/(z_far − z_near) + bias`,
 /// clamped to `[0, L − 1]`. Built once (integer division at set-up only).
+///
+/// # Example
+/// ```
+/// use raymip::geomlod::{Depth, GeomLod, LodBias, LodRange};
+/// // 4 LODs over depths 0..32: l = 4·z/32 = z/8.
+/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// assert_eq!(range.levels(), 4);
+/// assert_eq!(range.lod_param(Depth::from_num(12)), GeomLod::from_num(1.5));
+/// // Behind the near plane: LOD 0; beyond the far plane: clamped to L − 1 = 3.
+/// assert_eq!(range.lod_param(Depth::from_num(-5)), GeomLod::ZERO);
+/// assert_eq!(range.lod_param(Depth::from_num(100)), GeomLod::from_num(3));
+/// // A bias of half a level is added before the clamp: 8/8 + ½.
+/// let biased = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::from_num(0.5))?;
+/// assert_eq!(biased.lod_param(Depth::from_num(8)), GeomLod::from_num(1.5));
+/// # Ok::<(), raymip::geomlod::ConfigError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LodRange {
     z_near: i64,
@@ -169,7 +207,7 @@ fn normalise(x: u64, shift: i32) -> u32 {
     }
 }
 
-/// How instances pick their LOD.
+/// How instances pick their LOD. Example: [`Selector`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LodMode {
     /// One LOD per instance, `round(l)`, mask `0xFF`.
@@ -182,6 +220,7 @@ pub enum LodMode {
 /// The LOD choice for one instance: LOD `a` with `mask_a` and LOD `b` with
 /// `mask_b`; a zero mask means that record is not emitted.
 /// `mask_a | mask_b == 0xFF` and `mask_a & mask_b == 0` always.
+/// Example: [`Selector`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Choice {
     /// `k_a = ⌊l⌋` (discrete mode: the chosen LOD).
@@ -243,6 +282,7 @@ pub fn choose(l: GeomLod, levels: u8, mode: LodMode) -> Choice {
 /// One instance record for the top-level acceleration structure: which
 /// instance, which of its LOD meshes, which ray-mask bits see it.
 /// 8 bytes (`#[repr(C)]`: `u32`, `u8`, `u8`, 2 bytes padding).
+/// Example: [`Selector`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct InstanceLod {
@@ -256,6 +296,21 @@ pub struct InstanceLod {
 
 /// The record array was too small. The first `capacity` records were
 /// written; `needed` is how many the whole set takes (retry with that many).
+///
+/// # Example
+/// ```
+/// use raymip::geomlod::{Depth, InstanceLod, LodBias, LodMode, LodRange, RecordsFull, Selector};
+/// use raymip::geomlod::Transition;
+/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// let selector = Selector::new(range, LodMode::Stochastic(Transition::ONE))?;
+/// // Depth 12 is l = 1.5, mid-transition: two records (LODs 1 and 2).
+/// let mut out = [InstanceLod::default(); 1];
+/// let err: RecordsFull = selector.fill([(5, Depth::from_num(12))], &mut out).unwrap_err();
+/// assert_eq!((err.needed, err.capacity), (2, 1));
+/// assert_eq!(err.to_string(), "instance record array too small: 2 records needed, room for 1");
+/// assert_eq!(out[0].lod, 1); // the first record was written
+/// # Ok::<(), raymip::geomlod::ConfigError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct RecordsFull {
@@ -278,6 +333,32 @@ impl fmt::Display for RecordsFull {
 }
 
 /// Depth range + mode: picks LODs and masks per instance.
+///
+/// # Example
+/// ```
+/// use raymip::geomlod::{Choice, Depth, InstanceLod, LodBias, LodMode, LodRange, Selector};
+/// use raymip::geomlod::{Transition, visible};
+/// // 4 LODs over depths 0..32: l = z/8.
+/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// // Discrete: round(l), ties up; depth 12 is l = 1.5 → LOD 2 for every ray.
+/// let discrete = Selector::new(range, LodMode::Discrete)?;
+/// assert_eq!((discrete.pick(Depth::from_num(12)).lod_a, discrete.pick(Depth::from_num(12)).mask_a), (2, 0xFF));
+/// // Stochastic over the whole interval (t = 1): f' = (f − ½)/1 + ½ = f.
+/// let dissolve = Selector::new(range, LodMode::Stochastic(Transition::ONE))?;
+/// // l = 1.5: ⌊9·½⌋ = 4 mask bits for LOD 2, the other 4 for LOD 1.
+/// let c = dissolve.pick(Depth::from_num(12));
+/// assert_eq!(c, Choice { lod_a: 1, mask_a: 0xF0, lod_b: 2, mask_b: 0x0F });
+/// // l = 1.0: f = 0, every bit for LOD 1 and no record for LOD 2.
+/// let mut records = [InstanceLod::default(); 4];
+/// let n = dissolve.fill([(7, Depth::from_num(8)), (9, Depth::from_num(12))], &mut records)?;
+/// assert_eq!(n, 3);
+/// assert_eq!(records[0], InstanceLod { id: 7, lod: 1, mask: 0xFF });
+/// assert_eq!(records[1], InstanceLod { id: 9, lod: 1, mask: 0xF0 });
+/// assert_eq!(records[2], InstanceLod { id: 9, lod: 2, mask: 0x0F });
+/// // A path with ray-mask bit 0 sees instance 9 at LOD 2 only.
+/// assert!(visible(records[2].mask, 0x01) && !visible(records[1].mask, 0x01));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Selector {
     range: LodRange,

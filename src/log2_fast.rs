@@ -142,6 +142,22 @@ const NORM_TABLE: [i32; 1 << INDEX_BITS] = {
 /// is one table read and two additions. `Pl = 0` is read as 2⁻³² (as
 /// [`log2_u32f32_fast`]). Any bit pattern is a valid key (the index is
 /// masked), so [`NormPl::from_bits`] cannot make a read out of bounds.
+///
+/// # Example
+/// ```
+/// use raymip::log2_fast::NormPl;
+/// use raymip::lod::{LOD_MAX_ERROR, table_lod_norm};
+/// use raymip::{Log2Pb, PathLength};
+/// // Pl = 12 = 2³ · 1.5: exponent 3, mantissa bits after the leading one
+/// // 0.5 · 1024 = 512.
+/// let key = NormPl::new(PathLength::from_num(12));
+/// assert_eq!(key.to_bits(), (3 << 16) | 512);
+/// assert_eq!(NormPl::new(PathLength::ZERO), NormPl::ZERO);
+/// // The per-hit lod from the key: log2 12 − log2 Pb (here log2 Pb = 0).
+/// let lod = table_lod_norm(key, Log2Pb::from_bits(0)).ok_or("textured")?;
+/// assert!((lod.to_num::<f64>() - 12f64.log2()).abs() <= LOD_MAX_ERROR);
+/// # Ok::<(), &str>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormPl(i32);
 

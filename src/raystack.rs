@@ -56,7 +56,7 @@ use crate::log2_fast::NormPl;
 
 /// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units.
 pub type PathLength = U32F32;
-/// Ray-cone width: I32F32 scene units.
+/// Ray-cone width: I32F32 scene units. Example: [`RayCone`].
 pub type Width = I32F32;
 /// Ray-cone spread angle: I2F30 radians.
 pub type Spread = I2F30;
@@ -81,6 +81,25 @@ pub const fn stack_bound(bounces: u8, branches: u8) -> usize {
 
 /// Ray-cone state (Akenine-Möller et al., RTG ch. 20): width `w` and spread
 /// angle `γ`. Feature `cone`.
+///
+/// # Example
+/// ```
+/// use raymip::raystack::RayCone;
+/// use raymip::{PathLength, Spread, Width};
+/// // A cone from a point (w = 0) with spread γ = 2⁻¹⁰ rad (exact in I2F30).
+/// let cone = RayCone { width: Width::ZERO, spread: Spread::from_num(1.0 / 1024.0) };
+/// // w' = w + γ·t = 2⁻¹⁰ · 1024 = 1 scene unit.
+/// let (hit, saturated) = cone.advance(PathLength::from_num(1024));
+/// assert_eq!((hit.width, saturated), (Width::ONE, false));
+/// // A convex surface widens the spread by β = 2⁻¹⁰: γ' = 2⁻⁹; 512 further
+/// // the width is 1 + 2⁻⁹ · 512 = 2.
+/// let (bounced, _) = hit.bounce(Spread::from_num(1.0 / 1024.0));
+/// assert_eq!(bounced.spread, Spread::from_num(1.0 / 512.0));
+/// assert_eq!(bounced.advance(PathLength::from_num(512)).0.width, Width::from_num(2));
+/// // Beyond the I32F32 range the width saturates and says so.
+/// let wide = RayCone { width: Width::MAX, spread: Spread::from_num(0.5) };
+/// assert_eq!(wide.advance(PathLength::ONE), (wide, true));
+/// ```
 #[cfg(feature = "cone")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct RayCone {
@@ -281,6 +300,22 @@ const _: () = assert!(core::mem::size_of::<PathState>() == PATH_STATE_BYTES);
 
 /// A push onto a full stack: the rejected state and its caller payload are
 /// handed back; the stack is unchanged.
+///
+/// # Example
+/// ```
+/// use raymip::{PathLength, PathState, PixelSpread, RayStack, StackFull};
+/// let spread = PixelSpread::from_fov_y(1.0, 480)?;
+/// let first = PathState::primary(&spread, 0xFF);
+/// let mut stack: RayStack<u16, 1> = RayStack::new();
+/// stack.push_with(first, 1)?;
+/// // A second continuation (a bounce: depth 1) does not fit in one entry.
+/// let second = first.advance(PathLength::from_num(3)).bounce(raymip::Spread::ZERO);
+/// let err: StackFull<u16> = stack.push_with(second, 2).unwrap_err();
+/// assert_eq!((err.0.pl, err.1), (PathLength::from_num(3), 2)); // handed back
+/// assert_eq!(err.to_string(), "ray stack full (path depth 1)");
+/// assert_eq!(stack.len(), 1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct StackFull<T = ()>(pub PathState, pub T);

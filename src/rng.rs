@@ -31,6 +31,27 @@ pub const fn mix32(mut x: u32) -> u32 {
 }
 
 /// Counter-based generator: state + Weyl step, hashed output.
+///
+/// # Example
+/// ```
+/// use raymip::rng::{Rng, WEYL};
+/// // Each step adds WEYL to the state, then hashes it: a generator seeded
+/// // with WEYL is the seed-0 generator one step later.
+/// let mut a = Rng::new(0);
+/// let _ = a.next_u32();
+/// let mut b = Rng::new(WEYL);
+/// assert_eq!(a.next_u32(), b.next_u32());
+/// // The hash maps 0 to 0 (xor-shifts and products of 0 stay 0), so the
+/// // stream seeded one step before state 0 starts with 0.
+/// assert_eq!(Rng::new(0u32.wrapping_sub(WEYL)).next_u32(), 0);
+/// // One stream per pixel and frame, the same on every target: a path's
+/// // stochastic-LOD ray mask is one of the 8 bits.
+/// let mut pixel = Rng::for_pixel(17, 4, 0);
+/// let mask = raymip::geomlod::ray_mask(&mut pixel);
+/// assert_eq!(mask.count_ones(), 1);
+/// assert_eq!(Rng::for_pixel(17, 4, 0), Rng::for_pixel(17, 4, 0));
+/// assert_ne!(Rng::for_pixel(17, 4, 0), Rng::for_pixel(17, 4, 1));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Rng {
     state: u32,

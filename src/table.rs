@@ -56,11 +56,26 @@ use crate::camera::PixelSpread;
 use crate::log2::{log2_bits_u128, log2_u32};
 
 /// World-space position or texture coordinate: I32F32 (range ±2³¹ scene
-/// units or texture repeats, step 2⁻³²).
+/// units or texture repeats, step 2⁻³²). Example: [`BuildStats`].
 pub type Coord = I32F32;
 
 /// The ray-cone triangle constant `Δ = ½·log2(N/A)` (levels, I16F16; see
 /// [`Log2Pb::delta`]), the cone method's per-triangle input.
+///
+/// # Example
+/// ```
+/// use raymip::{Delta, Log2Pb, PixelSpread, TexTriangle};
+/// use raymip::table::TABLE_MAX_ERROR;
+/// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
+/// // World area A = ½·2·2 = 2; UV area ½ on a 64×64 texture: N = 2048
+/// // texels; Δ = ½·log2(N/A) = ½·log2 1024 = 5 levels (no camera term).
+/// let p = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+/// let tri = TexTriangle::from_f32(p, [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], 64, 64)?;
+/// let delta: Delta = Log2Pb::compute(&tri, &spread).delta(&spread).ok_or("textured")?;
+/// assert!((delta - Delta::from_num(5)).abs().to_num::<f64>() <= TABLE_MAX_ERROR);
+/// assert_eq!(Log2Pb::UNTEXTURED.delta(&spread), None);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub type Delta = I16F16;
 
 /// Documented maximum absolute error of a table entry against exact
@@ -350,6 +365,28 @@ impl Log2Pb {
 }
 
 /// What a build or update wrote.
+///
+/// # Example
+/// ```
+/// use raymip::table::{BuildStats, Coord};
+/// use raymip::{Log2Pb, PbTable, PixelSpread, TexTriangle};
+/// let spread = PixelSpread::from_fov_y(1.0, 240)?;
+/// let c = |x: i32| Coord::from_num(x);
+/// let uv = [[c(0), c(0)], [c(1), c(0)], [c(0), c(1)]];
+/// let p = [[c(0), c(0), c(0)], [c(1), c(0), c(0)], [c(0), c(1), c(0)]];
+/// let good = TexTriangle::new(p, uv, 16, 16)?;
+/// // Three collinear vertices: zero world area.
+/// let line = [[c(0), c(0), c(0)], [c(1), c(0), c(0)], [c(2), c(0), c(0)]];
+/// let flat = TexTriangle::new(line, uv, 16, 16)?;
+/// // All three UVs equal: zero UV area.
+/// let no_uv = TexTriangle::new(p, [[c(0), c(0)]; 3], 16, 16)?;
+/// let mut entries = [Log2Pb::UNTEXTURED; 4];
+/// let stats = PbTable::new(&mut entries).build([Some(good), Some(flat), Some(no_uv), None], &spread)?;
+/// assert_eq!(stats, BuildStats { textured: 1, untextured: 1, degenerate_geometry: 1, degenerate_uv: 1 });
+/// assert_eq!(entries[1], Log2Pb::DEGENERATE_GEOMETRY);
+/// assert_eq!(entries[2], Log2Pb::DEGENERATE_UV);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BuildStats {
     /// Entries computed for textured triangles.

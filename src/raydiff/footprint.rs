@@ -51,6 +51,33 @@ pub const RAYDIFF_LOD_MAX_ERROR: f64 = 1.0 / 128.0;
 /// Per-triangle constant of the ray-differential footprint:
 /// `G_u`, `G_v` (normalized texture units per scene unit, I32F32) and the
 /// texture size. Built once per triangle by [`RayDiffTriangle::new`].
+///
+/// # Example
+/// ```
+/// use raymip::TexTriangle;
+/// use raymip::raydiff::PosDiff;
+/// use raymip::raydiff::footprint::{RAYDIFF_LOD_MAX_ERROR, RayDiffTriangle};
+/// // A wall at z = −100 with u = x, v = y, on a 256×256 texture.
+/// let p = [[0.0, 0.0, -100.0], [1.0, 0.0, -100.0], [0.0, 1.0, -100.0]];
+/// let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+/// let tri = RayDiffTriangle::new(&TexTriangle::from_f32(p, uv, 256, 256)?);
+/// assert!(!tri.is_degenerate());
+/// // A hit whose position moves 100·2⁻¹⁰ scene units per pixel in x and in y
+/// // (as `RayDiff::transfer` gives for a 2⁻¹⁰ pixel spread at t = 100).
+/// let (d, z) = (PosDiff::from_num(100.0 / 1024.0), PosDiff::ZERO);
+/// let fp = tri.footprint([d, z, z], [z, d, z]);
+/// // u = x: ∂u/∂x = 100/1024 ≈ 0.098 normalised units = 25 texels.
+/// assert!((fp.x[0].to_num::<f64>() - 100.0 / 1024.0).abs() < 1e-5);
+/// assert!(fp.x[1].abs().to_num::<f64>() < 1e-5);
+/// let lod = tri.lod(&fp).to_num::<f64>();
+/// assert!((lod - 25f64.log2()).abs() <= RAYDIFF_LOD_MAX_ERROR);
+/// // Collinear vertices: no footprint, the coarsest level.
+/// let line = [[0.0, 0.0, -100.0], [1.0, 0.0, -100.0], [2.0, 0.0, -100.0]];
+/// let flat = RayDiffTriangle::new(&TexTriangle::from_f32(line, uv, 256, 256)?);
+/// assert!(flat.is_degenerate());
+/// assert_eq!(flat.lod(&fp), raymip::Lod::MAX);
+/// # Ok::<(), raymip::TableError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RayDiffTriangle {
     gu: [I32F32; 3],

@@ -14,6 +14,29 @@ use crate::raystack::PathLength;
 
 /// One pixel's first hit in the G-buffer: position (scene units, I32F32
 /// as [`PosDiff`]), unit shading normal and hit distance.
+///
+/// # Example
+/// ```
+/// use raymip::PathLength;
+/// use raymip::raydiff::gbuffer::{GSample, first_hit};
+/// use raymip::raydiff::{DirDiff, PosDiff, RayDiff};
+/// let q = |x: f64, y: f64| [PosDiff::from_num(x), PosDiff::from_num(y), PosDiff::from_num(-100)];
+/// let n = [DirDiff::ZERO, DirDiff::ZERO, DirDiff::ONE];
+/// let t = PathLength::from_num(100);
+/// // The centre pixel's first hit and its neighbours' on the same wall,
+/// // one eighth of a scene unit apart; the pixel above has no hit.
+/// let centre = GSample { p: q(0.0, 0.0), n, t };
+/// let (left, right) = (GSample { p: q(-0.125, 0.0), n, t }, GSample { p: q(0.125, 0.0), n, t });
+/// let down = GSample { p: q(0.0, -0.125), n, t };
+/// let (diff, [dndx, dndy], sat) =
+///     first_hit(&RayDiff::ZERO, &centre, [Some(&left), Some(&right), None, Some(&down)]);
+/// // ∂P/∂x = P₊ − P = right − centre; in y (rows grow downwards) the
+/// // one side there is, P₊ = down: ∂P/∂y = down − centre.
+/// assert_eq!(diff.dodx, [PosDiff::from_num(0.125), PosDiff::ZERO, PosDiff::ZERO]);
+/// assert_eq!(diff.dody, [PosDiff::ZERO, PosDiff::from_num(-0.125), PosDiff::ZERO]);
+/// // One normal everywhere: no normal differentials; nothing saturated.
+/// assert_eq!((dndx, dndy, sat), ([DirDiff::ZERO; 3], [DirDiff::ZERO; 3], false));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct GSample {
     /// Hit position (scene units).

@@ -46,13 +46,16 @@ pub mod footprint;
 pub mod gbuffer;
 
 /// A position differential component: scene units per pixel, I32F32.
+/// Example: [`RayDiff`].
 pub type PosDiff = I32F32;
-/// A direction differential component: per pixel, I2F30.
+/// A direction differential component: per pixel, I2F30. Example:
+/// [`RayDiff`].
 pub type DirDiff = I2F30;
 /// A unit vector (ray direction, surface normal), I2F30 components.
+/// Example: [`RayDiff`].
 pub type UnitVec = [I2F30; 3];
 /// Relative index of refraction `η = n₁/n₂` (incident over transmitted
-/// medium), I4F28.
+/// medium), I4F28. Example: [`RayDiff`].
 pub type Eta = I4F28;
 
 /// Smallest `|D·n|` and `cos θₜ` used as a divisor: 2⁻¹⁶ (see
@@ -62,6 +65,34 @@ pub const MIN_COS: I2F30 = I2F30::from_bits(1 << 14);
 /// The differential state of one ray (one ray-stack entry, feature
 /// `raydiff`): `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y` (formats in the
 /// [module docs](self)). 72 bytes.
+///
+/// # Example
+/// ```
+/// use raymip::PathLength;
+/// use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+/// let (one, zero) = (DirDiff::ONE, DirDiff::ZERO);
+/// // A camera looking down −z; one pixel step turns the unnormalised
+/// // direction by s = 2⁻¹⁰ along x (right) or y (up).
+/// let s = DirDiff::from_num(1.0 / 1024.0);
+/// let forward: UnitVec = [zero, zero, -one];
+/// let (primary, _) = RayDiff::primary(forward, forward, [s, zero, zero], [zero, s, zero]);
+/// // The centre ray: D·f = 1, D·r = 0, so ∂D/∂x = r and ∂D/∂y = u.
+/// assert_eq!((primary.dddx, primary.dddy), ([s, zero, zero], [zero, s, zero]));
+/// // Transfer to a wall facing the camera (n = +z) at t = 100: ∂D·t
+/// // lies in the wall, so ∂O = 100·2⁻¹⁰ scene units per pixel along x.
+/// let up: UnitVec = [zero, zero, one];
+/// let (hit, saturated) = primary.transfer(forward, PathLength::from_num(100), up);
+/// assert!(!saturated);
+/// assert_eq!(hit.dodx, [PosDiff::from_num(100.0 / 1024.0), PosDiff::ZERO, PosDiff::ZERO]);
+/// // A flat mirror (∂n = 0) facing the ray: ∂D ⟂ n stays as it is.
+/// let flat = [zero; 3];
+/// let (mirrored, _) = hit.reflect(forward, up, flat, flat);
+/// assert_eq!(mirrored.dddx, hit.dddx);
+/// // Head-on into a denser medium, η = ½ (cos θₜ = 1): ∂T = η·∂D.
+/// let (refracted, _) = hit.refract(forward, up, flat, flat, Eta::from_num(0.5), one);
+/// assert_eq!(refracted.dddx, [DirDiff::from_num(1.0 / 2048.0), zero, zero]);
+/// assert_eq!(refracted.dodx, hit.dodx); // the hit point's ∂O is kept
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct RayDiff {
     /// `∂O/∂x` (scene units per pixel).

@@ -91,6 +91,28 @@ impl Mode {
 }
 
 /// Texel-read counters of a [`Sampler`].
+///
+/// # Example
+/// ```
+/// use raymip::texture::FetchStats;
+/// use raymip::texture::storage::mip::pyramid_len;
+/// use raymip::{Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// let texels = [0xFF80_8080u32; pyramid_len(4, 4, 3)]; // 4×4, 2×2, 1×1
+/// let mut sampler = Sampler::wrap(Pyramid::new(Geometry::new(4, 4, 3)?, &texels)?);
+/// let c = TexCoord::from_num(0.5);
+/// // Trilinear between levels 0 and 1: two bilinear footprints of 4 texels.
+/// let _ = sampler.sample(c, c, Lod::from_num(0.5), Mode::Trilinear);
+/// assert_eq!(sampler.stats(), FetchStats { fetched: 8, skipped: 0 });
+/// // At lod 1 exactly the blend weight of level 2 is 0: its 4 reads are skipped.
+/// sampler.reset_stats();
+/// let _ = sampler.sample(c, c, Lod::ONE, Mode::Trilinear);
+/// assert_eq!(sampler.stats(), FetchStats { fetched: 4, skipped: 4 });
+/// // Nearest texel of the nearest level: one read.
+/// sampler.reset_stats();
+/// let _ = sampler.sample(c, c, Lod::ONE, Mode::Nearest);
+/// assert_eq!(sampler.stats().fetched, 1);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FetchStats {
     /// Texels read from the source (4 per bilinear level, 1 per
@@ -103,6 +125,25 @@ pub struct FetchStats {
 }
 
 /// Errors at the float edge of the sampler.
+///
+/// # Example
+/// ```
+/// use raymip::texture::{FilterError, tex_coord_from_f64};
+/// use raymip::{Geometry, Mode, Pyramid, Sampler, TexCoord};
+/// assert_eq!(tex_coord_from_f64(0.25), Ok(TexCoord::from_num(0.25)));
+/// let err = tex_coord_from_f64(f64::NAN).unwrap_err();
+/// assert_eq!(err, FilterError::NonFinite);
+/// assert_eq!(err.to_string(), "texture coordinate or lod is NaN or infinite");
+/// // 3·10⁹ ≥ 2³¹: no I32F32 coordinate holds it.
+/// let err = tex_coord_from_f64(3e9).unwrap_err();
+/// assert_eq!(err, FilterError::OutOfRange);
+/// assert_eq!(err.to_string(), "texture coordinate outside [-2^31, 2^31)");
+/// // The sampler's float entry point refuses an infinite lod.
+/// let texels = [0u32; 1];
+/// let mut sampler = Sampler::wrap(Pyramid::new(Geometry::new(1, 1, 1)?, &texels)?);
+/// assert_eq!(sampler.sample_f64(0.5, 0.5, f64::INFINITY, Mode::Nearest), Err(FilterError::NonFinite));
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum FilterError {

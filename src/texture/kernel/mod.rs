@@ -24,31 +24,43 @@ pub mod fast;
 pub mod srgb;
 
 /// Colour space `Linear`: UNORM data, filtered as stored.
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Linear;
 
 /// Colour space `Srgb`: RGB decoded to linear before filtering, results
 /// re-encoded to sRGB (what a GPU writes to an sRGB target).
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Srgb;
 
 /// Colour space `SrgbToLinear`: RGB decoded to linear before filtering,
 /// results returned linear (what a shader reads from an sRGB view).
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SrgbToLinear;
 
 /// Precision tier ACCURATE (the default): 12-bit position weights, the
 /// bounds of [`accurate`], bit-identical on every target.
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Accurate;
 
 /// Precision tier FAST: GPU precision (D3D11's 8 sub-texel and 8 lod
 /// fraction bits), two channels per register, bound
 /// [`fast::FAST_MAX_ERROR_LSB`]; bit-identical on every target too.
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Fast;
 
 /// The precision tier of a kernel, as a value (tables, the C ABI).
+///
+/// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {
     /// [`Accurate`].
@@ -66,6 +78,37 @@ mod sealed {
 /// A filter kernel: the arithmetic of one colour space and precision
 /// tier on texel footprints (implemented for the pairs `(C, P)` of the
 /// table above; sealed).
+///
+/// # Example
+/// ```
+/// use raymip::texture::address::ClampToEdge;
+/// use raymip::texture::kernel::{Accurate, Fast, Kernel, Linear, Precision, Srgb, SrgbToLinear};
+/// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// // A 2×1 texture, opaque black then white; u = ½ lies midway between
+/// // the texel centres ¼ and ¾: bilinear weight ½ each.
+/// let texels = [0xFF00_0000u32, 0xFFFF_FFFF];
+/// let pyramid = Pyramid::new(Geometry::new(2, 1, 1)?, &texels)?;
+/// let (u, v) = (TexCoord::from_num(0.5), TexCoord::from_num(0.5));
+/// let (lod, mode) = (Lod::ZERO, Mode::BilinearNearestLevel);
+/// let red = |texel: u32| f64::from(texel & 0xFF);
+/// // Linear data: the mean 127.5, within 0.5625 LSB (ACCURATE), 2.40625 (FAST).
+/// let mut acc: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Linear, Accurate>> = Sampler::new(pyramid);
+/// assert!((red(acc.sample(u, v, lod, mode)) - 127.5).abs() <= 0.5625);
+/// let mut fast: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Linear, Fast>> = Sampler::new(pyramid);
+/// assert!((red(fast.sample(u, v, lod, mode)) - 127.5).abs() <= 2.40625);
+/// // sRGB data: decoded (0 and 1 linear), mean ½ linear, re-encoded:
+/// // 255·(1.055·0.5^(1/2.4) − 0.055) = 187.5, within 0.6875 sRGB LSB.
+/// let mut srgb: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Srgb, Fast>> = Sampler::new(pyramid);
+/// let encoded = 255.0 * (1.055 * 0.5f64.powf(1.0 / 2.4) - 0.055);
+/// assert!((red(srgb.sample(u, v, lod, mode)) - encoded).abs() <= 0.6875);
+/// // The same mean returned linear: 127.5 within 0.5101 LSB.
+/// let mut lin: Sampler<_, Cfg<ClampToEdge, ClampToEdge, SrgbToLinear>> = Sampler::new(pyramid);
+/// assert!((red(lin.sample(u, v, lod, mode)) - 127.5).abs() <= 0.5101);
+/// // A FAST sRGB kernel filters at ACCURATE precision, and says so.
+/// assert_eq!(<(Srgb, Fast) as Kernel>::TIER, Precision::Accurate);
+/// assert_eq!(<(Linear, Fast) as Kernel>::TIER, Precision::Fast);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 pub trait Kernel: sealed::Sealed + 'static {
     /// Fractional bits of the position weights the addressing computes
     /// (12 ACCURATE, 8 FAST, 16 for 16-bit lanes).

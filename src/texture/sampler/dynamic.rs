@@ -27,6 +27,7 @@ use crate::texture::storage::mip::{Geometry, Texel, TexelSource};
 use crate::texture::{FetchStats, Mode, TexCoord};
 
 /// Which entry of the key table a [`DynSampler`] runs (module docs).
+/// Example: [`DynSampler`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DynKey {
     /// Wrap, linear, ACCURATE.
@@ -72,6 +73,41 @@ impl DynKey {
 }
 
 /// A sampler whose key is chosen at run time (module docs).
+///
+/// # Example
+/// ```
+/// use raymip::texture::kernel::Precision;
+/// use raymip::texture::sampler::SrgbOutput;
+/// use raymip::texture::sampler::dynamic::{DynKey, DynSampler};
+/// use raymip::texture::storage::format::ColorSpace;
+/// use raymip::texture::SamplerDesc;
+/// use raymip::{AddressMode, Geometry, Lod, Mode, Pyramid, SamplerState, TexCoord};
+/// // Settings read at run time (a texture header, the C ABI).
+/// let wrap = [AddressMode::Wrap; 2];
+/// let (linear, srgb) = (ColorSpace::Linear, ColorSpace::Srgb);
+/// let enc = SrgbOutput::Encoded;
+/// assert_eq!(DynKey::select(wrap, linear, enc, Precision::Fast), DynKey::WrapFast);
+/// let mixed = [AddressMode::Mirror, AddressMode::Wrap];
+/// assert_eq!(DynKey::select(mixed, linear, enc, Precision::Accurate), DynKey::AnyAccurate);
+/// // sRGB data has one kernel for both tiers.
+/// assert_eq!(DynKey::select(wrap, srgb, enc, Precision::Fast), DynKey::Srgb);
+/// // A 2×1 sRGB texture, black then white, sampled midway (weights ½, ½):
+/// // ½ linear, re-encoded 255·(1.055·0.5^(1/2.4) − 0.055) = 187.5, or
+/// // returned linear, 127.5 (within 0.6875 and 0.5101 LSB).
+/// let texels = [0xFF00_0000u32, 0xFFFF_FFFF];
+/// let pyramid = Pyramid::new(Geometry::new(2, 1, 1)?, &texels)?;
+/// let half = TexCoord::from_num(0.5);
+/// let red = |s: &mut DynSampler<_>| f64::from(s.sample(half, half, Lod::ZERO, Mode::BilinearNearestLevel) & 0xFF);
+/// let state = SamplerState::new(SamplerDesc::default())?;
+/// let mut encoded = DynSampler::new(pyramid, state, srgb, Precision::Accurate);
+/// assert_eq!((encoded.key(), encoded.precision()), (DynKey::Srgb, Precision::Accurate));
+/// assert!((red(&mut encoded) - 255.0 * (1.055 * 0.5f64.powf(1.0 / 2.4) - 0.055)).abs() <= 0.6875);
+/// let state = SamplerState::new(SamplerDesc { srgb_output: SrgbOutput::Linear, ..SamplerDesc::default() })?;
+/// let mut to_linear = DynSampler::new(pyramid, state, srgb, Precision::Accurate);
+/// assert_eq!(to_linear.key(), DynKey::SrgbToLinear);
+/// assert!((red(&mut to_linear) - 127.5).abs() <= 0.5101);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug)]
 #[allow(missing_docs, clippy::large_enum_variant)]
 pub enum DynSampler<S: TexelSource> {

@@ -98,6 +98,25 @@ type Kern<K> = <K as Key>::Kernel;
 type Lanes<K> = <Kern<K> as Kernel>::Lanes;
 
 /// Why a [`SamplerState`] does not fit a sampler's key.
+///
+/// # Example
+/// ```
+/// use raymip::texture::SamplerDesc;
+/// use raymip::texture::address::{AnyAxis, Wrap};
+/// use raymip::texture::sampler::SamplerError;
+/// use raymip::{AddressMode, Cfg, Geometry, Pyramid, Sampler, SamplerState};
+/// let texels = [0u32; 1];
+/// let pyramid = Pyramid::new(Geometry::new(1, 1, 1)?, &texels)?;
+/// let desc = SamplerDesc { address_v: AddressMode::ClampToEdge, ..SamplerDesc::default() };
+/// let state = SamplerState::new(desc)?;
+/// // A key compiled for wrap on both axes cannot take clamp on v ...
+/// let err = Sampler::<_, Cfg<Wrap>>::with_state(pyramid, state).unwrap_err();
+/// assert_eq!(err, SamplerError::AddressV(AddressMode::ClampToEdge));
+/// assert_eq!(err.to_string(), "address mode ClampToEdge of v is not the sampler key's");
+/// // ... a key with run-time address modes can.
+/// assert!(Sampler::<_, Cfg<AnyAxis>>::with_state(pyramid, state).is_ok());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum SamplerError {

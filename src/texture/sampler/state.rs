@@ -26,7 +26,8 @@ use crate::texture::storage::mip::Texel;
 /// Largest supported maximum anisotropy (16×, as D3D11 and Vulkan).
 pub const MAX_ANISOTROPY: u8 = 16;
 
-/// What an sRGB texture's filtered result is returned as.
+/// What an sRGB texture's filtered result is returned as. Example:
+/// [`DynSampler`](crate::texture::sampler::dynamic::DynSampler).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SrgbOutput {
     /// Re-encoded to sRGB (what a GPU writes to an sRGB render target).
@@ -77,6 +78,20 @@ impl Default for SamplerDesc {
 
 unit_error! {
     /// Why a [`SamplerDesc`] is rejected.
+    ///
+    /// # Example
+    /// ```
+    /// use raymip::texture::sampler::state::SamplerStateError;
+    /// use raymip::texture::SamplerDesc;
+    /// use raymip::{Lod, SamplerState};
+    /// let inverted = SamplerDesc { min_lod: Lod::from_num(3), max_lod: Lod::ONE, ..SamplerDesc::default() };
+    /// let err = SamplerState::new(inverted).unwrap_err();
+    /// assert_eq!(err, SamplerStateError::LodClampInverted);
+    /// assert_eq!(err.to_string(), "min lod above max lod");
+    /// // 17× is above the D3D11/Vulkan limit of 16×.
+    /// let aniso = SamplerDesc { max_anisotropy: 17, ..SamplerDesc::default() };
+    /// assert_eq!(SamplerState::new(aniso), Err(SamplerStateError::BadAnisotropy));
+    /// ```
     #[derive(Clone, Copy, Debug, PartialEq, Eq)]
     #[non_exhaustive]
     pub enum SamplerStateError {

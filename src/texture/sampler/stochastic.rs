@@ -67,6 +67,29 @@ use crate::texture::storage::mip::{Texel, TexelSource};
 pub const MEAN_ERROR_TEXEL_LSB: f64 = 0.0625;
 
 /// Which stochastic filter (see the [module docs](self)).
+///
+/// # Example
+/// ```
+/// use raymip::texture::sampler::stochastic::StochasticMode;
+/// use raymip::{Geometry, Lod, Pyramid, Sampler, TexCoord};
+/// // Level 0 (2×2) white, level 1 (1×1) black.
+/// let texels = [0xFFFF_FFFFu32, 0xFFFF_FFFF, 0xFFFF_FFFF, 0xFFFF_FFFF, 0xFF00_0000];
+/// let mut sampler = Sampler::wrap(Pyramid::new(Geometry::new(2, 2, 2)?, &texels)?);
+/// let (c, lod) = (TexCoord::from_num(0.5), Lod::from_num(0.25));
+/// // lod 0.25: blend weight t = 64/256, so level 1 for level fields 0..64.
+/// let mode = StochasticMode::TrilinearBilinear;
+/// assert_eq!(sampler.sample_stochastic(c, c, lod, mode, 0), 0xFF00_0000);
+/// assert_eq!(sampler.sample_stochastic(c, c, lod, mode, 200), 0xFFFF_FFFF);
+/// // Over every value of the 8-bit level field exactly 64 pick level 1:
+/// // the expectation is the trilinear blend, 3/4 white + 1/4 black.
+/// let black = (0..256u32)
+///     .filter(|&bits| sampler.sample_stochastic(c, c, lod, mode, bits) == 0xFF00_0000)
+///     .count();
+/// assert_eq!(black, 64);
+/// // One texel read per sample (8 for a deterministic trilinear sample).
+/// assert_eq!(sampler.stats().fetched, 2 + 256);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StochasticMode {
     /// Stochastic trilinear: one of the two levels around the lod, chosen

@@ -158,6 +158,22 @@ impl BlockLayout {
 }
 
 /// Hit and miss counters.
+///
+/// # Example
+/// ```
+/// use raymip::BlockCache;
+/// use raymip::texture::storage::cache::CacheStats;
+/// let mut tags: BlockCache<2, 1> = BlockCache::new(); // two sets, one way
+/// // Blocks 0 and 2 share set 0 and evict each other; 1 stays in set 1.
+/// for block in [0, 1, 0, 1, 2, 0] {
+///     let _ = tags.access(block);
+/// }
+/// // Misses: the first 0, the first 1, 2, and 0 again; hits: 0 and 1 once.
+/// assert_eq!(tags.stats(), CacheStats { hits: 2, misses: 4 });
+/// assert_eq!(tags.stats().hit_rate(), 2.0 / 6.0);
+/// tags.reset_stats();
+/// assert_eq!(tags.stats().hit_rate(), 0.0); // no accesses
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CacheStats {
     /// Accesses that found their block.

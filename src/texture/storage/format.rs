@@ -152,12 +152,42 @@ impl TexelFormat {
 /// format as a value (the run-time form: the decode is a `match`, which a
 /// [`TexelCache`](crate::texture::storage::cache::TexelCache) in front of
 /// the image runs once per 4×4 block fill instead of per texel).
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{A8, Bc1, Bc2, Bc3, Bc4, L8, La8, PixelFormat};
+/// use raymip::texture::storage::format::{Rgb565, Rgba4444, Rgba5551, Rgba8, TexelFormat};
+/// // Bytes per texel (per 4×4 block for BC), from the layouts in the module docs.
+/// assert_eq!(Rgba8.texel().unit_bytes(), 4);
+/// for two in [Rgb565.texel(), Rgba5551.texel(), Rgba4444.texel(), La8.texel()] {
+///     assert_eq!(two.unit_bytes(), 2);
+/// }
+/// assert_eq!((L8.texel().unit_bytes(), A8.texel().unit_bytes()), (1, 1));
+/// assert_eq!((Bc1.texel().unit_bytes(), Bc4.texel().unit_bytes()), (8, 8));
+/// assert_eq!((Bc2.texel().unit_bytes(), Bc3.texel().unit_bytes()), (16, 16));
+/// assert_eq!(Bc3.texel(), TexelFormat::Bc3);
+/// // RGBA4444 widens each 4-bit channel by bit replication (x·17):
+/// // 0x1234 → r 0x11, g 0x22, b 0x33, a 0x44.
+/// assert_eq!(Rgba4444.texel().decode(0x1234), 0x4433_2211);
+/// ```
 pub trait PixelFormat: Copy + fmt::Debug + Send + Sync + 'static {
     /// The format.
     fn texel(self) -> TexelFormat;
 }
 
 /// Any [`TexelFormat`], chosen at run time.
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{AnyFormat, PixelFormat, Rgb565, TexelFormat};
+/// // A format read from a texture header at run time.
+/// let header_byte = 5;
+/// let any = AnyFormat(TexelFormat::from_index(header_byte).ok_or("bad format")?);
+/// assert_eq!(any.texel(), TexelFormat::L8);
+/// // The same decode as the marker type of that format.
+/// assert_eq!(AnyFormat(TexelFormat::Rgb565).texel(), Rgb565.texel());
+/// # Ok::<(), &str>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct AnyFormat(pub TexelFormat);
 
@@ -208,7 +238,7 @@ pub(crate) fn widen6(x: u32) -> u32 {
     (x << 2) | (x >> 4)
 }
 
-/// Colour space of a texture's colour channels.
+/// Colour space of a texture's colour channels. Example: [`Format`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ColorSpace {
     /// Values are linear (UNORM).
@@ -220,13 +250,26 @@ pub enum ColorSpace {
 }
 
 /// A texel format with its colour space, validated.
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{ColorSpace, Format, NoSrgbVariant, TexelFormat};
+/// let albedo = Format::new(TexelFormat::Bc1, ColorSpace::Srgb)?;
+/// assert_eq!((albedo.texel(), albedo.space()), (TexelFormat::Bc1, ColorSpace::Srgb));
+/// assert_eq!(Format::linear(TexelFormat::Rgb565).space(), ColorSpace::Linear);
+/// // RGB565 exists as UNORM only (as in Vulkan).
+/// let err = Format::new(TexelFormat::Rgb565, ColorSpace::Srgb).unwrap_err();
+/// assert_eq!(err, NoSrgbVariant(TexelFormat::Rgb565));
+/// assert_eq!(err.to_string(), "Rgb565 has no sRGB variant (only RGBA8, LA8, L8, BC1-BC3)");
+/// # Ok::<(), NoSrgbVariant>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Format {
     texel: TexelFormat,
     space: ColorSpace,
 }
 
-/// A format/colour-space pair that does not exist.
+/// A format/colour-space pair that does not exist. Example: [`Format`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NoSrgbVariant(pub TexelFormat);
 

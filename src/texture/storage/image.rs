@@ -64,7 +64,7 @@ pub const fn image_len(width: u32, height: u32, levels: u8, format: TexelFormat)
     }
 }
 
-/// The byte slice is shorter than the image needs.
+/// The byte slice is shorter than the image needs. Example: [`Image`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ImageTooShort {
     /// Bytes needed ([`image_len`]).
@@ -89,6 +89,34 @@ impl core::error::Error for ImageTooShort {}
 /// `F`: a marker type such as [`Rgb565`](crate::texture::storage::format::Rgb565)
 /// (the decode of that format alone, [`Image::typed`]) or [`AnyFormat`]
 /// (chosen at run time, [`Image::new`]).
+///
+/// # Example
+/// ```
+/// use raymip::Geometry;
+/// use raymip::texture::storage::format::{ColorSpace, Format, NoSrgbVariant, Rgb565, TexelFormat};
+/// use raymip::texture::storage::image::{Image, ImageError, ImageTooShort, image_len};
+/// // A 4×4 RGB565 texture with 3 levels: (16 + 4 + 1) texels · 2 bytes = 42.
+/// const LEN: usize = image_len(4, 4, 3, TexelFormat::Rgb565);
+/// assert_eq!(LEN, 42);
+/// let mut bytes = [0u8; LEN];
+/// bytes[..2].copy_from_slice(&0xF800u16.to_le_bytes()); // texel (0, 0): r5 = 31
+/// let geometry = Geometry::new(4, 4, 3)?;
+/// let image = Image::<Rgb565>::typed(geometry, ColorSpace::Linear, &bytes)?;
+/// // Decoded to RGBA8 (red in the low byte): red 255, alpha 255.
+/// assert_eq!(image.get(0, 0, 0), 0xFF00_00FF);
+/// assert_eq!(image.level_offset(2), 40); // after 16 + 4 texels
+/// // One byte short; sRGB for a format without an sRGB variant.
+/// let short = Image::<Rgb565>::typed(geometry, ColorSpace::Linear, &bytes[..41]);
+/// let too_short = ImageTooShort { needed: 42, got: 41 };
+/// assert_eq!(short.unwrap_err(), ImageError::TooShort(too_short));
+/// assert_eq!(too_short.to_string(), "image data holds 41 bytes, the levels need 42");
+/// let srgb = Image::<Rgb565>::typed(geometry, ColorSpace::Srgb, &bytes);
+/// assert_eq!(srgb.unwrap_err(), ImageError::NoSrgb(NoSrgbVariant(TexelFormat::Rgb565)));
+/// // The format chosen at run time instead (`Image<AnyFormat>`).
+/// let any = Image::new(geometry, Format::linear(TexelFormat::Rgb565), &bytes)?;
+/// assert_eq!(any.get(0, 0, 0), image.get(0, 0, 0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Image<'a, F: PixelFormat = AnyFormat> {
     geometry: Geometry,
@@ -110,7 +138,7 @@ impl<'a> Image<'a, AnyFormat> {
     }
 }
 
-/// Why [`Image::typed`] refuses its input.
+/// Why [`Image::typed`] refuses its input. Example: [`Image`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImageError {
     /// The byte slice is shorter than the levels need.
