@@ -36,12 +36,24 @@ pub struct Counters {
     pub fetched: u64,
     /// Texel fetches skipped by the filter.
     pub fetch_skipped: u64,
+    /// Σ of the textured hits' lods as the LOD method chose them (the
+    /// values of `level_hist`), in 1/256 level (`HitLod::q256`).
+    pub lod_sum_256: i64,
+    /// Isotropic samples the texture unit took.
+    pub samples: u64,
+    /// Σ of the lods the texture unit was given for those samples, in 1/256
+    /// level: equal to `lod_sum_256` when every textured hit is sampled at
+    /// the chosen method's lod (the renderer's tests check it per filter).
+    pub sampled_lod_sum_256: i64,
+    /// Anisotropic samples the texture unit took (footprint, no lod).
+    pub aniso_samples: u64,
 }
 
 impl Counters {
     pub(crate) fn add(&mut self, o: &Counters) {
         add_fields!(self, o; paths, rays, hits, textured_hits, untextured_skipped, bounces,
-            stack_full, saturations, shadow_rays, fetched, fetch_skipped);
+            stack_full, saturations, shadow_rays, fetched, fetch_skipped, lod_sum_256, samples,
+            sampled_lod_sum_256, aniso_samples);
         for (a, b) in self.level_hist.iter_mut().zip(o.level_hist.iter()) {
             *a += b;
         }

@@ -38,6 +38,18 @@ impl HitLod {
         }
     }
 
+    /// The value in 1/256 level (exact for [`HitLod::Fixed`], rounded for
+    /// [`HitLod::Float`]; NaN reads as 0): what the renderer's counters sum
+    /// on both sides of the texture unit ([`Counters::lod_sum_256`](super::Counters::lod_sum_256)).
+    #[must_use]
+    pub fn q256(self) -> i64 {
+        match self {
+            Self::Fixed(l) => i64::from(l.to_bits()),
+            Self::Float(l) if l.is_nan() => 0,
+            Self::Float(l) => (l * 256.0).round().clamp(-1e15, 1e15) as i64,
+        }
+    }
+
     /// The value (exact for [`HitLod::Fixed`]).
     #[must_use]
     pub fn to_f64(self) -> f64 {

@@ -168,6 +168,9 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
             bar.inc(1);
             ctx.counters.fetched = ctx.log.fetched;
             ctx.counters.fetch_skipped = ctx.log.skipped;
+            ctx.counters.samples = ctx.log.samples;
+            ctx.counters.aniso_samples = ctx.log.aniso_samples;
+            ctx.counters.sampled_lod_sum_256 = ctx.log.lod_sum_256;
             (px, ctx.counters, ctx.log.blocks)
         })
         .collect();

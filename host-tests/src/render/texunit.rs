@@ -66,6 +66,13 @@ pub struct FetchLog {
     pub skipped: u64,
     /// Block addresses in fetch order, when recording.
     pub blocks: Option<Vec<u32>>,
+    /// Isotropic samples taken ([`Unit::sample`]).
+    pub samples: u64,
+    /// Anisotropic samples taken ([`Unit::sample_aniso`],
+    /// [`Unit::sample_aniso_footprint`]).
+    pub aniso_samples: u64,
+    /// Σ of the lods the unit was given, in 1/256 level ([`HitLod::q256`]).
+    pub lod_sum_256: i64,
 }
 
 impl FetchLog {
@@ -214,6 +221,7 @@ impl<'a> Unit<'a> {
         axes: [[f64; 2]; 2],
         log: &mut FetchLog,
     ) -> [f64; 3] {
+        log.aniso_samples += 1;
         match self {
             Self::Firmware(unit) => {
                 let a = |x: f64| {
@@ -244,6 +252,7 @@ impl<'a> Unit<'a> {
         fp: &Footprint,
         log: &mut FetchLog,
     ) -> [f64; 3] {
+        log.aniso_samples += 1;
         match self {
             Self::Firmware(unit) => {
                 texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), fp, log))
@@ -271,6 +280,8 @@ impl<'a> Unit<'a> {
         bits: u32,
         log: &mut FetchLog,
     ) -> [f64; 3] {
+        log.samples += 1;
+        log.lod_sum_256 += lod.q256();
         match self {
             Self::Firmware(unit) => {
                 let lod = match lod {

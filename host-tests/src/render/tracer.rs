@@ -288,6 +288,7 @@ impl Ctx<'_> {
         };
         self.counters.textured_hits += 1;
         self.counters.level_hist[lod.level(tex.levels).min(HIST_LEVELS - 1)] += 1;
+        self.counters.lod_sum_256 += lod.q256();
         if first_lod.is_nan() {
             *first_lod = lod.to_f64();
         }

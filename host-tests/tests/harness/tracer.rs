@@ -105,6 +105,81 @@ fn fronto_parallel_quad_lod_zero_then_one() {
     }
 }
 
+/// Issue 21: in every isotropic filter mode each textured hit is sampled
+/// once, at the lod its method chose: the sum of the lods the texture unit
+/// was given equals the sum of the method's lods (the level histogram's
+/// values), exactly, for every method and precision; no anisotropic sample
+/// is taken unless asked for, and then only those. The sums differ between
+/// methods, so a sample taken at another method's lod would show.
+#[test]
+fn every_filter_samples_at_the_methods_lod() {
+    use raymip::texture::sampler::stochastic::StochasticMode;
+    use raymip_host::render::texunit::Filter;
+    use raymip_host::render::{FrameFilter, render_filtered};
+    let size = (96, 60);
+    let p = Prepared::new(builtin::by_name("hall").unwrap(), Some(size)).unwrap();
+    let o = |m, pr| Options {
+        size: Some(size),
+        bounces: 3,
+        ..opts(m, pr)
+    };
+    let filters = [
+        Filter::Nearest,
+        Filter::Bilinear,
+        Filter::Trilinear,
+        Filter::BilinearLevel0,
+        Filter::Stochastic(StochasticMode::Trilinear),
+        Filter::Stochastic(StochasticMode::Bilinear),
+        Filter::Stochastic(StochasticMode::TrilinearBilinear),
+    ];
+    for pr in [Precision::Fixed, Precision::Float] {
+        let mut sums = Vec::new();
+        for m in [Method::Table, Method::Cone, Method::Raydiff, Method::Mip0] {
+            for filter in filters {
+                let img = render_filtered(&p, &o(m, pr), Some(FrameFilter { filter, frame: 0 }));
+                let c = &img.counters;
+                let what = format!("{} {} {filter:?}", m.name(), pr.name());
+                assert!(c.textured_hits > 1000, "{what}: {c:?}");
+                assert_eq!(
+                    c.samples, c.textured_hits,
+                    "{what}: one sample per textured hit"
+                );
+                assert_eq!(c.aniso_samples, 0, "{what}");
+                assert_eq!(
+                    c.sampled_lod_sum_256, c.lod_sum_256,
+                    "{what}: the unit sampled at other lods than the method chose"
+                );
+                if filter == Filter::Trilinear {
+                    sums.push((m.name(), c.lod_sum_256));
+                }
+            }
+        }
+        for (i, a) in sums.iter().enumerate() {
+            for b in &sums[i + 1..] {
+                assert_ne!(
+                    a.1,
+                    b.1,
+                    "{} {}: {} and {} lods sum alike",
+                    pr.name(),
+                    a.0,
+                    a.0,
+                    b.0
+                );
+            }
+        }
+        let aniso = render(
+            &p,
+            &Options {
+                aniso: Some(4),
+                ..o(Method::Raydiff, pr)
+            },
+        );
+        let c = &aniso.counters;
+        assert_eq!(c.aniso_samples, c.textured_hits, "{} aniso", pr.name());
+        assert_eq!(c.samples, 0, "{} aniso: no isotropic sample", pr.name());
+    }
+}
+
 /// Issue 21: the lod a sample uses is the chosen method's in every filter
 /// mode. The firmware ray differentials drive the fixed render (its image
 /// within 40 dB of the f64 ray differentials'); with at most one probe an
