@@ -18,12 +18,12 @@ use raymip_host::cli::output::{cpu_model, publish, write_option};
 use raymip_host::cli::parse_size;
 use raymip_host::render::skip::{bit_identical, plan, render_trimmed};
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
-use raymip_host::scene::{builtin, default_bart_dir, load_scene_dir};
+use raymip_host::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
 
 const REPEATS: usize = 3;
 
 /// A scene loader.
-type Load = Box<dyn Fn() -> Result<raymip_host::scene::Scene, String>>;
+type Load = Box<dyn Fn() -> Result<raymip_host::scene::Scene, SceneError>>;
 
 fn cpu() -> String {
     let model = cpu_model();

@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cli;
+pub mod error;
 pub mod reference;
 pub mod render;
 pub mod scene;

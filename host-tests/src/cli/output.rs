@@ -1,43 +1,159 @@
 //! Outputs: PNG images, the rainbow mip-level image, PSNR and difference
 //! heat-maps, JSON + Markdown reports, the machine line of a measurement.
 
+use std::fmt;
 use std::fs;
 use std::io::BufWriter;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use crate::error::{FileError, into_string};
+
+/// What went wrong writing or reading an output file.
+#[derive(Debug)]
+pub enum OutputError {
+    /// The file could not be opened, created, read or written.
+    File(FileError),
+    /// The PNG encoder failed on the file.
+    PngEncode {
+        /// The file.
+        path: PathBuf,
+        /// The encoder's error.
+        source: png::EncodingError,
+    },
+    /// The file is not a readable PNG.
+    PngDecode {
+        /// The file.
+        path: PathBuf,
+        /// The decoder's error.
+        source: png::DecodingError,
+    },
+    /// The PNG is not 8-bit RGB or RGBA.
+    PngFormat {
+        /// The file.
+        path: PathBuf,
+        /// Its colour type.
+        color: png::ColorType,
+        /// Its bit depth.
+        depth: png::BitDepth,
+    },
+    /// A value could not be serialised as JSON.
+    Json {
+        /// The file it was meant for.
+        path: PathBuf,
+        /// Serde's error.
+        source: serde_json::Error,
+    },
+    /// The file lacks the `<!-- NAME:begin -->` / `<!-- NAME:end -->` lines.
+    MissingMarkers {
+        /// The file.
+        path: PathBuf,
+        /// The block's `NAME`.
+        name: String,
+    },
+    /// The end marker comes before the begin marker.
+    MarkersOutOfOrder {
+        /// The file.
+        path: PathBuf,
+        /// The block's `NAME`.
+        name: String,
+    },
+}
+
+impl fmt::Display for OutputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::File(e) => e.fmt(f),
+            Self::PngEncode { path, source } => {
+                write!(f, "{}: cannot encode PNG: {source}", path.display())
+            }
+            Self::PngDecode { path, source } => {
+                write!(f, "{}: not a readable PNG: {source}", path.display())
+            }
+            Self::PngFormat { path, color, depth } => write!(
+                f,
+                "{}: unsupported PNG format {color:?} {depth:?} (expected 8-bit RGB or RGBA)",
+                path.display()
+            ),
+            Self::Json { path, source } => {
+                write!(f, "{}: cannot serialise JSON: {source}", path.display())
+            }
+            Self::MissingMarkers { path, name } => write!(
+                f,
+                "{}: markers <!-- {name}:begin --> / <!-- {name}:end --> not found",
+                path.display()
+            ),
+            Self::MarkersOutOfOrder { path, name } => write!(
+                f,
+                "{}: <!-- {name}:end --> before <!-- {name}:begin -->",
+                path.display()
+            ),
+        }
+    }
+}
+
+impl std::error::Error for OutputError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::File(e) => Some(e),
+            Self::PngEncode { source, .. } => Some(source),
+            Self::PngDecode { source, .. } => Some(source),
+            Self::Json { source, .. } => Some(source),
+            Self::PngFormat { .. }
+            | Self::MissingMarkers { .. }
+            | Self::MarkersOutOfOrder { .. } => None,
+        }
+    }
+}
+
+impl From<FileError> for OutputError {
+    fn from(e: FileError) -> Self {
+        Self::File(e)
+    }
+}
+
+into_string!(OutputError);
 
 /// Writes an RGB8 PNG.
-pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> Result<(), String> {
-    let f = fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
+///
+/// # Errors
+/// When the file cannot be created or the encoder fails.
+pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> Result<(), OutputError> {
+    let encode = |source| OutputError::PngEncode {
+        path: path.to_path_buf(),
+        source,
+    };
+    let f = fs::File::create(path).map_err(|e| FileError::write(path, e))?;
     let mut enc = png::Encoder::new(BufWriter::new(f), width, height);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
-    let mut w = enc
-        .write_header()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut w = enc.write_header().map_err(encode)?;
     let data: Vec<u8> = rgb.iter().flatten().copied().collect();
-    w.write_image_data(&data)
-        .map_err(|e| format!("{}: {e}", path.display()))
+    w.write_image_data(&data).map_err(encode)
 }
 
 /// Reads an 8-bit RGB or RGBA PNG as RGB8.
-pub fn read_png(path: &Path) -> Result<(u32, u32, Vec<[u8; 3]>), String> {
-    let f = fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
+///
+/// # Errors
+/// When the file cannot be opened, is not a PNG, or is not 8-bit RGB(A).
+pub fn read_png(path: &Path) -> Result<(u32, u32, Vec<[u8; 3]>), OutputError> {
+    let decode = |source| OutputError::PngDecode {
+        path: path.to_path_buf(),
+        source,
+    };
+    let f = fs::File::open(path).map_err(|e| FileError::read(path, e))?;
     let dec = png::Decoder::new(std::io::BufReader::new(f));
-    let mut r = dec
-        .read_info()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut r = dec.read_info().map_err(decode)?;
     let mut buf = vec![0; r.output_buffer_size().unwrap_or(0)];
-    let info = r
-        .next_frame(&mut buf)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let info = r.next_frame(&mut buf).map_err(decode)?;
     let ch = match (info.color_type, info.bit_depth) {
         (png::ColorType::Rgb, png::BitDepth::Eight) => 3,
         (png::ColorType::Rgba, png::BitDepth::Eight) => 4,
-        other => {
-            return Err(format!(
-                "{}: unsupported PNG format {other:?}",
-                path.display()
-            ));
+        (color, depth) => {
+            return Err(OutputError::PngFormat {
+                path: path.to_path_buf(),
+                color,
+                depth,
+            });
         }
     };
     let px = buf[..info.buffer_size()]
@@ -133,14 +249,23 @@ pub fn heat_map(a: &[[u8; 3]], b: &[[u8; 3]], full: u8) -> Vec<[u8; 3]> {
 }
 
 /// Writes `value` as pretty JSON.
-pub fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), String> {
-    let s = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    fs::write(path, s + "\n").map_err(|e| format!("{}: {e}", path.display()))
+///
+/// # Errors
+/// When the value cannot be serialised or the file written.
+pub fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), OutputError> {
+    let s = serde_json::to_string_pretty(value).map_err(|source| OutputError::Json {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    fs::write(path, s + "\n").map_err(|e| FileError::write(path, e).into())
 }
 
 /// Writes text.
-pub fn write_text(path: &Path, text: &str) -> Result<(), String> {
-    fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
+    fs::write(path, text).map_err(|e| FileError::write(path, e).into())
 }
 
 /// Replaces the text between the lines `<!-- NAME:begin -->` and
@@ -149,21 +274,24 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), String> {
 ///
 /// # Errors
 /// When the file cannot be read or written or lacks the markers.
-pub fn write_between_markers(path: &Path, name: &str, text: &str) -> Result<(), String> {
+pub fn write_between_markers(path: &Path, name: &str, text: &str) -> Result<(), OutputError> {
     let begin = format!("<!-- {name}:begin -->");
     let end = format!("<!-- {name}:end -->");
-    let old = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let old = std::fs::read_to_string(path).map_err(|e| FileError::read(path, e))?;
     let (Some(b), Some(e)) = (old.find(&begin), old.find(&end)) else {
-        return Err(format!(
-            "{}: markers {begin} / {end} not found",
-            path.display()
-        ));
+        return Err(OutputError::MissingMarkers {
+            path: path.to_path_buf(),
+            name: name.to_string(),
+        });
     };
     if e < b {
-        return Err(format!("{}: {end} before {begin}", path.display()));
+        return Err(OutputError::MarkersOutOfOrder {
+            path: path.to_path_buf(),
+            name: name.to_string(),
+        });
     }
     let new = format!("{}{begin}\n{text}{}", &old[..b], &old[e..]);
-    std::fs::write(path, new).map_err(|e| format!("{}: {e}", path.display()))
+    std::fs::write(path, new).map_err(|e| FileError::write(path, e).into())
 }
 
 /// The file named after `--write` in a measurement command's arguments.
@@ -181,7 +309,7 @@ pub fn write_option(args: &[String]) -> Option<&Path> {
 ///
 /// # Errors
 /// As [`write_between_markers`].
-pub fn publish(table: &str, write: Option<&Path>, name: &str) -> Result<(), String> {
+pub fn publish(table: &str, write: Option<&Path>, name: &str) -> Result<(), OutputError> {
     print!("{table}");
     if let Some(path) = write {
         write_between_markers(path, name, table)?;
@@ -228,6 +356,7 @@ pub fn machine_line() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::FileOp;
 
     #[test]
     fn psnr_of_known_error() {
@@ -262,11 +391,34 @@ mod tests {
         let px: Vec<[u8; 3]> = (0..12u8).map(|i| [i, i * 2, 255 - i]).collect();
         write_png(&p, 4, 3, &px).unwrap();
         assert_eq!(read_png(&p).unwrap(), (4, 3, px));
+        let missing = dir.join("missing.png");
+        let e = read_png(&missing).unwrap_err();
         assert!(
-            read_png(&dir.join("missing.png"))
-                .unwrap_err()
-                .contains("missing.png")
+            matches!(&e, OutputError::File(f) if f.path == missing && f.op == FileOp::Read),
+            "{e}"
         );
+        assert!(e.to_string().contains("missing.png: cannot read"), "{e}");
+        std::fs::write(&missing, b"not a png").unwrap();
+        let e = read_png(&missing).unwrap_err();
+        assert!(
+            matches!(&e, OutputError::PngDecode { path, .. } if *path == missing),
+            "{e}"
+        );
+        let readme = dir.join("README.md");
+        std::fs::write(&readme, "no markers\n").unwrap();
+        let e = write_between_markers(&readme, "stress", "x").unwrap_err();
+        assert!(
+            matches!(&e, OutputError::MissingMarkers { name, .. } if name == "stress"),
+            "{e}"
+        );
+        assert!(
+            e.to_string()
+                .contains("README.md: markers <!-- stress:begin -->"),
+            "{e}"
+        );
+        std::fs::write(&readme, "<!-- stress:end -->\n<!-- stress:begin -->\n").unwrap();
+        let e = write_between_markers(&readme, "stress", "x").unwrap_err();
+        assert!(matches!(&e, OutputError::MarkersOutOfOrder { .. }), "{e}");
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -32,13 +32,16 @@ use raymip::texture::address::AddressMode;
 use raymip::texture::kernel::Precision;
 use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::dynamic::DynSampler;
+use raymip::texture::sampler::state::SamplerStateError;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::NoSrgbVariant;
 use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::Image;
+use raymip::texture::storage::image::ImageTooShort;
 use raymip::texture::storage::mip::TexelSource;
 use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
-use raymip::texture::{Mode, TexCoord, tex_coord_from_f64};
+use raymip::texture::{FilterError, Mode, TexCoord, tex_coord_from_f64};
 
 use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 
@@ -131,16 +134,168 @@ impl FormatArg {
 /// Parses `R,G,B,A` (0–255 each) into an RGBA8 texel.
 ///
 /// # Errors
-/// A message when there are not four integers in 0..=255.
-pub fn parse_rgba(s: &str) -> Result<Texel, String> {
+/// [`RgbaError`] when there are not four integers in 0..=255.
+pub fn parse_rgba(s: &str) -> Result<Texel, RgbaError> {
     let v: Vec<u8> = s
         .split(',')
         .map(|x| x.trim().parse::<u8>())
         .collect::<Result<_, _>>()
-        .map_err(|_| format!("{s:?}: expected R,G,B,A with values 0-255"))?;
+        .map_err(|_| RgbaError::NotBytes { value: s.into() })?;
     match v.as_slice() {
         &[r, g, b, a] => Ok(u32::from_le_bytes([r, g, b, a])),
-        _ => Err(format!("{s:?}: expected four values R,G,B,A")),
+        _ => Err(RgbaError::Count {
+            value: s.into(),
+            found: v.len(),
+        }),
+    }
+}
+
+/// A bad `R,G,B,A` option value (`--border`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RgbaError {
+    /// A component is not an integer in 0..=255.
+    NotBytes {
+        /// The value given.
+        value: String,
+    },
+    /// Not four components.
+    Count {
+        /// The value given.
+        value: String,
+        /// How many components it has.
+        found: usize,
+    },
+}
+
+impl fmt::Display for RgbaError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotBytes { value } => write!(f, "{value:?}: expected R,G,B,A with values 0-255"),
+            Self::Count { value, found } => {
+                write!(f, "{value:?}: expected four values R,G,B,A, found {found}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for RgbaError {}
+
+/// An invalid sampler option of `sample`.
+#[derive(Debug)]
+pub enum OptionError {
+    /// A level-of-detail option is NaN or infinite.
+    LodNotFinite {
+        /// The option (`bias`, `min-lod`, `max-lod`).
+        option: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A level-of-detail option is outside the firmware's `[-128, 128)`.
+    LodOutOfRange {
+        /// The option.
+        option: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// The firmware rejected the sampler state.
+    Sampler(SamplerStateError),
+    /// `--srgb` with a format that has no sRGB variant.
+    Format(NoSrgbVariant),
+    /// `--linear-output` without `--srgb`.
+    LinearOutputNeedsSrgb,
+    /// The encoded texture is shorter than its geometry needs.
+    Image(ImageTooShort),
+}
+
+impl fmt::Display for OptionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::LodNotFinite { option, value } => write!(f, "--{option}: {value} is not finite"),
+            Self::LodOutOfRange { option, value } => {
+                write!(f, "--{option}: {value} outside [-128, 128)")
+            }
+            Self::Sampler(e) => write!(f, "sampler options: {e}"),
+            Self::Format(e) => write!(f, "--format with --srgb: {e}"),
+            Self::LinearOutputNeedsSrgb => f.write_str("--linear-output needs --srgb"),
+            Self::Image(e) => write!(f, "texture: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for OptionError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Sampler(e) => Some(e),
+            Self::Format(e) => Some(e),
+            Self::Image(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+/// A malformed input line of `sample` (see [`LINE_FORMAT`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum LineError {
+    /// Neither 4 nor 7 comma-separated fields.
+    FieldCount {
+        /// Fields found.
+        found: usize,
+        /// The line.
+        text: String,
+    },
+    /// A field is not a number.
+    NotANumber {
+        /// The field (`u`, `v`, `lod`, `dudx`, …).
+        field: &'static str,
+        /// Its text.
+        text: String,
+    },
+    /// A field is NaN or infinite.
+    NotFinite {
+        /// The field.
+        field: &'static str,
+        /// Its text.
+        text: String,
+    },
+    /// The mode is not 0, 1, 2 or 3.
+    BadMode {
+        /// Its text.
+        text: String,
+    },
+    /// Anisotropic lines take trilinear probes only.
+    AnisoMode {
+        /// The mode given.
+        mode: u8,
+    },
+    /// A coordinate the firmware cannot represent.
+    Coord(FilterError),
+}
+
+impl fmt::Display for LineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::FieldCount { found, text } => write!(
+                f,
+                "expected 4 comma-separated fields u,v,lod,mode or 7 fields u,v,mode,dudx,dvdx,dudy,dvdy, found {found} in {text:?}"
+            ),
+            Self::NotANumber { field, text } => write!(f, "{field}: {text:?} is not a number"),
+            Self::NotFinite { field, text } => write!(f, "{field}: {text:?} is not finite"),
+            Self::BadMode { text } => write!(f, "mode: {text:?} is not one of 0, 1, 2, 3"),
+            Self::AnisoMode { mode } => write!(
+                f,
+                "anisotropic lines take trilinear probes (mode 0), not mode {mode}"
+            ),
+            Self::Coord(e) => write!(f, "coordinate: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for LineError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Coord(e) => Some(e),
+            _ => None,
+        }
     }
 }
 
@@ -245,13 +400,13 @@ impl SampleArgs {
     /// The validated sampler state and format of the options.
     ///
     /// # Errors
-    /// A message naming the option out of range.
-    pub fn state(&self) -> Result<(SamplerState, Format), String> {
-        let lod = |name: &str, x: f64| -> Result<Lod, String> {
-            if !x.is_finite() {
-                return Err(format!("--{name}: {x} is not finite"));
+    /// [`OptionError`] naming the option out of range.
+    pub fn state(&self) -> Result<(SamplerState, Format), OptionError> {
+        let lod = |option: &'static str, value: f64| -> Result<Lod, OptionError> {
+            if !value.is_finite() {
+                return Err(OptionError::LodNotFinite { option, value });
             }
-            Lod::checked_from_num(x).ok_or_else(|| format!("--{name}: {x} outside [-128, 128)"))
+            Lod::checked_from_num(value).ok_or(OptionError::LodOutOfRange { option, value })
         };
         let au = self.address.first().copied().unwrap_or(AddressArg::Wrap);
         let av = self.address.get(1).copied().unwrap_or(au);
@@ -269,15 +424,15 @@ impl SampleArgs {
                 SrgbOutput::Encoded
             },
         })
-        .map_err(|e| e.to_string())?;
+        .map_err(OptionError::Sampler)?;
         let space = if self.srgb {
             ColorSpace::Srgb
         } else {
             ColorSpace::Linear
         };
-        let format = Format::new(self.format.format(), space).map_err(|e| e.to_string())?;
+        let format = Format::new(self.format.format(), space).map_err(OptionError::Format)?;
         if self.linear_output && !self.srgb {
-            return Err("--linear-output needs --srgb".into());
+            return Err(OptionError::LinearOutputNeedsSrgb);
         }
         Ok((state, format))
     }
@@ -304,10 +459,10 @@ pub enum SampleError {
         /// 1-based line number.
         line: usize,
         /// What is wrong.
-        message: String,
+        error: LineError,
     },
     /// Invalid sampler options.
-    Options(String),
+    Options(OptionError),
     /// Reading input or writing output failed.
     Io(io::Error),
 }
@@ -322,18 +477,24 @@ impl fmt::Display for SampleError {
                 levels: Some(l),
             } => write!(f, "{}: --levels {l}: {error}", path.display()),
             Self::Pyramid { path, error, .. } => write!(f, "{}: {error}", path.display()),
-            Self::Line {
-                input,
-                line,
-                message,
-            } => write!(f, "{input}:{line}: {message}"),
+            Self::Line { input, line, error } => write!(f, "{input}:{line}: {error}"),
             Self::Options(m) => write!(f, "{m}"),
             Self::Io(e) => write!(f, "i/o error: {e}"),
         }
     }
 }
 
-impl std::error::Error for SampleError {}
+impl std::error::Error for SampleError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Texture(e) => Some(e),
+            Self::Pyramid { error, .. } => Some(error),
+            Self::Line { error, .. } => Some(error),
+            Self::Options(e) => Some(e),
+            Self::Io(e) => Some(e),
+        }
+    }
+}
 
 impl From<io::Error> for SampleError {
     fn from(e: io::Error) -> Self {
@@ -409,23 +570,27 @@ pub enum SampleLine {
 }
 
 /// Parses one input line (see [`LINE_FORMAT`]).
-fn parse_line(text: &str) -> Result<SampleLine, String> {
+fn parse_line(text: &str) -> Result<SampleLine, LineError> {
     let fields: Vec<&str> = text.split(',').map(str::trim).collect();
     if fields.len() != 4 && fields.len() != 7 {
-        return Err(format!(
-            "expected 4 comma-separated fields u,v,lod,mode or 7 fields u,v,mode,dudx,dvdx,dudy,dvdy, found {} in {text:?}",
-            fields.len()
-        ));
+        return Err(LineError::FieldCount {
+            found: fields.len(),
+            text: text.into(),
+        });
     }
-    let num = |i: usize, name: &str| -> Result<f64, String> {
+    let num = |i: usize, field: &'static str| -> Result<f64, LineError> {
         let s = fields[i];
-        let x: f64 = s
-            .parse()
-            .map_err(|_| format!("{name}: {s:?} is not a number"))?;
+        let x: f64 = s.parse().map_err(|_| LineError::NotANumber {
+            field,
+            text: s.into(),
+        })?;
         if x.is_finite() {
             Ok(x)
         } else {
-            Err(format!("{name}: {s:?} is not finite"))
+            Err(LineError::NotFinite {
+                field,
+                text: s.into(),
+            })
         }
     };
     let mode_at = |i: usize| {
@@ -433,7 +598,9 @@ fn parse_line(text: &str) -> Result<SampleLine, String> {
             .parse::<u8>()
             .ok()
             .and_then(Mode::from_index)
-            .ok_or_else(|| format!("mode: {:?} is not one of 0, 1, 2, 3", fields[i]))
+            .ok_or_else(|| LineError::BadMode {
+                text: fields[i].into(),
+            })
     };
     let (u, v) = (num(0, "u")?, num(1, "v")?);
     if fields.len() == 4 {
@@ -458,13 +625,13 @@ fn parse_line(text: &str) -> Result<SampleLine, String> {
 
 /// `x` reduced (exactly, in f64) to the range that addresses the same
 /// texels under `mode`, as a [`TexCoord`].
-fn coord(x: f64, mode: AddressMode) -> Result<TexCoord, String> {
+fn coord(x: f64, mode: AddressMode) -> Result<TexCoord, LineError> {
     let r = match mode {
         AddressMode::Wrap => x - x.floor(),
         AddressMode::Mirror => x - 2.0 * (x / 2.0).floor(),
         _ => x.clamp(-2.0, 2.0),
     };
-    tex_coord_from_f64(r).map_err(|e| e.to_string())
+    tex_coord_from_f64(r).map_err(LineError::Coord)
 }
 
 /// Samples every line of `input` (`u,v,lod,mode`, or anisotropic lines)
@@ -488,7 +655,7 @@ pub fn sample_lines<R: BufRead, W: Write>(
         address_v: address,
         ..SamplerDesc::default()
     })
-    .map_err(|e| SampleError::Options(e.to_string()))?;
+    .map_err(|e| SampleError::Options(OptionError::Sampler(e)))?;
     let sampler = DynSampler::new(
         view(pyramid, input_name)?,
         state,
@@ -522,10 +689,7 @@ fn run_lines<S: TexelSource, R: BufRead, W: Write>(
                     coord(v, av).map_err(line_err)?,
                 );
                 if mode != Mode::Trilinear {
-                    return Err(line_err(format!(
-                        "anisotropic lines take trilinear probes (mode 0), not mode {}",
-                        mode as u8
-                    )));
+                    return Err(line_err(LineError::AnisoMode { mode: mode as u8 }));
                 }
                 let a = |x: f64| TexCoord::saturating_from_num(x);
                 let fp = Footprint {
@@ -556,15 +720,15 @@ fn sample_each_line<R: BufRead, W: Write>(
     input: R,
     mut output: W,
     input_name: &str,
-    mut sample: impl FnMut(SampleLine, &dyn Fn(String) -> SampleError) -> Result<Texel, SampleError>,
+    mut sample: impl FnMut(SampleLine, &dyn Fn(LineError) -> SampleError) -> Result<Texel, SampleError>,
 ) -> Result<usize, SampleError> {
     let mut count = 0;
     for (i, line) in input.lines().enumerate() {
         let line = line?;
-        let line_err = |message: String| SampleError::Line {
+        let line_err = |error: LineError| SampleError::Line {
             input: input_name.to_string(),
             line: i + 1,
-            message,
+            error,
         };
         let text = line.strip_suffix('\r').unwrap_or(&line);
         let [r, g, b, a] = sample(parse_line(text).map_err(line_err)?, &line_err)?.to_le_bytes();
@@ -595,7 +759,7 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
         format.texel(),
     );
     let image = Image::new(pyramid.geometry, format, &bytes)
-        .map_err(|e| SampleError::Options(e.to_string()))?;
+        .map_err(|e| SampleError::Options(OptionError::Image(e)))?;
     let mut cache: Box<TexelCache<Image<'_>, 64, 4>> = Box::new(TexelCache::new(image));
     let sampler = DynSampler::new(&mut *cache, state, format.space(), precision);
     run_lines(sampler, input, output, input_name)

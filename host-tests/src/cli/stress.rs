@@ -1225,7 +1225,7 @@ fn scene_file(r: &mut Runner) {
             std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
             let p = dir.join("s.aff");
             std::fs::write(&p, text).map_err(|e| e.to_string())?;
-            let res = crate::scene::load_aff(&p, 0.0);
+            let res = crate::scene::load_aff(&p, 0.0).map_err(|e| e.to_string());
             match res {
                 Err(e) if e.contains("s.aff") => err(e.lines().next().unwrap_or("").to_string()),
                 Err(e) => Err(format!("error without the file: {e}")),
@@ -1321,7 +1321,7 @@ fn write_readme(rows: &[Row], path: &Path) -> Result<(), String> {
         edges(rows),
         totals_line(&Totals::of(rows))
     );
-    write_between_markers(path, "stress", &text)
+    Ok(write_between_markers(path, "stress", &text)?)
 }
 
 fn verdict(rows: &[Row]) -> Result<(), String> {

@@ -20,7 +20,7 @@ use serde_json::json;
 use super::output::{write_json, write_text};
 use crate::render::{Counters, Method, Options, Precision, Prepared, render};
 use crate::scene::Scene;
-use crate::scene::{builtin, default_bart_dir, load_scene_dir};
+use crate::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
 
 /// Cache sets.
 pub const SETS: usize = 64;
@@ -183,7 +183,7 @@ and the cache (a 16 KiB 4-way LRU block cache with Morton-ordered 4×4 blocks; t
 }
 
 /// A deferred scene load.
-type SceneLoader = Box<dyn Fn() -> Result<Scene, String>>;
+type SceneLoader = Box<dyn Fn() -> Result<Scene, SceneError>>;
 
 /// `table1`: every scene folder under `scenes` (and the built-in scenes if
 /// `builtin`), printed beside the paper's values; `table1.md` / `table1.json`

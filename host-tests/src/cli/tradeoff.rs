@@ -93,7 +93,11 @@ fn publish(
         m,
         report::headlines(rows, s.accumulate)
     );
-    write_between_markers(&root.join("docs/tradeoff.md"), "tradeoff", &readme)
+    Ok(write_between_markers(
+        &root.join("docs/tradeoff.md"),
+        "tradeoff",
+        &readme,
+    )?)
 }
 
 /// `tradeoff`: measures, writes the files into `args.out`, publishes when

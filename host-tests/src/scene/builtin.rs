@@ -10,7 +10,7 @@
 //! (NPOT). Default image size 800×480. [`fronto_quad`] builds the
 //! fronto-parallel quad of the LOD tests.
 
-use super::{Camera, Light, Material, Scene, TextureImage, Triangle, V3};
+use super::{Camera, Light, Material, Scene, SceneError, TextureImage, Triangle, V3};
 
 /// Names of the built-in scenes.
 pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];
@@ -19,15 +19,14 @@ pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];
 pub const DEFAULT_SIZE: (u32, u32) = (800, 480);
 
 /// A built-in scene by name.
-pub fn by_name(name: &str) -> Result<Scene, String> {
+pub fn by_name(name: &str) -> Result<Scene, SceneError> {
     match name {
         "hall" => Ok(hall()),
         "mirrors" => Ok(mirrors()),
         "glass" => Ok(glass()),
-        _ => Err(format!(
-            "unknown built-in scene `{name}` (choose one of {})",
-            NAMES.join(", ")
-        )),
+        _ => Err(SceneError::UnknownBuiltin {
+            name: name.to_string(),
+        }),
     }
 }
 

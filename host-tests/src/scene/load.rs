@@ -1,11 +1,57 @@
 //! Loading a scene: `builtin:NAME`, an AFF file, or a BART scene folder.
 
+use std::fmt;
 use std::path::{Path, PathBuf};
 
 use super::{Scene, aff, aff_adapter, builtin};
+use crate::error::into_string;
+use aff::AffError;
+
+/// Why a scene could not be loaded.
+#[derive(Debug)]
+pub enum SceneError {
+    /// `builtin:NAME` names no built-in scene.
+    UnknownBuiltin {
+        /// The `NAME` given.
+        name: String,
+    },
+    /// The AFF file (or BART folder) failed to read or parse; the error
+    /// names the file and line.
+    Aff(AffError),
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnknownBuiltin { name } => write!(
+                f,
+                "unknown built-in scene `{name}` (choose one of {})",
+                builtin::NAMES.join(", ")
+            ),
+            Self::Aff(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for SceneError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::UnknownBuiltin { .. } => None,
+            Self::Aff(e) => Some(e),
+        }
+    }
+}
+
+impl From<AffError> for SceneError {
+    fn from(e: AffError) -> Self {
+        Self::Aff(e)
+    }
+}
+
+into_string!(SceneError);
 
 /// Loads `builtin:NAME` or an `.aff` file at animation time `time`.
-pub fn load_scene(spec: &str, time: f64) -> Result<Scene, String> {
+pub fn load_scene(spec: &str, time: f64) -> Result<Scene, SceneError> {
     if let Some(name) = spec.strip_prefix("builtin:") {
         return builtin::by_name(name);
     }
@@ -13,10 +59,8 @@ pub fn load_scene(spec: &str, time: f64) -> Result<Scene, String> {
 }
 
 /// Loads an AFF scene file.
-pub fn load_aff(path: &Path, time: f64) -> Result<Scene, String> {
-    aff::load(path, time)
-        .map(aff_adapter)
-        .map_err(|e| e.to_string())
+pub fn load_aff(path: &Path, time: f64) -> Result<Scene, SceneError> {
+    Ok(aff_adapter(aff::load(path, time)?))
 }
 
 /// The default BART folder: `../shared/scenes/bart` relative to the current
@@ -31,7 +75,7 @@ pub fn default_bart_dir() -> PathBuf {
 }
 
 /// Loads the scene in a BART folder (its top-level `.aff` file).
-pub fn load_scene_dir(dir: &Path, time: f64) -> Result<Scene, String> {
-    let top = aff::find_top_level(dir).map_err(|e| e.to_string())?;
+pub fn load_scene_dir(dir: &Path, time: f64) -> Result<Scene, SceneError> {
+    let top = aff::find_top_level(dir)?;
     load_aff(&top, time)
 }

@@ -172,7 +172,7 @@ pub fn write(stem: &Path, chart: &impl Draw) -> Result<(), String> {
         root.present().map_err(err)?;
     }
     let px: Vec<[u8; 3]> = buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    write_png(&stem.with_extension("png"), WIDTH, HEIGHT, &px)
+    Ok(write_png(&stem.with_extension("png"), WIDTH, HEIGHT, &px)?)
 }
 
 /// A panel on log10-transformed x (and y where the caller transforms it):

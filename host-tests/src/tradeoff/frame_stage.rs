@@ -10,14 +10,14 @@ use crate::render::texunit::Filter;
 use crate::render::{
     FrameFilter, Image, Method, Options, Precision, Prepared, render_filtered, render_truth,
 };
-use crate::scene::{Scene, load_scene, load_scene_dir};
+use crate::scene::{Scene, SceneError, load_scene, load_scene_dir};
 
 use super::filter_stage::{STOCHASTIC, stochastic_name};
 use super::timing::median;
 use super::{Row, Settings, Stage, error_stats};
 
 /// Loads `spec`: `builtin:NAME`, an `.aff` file or a BART folder.
-pub fn load(spec: &str) -> Result<Scene, String> {
+pub fn load(spec: &str) -> Result<Scene, SceneError> {
     let p = Path::new(spec);
     if p.is_dir() {
         load_scene_dir(p, 0.0)

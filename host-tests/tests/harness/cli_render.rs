@@ -141,7 +141,11 @@ fn bad_inputs_are_clear_errors() {
         (&["render", "--scene", "/no/such.aff"][..], "/no/such.aff"),
         (
             &["render", "--scene", "builtin:hall", "--size", "0x3"][..],
-            "",
+            "--size `0x3`: `0` is not a number in 1..=16384",
+        ),
+        (
+            &["render", "--scene", "builtin:hall", "--size", "800"][..],
+            "--size `800`: expected WxH",
         ),
     ] {
         let o = run(&[args, &never[..]].concat());
@@ -149,6 +153,24 @@ fn bad_inputs_are_clear_errors() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(says), "{args:?}: {err}");
     }
+    // A malformed scene line: the message names the file and the line.
+    let dir = std::env::temp_dir().join(format!("raymip-badline-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let aff = dir.join("bad.aff");
+    std::fs::write(
+        &aff,
+        "v\nfrom 0 0 5\nat zero 0 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 8 8\n",
+    )
+    .unwrap();
+    let o = run(&[
+        &["render", "--scene", aff.to_str().unwrap()][..],
+        &never[..],
+    ]
+    .concat());
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("{}:3:", aff.display())), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
     let o = run(&["table1", "--scenes", "/nonexistent-raymip"]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));

@@ -71,6 +71,10 @@ fn malformed_lines_name_the_line() {
     ] {
         let (r, out) = run_lib(input, AddressMode::Wrap);
         let e = r.unwrap_err();
+        assert!(
+            matches!(&e, SampleError::Line { input, line: l, .. } if input == "<stdin>" && *l == line),
+            "{e:?}"
+        );
         let msg = e.to_string();
         assert!(msg.starts_with(&format!("<stdin>:{line}: ")), "{msg}");
         assert!(msg.contains(what), "{msg}");
