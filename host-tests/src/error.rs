@@ -61,19 +61,3 @@ impl std::error::Error for FileError {
         Some(&self.source)
     }
 }
-
-/// Lets the modules not yet given typed errors (their functions still
-/// return `Result<_, String>`) call the typed ones with `?`: the message is
-/// the error's `Display`, which names the file, line or option.
-macro_rules! into_string {
-    ($($t:ty),* $(,)?) => {
-        $(impl From<$t> for String {
-            fn from(e: $t) -> Self {
-                e.to_string()
-            }
-        })*
-    };
-}
-pub(crate) use into_string;
-
-into_string!(FileError);

@@ -227,12 +227,12 @@ fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let r = match &cli.command {
+    let r: Result<(), Box<dyn std::error::Error>> = match &cli.command {
         Command::Sample(args) => {
             let out = BufWriter::new(io::stdout().lock());
             sample::run(args, io::stdin().lock(), out)
                 .map(|_| ())
-                .map_err(|e| e.to_string())
+                .map_err(Into::into)
         }
         Command::Render { args, geom, .. } if args.scene == "builtin:instances" => {
             let cfg = Config {
@@ -246,16 +246,16 @@ fn main() -> ExitCode {
                 policy: MaskPolicy::PerPath,
                 serial: false,
             };
-            cmd_render_instances(&cfg, geom.reference, &args.out)
+            cmd_render_instances(&cfg, geom.reference, &args.out).map_err(Into::into)
         }
-        Command::Stress { write_readme } => cmd_stress(write_readme.as_deref()),
+        Command::Stress { write_readme } => cmd_stress(write_readme.as_deref()).map_err(Into::into),
         Command::GeomlodBench {
             size,
             repeats,
             bounces,
             out,
             write,
-        } => cmd_bench(*size, *repeats, *bounces, out, write),
+        } => cmd_bench(*size, *repeats, *bounces, out, write).map_err(Into::into),
         Command::Render {
             args,
             method,
@@ -271,14 +271,16 @@ fn main() -> ExitCode {
                 ..options(args, *method, *precision)
             },
             &args.out,
-        ),
+        )
+        .map_err(Into::into),
         Command::Compare { args, methods } => cmd_compare(
             &args.scene,
             args.time,
             &options(args, Method::Table, Precision::Fixed),
             methods,
             &args.out,
-        ),
+        )
+        .map_err(Into::into),
         Command::Tradeoff {
             out,
             quick,
@@ -294,7 +296,8 @@ fn main() -> ExitCode {
             size: *size,
             publish: publish.clone(),
         })
-        .map(|_| ()),
+        .map(|_| ())
+        .map_err(Into::into),
         Command::Table1 {
             scenes,
             size,
@@ -311,7 +314,8 @@ fn main() -> ExitCode {
             *builtin,
             out.as_deref(),
             *skip_unloadable,
-        ),
+        )
+        .map_err(Into::into),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

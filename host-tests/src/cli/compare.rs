@@ -6,7 +6,9 @@ use std::path::Path;
 use serde::Serialize;
 use serde_json::json;
 
+use super::error::CommandError;
 use super::output::{heat_map, max_diff, psnr, write_json, write_png, write_text};
+use crate::error::FileError;
 use crate::render::{Image, Method, Options, Precision, Prepared, render, render_truth};
 use crate::scene::{builtin, load_scene};
 
@@ -55,8 +57,8 @@ pub fn compare(
     base: &Options,
     methods: &[Method],
     out: Option<&Path>,
-) -> Result<Comparison, String> {
-    let save = |name: &str, img: &[[u8; 3]]| -> Result<(), String> {
+) -> Result<Comparison, CommandError> {
+    let save = |name: &str, img: &[[u8; 3]]| -> Result<(), CommandError> {
         if let Some(dir) = out {
             write_png(&dir.join(name), prep.width, prep.height, img)?;
         }
@@ -147,8 +149,8 @@ pub fn cmd_compare(
     opts: &Options,
     methods: &[Method],
     out: &Path,
-) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+) -> Result<(), CommandError> {
+    std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
     let scene = load_scene(spec, time)?;
     let size = opts.size.or_else(|| {
         spec.starts_with("builtin:")

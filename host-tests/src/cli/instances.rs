@@ -10,7 +10,9 @@ use raymip::geomlod::InstanceLod;
 use serde::Serialize;
 use serde_json::json;
 
+use super::error::CommandError;
 use super::output::{write_between_markers, write_json, write_png, write_text};
+use crate::error::FileError;
 use crate::render::instances::{Config, FrameStats, GeomLodMode, Prepared, accumulate, blend, rms};
 use crate::scene::V3;
 use crate::scene::instances::{GRID, InstanceScene, View};
@@ -32,10 +34,10 @@ fn to_rgb8(c: &[V3], gamma: bool) -> Vec<[u8; 3]> {
 /// `lod.png` (accumulated LOD colours), `frame0.png`, `lod_frame0.png`,
 /// `lod_blend.png` and the convergence curve (with `reference`),
 /// `report.json` and `report.md` into `out`.
-pub fn cmd_render(cfg: &Config, reference: bool, out: &Path) -> Result<(), String> {
+pub fn cmd_render(cfg: &Config, reference: bool, out: &Path) -> Result<(), CommandError> {
     cfg.check()?;
     let t0 = Instant::now();
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
     let scene = InstanceScene::build();
     let prep = Prepared::new(&scene, cfg)?;
     let acc = accumulate(&prep, &scene, cfg, true);
@@ -127,7 +129,10 @@ pub fn cmd_render(cfg: &Config, reference: bool, out: &Path) -> Result<(), Strin
         out.display()
     );
     if s.mismatches > 0 {
-        return Err(format!("{} path mismatches", s.mismatches));
+        return Err(CommandError::PathMismatches {
+            render: format!("{} {:?}", cfg.view.name(), cfg.mode),
+            count: s.mismatches,
+        });
     }
     Ok(())
 }
@@ -173,7 +178,7 @@ pub fn bench(
     size: (u32, u32),
     repeats: u32,
     bounces: u8,
-) -> Result<(Vec<BenchRow>, String), String> {
+) -> Result<(Vec<BenchRow>, String), CommandError> {
     let scene = InstanceScene::build();
     let configs = bench_configs();
     let bar = ProgressBar::new((View::ALL.len() * configs.len()) as u64);
@@ -203,11 +208,10 @@ pub fn bench(
                 stats = f.stats;
             }
             if stats.mismatches > 0 {
-                return Err(format!(
-                    "{} {label}: {} path mismatches",
-                    view.name(),
-                    stats.mismatches
-                ));
+                return Err(CommandError::PathMismatches {
+                    render: format!("{} {label}", view.name()),
+                    count: stats.mismatches,
+                });
             }
             rows.push(BenchRow {
                 view,
@@ -314,8 +318,8 @@ pub fn cmd_bench(
     bounces: u8,
     out: &Path,
     write: &[std::path::PathBuf],
-) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+) -> Result<(), CommandError> {
+    std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
     let (rows, md) = bench(size, repeats, bounces)?;
     let md = format!(
         "Measured on {} by `bash scripts/geomlod-bench` (`raymip-host geomlod-bench --size {}x{} --repeats {repeats} --bounces {bounces}`).\n\n{md}",

@@ -6,6 +6,7 @@ use std::path::Path;
 
 pub mod compare;
 pub mod demo_data;
+mod error;
 pub mod instances;
 pub mod output;
 pub mod pcpi_vectors;
@@ -16,6 +17,7 @@ pub mod table1;
 pub mod tradeoff;
 
 pub use compare::cmd_compare;
+pub use error::CommandError;
 pub use render::cmd_render;
 pub use table1::cmd_table1;
 
@@ -49,8 +51,6 @@ impl std::fmt::Display for SizeError {
 }
 
 impl std::error::Error for SizeError {}
-
-crate::error::into_string!(SizeError);
 
 /// Largest width or height `--size` accepts, pixels.
 pub const MAX_SIZE: u32 = 16384;

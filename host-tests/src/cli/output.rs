@@ -6,7 +6,7 @@ use std::fs;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use crate::error::{FileError, into_string};
+use crate::error::FileError;
 
 /// What went wrong writing or reading an output file.
 #[derive(Debug)]
@@ -110,8 +110,6 @@ impl From<FileError> for OutputError {
         Self::File(e)
     }
 }
-
-into_string!(OutputError);
 
 /// Writes an RGB8 PNG.
 ///
@@ -248,11 +246,12 @@ pub fn heat_map(a: &[[u8; 3]], b: &[[u8; 3]], full: u8) -> Vec<[u8; 3]> {
         .collect()
 }
 
-/// Writes `value` as pretty JSON.
+/// Writes `value` (a `serde_json::Value` or any serialisable type) as
+/// pretty JSON.
 ///
 /// # Errors
 /// When the value cannot be serialised or the file written.
-pub fn write_json(path: &Path, value: &serde_json::Value) -> Result<(), OutputError> {
+pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), OutputError> {
     let s = serde_json::to_string_pretty(value).map_err(|source| OutputError::Json {
         path: path.to_path_buf(),
         source,

@@ -5,19 +5,21 @@ use std::time::Instant;
 
 use serde_json::json;
 
+use super::error::CommandError;
 use super::output::{level_image, write_json, write_png, write_text};
 use super::scene_label;
+use crate::error::FileError;
 use crate::render::skip::{SkipPlan, bit_identical, plan, render_trimmed};
 use crate::render::{Counters, Image, Method, Options, Prepared, render};
 use crate::scene::{builtin, load_scene};
 
 /// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
-pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), String> {
+pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(), CommandError> {
     opts.validate()?;
     let t0 = Instant::now();
     let scene = load_scene(spec, time)?;
     let load_s = t0.elapsed().as_secs_f64();
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
     let size = opts.size.or_else(|| {
         spec.starts_with("builtin:")
             .then_some(builtin::DEFAULT_SIZE)
@@ -104,7 +106,7 @@ pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(
         skips_line(&skip, c, trimmed.as_ref().map(|t| bit_identical(&img, t)))
     );
     if trimmed.as_ref().is_some_and(|t| !bit_identical(&img, t)) {
-        return Err("the render with trimmed pyramids differs from the full one".into());
+        return Err(CommandError::TrimmedDiffers);
     }
     Ok(())
 }

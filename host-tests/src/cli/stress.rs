@@ -20,7 +20,7 @@
 //! entries) changed. [`run`] returns the rows; the command exits non-zero
 //! when anything panicked or misbehaved.
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
@@ -39,7 +39,7 @@ use raymip::texture::storage::mip::{
 };
 use raymip::texture::{AddressMode, FilterError, Mode, Sampler, TexCoord};
 
-use super::output::write_between_markers;
+use super::output::{OutputError, write_between_markers};
 
 /// What a case returned.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,7 +61,7 @@ pub struct Row {
     pub edge: &'static str,
     /// The result: `Ok((kind, what came back))`, or `Err(why)` when it was
     /// not the documented outcome or a panic (`panicked` set).
-    pub result: Result<(Kind, String), String>,
+    pub result: Result<(Kind, String), Misbehaviour>,
     /// True when the case panicked.
     pub panicked: bool,
 }
@@ -110,7 +110,85 @@ impl Totals {
     }
 }
 
-type Outcome = Result<(Kind, String), String>;
+type Outcome = Result<(Kind, String), Misbehaviour>;
+
+/// A case whose outcome was not the documented one (or that panicked):
+/// what came back instead.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Misbehaviour(pub String);
+
+impl fmt::Display for Misbehaviour {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Misbehaviour {}
+
+impl From<String> for Misbehaviour {
+    fn from(s: String) -> Self {
+        Self(s)
+    }
+}
+
+impl From<&str> for Misbehaviour {
+    fn from(s: &str) -> Self {
+        Self(s.to_string())
+    }
+}
+
+/// Why `stress` failed.
+#[derive(Debug)]
+pub enum StressError {
+    /// Cases panicked or misbehaved.
+    Misbehaved {
+        /// Cases whose outcome was not the documented one.
+        misbehaved: usize,
+        /// Cases that panicked.
+        panicked: usize,
+        /// Each such case: `edge / class: what came back`.
+        cases: Vec<String>,
+    },
+    /// The docs/reliability.md block could not be written (names the file).
+    Output(OutputError),
+}
+
+impl fmt::Display for StressError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Misbehaved {
+                misbehaved,
+                panicked,
+                cases,
+            } => write!(
+                f,
+                "stress: {misbehaved} misbehaved, {panicked} panicked:\n{}",
+                cases.join("\n")
+            ),
+            Self::Output(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for StressError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Misbehaved { .. } => None,
+            Self::Output(e) => Some(e),
+        }
+    }
+}
+
+impl From<OutputError> for StressError {
+    fn from(e: OutputError) -> Self {
+        Self::Output(e)
+    }
+}
+
+/// A case's failure: `what` came back instead of the documented outcome.
+fn bad<T>(what: impl Into<String>) -> Result<T, Misbehaviour> {
+    Err(Misbehaviour(what.into()))
+}
 
 fn err(s: impl Into<String>) -> Outcome {
     Ok((Kind::Error, s.into()))
@@ -127,7 +205,7 @@ fn refused(s: RmStatus, want: RmStatus, untouched: bool, what: &str) -> Outcome 
     if s == want && untouched {
         err(what)
     } else {
-        Err(format!("{s:?}"))
+        bad(format!("{s:?}"))
     }
 }
 /// `value(ok)` when `got` is within `tol` of the f64 reference `want`, else
@@ -136,7 +214,7 @@ fn near(what: &str, got: f64, want: f64, tol: f64, ok: String) -> Outcome {
     if (got - want).abs() <= tol {
         value(ok)
     } else {
-        Err(format!("{what}{got} vs f64 {want}"))
+        bad(format!("{what}{got} vs f64 {want}"))
     }
 }
 
@@ -156,7 +234,7 @@ impl Runner {
                     .map(|s| (*s).to_string())
                     .or_else(|| p.downcast_ref::<String>().cloned())
                     .unwrap_or_else(|| "panic".into());
-                (Err(format!("panicked: {msg}")), true)
+                (bad(format!("panicked: {msg}")), true)
             }
         };
         self.rows.push(Row {
@@ -227,7 +305,7 @@ fn camera(r: &mut Runner) {
                 {
                     err("BadAngle")
                 }
-                other => Err(format!("{other:?}")),
+                other => bad(format!("{other:?}")),
             }
         });
     }
@@ -236,7 +314,7 @@ fn camera(r: &mut Runner) {
         "camera: PixelSpread::from_fov_y(1, 0)",
         || match PixelSpread::from_fov_y(1.0, 0) {
             Err(CameraError::ZeroImageHeight) => err("ZeroImageHeight"),
-            o => Err(format!("{o:?}")),
+            o => bad(format!("{o:?}")),
         },
     );
     r.case(
@@ -246,7 +324,7 @@ fn camera(r: &mut Runner) {
             // γ ≈ 2.5·10⁻¹⁰ rad, under half the I2F30 step: no usable angle.
             match PixelSpread::from_fov_y(1.0, u32::MAX) {
                 Err(CameraError::BadAngle) => err("BadAngle"),
-                o => Err(format!("{o:?}")),
+                o => bad(format!("{o:?}")),
             }
         },
     );
@@ -264,7 +342,7 @@ fn camera(r: &mut Runner) {
                     let got = s.log2().to_num::<f64>();
                     near("log2 γ ", got, want, 1e-4, format!("log2 γ = {got:.4}"))
                 }
-                (o, _) => Err(format!("{o:?}")),
+                (o, _) => bad(format!("{o:?}")),
             }
         });
     }
@@ -275,7 +353,7 @@ const TRI_UV: [[f32; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
 /// Builds a 3-entry table whose entries 0 and 2 hold a sentinel and entry
 /// 1 the triangle; fails when a sentinel changed.
-fn entry_of(tri: TexTriangle) -> Result<(Log2Pb, u32), String> {
+fn entry_of(tri: TexTriangle) -> Result<(Log2Pb, u32), Misbehaviour> {
     let sentinel = Log2Pb::from_bits(0x1234_5678 & 0x003F_FFFF);
     let mut storage = [sentinel; 3];
     let mut t = PbTable::new(&mut storage);
@@ -283,7 +361,7 @@ fn entry_of(tri: TexTriangle) -> Result<(Log2Pb, u32), String> {
         .update(1, [Some(tri)], &spread())
         .map_err(|e| format!("update: {e}"))?;
     if storage[0] != sentinel || storage[2] != sentinel {
-        return Err("an entry beside the updated one changed".into());
+        return bad("an entry beside the updated one changed");
     }
     let n = st.textured + st.untextured + st.degenerate_geometry + st.degenerate_uv;
     Ok((storage[1], n))
@@ -298,7 +376,7 @@ fn check_entry(e: Log2Pb) -> Outcome {
     } else if (-64.0..=64.0).contains(&v) {
         value(format!("log2 Pb = {v:.4}"))
     } else {
-        Err(format!("entry {v} outside [-64, 64]"))
+        bad(format!("entry {v} outside [-64, 64]"))
     }
 }
 
@@ -323,7 +401,7 @@ fn table(r: &mut Runner) {
                     Ok(t) if x.is_finite() && x.abs() < 2.0e9 => {
                         let (e, n) = entry_of(t)?;
                         if n != 1 {
-                            return Err(format!("stats count {n} entries"));
+                            return bad(format!("stats count {n} entries"));
                         }
                         // x = ±0, subnormal or 10⁻³⁰ (0 in I32F32): the
                         // edge collapses, zero area in that space.
@@ -335,10 +413,10 @@ fn table(r: &mut Runner) {
                         if e == want {
                             clamp(format!("{want:?}"))
                         } else {
-                            Err(format!("entry {e:?}, want {want:?}"))
+                            bad(format!("entry {e:?}, want {want:?}"))
                         }
                     }
-                    o => Err(format!("{o:?}")),
+                    o => bad(format!("{o:?}")),
                 }
             });
         }
@@ -352,7 +430,7 @@ fn table_geometry(r: &mut Runner) {
             let t = TexTriangle::from_f32(p, uv, 256, 256).map_err(|e| e.to_string())?;
             let (e, _) = entry_of(t)?;
             match want {
-                Some(w) if e != w => Err(format!("{name}: {e:?}, want {w:?}")),
+                Some(w) if e != w => bad(format!("{name}: {e:?}, want {w:?}")),
                 _ => check_entry(e),
             }
         }
@@ -425,7 +503,7 @@ fn table_limits(r: &mut Runner) {
             "table: TexTriangle::from_f32",
             move || match TexTriangle::from_f32(TRI_P, TRI_UV, w, h) {
                 Err(TableError::ZeroTextureSize) => err("ZeroTextureSize"),
-                o => Err(format!("{o:?}")),
+                o => bad(format!("{o:?}")),
             },
         );
     }
@@ -454,7 +532,7 @@ fn table_limits(r: &mut Runner) {
                 {
                     err("TableFull; entries 0-1 untouched, 2-3 written")
                 }
-                o => Err(format!("{o:?}, entries {storage:?}")),
+                o => bad(format!("{o:?}, entries {storage:?}")),
             }
         },
     );
@@ -491,7 +569,7 @@ fn lods(r: &mut Runner) {
                         let got = l.to_num::<f64>();
                         near("", got, want, 2.0 / 256.0, format!("{got:.4}"))
                     }
-                    o => Err(format!("{o:?}")),
+                    o => bad(format!("{o:?}")),
                 }
             });
         }
@@ -513,7 +591,7 @@ fn lods(r: &mut Runner) {
                 if got == want {
                     clamp(format!("{got}"))
                 } else {
-                    Err(format!("{got} vs {want}"))
+                    bad(format!("{got} vs {want}"))
                 }
             },
         );
@@ -574,7 +652,7 @@ fn lods_float(r: &mut Runner) {
             if a == m && b == m && at(U1F31::from_bits(1 << 16)) < m {
                 clamp(format!("{m} levels (normal term 16)"))
             } else {
-                Err(format!("{a} / {b} / {m}"))
+                bad(format!("{a} / {b} / {m}"))
             }
         },
     );
@@ -588,7 +666,7 @@ fn lods_float(r: &mut Runner) {
                 if got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()) {
                     value(format!("{got} (documented: no check)"))
                 } else {
-                    Err(format!("{got} vs {want}"))
+                    bad(format!("{got} vs {want}"))
                 }
             },
         );
@@ -606,7 +684,7 @@ fn lods_float(r: &mut Runner) {
                         clamp(format!("{got}"))
                     }
                 } else {
-                    Err(format!("{got}"))
+                    bad(format!("{got}"))
                 }
             },
         );
@@ -661,7 +739,7 @@ fn sampler(r: &mut Runner) {
                         match s.sample_f64(args[0], args[1], args[2], m) {
                             Err(FilterError::NonFinite) if !x.is_finite() => {}
                             Ok(t) if x.is_finite() && in_range(t) => seen.push(t),
-                            o => return Err(format!("{a:?} {m:?}: {o:?}")),
+                            o => return bad(format!("{a:?} {m:?}: {o:?}")),
                         }
                     }
                 }
@@ -688,7 +766,7 @@ fn sampler(r: &mut Runner) {
                             // Documented: non-finite input, unspecified
                             // texel; finite input, a filtered one.
                             if xf.is_finite() && !in_range(t) {
-                                return Err(format!("{a:?} {m:?}: {t:08x} out of range"));
+                                return bad(format!("{a:?} {m:?}: {t:08x} out of range"));
                             }
                         }
                     }
@@ -721,7 +799,7 @@ fn sampler(r: &mut Runner) {
                         for m in MODES {
                             let t = s.sample(c, c, l, m);
                             if !in_range(t) {
-                                return Err(format!("{a:?} {m:?}: {t:08x}"));
+                                return bad(format!("{a:?} {m:?}: {t:08x}"));
                             }
                         }
                     }
@@ -752,7 +830,7 @@ fn path(r: &mut Runner) {
             if ok {
                 clamp(format!("Pl = MAX, w = MAX, saturated, lod {l}"))
             } else {
-                Err(format!("{s:?}, lod {l}"))
+                bad(format!("{s:?}, lod {l}"))
             }
         },
     );
@@ -767,7 +845,7 @@ fn path(r: &mut Runner) {
         {
             clamp("spread saturated at ±2, flagged")
         } else {
-            Err(format!("{up:?} {down:?}"))
+            bad(format!("{up:?} {down:?}"))
         }
     });
     r.case("depth 300 bounces", "ray stack: PathState::bounce", || {
@@ -775,7 +853,7 @@ fn path(r: &mut Runner) {
         if s.depth == 255 {
             clamp("depth 255")
         } else {
-            Err(format!("depth {}", s.depth))
+            bad(format!("depth {}", s.depth))
         }
     });
     r.case(
@@ -796,7 +874,7 @@ fn path(r: &mut Runner) {
                 Err(e) if e.0 == extra && order == want => {
                     err("StackFull with the state handed back; 10 entries kept, LIFO")
                 }
-                o => Err(format!("{o:?}, popped {order:?}")),
+                o => bad(format!("{o:?}, popped {order:?}")),
             }
         },
     );
@@ -804,7 +882,7 @@ fn path(r: &mut Runner) {
         let mut st: RayStack = RayStack::new();
         match st.pop() {
             None => err("None"),
-            o => Err(format!("{o:?}")),
+            o => bad(format!("{o:?}")),
         }
     });
 }
@@ -829,7 +907,7 @@ fn textures(r: &mut Runner) {
                     .map(|k| u64::from((w >> k).max(1)) * u64::from((h >> k).max(1)))
                     .sum();
                 if g.len() as u64 != want_len || pyramid_len(w, h, levels) as u64 != want_len {
-                    return Err(format!("len {} vs {want_len}", g.len()));
+                    return bad(format!("len {} vs {want_len}", g.len()));
                 }
                 let mut buf = texels_for(&g);
                 let level0 = g.level_size(0);
@@ -837,17 +915,17 @@ fn textures(r: &mut Runner) {
                 let before: Vec<Texel> = buf[..n0].to_vec();
                 generate(&g, &mut buf).map_err(|e| e.to_string())?;
                 if buf[..n0] != before[..] {
-                    return Err("level 0 changed".into());
+                    return bad("level 0 changed");
                 }
                 if !buf.iter().all(|&t| in_range(t)) {
-                    return Err("a generated texel out of range".into());
+                    return bad("a generated texel out of range");
                 }
                 let mut s = Sampler::wrap(Pyramid::new(g, &buf).map_err(|e| e.to_string())?);
                 for l in [Lod::MIN, Lod::ZERO, Lod::from_num(levels), Lod::MAX] {
                     for m in MODES {
                         for c in [TexCoord::ZERO, TexCoord::from_num(0.999), TexCoord::MAX] {
                             if !in_range(s.sample(c, c, l, m)) {
-                                return Err(format!("sample at lod {l} {m:?} out of range"));
+                                return bad(format!("sample at lod {l} {m:?} out of range"));
                             }
                         }
                     }
@@ -872,7 +950,7 @@ fn textures(r: &mut Runner) {
                         "BufferTooShort {{ needed: {n}, got: {got} }}, buffer untouched"
                     ))
                 } else {
-                    Err(format!("{a:?} / {b:?}"))
+                    bad(format!("{a:?} / {b:?}"))
                 }
             },
         );
@@ -889,7 +967,7 @@ fn texture_limits(r: &mut Runner) {
             if g.len() as u64 == want {
                 value(format!("{want} texels, 16 levels"))
             } else {
-                Err(format!("{} vs {want}", g.len()))
+                bad(format!("{} vs {want}", g.len()))
             }
         },
     );
@@ -904,7 +982,7 @@ fn texture_limits(r: &mut Runner) {
             "texture: Geometry::new",
             move || match Geometry::new(w, h, l) {
                 Err(e) if e == want => err(format!("{e:?}")),
-                o => Err(format!("{o:?}")),
+                o => bad(format!("{o:?}")),
             },
         );
     }
@@ -912,7 +990,7 @@ fn texture_limits(r: &mut Runner) {
         if pyramid_len(u32::MAX, u32::MAX, 255) == usize::MAX {
             clamp("usize::MAX (saturated)")
         } else {
-            Err(format!("{}", pyramid_len(u32::MAX, u32::MAX, 255)))
+            bad(format!("{}", pyramid_len(u32::MAX, u32::MAX, 255)))
         }
     });
 }
@@ -974,7 +1052,7 @@ fn c_abi(r: &mut Runner) {
         if a == RmStatus::Untextured && out == 77 && b == RmStatus::NullPointer {
             err("Untextured (out untouched); NullPointer")
         } else {
-            Err(format!("{a:?} {out} {b:?}"))
+            bad(format!("{a:?} {out} {b:?}"))
         }
     });
 }
@@ -995,7 +1073,7 @@ fn c_abi_lod(r: &mut Runner) {
                             Some(U1F31::from_bits(c)),
                         );
                         if got != rust.to_bits() {
-                            return Err(format!(
+                            return bad(format!(
                                 "w {w} Δ {d} n·d {c}: C {got} vs Rust {}",
                                 rust.to_bits()
                             ));
@@ -1016,7 +1094,7 @@ fn c_abi_lod(r: &mut Runner) {
             if a == 0 && b == want_b {
                 clamp(format!("{a}, {b}"))
             } else {
-                Err(format!("{a}, {b}"))
+                bad(format!("{a}, {b}"))
             }
         },
     );
@@ -1028,7 +1106,7 @@ fn c_abi_lod(r: &mut Runner) {
             if n == usize::MAX {
                 clamp("usize::MAX")
             } else {
-                Err(format!("{n}"))
+                bad(format!("{n}"))
             }
         },
     );
@@ -1102,7 +1180,7 @@ fn c_abi_sample(r: &mut Runner) {
             match (s, want) {
                 (s, Some(w)) if s == w && out == 0 => err(format!("{s:?}, nothing written")),
                 (RmStatus::Ok, None) if in_range(out) => clamp("a texel in range"),
-                o => Err(format!("{o:?} {out:08x}")),
+                o => bad(format!("{o:?} {out:08x}")),
             }
         });
     }
@@ -1147,7 +1225,7 @@ fn c_abi_sample(r: &mut Runner) {
             if pushed.last() == Some(&RmStatus::StackFull) && popped == want {
                 err("StackFull on the 11th push; 10 entries kept, LIFO")
             } else {
-                Err(format!("{pushed:?} {popped:?}"))
+                bad(format!("{pushed:?} {popped:?}"))
             }
         },
     );
@@ -1178,7 +1256,7 @@ fn c_abi_stack(r: &mut Runner) {
             {
                 clamp("read as full: push StackFull, pop the top entry")
             } else {
-                Err(format!("{a:?} {b:?} len {}", st.len))
+                bad(format!("{a:?} {b:?} len {}", st.len))
             }
         },
     );
@@ -1198,7 +1276,7 @@ fn c_abi_stack(r: &mut Runner) {
             {
                 clamp("BadAngle; Pl saturated at MAX, flagged")
             } else {
-                Err(format!("{a:?} {b:?} {s:?}"))
+                bad(format!("{a:?} {b:?} {s:?}"))
             }
         },
     );
@@ -1228,8 +1306,8 @@ fn scene_file(r: &mut Runner) {
             let res = crate::scene::load_aff(&p, 0.0).map_err(|e| e.to_string());
             match res {
                 Err(e) if e.contains("s.aff") => err(e.lines().next().unwrap_or("").to_string()),
-                Err(e) => Err(format!("error without the file: {e}")),
-                Ok(_) => Err("accepted".into()),
+                Err(e) => bad(format!("error without the file: {e}")),
+                Ok(_) => bad("accepted"),
             }
         });
     }
@@ -1242,8 +1320,8 @@ pub fn markdown(rows: &[Row]) -> String {
     let mut s = String::from("| # | class | edge | result | outcome |\n|---|---|---|---|---|\n");
     for (i, r) in rows.iter().enumerate() {
         let (res, out) = match (&r.result, r.panicked) {
-            (Err(e), true) => (e.clone(), "PANICKED"),
-            (Err(e), false) => (e.clone(), "MISBEHAVED"),
+            (Err(e), true) => (e.0.clone(), "PANICKED"),
+            (Err(e), false) => (e.0.clone(), "MISBEHAVED"),
             (Ok((k, v)), _) => (
                 v.clone(),
                 match k {
@@ -1293,7 +1371,7 @@ pub fn edges(rows: &[Row]) -> usize {
 ///
 /// # Errors
 /// A panicked or misbehaving case (named), or the docs/reliability.md block not written.
-pub fn cmd_stress(readme: Option<&Path>) -> Result<(), String> {
+pub fn cmd_stress(readme: Option<&Path>) -> Result<(), StressError> {
     let rows = run();
     print!("{}", markdown(&rows));
     if let Some(path) = readme {
@@ -1307,13 +1385,13 @@ pub fn cmd_stress(readme: Option<&Path>) -> Result<(), String> {
 ///
 /// # Errors
 /// As [`cmd_stress`].
-pub fn cmd_stress_quiet(readme: &Path) -> Result<(), String> {
+pub fn cmd_stress_quiet(readme: &Path) -> Result<(), StressError> {
     let rows = run();
     write_readme(&rows, readme)?;
     verdict(&rows)
 }
 
-fn write_readme(rows: &[Row], path: &Path) -> Result<(), String> {
+fn write_readme(rows: &[Row], path: &Path) -> Result<(), OutputError> {
     let text = format!(
         "Measured by `raymip-host stress --write-readme docs/reliability.md` ({} {}): {} API edges, **{}**.\n",
         std::env::consts::ARCH,
@@ -1321,10 +1399,10 @@ fn write_readme(rows: &[Row], path: &Path) -> Result<(), String> {
         edges(rows),
         totals_line(&Totals::of(rows))
     );
-    Ok(write_between_markers(path, "stress", &text)?)
+    write_between_markers(path, "stress", &text)
 }
 
-fn verdict(rows: &[Row]) -> Result<(), String> {
+fn verdict(rows: &[Row]) -> Result<(), StressError> {
     let t = Totals::of(rows);
     if t.clean() {
         Ok(())
@@ -1337,16 +1415,15 @@ fn verdict(rows: &[Row]) -> Result<(), String> {
                     "{} / {}: {}",
                     r.edge,
                     r.class,
-                    r.result.as_ref().err().map_or("", String::as_str)
+                    r.result.as_ref().err().map_or("", |e| e.0.as_str())
                 )
             })
             .collect();
-        Err(format!(
-            "stress: {} misbehaved, {} panicked:\n{}",
-            t.misbehaved,
-            t.panicked,
-            bad.join("\n")
-        ))
+        Err(StressError::Misbehaved {
+            misbehaved: t.misbehaved,
+            panicked: t.panicked,
+            cases: bad,
+        })
     }
 }
 
@@ -1432,7 +1509,7 @@ fn render_degenerate(r: &mut Runner) {
                 ),
                 "renderer: render (12 bounces)",
                 move || {
-                    let prep = Prepared::new(scene, None)?;
+                    let prep = Prepared::new(scene, None).map_err(|e| e.to_string())?;
                     let img = render(
                         &prep,
                         &Options {
@@ -1457,10 +1534,47 @@ fn render_degenerate(r: &mut Runner) {
                             c.max_depth()
                         ))
                     } else {
-                        Err(format!("{c:?}"))
+                        bad(format!("{c:?}"))
                     }
                 },
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn verdict_names_each_misbehaving_case() {
+        let row = |class: &str, result| Row {
+            class: class.into(),
+            edge: "PbTable::update",
+            result,
+            panicked: false,
+        };
+        let rows = [
+            row("NaN", Ok((Kind::Error, "NonFinite".into()))),
+            row("huge", Err("entry 99 outside [-64, 64]".into())),
+        ];
+        let e = verdict(&rows).unwrap_err();
+        assert!(
+            matches!(
+                &e,
+                StressError::Misbehaved {
+                    misbehaved: 1,
+                    panicked: 0,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains("PbTable::update / huge: entry 99 outside [-64, 64]"),
+            "{text}"
+        );
+        assert!(verdict(&rows[..1]).is_ok());
     }
 }

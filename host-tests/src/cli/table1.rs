@@ -17,7 +17,9 @@ use raymip::texture::storage::cache::BlockCache;
 use serde::Serialize;
 use serde_json::json;
 
+use super::error::CommandError;
 use super::output::{write_json, write_text};
+use crate::error::FileError;
 use crate::render::{Counters, Method, Options, Precision, Prepared, render};
 use crate::scene::Scene;
 use crate::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
@@ -96,7 +98,7 @@ pub fn measure(
     size: (u32, u32),
     bounces: u8,
     progress: bool,
-) -> Result<Row, String> {
+) -> Result<Row, CommandError> {
     let t0 = Instant::now();
     let prep = Prepared::new(scene, Some(size))?;
     let _ = t0;
@@ -198,12 +200,12 @@ pub fn cmd_table1(
     builtin_too: bool,
     out: Option<&Path>,
     skip_unloadable: bool,
-) -> Result<(), String> {
+) -> Result<(), CommandError> {
     let mut jobs: Vec<(String, SceneLoader)> = Vec::new();
     let dir = scenes.map_or_else(default_bart_dir, Path::to_path_buf);
     if dir.is_dir() {
         let mut subs: Vec<PathBuf> = std::fs::read_dir(&dir)
-            .map_err(|e| format!("{}: {e}", dir.display()))?
+            .map_err(|e| FileError::read(&dir, e))?
             .filter_map(Result::ok)
             .map(|e| e.path())
             .filter(|p| p.is_dir())
@@ -216,10 +218,7 @@ pub fn cmd_table1(
             jobs.push((name, Box::new(move || load_scene_dir(&s, time))));
         }
     } else if !builtin_too {
-        return Err(format!(
-            "{}: scene folder not found (pass --scenes DIR, or --builtin for the built-in scenes)",
-            dir.display()
-        ));
+        return Err(CommandError::ScenesNotFound { dir });
     } else {
         println!("SKIP: {} not found; built-in scenes only", dir.display());
     }
@@ -240,11 +239,7 @@ pub fn cmd_table1(
                 eprintln!("skipped (--skip-unloadable): {name}: {e}");
                 continue;
             }
-            Err(e) => {
-                return Err(format!(
-                    "{name}: cannot be loaded, so it cannot be measured: {e} (pass --skip-unloadable to measure the other scenes)"
-                ));
-            }
+            Err(source) => return Err(CommandError::Unloadable { name, source }),
         };
         println!(
             "{name}: loaded {} triangles in {:.2} s",
@@ -268,7 +263,7 @@ pub fn cmd_table1(
     let md = markdown(&rows, bounces);
     println!("\n{md}");
     if let Some(out) = out {
-        std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+        std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
         write_text(&out.join("table1.md"), &md)?;
         write_json(
             &out.join("table1.json"),
@@ -276,7 +271,7 @@ pub fn cmd_table1(
         )?;
     }
     if rows.is_empty() {
-        return Err("no scene could be measured".into());
+        return Err(CommandError::NothingMeasured);
     }
     Ok(())
 }

@@ -12,9 +12,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::machine_line;
 use super::output::{write_between_markers, write_json, write_text};
+use crate::error::FileError;
 use crate::tradeoff::budgets::Budgets;
 use crate::tradeoff::report;
-use crate::tradeoff::{Row, Settings, convergence, filter_stage, frame_stage, lod_stage, pareto};
+use crate::tradeoff::{
+    Row, Settings, TradeoffError, convergence, filter_stage, frame_stage, lod_stage, pareto,
+};
 
 /// What `tradeoff` does.
 #[derive(Clone, Debug)]
@@ -50,7 +53,7 @@ fn bar(len: u64, show: bool) -> ProgressBar {
 }
 
 /// Measures every stage.
-fn measure(s: &Settings) -> Result<(Vec<Row>, Vec<convergence::Curve>), String> {
+fn measure(s: &Settings) -> Result<(Vec<Row>, Vec<convergence::Curve>), TradeoffError> {
     let per_scene = frame_stage::renders_per_scene(s);
     let total = 4 + 3 + per_scene * s.scenes.len() as u64 + convergence::renders(s);
     let b = bar(total, s.progress);
@@ -76,13 +79,14 @@ fn publish(
     curves: &[convergence::Curve],
     m: &str,
     s: &Settings,
-) -> Result<(), String> {
+) -> Result<(), TradeoffError> {
     let docs = root.join("docs/tradeoff");
-    std::fs::create_dir_all(&docs).map_err(|e| format!("{}: {e}", docs.display()))?;
+    std::fs::create_dir_all(&docs).map_err(|e| FileError::write(&docs, e))?;
     for stem in report::CHARTS {
         for ext in ["png", "svg"] {
             let name = format!("{stem}.{ext}");
-            std::fs::copy(out.join(&name), docs.join(&name)).map_err(|e| format!("{name}: {e}"))?;
+            let to = docs.join(&name);
+            std::fs::copy(out.join(&name), &to).map_err(|e| FileError::write(&to, e))?;
         }
     }
     let cmd = "bash scripts/tradeoff";
@@ -105,9 +109,9 @@ fn publish(
 ///
 /// # Errors
 /// A scene that cannot be loaded, an unwritable output, missing markers.
-pub fn cmd_tradeoff(args: &Args) -> Result<Vec<Row>, String> {
+pub fn cmd_tradeoff(args: &Args) -> Result<Vec<Row>, TradeoffError> {
     let out = &args.out;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| FileError::write(out, e))?;
     let scenes = if args.scenes.is_empty() {
         if args.quick {
             vec!["builtin:hall".to_string()]
@@ -126,14 +130,8 @@ pub fn cmd_tradeoff(args: &Args) -> Result<Vec<Row>, String> {
     Budgets::load(&args.publish.clone().unwrap_or(root).join("BUDGETS.md")).apply(&mut rows);
     pareto::mark(&mut rows);
     let m = machine_line();
-    write_json(
-        &out.join("tradeoff.json"),
-        &serde_json::to_value(&rows).map_err(|e| e.to_string())?,
-    )?;
-    write_json(
-        &out.join("stochastic-convergence.json"),
-        &serde_json::to_value(&curves).map_err(|e| e.to_string())?,
-    )?;
+    write_json(&out.join("tradeoff.json"), &rows)?;
+    write_json(&out.join("stochastic-convergence.json"), &curves)?;
     let cmd = format!(
         "raymip-host tradeoff{}",
         if args.quick { " --quick" } else { "" }

@@ -5,6 +5,7 @@
 
 use raymip::camera::PixelSpread;
 
+use super::RenderError;
 use crate::scene::{Camera, V3};
 
 /// Primary-ray frame and pixel spread of a camera at one image size.
@@ -58,9 +59,13 @@ impl CameraFrame {
     ///
     /// # Errors
     /// When the firmware rejects the field of view.
-    pub fn pixel_spread(camera: &Camera, height: u32) -> Result<PixelSpread, String> {
-        PixelSpread::from_fov_y(camera.fov_y_deg.to_radians(), height)
-            .map_err(|e| format!("camera: {e} (fov_y {} deg)", camera.fov_y_deg))
+    pub fn pixel_spread(camera: &Camera, height: u32) -> Result<PixelSpread, RenderError> {
+        PixelSpread::from_fov_y(camera.fov_y_deg.to_radians(), height).map_err(|source| {
+            RenderError::Camera {
+                fov_y_deg: camera.fov_y_deg,
+                source,
+            }
+        })
     }
 
     /// Unnormalised direction through film point `(fx, fy)` (pixels from

@@ -31,8 +31,8 @@ use raymip::rng::Rng;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::CameraFrame;
 use super::tlas::{Instance, TwoLevel, TwoLevelStats, rotation_from_quaternion};
+use super::{CameraFrame, RenderError};
 use crate::scene::V3;
 use crate::scene::instances::{
     DEFAULT_SIZE, GROUND, InstanceScene, LEVELS, View, Z_FAR, Z_NEAR, lod_color,
@@ -107,15 +107,20 @@ impl Default for Config {
 
 impl Config {
     /// Checks the settings (transition interval in `[0, 1]`, a non-empty image).
-    pub fn check(&self) -> Result<(), String> {
+    ///
+    /// # Errors
+    /// [`RenderError::Transition`] or [`RenderError::EmptyImage`].
+    pub fn check(&self) -> Result<(), RenderError> {
         if !(0.0..=1.0).contains(&self.transition) {
-            return Err(format!(
-                "--transition {}: must lie in [0, 1]",
-                self.transition
-            ));
+            return Err(RenderError::Transition {
+                value: self.transition,
+            });
         }
         if self.size.0 == 0 || self.size.1 == 0 {
-            return Err("image size must be at least 1x1".into());
+            return Err(RenderError::EmptyImage {
+                width: self.size.0,
+                height: self.size.1,
+            });
         }
         Ok(())
     }
@@ -124,7 +129,7 @@ impl Config {
 impl InstanceScene {
     /// The firmware's LOD records for a camera (ids = grid cells):
     /// `none` gives every instance LOD 0 with mask 0xFF.
-    pub fn select(&self, cam: &CameraFrame, cfg: &Config) -> Result<Vec<InstanceLod>, String> {
+    pub fn select(&self, cam: &CameraFrame, cfg: &Config) -> Result<Vec<InstanceLod>, RenderError> {
         let n = self.placements.len();
         if cfg.mode == GeomLodMode::None {
             return Ok((0..n as u32)
@@ -142,18 +147,18 @@ impl InstanceScene {
             LEVELS,
             LodBias::saturating_from_num(cfg.bias),
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(RenderError::GeomLod)?;
         let mode = match cfg.mode {
             GeomLodMode::Stochastic => LodMode::Stochastic(Transition::from_num(cfg.transition)),
             _ => LodMode::Discrete,
         };
-        let sel = Selector::new(range, mode).map_err(|e| e.to_string())?;
+        let sel = Selector::new(range, mode).map_err(RenderError::GeomLod)?;
         let depths = self.placements.iter().enumerate().map(|(i, p)| {
             let z = (p.translation - cam.eye).dot(cam.fwd);
             (i as u32, Depth::saturating_from_num(z))
         });
         let mut out = vec![InstanceLod::default(); 2 * n];
-        let k = sel.fill(depths, &mut out).map_err(|e| e.to_string())?;
+        let k = sel.fill(depths, &mut out).map_err(RenderError::Records)?;
         out.truncate(k);
         Ok(out)
     }
@@ -275,13 +280,12 @@ pub struct Prepared<'a> {
 
 impl<'a> Prepared<'a> {
     /// Selects LODs and builds the top level for `cfg`.
-    pub fn new(scene: &'a InstanceScene, cfg: &Config) -> Result<Self, String> {
+    pub fn new(scene: &'a InstanceScene, cfg: &Config) -> Result<Self, RenderError> {
         let t0 = Instant::now();
         let (w, h) = cfg.size;
         let camera = cfg.view.camera(w, h);
         let cam = CameraFrame::new(&camera, w, h);
-        let spread = PixelSpread::from_fov_y(camera.fov_y_deg.to_radians(), h)
-            .map_err(|e| format!("camera: {e}"))?;
+        let spread = CameraFrame::pixel_spread(&camera, h)?;
         let records = scene.select(&cam, cfg)?;
         let tl = scene.two_level(&records);
         Ok(Self {

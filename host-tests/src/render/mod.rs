@@ -23,6 +23,7 @@ macro_rules! add_fields {
 pub mod bvh;
 pub mod camera;
 mod counters;
+mod error;
 pub mod instances;
 pub mod lod;
 mod options;
@@ -34,6 +35,7 @@ mod tracer;
 
 pub use camera::CameraFrame;
 pub use counters::Counters;
+pub use error::RenderError;
 pub use options::{Method, Options, Precision};
 pub use setup::{Prepared, SetupTimes};
 pub use tracer::STACK_CAPACITY;

@@ -2,6 +2,8 @@
 
 use serde::Serialize;
 
+use super::RenderError;
+
 /// Texture LOD method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
@@ -90,13 +92,11 @@ impl Options {
     /// Anisotropic filtering with a method other than [`Method::Raydiff`]:
     /// the table and cone methods give an isotropic lod and no footprint
     /// axes.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), RenderError> {
         if self.aniso.is_some() && self.method != Method::Raydiff {
-            return Err(format!(
-                "--filter aniso needs the footprint axes of --method raydiff; --method {} gives an \
-                 isotropic lod only (use --filter trilinear, or --method raydiff)",
-                self.method.name()
-            ));
+            return Err(RenderError::AnisoNeedsRaydiff {
+                method: self.method,
+            });
         }
         Ok(())
     }

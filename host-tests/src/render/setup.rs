@@ -9,6 +9,7 @@ use raymip::table::{Log2Pb, PbTable, TexTriangle};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use super::RenderError;
 use super::bvh::Bvh;
 use super::camera::CameraFrame;
 use super::texunit::{MipTexture, assign_block_bases};
@@ -63,10 +64,10 @@ impl Prepared {
     /// A zero image size, a bad camera, a missing material or texture, a
     /// texture that cannot form a pyramid, a triangle outside the firmware's
     /// coordinate range.
-    pub fn new(scene: Scene, size: Option<(u32, u32)>) -> Result<Self, String> {
+    pub fn new(scene: Scene, size: Option<(u32, u32)>) -> Result<Self, RenderError> {
         let (width, height) = size.unwrap_or((scene.camera.width, scene.camera.height));
         if width == 0 || height == 0 {
-            return Err("image size must be at least 1x1".into());
+            return Err(RenderError::EmptyImage { width, height });
         }
         let spread = CameraFrame::pixel_spread(&scene.camera, height)?;
         let cam = CameraFrame::new(&scene.camera, width, height);
@@ -116,18 +117,21 @@ impl Prepared {
 }
 
 /// Every triangle's material and texture exist.
-fn check_references(scene: &Scene) -> Result<(), String> {
+fn check_references(scene: &Scene) -> Result<(), RenderError> {
     for (i, t) in scene.triangles.iter().enumerate() {
         if scene.materials.get(t.material as usize).is_none() {
-            return Err(format!(
-                "triangle {i}: material {} does not exist",
-                t.material
-            ));
+            return Err(RenderError::MissingMaterial {
+                triangle: i,
+                material: t.material,
+            });
         }
         if let Some(x) = t.texture
             && scene.textures.get(x as usize).is_none()
         {
-            return Err(format!("triangle {i}: texture {x} does not exist"));
+            return Err(RenderError::MissingTexture {
+                triangle: i,
+                texture: x,
+            });
         }
     }
     Ok(())
@@ -140,7 +144,11 @@ fn check_references(scene: &Scene) -> Result<(), String> {
 type LodTables = (Vec<Log2Pb>, Vec<f64>, Vec<Option<RayDiffTriangle>>);
 
 /// See [`LodTables`].
-fn pb_tables(scene: &Scene, cam: &CameraFrame, spread: &PixelSpread) -> Result<LodTables, String> {
+fn pb_tables(
+    scene: &Scene,
+    cam: &CameraFrame,
+    spread: &PixelSpread,
+) -> Result<LodTables, RenderError> {
     let mut tex_tris = Vec::with_capacity(scene.triangles.len());
     let mut pb_float = Vec::with_capacity(scene.triangles.len());
     for (i, t) in scene.triangles.iter().enumerate() {
@@ -149,8 +157,13 @@ fn pb_tables(scene: &Scene, cam: &CameraFrame, spread: &PixelSpread) -> Result<L
                 let tex = &scene.textures[x as usize];
                 let p32 = t.p.map(|p| p.to_array().map(|c| c as f32));
                 let uv32 = uv.map(|q| q.map(|c| c as f32));
-                let tt = TexTriangle::from_f32(p32, uv32, tex.width, tex.height)
-                    .map_err(|e| format!("triangle {i}: {e}"))?;
+                let tt =
+                    TexTriangle::from_f32(p32, uv32, tex.width, tex.height).map_err(|source| {
+                        RenderError::Triangle {
+                            triangle: i,
+                            source,
+                        }
+                    })?;
                 tex_tris.push(Some(tt));
                 pb_float.push(log2_pb_f64(
                     &t.p.map(|p| p.to_array()),
@@ -173,7 +186,7 @@ fn pb_tables(scene: &Scene, cam: &CameraFrame, spread: &PixelSpread) -> Result<L
     let mut pb_fixed = vec![Log2Pb::UNTEXTURED; scene.triangles.len()];
     PbTable::new(&mut pb_fixed)
         .build(tex_tris, spread)
-        .map_err(|e| format!("Pb table: {e}"))?;
+        .map_err(RenderError::PbTable)?;
     Ok((pb_fixed, pb_float, rd_tris))
 }
 

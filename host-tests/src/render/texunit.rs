@@ -21,8 +21,8 @@ use raymip::texture::storage::cache::BlockLayout;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 use raymip::texture::{Mode, Sampler, TexCoord};
 
-use super::Method;
 use super::lod::HitLod;
+use super::{Method, RenderError};
 use crate::reference::sampler_ref::aniso_probes;
 use crate::scene::TextureImage;
 
@@ -121,14 +121,23 @@ pub struct MipTexture {
 
 impl MipTexture {
     /// Builds the full pyramid of `img` with the firmware generator.
-    pub fn new(img: &TextureImage) -> Result<Self, String> {
+    ///
+    /// # Errors
+    /// [`RenderError::Pyramid`] naming the texture when its size cannot
+    /// form a pyramid.
+    pub fn new(img: &TextureImage) -> Result<Self, RenderError> {
         let levels = full_levels(img.width, img.height);
-        let geometry = Geometry::new(img.width, img.height, levels)
-            .map_err(|e| format!("texture {} ({}x{}): {e}", img.name, img.width, img.height))?;
+        let pyramid = |source| RenderError::Pyramid {
+            texture: img.name.clone(),
+            width: img.width,
+            height: img.height,
+            source,
+        };
+        let geometry = Geometry::new(img.width, img.height, levels).map_err(pyramid)?;
         let mut texels = vec![0u32; geometry.len()];
         let n = img.texels.len().min(texels.len());
         texels[..n].copy_from_slice(&img.texels[..n]);
-        generate(&geometry, &mut texels).map_err(|e| format!("texture {}: {e}", img.name))?;
+        generate(&geometry, &mut texels).map_err(pyramid)?;
         Ok(Self {
             name: img.name.clone(),
             width: img.width,

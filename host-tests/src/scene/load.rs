@@ -4,7 +4,6 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use super::{Scene, aff, aff_adapter, builtin};
-use crate::error::into_string;
 use aff::AffError;
 
 /// Why a scene could not be loaded.
@@ -47,8 +46,6 @@ impl From<AffError> for SceneError {
         Self::Aff(e)
     }
 }
-
-into_string!(SceneError);
 
 /// Loads `builtin:NAME` or an `.aff` file at animation time `time`.
 pub fn load_scene(spec: &str, time: f64) -> Result<Scene, SceneError> {

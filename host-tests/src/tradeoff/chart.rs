@@ -18,7 +18,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::cli::output::write_png;
+use crate::cli::output::{OutputError, write_png};
+use crate::error::FileError;
 
 /// One point of a scatter chart.
 #[derive(Clone, Debug)]
@@ -143,19 +144,71 @@ pub trait Draw {
     /// Draws the chart on `root`.
     ///
     /// # Errors
-    /// The backend's error as text.
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
+    /// [`ChartError::Draw`] (the backend's error) or
+    /// [`ChartError::LabelsOverlap`].
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ChartError>;
 }
 
-fn err(e: impl std::fmt::Display) -> String {
-    format!("chart: {e}")
+/// Why a chart could not be drawn or written.
+#[derive(Debug)]
+pub enum ChartError {
+    /// The plotting backend failed. Its error type is a parameter of the
+    /// backend (SVG string, bitmap buffer), so its message is kept.
+    Draw {
+        /// The backend's message.
+        message: String,
+    },
+    /// Two placed labels overlap (the label placement is wrong).
+    LabelsOverlap {
+        /// The panel's title.
+        panel: String,
+        /// Index of the first label among the panel's labelled points.
+        a: usize,
+        /// Index of the second.
+        b: usize,
+    },
+    /// The SVG or PNG file could not be written (names the file).
+    Output(OutputError),
+}
+
+impl std::fmt::Display for ChartError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Draw { message } => write!(f, "drawing failed: {message}"),
+            Self::LabelsOverlap { panel, a, b } => {
+                write!(f, "panel {panel:?}: labels {a} and {b} overlap")
+            }
+            Self::Output(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for ChartError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Output(e) => Some(e),
+            Self::Draw { .. } | Self::LabelsOverlap { .. } => None,
+        }
+    }
+}
+
+impl From<OutputError> for ChartError {
+    fn from(e: OutputError) -> Self {
+        Self::Output(e)
+    }
+}
+
+fn err(e: impl std::fmt::Display) -> ChartError {
+    ChartError::Draw {
+        message: e.to_string(),
+    }
 }
 
 /// Writes `chart` as `stem.svg` and `stem.png`.
 ///
 /// # Errors
 /// Drawing or file errors, naming the file.
-pub fn write(stem: &Path, chart: &impl Draw) -> Result<(), String> {
+pub fn write(stem: &Path, chart: &impl Draw) -> Result<(), ChartError> {
     fonts();
     let mut svg = String::new();
     {
@@ -164,7 +217,8 @@ pub fn write(stem: &Path, chart: &impl Draw) -> Result<(), String> {
         root.present().map_err(err)?;
     }
     let svg_path = stem.with_extension("svg");
-    std::fs::write(&svg_path, svg).map_err(|e| format!("{}: {e}", svg_path.display()))?;
+    std::fs::write(&svg_path, svg)
+        .map_err(|e| OutputError::from(FileError::write(&svg_path, e)))?;
     let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
@@ -184,7 +238,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     y_fmt: &dyn Fn(&f64) -> String,
-) -> Result<Panel2d<'a, DB>, String> {
+) -> Result<Panel2d<'a, DB>, ChartError> {
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(14)
@@ -214,8 +268,8 @@ fn draw_panels<DB: DrawingBackend>(
     title: &str,
     grid: (usize, usize),
     n: usize,
-    mut panel: impl FnMut(usize, &DrawingArea<DB, Shift>) -> Result<(), String>,
-) -> Result<(), String> {
+    mut panel: impl FnMut(usize, &DrawingArea<DB, Shift>) -> Result<(), ChartError>,
+) -> Result<(), ChartError> {
     root.fill(&WHITE).map_err(err)?;
     let below = root.titled(title, ("sans-serif", 24)).map_err(err)?;
     for (i, cell) in below.split_evenly(grid).iter().enumerate().take(n) {
@@ -225,7 +279,7 @@ fn draw_panels<DB: DrawingBackend>(
 }
 
 /// The legend box, upper right.
-fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), String> {
+fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), ChartError> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
@@ -266,7 +320,7 @@ impl Scatter {
         &self,
         area: &DrawingArea<DB, Shift>,
         p: &Panel,
-    ) -> Result<(), String> {
+    ) -> Result<(), ChartError> {
         let log_y = self.axes.log_y;
         let floor = self.axes.y_floor;
         let ty = move |y: f64| if log_y { y.max(floor).log10() } else { y };
@@ -347,7 +401,7 @@ fn labels<DB: DrawingBackend>(
     p: &Panel,
     tx: &dyn Fn(f64) -> f64,
     ty: &dyn Fn(f64) -> f64,
-) -> Result<(), String> {
+) -> Result<(), ChartError> {
     // Labels: the Pareto points only (the rest are told apart by colour,
     // the legend and the full table in tradeoff.md), each placed where
     // its box meets no other label and no marker, or left out.
@@ -371,7 +425,11 @@ fn labels<DB: DrawingBackend>(
         .collect();
     let boxes = place_labels(&anchors, &sizes, &markers);
     if let Some((a, b)) = first_overlap(&boxes) {
-        return Err(format!("chart {:?}: labels {a} and {b} overlap", p.title));
+        return Err(ChartError::LabelsOverlap {
+            panel: p.title.clone(),
+            a,
+            b,
+        });
     }
     for (q, (b, &(px, py))) in labelled.iter().zip(boxes.iter().zip(&anchors)) {
         let Some(b) = b else { continue };
@@ -516,7 +574,7 @@ mod label_tests {
 }
 
 impl Draw for Scatter {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ChartError> {
         let n = self.panels.len();
         let grid = match n {
             0 | 1 => (1, 1),
@@ -546,7 +604,7 @@ impl Curves {
         area: &DrawingArea<DB, Shift>,
         title: &str,
         lines: &[Line],
-    ) -> Result<(), String> {
+    ) -> Result<(), ChartError> {
         let floor = self.axes.y_floor;
         let t = move |(x, y): (f64, f64)| (x.log10(), y.max(floor).log10());
         let all = || lines.iter().flat_map(|l| l.points.iter().map(|&p| t(p)));
@@ -572,7 +630,7 @@ impl Curves {
 }
 
 impl Draw for Curves {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), ChartError> {
         let n = self.panels.len();
         draw_panels(root, &self.title, (1, n.max(1)), n, |i, a| {
             let (title, lines) = &self.panels[i];

@@ -6,13 +6,13 @@
 use serde::Serialize;
 
 use crate::render::texunit::Filter;
-use crate::render::{FrameFilter, Method, Options, Precision, Prepared, render_filtered};
+use crate::render::{FrameFilter, Method, Options, Precision, render_filtered};
 
 use super::filter_stage::{
     self, Input, STOCHASTIC, TestTexture, channels, expectation, stochastic_name,
 };
-use super::frame_stage::load;
-use super::{Settings, error_stats};
+use super::frame_stage::prepare;
+use super::{Settings, TradeoffError, error_stats};
 
 /// One convergence curve.
 #[derive(Clone, Debug, Serialize)]
@@ -70,11 +70,11 @@ fn sample_curves(s: &Settings) -> Vec<Curve> {
 
 /// Per-frame curves on the first scene (table method, fixed point): the
 /// running mean of stochastic frames against the deterministic frame.
-fn frame_curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, String> {
+fn frame_curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, TradeoffError> {
     let Some(spec) = s.scenes.first() else {
         return Ok(Vec::new());
     };
-    let prep = Prepared::new(load(spec)?, Some(s.size))?;
+    let prep = prepare(spec, s.size)?;
     let o = Options {
         method: Method::Table,
         precision: Precision::Fixed,
@@ -128,7 +128,7 @@ pub fn renders(s: &Settings) -> u64 {
 }
 
 /// Every convergence curve: per sample, then per frame.
-pub fn curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, String> {
+pub fn curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, TradeoffError> {
     let mut c = sample_curves(s);
     c.extend(frame_curves(s, tick)?);
     Ok(c)

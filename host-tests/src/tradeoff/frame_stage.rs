@@ -14,7 +14,7 @@ use crate::scene::{Scene, SceneError, load_scene, load_scene_dir};
 
 use super::filter_stage::{STOCHASTIC, stochastic_name};
 use super::timing::median;
-use super::{Row, Settings, Stage, error_stats};
+use super::{Row, Settings, Stage, TradeoffError, error_stats};
 
 /// Loads `spec`: `builtin:NAME`, an `.aff` file or a BART folder.
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
@@ -24,6 +24,21 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
     } else {
         load_scene(spec, 0.0)
     }
+}
+
+/// Loads `spec` (see [`load`]) and prepares its render at `size`.
+///
+/// # Errors
+/// [`TradeoffError::Scene`] or [`TradeoffError::Render`], naming `spec`.
+pub fn prepare(spec: &str, size: (u32, u32)) -> Result<Prepared, TradeoffError> {
+    let scene = load(spec).map_err(|source| TradeoffError::Scene {
+        spec: spec.to_string(),
+        source,
+    })?;
+    Prepared::new(scene, Some(size)).map_err(|source| TradeoffError::Render {
+        spec: spec.to_string(),
+        source,
+    })
 }
 
 /// Filter name of a frame filter.
@@ -145,10 +160,9 @@ fn frames(
 }
 
 /// Every frame row of one scene.
-fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, String> {
+fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, TradeoffError> {
     let name = crate::cli::scene_label(spec);
-    let scene = load(spec).map_err(|e| format!("scene {spec}: {e}"))?;
-    let prep = Prepared::new(scene, Some(s.size))?;
+    let prep = prepare(spec, s.size)?;
     let base = Options {
         size: Some(s.size),
         bounces: s.bounces,
@@ -203,7 +217,7 @@ fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, Str
 }
 
 /// Every frame row of every scene in `s.scenes`.
-pub fn rows(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, String> {
+pub fn rows(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, TradeoffError> {
     let mut out = Vec::new();
     for spec in &s.scenes {
         out.extend(scene_rows(spec, s, tick)?);

@@ -17,6 +17,7 @@ use serde::Serialize;
 pub mod budgets;
 pub mod chart;
 pub mod convergence;
+mod error;
 pub mod filter_stage;
 pub mod frame_stage;
 pub mod lod_stage;
@@ -24,6 +25,8 @@ pub mod log2fx;
 pub mod pareto;
 pub mod report;
 pub mod timing;
+
+pub use error::TradeoffError;
 
 /// The stage a configuration belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

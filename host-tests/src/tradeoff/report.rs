@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::chart::{self, Axes, Curves, Line, Panel, Point, Scatter};
 use super::convergence::Curve;
-use super::{Row, Stage};
+use super::{Row, Stage, TradeoffError};
 
 /// A number for the tables (`—` for none, `inf` for infinity).
 fn num(x: Option<f64>, digits: usize) -> String {
@@ -360,18 +360,19 @@ pub const CHARTS: [&str; 4] = [
 /// Writes the four charts into `dir`.
 ///
 /// # Errors
-/// Drawing or file errors.
-pub fn write_charts(dir: &Path, rows: &[Row], curves: &[Curve]) -> Result<(), String> {
-    chart::write(&dir.join("pareto-lod"), &stage_chart(rows, Stage::Lod))?;
-    chart::write(
-        &dir.join("pareto-texture"),
-        &stage_chart(rows, Stage::Filter),
-    )?;
-    chart::write(&dir.join("pareto-frame"), &stage_chart(rows, Stage::Frame))?;
-    chart::write(
-        &dir.join("stochastic-convergence"),
-        &convergence_chart(curves),
-    )
+/// [`TradeoffError::Chart`] naming the chart's files.
+pub fn write_charts(dir: &Path, rows: &[Row], curves: &[Curve]) -> Result<(), TradeoffError> {
+    let write = |stem: &str, c: &dyn Fn(&Path) -> Result<(), chart::ChartError>| {
+        let stem = dir.join(stem);
+        c(&stem).map_err(|source| TradeoffError::Chart { stem, source })
+    };
+    let stage = |st| move |p: &Path| chart::write(p, &stage_chart(rows, st));
+    write("pareto-lod", &stage(Stage::Lod))?;
+    write("pareto-texture", &stage(Stage::Filter))?;
+    write("pareto-frame", &stage(Stage::Frame))?;
+    write("stochastic-convergence", &|p| {
+        chart::write(p, &convergence_chart(curves))
+    })
 }
 
 /// The row of a configuration (first scene for frames).
