@@ -55,6 +55,21 @@ use crate::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
 /// (range `[−128, 128)`, step 1/256 level).
+///
+/// # Example
+/// ```
+/// use fixed::types::I16F16;
+/// use raymip::lod::table_lod;
+/// use raymip::{Lod, Log2Pb, PathLength};
+/// // Level 2.5 is 2.5 · 256 = 640 in bits; the step is 1/256 level.
+/// assert_eq!(Lod::from_num(2.5).to_bits(), 640);
+/// assert_eq!(Lod::DELTA, Lod::from_num(1.0 / 256.0));
+/// // The table method gives lod = log2 Pl − log2 Pb: Pl = 8, log2 Pb = 1 → 3 − 1 = 2.
+/// let pb = Log2Pb::from_log2(I16F16::from_num(1));
+/// let lod = table_lod(PathLength::from_num(8), pb).ok_or("untextured")?;
+/// assert!((lod.to_num::<f64>() - 2.0).abs() <= raymip::lod::LOD_MAX_ERROR);
+/// # Ok::<(), &str>(())
+/// ```
 pub type Lod = I8F8;
 
 /// Documented error bound of [`table_lod`] and [`cone_lod`] against f64, in

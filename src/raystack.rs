@@ -54,11 +54,40 @@ use fixed::types::{I2F30, I32F32, U32F32};
 use crate::camera::PixelSpread;
 use crate::log2_fast::NormPl;
 
-/// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units.
+/// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units
+/// (range `[0, 2³²)`, step 2⁻³²). Example: [`PathState`].
+///
+/// # Example
+/// ```
+/// use raymip::PathLength;
+/// // 100.5 scene units: integer part in the high 32 bits, 0.5 = 2³¹ in the low.
+/// assert_eq!(PathLength::from_num(100.5).to_bits(), (100 << 32) | (1 << 31));
+/// // Lengths add saturating: past 2³² − 2⁻³² the sum sticks at the top.
+/// assert_eq!(PathLength::MAX.saturating_add(PathLength::ONE), PathLength::MAX);
+/// ```
 pub type PathLength = U32F32;
-/// Ray-cone width: I32F32 scene units. Example: [`RayCone`].
+/// Ray-cone width: I32F32 scene units (range `[−2³¹, 2³¹)`, step 2⁻³²).
+/// Example: [`RayCone`].
+///
+/// # Example
+/// ```
+/// use raymip::Width;
+/// // A cone 0.25 scene units wide: 0.25 · 2³² in bits.
+/// assert_eq!(Width::from_num(0.25).to_bits(), 1 << 30);
+/// ```
 pub type Width = I32F32;
-/// Ray-cone spread angle: I2F30 radians.
+/// Ray-cone spread angle: I2F30 radians (range `[−2, 2)`, step 2⁻³⁰).
+/// Example: [`RayCone`].
+///
+/// # Example
+/// ```
+/// use raymip::Spread;
+/// // A flat mirror adds no spread (β = 0); 2⁻¹⁰ rad is 2²⁰ in bits.
+/// assert_eq!(Spread::ZERO.to_bits(), 0);
+/// assert_eq!(Spread::from_num(1.0 / 1024.0).to_bits(), 1 << 20);
+/// // Angles of 2 rad or more do not fit.
+/// assert!(Spread::checked_from_num(2.0).is_none());
+/// ```
 pub type Spread = I2F30;
 
 /// Default stack capacity: 10 entries, as in the hardware paper: enough for

@@ -27,6 +27,18 @@ use crate::texture::kernel::accurate::WEIGHT_BITS;
 
 indexed_enum! {
     /// What a sampler does with coordinates outside `[0, 1)`, per axis.
+    ///
+    /// # Example
+    /// ```
+    /// use raymip::AddressMode;
+    /// // Texel index −1 and 8 of a level 8 texels wide (valid: 0..=7).
+    /// assert_eq!(AddressMode::Wrap.index(-1, 8), Some(7));
+    /// assert_eq!(AddressMode::Mirror.index(8, 8), Some(7)); // mirrored copy
+    /// assert_eq!(AddressMode::ClampToEdge.index(-1, 8), Some(0));
+    /// assert_eq!(AddressMode::MirrorOnce.index(-3, 8), Some(2)); // |−3| − 1
+    /// assert_eq!(AddressMode::ClampToBorder.index(8, 8), None); // border colour
+    /// // A sampler picks it at run time: `Sampler::with_address(pyramid, mode)`.
+    /// ```
     #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
     pub enum AddressMode {
         /// Repeat (D3D `WRAP`, Vulkan `REPEAT`).

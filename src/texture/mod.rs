@@ -55,10 +55,43 @@ pub use storage::mip::{Geometry, Pyramid, Texel, TexelSource};
 /// A normalized texture coordinate (I32F32: range `[−2³¹, 2³¹)`, step
 /// 2⁻³²). `u = 0` is the left edge, `u = 1` the right edge of every
 /// level; texel `i` of a level `w` wide has its centre at `(i + ½)/w`.
+///
+/// # Example
+/// ```
+/// use raymip::{Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// // A 4×1 texture whose texels are 0, 1, 2, 3.
+/// let texels = [0u32, 1, 2, 3];
+/// let mut sampler = Sampler::wrap(Pyramid::new(Geometry::new(4, 1, 1)?, &texels)?);
+/// let v = TexCoord::from_num(0.5);
+/// // Texel 2's centre is (2 + ½)/4 = 0.625; nearest returns texel 2.
+/// let u = TexCoord::from_num(0.625);
+/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::Nearest), 2);
+/// // Wrap: u = 1.625 addresses the same texel.
+/// let u = TexCoord::from_num(1.625);
+/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::Nearest), 2);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 pub type TexCoord = I32F32;
 
 /// Filter mode, numbered as in the `sample` command. The linear-level
 /// modes (0 and 3) need the `trilinear` feature.
+///
+/// # Example
+/// ```
+/// use raymip::{Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// // A 2×1 texture: red 0 and red 200 (alpha 255), texel centres at u = ¼ and ¾.
+/// let texels = [0xFF00_0000u32, 0xFF00_00C8];
+/// let mut sampler = Sampler::clamp(Pyramid::new(Geometry::new(2, 1, 1)?, &texels)?);
+/// let (u, v) = (TexCoord::from_num(0.5), TexCoord::from_num(0.5));
+/// // Halfway between the centres, bilinear weighs both ½: red (0 + 200)/2 = 100.
+/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::BilinearNearestLevel), 0xFF00_0064);
+/// // Nearest takes texel floor(0.5 · 2) = 1.
+/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::Nearest), 0xFF00_00C8);
+/// // Numbered as in the `sample` command.
+/// assert_eq!(Mode::from_index(2), Some(Mode::Nearest));
+/// assert_eq!(Mode::from_index(4), None);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
     /// Bilinear within a level, linear between levels.

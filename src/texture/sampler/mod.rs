@@ -71,6 +71,26 @@ pub trait Key: 'static {
 /// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
 /// tier `P` ([`Accurate`], [`Fast`](crate::texture::kernel::Fast)).
 /// `Cfg` alone is wrap, linear, ACCURATE.
+///
+/// # Example
+/// ```
+/// use raymip::texture::address::ClampToEdge;
+/// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// // A 2×1 texture 5, 9; u = 1.75 lies past the right edge.
+/// let texels = [5u32, 9];
+/// let pyramid = Pyramid::new(Geometry::new(2, 1, 1)?, &texels)?;
+/// let (u, v) = (TexCoord::from_num(1.75), TexCoord::from_num(0.5));
+/// // Clamp-to-edge in u and v (the key is a type: no mode test per sample).
+/// let mut clamp = Sampler::<_, Cfg<ClampToEdge>>::new(pyramid);
+/// assert_eq!(clamp.sample(u, v, Lod::ZERO, Mode::Nearest), 9); // last texel
+/// // The default key `Cfg` wraps: 1.75 ≡ 0.75, texel floor(0.75 · 2) = 1.
+/// let mut wrap = Sampler::<_, Cfg>::new(pyramid);
+/// assert_eq!(wrap.sample(u, v, Lod::ZERO, Mode::Nearest), 9);
+/// let u = TexCoord::from_num(1.25); // wrap: 0.25 → texel 0; clamp: texel 1
+/// assert_eq!(wrap.sample(u, v, Lod::ZERO, Mode::Nearest), 5);
+/// assert_eq!(clamp.sample(u, v, Lod::ZERO, Mode::Nearest), 9);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
 pub struct Cfg<U = Wrap, V = U, C = Linear, P = Accurate>(PhantomData<KeyParts<U, V, C, P>>);
 
 /// The parts of a [`Cfg`] (a `fn` pointer type: no auto-trait or drop

@@ -41,6 +41,14 @@
 use core::fmt;
 
 /// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
+///
+/// # Example
+/// ```
+/// use raymip::Texel;
+/// let t: Texel = u32::from_le_bytes([0x10, 0x20, 0x30, 0xFF]); // r, g, b, a
+/// assert_eq!(t, 0xFF30_2010);
+/// assert_eq!((t & 0xFF, t >> 24), (0x10, 0xFF)); // red low, alpha high
+/// ```
 pub type Texel = u32;
 
 /// Largest number of stored levels (a 32768-texel side has 16).
