@@ -12,7 +12,9 @@
 //! build: `cone` + `raydiff`), a texel cache (`size_of` of the type). Per
 //! frame: the counted calls of a table-method render (fixed point, 10
 //! bounces, trilinear) times the Cortex-M4 mean instructions per call read
-//! from BUDGETS.md ("Instructions per call"). Replaces the text between
+//! from BUDGETS.md ("Instructions per call"), by `tradeoff::budgets`
+//! (`frame_calls`, `Budgets::frame_cost`: the same cost as the trade-off's
+//! frame chart). Replaces the text between
 //! `<!-- integration:begin -->` and `<!-- integration:end -->` with `--write`.
 
 use std::fmt::Write as _;
@@ -25,9 +27,10 @@ use raymip::{Log2Pb, Pyramid, TexelCache};
 use raymip_host::cli::output::{publish, write_option};
 use raymip_host::cli::parse_size;
 use raymip_host::render::skip::plan;
+use raymip_host::render::texunit::Filter;
 use raymip_host::render::{Method, Options, Precision, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
-use raymip_host::tradeoff::budgets::Budgets;
+use raymip_host::tradeoff::budgets::{Budgets, frame_calls};
 
 const BOUNCES: u8 = 10;
 
@@ -58,7 +61,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .0
             .ok_or_else(|| format!("BUDGETS.md: no Cortex-M4 count for \"{call}\""))
     };
-    let (lod_m4, tri_m4) = (m4("table lod")?, m4("trilinear sample")?);
 
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
@@ -134,8 +136,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         kib(64 * 4 * 64),
         kib(cache_bytes)
     )?;
-    let lods = c.textured_hits;
-    let frame_m4 = lods as f64 * (lod_m4 + tri_m4);
+    let calls = frame_calls(Method::Table, Filter::Trilinear, &c).ok_or("no counted calls")?;
+    let frame_m4 = budgets
+        .frame_cost(&calls, false)
+        .m4
+        .ok_or("BUDGETS.md: a call of the frame has no Cortex-M4 count")?;
     writeln!(
         t,
         "\n| per frame | count | Cortex-M4 instructions per call (BUDGETS.md, mean) | Cortex-M4 instructions |"
@@ -151,18 +156,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "| untextured hits (no firmware work) | {} | — | — |",
         c.untextured_skipped
     )?;
-    writeln!(
-        t,
-        "| table lods (one per textured hit) | {lods} | {lod_m4:.1} | {:.2} M |",
-        lods as f64 * lod_m4 / 1e6
-    )?;
-    writeln!(
-        t,
-        "| trilinear samples (one per textured hit; {} texels fetched, {} second-level fetches skipped) | {lods} | {tri_m4:.1} | {:.2} M |",
-        c.fetched,
-        c.fetch_skipped,
-        lods as f64 * tri_m4 / 1e6
-    )?;
+    for call in &calls {
+        let what = match call.name {
+            "table lod" => "table lods (one per textured hit)".to_string(),
+            "trilinear sample" => format!(
+                "trilinear samples (one per textured hit; {} texels fetched, {} second-level fetches skipped)",
+                c.fetched, c.fetch_skipped
+            ),
+            other => other.to_string(),
+        };
+        let per = m4(call.name)?;
+        writeln!(
+            t,
+            "| {what} | {} | {per:.1} | {:.2} M |",
+            call.count,
+            call.count as f64 * per / 1e6
+        )?;
+    }
     writeln!(
         t,
         "| **texture work of one frame** | | | **{:.2} M** |",

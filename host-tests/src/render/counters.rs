@@ -23,6 +23,12 @@ pub struct Counters {
     pub depth_hist: Vec<u64>,
     /// Reflection/refraction continuations pushed on the ray stack.
     pub bounces: u64,
+    /// Refracted continuations computed (pushed or dropped): with firmware
+    /// ray differentials, one `RayDiff::refract` each.
+    pub refractions: u64,
+    /// Reflected continuations computed (pushed or dropped): with firmware
+    /// ray differentials, one `RayDiff::reflect` each.
+    pub reflections: u64,
     /// Continuations dropped because the ray stack was full.
     pub stack_full: u64,
     /// Most entries on one path's ray stack (at most
@@ -52,7 +58,7 @@ pub struct Counters {
 impl Counters {
     pub(crate) fn add(&mut self, o: &Counters) {
         add_fields!(self, o; paths, rays, hits, textured_hits, untextured_skipped, bounces,
-            stack_full, saturations, shadow_rays, fetched, fetch_skipped, lod_sum_256, samples,
+            stack_full, refractions, reflections, saturations, shadow_rays, fetched, fetch_skipped, lod_sum_256, samples,
             sampled_lod_sum_256, aniso_samples);
         for (a, b) in self.level_hist.iter_mut().zip(o.level_hist.iter()) {
             *a += b;

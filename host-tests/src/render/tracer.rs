@@ -234,6 +234,8 @@ impl Ctx<'_> {
             (r, d, beta_fixed)
         });
         let refr = refr.map(|(r, d)| (r, d, Spread::ZERO));
+        self.counters.refractions += u64::from(refr.is_some());
+        self.counters.reflections += u64::from(refl.is_some());
         for (r, d, b) in [refr, refl].into_iter().flatten() {
             let mut next = state.bounce(b);
             next.diff = d;

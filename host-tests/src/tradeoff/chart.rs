@@ -24,7 +24,7 @@ use crate::error::FileError;
 /// One point of a scatter chart.
 #[derive(Clone, Debug)]
 pub struct Point {
-    /// x (time; > 0).
+    /// x (time or firmware cost; > 0).
     pub x: f64,
     /// y (error or PSNR).
     pub y: f64,
@@ -41,6 +41,8 @@ pub struct Point {
 pub struct Panel {
     /// Panel caption.
     pub title: String,
+    /// x-axis description of this panel, when not the chart's.
+    pub x: Option<String>,
     /// The points.
     pub points: Vec<Point>,
 }
@@ -290,7 +292,7 @@ fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<()
         .map_err(err)
 }
 
-/// Time against error, one panel per group.
+/// Cost (time or instructions) against error, one panel per group.
 #[derive(Clone, Debug)]
 pub struct Scatter {
     /// Chart title.
@@ -336,7 +338,11 @@ impl Scatter {
                 format!("{v:.1}")
             }
         };
-        let mut chart = panel_chart(area, &p.title, &self.axes, (x0, x1), (y0, y1), &y_fmt)?;
+        let axes = Axes {
+            x: p.x.clone().unwrap_or_else(|| self.axes.x.clone()),
+            ..self.axes.clone()
+        };
+        let mut chart = panel_chart(area, &p.title, &axes, (x0, x1), (y0, y1), &y_fmt)?;
         let front_line = |pts: &[&Point]| {
             let mut f: Vec<(f64, f64)> = pts
                 .iter()

@@ -202,7 +202,7 @@ fn exact(r: &RefSampler, inp: &[Input], mode: Mode) -> Vec<[f64; 4]> {
 
 /// The BUDGETS.md call that counts a mode's firmware path (ACCURATE, or
 /// FAST).
-fn budget_call(m: Mode, fast: bool) -> Option<&'static str> {
+pub(crate) fn budget_call(m: Mode, fast: bool) -> Option<&'static str> {
     match (m, fast) {
         (Mode::Trilinear, false) => Some("trilinear sample"),
         (Mode::BilinearNearestLevel, false) => Some("bilinear sample"),

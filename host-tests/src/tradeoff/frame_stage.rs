@@ -8,10 +8,12 @@ use std::path::Path;
 use crate::cli::output::{max_diff, psnr};
 use crate::render::texunit::Filter;
 use crate::render::{
-    FrameFilter, Image, Method, Options, Precision, Prepared, render_filtered, render_truth,
+    Counters, FrameFilter, Image, Method, Options, Precision, Prepared, render_filtered,
+    render_truth,
 };
 use crate::scene::{Scene, SceneError, load_scene, load_scene_dir};
 
+use super::budgets::frame_calls;
 use super::filter_stage::{STOCHASTIC, stochastic_name};
 use super::timing::median;
 use super::{Row, Settings, Stage, TradeoffError, error_stats};
@@ -103,8 +105,7 @@ impl Scored<'_> {
         method: Method,
         precision: &str,
         filter: Filter,
-        img: &[[u8; 3]],
-        ms: f64,
+        (img, ms, counters): &(Vec<[u8; 3]>, f64, Counters),
     ) -> Row {
         let (max, rms) = error_stats(
             img.iter()
@@ -112,11 +113,13 @@ impl Scored<'_> {
                 .flat_map(|(a, b)| (0..3).map(move |k| f64::from(a[k]) - f64::from(b[k]))),
         );
         debug_assert_eq!(max, f64::from(max_diff(img, self.truth)));
+        let f64_row = precision == "f64";
         Row {
             scene: Some(scene.to_string()),
             filter: Some(filter_name(filter).to_string()),
-            time_ms: Some(ms),
+            time_ms: Some(*ms),
             psnr_truth_db: Some(psnr(img, self.truth)),
+            frame_calls: frame_calls(method, filter, counters).map(|c| (c, f64_row)),
             ..Row::new(Stage::Frame, method.name(), precision, max, rms, "LSB")
         }
     }
@@ -131,7 +134,7 @@ fn frames(
     frames: u32,
     repeats: usize,
     tick: &dyn Fn(),
-) -> (Vec<[u8; 3]>, f64) {
+) -> (Vec<[u8; 3]>, f64, Counters) {
     let mut times = Vec::new();
     let mut acc: Option<Image> = None;
     for f in 0..frames.max(1) {
@@ -156,7 +159,7 @@ fn frames(
     let mut img = acc.unwrap_or_else(|| unreachable!("at least one frame"));
     let k = frames.max(1) as f32;
     img.rgb.iter_mut().for_each(|c| *c = c.map(|x| x / k));
-    (img.to_rgb8(), median(&mut times))
+    (img.to_rgb8(), median(&mut times), img.counters)
 }
 
 /// Every frame row of one scene.
@@ -188,9 +191,9 @@ fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, Tra
             .into_iter()
             .filter(|f| !matches!(f, Filter::Stochastic(_)))
         {
-            let (img, ms) = frames(&prep, &float, f, 1, s.frame_repeats, sc.tick);
-            out.push(sc.row(&name, method, "f64", f, &img, ms));
-            float_imgs.push((f, img));
+            let fr = frames(&prep, &float, f, 1, s.frame_repeats, sc.tick);
+            out.push(sc.row(&name, method, "f64", f, &fr));
+            float_imgs.push((f, fr.0));
         }
         let float_of = |f: Filter| {
             float_imgs
@@ -205,10 +208,10 @@ fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, Tra
                 vec![1]
             };
             for k in acc {
-                let (img, ms) = frames(&prep, &fixed, f, k, s.frame_repeats, sc.tick);
-                let mut r = sc.row(&name, method, "fixed accurate", f, &img, ms);
+                let fr = frames(&prep, &fixed, f, k, s.frame_repeats, sc.tick);
+                let mut r = sc.row(&name, method, "fixed accurate", f, &fr);
                 r.frames = k;
-                r.psnr_float_db = float_of(f).map(|b| psnr(&img, b));
+                r.psnr_float_db = float_of(f).map(|b| psnr(&fr.0, b));
                 out.push(r);
             }
         }

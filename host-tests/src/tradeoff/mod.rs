@@ -97,9 +97,22 @@ pub struct Row {
     /// On the Pareto front of its stage (and scene): no other
     /// configuration is both faster and more accurate.
     pub pareto: bool,
+    /// Frame rows: Cortex-M4 instructions of the frame's texture work
+    /// (`frame_calls` × BUDGETS.md per call; f64 rows at their f32 twins'
+    /// counts), where BUDGETS.md counts every call.
+    pub frame_m4: Option<f64>,
+    /// Frame rows: PicoRV32 cycles of the same calls (fixed point only).
+    pub frame_picorv32: Option<f64>,
+    /// Frame rows: on the Pareto front of M4 cost per frame against PSNR
+    /// among the rows of its scene that have a cost.
+    pub pareto_cost: bool,
     /// The BUDGETS.md call and whether its f32 column applies.
     #[serde(skip)]
     pub budget_call: Option<(String, bool)>,
+    /// Frame rows: the firmware calls the render counted, and whether the
+    /// f32 counts apply (f64 rows).
+    #[serde(skip)]
+    pub frame_calls: Option<(Vec<budgets::Call>, bool)>,
 }
 
 impl Row {
@@ -132,7 +145,11 @@ impl Row {
             psnr_truth_db: None,
             psnr_float_db: None,
             pareto: false,
+            frame_m4: None,
+            frame_picorv32: None,
+            pareto_cost: false,
             budget_call: None,
+            frame_calls: None,
         }
     }
 

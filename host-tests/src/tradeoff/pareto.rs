@@ -43,7 +43,9 @@ pub fn group(r: &Row) -> (Stage, String) {
     }
 }
 
-/// Marks `pareto` on every row within its [`group`].
+/// Marks `pareto` on every row within its [`group`] (host time against
+/// error), and `pareto_cost` on the frame rows with a firmware cost (M4
+/// instructions per frame against PSNR).
 pub fn mark(rows: &mut [Row]) {
     let mut groups: Vec<(Stage, String)> = Vec::new();
     for r in rows.iter() {
@@ -60,6 +62,22 @@ pub fn mark(rows: &mut [Row]) {
             .collect();
         for k in front(&pts) {
             rows[idx[k]].pareto = true;
+        }
+        if g.0 == Stage::Frame {
+            // The firmware-cost front: M4 instructions per frame against
+            // PSNR, among the rows that have a cost.
+            let costed: Vec<usize> = idx
+                .iter()
+                .copied()
+                .filter(|&i| rows[i].frame_m4.is_some())
+                .collect();
+            let pts: Vec<(f64, f64)> = costed
+                .iter()
+                .map(|&i| (rows[i].frame_m4.unwrap_or(f64::NAN), error_axis(&rows[i])))
+                .collect();
+            for k in front(&pts) {
+                rows[costed[k]].pareto_cost = true;
+            }
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Output of a trade-off run: `tradeoff.json`, `tradeoff.md`, the charts,
 //! and the generated blocks of BENCHMARKS.md and docs/tradeoff.md.
 
+use std::cmp::Ordering;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -119,6 +120,9 @@ fn frame_table(rows: &[Row], scene: &str) -> String {
             "filter",
             "frames",
             "ms/frame",
+            "M4 M instr/frame",
+            "PicoRV32 M cycles/frame",
+            "Pareto (M4 cost)",
             "PSNR vs truth (dB)",
             "PSNR vs f64 (dB)",
         ],
@@ -131,6 +135,9 @@ fn frame_table(rows: &[Row], scene: &str) -> String {
                 r.filter.clone().unwrap_or_default(),
                 r.frames.to_string(),
                 num(r.time_ms, 2),
+                num(r.frame_m4.map(|n| n / 1e6), 2),
+                num(r.frame_picorv32.map(|n| n / 1e6), 2),
+                yes(r.pareto_cost).into(),
                 num(r.psnr_truth_db, 2),
                 num(r.psnr_float_db, 2),
             ]
@@ -172,9 +179,32 @@ pub fn pareto_list(rows: &[Row]) -> String {
     }
     group("filter per sample".into(), &|r| r.stage == Stage::Filter);
     for sc in scenes(rows) {
-        group(format!("frame, {sc}"), &|r| {
+        group(format!("frame, {sc}, host time"), &|r| {
             r.stage == Stage::Frame && r.scene.as_deref() == Some(&sc)
         });
+    }
+    for sc in scenes(rows) {
+        let mut front: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.pareto_cost && r.scene.as_deref() == Some(&sc))
+            .collect();
+        front.sort_by(|a, b| {
+            a.frame_m4
+                .partial_cmp(&b.frame_m4)
+                .unwrap_or(Ordering::Equal)
+        });
+        let names: Vec<String> = front
+            .iter()
+            .map(|r| {
+                format!(
+                    "{} ({} M M4 instructions, {} dB)",
+                    r.label(),
+                    num(r.frame_m4.map(|n| n / 1e6), 2),
+                    num(r.psnr_truth_db, 2)
+                )
+            })
+            .collect();
+        let _ = writeln!(s, "- frame, {sc}, firmware cost: {}", names.join("; "));
     }
     s
 }
@@ -235,14 +265,24 @@ fn convergence_table(curves: &[Curve]) -> String {
     s
 }
 
+/// x axis of the frame chart's cost panels.
+pub const FRAME_COST_AXIS: &str =
+    "Cortex-M4 instructions per frame, millions (counted calls × BUDGETS.md; log)";
+
 /// The Pareto chart of a stage.
 #[must_use]
 pub fn stage_chart(rows: &[Row], stage: Stage) -> Scatter {
-    let pts = |f: &dyn Fn(&Row) -> bool| -> Vec<Point> {
+    // The points of the rows `f` keeps, at x = `cost(row)` (rows without
+    // one left out), on the front when `front(row)`.
+    let pts = |f: &dyn Fn(&Row) -> bool,
+               cost: &dyn Fn(&Row) -> Option<f64>,
+               front: &dyn Fn(&Row) -> bool|
+     -> Vec<Point> {
         rows.iter()
             .filter(|r| r.stage == stage && f(r))
-            .map(|r| Point {
-                x: r.time(),
+            .filter_map(|r| Some((r, cost(r)?)))
+            .map(|(r, x)| Point {
+                x,
                 y: match stage {
                     Stage::Lod => r.error_max,
                     Stage::Filter => r.error_rms,
@@ -253,10 +293,12 @@ pub fn stage_chart(rows: &[Row], stage: Stage) -> Scatter {
                     Stage::Lod | Stage::Frame => r.method.clone(),
                     Stage::Filter => r.precision.clone(),
                 },
-                front: r.pareto,
+                front: front(r),
             })
             .collect()
     };
+    let time = |r: &Row| Some(r.time());
+    let pareto = |r: &Row| r.pareto;
     let (title, x, y, log_y) = match stage {
         Stage::Lod => (
             "LOD per hit: host time against max error vs f64",
@@ -271,24 +313,36 @@ pub fn stage_chart(rows: &[Row], stage: Stage) -> Scatter {
             true,
         ),
         Stage::Frame => (
-            "Whole frame: host time against PSNR vs ground truth (higher is better)",
+            "Whole frame: firmware texture work (Cortex-M4) and host time against PSNR vs ground truth (higher is better)",
             "host ms per frame (log)",
             "PSNR vs truth (dB)",
             false,
         ),
     };
     let panels = if stage == Stage::Frame {
-        scenes(rows)
-            .into_iter()
-            .map(|sc| Panel {
-                title: sc.clone(),
-                points: pts(&|r| r.scene.as_deref() == Some(&sc)),
-            })
-            .collect()
+        // Top row: the M4 cost of each scene's texture work (the rows
+        // BUDGETS.md can cost); bottom row: host time of every row.
+        let scenes = scenes(rows);
+        let cost = scenes.iter().map(|sc| Panel {
+            title: format!("{sc}: firmware texture work"),
+            x: Some(FRAME_COST_AXIS.into()),
+            points: pts(
+                &|r| r.scene.as_deref() == Some(sc),
+                &|r| r.frame_m4.map(|n| n / 1e6),
+                &|r| r.pareto_cost,
+            ),
+        });
+        let host = scenes.iter().map(|sc| Panel {
+            title: format!("{sc}: host time"),
+            x: None,
+            points: pts(&|r| r.scene.as_deref() == Some(sc), &time, &pareto),
+        });
+        cost.filter(|p| !p.points.is_empty()).chain(host).collect()
     } else {
         vec![Panel {
             title: String::new(),
-            points: pts(&|_| true),
+            x: None,
+            points: pts(&|_| true, &time, &pareto),
         }]
     };
     Scatter {

@@ -110,6 +110,38 @@ fn quick_run_writes_everything_and_errors_are_sane() {
             .any(|r| r.get("pareto") == Some(&Value::Bool(true)))
     );
 
+    // Frame cost on the controller: counted calls × BUDGETS.md. Costed:
+    // the bilinear and trilinear rows (BUDGETS.md counts those samples);
+    // f64 rows at their f32 twins' counts, which are larger than fixed
+    // point's for every call; a trilinear frame costs more than a bilinear
+    // one (same hits, 240 against 116 instructions per sample); PicoRV32
+    // cycles exceed M4 instructions (CPI above 4 on the soft core).
+    let cost = |m: &str, p: &str, fl: &str| f(find(&rows, "frame", m, p, Some(fl)), "frame_m4");
+    for m in ["table", "cone", "mip0"] {
+        for fl in ["bilinear", "trilinear"] {
+            if m == "mip0" && fl == "trilinear" {
+                continue;
+            }
+            let fx = cost(m, "fixed accurate", fl).unwrap_or_else(|| panic!("{m} {fl}: no cost"));
+            let fl64 = cost(m, "f64", fl).unwrap_or_else(|| panic!("{m} {fl} f64: no cost"));
+            assert!(fx > 0.0 && fl64 > fx, "{m} {fl}: fixed {fx}, f64 {fl64}");
+            let r = find(&rows, "frame", m, "fixed accurate", Some(fl));
+            let cycles = f(r, "frame_picorv32").unwrap_or_else(|| panic!("{m} {fl}: no cycles"));
+            assert!(cycles > fx, "{m} {fl}: {cycles} cycles, {fx} instructions");
+        }
+        assert!(
+            cost(m, "fixed accurate", "nearest").is_none(),
+            "{m} nearest: BUDGETS.md counts no nearest sample"
+        );
+    }
+    assert!(
+        cost("table", "fixed accurate", "trilinear") > cost("table", "fixed accurate", "bilinear")
+    );
+    assert!(
+        rows.iter()
+            .any(|r| r.get("pareto_cost") == Some(&Value::Bool(true)))
+    );
+
     // LOD: f64 anchors exact; the firmware within 2⁻⁸; f32 libm far closer
     // than the firmware; the cheapest variant (no table) visibly worse.
     for m in ["table", "cone", "cone+normal", "raydiff"] {
