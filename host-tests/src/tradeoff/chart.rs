@@ -281,13 +281,16 @@ fn draw_panels<DB: DrawingBackend>(
 }
 
 /// The legend box, upper right.
-fn legend<'a, DB: DrawingBackend + 'a>(chart: &mut Panel2d<'a, DB>) -> Result<(), ChartError> {
+fn legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Panel2d<'a, DB>,
+    position: SeriesLabelPosition,
+) -> Result<(), ChartError> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font(("sans-serif", 13))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(position)
         .draw()
         .map_err(err)
 }
@@ -304,6 +307,9 @@ pub struct Scatter {
     /// One front per series (drawn in its colour) instead of one front
     /// over every point (black).
     pub front_per_series: bool,
+    /// The legend in the lower right corner instead of the upper right
+    /// (charts whose best points lie top right: PSNR against cost).
+    pub legend_lower_right: bool,
 }
 
 impl Scatter {
@@ -395,7 +401,14 @@ impl Scatter {
                 .legend(move |(x, y)| Circle::new((x + 9, y), 5, c.filled()));
         }
         labels(&self.series(), area, &mut chart, p, &tx, &ty)?;
-        legend(&mut chart)
+        legend(
+            &mut chart,
+            if self.legend_lower_right {
+                SeriesLabelPosition::LowerRight
+            } else {
+                SeriesLabelPosition::UpperRight
+            },
+        )
     }
 }
 
@@ -631,7 +644,7 @@ impl Curves {
                     PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
                 });
         }
-        legend(&mut chart)
+        legend(&mut chart, SeriesLabelPosition::UpperRight)
     }
 }
 

@@ -355,6 +355,7 @@ pub fn stage_chart(rows: &[Row], stage: Stage) -> Scatter {
         },
         panels,
         front_per_series: stage == Stage::Lod,
+        legend_lower_right: stage == Stage::Frame,
     }
 }
 
