@@ -578,14 +578,23 @@ pub fn headlines(rows: &[Row], accumulate: u32) -> String {
             1,
         );
         if let (Some(t), Some(f), Some(m0)) = (t, f, m0) {
-            let _ = writeln!(
+            let _ = write!(
                 s,
-                "- Frame ({sc}): table lod + trilinear, fixed point {} dB vs ground truth ({} dB from the f64 render of the same method), f64 {} dB, no mip mapping {} dB.",
+                "- Frame ({sc}): table lod + trilinear, fixed point {} dB vs ground truth ({} dB from the f64 render of the same method), f64 {} dB, no mip mapping {} dB",
                 num(t.psnr_truth_db, 2),
                 num(t.psnr_float_db, 2),
                 num(f.psnr_truth_db, 2),
                 num(m0.psnr_truth_db, 2),
             );
+            if let (Some(m4), Some(cycles)) = (t.frame_m4, t.frame_picorv32) {
+                let _ = write!(
+                    s,
+                    "; its texture work {} M Cortex-M4 instructions, {} M PicoRV32 cycles per frame",
+                    num(Some(m4 / 1e6), 2),
+                    num(Some(cycles / 1e6), 2),
+                );
+            }
+            s += ".\n";
         }
     }
     s
