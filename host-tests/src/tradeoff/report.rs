@@ -559,6 +559,14 @@ pub fn headlines(rows: &[Row], accumulate: u32) -> String {
         }
     }
     s += &aniso_headlines(rows);
+    s += &frame_headline(rows);
+    s
+}
+
+/// The headline of the first scene's frames: PSNR of table lod + trilinear
+/// (fixed, f64, no mip mapping) and its firmware cost per frame.
+fn frame_headline(rows: &[Row]) -> String {
+    let mut s = String::new();
     if let Some(sc) = scenes(rows).first() {
         let t = find(
             rows,
