@@ -5,7 +5,7 @@ use raymip::raydiff::{RayDiff, UnitVec};
 use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
-use super::lod::{LodQuery, fixed_footprint, raydiff_axes};
+use super::lod::{LodQuery, hit_lod};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
 use crate::scene::{Material, Triangle, V3};
@@ -282,44 +282,30 @@ impl Ctx<'_> {
             dbx: f.dbx,
             dby: f.dby,
         };
-        let Some(lod) = self.hit_lod(&query) else {
+        let Some(hit) = hit_lod(&mut self.unit, prep, self.opts.method, &query) else {
             self.counters.untextured_skipped += 1;
             return kd;
         };
+        let lod = hit.lod();
         self.counters.textured_hits += 1;
         self.counters.level_hist[lod.level(tex.levels).min(HIST_LEVELS - 1)] += 1;
         self.counters.lod_sum_256 += lod.q256();
         if first_lod.is_nan() {
             *first_lod = lod.to_f64();
         }
-        let c = match self.opts.aniso {
-            // Only ray differentials give footprint axes (other methods:
-            // `Options::validate` refuses aniso; set anyway, isotropic at
-            // the method's lod below). Fixed: the firmware footprint.
-            Some(_) if self.opts.method == Method::Raydiff => {
-                match prep.rd_tris[tri_index].filter(|_| self.firmware_raydiff()) {
-                    Some(t) => {
-                        let fp = fixed_footprint(&t, state);
-                        self.unit
-                            .sample_aniso_footprint(x as usize, u, vv, &fp, &mut self.log)
-                    }
-                    None => {
-                        let axes = raydiff_axes(&query);
-                        self.unit
-                            .sample_aniso(x as usize, u, vv, axes, &mut self.log)
-                    }
-                }
-            }
-            _ => {
-                let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
-                let bits = match filter {
-                    Filter::Stochastic(_) => self.rng.next_u32(),
-                    _ => 0,
-                };
-                self.unit
-                    .sample(x as usize, u, vv, lod, filter, bits, &mut self.log)
-            }
-        };
+        // Anisotropic filtering over the method's own footprint: only ray
+        // differentials give one (other methods: `Options::validate`
+        // refuses aniso; set anyway, isotropic at the method's lod).
+        let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
+        let c = hit.sample(
+            x as usize,
+            u,
+            vv,
+            filter,
+            self.opts.aniso.is_some(),
+            &mut self.rng,
+            &mut self.log,
+        );
         kd * V3::from(c)
     }
 
