@@ -1,16 +1,18 @@
-//! The LOD choice at a textured hit, per [`Method`] and [`Precision`]. A
-//! fixed-point render keeps the firmware's [`Lod`] from the firmware call to
-//! the sampler; a float render keeps f64.
+//! The LOD flow of a textured hit: `hit_lod` takes the chosen [`Method`]'s
+//! lod in the arithmetic of the render's texture unit (its precision: the
+//! firmware [`Lod`] from the firmware call to the firmware sampler, or f64
+//! to the f64 one) and `UnitLod::sample` samples there. Imports run one
+//! way: the tracer uses this module, this module the texture units.
 
 use fixed::types::U1F31;
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
-use raymip::raydiff::footprint::RayDiffTriangle;
 use raymip::raystack::PathState;
+use raymip::rng::Rng;
 use raymip::texture::sampler::aniso::Footprint;
 
-use super::texunit::MipTexture;
-use super::tracer::Ctx;
-use super::{Method, Precision};
+use super::options::Method;
+use super::setup::Prepared;
+use super::texunit::{FetchLog, Filter, FirmwareUnit, FloatUnit, MipTexture, Unit};
 
 /// A hit's level of detail in the arithmetic of the render (unclamped).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -82,55 +84,163 @@ pub(crate) struct LodQuery<'a> {
     pub dby: (f64, f64),
 }
 
-impl Ctx<'_> {
-    /// The hit's lod; `None` when the method has no lod for this triangle
-    /// (untextured Pb entry).
-    pub(crate) fn hit_lod(&self, q: &LodQuery) -> Option<HitLod> {
-        let prep = self.prep;
-        let fixed = self.opts.precision == Precision::Fixed;
-        let pbf = prep.pb_float[q.tri];
-        let pbx = prep.pb_fixed[q.tri];
-        match self.opts.method {
-            Method::Mip0 | Method::Truth if fixed => Some(HitLod::Fixed(Lod::ZERO)),
-            Method::Mip0 | Method::Truth => Some(HitLod::Float(0.0)),
-            Method::Table if fixed => table_lod(q.state.pl, pbx).map(HitLod::Fixed),
-            Method::Table => Some(HitLod::Float(q.pl.log2() - pbf)),
-            Method::Cone if fixed => pbx.delta(&prep.spread).map(|delta| {
-                let nd = U1F31::saturating_from_num(q.n_dot_d);
-                HitLod::Fixed(cone_lod(q.state.cone.width, delta, Some(nd)))
-            }),
-            Method::Cone => {
-                let delta = -pbf - prep.cam.gamma.log2();
-                let w = if q.width == 0.0 {
-                    2f64.powi(-32)
-                } else {
-                    q.width.abs()
-                };
-                let nd = q.n_dot_d.clamp(2f64.powi(-16), 1.0);
-                Some(HitLod::Float(delta + w.log2() - nd.log2()))
-            }
-            // Fixed: the firmware ray differentials carried by the path
-            // state (transferred to this hit), footprint and lod in fixed
-            // point; float: the f64 ones.
-            Method::Raydiff if fixed => {
-                let t = prep.rd_tris[q.tri]?;
-                Some(HitLod::Fixed(t.lod(&fixed_footprint(&t, q.state))))
-            }
-            Method::Raydiff => Some(HitLod::Float(raydiff_lod(q))),
+/// A textured hit's lod in the arithmetic of the texture unit that
+/// samples it, paired with that unit: the firmware unit only ever receives
+/// fixed-point lods and footprints, the f64 unit only f64 ones.
+pub(crate) enum UnitLod<'u, 'a> {
+    /// Fixed precision: the firmware's lod and, for ray differentials, the
+    /// firmware footprint it was taken from.
+    Fixed {
+        /// The firmware unit.
+        unit: &'u mut FirmwareUnit<'a>,
+        /// The method's lod (unclamped).
+        lod: Lod,
+        /// The footprint axes (ray differentials only).
+        footprint: Option<Footprint>,
+    },
+    /// Float precision: the f64 lod and, for ray differentials, its axes.
+    Float {
+        /// The f64 unit.
+        unit: &'u FloatUnit<'a>,
+        /// The method's lod (unclamped).
+        lod: f64,
+        /// The footprint axes `[(du/dx, dv/dx), (du/dy, dv/dy)]`
+        /// (ray differentials only).
+        axes: Option<[[f64; 2]; 2]>,
+    },
+}
+
+/// The lod of a textured hit for `method`, in the arithmetic of `unit` (the
+/// render's precision); `None` when the method has no lod for this triangle
+/// (untextured Pb entry or ray-differential triangle).
+pub(crate) fn hit_lod<'u, 'a>(
+    unit: &'u mut Unit<'a>,
+    prep: &Prepared,
+    method: Method,
+    q: &LodQuery,
+) -> Option<UnitLod<'u, 'a>> {
+    match unit {
+        Unit::Firmware(unit) => {
+            let (lod, footprint) = fixed_lod(prep, method, q)?;
+            Some(UnitLod::Fixed {
+                unit,
+                lod,
+                footprint,
+            })
+        }
+        Unit::Float(unit) => {
+            let (lod, axes) = float_lod(prep, method, q);
+            Some(UnitLod::Float { unit, lod, axes })
         }
     }
 }
 
-/// The firmware footprint of a hit (normalized texture coordinates per
-/// pixel) from the fixed-point ray differentials of `state`, transferred to
-/// the hit.
-pub(crate) fn fixed_footprint(t: &RayDiffTriangle, state: &PathState) -> Footprint {
-    t.footprint(state.diff.dodx, state.diff.dody)
+/// The firmware lod of a hit (and the firmware footprint for ray
+/// differentials: those carried by the path state, transferred to the hit).
+fn fixed_lod(prep: &Prepared, method: Method, q: &LodQuery) -> Option<(Lod, Option<Footprint>)> {
+    let pbx = prep.pb_fixed[q.tri];
+    match method {
+        Method::Mip0 | Method::Truth => Some((Lod::ZERO, None)),
+        Method::Table => table_lod(q.state.pl, pbx).map(|l| (l, None)),
+        Method::Cone => pbx.delta(&prep.spread).map(|delta| {
+            let nd = U1F31::saturating_from_num(q.n_dot_d);
+            (cone_lod(q.state.cone.width, delta, Some(nd)), None)
+        }),
+        Method::Raydiff => {
+            let t = prep.rd_tris[q.tri]?;
+            let fp = t.footprint(q.state.diff.dodx, q.state.diff.dody);
+            Some((t.lod(&fp), Some(fp)))
+        }
+    }
+}
+
+/// The f64 lod of a hit (and the f64 footprint axes for ray differentials).
+fn float_lod(prep: &Prepared, method: Method, q: &LodQuery) -> (f64, Option<[[f64; 2]; 2]>) {
+    let pbf = prep.pb_float[q.tri];
+    match method {
+        Method::Mip0 | Method::Truth => (0.0, None),
+        Method::Table => (q.pl.log2() - pbf, None),
+        Method::Cone => {
+            let delta = -pbf - prep.cam.gamma.log2();
+            let w = if q.width == 0.0 {
+                2f64.powi(-32)
+            } else {
+                q.width.abs()
+            };
+            let nd = q.n_dot_d.clamp(2f64.powi(-16), 1.0);
+            (delta + w.log2() - nd.log2(), None)
+        }
+        Method::Raydiff => {
+            let axes = raydiff_axes(q);
+            (raydiff_lod(q.tex, axes), Some(axes))
+        }
+    }
+}
+
+impl UnitLod<'_, '_> {
+    /// The lod as the counters read it.
+    pub(crate) fn lod(&self) -> HitLod {
+        match self {
+            Self::Fixed { lod, .. } => HitLod::Fixed(*lod),
+            Self::Float { lod, .. } => HitLod::Float(*lod),
+        }
+    }
+
+    /// One sample of texture `tex` at `(u, v)` (texture repeats) as linear
+    /// RGB in 0..1: anisotropic over the footprint when `aniso` and the
+    /// method gave one, else isotropic at the lod with `filter` (a
+    /// stochastic filter draws its 32 bits from `rng`). Counts the sample
+    /// and the lod it was given in `log`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn sample(
+        self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        filter: Filter,
+        aniso: bool,
+        rng: &mut Rng,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        let lod = self.lod();
+        match self {
+            Self::Fixed {
+                unit,
+                footprint: Some(fp),
+                ..
+            } if aniso => {
+                log.aniso_samples += 1;
+                unit.sample_aniso_rgb(tex, u, v, &fp, log)
+            }
+            Self::Float {
+                unit,
+                axes: Some(axes),
+                ..
+            } if aniso => {
+                log.aniso_samples += 1;
+                unit.sample_aniso(tex, u, v, axes, log)
+            }
+            iso => {
+                log.samples += 1;
+                log.lod_sum_256 += lod.q256();
+                let bits = match filter {
+                    Filter::Stochastic(_) => rng.next_u32(),
+                    _ => 0,
+                };
+                match iso {
+                    Self::Fixed { unit, lod, .. } => {
+                        unit.sample_rgb(tex, u, v, lod, filter, bits, log)
+                    }
+                    Self::Float { unit, lod, .. } => unit.sample(tex, u, v, lod, filter, log),
+                }
+            }
+        }
+    }
 }
 
 /// The pixel footprint's two axes in normalized texture coordinates from
 /// the f64 ray differentials (pbrt): `[(du/dx, dv/dx), (du/dy, dv/dy)]`.
-pub(crate) fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
+fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
     let uv = q.uv;
     let axis = |(a, b): (f64, f64)| {
         [
@@ -142,10 +252,9 @@ pub(crate) fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
 }
 
 /// Ray-differential lod (Igehy 1999): log2 of the larger texel-space
-/// footprint edge per pixel.
-fn raydiff_lod(q: &LodQuery) -> f64 {
-    let (tw, th) = (f64::from(q.tex.width), f64::from(q.tex.height));
+/// footprint edge of `axes` per pixel in `tex`.
+fn raydiff_lod(tex: &MipTexture, [x, y]: [[f64; 2]; 2]) -> f64 {
+    let (tw, th) = (f64::from(tex.width), f64::from(tex.height));
     let len = |a: [f64; 2]| ((a[0] * tw).powi(2) + (a[1] * th).powi(2)).sqrt();
-    let [x, y] = raydiff_axes(q);
     len(x).max(len(y)).max(1e-300).log2()
 }

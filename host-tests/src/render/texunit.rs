@@ -21,8 +21,8 @@ use raymip::texture::storage::cache::BlockLayout;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 use raymip::texture::{Mode, Sampler, TexCoord};
 
-use super::lod::HitLod;
-use super::{Method, RenderError};
+use super::RenderError;
+use super::options::Method;
 use crate::reference::sampler_ref::aniso_probes;
 use crate::scene::TextureImage;
 
@@ -66,12 +66,12 @@ pub struct FetchLog {
     pub skipped: u64,
     /// Block addresses in fetch order, when recording.
     pub blocks: Option<Vec<u32>>,
-    /// Isotropic samples taken ([`Unit::sample`]).
+    /// Isotropic samples taken.
     pub samples: u64,
-    /// Anisotropic samples taken ([`Unit::sample_aniso`],
-    /// [`Unit::sample_aniso_footprint`]).
+    /// Anisotropic samples taken.
     pub aniso_samples: u64,
-    /// Σ of the lods the unit was given, in 1/256 level ([`HitLod::q256`]).
+    /// Σ of the lods the unit was given for its isotropic samples, in
+    /// 1/256 level (exact for fixed-point lods, rounded for f64 ones).
     pub lod_sum_256: i64,
 }
 
@@ -215,100 +215,6 @@ impl<'a> Unit<'a> {
                 textures,
                 max_aniso: aniso.unwrap_or(1),
             })
-        }
-    }
-
-    /// One anisotropic sample of texture `tex` at `(u, v)` over the
-    /// footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` (normalized
-    /// texture coordinates per pixel), linear RGB in 0..1; trilinear
-    /// probes, at most the unit's maximum anisotropy.
-    pub fn sample_aniso(
-        &mut self,
-        tex: usize,
-        u: f64,
-        v: f64,
-        axes: [[f64; 2]; 2],
-        log: &mut FetchLog,
-    ) -> [f64; 3] {
-        log.aniso_samples += 1;
-        match self {
-            Self::Firmware(unit) => {
-                let a = |x: f64| {
-                    if x.is_finite() {
-                        TexCoord::saturating_from_num(x)
-                    } else {
-                        TexCoord::ZERO
-                    }
-                };
-                let fp = Footprint {
-                    x: [a(axes[0][0]), a(axes[0][1])],
-                    y: [a(axes[1][0]), a(axes[1][1])],
-                };
-                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), &fp, log))
-            }
-            Self::Float(unit) => unit.sample_aniso(tex, u, v, axes, log),
-        }
-    }
-
-    /// [`Unit::sample_aniso`] over a firmware footprint (the fixed-point
-    /// ray differentials' axes): passed to the firmware unit unchanged, read
-    /// exactly as f64 by the f64 unit.
-    pub fn sample_aniso_footprint(
-        &mut self,
-        tex: usize,
-        u: f64,
-        v: f64,
-        fp: &Footprint,
-        log: &mut FetchLog,
-    ) -> [f64; 3] {
-        log.aniso_samples += 1;
-        match self {
-            Self::Firmware(unit) => {
-                texel_rgb(unit.sample_aniso(tex, wrap_coord(u), wrap_coord(v), fp, log))
-            }
-            Self::Float(unit) => {
-                let a = |c: [TexCoord; 2]| c.map(|x| x.to_num::<f64>());
-                unit.sample_aniso(tex, u, v, [a(fp.x), a(fp.y)], log)
-            }
-        }
-    }
-
-    /// One filtered sample of texture `tex` at `(u, v)` in texture repeats
-    /// (wrap addressing) as linear RGB in 0..1. A fixed-point lod goes to
-    /// the firmware unit unchanged; each unit is fed its own arithmetic.
-    /// `bits`: the 32 random bits of a [`Filter::Stochastic`] sample
-    /// (ignored by the other filters).
-    #[allow(clippy::too_many_arguments)]
-    pub fn sample(
-        &mut self,
-        tex: usize,
-        u: f64,
-        v: f64,
-        lod: HitLod,
-        filter: Filter,
-        bits: u32,
-        log: &mut FetchLog,
-    ) -> [f64; 3] {
-        log.samples += 1;
-        log.lod_sum_256 += lod.q256();
-        match self {
-            Self::Firmware(unit) => {
-                let lod = match lod {
-                    HitLod::Fixed(l) => l,
-                    HitLod::Float(l) => Lod::saturating_from_num(l),
-                };
-                let (u, v) = (wrap_coord(u), wrap_coord(v));
-                let mode = match filter {
-                    Filter::Trilinear => Mode::Trilinear,
-                    Filter::BilinearLevel0 | Filter::Bilinear => Mode::BilinearNearestLevel,
-                    Filter::Nearest => Mode::Nearest,
-                    Filter::Stochastic(m) => {
-                        return texel_rgb(unit.sample_stochastic(tex, u, v, lod, m, bits, log));
-                    }
-                };
-                texel_rgb(unit.sample(tex, u, v, lod, mode, log))
-            }
-            Self::Float(unit) => unit.sample(tex, u, v, lod.to_f64(), filter, log),
         }
     }
 }
@@ -510,6 +416,47 @@ impl<'a> FirmwareUnit<'a> {
         log.take(sampler.stats(), sampler.source_mut());
         sampler.reset_stats();
         t
+    }
+
+    /// One isotropic sample of texture `tex` at `(u, v)` in texture
+    /// repeats (wrap addressing) at the fixed-point `lod` with `filter`, as
+    /// linear RGB in 0..1; `bits`: the 32 random bits of a
+    /// [`Filter::Stochastic`] sample (ignored by the other filters).
+    #[allow(clippy::too_many_arguments)]
+    pub fn sample_rgb(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        lod: Lod,
+        filter: Filter,
+        bits: u32,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        let (u, v) = (wrap_coord(u), wrap_coord(v));
+        let mode = match filter {
+            Filter::Trilinear => Mode::Trilinear,
+            Filter::BilinearLevel0 | Filter::Bilinear => Mode::BilinearNearestLevel,
+            Filter::Nearest => Mode::Nearest,
+            Filter::Stochastic(m) => {
+                return texel_rgb(self.sample_stochastic(tex, u, v, lod, m, bits, log));
+            }
+        };
+        texel_rgb(self.sample(tex, u, v, lod, mode, log))
+    }
+
+    /// One anisotropic sample of texture `tex` at `(u, v)` in texture
+    /// repeats over the firmware footprint `fp` (normalized texture
+    /// coordinates per pixel), as linear RGB in 0..1.
+    pub fn sample_aniso_rgb(
+        &mut self,
+        tex: usize,
+        u: f64,
+        v: f64,
+        fp: &Footprint,
+        log: &mut FetchLog,
+    ) -> [f64; 3] {
+        texel_rgb(self.sample_aniso(tex, wrap_coord(u), wrap_coord(v), fp, log))
     }
 
     /// One sample of texture `tex` through the firmware sampler; fetch

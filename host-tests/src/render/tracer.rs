@@ -5,12 +5,12 @@ use raymip::raydiff::{RayDiff, UnitVec};
 use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
-use super::lod::{LodQuery, fixed_footprint, raydiff_axes};
+use super::lod::{LodQuery, hit_lod};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
 use crate::scene::{Material, Triangle, V3};
 
-/// Ray-differential state (Igehy 1999): position and unit-direction
+/// f64 ray-differential state (Igehy 1999): position and unit-direction
 /// derivatives per pixel in x and y.
 #[derive(Clone, Copy, Debug, Default)]
 struct Diff {
@@ -28,17 +28,27 @@ struct Diff {
 pub const STACK_CAPACITY: usize = stack_bound(u8::MAX, 2);
 
 /// A continuation ray with the firmware ray differentials of its path
-/// state (zero unless they are carried).
+/// state (zero in float precision).
 type Continuation = (Ray, RayDiff);
 
-/// Host side of one ray (the payload of its ray-stack entry; the firmware
-/// [`PathState`] beside it carries the fixed-point Pl and cone).
+/// Host side of one ray: the payload of its ray-stack entry. Its LOD state
+/// is the firmware [`PathState`] beside it (fixed-point Pl, cone and ray
+/// differentials) in fixed precision, and [`FloatPath`] in float precision:
+/// one copy per precision, never both.
 #[derive(Clone, Copy, Debug)]
 struct Ray {
     o: V3,
     d: V3,
     weight: V3,
     tmin: f64,
+    /// The f64 LOD state (float precision only).
+    float: Option<FloatPath>,
+}
+
+/// The f64 LOD state of a path in float precision: path length, cone
+/// width and spread, ray differentials.
+#[derive(Clone, Copy, Debug)]
+struct FloatPath {
     pl: f64,
     width: f64,
     spread: f64,
@@ -46,10 +56,11 @@ struct Ray {
 }
 
 impl Ray {
-    /// A continuation of this ray from `o` in direction `d` with `weight`,
-    /// path length and cone width `(pl, width)` at the hit and this ray's
-    /// cone spread; `dd(ddir, dn)` maps a direction differential and the
-    /// matching shading-normal differential to the new ray's.
+    /// A continuation of this ray from `o` in direction `d` with `weight`;
+    /// its f64 LOD state (if any) continues with path length and cone
+    /// width `(pl, width)` at the hit, this ray's cone spread, and
+    /// `dd(ddir, dn)` mapping a direction differential and the matching
+    /// shading-normal differential to the new ray's.
     fn continued(
         &self,
         o: V3,
@@ -64,15 +75,17 @@ impl Ray {
             d,
             weight,
             tmin: 0.0,
-            pl,
-            width,
-            spread: self.spread,
-            diff: Diff {
-                dpx: f.dpx,
-                dpy: f.dpy,
-                ddx: dd(self.diff.ddx, f.dnx),
-                ddy: dd(self.diff.ddy, f.dny),
-            },
+            float: self.float.map(|p| FloatPath {
+                pl,
+                width,
+                spread: p.spread,
+                diff: Diff {
+                    dpx: f.dpx,
+                    dpy: f.dpy,
+                    ddx: dd(p.diff.ddx, f.dnx),
+                    ddy: dd(p.diff.ddy, f.dny),
+                },
+            }),
         }
     }
 }
@@ -139,26 +152,29 @@ impl Ctx<'_> {
         let (dv, dxv, dyv) = prep.cam.primary_dir(fx, fy);
         let dd = dv.dot(dv);
         let ddir = |r: V3| ((r * dd) - (dv * dv.dot(r))) * dd.powf(-1.5);
+        let fixed = self.fixed();
         let ray = Ray {
             o: prep.cam.eye,
             d: dv.normalize_or_zero(),
             weight: V3::ONE,
             tmin: 0.0,
-            pl: 0.0,
-            width: 0.0,
-            spread: prep.cam.gamma,
-            diff: Diff {
-                ddx: ddir(dxv),
-                ddy: ddir(dyv),
-                ..Diff::default()
-            },
+            float: (!fixed).then(|| FloatPath {
+                pl: 0.0,
+                width: 0.0,
+                spread: prep.cam.gamma,
+                diff: Diff {
+                    ddx: ddir(dxv),
+                    ddy: ddir(dyv),
+                    ..Diff::default()
+                },
+            }),
         };
         self.counters.paths += 1;
         let mut stack: RayStack<Ray, STACK_CAPACITY> = RayStack::new();
         let mut color = V3::ZERO;
         let mut first_lod = f64::NAN;
         let mut state = PathState::primary(&prep.spread, 0xFF);
-        if self.firmware_raydiff() {
+        if fixed {
             // Firmware set-up: unit direction, forward axis and the change of
             // the unnormalised direction per pixel (its forward part is 1).
             let (d, sat) = RayDiff::primary(
@@ -204,18 +220,35 @@ impl Ctx<'_> {
         let mut state = state.advance(t_fixed);
         let tri = &scene.triangles[hit.tri as usize];
         let mat = &scene.materials[tri.material as usize];
-        let f = HitFrame::new(tri, &ray, &hit);
-        if self.firmware_raydiff() {
-            // Firmware transfer to the hit plane (geometric normal).
-            let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(f.ng));
-            state.diff = d;
-            state.saturated |= sat;
-        }
+        // The ray differentials transferred to the hit plane (geometric
+        // normal): the firmware's in fixed precision, f64 in float.
+        let f = HitFrame::new(tri, &ray, &hit, |ng| match ray.float {
+            None => {
+                let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
+                state.diff = d;
+                state.saturated |= sat;
+                (v3_of(d.dodx), v3_of(d.dody))
+            }
+            Some(p) => {
+                let transfer = |dp: V3, dd: V3| {
+                    let q = dp + dd * hit.t;
+                    let dt = -q.dot(ng) / ray.d.dot(ng);
+                    q + ray.d * dt
+                };
+                (
+                    transfer(p.diff.dpx, p.diff.ddx),
+                    transfer(p.diff.dpy, p.diff.ddy),
+                )
+            }
+        });
         if state.saturated {
             self.counters.saturations += 1;
         }
-        let pl = ray.pl + f.t;
-        let width = ray.width + ray.spread * f.t;
+        // Path length and cone width at the hit, in the precision's state.
+        let (pl, width) = match ray.float {
+            None => (state.pl.to_num::<f64>(), state.cone.width.to_num::<f64>()),
+            Some(p) => (p.pl + f.t, p.width + p.spread * f.t),
+        };
         let kd = self.texture(hit.tri as usize, &f, &ray, &state, pl, width, first_lod);
         let local = self.local_shading(mat, &f, &ray, kd, tri.is_textured());
         *color += ray.weight * local;
@@ -226,11 +259,9 @@ impl Ctx<'_> {
         let beta = surface_spread(&f, width);
         let beta_fixed = Spread::saturating_from_num(beta);
         let refl = refl.map(|(mut r, d)| {
-            r.spread += if self.opts.precision == Precision::Fixed {
-                beta_fixed.to_num::<f64>()
-            } else {
-                beta
-            };
+            if let Some(p) = r.float.as_mut() {
+                p.spread += beta;
+            }
             (r, d, beta_fixed)
         });
         let refr = refr.map(|(r, d)| (r, d, Spread::ZERO));
@@ -284,44 +315,30 @@ impl Ctx<'_> {
             dbx: f.dbx,
             dby: f.dby,
         };
-        let Some(lod) = self.hit_lod(&query) else {
+        let Some(hit) = hit_lod(&mut self.unit, prep, self.opts.method, &query) else {
             self.counters.untextured_skipped += 1;
             return kd;
         };
+        let lod = hit.lod();
         self.counters.textured_hits += 1;
         self.counters.level_hist[lod.level(tex.levels).min(HIST_LEVELS - 1)] += 1;
         self.counters.lod_sum_256 += lod.q256();
         if first_lod.is_nan() {
             *first_lod = lod.to_f64();
         }
-        let c = match self.opts.aniso {
-            // Only ray differentials give footprint axes (other methods:
-            // `Options::validate` refuses aniso; set anyway, isotropic at
-            // the method's lod below). Fixed: the firmware footprint.
-            Some(_) if self.opts.method == Method::Raydiff => {
-                match prep.rd_tris[tri_index].filter(|_| self.firmware_raydiff()) {
-                    Some(t) => {
-                        let fp = fixed_footprint(&t, state);
-                        self.unit
-                            .sample_aniso_footprint(x as usize, u, vv, &fp, &mut self.log)
-                    }
-                    None => {
-                        let axes = raydiff_axes(&query);
-                        self.unit
-                            .sample_aniso(x as usize, u, vv, axes, &mut self.log)
-                    }
-                }
-            }
-            _ => {
-                let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
-                let bits = match filter {
-                    Filter::Stochastic(_) => self.rng.next_u32(),
-                    _ => 0,
-                };
-                self.unit
-                    .sample(x as usize, u, vv, lod, filter, bits, &mut self.log)
-            }
-        };
+        // Anisotropic filtering over the method's own footprint: only ray
+        // differentials give one (other methods: `Options::validate`
+        // refuses aniso; set anyway, isotropic at the method's lod).
+        let filter = self.filter.unwrap_or(Filter::of(self.opts.method));
+        let c = hit.sample(
+            x as usize,
+            u,
+            vv,
+            filter,
+            self.opts.aniso.is_some(),
+            &mut self.rng,
+            &mut self.log,
+        );
         kd * V3::from(c)
     }
 
@@ -362,10 +379,10 @@ impl Ctx<'_> {
         local
     }
 
-    /// True when the firmware ray differentials are carried (fixed
-    /// precision, ray-differential method).
-    fn firmware_raydiff(&self) -> bool {
-        self.opts.precision == Precision::Fixed && self.opts.method == Method::Raydiff
+    /// Fixed precision: the firmware path state (Pl, cone, ray
+    /// differentials) is the only LOD state of a path.
+    fn fixed(&self) -> bool {
+        self.opts.precision == Precision::Fixed
     }
 
     /// Ray offset along the normal (scene-relative).
@@ -386,7 +403,7 @@ impl Ctx<'_> {
         width: f64,
         state: &PathState,
     ) -> (Option<Continuation>, Option<Continuation>) {
-        let fw = self.firmware_raydiff();
+        let fw = self.fixed();
         let (dq, nq, dnxq, dnyq) = (unit_q(ray.d), unit_q(f.ns), unit_q(f.dnx), unit_q(f.dny));
         let eps = self.eps();
         let ns = f.ns;
@@ -519,7 +536,7 @@ struct HitFrame {
 }
 
 impl HitFrame {
-    fn new(tri: &Triangle, ray: &Ray, hit: &Hit) -> Self {
+    fn new(tri: &Triangle, ray: &Ray, hit: &Hit, dp: impl FnOnce(V3) -> (V3, V3)) -> Self {
         let t = hit.t;
         let p = ray.o + ray.d * t;
         let (b0, b1, b2) = (1.0 - hit.b1 - hit.b2, hit.b1, hit.b2);
@@ -529,14 +546,7 @@ impl HitFrame {
         let gn2 = gn_raw.dot(gn_raw);
         let ng = gn_raw.normalize_or_zero();
         let entering = ng.dot(ray.d) < 0.0;
-        // Ray-differential transfer to the hit plane.
-        let transfer = |dp: V3, dd: V3| {
-            let q = dp + dd * t;
-            let dt = -q.dot(ng) / ray.d.dot(ng);
-            q + ray.d * dt
-        };
-        let dpx = transfer(ray.diff.dpx, ray.diff.ddx);
-        let dpy = transfer(ray.diff.dpy, ray.diff.ddy);
+        let (dpx, dpy) = dp(ng);
         let bary_d = |dp: V3| {
             (
                 dp.cross(e2).dot(gn_raw) / gn2,
@@ -625,4 +635,9 @@ fn unit_q(v: V3) -> UnitVec {
             I2F30::ZERO
         }
     })
+}
+
+/// Firmware position differentials as f64.
+fn v3_of(d: [raymip::raydiff::PosDiff; 3]) -> V3 {
+    V3::from(d.map(|x| x.to_num::<f64>()))
 }

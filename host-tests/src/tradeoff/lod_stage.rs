@@ -5,7 +5,10 @@
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::float::{cone_lod_f32, table_lod_f32};
 use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
-use raymip::table::Log2Pb;
+use raymip::raydiff::footprint::RayDiffTriangle;
+use raymip::table::{Log2Pb, TexTriangle};
+use raymip::texture::TexCoord;
+use raymip::texture::sampler::aniso::Footprint;
 
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
@@ -20,9 +23,15 @@ struct Hit {
     width: f64,
     delta: f64,
     cos: f64,
-    /// Ray-differential footprint axes in texels (x and y).
+    /// Ray-differential footprint axes in level-0 texels (x and y) of a
+    /// [`RAYDIFF_TEXELS`]² texture.
     axes: [[f64; 2]; 2],
 }
+
+/// Texture size (texels per side) of the ray-differential hits: the
+/// firmware footprint is in normalized texture coordinates, the f64 axes
+/// in texels.
+const RAYDIFF_TEXELS: u32 = 256;
 
 /// The hits: path lengths 2⁻⁸..2¹², `log2 Pb` in [−4, 12), cone widths
 /// `Pl·10⁻³`, `|n·d|` in [0.05, 1), footprint axes up to ±64 texels; every
@@ -37,7 +46,10 @@ fn hits(n: usize) -> Vec<Hit> {
             let w = I32F32::from_num(pl.to_num::<f64>() * 1e-3);
             let d = I16F16::from_num(-pb.to_num::<f64>() - 10.0);
             let c = U1F31::from_num(r.range(0.05, 1.0));
-            let mut ax = || [r.range(-64.0, 64.0), r.range(-64.0, 64.0)];
+            let texels = f64::from(RAYDIFF_TEXELS);
+            let mut texel =
+                || TexCoord::from_num(r.range(-64.0, 64.0) / texels).to_num::<f64>() * texels;
+            let mut ax = || [texel(), texel()];
             Hit {
                 pl: pl.to_num(),
                 log2_pb: pb.to_num(),
@@ -255,6 +267,30 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         len(h.axes[0]).max(len(h.axes[1])).max(1e-300).log2()
     };
     let exact: Vec<f64> = hits.iter().map(|&h| raydiff(h)).collect();
+    // The firmware lod of the same footprints (`RayDiffTriangle::lod`, the
+    // per-hit step after the footprint's dot products) on a triangle of the
+    // RAYDIFF_TEXELS² texture.
+    let tri = raydiff_triangle();
+    let texels = f64::from(RAYDIFF_TEXELS);
+    let fps: Vec<Footprint> = hits
+        .iter()
+        .map(|h| {
+            let n = |a: [f64; 2]| a.map(|x| TexCoord::from_num(x / texels));
+            Footprint {
+                x: n(h.axes[0]),
+                y: n(h.axes[1]),
+            }
+        })
+        .collect();
+    out.push(Row {
+        budget_call: Some(("lod from the footprint (larger axis)".to_string(), false)),
+        ..row(
+            "raydiff",
+            "fixed accurate",
+            measure(&fps, reps, |fp| tri.lod(&fp), |l| l.to_num::<f64>()),
+            &exact,
+        )
+    });
     out.push(row(
         "raydiff",
         "f64",
@@ -263,4 +299,14 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
     ));
     tick();
     out
+}
+
+/// A right triangle with unit legs and UVs on a [`RAYDIFF_TEXELS`]² texture
+/// (the firmware lod reads only the texture size and degeneracy).
+fn raydiff_triangle() -> RayDiffTriangle {
+    let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+    let t = TexTriangle::from_f32(p, uv, RAYDIFF_TEXELS, RAYDIFF_TEXELS)
+        .expect("a unit right triangle on a 256² texture is valid");
+    RayDiffTriangle::new(&t)
 }

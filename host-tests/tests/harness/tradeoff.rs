@@ -9,6 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use raymip::lod::LOD_MAX_ERROR;
+use raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip_host::reference::sampler_ref::ANISO_LOD_ERROR_LSB;
 use serde_json::Value;
@@ -168,6 +169,18 @@ fn quick_run_writes_everything_and_errors_are_sane() {
             "{m} mitchell: {mitchell}"
         );
     }
+    // Ray differentials: the firmware lod of the same footprints within
+    // its documented bound, with its BUDGETS.md count.
+    let rd = find(&rows, "lod", "raydiff", "fixed accurate", None);
+    let rd_err = f(rd, "error_max").unwrap();
+    assert!(
+        rd_err <= RAYDIFF_LOD_MAX_ERROR && rd_err > 0.0,
+        "raydiff fixed: {rd_err}"
+    );
+    assert!(
+        f(rd, "instructions_m4").is_some(),
+        "BUDGETS.md counts not read: {rd}"
+    );
     for p in ["fixed accurate", "fixed fast"] {
         let table = find(&rows, "lod", "table", p, None);
         assert!(
