@@ -51,6 +51,13 @@ RD_ROWS = [("rd_primary", "primary set-up from the camera"),
            ("rd_lod", "lod from the footprint (larger axis)"),
            ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
 CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
+# Environment map (feature `envmap`, issue 21): (key, label), wrapper
+# `rm_bench_<key>`, 64 calls each.
+ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
+            ("env_cone_lat", "cone lod with the pole term"),
+            ("env_raydiff", "ray-differential lod with the pole term"),
+            ("env_uv", "direction → (u, v), two CORDIC vectorings")]
+CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
 # TextureSampler rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
@@ -687,6 +694,26 @@ def render(work, old_text, readme):
     w(f"the Cortex-M4, {ps['rv'].get('raydiff', '?')} on RV32IMAC (printed by the budget binary); without it")
     w("the sizes of the \"Feature sets\" section (`raystack::PATH_STATE_BYTES`, checked at")
     w("compile time on every target).")
+
+    w("\n## Environment map (feature `envmap`)\n")
+    w("`raymip::envmap` (Ray Tracing Gems ch. 21): the lod of a ray that leaves the scene on a")
+    w("2048 × 1024 latitude-longitude map and the map coordinates of its direction, each its own")
+    w("wrapper, 64 calls on `inputs::envmap` (cone spreads in [2⁻¹², 2⁻⁸) rad, directions of every")
+    w("latitude, direction differentials up to 2⁻⁸); counted like the calls above. min / mean / max.\n")
+    w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb |")
+    w("|---|---|---|---|")
+    for key, label in ENV_ROWS:
+        w(f"| {label} | " + " | ".join(fmt(stat(res[k]["rm_bench_" + key])) for k, _ in ISAS) + " |")
+    w("\nPer ray that leaves the scene (means): the lod and the lookup coordinates, beside the cone")
+    w("lod of a surface hit (with n·d) and its ratio to it.\n")
+    w("| method per miss | " + " | ".join(f"{isa} | ratio to cone" for _, isa in ISAS) + " |")
+    w("|---|" + "---|---|" * len(ISAS))
+    per = {
+        "cone lod (pole term) + (u, v)": lambda k: mean(k, "env_cone_lat") + mean(k, "env_uv"),
+        "ray-differential lod (pole term) + (u, v)": lambda k: mean(k, "env_raydiff") + mean(k, "env_uv"),
+    }
+    for label, f in per.items():
+        w(f"| {label} | " + " | ".join(f"{f(k):.1f} | {f(k) / mean(k, 'cone_lod'):.2f}" for k, _ in ISAS) + " |")
 
     gl = geomlod_stats(res)
     recs = {k: kv(work, k, "geomlod") for k, _ in ISAS}
