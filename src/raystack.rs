@@ -61,7 +61,7 @@ pub type Width = I32F32;
 /// Ray-cone spread angle: I2F30 radians.
 pub type Spread = I2F30;
 /// A unit vector (ray direction, surface normal), I2F30 components (range
-/// `±2` per component, step `2⁻³⁰`). Used by [`crate::envmap`] and
+/// `±2` per component, step `2⁻³⁰`). Used by `envmap` and
 /// `raydiff`.
 pub type UnitVec = [I2F30; 3];
 

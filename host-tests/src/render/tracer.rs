@@ -5,6 +5,7 @@ use raymip::raydiff::{RayDiff, UnitVec};
 use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
+use super::envmap::MissRay;
 use super::lod::{LodQuery, fixed_footprint, raydiff_axes};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
@@ -192,7 +193,7 @@ impl Ctx<'_> {
         let scene = &prep.scene;
         self.counters.rays += 1;
         let Some(hit) = prep.bvh.closest(ray.o, ray.d, ray.tmin, f64::INFINITY) else {
-            *color += ray.weight * scene.background;
+            *color += ray.weight * self.miss(&state, &ray);
             return;
         };
         self.counters.hits += 1;
@@ -321,6 +322,24 @@ impl Ctx<'_> {
             }
         };
         kd * V3::from(c)
+    }
+
+    /// The colour of a ray that leaves the scene: the environment map at
+    /// the method's lod ([`super::envmap`]), else the background colour.
+    fn miss(&self, state: &PathState, ray: &Ray) -> V3 {
+        let prep = self.prep;
+        let Some(env) = &prep.env else {
+            return prep.scene.background;
+        };
+        let m = MissRay {
+            d: ray.d,
+            dq: unit_q(ray.d),
+            spread: ray.spread,
+            ddx: ray.diff.ddx,
+            ddy: ray.diff.ddy,
+        };
+        let lod = env.lod(self.opts, state, (prep.spread.angle(), prep.cam.gamma), &m);
+        env.color(self.opts, lod, &m)
     }
 
     /// Local shading: ambient plus Phong from every light not in shadow.
