@@ -51,6 +51,13 @@ RD_ROWS = [("rd_primary", "primary set-up from the camera"),
            ("rd_lod", "lod from the footprint (larger axis)"),
            ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
 CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
+# Environment map (feature `envmap`, issue 21): (key, label), wrapper
+# `rm_bench_<key>`, 64 calls each.
+ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
+            ("env_cone_lat", "cone lod with the pole term"),
+            ("env_raydiff", "ray-differential lod with the pole term"),
+            ("env_uv", "direction → (u, v), two CORDIC vectorings")]
+CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
 # TextureSampler rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
@@ -662,31 +669,52 @@ def render(work, old_text, readme):
     w("calls on `inputs::raydiff` (a primary-like state, directions near `(±½, ±½, −0.7)`, normals")
     w("near `+z` with small differentials), the footprint and lod on one 4 × 3 triangle of the demo")
     w("texture size; counted like the calls above. min / mean / max.\n")
-    w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb |")
-    w("|---|---|---|---|")
-    for key, label in RD_ROWS:
-        w(f"| {label} | " + " | ".join(fmt(stat(res[k]["rm_bench_" + key])) for k, _ in ISAS) + " |")
     mean = lambda k, c: stat(res[k]["rm_bench_" + c])[1]
+
+    def call_table(rows):
+        """min / mean / max of each (key, label) wrapper `rm_bench_<key>`."""
+        w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb |")
+        w("|---|---|---|---|")
+        for key, label in rows:
+            w(f"| {label} | " + " | ".join(fmt(stat(res[k]["rm_bench_" + key])) for k, _ in ISAS) + " |")
+
+    def ratio_table(head, per):
+        """Each {label: count(isa)} beside its ratio to the accurate cone lod."""
+        w(f"| {head} | " + " | ".join(f"{isa} | ratio to cone" for _, isa in ISAS) + " |")
+        w("|---|" + "---|---|" * len(ISAS))
+        for label, f in per.items():
+            w(f"| {label} | " + " | ".join(f"{f(k):.1f} | {f(k) / mean(k, 'cone_lod'):.2f}" for k, _ in ISAS) + " |")
+
+    call_table(RD_ROWS)
     w("\nPer textured hit beside the other methods (means): ray-traced differentials = transfer +")
     w("footprint + lod; G-buffer differentials (first hit) = G-buffer set-up + footprint + lod; the")
     w("ratio is to the cone lod with the normal term (accurate; the talk measured about 3× and 2×")
     w("on a GPU). A bounce adds a reflection or refraction to the ray-traced path.\n")
-    w("| method per hit | " + " | ".join(f"{isa} | ratio to cone" for _, isa in ISAS) + " |")
-    w("|---|" + "---|---|" * len(ISAS))
-    per = {
+    ratio_table("method per hit", {
         "table lod FAST (batch, steady)": lambda k: (res[k]["rm_batch_lod_fast"][1] - res[k]["rm_batch_lod_fast"][0]) / 32,
         "table lod": lambda k: mean(k, "lod"),
         "cone lod (with n·d)": lambda k: mean(k, "cone_lod"),
         "ray differentials, ray-traced": lambda k: mean(k, "rd_transfer") + mean(k, "rd_footprint") + mean(k, "rd_lod"),
         "ray differentials, G-buffer": lambda k: mean(k, "rd_gbuffer") + mean(k, "rd_footprint") + mean(k, "rd_lod"),
-    }
-    for label, f in per.items():
-        w(f"| {label} | " + " | ".join(f"{f(k):.1f} | {f(k) / mean(k, 'cone_lod'):.2f}" for k, _ in ISAS) + " |")
+    })
     ps = {k: kv(work, k, "path state") for k, _ in ISAS}
     w(f"\nRay-stack entry (`PathState`) with the feature (and `cone`): {ps['m4'].get('raydiff', '?')} on")
     w(f"the Cortex-M4, {ps['rv'].get('raydiff', '?')} on RV32IMAC (printed by the budget binary); without it")
     w("the sizes of the \"Feature sets\" section (`raystack::PATH_STATE_BYTES`, checked at")
     w("compile time on every target).")
+
+    w("\n## Environment map (feature `envmap`)\n")
+    w("`raymip::envmap` (Ray Tracing Gems ch. 21): the lod of a ray that leaves the scene on a")
+    w("2048 × 1024 latitude-longitude map and the map coordinates of its direction, each its own")
+    w("wrapper, 64 calls on `inputs::envmap` (cone spreads in [2⁻¹², 2⁻⁸) rad, directions of every")
+    w("latitude, direction differentials up to 2⁻⁸); counted like the calls above. min / mean / max.\n")
+    call_table(ENV_ROWS)
+    w("\nPer ray that leaves the scene (means): the lod and the lookup coordinates, beside the cone")
+    w("lod of a surface hit (with n·d) and its ratio to it.\n")
+    ratio_table("method per miss", {
+        "cone lod (pole term) + (u, v)": lambda k: mean(k, "env_cone_lat") + mean(k, "env_uv"),
+        "ray-differential lod (pole term) + (u, v)": lambda k: mean(k, "env_raydiff") + mean(k, "env_uv"),
+    })
 
     gl = geomlod_stats(res)
     recs = {k: kv(work, k, "geomlod") for k, _ in ISAS}

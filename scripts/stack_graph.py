@@ -28,7 +28,12 @@ so; any other write to the stack pointer in such a body fails.
 Usage:
   stack_graph.py --arch arm|riscv --elf FILE [--objdump PROG] [--out FILE]
                  LABEL=SYMBOL ...
+  stack_graph.py --arch arm|riscv --elf FILE --reachable LABEL=SYMBOL ...
   stack_graph.py --self-test
+
+With --reachable, prints the name of every function the entries reach
+through the call graph (the entries included), one per line, and no stack
+depth (scripts/link-checks greps them for soft-float routines).
 
 SYMBOL is a mangled or demangled (llvm-cxxfilt) function name. Prints the
 worst case and the deepest path of each entry; with --out writes one line
@@ -127,7 +132,7 @@ class Graph:
 # ELF32 little-endian: symbols and .stack_sizes.
 
 
-def read_elf(path):
+def read_elf(path, need_sizes=True):
     data = open(path, "rb").read()
     if data[:4] != b"\x7fELF" or data[4] != 1 or data[5] != 1:
         raise SystemExit(f"{path}: not a 32-bit little-endian ELF")
@@ -181,7 +186,7 @@ def read_elf(path):
                     break
             a &= ~1
             sizes[a] = max(v, sizes.get(a, 0))
-    if not found:
+    if not found and need_sizes:
         raise SystemExit(f"{path}: no .stack_sizes section (build with -Z emit-stack-sizes)")
     return funcs, sizes
 
@@ -319,8 +324,8 @@ def parse_insns(lines):
     return out
 
 
-def build_graph(arch, elf, objdump):
-    funcs, sizes = read_elf(elf)
+def build_graph(arch, elf, objdump, need_sizes=True):
+    funcs, sizes = read_elf(elf, need_sizes)
     out = subprocess.run([objdump, "-d", "--no-show-raw-insn", elf], check=True,
                          capture_output=True, text=True).stdout
     starts = sorted(funcs)
@@ -445,17 +450,34 @@ def main():
     ap.add_argument("--elf")
     ap.add_argument("--objdump", default="llvm-objdump")
     ap.add_argument("--out")
+    ap.add_argument("--reachable", action="store_true")
     ap.add_argument("entries", nargs="*", metavar="LABEL=SYMBOL")
     args = ap.parse_args()
     if args.self_test:
         return self_test()
     if not args.arch or not args.elf or not args.entries:
         ap.error("--arch, --elf and at least one LABEL=SYMBOL are required")
-    g, funcs, names = build_graph(args.arch, args.elf, args.objdump)
+    g, funcs, names = build_graph(args.arch, args.elf, args.objdump, not args.reachable)
     by_name = {}
     for a, (n, _) in funcs.items():
         by_name.setdefault(n, a)
         by_name.setdefault(names[a], a)
+    if args.reachable:
+        todo = []
+        for spec in args.entries:
+            sym = spec.partition("=")[2]
+            if sym not in by_name:
+                print(f"{args.elf}: no function named {sym}", file=sys.stderr)
+                return 1
+            todo.append(by_name[sym])
+        seen = set(todo)
+        while todo:
+            for c in g.edges.get(todo.pop(), ()):
+                if c not in seen:
+                    seen.add(c)
+                    todo.append(c)
+        print("\n".join(sorted(funcs[a][0] for a in seen)))
+        return 0
     # The body bound used for builtins, checked against .stack_sizes on every
     # function that has both: it must never be below the compiler's number.
     both = [a for a in g.frames if g.frames[a] is not None and a in g.estimated]

@@ -26,6 +26,7 @@
 //! | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
 //! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
 //! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
+//! | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `envmap` | one or two logarithms; two CORDIC vectorings for `(u, v)` |
 //! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
 //!
 //! # Cargo features
@@ -47,6 +48,7 @@
 //! | `cache` | yes | texel cache, images in any format, BC decoding (`texture::storage::{cache, image}`) | the sampler reads RGBA8 pyramids in memory directly |
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
+//! | `envmap` | no | environment-map lod (cone; with `raydiff` also ray differentials) and the latitude-longitude `(u, v)` of a direction (`envmap`) | no environment-map stage |
 //! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod (`pcpi`, riscv32 only; no effect on other targets) | software log2 |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
@@ -149,6 +151,8 @@ mod macros;
 
 pub mod analysis;
 pub mod camera;
+#[cfg(feature = "envmap")]
+pub mod envmap;
 #[cfg(feature = "ffi")]
 pub mod ffi;
 #[cfg(feature = "f32")]
@@ -170,6 +174,11 @@ pub mod texture;
 #[cfg(test)]
 #[path = "../host-tests/src/reference/pb.rs"]
 mod pb_reference;
+
+// The harness's f64 reference of the environment-map lod and mapping.
+#[cfg(all(test, feature = "envmap"))]
+#[path = "../host-tests/src/reference/envmap.rs"]
+mod envmap_reference;
 
 // The README's Rust example runs as a doctest (`cargo test --doc`), so the
 // front page cannot drift from the API.

@@ -89,6 +89,10 @@ pub type Width = I32F32;
 /// assert!(Spread::checked_from_num(2.0).is_none());
 /// ```
 pub type Spread = I2F30;
+/// A unit vector (ray direction, surface normal), I2F30 components (range
+/// `±2` per component, step `2⁻³⁰`). Used by `envmap` and
+/// `raydiff`.
+pub type UnitVec = [I2F30; 3];
 
 /// Default stack capacity: 10 entries, as in the hardware paper: enough for
 /// `stack_bound(9, 2)` (9 bounces with a reflection and a refraction per

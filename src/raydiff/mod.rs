@@ -51,9 +51,9 @@ pub type PosDiff = I32F32;
 /// A direction differential component: per pixel, I2F30. Example:
 /// [`RayDiff`].
 pub type DirDiff = I2F30;
-/// A unit vector (ray direction, surface normal), I2F30 components.
-/// Example: [`RayDiff`].
-pub type UnitVec = [I2F30; 3];
+/// A unit vector (ray direction, surface normal), I2F30 components
+/// (one home: [`crate::raystack::UnitVec`]). Example: [`RayDiff`].
+pub use crate::raystack::UnitVec;
 /// Relative index of refraction `η = n₁/n₂` (incident over transmitted
 /// medium), I4F28. Example: [`RayDiff`].
 pub type Eta = I4F28;

@@ -276,6 +276,27 @@ pub mod inputs {
     /// The transition interval of the stochastic row: ½.
     pub const TRANSITION: Transition = Transition::from_bits(1 << 15);
 
+    /// One ray leaving the scene (feature `envmap`): a cone spread in
+    /// `[2⁻¹², 2⁻⁸)` radians, a direction of any latitude (components up to
+    /// `±1`, `z` up to `−½`), and direction differentials up to 2⁻⁸.
+    #[cfg(feature = "envmap")]
+    pub fn envmap(
+        r: &mut Rng,
+    ) -> (
+        raymip::raystack::Spread,
+        raymip::raystack::UnitVec,
+        [fixed::types::I2F30; 3],
+        [fixed::types::I2F30; 3],
+    ) {
+        use fixed::types::I2F30;
+        let g = I2F30::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
+        let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
+        let d = [f(1), f(1), f(2)];
+        let dx = [f(9), f(9), f(9)];
+        let dy = [f(9), f(9), f(9)];
+        (g, d, dx, dy)
+    }
+
     /// Ray differentials (feature `raydiff`): one ray of a primary-like
     /// state (`|∂O|` up to 2⁻⁶, `|∂D|` up to 2⁻⁸), direction roughly
     /// `(±½, ±½, −0.7)`, a normal near `+z` with small differentials, hit

@@ -390,6 +390,22 @@ fn main() -> ! {
             bb(axis(&g, Some(&g), None));
             bb(first_hit(&s, &g, [Some(&g), None, Some(&g), None]));
         }
+        // Environment map (feature `envmap`): the lods of a ray that leaves
+        // the scene and the lat-long (u, v) of its direction.
+        {
+            use raymip::envmap::{EnvMap, direction_uv};
+            use raymip::raydiff::DirDiff;
+            let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
+            if let Ok(map) = EnvMap::new(bb(2048), bb(1024)) {
+                let map = bb(map);
+                let (d, dd) = (v3(bb(1 << 29)), [DirDiff::from_bits(bb(-3)); 3]);
+                let g = raymip::raystack::Spread::from_bits(bb(1 << 20));
+                bb(map.cone_lod(g, None));
+                bb(map.cone_lod(g, Some(d)));
+                bb(map.raydiff_lod(dd, bb(dd), bb(Some(d))));
+            }
+            bb(direction_uv(v3(bb(-7))));
+        }
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];
         for &m in &modes {

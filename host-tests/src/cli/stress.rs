@@ -1484,6 +1484,7 @@ fn degenerate_scene() -> crate::scene::Scene {
             (48, 32),
         ),
         background: V3::splat(0.5),
+        environment: None,
         ambient: V3::splat(0.2),
         lights: vec![Light {
             position: V3::new(0.0, 5.0, 0.0),

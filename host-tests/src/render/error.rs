@@ -5,6 +5,7 @@
 use std::fmt;
 
 use raymip::camera::CameraError;
+use raymip::envmap::EnvMapError;
 use raymip::geomlod::{ConfigError, RecordsFull};
 use raymip::table::TableError;
 use raymip::texture::storage::mip::MipError;
@@ -63,6 +64,13 @@ pub enum RenderError {
         /// The firmware's error.
         source: MipError,
     },
+    /// The firmware rejects the environment map's size.
+    Environment {
+        /// The map's name.
+        texture: String,
+        /// The firmware's error.
+        source: EnvMapError,
+    },
     /// The firmware rejects a textured triangle (coordinates out of range).
     Triangle {
         /// Triangle index.
@@ -106,6 +114,9 @@ impl fmt::Display for RenderError {
                 height,
                 source,
             } => write!(f, "texture {texture} ({width}x{height}): {source}"),
+            Self::Environment { texture, source } => {
+                write!(f, "environment map {texture}: {source}")
+            }
             Self::Triangle { triangle, source } => write!(f, "triangle {triangle}: {source}"),
             Self::PbTable(e) => write!(f, "Pb table: {e}"),
             Self::GeomLod(e) => write!(f, "geometric LOD settings: {e}"),
@@ -119,6 +130,7 @@ impl std::error::Error for RenderError {
         match self {
             Self::Camera { source, .. } => Some(source),
             Self::Pyramid { source, .. } => Some(source),
+            Self::Environment { source, .. } => Some(source),
             Self::Triangle { source, .. } | Self::PbTable(source) => Some(source),
             Self::GeomLod(e) => Some(e),
             Self::Records(e) => Some(e),

@@ -23,6 +23,7 @@ macro_rules! add_fields {
 pub mod bvh;
 pub mod camera;
 mod counters;
+pub mod envmap;
 mod error;
 pub mod instances;
 pub mod lod;

@@ -12,6 +12,7 @@ use serde::Serialize;
 use super::RenderError;
 use super::bvh::Bvh;
 use super::camera::CameraFrame;
+use super::envmap::EnvLookup;
 use super::texunit::{MipTexture, assign_block_bases};
 use crate::reference::log2_pb_f64;
 use crate::scene::{Scene, V3};
@@ -55,6 +56,9 @@ pub struct Prepared {
     pub cam: CameraFrame,
     /// The firmware's pixel spread of the camera.
     pub spread: PixelSpread,
+    /// The scene's environment map, ready to sample (`None`: the
+    /// background colour).
+    pub env: Option<EnvLookup>,
 }
 
 impl Prepared {
@@ -82,6 +86,7 @@ impl Prepared {
             .map(MipTexture::new)
             .collect::<Result<Vec<_>, _>>()?;
         assign_block_bases(&mut textures);
+        let env = scene.environment.as_ref().map(EnvLookup::new).transpose()?;
         let pyramids_s = t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
         let (pb_fixed, pb_float, rd_tris) = pb_tables(&scene, &cam, &spread)?;
@@ -104,6 +109,7 @@ impl Prepared {
             },
             cam,
             spread,
+            env,
         })
     }
 }

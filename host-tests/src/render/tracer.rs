@@ -5,6 +5,7 @@ use raymip::raydiff::{RayDiff, UnitVec};
 use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
+use super::envmap::{FloatMiss, MissRay};
 use super::lod::{LodQuery, hit_lod};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
@@ -208,7 +209,7 @@ impl Ctx<'_> {
         let scene = &prep.scene;
         self.counters.rays += 1;
         let Some(hit) = prep.bvh.closest(ray.o, ray.d, ray.tmin, f64::INFINITY) else {
-            *color += ray.weight * scene.background;
+            *color += ray.weight * self.miss(&state, &ray);
             return;
         };
         self.counters.hits += 1;
@@ -340,6 +341,25 @@ impl Ctx<'_> {
             &mut self.log,
         );
         kd * V3::from(c)
+    }
+
+    /// The colour of a ray that leaves the scene: the environment map at
+    /// the method's lod ([`super::envmap`]), else the background colour.
+    fn miss(&self, state: &PathState, ray: &Ray) -> V3 {
+        let prep = self.prep;
+        let Some(env) = &prep.env else {
+            return prep.scene.background;
+        };
+        let m = MissRay {
+            d: ray.d,
+            dq: unit_q(ray.d),
+            float: ray.float.map(|f| FloatMiss {
+                spread: f.spread,
+                ddx: f.diff.ddx,
+                ddy: f.diff.ddy,
+            }),
+        };
+        env.color(self.opts, state, (prep.spread.angle(), prep.cam.gamma), &m)
     }
 
     /// Local shading: ambient plus Phong from every light not in shadow.

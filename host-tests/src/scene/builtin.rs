@@ -4,7 +4,10 @@
 //!   walls (classic minification), one mirror sphere;
 //! * `mirrors`: a room with two facing mirrors and mirror spheres (paths of
 //!   8–10 bounces);
-//! * `glass`: glass spheres and a glass slab over a textured floor (refraction).
+//! * `glass`: glass spheres and a glass slab over a textured floor (refraction);
+//! * `envmap`: a mirror sphere, a glass sphere and a polished floor under a
+//!   latitude-longitude environment map of fine detail ([`sky_texture`]):
+//!   most rays leave the scene (`render::envmap`).
 //!
 //! Textures: `tiles` 512×512 (POT), `bricks` 320×192 (NPOT), `grid` 384×384
 //! (NPOT). Default image size 800×480. [`fronto_quad`] builds the
@@ -13,7 +16,7 @@
 use super::{Camera, Light, Material, Scene, SceneError, TextureImage, Triangle, V3};
 
 /// Names of the built-in scenes.
-pub const NAMES: [&str; 3] = ["hall", "mirrors", "glass"];
+pub const NAMES: [&str; 4] = ["hall", "mirrors", "glass", "envmap"];
 
 /// Default image size of the built-in scenes.
 pub const DEFAULT_SIZE: (u32, u32) = (800, 480);
@@ -24,6 +27,7 @@ pub fn by_name(name: &str) -> Result<Scene, SceneError> {
         "hall" => Ok(hall()),
         "mirrors" => Ok(mirrors()),
         "glass" => Ok(glass()),
+        "envmap" => Ok(envmap()),
         _ => Err(SceneError::UnknownBuiltin {
             name: name.to_string(),
         }),
@@ -263,6 +267,7 @@ pub fn hall() -> Scene {
     Scene {
         camera: camera(V3::new(0.0, 1.7, 4.0), V3::new(0.0, 1.2, -10.0), 50.0),
         background: V3::new(0.55, 0.7, 0.9),
+        environment: None,
         ambient: V3::splat(0.25),
         lights: vec![light([0.0, 3.8, 0.0], 0.5), light([-2.0, 3.8, -30.0], 0.4)],
         materials: vec![
@@ -295,6 +300,7 @@ pub fn mirrors() -> Scene {
     Scene {
         camera: camera(V3::new(-2.6, 1.8, 3.0), V3::new(0.8, 1.0, -4.0), 55.0),
         background: V3::ZERO,
+        environment: None,
         ambient: V3::splat(0.2),
         lights: vec![light([0.0, 3.2, 0.0], 0.55), light([2.5, 3.0, 2.5], 0.35)],
         materials: vec![
@@ -326,6 +332,7 @@ pub fn glass() -> Scene {
     Scene {
         camera: camera(V3::new(0.0, 2.2, 6.0), V3::new(0.0, 0.8, -3.0), 45.0),
         background: V3::new(0.6, 0.7, 0.85),
+        environment: None,
         ambient: V3::splat(0.25),
         lights: vec![light([-4.0, 8.0, 6.0], 0.6), light([5.0, 6.0, -1.0], 0.3)],
         materials: vec![
@@ -335,6 +342,71 @@ pub fn glass() -> Scene {
             diffuse(V3::new(0.2, 0.6, 0.3)),
         ],
         textures: vec![tiles_texture(), bricks_texture(), grid_texture()],
+        triangles: t,
+    }
+}
+
+/// 2048×1024 latitude-longitude environment map (`+y` up): a sky-to-ground
+/// gradient tinted by longitude, a checker of 2×2-texel cells and dark lines
+/// every 32 texels (detail at the finest level, which aliases without mip
+/// mapping in every view of it).
+#[must_use]
+pub fn sky_texture() -> TextureImage {
+    image("sky", 2048, 1024, |x, y| {
+        let t = f64::from(y) / 1023.0;
+        let base = if t < 0.5 {
+            V3::new(0.35, 0.55, 0.95).lerp(V3::new(0.85, 0.9, 1.0), t * 2.0)
+        } else {
+            V3::new(0.6, 0.45, 0.3).lerp(V3::new(0.3, 0.2, 0.12), (t - 0.5) * 2.0)
+        };
+        let band = f64::from((x / 128) % 4) / 3.0;
+        let tint = V3::new(1.0, 0.85 + 0.15 * band, 1.0 - 0.3 * band);
+        if x % 32 == 0 || y % 32 == 0 {
+            return V3::splat(0.05);
+        }
+        let fine = if ((x / 2) + (y / 2)) % 2 == 0 {
+            1.0
+        } else {
+            0.45
+        };
+        (base * tint).map(|c| c * fine)
+    })
+}
+
+/// The environment-map scene: a mirror sphere, a glass sphere and a
+/// polished tiled floor (textured diffuse plus a mirror term) under
+/// [`sky_texture`]; the camera sees the map directly above the horizon,
+/// reflected in the floor and the sphere, and refracted.
+#[must_use]
+pub fn envmap() -> Scene {
+    #[rustfmt::skip]
+    let mut t = quads(&[
+        ([-40.0, 0.0, 40.0], [80.0, 0.0, 0.0], [0.0, 0.0, -80.0], [20.0, 20.0], 0, Some(0)),
+    ]);
+    t.extend(sphere(V3::new(-1.2, 1.0, -1.0), 1.0, 64, 32, 1));
+    t.extend(sphere(V3::new(1.3, 0.9, 0.2), 0.9, 64, 32, 2));
+    Scene {
+        camera: Camera::looking_at(
+            V3::new(0.0, 1.6, 5.0),
+            V3::new(0.0, 1.2, -1.0),
+            60.0,
+            (320, 192),
+        ),
+        background: V3::ZERO,
+        environment: Some(sky_texture()),
+        ambient: V3::splat(0.1),
+        lights: vec![light([3.0, 6.0, 4.0], 0.4)],
+        materials: vec![
+            // A polished tiled floor: textured diffuse plus a mirror term.
+            Material {
+                ambient: V3::splat(0.3),
+                diffuse: V3::splat(0.3),
+                ..mirror(0.6, V3::ONE)
+            },
+            mirror(0.95, V3::ONE),
+            glass_mat(),
+        ],
+        textures: vec![tiles_texture()],
         triangles: t,
     }
 }
@@ -377,6 +449,7 @@ pub fn fronto_quad(
             (width, height),
         ),
         background: V3::ZERO,
+        environment: None,
         ambient: V3::ONE,
         lights: Vec::new(),
         materials: vec![diffuse(V3::ONE)],

@@ -124,8 +124,12 @@ impl Triangle {
 pub struct Scene {
     /// Camera.
     pub camera: Camera,
-    /// Colour of rays that hit nothing.
+    /// Colour of rays that hit nothing (without an environment map).
     pub background: V3,
+    /// Latitude-longitude environment map of rays that hit nothing
+    /// (`render::envmap`; `+y` up, `−z` at the centre), instead of the
+    /// background colour.
+    pub environment: Option<TextureImage>,
     /// Global ambient light.
     pub ambient: V3,
     /// Point lights.
@@ -153,6 +157,7 @@ pub fn aff_adapter(s: aff::Scene) -> Scene {
     Scene {
         camera: s.camera,
         background: s.background,
+        environment: None,
         ambient: s.ambient,
         lights: s.lights,
         materials: s.materials,

@@ -538,6 +538,82 @@ mod rd {
     }
 }
 
+/// Environment map (feature `envmap`): the cone lod without and with
+/// the pole term, the ray-differential lod (with `raydiff`) and the
+/// direction → `(u, v)` mapping, each its own wrapper.
+#[cfg(feature = "envmap")]
+mod env {
+    use raymip::envmap::{EnvMap, direction_uv};
+    use raymip::lod::Lod;
+    use raymip::raystack::{Spread, UnitVec};
+    use raymip::texture::TexCoord;
+
+    /// Cone lod, equator texel (no direction).
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_env_cone(m: &EnvMap, g: Spread) -> Lod {
+        m.cone_lod(g, None)
+    }
+
+    /// Cone lod with the pole term of the direction.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_env_cone_lat(m: &EnvMap, g: Spread, d: UnitVec) -> Lod {
+        m.cone_lod(g, Some(d))
+    }
+
+    /// Ray-differential lod with the pole term.
+    #[cfg(feature = "raydiff")]
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_env_raydiff(
+        m: &EnvMap,
+        dx: [raymip::raydiff::DirDiff; 3],
+        dy: [raymip::raydiff::DirDiff; 3],
+        d: UnitVec,
+    ) -> Lod {
+        m.raydiff_lod(dx, dy, Some(d))
+    }
+
+    /// The lat-long `(u, v)` of a direction.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_env_uv(d: UnitVec) -> (TexCoord, TexCoord) {
+        direction_uv(d)
+    }
+}
+
+/// The environment-map rows (own generator): 64 calls of each
+/// `rm_bench_env_*` wrapper on a 2048 × 1024 map.
+#[cfg(feature = "envmap")]
+#[inline(always)]
+fn envmap_rows() {
+    let mut rng = Rng(inputs::SEED ^ 0xE0E0);
+    let env_in = draw(&mut rng, inputs::envmap);
+    let Ok(map) = raymip::envmap::EnvMap::new(2048, 1024) else {
+        process::exit(1)
+    };
+    let map = bb(map);
+    measure(&env_in, |(g, ..)| {
+        env::rm_bench_env_cone(&map, g).to_bits() as u32
+    });
+    measure(&env_in, |(g, d, ..)| {
+        env::rm_bench_env_cone_lat(&map, g, d).to_bits() as u32
+    });
+    #[cfg(feature = "raydiff")]
+    measure(&env_in, |(_, d, dx, dy)| {
+        env::rm_bench_env_raydiff(&map, dx, dy, d).to_bits() as u32
+    });
+    measure(&env_in, |(_, d, ..)| {
+        let (u, v) = env::rm_bench_env_uv(d);
+        (u.to_bits() ^ v.to_bits()) as u32
+    });
+}
+
 /// `N` inputs drawn by `draw`.
 fn draw<I: Copy>(rng: &mut Rng, mut draw: impl FnMut(&mut Rng) -> I) -> [I; N] {
     let first = draw(rng);
@@ -688,6 +764,8 @@ fn rm_budget_driver(
 
     #[cfg(feature = "raydiff")]
     raydiff_rows();
+    #[cfg(feature = "envmap")]
+    envmap_rows();
 
     if cfg!(target_arch = "riscv32") {
         // Call-inclusive minus the empty call's count.
