@@ -15,7 +15,7 @@
 //! i.e. `(256 − x)(256 − y)`, `x(256 − y)`, `(256 − x)y`, `xy`: each
 //! `≥ 0`, summing to exactly 2¹⁶, with no rounding. They are computed
 //! scaled by 2⁸ (`W' = 2⁸W ≤ 2²⁴`), which is
-//! [`accurate`](super::accurate)'s corner-weight computation at the
+//! [`accurate`]'s corner-weight computation at the
 //! 12-bit positions `16x, 16y` (one multiply, shifts and subtractions).
 //! One level's value per channel, `V = Σ cᵢ·Wᵢ ≤ 255·2¹⁶`, is then the
 //! exact bilinear value at the quantized position in 8.16 (the
@@ -325,11 +325,13 @@ mod tests {
             let e = exact_weights(u64::from(x), u64::from(y));
             let wide = bilinear(t, x, y);
             let texel = bilinear_texel(t, x, y);
-            for c in 0..4 {
-                let sum: u64 = (0..4)
-                    .map(|i| u64::from((t[i] >> (8 * c)) & 0xFF) * e[i])
+            for (c, &wc) in wide.iter().enumerate() {
+                let sum: u64 = t
+                    .iter()
+                    .zip(&e)
+                    .map(|(&ti, &ei)| u64::from((ti >> (8 * c)) & 0xFF) * ei)
                     .sum();
-                assert_eq!(u64::from(wide[c]), sum, "{t:x?} {x} {y} {c}");
+                assert_eq!(u64::from(wc), sum, "{t:x?} {x} {y} {c}");
                 assert_eq!(
                     u64::from((texel >> (8 * c)) & 0xFF),
                     (sum + (1 << 15)) >> 16,
