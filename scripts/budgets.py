@@ -149,32 +149,32 @@ MATRIX_SHARED = {"rm_bench_bilinear": 64, "rm_bench_trilinear": 64, "rm_bench_tr
 # MATRIX_MISSED). Fixed numbers, so a slower build fails.
 MATRIX_CEILINGS = {
     "tw_bil": {"m4": 128, "rv": 178, "rvzbb": 175},
-    "tw_bil_f": {"m4": 103, "rv": 130, "rvzbb": 132},
+    "tw_bil_f": {"m4": 117, "rv": 175, "rvzbb": 162},
     "tw_tri": {"m4": 264, "rv": 355, "rvzbb": 352},
-    "tw_tri_f": {"m4": 212, "rv": 278, "rvzbb": 277},
+    "tw_tri_f": {"m4": 230, "rv": 335, "rvzbb": 313},
     "ts_bil": {"m4": 194, "rv": 246, "rvzbb": 222},
-    "ts_bil_f": {"m4": 169, "rv": 212, "rvzbb": 188},
+    "ts_bil_f": {"m4": 179, "rv": 242, "rvzbb": 211},
     "ts_tri": {"m4": 395, "rv": 486, "rvzbb": 448},
-    "ts_tri_f": {"m4": 348, "rv": 421, "rvzbb": 382},
+    "ts_tri_f": {"m4": 370, "rv": 471, "rvzbb": 414},
     "ts_srgb": {"m4": 701, "rv": 843, "rvzbb": 799},
     "ts_565": {"m4": 684, "rv": 810, "rvzbb": 724},
-    "ts_565_f": {"m4": 630, "rv": 741, "rvzbb": 657},
+    "ts_565_f": {"m4": 658, "rv": 791, "rvzbb": 688},
     "ts_bc1_hit": {"m4": 1730, "rv": 1910, "rvzbb": 1829},
-    "ts_bc1_hit_f": {"m4": 1679, "rv": 1836, "rvzbb": 1758},
+    "ts_bc1_hit_f": {"m4": 1703, "rv": 1887, "rvzbb": 1788},
     "ts_bc1_fill": {"m4": 4233, "rv": 4475, "rvzbb": 4352},
-    "ts_bc1_fill_f": {"m4": 4183, "rv": 4402, "rvzbb": 4282},
+    "ts_bc1_fill_f": {"m4": 4207, "rv": 4453, "rvzbb": 4311},
     "an2": {"m4": 1157, "rv": 1358, "rvzbb": 1293},
     "an4": {"m4": 1687, "rv": 2009, "rvzbb": 1940},
     "an16": {"m4": 4868, "rv": 5919, "rvzbb": 5820},
-    "an2_f": {"m4": 1031, "rv": 1182, "rvzbb": 1111},
-    "an4_f": {"m4": 1438, "rv": 1656, "rvzbb": 1577},
-    "an16_f": {"m4": 3880, "rv": 4092, "rvzbb": 4076},
+    "an2_f": {"m4": 1093, "rv": 1302, "rvzbb": 1207},
+    "an4_f": {"m4": 1559, "rv": 1896, "rvzbb": 1766},
+    "an16_f": {"m4": 4358, "rv": 5463, "rvzbb": 5120},
 }
 MATRIX_BATCH_CEILINGS = {
     "matrix:rm_batch_bilinear": {"m4": 130, "rv": 144, "rvzbb": 143},
-    "rm_batch_bilinear_fast": {"m4": 101, "rv": 119, "rvzbb": 108},
+    "rm_batch_bilinear_fast": {"m4": 124, "rv": 142, "rvzbb": 132},
     "matrix:rm_batch_trilinear": {"m4": 235, "rv": 295, "rvzbb": 294},
-    "rm_batch_trilinear_fast": {"m4": 186, "rv": 206, "rvzbb": 205},
+    "rm_batch_trilinear_fast": {"m4": 210, "rv": 252, "rvzbb": 236},
 }
 MATRIX_MISSED = {
     "Wrap rows, bias and clamps set (goals missed on every ISA)": (
@@ -183,12 +183,19 @@ MATRIX_MISSED = {
         "clamp are one add and the clamp pair the plain path already executes. The ACCURATE misses "
         "(bilinear 116 against 110, trilinear 240 against 220) are the ones analysed under "
         "\"bilinear sample\" and \"trilinear sample\" above: frame, 64-bit fetch counter, level "
-        "record and level check cost about 25 per level before any filtering. The FAST tier packs "
-        "two channels per register (`uxtb16`: 9 in the bilinear body, 10 `mla` where ACCURATE has "
-        "16), which saves 23 on the M4, but its addressing, level selection and frame are the "
-        "ACCURATE ones (27 `cmp` / 22 `it` in both bodies: lod clamp, nearest level, level check), "
-        "so 70 / 130 would need the level selection and addressing shared with the lod stage or "
-        "hoisted out of the call (a batch), not a cheaper kernel."),
+        "record and level check cost about 25 per level before any filtering. The FAST tier "
+        "(exact-product corner weights at D3D11's 8-bit positions, bound 1.5 LSB) filters two "
+        "channels per 32×32→64-bit multiply-accumulate: on the M4 per level eight `umull`/`umlal` and two "
+        "`and`/`bfc` per texel where ACCURATE has 16 `mla` and 16 byte extracts, 10 and 31 "
+        "fewer (bilinear 106 against 116, trilinear 209 against 240); the "
+        "earlier FAST kernel (8-bit corner weights, two 16-bit lanes per register: 93 / 192) was "
+        "cheaper but could not be within 1.5 LSB (`texture::kernel::fast`). On RV32IMAC the pair "
+        "costs `mul`, `mulhu` and two adds and `ror` three instructions (no 64-bit accumulate, no "
+        "rotate), so FAST is only slightly below ACCURATE there (159 against 161, "
+        "304 against 322; Zbb's `rori`: 147 / 284 against 159 / 320). Its addressing, level "
+        "selection and frame are the ACCURATE ones (lod clamp, nearest level, level check: about "
+        "25 `cmp`/`it` in both bodies), so 70 / 130 would need the level selection and addressing "
+        "shared with the lod stage or hoisted out of the call (a batch), not a cheaper kernel."),
     "Mirror u / border v (≤ 1.15 × wrap missed: 1.52 × bilinear, 1.50 × trilinear on the M4)": (
         "Mirror is resolved per tap with a fold (`bic`, compare, conditional negate: 8 `bic.w` in the "
         "bilinear body) and clamp-to-border needs, per tap, an in-range test and a select of the "
@@ -212,11 +219,10 @@ MATRIX_MISSED = {
     "Anisotropic N× (2× 1051 against 540, 4× 1533 against 1020, 16× 4425 against 3900 on the M4)": (
         "The probe set-up (`aniso::probes`: axis lengths, the probe count, the per-probe lod and "
         "step, about 500–570 instructions, not inlined) is paid once per sample, so the goal "
-        "`N × trilinear + 60` leaves 60 for it; each probe then costs about one trilinear sample "
-        "(the 16× FAST row meets its goal on RV32 and Zbb because the set-up is amortised over 16 "
-        "probes). Reaching the goal for small N needs the set-up below 60: an integer square root "
+        "`N × trilinear + 60` leaves 60 for it; each probe then costs about one trilinear sample. "
+        "Reaching the goal for small N needs the set-up below 60: an integer square root "
         "and log2 per axis are already more."),
-    "Batches (steady ≤ single call − 10 % met on 5 of 12)": (
+    "Batches (steady ≤ single call − 10 % met on 6 of 12)": (
         "The batch keeps the slice, the level table and the fetch counters out of the loop (the "
         "counter once per batch), which is the frame and counter part of a call (15–25 on the M4), "
         "but the M4 single calls already have no spills for bilinear, so the saving there is "
@@ -265,7 +271,7 @@ CEILINGS = {
     "trilinear": {"m4": 263, "rv": 354, "rvzbb": 349},
     "lod_fast": {"m4": 20, "rv": 42, "rvzbb": 26},
     "cone_lod_fast": {"m4": 40, "rv": 92, "rvzbb": 54},
-    "trilinear_fast": {"m4": 258, "rv": 340, "rvzbb": 338},
+    "trilinear_fast": {"m4": 230, "rv": 336, "rvzbb": 313},
 }
 
 # Why a goal is missed, per call: what the accurate path must execute,
@@ -297,10 +303,8 @@ MISSED = {
     ),
     "bilinear": (
         "Bit-identical results need the 12-bit weights: a channel times a weight needs 20 bits, so "
-        "two channels cannot share a 32-bit register, and a FAST path that packs them (16-bit lanes, "
-        "so 8-bit weights) loses up to 255/512 ≈ 0.5 LSB per axis to the position rounding alone: "
-        "with the final rounding ½ its bound would be 1.5 LSB, above the 1.0 LSB a FAST path may "
-        "have, so there is none. Per call on the M4 (111): the filter, 53 — the four corner weights "
+        "two channels cannot share a 32-bit register (the FAST tier of the sampler matrix, 8-bit "
+        "positions and 1.5 LSB, pairs them in a 64-bit product instead). Per call on the M4 (111): the filter, 53 — the four corner weights "
         "from one multiply (`w₁₁ = fx·fy`, the others by `sub`/`rsb` with shifted operands; 9 with "
         "the two weight extracts), per channel four byte extracts (`uxtb`/`ubfx`/`lsr`) and four "
         "`mul`/`mla` (32), four rounding adds, 8 to merge the bytes; the addressing, 22 — per axis "
@@ -333,26 +337,25 @@ MISSED = {
         "batch table) saves per hit the frame and the fetch counters (counted once per batch) and "
         "keeps the slice and the level table in registers, but not the filter arithmetic and the "
         "addressing above, so its goal of 120 per hit on the M4 is missed for the same reasons. "
-        "The FAST path (`Sampler::sample_trilinear_fast`, bound 0.8125 LSB, row above) folds the "
-        "level weight into the corner weights and has no per-level rounding: its row below."
+        "The FAST tier (bound 1.5 LSB): its row below."
     ),
 }
 
 MISSED.update({
     "trilinear_fast": (
-        "The FAST path sums both levels' eight texels in one multiply-accumulate chain per channel "
-        "(10-bit position weights, the level weight folded in: 3 multiplies per level for the four "
-        "scaled corner weights, no 8.16 intermediate, no blend multiplies), the lower level summed "
-        "before the upper footprint is read. On the M4 (234, 5 fewer than the accurate 239) the "
-        "arithmetic is still 32 `mla` and 32 byte extracts (one per texel and channel) plus the "
-        "two addressings (2 × ~34 with the level check, as for bilinear) and the frame; the "
-        "multiplies fall from 52 to 46 and the loads/stores stay near 50 (the four running sums, "
-        "the second footprint's texels and weights and the sampler state exceed the 13 usable "
-        "registers). Reaching 150 needs fewer than one extract and one multiply-accumulate per "
-        "texel and channel (two channels per register needs 16-bit lanes and so 8-bit weights, "
-        "above the 1.0 LSB a FAST path may have) or one addressing for both levels. RV32IMAC and "
-        "Zbb as for the accurate path (no `mla`, no bit-field extract, all callee-saved registers "
-        "saved)."
+        "The FAST tier's trilinear sample (`Cfg<Wrap, Wrap, Linear, Fast>`, bound 1.5 LSB): per "
+        "level the position is rounded to 8 bits, the corner weights are exact products scaled "
+        "by 2⁸ (one `mul` and shifted `sub`/`rsb`, as ACCURATE), and each texel gives two pair "
+        "words `t & 0xFF0000FF` and `ror(t, 16) & 0xFF0000FF` (`bfc` and one `and` with a "
+        "rotated operand) that one 32×32→64-bit multiply-accumulate each filters two channels "
+        "with (`umull`/`umlal`: 8 per level where ACCURATE has 16 `mla` and 16 byte extracts); "
+        "the two levels' exact 8.16 values are then blended per channel (`mul`, `mla`) as in "
+        "the accurate path. On the M4 209, 31 fewer than the accurate path, but the two "
+        "addressings (2 × ~34 with the level check), the blend, the frame and the spills of the "
+        "eight accumulator words are above 150. RV32IMAC has no 64-bit accumulate and no "
+        "rotate: each pair costs `mul`, `mulhu` and two adds and the rotation three "
+        "instructions, so the kernel saves little over one channel per multiply (Zbb's `rori` "
+        "saves two per texel)."
     ),
     "lod_fast": (
         "The FAST path drops the interpolation (one read of a 1024-entry table, log2 error ≤ 2⁻¹⁰, "
@@ -575,9 +578,9 @@ def render(work, old_text, readme):
     w("min / mean / max; the goal and the CI ceiling apply to the max. ACCURATE paths (bit-identical")
     w("on every target) beside the FAST paths `table_lod_fast` / `cone_lod_fast` (1024-entry log2")
     w("table without interpolation: log2 error ≤ 2⁻¹⁰, lod error ≤ 2⁻⁸ level as for the accurate")
-    w("paths) and `Sampler::sample_trilinear_fast` (one multiply-accumulate chain of both levels,")
-    w("bound 0.8125 LSB against 0.5625 for the accurate path; no batch form); a goal counts as met")
-    w("when either path of the call meets it.\n")
+    w("paths) and the FAST tier's trilinear sample (`Cfg<Wrap, Wrap, Linear, Fast>`: D3D11's 8-bit")
+    w("positions, exact corner weights, two channels per multiply-accumulate, bound 1.5 LSB against")
+    w("0.5625 for the accurate path); a goal counts as met when either path of the call meets it.\n")
     w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb | goal M4 / RV32 / Zbb | ceiling M4 / RV32 / Zbb |")
     w("|---|---|---|---|---|---|")
     for c, label in ALL_CALLS:
@@ -874,7 +877,8 @@ def matrix_section(res, w, bad):
     w("state `inputs::wrap_state` (wrap on both axes, lod bias +¼, lod clamp [½, 4], set at run")
     w("time); mirror/border rows: `inputs::sampler_state` (mirror on u, clamp-to-border on v, the")
     w("same bias and clamp); anisotropic rows: wrap, no bias, 64 footprints at the probe cap. The")
-    w("FAST tier is `Cfg<_, _, Linear, Fast>` (8-bit weights, two channels per register); sRGB has")
+    w("FAST tier is `Cfg<_, _, Linear, Fast>` (8-bit positions, exact corner weights, two channels per")
+    w("64-bit multiply-accumulate, ≤ 1.5 LSB); sRGB has")
     w("no FAST row because its kernel is the ACCURATE one at both tiers (`texture::kernel`).")
     w("min / mean / max instructions per call; a relative goal is the issue's factor times the")
     w("achieved max of the row named (same tier): mirror/border ≤ 1.15 × wrap, RGB565 ≤ 1.25 ×,")

@@ -145,9 +145,10 @@ pub enum RmPrecision {
     /// f64 filter, sRGB re-encoded ≤ 0.6875 LSB; bit-identical on every
     /// target.
     Accurate = 0,
-    /// FAST: GPU precision (8-bit sub-texel weights and lod fraction),
-    /// bound stated in the Rust `texture::kernel` docs; bit-identical on
-    /// every target.
+    /// FAST: GPU precision (8-bit sub-texel weights and lod fraction,
+    /// exact filter at the quantized position), linear filtering ≤ 1.5 LSB
+    /// from the exact f64 filter (proof in the Rust `texture::kernel::fast`
+    /// docs); bit-identical on every target.
     Fast = 1,
 }
 

@@ -8,7 +8,7 @@
 //! within ½ LSB (nearest texel, linear level: one rounding of an exact
 //! blend), both tiers; bilinear and trilinear ≤ `BILERP_MAX_ERROR_LSB` =
 //! 0.5625 LSB per channel ACCURATE (goal < 0.75), ≤ `FAST_MAX_ERROR_LSB` =
-//! 2.40625 FAST. The run-time address form and the static keys give the
+//! 1.5 FAST. The run-time address form and the static keys give the
 //! same bits.
 
 use proptest::prelude::*;

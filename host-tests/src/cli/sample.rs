@@ -340,7 +340,7 @@ pub struct SampleArgs {
     #[arg(long, default_value_t = 16)]
     pub max_aniso: u8,
     /// Precision tier: accurate (12-bit weights, ≤ 0.5625 LSB) or fast
-    /// (GPU precision: 8 sub-texel bits, ≤ 2.40625 LSB; sRGB data filters
+    /// (GPU precision: 8 sub-texel bits, ≤ 1.5 LSB; sRGB data filters
     /// accurate in both).
     #[arg(long, value_enum, default_value_t = PrecisionArg::Accurate)]
     pub precision: PrecisionArg,

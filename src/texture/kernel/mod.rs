@@ -4,7 +4,7 @@
 //! | kernel ([`Kernel`] for `(C, P)`) | lanes | position weights | module | bound vs exact f64 |
 //! |---|---|---|---|---|
 //! | `(Linear, Accurate)` | RGBA8, one channel per multiply | 12 bits | [`accurate`] | 0.5625 LSB |
-//! | `(Linear, Fast)` | RGBA8, two channels per multiply | 8 bits | [`fast`] | 2.40625 LSB |
+//! | `(Linear, Fast)` | RGBA8, two channels per multiply | 8 bits (exact corner weights) | [`fast`] | 1.5 LSB |
 //! | `(Srgb, _)`, `(SrgbToLinear, _)` | 16-bit linear, one channel per multiply | 16 bits | [`accurate`] + [`srgb`] | 0.6875 sRGB LSB / 0.5101 LSB |
 //!
 //! The sRGB kernels are the same for both tiers: with 8-bit weights the
@@ -91,11 +91,11 @@ mod sealed {
 /// let (u, v) = (TexCoord::from_num(0.5), TexCoord::from_num(0.5));
 /// let (lod, mode) = (Lod::ZERO, Mode::BilinearNearestLevel);
 /// let red = |texel: u32| f64::from(texel & 0xFF);
-/// // Linear data: the mean 127.5, within 0.5625 LSB (ACCURATE), 2.40625 (FAST).
+/// // Linear data: the mean 127.5, within 0.5625 LSB (ACCURATE), 1.5 (FAST).
 /// let mut acc: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Linear, Accurate>> = Sampler::new(pyramid);
 /// assert!((red(acc.sample(u, v, lod, mode)) - 127.5).abs() <= 0.5625);
 /// let mut fast: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Linear, Fast>> = Sampler::new(pyramid);
-/// assert!((red(fast.sample(u, v, lod, mode)) - 127.5).abs() <= 2.40625);
+/// assert!((red(fast.sample(u, v, lod, mode)) - 127.5).abs() <= 1.5);
 /// // sRGB data: decoded (0 and 1 linear), mean ½ linear, re-encoded:
 /// // 255·(1.055·0.5^(1/2.4) − 0.055) = 187.5, within 0.6875 sRGB LSB.
 /// let mut srgb: Sampler<_, Cfg<ClampToEdge, ClampToEdge, Srgb, Fast>> = Sampler::new(pyramid);
@@ -219,7 +219,7 @@ impl Kernel for (Linear, Fast) {
     const WEIGHT_BITS: u32 = fast::FAST_WEIGHT_BITS;
     const TIER: Precision = Precision::Fast;
     type Lanes = Texel;
-    type Wide = fast::Wide;
+    type Wide = accurate::Wide;
 
     #[inline(always)]
     fn load(t: Texel) -> Texel {
@@ -243,15 +243,17 @@ impl Kernel for (Linear, Fast) {
     }
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        fast::round(fast::bilinear(l, fx, fy))
+        fast::bilinear_texel(l, fx, fy)
     }
+    // A FAST level value is an exact 8.16 value: rounding, level blend and
+    // probes are the ACCURATE kernel's (module docs of `fast`).
     #[inline(always)]
     fn round(w: Self::Wide) -> Texel {
-        fast::round(w)
+        accurate::round_wide_in_range(w)
     }
     #[inline(always)]
     fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-        fast::blend(a, b, t)
+        accurate::blend_wide_in_range(a, b, t)
     }
     #[inline(always)]
     fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
@@ -259,11 +261,11 @@ impl Kernel for (Linear, Fast) {
     }
     #[inline(always)]
     fn probe(w: Self::Wide) -> [u32; 4] {
-        fast::unpack(w)
+        w
     }
     #[inline(always)]
     fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-        fast::blend_unpacked(a, b, t)
+        accurate::blend_keep(a, b, t)
     }
     #[inline(always)]
     fn probe_mean(sum: [u32; 4], n: u32) -> Texel {

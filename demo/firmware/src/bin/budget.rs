@@ -12,9 +12,9 @@
 //! * `rm_bench_bilinear`: one bilinear sample at the nearest level;
 //! * `rm_bench_trilinear`: one trilinear sample (two bilinear levels and the
 //!   blend; the LOD always has a fractional part, so both levels are read);
-//! * `rm_bench_trilinear_fast`: the same through the FAST trilinear path
-//!   (`Sampler::sample_trilinear_fast`, one chain of eight texels per
-//!   channel, bound 0.8125 LSB);
+//! * `rm_bench_trilinear_fast`: the same through the FAST tier's wrap
+//!   sampler (`Cfg<Wrap, Wrap, Linear, Fast>`: 8-bit positions, exact
+//!   corner weights, bound 1.5 LSB);
 //! * `rm_bench_f32_*`: the same four stages in f32 (`raymip::float`, libm)
 //!   on the same inputs converted to f32 outside the call: hardware FPU on
 //!   the Cortex-M4F, soft float on RV32IMAC;
