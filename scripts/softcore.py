@@ -505,6 +505,11 @@ def main():
     print(rb)
     if a.docs and pc is not None:
         print(targets[-1][3])
+    plus10 = lambda v: math.ceil(v * 1.1)
+    print("softcore.py: this measurement + 10 % (SOFTCORE_CEILINGS, SOFTCORE_BATCH_CEILINGS):",
+          {k: plus10(d[k]["cycles"][2]) for d, rows in ((mcalls, MATRIX_ROWS), (rcalls, RD_ROWS))
+           for k, *_ in rows},
+          {k: plus10((mbatches[k][2] - mbatches[k][0]) / 32) for *_, k in MATRIX_BATCHES})
     if bad:
         print("softcore.py: FAIL (above the ceiling)\n  " + "\n  ".join(bad))
         return 1
