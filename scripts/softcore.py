@@ -4,8 +4,12 @@ block between <!-- softcore:begin --> and <!-- softcore:end -->) and docs/bare-m
 (the throughput comparison between <!-- softcore-throughput:begin --> and
 <!-- softcore-throughput:end -->). Every number comes from the files in
 --work: demo.out (the demo tile on the model: counters, render cycles,
-soc-sim's summary line), cycles.out (per-call cycles), size-*.txt (`size -A`)
-and table1/table1.json (textured hits per frame of the BART scenes).
+soc-sim's summary line), cycles.out (per-call cycles), matrix.out and
+raydiff.out (per-call cycles of the sampler matrix and the ray differentials:
+the `cycles-matrix` and `cycles-raydiff` binaries, rows named by the keys of
+scripts/budgets.py `MATRIX_ROWS` / `RD_ROWS`, whose labels they get here),
+size-*.txt (`size -A`) and table1/table1.json (textured hits per frame of the
+BART scenes).
 
 With the texture co-processor (issue 23) the same files prefixed `pcpi-`
 (the SoC with ENABLE_TEX = 1, firmware feature `pcpi`) and tb.out (the
@@ -16,7 +20,9 @@ hardware paper (between <!-- softcore-paper:begin --> and
 in BUDGETS.md (the `fpga-data` comment of its block).
 
 --check writes nothing and reports differences (exit 1 on them only with
-RAYMIP_BUDGETS_STRICT=1). --self-test checks the parsers on fixed text.
+RAYMIP_BUDGETS_STRICT=1). A matrix or ray-differential row above its ceiling
+(SOFTCORE_CEILINGS) fails in both modes. --self-test checks the parsers on
+fixed text.
 """
 import argparse
 import hashlib
@@ -25,6 +31,9 @@ import math
 import os
 import re
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from budgets import MATRIX_BATCHES, MATRIX_ROWS, RD_ROWS  # noqa: E402  (row keys and labels: one home)
 
 B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
@@ -45,6 +54,20 @@ PAPER_SIZE = (800, 480)
 CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
          ("lod_fast", "table lod FAST"), ("cone_lod_fast", "cone lod FAST (with n·d)"),
          ("bilinear", "bilinear sample"), ("trilinear", "trilinear sample")]
+
+# CI ceilings of the matrix and ray-differential rows on the soft core: max
+# cycles per call (batches: steady cycles per hit), the achieved value of
+# the measurement that wrote BUDGETS.md + 10 %. Fixed numbers, so a slower
+# build fails; a row without a ceiling fails too.
+SOFTCORE_CEILINGS = {
+    "ts_bil": 1254, "ts_tri": 2384, "ts_srgb": 4112, "ts_565": 4076, "ts_bc1_fill": 21640,
+    "ts_bc1_hit": 9262, "an2": 7102, "an4": 10299, "an16": 29322, "tw_bil": 925, "tw_tri": 1812,
+    "tw_bil_f": 716, "tw_tri_f": 1412, "ts_bil_f": 1083, "ts_tri_f": 2090, "ts_565_f": 3706,
+    "ts_bc1_fill_f": 21306, "ts_bc1_hit_f": 8929, "an2_f": 6324, "an4_f": 8665, "an16_f": 22849,
+    "rd_primary": 10742, "rd_transfer": 14466, "rd_reflect": 13881, "rd_refract": 36757,
+    "rd_footprint": 5465, "rd_lod": 2996, "rd_gbuffer": 8054,
+}
+SOFTCORE_BATCH_CEILINGS = {"tw_bil": 775, "tw_tri": 1436, "tw_bil_f": 573, "tw_tri_f": 1111}
 
 CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
                      r"instret min (\d+) sum (\d+) max (\d+)$")
@@ -131,7 +154,77 @@ def si(x):
     return f"{x:.3g} "
 
 
-def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc=None):
+def ceiling_cell(key, value, table, bad, what):
+    """The ceiling of row `key` as a table cell; a value above it (or a row
+    without one) goes into `bad` with the achieved + 10 % figure."""
+    ceil = table.get(key)
+    if ceil is None or value > ceil:
+        bad.append(f"{what} {key}: {value:g} cycles > ceiling {ceil} "
+                   f"(achieved + 10 % = {math.ceil(value * 1.1)})")
+    return str(ceil) if ceil is not None else "—"
+
+
+def matrix_lines(calls, batches, mx, bad):
+    """The soft-core block's sampler-matrix and ray-differential sections
+    (lines); ceiling failures appended to `bad`. `mx`: (matrix calls,
+    matrix baseline, matrix batches, raydiff calls, raydiff baseline)."""
+    mcalls, mbase, mbatches, rcalls, rbase = mx
+    cpi = lambda c: c["cycles"][1] / c["instret"][1]
+    L = ["\n### Sampler matrix (issue 20)\n"]
+    L.append("The rows of the \"Sampler matrix\" section above: the same wrappers, subjects, inputs and")
+    L.append("order (`demo/firmware/src/probes.rs`, driven by `demo/firmware/src/bin/cycles_matrix.rs` here and")
+    L.append("`budget.rs` under QEMU), counted like the calls above minus the counter reads (baseline")
+    L.append(f"{mbase[0]} cycles, {mbase[2]} instruction). A BC1 row counts the first call of each pair (cache")
+    L.append("emptied, blocks decoded) or the second (hits). min / mean / max over the 64 inputs; the CI")
+    L.append("ceiling applies to the max cycles (achieved + 10 %, `SOFTCORE_CEILINGS` in `scripts/softcore.py`).\n")
+    L.append("| call | tier | cycles | instructions | CPI | ceiling (max cycles) |")
+    L.append("|---|---|---|---|---|---|")
+    for key, label, tier, *_ in MATRIX_ROWS:
+        c = mcalls[key]
+        ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "matrix")
+        L.append(f"| {label} | {tier} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+    L.append("\nBatches of the wrap rows (`Sampler::sample_batch`, 32 then 64 hits per call): steady per hit =")
+    L.append("(count for 64 − count for 32) / 32, amortised = count for 64 / 64.\n")
+    L.append("| batch | tier | cycles steady | cycles amortised | instructions steady | CPI steady | ceiling (steady cycles) |")
+    L.append("|---|---|---|---|---|---|---|")
+    for label, tier, _, key in MATRIX_BATCHES:
+        c32, i32, c64, i64 = mbatches[key]
+        cs, is_ = (c64 - c32) / 32, (i64 - i32) / 32
+        ceil = ceiling_cell(key, cs, SOFTCORE_BATCH_CEILINGS, bad, "matrix batch")
+        L.append(f"| {label} | {tier} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {cs / is_:.2f} | {ceil} |")
+    L.append("\n### Ray differentials (issue 21)\n")
+    L.append("The rows of the \"Ray differentials\" section above (`probes::raydiff_rows`, the same inputs), by")
+    L.append("`demo/firmware/src/bin/cycles_raydiff.rs` (feature `raydiff`; a binary of its own, as the matrix and")
+    L.append(f"the ray differentials together exceed the RAM), minus the counter reads ({rbase[0]} cycles, {rbase[2]}")
+    L.append("instruction). min / mean / max; ceiling on the max cycles as above.\n")
+    L.append("| call | cycles | instructions | CPI | ceiling (max cycles) |")
+    L.append("|---|---|---|---|---|")
+    for key, label in RD_ROWS:
+        c = rcalls[key]
+        ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "raydiff")
+        L.append(f"| {label} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+    mean = lambda d, k: d[k]["cycles"][1]
+    c32, _, c64, _ = batches["lod_fast"]
+    per = {
+        "table lod FAST (batch, steady)": (c64 - c32) / 32,
+        "table lod": mean(calls, "lod"),
+        "cone lod (with n·d)": mean(calls, "cone_lod"),
+        "ray differentials, ray-traced": sum(mean(rcalls, k) for k in ("rd_transfer", "rd_footprint", "rd_lod")),
+        "ray differentials, G-buffer": sum(mean(rcalls, k) for k in ("rd_gbuffer", "rd_footprint", "rd_lod")),
+    }
+    L.append("\nPer textured hit (mean cycles), as in the instruction table above: ray-traced differentials =")
+    L.append("transfer + footprint + lod, G-buffer (first hit) = G-buffer set-up + footprint + lod; ratio to the")
+    L.append("cone lod with the normal term (the talk measured about 3× and 2× on a GPU).\n")
+    L.append("| method per hit | cycles | ratio to cone |")
+    L.append("|---|---|---|")
+    cone = per["cone lod (with n·d)"]
+    for label, c in per.items():
+        L.append(f"| {label} | {c:.1f} | {c / cone:.2f} |")
+    return L
+
+
+def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc=None,
+                  mx=None, bad=None):
     L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
     L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
     src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
@@ -190,6 +283,8 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
         lod1 = pcalls["lod"]["cycles"][1] + pcalls["trilinear"]["cycles"][1]
         L.append(f"\nLOD + trilinear per textured hit: {lod0:.1f} → {lod1:.1f} cycles. Demo tile: "
                  f"{render[0]} → {prender[0]} cycles ({prender[0] / pcounters.get('pixels', 1):.0f} per pixel).")
+    if mx is not None:
+        L += matrix_lines(calls, batches, mx, bad)
     L.append(B_END)
     return "\n".join(L)
 
@@ -309,6 +404,12 @@ def self_test():
     assert replace_block(t, B_BEGIN, B_END, "X") == "a\nXb\n".replace("Xb", "X\nb")
     assert replace_block("a\n## Code size\n", B_BEGIN, B_END, "X", "## Code size") == "a\nX\n\n## Code size\n"
     assert si(322000) == "322 k" and si(3.2e6) == "3.2 M"
+    bad = []
+    assert ceiling_cell("x", 10, {"x": 11}, bad, "m") == "11" and not bad
+    assert ceiling_cell("x", 12, {"x": 11}, bad, "m") == "11" and len(bad) == 1
+    assert ceiling_cell("y", 1, {}, bad, "m") == "—" and len(bad) == 2
+    assert all(k in SOFTCORE_CEILINGS for k, *_ in MATRIX_ROWS + RD_ROWS)
+    assert all(k in SOFTCORE_BATCH_CEILINGS for *_, k in MATRIX_BATCHES)
     print("softcore.py: self-test passed")
 
 
@@ -362,7 +463,17 @@ def main():
             m = TB_RE.search(rd("tb.out"))
             tb = tuple(int(x) for x in m.groups()) if m else None
         pc = (pcalls, pbatches, pcounters, prender, tb)
-    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc)
+    mcalls, mbase = parse_cycles(rd("matrix.out"))
+    mbatches = parse_batches(rd("matrix.out"))
+    rcalls, rbase = parse_cycles(rd("raydiff.out"))
+    missing = [k for k, *_ in MATRIX_ROWS if k not in mcalls or mcalls[k]["n"] != 64]
+    missing += [k for *_, k in MATRIX_BATCHES if k not in mbatches]
+    missing += [k for k, _ in RD_ROWS if k not in rcalls or rcalls[k]["n"] != 64]
+    if missing or mbase is None or rbase is None:
+        sys.exit(f"softcore.py: matrix.out / raydiff.out lack {missing or 'the baseline'}")
+    bad = []
+    bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc,
+                       (mcalls, mbase, mbatches, rcalls, rbase), bad)
     rb = readme_block(calls, counters, render, rows)
     targets = [(a.budgets, B_BEGIN, B_END, bb, "## Code size"), (a.readme, R_BEGIN, R_END, rb, None)]
     if a.docs and pc is not None:
@@ -394,6 +505,14 @@ def main():
     print(rb)
     if a.docs and pc is not None:
         print(targets[-1][3])
+    plus10 = lambda v: math.ceil(v * 1.1)
+    print("softcore.py: this measurement + 10 % (SOFTCORE_CEILINGS, SOFTCORE_BATCH_CEILINGS):",
+          {k: plus10(d[k]["cycles"][2]) for d, rows in ((mcalls, MATRIX_ROWS), (rcalls, RD_ROWS))
+           for k, *_ in rows},
+          {k: plus10((mbatches[k][2] - mbatches[k][0]) / 32) for *_, k in MATRIX_BATCHES})
+    if bad:
+        print("softcore.py: FAIL (above the ceiling)\n  " + "\n  ".join(bad))
+        return 1
     if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":
         return 1
     return 0

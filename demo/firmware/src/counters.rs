@@ -98,3 +98,131 @@ pub fn instret32() -> u32 {
         0
     }
 }
+
+/// Cycles and instructions of one call of `call` (the counter reads
+/// included: subtract an empty measurement).
+#[inline(always)]
+pub fn once<O>(call: impl FnOnce() -> O) -> (u32, u32) {
+    let c0 = cycles32();
+    let i0 = instret32();
+    let y = call();
+    let i1 = instret32();
+    let c1 = cycles32();
+    core::hint::black_box(y);
+    (c1.wrapping_sub(c0), i1.wrapping_sub(i0))
+}
+
+/// Cycles and instructions statistics of a series of calls.
+type Stats = (Stat, Stat);
+
+/// Adds one call's counts (cycles, instructions) to `st`.
+fn add(st: &mut Stats, (c, i): (u32, u32)) {
+    st.0.add(c);
+    st.1.add(i);
+}
+
+/// The soft core's [`Meter`](crate::probes::Meter): counts each call with
+/// [`once`] and prints every row on the console, minus the counter reads
+/// ([`CycleMeter::new`]), in the format `scripts/softcore.py` parses:
+/// `call KEY: n 64 cycles min A sum B max C instret min D sum E max F` per
+/// row, `batch KEY: n32 cycles A instret B n64 cycles C instret D` per
+/// batch row.
+pub struct CycleMeter {
+    /// The empty measurement's minimum (cycles, instructions).
+    base: (u32, u32),
+}
+
+impl CycleMeter {
+    /// Measures the baseline (the counter reads alone, [`N`](crate::inputs::N)
+    /// times: constant on an in-order core without caches; its minimum is
+    /// subtracted from every count) and prints it:
+    /// `baseline: cycles min A max B instret min C max D`.
+    #[must_use]
+    pub fn new() -> Self {
+        let mut st = (Stat::EMPTY, Stat::EMPTY);
+        for _ in 0..crate::inputs::N {
+            add(&mut st, once(|| ()));
+        }
+        crate::println!(
+            "baseline: cycles min {} max {} instret min {} max {}",
+            st.0.min,
+            st.0.max,
+            st.1.min,
+            st.1.max
+        );
+        Self {
+            base: (st.0.min, st.1.min),
+        }
+    }
+
+    fn print(&self, key: &str, (cy, ir): Stats) {
+        let n = crate::inputs::N;
+        let (cy, ir) = (cy.minus(self.base.0, n), ir.minus(self.base.1, n));
+        crate::println!(
+            "call {key}: n {n} cycles min {} sum {} max {} instret min {} sum {} max {}",
+            cy.min,
+            cy.sum,
+            cy.max,
+            ir.min,
+            ir.sum,
+            ir.max
+        );
+    }
+}
+
+impl Default for CycleMeter {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl crate::probes::Meter for CycleMeter {
+    fn row<I: Copy>(
+        &mut self,
+        key: &str,
+        xs: &[I; crate::inputs::N],
+        mut call: impl FnMut(I) -> u32,
+    ) {
+        let mut st = (Stat::EMPTY, Stat::EMPTY);
+        for &x in xs {
+            let x = core::hint::black_box(x);
+            add(&mut st, once(|| call(x)));
+        }
+        self.print(key, st);
+    }
+
+    fn pairs<S, I: Copy>(
+        &mut self,
+        keys: [&str; 2],
+        s: &mut S,
+        xs: &[I; crate::inputs::N],
+        mut prepare: impl FnMut(&mut S),
+        mut call: impl FnMut(&mut S, I) -> u32,
+    ) {
+        let mut st = [(Stat::EMPTY, Stat::EMPTY); 2];
+        for &x in xs {
+            let x = core::hint::black_box(x);
+            prepare(s);
+            for k in &mut st {
+                add(k, once(|| call(s, x)));
+            }
+        }
+        for (key, k) in keys.into_iter().zip(st) {
+            self.print(key, k);
+        }
+    }
+
+    fn batch(&mut self, key: &str, mut call: impl FnMut(usize) -> usize) {
+        let n = crate::inputs::N;
+        let (c32, i32_) = once(|| call(n / 2));
+        let (c64, i64_) = once(|| call(n));
+        let (bc, bi) = self.base;
+        crate::println!(
+            "batch {key}: n32 cycles {} instret {} n64 cycles {} instret {}",
+            c32.saturating_sub(bc),
+            i32_.saturating_sub(bi),
+            c64.saturating_sub(bc),
+            i64_.saturating_sub(bi)
+        );
+    }
+}

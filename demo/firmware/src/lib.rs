@@ -1,10 +1,14 @@
 //! Support code of the bare-metal demo binaries: stack painting (the
-//! worst-case stack measurement of the demos and budgets) and the
+//! worst-case stack measurement of the demos and budgets), the
 //! pseudo-random inputs of the budget calls ([`inputs`], one home for every
-//! counter that times them: QEMU traces, `minstret`, a soft core's `rdcycle`).
+//! counter that times them: QEMU traces, `minstret`, a soft core's `rdcycle`)
+//! and the sampler-matrix and ray-differential probes on those inputs
+//! ([`probes`]: wrappers, subjects and the order of their calls).
 //!
-//! This crate denies `unsafe_code`; the [`stack`] module is the one
-//! exception (it reads the stack pointer and writes/reads memory below it).
+//! This crate denies `unsafe_code`; the exceptions are the [`stack`] module
+//! (it reads the stack pointer and writes/reads memory below it) and the
+//! `#[unsafe(no_mangle)]` attribute of the [`probes`] wrappers (stable
+//! symbol names for the QEMU traces).
 #![no_std]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
@@ -27,6 +31,7 @@ macro_rules! measured_calls {
 // Output, exit and cycle counters on QEMU and on the soft core.
 pub mod console;
 pub mod counters;
+pub mod probes;
 pub use console::exit;
 
 /// Stack painting: fill the free stack below the current stack pointer with
@@ -140,6 +145,61 @@ pub mod inputs {
             self.0 = x;
             x
         }
+    }
+
+    /// The inputs of the budget calls in the budgets' order, all from one
+    /// generator seeded with [`SEED`]: [`N`] draws of each kind. `rng` is
+    /// the generator after the last draw (the geometric-LOD instances of
+    /// the budgets follow from it).
+    pub struct Draws {
+        /// Raw words (the empty call's inputs).
+        pub empty: [u32; N],
+        /// [`table_lod`] inputs.
+        pub lod: [(PathLength, Log2Pb); N],
+        /// [`cone_lod`] inputs.
+        pub cone: [(Width, I16F16, Option<U1F31>); N],
+        /// [`bilinear`] inputs.
+        pub bilinear: [(TexCoord, TexCoord, Lod); N],
+        /// [`trilinear`] inputs.
+        pub trilinear: [(TexCoord, TexCoord, Lod); N],
+        /// [`aniso`] inputs.
+        pub aniso: [(TexCoord, TexCoord, Footprint); N],
+        /// The generator after these draws.
+        pub rng: Rng,
+    }
+
+    impl Draws {
+        /// Every kind drawn in turn from `Rng(SEED)`.
+        #[must_use]
+        pub fn new() -> Self {
+            let mut rng = Rng(SEED);
+            let empty = draw(&mut rng, Rng::next);
+            let lod = draw(&mut rng, table_lod);
+            let cone = draw(&mut rng, cone_lod);
+            let bilinear = draw(&mut rng, bilinear);
+            let trilinear = draw(&mut rng, trilinear);
+            let aniso = draw(&mut rng, aniso);
+            Self {
+                empty,
+                lod,
+                cone,
+                bilinear,
+                trilinear,
+                aniso,
+                rng,
+            }
+        }
+    }
+
+    impl Default for Draws {
+        fn default() -> Self {
+            Self::new()
+        }
+    }
+
+    /// [`N`] inputs drawn by `f` in turn.
+    pub fn draw<T>(rng: &mut Rng, mut f: impl FnMut(&mut Rng) -> T) -> [T; N] {
+        core::array::from_fn(|_| f(rng))
     }
 
     /// Table lod: `Pl` over 2⁻¹⁶ .. 2¹⁶ scene units, `log2 Pb` over [−16, 16).

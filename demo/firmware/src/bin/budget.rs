@@ -33,7 +33,14 @@
 //! * `rm_bench_geomlod` / `rm_batch_geomlod`: `geomlod::Selector::fill`
 //!   in discrete and stochastic mode, one instance per call (64 calls per
 //!   mode) and 32 / 64 instances per call (per instance = the difference
-//!   over 32).
+//!   over 32);
+//! * `rm_bench_rd_*` (feature `raydiff`): the ray-differential stages.
+//!
+//! The sampler wrappers (`rm_bench_bilinear`, `rm_bench_trilinear*`,
+//! `rm_batch_bilinear`, `rm_batch_trilinear`, `rm_bench_ts_*`, the matrix's
+//! `*_fast`), the ray-differential wrappers, their subjects and the order
+//! of their calls live in [`raymip_demo_firmware::probes`], shared with the
+//! soft core's cycle counts (`src/bin/cycles_matrix.rs`).
 //!
 //! `scripts/budgets` counts the instructions executed from each wrapper's
 //! entry to its return from the QEMU execution trace (`-d exec,nochain`
@@ -57,36 +64,22 @@ use raymip::lod::{
 use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
 use raymip::table::Log2Pb;
-use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
-use raymip::texture::kernel::{Accurate, Fast, Linear, Srgb};
-use raymip::texture::sampler::aniso::Footprint;
-use raymip::texture::storage::cache::TexelCache;
-use raymip::texture::storage::format::{Bc1, Rgb565};
-use raymip::texture::storage::format::{ColorSpace, TexelFormat};
-use raymip::texture::storage::image::{Image, image_len};
-use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
-use raymip::texture::{AddressMode, Cfg, Mode, Sampler, TexCoord};
-use raymip_demo_firmware::inputs::{self, N, Rng};
+use raymip::texture::storage::mip::{Pyramid, Texel};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip_demo_firmware::inputs::{self, Draws, N};
+use raymip_demo_firmware::probes::{
+    self, Images, Meter, SampleIn, Subjects, Tex, TexFast, rm_batch_bilinear, rm_batch_trilinear,
+    rm_bench_bilinear, rm_bench_trilinear, rm_bench_trilinear_fast,
+};
 use raymip_demo_firmware::stack;
-use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 use semihosting::{println, process};
 
 /// Stack bytes painted per measurement.
 const PAINT: usize = 2048;
 
-type Tex = Sampler<Pyramid<'static>>;
-type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
 type LodIn = (PathLength, Log2Pb);
 type LodNormIn = (NormPl, Log2Pb);
 type ConeIn = (Width, I16F16, Option<U1F31>);
-type SampleIn = (TexCoord, TexCoord, Lod);
-/// The state rows' key: mirror on u, clamp-to-border on v.
-type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
-type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
-/// The state rows' key at the FAST tier.
-type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
-/// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
-type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
 type Instances = [(u32, Depth)];
 
 /// One table LOD.
@@ -119,30 +112,6 @@ pub fn rm_bench_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 #[inline(never)]
 pub fn rm_bench_cone_lod_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
     cone_lod_fast(w, delta, n_dot_d)
-}
-
-/// One bilinear sample at the nearest level.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_bilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::BilinearNearestLevel)
-}
-
-/// One trilinear sample.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One FAST trilinear sample (the FAST tier's wrap sampler).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_trilinear_fast(s: &mut TexFast, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
 }
 
 /// One table LOD in f32.
@@ -208,160 +177,6 @@ pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [Option<Lod>]) -> usize {
 pub fn rm_batch_cone_lod_fast(hits: &[ConeIn], out: &mut [Lod]) -> usize {
     cone_lod_fast_batch(hits, out)
 }
-
-/// A batch of bilinear samples at the nearest level.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_bilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-    s.sample_batch(hits, Mode::BilinearNearestLevel, out)
-}
-
-/// A batch of trilinear samples.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-    s.sample_batch(hits, Mode::Trilinear, out)
-}
-
-/// One bilinear sample through `TextureSampler` (RGBA8, state with
-/// mirror/border addressing, bias and lod clamp).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::BilinearNearestLevel)
-}
-
-/// One trilinear sample of an RGBA8 pyramid with the state key.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of the same texels read as sRGB (decoded to
-/// linear, filtered, re-encoded).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_srgb(
-    s: &mut Ts<Pyramid<'_>, Srgb>,
-    u: TexCoord,
-    v: TexCoord,
-    lod: Lod,
-) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of an RGB565 image (decoded per texel read).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_rgb565(
-    s: &mut Ts<Image<'_, Rgb565>>,
-    u: TexCoord,
-    v: TexCoord,
-    lod: Lod,
-) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of a BC1 image through an 8×2-block texel cache,
-/// called in pairs: first with the cache emptied by the caller (every
-/// block the sample reads is filled, i.e. decoded), then the same sample
-/// again (every texel read hits).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One anisotropic sample (trilinear probes): called 64 times with at
-/// most 2 probes, then 4, then 16 (three samplers, one per cap).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_aniso(
-    s: &mut Sampler<Pyramid<'_>>,
-    u: TexCoord,
-    v: TexCoord,
-    fp: &Footprint,
-) -> Texel {
-    s.sample_aniso(u, v, fp)
-}
-
-/// The sampler matrix of issue 20: one wrapper per call, key and tier.
-/// The wrap rows (RGBA8, wrap on both axes, lod bias and clamp set:
-/// [`inputs::wrap_state`]) have the type of the plain rows, so they call
-/// the plain rows' wrappers a second time (a second wrapper of the same
-/// type would be merged with the first by the compiler), plus
-/// `rm_bench_bilinear_fast` / `rm_batch_*_fast` for the FAST bilinear and
-/// batches; `rm_bench_ts_*_fast`: the FAST tier of the `rm_bench_ts_*`
-/// rows above (mirror/border key).
-macro_rules! sample_wrapper {
-    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
-        $(#[$m])*
-        #[allow(unsafe_code)]
-        #[unsafe(no_mangle)]
-        #[inline(never)]
-        pub fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-            s.sample(u, v, lod, $mode)
-        }
-    };
-}
-sample_wrapper!(
-    /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
-    rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
-sample_wrapper!(
-    /// RGBA8 bilinear, mirror/border key, FAST.
-    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
-sample_wrapper!(
-    /// RGBA8 trilinear, mirror/border key, FAST.
-    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
-sample_wrapper!(
-    /// RGB565 trilinear, mirror/border key, FAST.
-    rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
-sample_wrapper!(
-    /// BC1 trilinear through the texel cache, mirror/border key, FAST
-    /// (called in pairs like [`rm_bench_ts_bc1`]).
-    rm_bench_ts_bc1_fast, TsF<Bc1Cache<'_>>, Mode::Trilinear);
-
-/// One anisotropic sample at the FAST tier (trilinear probes), called like
-/// [`rm_bench_ts_aniso`].
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_aniso_fast(
-    s: &mut Tw<'_, Fast>,
-    u: TexCoord,
-    v: TexCoord,
-    fp: &Footprint,
-) -> Texel {
-    s.sample_aniso(u, v, fp)
-}
-
-/// Batches of the wrap rows (32, then 64 hits per call).
-macro_rules! batch_wrapper {
-    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
-        $(#[$m])*
-        #[allow(unsafe_code)]
-        #[unsafe(no_mangle)]
-        #[inline(never)]
-        pub fn $name(s: &mut $ty, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-            s.sample_batch(hits, $mode, out)
-        }
-    };
-}
-batch_wrapper!(
-    /// Batch: RGBA8 bilinear, wrap, bias and clamp set, FAST.
-    rm_batch_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
-batch_wrapper!(
-    /// Batch: RGBA8 trilinear, wrap, bias and clamp set, FAST.
-    rm_batch_trilinear_fast, Tw<'_, Fast>, Mode::Trilinear);
 
 /// The instance records of one instance: called 64 times with the
 /// discrete selector, then 64 times with the stochastic one.
@@ -451,90 +266,38 @@ fn measure<I: Copy>(inputs: &[I], mut call: impl FnMut(I) -> u32) -> (Stat, usiz
     (s, stack::used(top, PAINT))
 }
 
-/// Ray differentials (feature `raydiff`): the primary set-up, one
-/// transfer, a reflection, a refraction, the footprint, its lod and the
-/// G-buffer first-hit set-up, each its own wrapper.
-#[cfg(feature = "raydiff")]
-mod rd {
-    use fixed::types::I2F30;
-    use raymip::lod::Lod;
-    use raymip::raydiff::footprint::RayDiffTriangle;
-    use raymip::raydiff::gbuffer::{GSample, first_hit};
-    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
-    use raymip::raystack::PathLength;
-    use raymip::texture::sampler::aniso::Footprint;
+/// The budgets' [`Meter`]: each row's calls through [`measure`] (the QEMU
+/// trace counts them by wrapper symbol; the `minstret` statistics of these
+/// rows are not printed), in the order of [`probes::sampler_rows`].
+struct Traced;
 
-    /// Primary-ray set-up from the camera axes.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_primary(
-        d: UnitVec,
-        f: UnitVec,
-        r: [DirDiff; 3],
-        u: [DirDiff; 3],
-    ) -> RayDiff {
-        RayDiff::primary(d, f, r, u).0
+impl Meter for Traced {
+    #[inline(always)]
+    fn row<I: Copy>(&mut self, _key: &str, xs: &[I; N], call: impl FnMut(I) -> u32) {
+        measure(xs, call);
     }
 
-    /// One transfer to a hit.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
-        s.transfer(d, t, n).0
+    #[inline(always)]
+    fn pairs<S, I: Copy>(
+        &mut self,
+        _keys: [&str; 2],
+        s: &mut S,
+        xs: &[I; N],
+        mut prepare: impl FnMut(&mut S),
+        mut call: impl FnMut(&mut S, I) -> u32,
+    ) {
+        measure(xs, |x| {
+            prepare(s);
+            let a = call(s, x);
+            a ^ call(s, x)
+        });
     }
 
-    /// One reflection.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
-        s.reflect(d, n, dn, dn).0
-    }
-
-    /// One refraction (η = 1/1.5, cos θₜ = 0.9).
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
-        s.refract(
-            d,
-            n,
-            dn,
-            dn,
-            Eta::from_bits(0x0AAA_AAAB),
-            I2F30::from_bits(0x3999_999A),
-        )
-        .0
-    }
-
-    /// The footprint of a transferred state.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_footprint(
-        t: &RayDiffTriangle,
-        dpx: [PosDiff; 3],
-        dpy: [PosDiff; 3],
-    ) -> Footprint {
-        t.footprint(dpx, dpy)
-    }
-
-    /// The lod of a footprint.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
-        t.lod(fp)
-    }
-
-    /// G-buffer first-hit set-up from four neighbours.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
-        first_hit(p, c, nb).0
+    #[inline(always)]
+    fn batch(&mut self, _key: &str, mut call: impl FnMut(usize) -> usize) {
+        for n in [N / 2, N] {
+            bb(call(n));
+        }
     }
 }
 
@@ -592,8 +355,8 @@ mod env {
 #[cfg(feature = "envmap")]
 #[inline(always)]
 fn envmap_rows() {
-    let mut rng = Rng(inputs::SEED ^ 0xE0E0);
-    let env_in = draw(&mut rng, inputs::envmap);
+    let mut rng = inputs::Rng(inputs::SEED ^ 0xE0E0);
+    let env_in = inputs::draw(&mut rng, inputs::envmap);
     let Ok(map) = raymip::envmap::EnvMap::new(2048, 1024) else {
         process::exit(1)
     };
@@ -614,38 +377,6 @@ fn envmap_rows() {
     });
 }
 
-/// `N` inputs drawn by `draw`.
-fn draw<I: Copy>(rng: &mut Rng, mut draw: impl FnMut(&mut Rng) -> I) -> [I; N] {
-    let first = draw(rng);
-    let mut out = [first; N];
-    for x in out.iter_mut().skip(1) {
-        *x = draw(rng);
-    }
-    out
-}
-
-/// The `TextureSampler` and geometric-LOD subjects (built in `main`).
-struct Parity<'a> {
-    /// RGBA8, [`inputs::sampler_state`], linear.
-    rgba: Ts<Pyramid<'a>>,
-    /// The same texels read as sRGB, results re-encoded.
-    srgb: Ts<Pyramid<'a>, Srgb>,
-    /// The demo texture converted to RGB565.
-    rgb565: Ts<Image<'a, Rgb565>>,
-    /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
-    bc1: Ts<Bc1Cache<'a>>,
-    /// RGBA8, wrap, at most 2, 4 and 16 probes.
-    aniso: [Sampler<Pyramid<'a>>; 3],
-    /// The same at the FAST tier.
-    aniso_fast: [Tw<'a, Fast>; 3],
-    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
-    wrap: (Tex, TexFast),
-    /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
-    /// Discrete and stochastic (`t` = ½) geometric LOD.
-    geomlod: [(&'static str, Selector); 2],
-}
-
 /// The driver: every measured call happens here (the trace counter ends a
 /// call when execution is back inside this function).
 #[allow(unsafe_code)]
@@ -655,14 +386,18 @@ fn rm_budget_driver(
     tex: &mut Tex,
     texfast: &mut TexFast,
     texf: &SamplerF32<'_>,
-    par: &mut Parity<'_>,
+    par: &mut Subjects<'_>,
+    geomlod: &[(&str, Selector); 2],
 ) {
-    let mut rng = Rng(inputs::SEED);
-    let empty_in = draw(&mut rng, Rng::next);
-    let lod_in = draw(&mut rng, inputs::table_lod);
-    let cone_in = draw(&mut rng, inputs::cone_lod);
-    let bil_in = draw(&mut rng, inputs::bilinear);
-    let tri_in = draw(&mut rng, inputs::trilinear);
+    let Draws {
+        empty: empty_in,
+        lod: lod_in,
+        cone: cone_in,
+        bilinear: bil_in,
+        trilinear: tri_in,
+        aniso: aniso_in,
+        mut rng,
+    } = Draws::new();
 
     let (empty, _) = measure(&empty_in, rm_bench_empty);
     let (lod, lod_stack) = measure(&lod_in, |(pl, pb)| {
@@ -719,40 +454,20 @@ fn rm_budget_driver(
     }
     bb((&lod_out, &cone_out, &tex_out));
 
-    // TextureSampler: the bilinear/trilinear inputs above; BC1 in pairs
-    // (cache emptied here, outside the counted call; then the same sample).
-    let aniso_in = draw(&mut rng, inputs::aniso);
-    measure(&bil_in, |(u, v, l)| {
-        rm_bench_ts_bilinear(&mut par.rgba, u, v, l)
-    });
-    measure(&tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear(&mut par.rgba, u, v, l)
-    });
-    measure(&tri_in, |(u, v, l)| {
-        rm_bench_ts_srgb(&mut par.srgb, u, v, l)
-    });
-    measure(&tri_in, |(u, v, l)| {
-        rm_bench_ts_rgb565(&mut par.rgb565, u, v, l)
-    });
-    measure(&tri_in, |(u, v, l)| {
-        par.bc1.source_mut().invalidate();
-        let a = rm_bench_ts_bc1(&mut par.bc1, u, v, l);
-        a ^ rm_bench_ts_bc1(&mut par.bc1, u, v, l)
-    });
-    for s in &mut par.aniso {
-        measure(&aniso_in, |(u, v, fp)| rm_bench_ts_aniso(s, u, v, &fp));
-    }
-    matrix_rows(par, &bil_in, &tri_in, &aniso_in);
+    // The TextureSampler rows and the rest of the sampler matrix
+    // (`probes::sampler_rows`): the bilinear/trilinear inputs above, BC1 in
+    // pairs (cache emptied outside the counted call; then the same sample).
+    probes::sampler_rows(&mut Traced, par, &bil_in, &tri_in, &aniso_in);
 
     // Geometric LOD: one instance per call, then 32 and 64 per call.
     let inst: [(u32, Depth); N] = inputs::instances(&mut rng, 0);
     let mut rec = [InstanceLod::default(); 2 * N];
-    for (_, sel) in &par.geomlod {
+    for (_, sel) in geomlod {
         measure(&inst, |x| {
             rm_bench_geomlod(sel, x, &mut rec).unwrap_or(usize::MAX) as u32
         });
     }
-    for (name, sel) in &par.geomlod {
+    for (name, sel) in geomlod {
         for n in [N / 2, N] {
             let r = rm_batch_geomlod(sel, bb(&inst[..n]), &mut rec);
             if n == N {
@@ -762,8 +477,18 @@ fn rm_budget_driver(
     }
     bb(&rec);
 
+    // The ray-differential rows (`probes::raydiff_rows`, own generator) and
+    // the ray-stack entry size with the feature.
     #[cfg(feature = "raydiff")]
-    raydiff_rows();
+    {
+        if probes::raydiff_rows(&mut Traced).is_none() {
+            process::exit(1)
+        }
+        println!(
+            "path state raydiff: {} bytes",
+            core::mem::size_of::<raymip::raystack::PathState>()
+        );
+    }
     #[cfg(feature = "envmap")]
     envmap_rows();
 
@@ -800,157 +525,6 @@ fn rm_budget_driver(
     }
 }
 
-/// The sampler matrix of issue 20 (after the other rows: no generator
-/// draws, their inputs unchanged): the wrap rows (single calls, then
-/// batches of 32 and 64 hits), the FAST tier of the mirror/border rows,
-/// and anisotropic FAST.
-#[inline(always)]
-fn matrix_rows(
-    par: &mut Parity<'_>,
-    bil_in: &[SampleIn; N],
-    tri_in: &[SampleIn; N],
-    aniso_in: &[(TexCoord, TexCoord, Footprint); N],
-) {
-    let (wa, wf) = &mut par.wrap;
-    measure(bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
-    measure(tri_in, |(u, v, l)| rm_bench_trilinear(wa, u, v, l));
-    measure(bil_in, |(u, v, l)| rm_bench_bilinear_fast(wf, u, v, l));
-    measure(tri_in, |(u, v, l)| rm_bench_trilinear_fast(wf, u, v, l));
-    let mut out = [0; N];
-    for n in [N / 2, N] {
-        bb(rm_batch_bilinear(wa, bb(&bil_in[..n]), &mut out));
-        bb(rm_batch_trilinear(wa, bb(&tri_in[..n]), &mut out));
-        bb(rm_batch_bilinear_fast(wf, bb(&bil_in[..n]), &mut out));
-        bb(rm_batch_trilinear_fast(wf, bb(&tri_in[..n]), &mut out));
-    }
-    bb(&out);
-    let (rgba, rgb565, bc1) = &mut par.fast;
-    measure(bil_in, |(u, v, l)| rm_bench_ts_bilinear_fast(rgba, u, v, l));
-    measure(tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear_fast(rgba, u, v, l)
-    });
-    measure(tri_in, |(u, v, l)| rm_bench_ts_rgb565_fast(rgb565, u, v, l));
-    measure(tri_in, |(u, v, l)| {
-        bc1.source_mut().invalidate();
-        let a = rm_bench_ts_bc1_fast(bc1, u, v, l);
-        a ^ rm_bench_ts_bc1_fast(bc1, u, v, l)
-    });
-    for s in &mut par.aniso_fast {
-        measure(aniso_in, |(u, v, fp)| rm_bench_ts_aniso_fast(s, u, v, &fp));
-    }
-}
-
-/// The ray-differential rows (own generator: the other rows' inputs are
-/// unchanged): 64 calls of each `rm_bench_rd_*` wrapper, and the ray-stack
-/// entry size with the feature.
-#[cfg(feature = "raydiff")]
-#[inline(always)]
-fn raydiff_rows() {
-    use raymip::raydiff::footprint::RayDiffTriangle;
-    use raymip::raydiff::gbuffer::GSample;
-    use raymip::table::{Coord, TexTriangle};
-    let mut rng = Rng(inputs::SEED ^ 0xD1FF);
-    let rd_in = draw(&mut rng, inputs::raydiff);
-    let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
-    let Ok(tri) = TexTriangle::new(
-        [[c(0), c(0), c(0)], [c(4), c(0), c(1)], [c(0), c(3), c(0)]],
-        [[c(0), c(0)], [c(2), c(0)], [c(0), c(1)]],
-        TEX_SIZE,
-        TEX_SIZE,
-    ) else {
-        process::exit(1)
-    };
-    let tri = RayDiffTriangle::new(&tri);
-    let h = |x: u32| x & 0xFFFF;
-    measure(&rd_in, |(s, d, _, n, _)| {
-        h(rd::rm_bench_rd_primary(d, n, s.dddx, s.dddy).dddx[0].to_bits() as u32)
-    });
-    measure(&rd_in, |(s, d, t, n, _)| {
-        h(rd::rm_bench_rd_transfer(&s, d, t, n).dodx[0].to_bits() as u32)
-    });
-    measure(&rd_in, |(s, d, _, n, dn)| {
-        h(rd::rm_bench_rd_reflect(&s, d, n, dn).dddx[0].to_bits() as u32)
-    });
-    measure(&rd_in, |(s, d, _, n, dn)| {
-        h(rd::rm_bench_rd_refract(&s, d, n, dn).dddx[0].to_bits() as u32)
-    });
-    measure(&rd_in, |(s, ..)| {
-        h(rd::rm_bench_rd_footprint(&tri, s.dodx, s.dody).x[0].to_bits() as u32)
-    });
-    let fps = rd_in.map(|(s, ..)| tri.footprint(s.dodx, s.dody));
-    measure(&fps, |fp| rd::rm_bench_rd_lod(&tri, &fp).to_bits() as u32);
-    let g = rd_in.map(|(s, d, t, n, _)| GSample {
-        p: s.dodx,
-        n: d,
-        t: t.min(PathLength::from_bits(u64::from(n[0].to_bits() as u32))),
-    });
-    measure(&rd_in, |(s, _, t, n, _)| {
-        let cen = GSample { p: s.dody, n, t };
-        let i = (t.to_bits() as usize) % (N - 4);
-        h(rd::rm_bench_rd_gbuffer(
-            &s,
-            &cen,
-            [
-                Some(&g[i]),
-                Some(&g[i + 1]),
-                Some(&g[i + 2]),
-                Some(&g[i + 3]),
-            ],
-        )
-        .dodx[0]
-            .to_bits() as u32)
-    });
-    println!(
-        "path state raydiff: {} bytes",
-        core::mem::size_of::<raymip::raystack::PathState>()
-    );
-}
-
-/// Bytes of the RGB565 and BC1 images (demo texture geometry).
-const RGB565_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Rgb565);
-const BC1_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Bc1);
-
-/// The `TextureSampler` and geometric-LOD subjects over the demo texture
-/// `p` (geometry `g`), `rgb565` (its texels converted) and `bc1` (its
-/// blocks).
-fn parity<'a>(
-    g: Geometry,
-    p: Pyramid<'static>,
-    rgb565: &'a [u8],
-    bc1: &'a [u8],
-) -> Option<Parity<'a>> {
-    let state = inputs::sampler_state()?;
-    let rgb565 = Image::typed(g, ColorSpace::Linear, rgb565).ok()?;
-    let bc1 = Image::typed(g, ColorSpace::Linear, bc1).ok()?;
-    let aniso = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
-    let anisof = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
-    let wrap = inputs::wrap_state()?;
-    Some(Parity {
-        rgba: Sampler::with_state(p, state).ok()?,
-        srgb: Sampler::with_state(p, state).ok()?,
-        rgb565: Sampler::with_state(rgb565, state).ok()?,
-        bc1: Sampler::with_state(TexelCache::new(bc1), state).ok()?,
-        aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
-        aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
-        wrap: (
-            Sampler::with_state(p, wrap).ok()?,
-            Sampler::with_state(p, wrap).ok()?,
-        ),
-        fast: (
-            Sampler::with_state(p, state).ok()?,
-            Sampler::with_state(rgb565, state).ok()?,
-            Sampler::with_state(TexelCache::new(bc1), state).ok()?,
-        ),
-        geomlod: [
-            ("discrete", inputs::selector(LodMode::Discrete)?),
-            (
-                "stochastic",
-                inputs::selector(LodMode::Stochastic(inputs::TRANSITION))?,
-            ),
-        ],
-    })
-}
-
 raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         process::exit(1)
@@ -962,18 +536,18 @@ raymip_demo_entry::main! {
         process::exit(1)
     };
     let mut tex = Sampler::wrap(p);
-    let bc1: [u8; BC1_LEN] = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
-    let mut rgb565 = [0u8; RGB565_LEN];
-    for (b, &t) in rgb565
-        .chunks_exact_mut(2)
-        .zip(raymip_demo_scene::TEX0.iter())
-    {
-        b.copy_from_slice(&(TexelFormat::Rgb565.encode(t) as u16).to_le_bytes());
-    }
-    let Some(mut par) = parity(g, p, &rgb565, &bc1) else {
+    let images = Images::new();
+    let Some(mut par) = Subjects::new(g, p, &images) else {
         process::exit(1)
     };
+    let (Some(discrete), Some(stochastic)) = (
+        inputs::selector(LodMode::Discrete),
+        inputs::selector(LodMode::Stochastic(inputs::TRANSITION)),
+    ) else {
+        process::exit(1)
+    };
+    let geomlod = [("discrete", discrete), ("stochastic", stochastic)];
     let mut texfast = Sampler::new(p);
-    rm_budget_driver(&mut tex, &mut texfast, &texf, &mut par);
+    rm_budget_driver(&mut tex, &mut texfast, &texf, &mut par, &geomlod);
     process::exit(0)
 }

@@ -1,0 +1,584 @@
+//! The sampler-matrix (issue 20) and ray-differential (issue 21) probes in
+//! one place for every counter that times them: the QEMU instruction traces
+//! of `src/bin/budget.rs` (`scripts/budgets`) and the PicoRV32 cycle
+//! counters of `src/bin/cycles_matrix.rs` (`scripts/softcore`).
+//!
+//! * the measured wrappers: each a `#[no_mangle] #[inline(never)]` function
+//!   around one library call (`rm_bench_*` one call, `rm_batch_*` a
+//!   batch), the symbols `scripts/budgets.py` finds in the traces;
+//! * their subjects ([`Images`], [`Subjects`]: the demo texture as RGBA8,
+//!   RGB565 and BC1 behind the sampler keys of the matrix);
+//! * the calls of every row in one order ([`sampler_rows`],
+//!   [`raydiff_rows`]) on the inputs of [`crate::inputs`], through a
+//!   [`Meter`] that counts each call its own way and names it by the row
+//!   keys of `scripts/budgets.py` (`MATRIX_ROWS`, `RD_ROWS`).
+//!
+//! The wrappers use `#[unsafe(no_mangle)]` (a stable symbol name for the
+//! traces; no other unsafe code), each with `allow(unsafe_code)`.
+
+use core::hint::black_box as bb;
+
+use raymip::lod::Lod;
+use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
+use raymip::texture::kernel::{Accurate, Fast, Linear, Srgb};
+use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::storage::cache::TexelCache;
+use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
+use raymip::texture::storage::image::{Image, image_len};
+use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
+use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
+use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
+
+use crate::inputs::{self, N, Rng};
+
+/// The plain sampler: RGBA8 pyramid, wrap, ACCURATE.
+pub type Tex = Sampler<Pyramid<'static>>;
+/// The plain sampler at the FAST tier.
+pub type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
+/// One bilinear or trilinear input: `u`, `v`, lod.
+pub type SampleIn = (TexCoord, TexCoord, Lod);
+/// One anisotropic input: `u`, `v`, footprint.
+pub type AnisoIn = (TexCoord, TexCoord, Footprint);
+/// The state rows' key: mirror on u, clamp-to-border on v.
+pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
+/// The BC1 image behind an 8×2-block texel cache.
+pub type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
+/// The state rows' key at the FAST tier.
+pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
+/// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
+pub type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
+
+/// One bilinear sample at the nearest level.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_bilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::BilinearNearestLevel)
+}
+
+/// One trilinear sample.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One FAST trilinear sample (the FAST tier's wrap sampler).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_trilinear_fast(s: &mut TexFast, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// A batch of bilinear samples at the nearest level.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_bilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+    s.sample_batch(hits, Mode::BilinearNearestLevel, out)
+}
+
+/// A batch of trilinear samples.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+    s.sample_batch(hits, Mode::Trilinear, out)
+}
+
+/// One bilinear sample through `TextureSampler` (RGBA8, state with
+/// mirror/border addressing, bias and lod clamp).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::BilinearNearestLevel)
+}
+
+/// One trilinear sample of an RGBA8 pyramid with the state key.
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One trilinear sample of the same texels read as sRGB (decoded to
+/// linear, filtered, re-encoded).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_srgb(
+    s: &mut Ts<Pyramid<'_>, Srgb>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One trilinear sample of an RGB565 image (decoded per texel read).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_rgb565(
+    s: &mut Ts<Image<'_, Rgb565>>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One trilinear sample of a BC1 image through an 8×2-block texel cache,
+/// called in pairs: first with the cache emptied by the caller (every
+/// block the sample reads is filled, i.e. decoded), then the same sample
+/// again (every texel read hits).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    s.sample(u, v, lod, Mode::Trilinear)
+}
+
+/// One anisotropic sample (trilinear probes): called 64 times with at
+/// most 2 probes, then 4, then 16 (three samplers, one per cap).
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_aniso(
+    s: &mut Sampler<Pyramid<'_>>,
+    u: TexCoord,
+    v: TexCoord,
+    fp: &Footprint,
+) -> Texel {
+    s.sample_aniso(u, v, fp)
+}
+
+/// The sampler matrix of issue 20: one wrapper per call, key and tier.
+/// The wrap rows (RGBA8, wrap on both axes, lod bias and clamp set:
+/// [`inputs::wrap_state`]) have the type of the plain rows, so they call
+/// the plain rows' wrappers a second time (a second wrapper of the same
+/// type would be merged with the first by the compiler), plus
+/// `rm_bench_bilinear_fast` / `rm_batch_*_fast` for the FAST bilinear and
+/// batches; `rm_bench_ts_*_fast`: the FAST tier of the `rm_bench_ts_*`
+/// rows above (mirror/border key).
+macro_rules! sample_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        $(#[$m])*
+        #[allow(unsafe_code)]
+        #[unsafe(no_mangle)]
+        #[inline(never)]
+        pub fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+            s.sample(u, v, lod, $mode)
+        }
+    };
+}
+sample_wrapper!(
+    /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
+    rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
+sample_wrapper!(
+    /// RGBA8 bilinear, mirror/border key, FAST.
+    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
+sample_wrapper!(
+    /// RGBA8 trilinear, mirror/border key, FAST.
+    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
+sample_wrapper!(
+    /// RGB565 trilinear, mirror/border key, FAST.
+    rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
+sample_wrapper!(
+    /// BC1 trilinear through the texel cache, mirror/border key, FAST
+    /// (called in pairs like [`rm_bench_ts_bc1`]).
+    rm_bench_ts_bc1_fast, TsF<Bc1Cache<'_>>, Mode::Trilinear);
+
+/// One anisotropic sample at the FAST tier (trilinear probes), called like
+/// [`rm_bench_ts_aniso`].
+#[allow(unsafe_code)]
+#[unsafe(no_mangle)]
+#[inline(never)]
+pub fn rm_bench_ts_aniso_fast(
+    s: &mut Tw<'_, Fast>,
+    u: TexCoord,
+    v: TexCoord,
+    fp: &Footprint,
+) -> Texel {
+    s.sample_aniso(u, v, fp)
+}
+
+/// Batches of the wrap rows (32, then 64 hits per call).
+macro_rules! batch_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        $(#[$m])*
+        #[allow(unsafe_code)]
+        #[unsafe(no_mangle)]
+        #[inline(never)]
+        pub fn $name(s: &mut $ty, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+            s.sample_batch(hits, $mode, out)
+        }
+    };
+}
+batch_wrapper!(
+    /// Batch: RGBA8 bilinear, wrap, bias and clamp set, FAST.
+    rm_batch_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
+batch_wrapper!(
+    /// Batch: RGBA8 trilinear, wrap, bias and clamp set, FAST.
+    rm_batch_trilinear_fast, Tw<'_, Fast>, Mode::Trilinear);
+
+/// Bytes of the RGB565 image (demo texture geometry).
+pub const RGB565_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Rgb565);
+/// Bytes of the BC1 image (demo texture geometry).
+pub const BC1_LEN: usize = image_len(TEX_SIZE, TEX_SIZE, TEX_LEVELS, TexelFormat::Bc1);
+
+/// The stored texels of the RGB565 and BC1 rows.
+pub struct Images {
+    /// The demo texture's texels converted to RGB565 (little-endian).
+    pub rgb565: [u8; RGB565_LEN],
+    /// Pseudo-random BC1 blocks (seed `SEED ^ 0xBC1`).
+    pub bc1: [u8; BC1_LEN],
+}
+
+impl Images {
+    /// The images of the demo texture.
+    #[must_use]
+    pub fn new() -> Self {
+        let bc1 = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
+        let mut rgb565 = [0u8; RGB565_LEN];
+        for (b, &t) in rgb565
+            .chunks_exact_mut(2)
+            .zip(raymip_demo_scene::TEX0.iter())
+        {
+            b.copy_from_slice(&(TexelFormat::Rgb565.encode(t) as u16).to_le_bytes());
+        }
+        Self { rgb565, bc1 }
+    }
+}
+
+impl Default for Images {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The samplers of the `TextureSampler` and matrix rows (built by
+/// [`Subjects::new`]).
+pub struct Subjects<'a> {
+    /// RGBA8, [`inputs::sampler_state`], linear.
+    pub rgba: Ts<Pyramid<'a>>,
+    /// The same texels read as sRGB, results re-encoded.
+    pub srgb: Ts<Pyramid<'a>, Srgb>,
+    /// The demo texture converted to RGB565.
+    pub rgb565: Ts<Image<'a, Rgb565>>,
+    /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
+    pub bc1: Ts<Bc1Cache<'a>>,
+    /// RGBA8, wrap, at most 2, 4 and 16 probes.
+    pub aniso: [Sampler<Pyramid<'a>>; 3],
+    /// The same at the FAST tier.
+    pub aniso_fast: [Tw<'a, Fast>; 3],
+    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
+    pub wrap: (Tex, TexFast),
+    /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
+    pub fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
+}
+
+impl<'a> Subjects<'a> {
+    /// The subjects over the demo texture `p` (geometry `g`) and `images`
+    /// (`None` cannot happen with the demo texture and the states of
+    /// [`inputs`]).
+    #[must_use]
+    pub fn new(g: Geometry, p: Pyramid<'static>, images: &'a Images) -> Option<Self> {
+        let state = inputs::sampler_state()?;
+        let rgb565 = Image::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
+        let bc1 = Image::typed(g, ColorSpace::Linear, &images.bc1).ok()?;
+        let aniso = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
+        let anisof = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
+        let wrap = inputs::wrap_state()?;
+        Some(Self {
+            rgba: Sampler::with_state(p, state).ok()?,
+            srgb: Sampler::with_state(p, state).ok()?,
+            rgb565: Sampler::with_state(rgb565, state).ok()?,
+            bc1: Sampler::with_state(TexelCache::new(bc1), state).ok()?,
+            aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
+            aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
+            wrap: (
+                Sampler::with_state(p, wrap).ok()?,
+                Sampler::with_state(p, wrap).ok()?,
+            ),
+            fast: (
+                Sampler::with_state(p, state).ok()?,
+                Sampler::with_state(rgb565, state).ok()?,
+                Sampler::with_state(TexelCache::new(bc1), state).ok()?,
+            ),
+        })
+    }
+}
+
+/// How the calls of a row are counted: each implementation times the
+/// wrapper calls its own way (a QEMU trace sees them by symbol, a soft core
+/// reads its counters around each) and keys its results by row.
+pub trait Meter {
+    /// The row `key`: `call` once per input of `xs`, each call counted.
+    fn row<I: Copy>(&mut self, key: &str, xs: &[I; N], call: impl FnMut(I) -> u32);
+
+    /// The rows `keys[0]` and `keys[1]`: per input of `xs`, `prepare` (not
+    /// counted), then `call` twice on the same input, the first call
+    /// counted under `keys[0]`, the second under `keys[1]`.
+    fn pairs<S, I: Copy>(
+        &mut self,
+        keys: [&str; 2],
+        s: &mut S,
+        xs: &[I; N],
+        prepare: impl FnMut(&mut S),
+        call: impl FnMut(&mut S, I) -> u32,
+    );
+
+    /// The batch row `key`: `call(n)` once with `n` = 32, then with 64.
+    fn batch(&mut self, key: &str, call: impl FnMut(usize) -> usize);
+}
+
+/// The sampler rows of `s`, in this order: the `TextureSampler` rows
+/// (mirror u / border v, ACCURATE: RGBA8 bilinear and trilinear, sRGB,
+/// RGB565, BC1 fill/hit pairs, anisotropic 2×, 4×, 16×), then the rest of
+/// the matrix: the wrap rows (single calls, then batches of 32 and 64
+/// hits), the FAST tier of the mirror/border rows and anisotropic FAST.
+/// Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
+/// single-call row). The inputs are drawn by the caller (the budgets' order).
+#[inline(always)]
+pub fn sampler_rows<M: Meter>(
+    m: &mut M,
+    s: &mut Subjects<'_>,
+    bil_in: &[SampleIn; N],
+    tri_in: &[SampleIn; N],
+    aniso_in: &[AnisoIn; N],
+) {
+    m.row("ts_bil", bil_in, |(u, v, l)| {
+        rm_bench_ts_bilinear(&mut s.rgba, u, v, l)
+    });
+    m.row("ts_tri", tri_in, |(u, v, l)| {
+        rm_bench_ts_trilinear(&mut s.rgba, u, v, l)
+    });
+    m.row("ts_srgb", tri_in, |(u, v, l)| {
+        rm_bench_ts_srgb(&mut s.srgb, u, v, l)
+    });
+    m.row("ts_565", tri_in, |(u, v, l)| {
+        rm_bench_ts_rgb565(&mut s.rgb565, u, v, l)
+    });
+    m.pairs(
+        ["ts_bc1_fill", "ts_bc1_hit"],
+        &mut s.bc1,
+        tri_in,
+        |c| c.source_mut().invalidate(),
+        |c, (u, v, l)| rm_bench_ts_bc1(c, u, v, l),
+    );
+    for (key, a) in ["an2", "an4", "an16"].into_iter().zip(&mut s.aniso) {
+        m.row(key, aniso_in, |(u, v, fp)| rm_bench_ts_aniso(a, u, v, &fp));
+    }
+
+    let (wa, wf) = &mut s.wrap;
+    m.row("tw_bil", bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
+    m.row("tw_tri", tri_in, |(u, v, l)| {
+        rm_bench_trilinear(wa, u, v, l)
+    });
+    m.row("tw_bil_f", bil_in, |(u, v, l)| {
+        rm_bench_bilinear_fast(wf, u, v, l)
+    });
+    m.row("tw_tri_f", tri_in, |(u, v, l)| {
+        rm_bench_trilinear_fast(wf, u, v, l)
+    });
+    let mut out = [0; N];
+    m.batch("tw_bil", |n| {
+        rm_batch_bilinear(wa, bb(&bil_in[..n]), &mut out)
+    });
+    m.batch("tw_tri", |n| {
+        rm_batch_trilinear(wa, bb(&tri_in[..n]), &mut out)
+    });
+    m.batch("tw_bil_f", |n| {
+        rm_batch_bilinear_fast(wf, bb(&bil_in[..n]), &mut out)
+    });
+    m.batch("tw_tri_f", |n| {
+        rm_batch_trilinear_fast(wf, bb(&tri_in[..n]), &mut out)
+    });
+    bb(&out);
+
+    let (rgba, rgb565, bc1) = &mut s.fast;
+    m.row("ts_bil_f", bil_in, |(u, v, l)| {
+        rm_bench_ts_bilinear_fast(rgba, u, v, l)
+    });
+    m.row("ts_tri_f", tri_in, |(u, v, l)| {
+        rm_bench_ts_trilinear_fast(rgba, u, v, l)
+    });
+    m.row("ts_565_f", tri_in, |(u, v, l)| {
+        rm_bench_ts_rgb565_fast(rgb565, u, v, l)
+    });
+    m.pairs(
+        ["ts_bc1_fill_f", "ts_bc1_hit_f"],
+        bc1,
+        tri_in,
+        |c| c.source_mut().invalidate(),
+        |c, (u, v, l)| rm_bench_ts_bc1_fast(c, u, v, l),
+    );
+    for (key, a) in ["an2_f", "an4_f", "an16_f"]
+        .into_iter()
+        .zip(&mut s.aniso_fast)
+    {
+        m.row(key, aniso_in, |(u, v, fp)| {
+            rm_bench_ts_aniso_fast(a, u, v, &fp)
+        });
+    }
+}
+
+/// Ray differentials (feature `raydiff`): the primary set-up, one
+/// transfer, a reflection, a refraction, the footprint, its lod and the
+/// G-buffer first-hit set-up, each its own wrapper.
+#[cfg(feature = "raydiff")]
+pub mod rd {
+    use fixed::types::I2F30;
+    use raymip::lod::Lod;
+    use raymip::raydiff::footprint::RayDiffTriangle;
+    use raymip::raydiff::gbuffer::{GSample, first_hit};
+    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+    use raymip::raystack::PathLength;
+    use raymip::texture::sampler::aniso::Footprint;
+
+    /// Primary-ray set-up from the camera axes.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_primary(
+        d: UnitVec,
+        f: UnitVec,
+        r: [DirDiff; 3],
+        u: [DirDiff; 3],
+    ) -> RayDiff {
+        RayDiff::primary(d, f, r, u).0
+    }
+
+    /// One transfer to a hit.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
+        s.transfer(d, t, n).0
+    }
+
+    /// One reflection.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+        s.reflect(d, n, dn, dn).0
+    }
+
+    /// One refraction (η = 1/1.5, cos θₜ = 0.9).
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+        s.refract(
+            d,
+            n,
+            dn,
+            dn,
+            Eta::from_bits(0x0AAA_AAAB),
+            I2F30::from_bits(0x3999_999A),
+        )
+        .0
+    }
+
+    /// The footprint of a transferred state.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_footprint(
+        t: &RayDiffTriangle,
+        dpx: [PosDiff; 3],
+        dpy: [PosDiff; 3],
+    ) -> Footprint {
+        t.footprint(dpx, dpy)
+    }
+
+    /// The lod of a footprint.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
+        t.lod(fp)
+    }
+
+    /// G-buffer first-hit set-up from four neighbours.
+    #[allow(unsafe_code)]
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    pub fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
+        first_hit(p, c, nb).0
+    }
+}
+
+/// The ray-differential rows (feature `raydiff`; own generator, seed
+/// `SEED ^ 0xD1FF`, so the other rows' inputs are unchanged): 64 calls of
+/// each `rm_bench_rd_*` wrapper on [`inputs::raydiff`], the footprint and
+/// lod on one 4 × 3 triangle of the demo texture size. Keys:
+/// `scripts/budgets.py` `RD_ROWS`. `None` cannot happen (the triangle is
+/// valid).
+#[cfg(feature = "raydiff")]
+#[inline(always)]
+pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
+    use raymip::raydiff::footprint::RayDiffTriangle;
+    use raymip::raydiff::gbuffer::GSample;
+    use raymip::raystack::PathLength;
+    use raymip::table::{Coord, TexTriangle};
+    let mut rng = Rng(inputs::SEED ^ 0xD1FF);
+    let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
+    let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
+    let tri = TexTriangle::new(
+        [[c(0), c(0), c(0)], [c(4), c(0), c(1)], [c(0), c(3), c(0)]],
+        [[c(0), c(0)], [c(2), c(0)], [c(0), c(1)]],
+        TEX_SIZE,
+        TEX_SIZE,
+    )
+    .ok()?;
+    let tri = RayDiffTriangle::new(&tri);
+    let h = |x: u32| x & 0xFFFF;
+    m.row("rd_primary", &rd_in, |(s, d, _, n, _)| {
+        h(rd::rm_bench_rd_primary(d, n, s.dddx, s.dddy).dddx[0].to_bits() as u32)
+    });
+    m.row("rd_transfer", &rd_in, |(s, d, t, n, _)| {
+        h(rd::rm_bench_rd_transfer(&s, d, t, n).dodx[0].to_bits() as u32)
+    });
+    m.row("rd_reflect", &rd_in, |(s, d, _, n, dn)| {
+        h(rd::rm_bench_rd_reflect(&s, d, n, dn).dddx[0].to_bits() as u32)
+    });
+    m.row("rd_refract", &rd_in, |(s, d, _, n, dn)| {
+        h(rd::rm_bench_rd_refract(&s, d, n, dn).dddx[0].to_bits() as u32)
+    });
+    m.row("rd_footprint", &rd_in, |(s, ..)| {
+        h(rd::rm_bench_rd_footprint(&tri, s.dodx, s.dody).x[0].to_bits() as u32)
+    });
+    let fps = rd_in.map(|(s, ..)| tri.footprint(s.dodx, s.dody));
+    m.row("rd_lod", &fps, |fp| {
+        rd::rm_bench_rd_lod(&tri, &fp).to_bits() as u32
+    });
+    let g = rd_in.map(|(s, d, t, n, _)| GSample {
+        p: s.dodx,
+        n: d,
+        t: t.min(PathLength::from_bits(u64::from(n[0].to_bits() as u32))),
+    });
+    m.row("rd_gbuffer", &rd_in, |(s, _, t, n, _)| {
+        let cen = GSample { p: s.dody, n, t };
+        let i = (t.to_bits() as usize) % (N - 4);
+        h(rd::rm_bench_rd_gbuffer(
+            &s,
+            &cen,
+            [
+                Some(&g[i]),
+                Some(&g[i + 1]),
+                Some(&g[i + 2]),
+                Some(&g[i + 3]),
+            ],
+        )
+        .dodx[0]
+            .to_bits() as u32)
+    });
+    Some(())
+}
