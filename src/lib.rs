@@ -47,7 +47,7 @@
 //! | `cache` | yes | texel cache, images in any format, BC decoding (`texture::storage::{cache, image}`) | the sampler reads RGBA8 pyramids in memory directly |
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
-//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod (`pcpi`, riscv32 only; no effect on other targets) | software log2 |
+//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod and the ACCURATE linear bilinear/trilinear filter (`pcpi`, riscv32 only; no effect on other targets) | software log2 and filter |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
 //! specialised at compile time by its key `K` (address mode per axis,

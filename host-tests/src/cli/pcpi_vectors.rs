@@ -271,18 +271,25 @@ mod tests {
             let ([t00, t10, t01, t11], fx, fy) = f;
             let ch = |t: u32| f64::from((t >> (8 * c)) & 0xFF);
             let (x, y) = (f64::from(fx) / 4096.0, f64::from(fy) / 4096.0);
-            (ch(t00) * (1.0 - x) + ch(t10) * x) * (1.0 - y) + (ch(t01) * (1.0 - x) + ch(t11) * x) * y
+            (ch(t00) * (1.0 - x) + ch(t10) * x) * (1.0 - y)
+                + (ch(t01) * (1.0 - x) + ch(t11) * x) * y
         };
         for (a, b) in footprints() {
             let (ra, wa, wb) = (round_wide(level(a)), level(a), level(b));
             for c in 0..4 {
                 let got = f64::from((ra >> (8 * c)) & 0xFF);
-                assert!((got - exact(a, c)).abs() <= BILERP_MAX_ERROR_LSB, "{a:x?} {c}");
+                assert!(
+                    (got - exact(a, c)).abs() <= BILERP_MAX_ERROR_LSB,
+                    "{a:x?} {c}"
+                );
                 for t in [0u32, 1, 77, 128, 255, 256] {
                     let got = f64::from((blend_wide(wa, wb, t) >> (8 * c)) & 0xFF);
                     let s = f64::from(t) / 256.0;
                     let want = exact(a, c) * (1.0 - s) + exact(b, c) * s;
-                    assert!((got - want).abs() <= BILERP_MAX_ERROR_LSB, "{a:x?} {b:x?} {t} {c}");
+                    assert!(
+                        (got - want).abs() <= BILERP_MAX_ERROR_LSB,
+                        "{a:x?} {b:x?} {t} {c}"
+                    );
                 }
             }
         }
@@ -302,7 +309,10 @@ mod tests {
         );
         // All-255 footprints round to all-255 (no carry into a neighbour).
         assert!(v.contains("4 ffffffff ffffffff ffffffff"));
-        assert!(v.contains("2 00001000 00001000 00000000"), "weights at 4096");
+        assert!(
+            v.contains("2 00001000 00001000 00000000"),
+            "weights at 4096"
+        );
         // A rounding tie (footprints()): X = 2²³ − 2⁷ rounds up to 1.
         assert!(v.contains("4 00000000 01010101 01010101"));
         assert!(
