@@ -21,8 +21,9 @@
 //! Verilator testbench `demo/softcore/tb_pcpi_tex.cpp` checks every output
 //! bit against vectors written by the software paths, `scripts/softcore`).
 //! The ACCURATE linear kernel's bilinear and trilinear filtering
-//! ([`crate::texture::kernel::Kernel::bilinear_texel`] and
-//! [`crate::texture::kernel::Kernel::trilinear`] of `(Linear, Accurate)`)
+//! ([`crate::texture::kernel::Kernel::bilinear_texel`] and the trilinear
+//! levels [`crate::texture::kernel::Kernel::level`] /
+//! [`crate::texture::kernel::Kernel::blend_levels`] of `(Linear, Accurate)`)
 //! is [`bw`], [`bt`], [`bb`] per level and [`blend`];
 //! its wide values (aniso probes) and the FAST, nearest and sRGB kernels
 //! stay software.

@@ -140,7 +140,7 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// the kernel keeps it for [`round_level`](Self::round_level) or
     /// [`blend_levels`](Self::blend_levels) (the [`bilinear`](Self::bilinear)
     /// value; with feature `pcpi` on riscv32 the ACCURATE linear kernel
-    /// keeps it in the co-processor, [`crate::pcpi`], and returns the
+    /// keeps it in the co-processor, `raymip::pcpi` (`src/pcpi.rs`), and returns the
     /// rounded texel).
     type Level: Copy;
     /// The [`Level`](Self::Level) of the footprint `l` with weights `fx, fy`.
