@@ -39,6 +39,7 @@ B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
 D_BEGIN, D_END = "<!-- softcore-paper:begin -->", "<!-- softcore-paper:end -->"
 FPGA_DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
+FILTER_TB_RE = re.compile(r"filter (\d+) tex.bw, (\d+) tex.bt, (\d+) tex.bb, (\d+) tex.blend, latency (\d+) (\d+) (\d+) (\d+) cycles")
 TB_RE = re.compile(r"tb-pcpi-tex: (\d+) vectors \((\d+) tex.log2pl, (\d+) tex.lod\), (\d+) mismatches, latency (\d+) cycles")
 
 # The hardware paper's logic: 88 % of a Virtex-5 LX330 (51 840 slices of
@@ -265,12 +266,19 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
         pcalls, pbatches, pcounters, prender, tb = pc
         L.append("\n### With the texture co-processor\n")
         L.append("The same measurement on the SoC with `ENABLE_TEX = 1` (`demo/softcore/pcpi_tex.v` on the")
-        L.append("core's PCPI port: `tex.log2pl`, `tex.lod`) and the firmware built with feature `pcpi`")
-        L.append("(`src/pcpi.rs`: table lod = both instructions, cone lod's two log2 = `tex.log2pl`; the")
-        L.append("FAST lods and the filters are unchanged). Demo tile: checksum and counters equal to the host's.")
+        L.append("core's PCPI port: `tex.log2pl`, `tex.lod`, and the ACCURATE filter's `tex.bw`, `tex.bt`, `tex.bb`,")
+        L.append("`tex.blend`) and the firmware built with feature `pcpi` (`src/pcpi.rs`: table lod = the two lod")
+        L.append("instructions, cone lod's two log2 = `tex.log2pl`, each bilinear level = `tex.bw` + `tex.bt` + `tex.bb`,")
+        L.append("the trilinear level blend = `tex.blend`; the FAST lods and the FAST, nearest and sRGB kernels are")
+        L.append("unchanged). Demo tile: checksum and counters equal to the host's.")
         if tb:
+            ftb = tb[5:]
             L.append(f"Co-processor alone (`tb_pcpi_tex.cpp`): {tb[0]} reference vectors from the software paths")
-            L.append(f"({tb[1]} `tex.log2pl`, {tb[2]} `tex.lod`), {tb[3]} mismatching bits; result {tb[4]} cycles after `pcpi_valid`.\n")
+            L.append(f"({tb[1]} `tex.log2pl`, {tb[2]} `tex.lod`" +
+                     (f", {ftb[0]} `tex.bw`, {ftb[1]} `tex.bt`, {ftb[2]} `tex.bb`, {ftb[3]} `tex.blend`" if ftb else "") +
+                     f"), {tb[3]} mismatching bits; lod results {tb[4]} cycles after `pcpi_valid`" +
+                     (f", filter results {ftb[4]} / {ftb[5]} / {ftb[6]} / {ftb[7]} (`tex.bw` / `bt` / `bb` / `blend`)" if ftb else "") +
+                     ".\n")
         L.append("| call | cycles without | cycles with co-processor | instructions with | CPI with | batch steady without | batch steady with |")
         L.append("|---|---|---|---|---|---|---|")
         for k, name in CALLS:
@@ -283,6 +291,18 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
         lod1 = pcalls["lod"]["cycles"][1] + pcalls["trilinear"]["cycles"][1]
         L.append(f"\nLOD + trilinear per textured hit: {lod0:.1f} → {lod1:.1f} cycles. Demo tile: "
                  f"{render[0]} → {prender[0]} cycles ({prender[0] / pcounters.get('pixels', 1):.0f} per pixel).")
+        L.append("\nThe filter (issue 23's goal: LOD + trilinear ≤ 500 cycles per textured hit), mean cycles per call")
+        L.append("and batch steady state per hit:\n")
+        L.append("| filter work | call without | call with co-processor | batch steady without | batch steady with |")
+        L.append("|---|---|---|---|---|")
+        steady = lambda b, k: (b[k][2] - b[k][0]) / 32
+        for label, ks in (("bilinear sample", ("bilinear",)), ("trilinear sample", ("trilinear",)),
+                          ("LOD + trilinear per textured hit (table lod + trilinear)", ("lod", "trilinear"))):
+            c0 = sum(calls[k]["cycles"][1] for k in ks)
+            c1 = sum(pcalls[k]["cycles"][1] for k in ks)
+            s0 = sum(steady(batches, k) for k in ks)
+            s1 = sum(steady(pbatches, k) for k in ks)
+            L.append(f"| {label} | {c0:.1f} | {c1:.1f} | {s0:.1f} | {s1:.1f} |")
     if mx is not None:
         L += matrix_lines(calls, batches, mx, bad)
     L.append(B_END)
@@ -410,6 +430,10 @@ def self_test():
     assert ceiling_cell("y", 1, {}, bad, "m") == "—" and len(bad) == 2
     assert all(k in SOFTCORE_CEILINGS for k, *_ in MATRIX_ROWS + RD_ROWS)
     assert all(k in SOFTCORE_BATCH_CEILINGS for *_, k in MATRIX_BATCHES)
+    tb = ("tb-pcpi-tex: 9 vectors (2 tex.log2pl, 3 tex.lod), 0 mismatches, latency 4 cycles after valid; "
+          "filter 1 tex.bw, 1 tex.bt, 1 tex.bb, 1 tex.blend, latency 2 5 9 5 cycles")
+    assert TB_RE.search(tb).groups() == ("9", "2", "3", "0", "4")
+    assert FILTER_TB_RE.search(tb).groups() == ("1", "1", "1", "1", "2", "5", "9", "5")
     print("softcore.py: self-test passed")
 
 
@@ -462,6 +486,9 @@ def main():
         if os.path.exists(os.path.join(a.work, "tb.out")):
             m = TB_RE.search(rd("tb.out"))
             tb = tuple(int(x) for x in m.groups()) if m else None
+            f = FILTER_TB_RE.search(rd("tb.out"))
+            if tb and f:
+                tb += tuple(int(x) for x in f.groups())
         pc = (pcalls, pbatches, pcounters, prender, tb)
     mcalls, mbase = parse_cycles(rd("matrix.out"))
     mbatches = parse_batches(rd("matrix.out"))

@@ -49,7 +49,7 @@
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
 //! | `envmap` | no | environment-map lod (cone; with `raydiff` also ray differentials) and the latitude-longitude `(u, v)` of a direction (`envmap`) | no environment-map stage |
-//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod (`pcpi`, riscv32 only; no effect on other targets) | software log2 |
+//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod and the ACCURATE linear bilinear/trilinear filter (`pcpi`, riscv32 only; no effect on other targets) | software log2 and filter |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
 //! specialised at compile time by its key `K` (address mode per axis,

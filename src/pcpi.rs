@@ -3,20 +3,30 @@
 //! `demo/softcore/pcpi_tex.v` (issue 23).
 //!
 //! The co-processor sits on PicoRV32's co-processor port (PCPI) and claims
-//! two R-type instructions of the `custom-0` opcode (`0001011`,
+//! six R-type instructions of the `custom-0` opcode (`0001011`,
 //! `funct7 = 0`); the RTL's header comment is their specification:
 //!
 //! | instruction | funct3 | rs1 | rs2 | rd |
 //! |---|---|---|---|---|
 //! | `tex.log2pl` | 0 | low word of a U32F32 path length | high word | `log2 Pl` in I16F16 bits `+ 0x80` |
 //! | `tex.lod` | 1 | a `tex.log2pl` result | `log2 Pb` (I16F16 bits, markers included) | the I8F8 table lod sign-extended, or [`UNTEXTURED`] |
+//! | `tex.bw` | 2 | `fx ∈ [0, 4096]` | `fy ∈ [0, 4096]` | (none: latches the footprint's weights) |
+//! | `tex.bt` | 3 | `t00` | `t10` | (none: latches the top row's four channels) |
+//! | `tex.bb` | 4 | `t01` | `t11` | the footprint filtered and rounded (`bilerp_rounded`); its 8.16 value kept |
+//! | `tex.blend` | 5 | `t ∈ [0, 256]` | — | the blend of the last two `tex.bb` values (`blend_wide_in_range`) |
 //!
 //! With the feature, [`crate::lod::table_lod`] (and its batch) is these two
 //! instructions, and [`crate::lod::cone_lod`] takes both of its logarithms
 //! from `tex.log2pl`; the results are the software's bit for bit (the
 //! Verilator testbench `demo/softcore/tb_pcpi_tex.cpp` checks every output
 //! bit against vectors written by the software paths, `scripts/softcore`).
-//! The FAST lod paths and the filters are unchanged.
+//! The ACCURATE linear kernel's bilinear and trilinear filtering
+//! ([`crate::texture::kernel::Kernel::bilinear_texel`] and the trilinear
+//! levels [`crate::texture::kernel::Kernel::level`] /
+//! [`crate::texture::kernel::Kernel::blend_levels`] of `(Linear, Accurate)`)
+//! is [`bw`], [`bt`], [`bb`] per level and [`blend`];
+//! its wide values (aniso probes) and the FAST, nearest and sRGB kernels
+//! stay software.
 //!
 //! # Where the feature applies
 //!
@@ -31,13 +41,22 @@
 //!
 //! This is the crate's only module besides `ffi` with `unsafe` code: each
 //! wrapper is one `asm!` block holding exactly one `.insn` instruction that
-//! reads two general-purpose registers and writes one. The co-processor
-//! has no state an instruction leaves behind, reads and writes no memory,
-//! and changes no other register, CSR or the stack, so the blocks are
-//! declared `pure, nomem, nostack` (the compiler may merge or drop calls,
-//! as for any pure function). On the hardware it is built for, an
-//! instruction always completes (the co-processor answers in at most four
-//! cycles, within PicoRV32's 16-cycle PCPI time-out); the remaining hazard, running
+//! reads general-purpose registers and writes at most one. No instruction
+//! reads or writes memory or changes any other register, CSR or the
+//! stack (`nomem, nostack`). `tex.log2pl` and `tex.lod` have no state an
+//! instruction leaves behind, so their blocks are also `pure` (the
+//! compiler may merge or drop calls, as for any pure function). The filter
+//! instructions keep state in the co-processor (the weights, the top row,
+//! the last two levels' values), so their blocks are not `pure`: the
+//! compiler keeps every one, in program order, even when its result is
+//! unused; their only effect is that co-processor state, which nothing
+//! but these wrappers reads. A sequence [`bw`] … [`blend`] runs with
+//! no other filter instruction between (each sampler call issues its
+//! sequence whole; the firmware has no interrupt handler that filters) —
+//! were one interleaved, the results would be wrong texels, never
+//! undefined behaviour. On the hardware it is built for, an instruction
+//! always completes (the co-processor holds `pcpi_wait` and answers within
+//! nine cycles); the remaining hazard, running
 //! the firmware on a core without the co-processor, traps (illegal
 //! instruction) rather than corrupting state, and is excluded by building
 //! the feature only for that SoC.
@@ -84,6 +103,85 @@ pub fn lod(l: i32, pb: i32) -> i32 {
             l = in(reg) l,
             pb = in(reg) pb,
             options(pure, nomem, nostack, preserves_flags),
+        );
+    }
+    r
+}
+
+/// `tex.bw`: latches the weights `fx, fy ∈ [0, 4096]` (12 fractional
+/// bits) of the footprint whose [`bt`] and [`bb`] follow.
+#[inline(always)]
+pub fn bw(fx: u32, fy: u32) {
+    // SAFETY: one custom-0 R-type instruction on registers only (module
+    // docs), writing no register (rd = x0); its effect is co-processor
+    // state, so the block is not `pure` and stays in program order.
+    unsafe {
+        core::arch::asm!(
+            ".insn r 0x0b, 2, 0, x0, {fx}, {fy}",
+            fx = in(reg) fx,
+            fy = in(reg) fy,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+}
+
+/// `tex.bt`: latches the top row `t00, t10` of the footprint, per channel
+/// `t00_c·(4096 − fx) + t10_c·fx` with the [`bw`] weights.
+#[inline(always)]
+pub fn bt(t00: u32, t10: u32) {
+    // SAFETY: as for `bw`.
+    unsafe {
+        core::arch::asm!(
+            ".insn r 0x0b, 3, 0, x0, {a}, {b}",
+            a = in(reg) t00,
+            b = in(reg) t10,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+}
+
+/// `tex.bb`: the bottom row `t01, t11`; returns the footprint filtered and
+/// rounded, channel `c` `(X_c + 2⁷ + 2²³) >> 24` with `X_c` the corner sum
+/// of the [`bw`] weights, equal to [`crate::texture::kernel::accurate`]'s
+/// `bilerp_rounded`. The co-processor keeps the level's 8.16 value
+/// `(X_c + 2⁷) >> 8` for [`blend`] (the previous one's becomes the first of
+/// the pair).
+#[inline(always)]
+#[must_use]
+pub fn bb(t01: u32, t11: u32) -> u32 {
+    let r: u32;
+    // SAFETY: one custom-0 R-type instruction on registers only (module
+    // docs); it reads and changes co-processor state, so the block is not
+    // `pure`: kept, in program order, even when `r` is unused.
+    unsafe {
+        core::arch::asm!(
+            ".insn r 0x0b, 4, 0, {rd}, {c}, {d}",
+            rd = lateout(reg) r,
+            c = in(reg) t01,
+            d = in(reg) t11,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+    r
+}
+
+/// `tex.blend`: the level blend of the last two [`bb`] values (`a` the
+/// earlier, `b` the later) with the fraction `t ∈ [0, 256]`, channel `c`
+/// `(a_c·(256 − t) + b_c·t + 2²³) >> 24`, equal to
+/// [`crate::texture::kernel::accurate`]'s `blend_wide_in_range(a, b, t)`.
+#[inline(always)]
+#[must_use]
+pub fn blend(t: u32) -> u32 {
+    let r: u32;
+    // SAFETY: one custom-0 R-type instruction on registers only (module
+    // docs); it reads co-processor state and changes none; not `pure`, so
+    // it stays after the `bb` it blends.
+    unsafe {
+        core::arch::asm!(
+            ".insn r 0x0b, 5, 0, {rd}, {t}, x0",
+            rd = lateout(reg) r,
+            t = in(reg) t,
+            options(nomem, nostack, preserves_flags),
         );
     }
     r

@@ -4,8 +4,9 @@
 // (`raymip-demo pcpi-vectors FILE`, host-tests/src/cli/pcpi_vectors.rs).
 //
 // Usage: tb-pcpi-tex VECTORS
-// Each vector `OP RS1 RS2 RD` (hex): the instruction tex.* with funct3 OP
-// is presented with pcpi_valid held high (pcpi_insn, pcpi_rs1, pcpi_rs2
+// Each vector `OP RS1 RS2 RD` (hex), in file order (the filter
+// instructions, OP 2…5, keep state from one to the next): the instruction
+// tex.* with funct3 OP is presented with pcpi_valid held high (pcpi_insn, pcpi_rs1, pcpi_rs2
 // stable) until pcpi_ready; then pcpi_wr must be 1 and pcpi_rd equal RD in
 // all 32 bits, pcpi_ready must have come within 16 cycles (PicoRV32's PCPI
 // time-out) with pcpi_wait high until then, and valid drops the next cycle
@@ -63,10 +64,11 @@ int main(int argc, char** argv) {
     unsigned op;
     uint32_t rs1, rs2, want;
     uint64_t n = 0, bad = 0, max_lat = 0;
-    int ops[2] = {0, 0};
+    int lat_op[6] = {0, 0, 0, 0, 0, 0};  // the longest latency of each instruction
+    int ops[6] = {0, 0, 0, 0, 0, 0};
     while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
         ++n;
-        if (op < 2) ++ops[op];
+        if (op < 6) ++ops[op];
         t.pcpi_insn = insn(op, 0, 0x0b);
         t.pcpi_rs1 = rs1;
         t.pcpi_rs2 = rs2;
@@ -88,7 +90,8 @@ int main(int argc, char** argv) {
                              op, rs1, rs2, got, want, int(t.pcpi_ready), int(t.pcpi_wr), lat,
                              int(ok));
         }
-        if (uint64_t(lat) > max_lat) max_lat = lat;
+        if (op < 2 && uint64_t(lat) > max_lat) max_lat = lat;
+        if (op < 6 && lat > lat_op[op]) lat_op[op] = lat;
         // The core takes the result at this edge and drops valid after it.
         tb.tick();
         t.pcpi_valid = 0;
@@ -101,8 +104,9 @@ int main(int argc, char** argv) {
     std::fclose(f);
 
     // Encodings the co-processor must leave alone.
-    const uint32_t other[] = {insn(2, 0, 0x0b), insn(7, 0, 0x0b), insn(0, 1, 0x0b),
-                              insn(1, 0x40, 0x0b), insn(0, 0, 0x2b), insn(0, 1, 0x33)};
+    const uint32_t other[] = {insn(6, 0, 0x0b), insn(7, 0, 0x0b), insn(0, 1, 0x0b),
+                              insn(1, 0x40, 0x0b), insn(4, 1, 0x0b), insn(0, 0, 0x2b),
+                              insn(0, 1, 0x33)};
     for (uint32_t w : other) {
         t.pcpi_insn = w;
         t.pcpi_rs1 = 0x1234;
@@ -121,12 +125,16 @@ int main(int argc, char** argv) {
         tb.tick();
     }
     t.final();
-    if (n == 0 || ops[0] == 0 || ops[1] == 0) {
-        std::fprintf(stderr, "tb-pcpi-tex: %s has no vectors of both instructions\n", argv[1]);
-        return 1;
+    for (int k = 0; k < 6; ++k) {
+        if (ops[k] == 0) {
+            std::fprintf(stderr, "tb-pcpi-tex: %s has no vectors of instruction %d\n", argv[1], k);
+            return 1;
+        }
     }
     std::printf("tb-pcpi-tex: %" PRIu64 " vectors (%d tex.log2pl, %d tex.lod), %" PRIu64
-                " mismatches, latency %" PRIu64 " cycles after valid\n",
-                n, ops[0], ops[1], bad, max_lat);
+                " mismatches, latency %" PRIu64 " cycles after valid; filter %d tex.bw, %d tex.bt, "
+                "%d tex.bb, %d tex.blend, latency %d %d %d %d cycles\n",
+                n, ops[0], ops[1], bad, max_lat, ops[2], ops[3], ops[4], ops[5], lat_op[2],
+                lat_op[3], lat_op[4], lat_op[5]);
     return bad == 0 ? 0 : 1;
 }

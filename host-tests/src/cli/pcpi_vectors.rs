@@ -11,13 +11,24 @@
 //!   `table_lod` and `cone_lod` subtract from; see `raymip::pcpi`);
 //! * `1` `tex.lod`: `RS1` the `tex.log2pl` value of `Pl` (as above), `RS2`
 //!   the bits of a `Log2Pb` entry, `RD = table_lod(Pl, Pb)` sign-extended,
-//!   `0x8000_0000` for `None` (untextured).
+//!   `0x8000_0000` for `None` (untextured);
+//! * `2`…`5` the ACCURATE filter's `tex.bw` (`RS1 = fx`, `RS2 = fy`),
+//!   `tex.bt` (`t00`, `t10`), `tex.bb` (`t01`, `t11`; `RD` = the footprint
+//!   filtered and rounded, `round_wide(bilerp(..))`) and `tex.blend`
+//!   (`RS1 = t`; `RD = blend_wide` of the last two footprints' `bilerp`):
+//!   stateful, so the file is also the order they run in. Each level pair
+//!   is `2 3 4 2 3 4` followed by blends at several fractions; `RD` of
+//!   `tex.bw` and `tex.bt` is 0.
 //!
 //! Inputs: zero, every power of two and its neighbours, every one of the
 //! 64 table intervals at its ends and middle in every octave, the U1F31
 //! range the cone lod's normal term reads (`[2¹⁵, 2³¹]` as U32F32 bits),
 //! and pseudo-random values with a uniformly drawn octave; entries: the
-//! three markers, the finite extremes and random entries.
+//! three markers, the finite extremes and random entries. Filter
+//! footprints: all-0, all-255, each corner alone at 255 (and alone at 0),
+//! the per-channel extremes and random texels, with weights at 0, 1, 2048,
+//! 4095 and 4096 on each axis and random; fractions 0, 1, 128, 255, 256 and
+//! random.
 
 use std::fmt::Write as _;
 
@@ -27,6 +38,7 @@ use raymip::log2::log2_u32f32;
 use raymip::raystack::PathLength;
 use raymip::rng::Rng;
 use raymip::table::Log2Pb;
+use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
 /// rounding offset `0x80`.
@@ -102,6 +114,88 @@ pub fn entries(n: usize) -> Vec<Log2Pb> {
     v
 }
 
+/// One footprint of the filter vectors: `[t00, t10, t01, t11]`, `fx`, `fy`.
+pub type Footprint = ([u32; 4], u32, u32);
+
+/// The filter footprints of every input class (see the module docs), in
+/// pairs (level `a`, level `b`).
+#[must_use]
+pub fn footprints() -> Vec<(Footprint, Footprint)> {
+    let weights = [0, 1, 2048, WEIGHT_ONE - 1, WEIGHT_ONE];
+    let mut texels = vec![[0u32; 4], [u32::MAX; 4]];
+    for c in 0..4 {
+        let mut one = [0u32; 4];
+        one[c] = u32::MAX;
+        texels.push(one);
+        let mut hole = [u32::MAX; 4];
+        hole[c] = 0;
+        texels.push(hole);
+    }
+    // Channel extremes apart: 0 and 255 in alternating channels.
+    texels.push([0x00FF_00FF, 0xFF00_FF00, 0xFF00_FF00, 0x00FF_00FF]);
+    let mut r = Rng::new(0xf117_e125);
+    let random_texels = |r: &mut Rng| core::array::from_fn(|_| r.next_u32());
+    for _ in 0..8 {
+        texels.push(random_texels(&mut r));
+    }
+    let mut v = Vec::new();
+    for (k, &t) in texels.iter().enumerate() {
+        for &fx in &weights {
+            for &fy in &weights {
+                let other = texels[(k + 1 + (fx as usize) % 7) % texels.len()];
+                v.push(((t, fx, fy), (other, fy, fx)));
+            }
+        }
+    }
+    // Rounding ties: a corner weight of 2176·3855 = 2²³ − 2⁷ on a channel
+    // value 1 gives the corner sum X = 2²³ − 2⁷, whose 8.16 value
+    // (X + 2⁷) >> 8 = 2¹⁵ rounds up to 1 only with both rounding constants
+    // exact (each corner in turn, paired with zero and with all-255).
+    for (c, (fx, fy)) in [(1920, 241), (2176, 241), (1920, 3855), (2176, 3855)]
+        .into_iter()
+        .enumerate()
+    {
+        let mut t = [0u32; 4];
+        t[c] = 0x0101_0101;
+        for other in [[0; 4], [u32::MAX; 4], t] {
+            v.push(((t, fx, fy), (other, fx, fy)));
+            v.push(((other, fy, fx), (t, fx, fy)));
+        }
+    }
+    for _ in 0..4000 {
+        let w = |r: &mut Rng| r.next_u32() % (WEIGHT_ONE + 1);
+        let a = (random_texels(&mut r), w(&mut r), w(&mut r));
+        let b = (random_texels(&mut r), w(&mut r), w(&mut r));
+        v.push((a, b));
+    }
+    v
+}
+
+/// The software ACCURATE filter of one footprint in 8.16 (`bilerp`).
+#[must_use]
+pub fn level(f: Footprint) -> Wide {
+    let ([t00, t10, t01, t11], fx, fy) = f;
+    bilerp(t00, t10, t01, t11, fx, fy)
+}
+
+/// The filter vectors (ops 2…5, module docs), in the order they run.
+fn filter_vectors(out: &mut String) {
+    let mut r = Rng::new(0xb1e_0d5);
+    for (a, b) in footprints() {
+        for f in [a, b] {
+            let (t, fx, fy) = f;
+            let _ = writeln!(out, "2 {fx:08x} {fy:08x} 00000000");
+            let _ = writeln!(out, "3 {:08x} {:08x} 00000000", t[0], t[1]);
+            let rounded = round_wide(level(f));
+            let _ = writeln!(out, "4 {:08x} {:08x} {rounded:08x}", t[2], t[3]);
+        }
+        let (wa, wb) = (level(a), level(b));
+        for t in [0, 1, 128, 255, 256, r.next_u32() % 257] {
+            let _ = writeln!(out, "5 {t:08x} 00000000 {:08x}", blend_wide(wa, wb, t));
+        }
+    }
+}
+
 /// The whole vector file.
 #[must_use]
 pub fn vectors() -> String {
@@ -135,6 +229,7 @@ pub fn vectors() -> String {
             }
         }
     }
+    filter_vectors(&mut out);
     out
 }
 
@@ -166,12 +261,60 @@ mod tests {
         }
     }
 
+    /// The filter vectors against the exact real-valued filter in f64:
+    /// each footprint's rounded value and each blend within
+    /// `BILERP_MAX_ERROR_LSB` per channel (the weights are exact here).
+    #[test]
+    fn filter_vectors_match_f64() {
+        use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
+        let exact = |f: Footprint, c: u32| {
+            let ([t00, t10, t01, t11], fx, fy) = f;
+            let ch = |t: u32| f64::from((t >> (8 * c)) & 0xFF);
+            let (x, y) = (f64::from(fx) / 4096.0, f64::from(fy) / 4096.0);
+            (ch(t00) * (1.0 - x) + ch(t10) * x) * (1.0 - y)
+                + (ch(t01) * (1.0 - x) + ch(t11) * x) * y
+        };
+        for (a, b) in footprints() {
+            let (ra, wa, wb) = (round_wide(level(a)), level(a), level(b));
+            for c in 0..4 {
+                let got = f64::from((ra >> (8 * c)) & 0xFF);
+                assert!(
+                    (got - exact(a, c)).abs() <= BILERP_MAX_ERROR_LSB,
+                    "{a:x?} {c}"
+                );
+                for t in [0u32, 1, 77, 128, 255, 256] {
+                    let got = f64::from((blend_wide(wa, wb, t) >> (8 * c)) & 0xFF);
+                    let s = f64::from(t) / 256.0;
+                    let want = exact(a, c) * (1.0 - s) + exact(b, c) * s;
+                    assert!(
+                        (got - want).abs() <= BILERP_MAX_ERROR_LSB,
+                        "{a:x?} {b:x?} {t} {c}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn vector_file_has_both_ops_and_every_class() {
         let v = vectors();
         let n0 = v.lines().filter(|l| l.starts_with("0 ")).count();
         let n1 = v.lines().filter(|l| l.starts_with("1 ")).count();
         assert!(n0 > 20_000 && n1 > n0, "{n0} {n1}");
+        let count = |op: &str| v.lines().filter(|l| l.starts_with(op)).count();
+        let pairs = footprints().len();
+        assert_eq!(
+            [count("2 "), count("3 "), count("4 "), count("5 ")],
+            [2 * pairs, 2 * pairs, 2 * pairs, 6 * pairs]
+        );
+        // All-255 footprints round to all-255 (no carry into a neighbour).
+        assert!(v.contains("4 ffffffff ffffffff ffffffff"));
+        assert!(
+            v.contains("2 00001000 00001000 00000000"),
+            "weights at 4096"
+        );
+        // A rounding tie (footprints()): X = 2²³ − 2⁷ rounds up to 1.
+        assert!(v.contains("4 00000000 01010101 01010101"));
         assert!(
             v.contains("0 00000000 00000000 ffe00080"),
             "zero reads as 2^-32"

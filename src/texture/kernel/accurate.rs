@@ -216,6 +216,8 @@ fn corner_sum<L: Lanes>(t: [L; 4], w: [u32; 4], c: usize, r: u32) -> u32 {
 /// `floor((floor((X + 2⁷)/2⁸) + 2¹⁵)/2¹⁶) = floor((X + 2⁷ + 2²³)/2²⁴)`
 /// (a floor of an integer plus an integer composes), and
 /// `X + 2⁷ + 2²³ < 2²⁴·256`, so each channel's result is at most 255.
+/// (With feature `pcpi` on riscv32 the co-processor's `tex.bb` replaces it.)
+#[cfg_attr(all(feature = "pcpi", target_arch = "riscv32"), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32) -> Texel {
     let w = corner_weights(fx, fy);

@@ -136,6 +136,21 @@ pub trait Kernel: sealed::Sealed + 'static {
     fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Texel;
     /// A level value rounded to a result texel.
     fn round(w: Self::Wide) -> Texel;
+    /// One level of a trilinear sample: the footprint's filtered value as
+    /// the kernel keeps it for [`round_level`](Self::round_level) or
+    /// [`blend_levels`](Self::blend_levels) (the [`bilinear`](Self::bilinear)
+    /// value; with feature `pcpi` on riscv32 the ACCURATE linear kernel
+    /// keeps it in the co-processor, `raymip::pcpi` (`src/pcpi.rs`), and returns the
+    /// rounded texel).
+    type Level: Copy;
+    /// The [`Level`](Self::Level) of the footprint `l` with weights `fx, fy`.
+    fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Level;
+    /// A level alone rounded to a result texel (the
+    /// [`round`](Self::round) of its value).
+    fn round_level(a: Self::Level) -> Texel;
+    /// The [`blend`](Self::blend) of the levels `a` and then `b` (the last
+    /// two [`level`](Self::level) calls, in that order) with `t ∈ [1, 255]`.
+    fn blend_levels(a: Self::Level, b: Self::Level, t: u32) -> Texel;
     /// The blend of two levels' values with the 8-bit lod fraction
     /// `t ∈ [1, 255]`, rounded to a result texel.
     fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel;
@@ -150,6 +165,27 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// The mean of `n ∈ [1, 16]` probe values (their channel sums),
     /// rounded to a result texel.
     fn probe_mean(sum: [u32; 4], n: u32) -> Texel;
+}
+
+/// The trilinear levels of a kernel in software: [`Kernel::Level`] is the
+/// wide value, `level`, `round_level` and `blend_levels` are `bilinear`,
+/// `round` and `blend`.
+macro_rules! software_levels {
+    () => {
+        type Level = Self::Wide;
+        #[inline(always)]
+        fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide {
+            Self::bilinear(l, fx, fy)
+        }
+        #[inline(always)]
+        fn round_level(a: Self::Wide) -> Texel {
+            Self::round(a)
+        }
+        #[inline(always)]
+        fn blend_levels(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
+            Self::blend(a, b, t)
+        }
+    };
 }
 
 /// `(Σ + n/2) / n` per channel: the rounded mean of `n ≥ 1` probe values.
@@ -185,9 +221,42 @@ impl Kernel for (Linear, Accurate) {
     fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
         accurate::bilerp_in_range(l, fx, fy)
     }
+    #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
         accurate::bilerp_rounded(l, fx, fy)
+    }
+    // Feature `pcpi` on riscv32: the co-processor's corner sum, the same
+    // bits as `bilerp_rounded` (`fx, fy < 4096`).
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+        crate::pcpi::bw(fx, fy);
+        crate::pcpi::bt(l[0], l[1]);
+        crate::pcpi::bb(l[2], l[3])
+    }
+    // Feature `pcpi` on riscv32: each level on the co-processor (the
+    // rounded texel returned, `bilinear_texel`; the 8.16 value kept), the
+    // blend `tex.blend` of the last two: the same bits as `round` and
+    // `blend_wide_in_range` of the software values.
+    #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
+    software_levels!();
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    type Level = Texel;
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn level(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+        Self::bilinear_texel(l, fx, fy)
+    }
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn round_level(a: Texel) -> Texel {
+        a
+    }
+    #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn blend_levels(_: Texel, _: Texel, t: u32) -> Texel {
+        crate::pcpi::blend(t)
     }
     #[inline(always)]
     fn round(w: Self::Wide) -> Texel {
@@ -220,6 +289,7 @@ impl Kernel for (Linear, Fast) {
     const TIER: Precision = Precision::Fast;
     type Lanes = Texel;
     type Wide = accurate::Wide;
+    software_levels!();
 
     #[inline(always)]
     fn load(t: Texel) -> Texel {
@@ -283,6 +353,7 @@ macro_rules! srgb_kernel {
             const TIER: Precision = Precision::Accurate;
             type Lanes = accurate::Lin16;
             type Wide = accurate::Wide;
+            software_levels!();
 
             #[inline(always)]
             fn load(t: Texel) -> accurate::Lin16 {

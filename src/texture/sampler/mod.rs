@@ -475,15 +475,15 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
         let (ta, fxa, fya) = self.footprint(u, v, lower);
-        let a = Kern::<K>::bilinear(ta, fxa, fya);
+        let a = Kern::<K>::level(ta, fxa, fya);
         if t == 0 {
             count(&mut self.stats, true);
-            Kern::<K>::round(a)
+            Kern::<K>::round_level(a)
         } else {
             let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
-            let b = Kern::<K>::bilinear(tb, fxb, fyb);
+            let b = Kern::<K>::level(tb, fxb, fyb);
             count(&mut self.stats, false);
-            Kern::<K>::blend(a, b, t)
+            Kern::<K>::blend_levels(a, b, t)
         }
     }
 
