@@ -188,6 +188,61 @@ macro_rules! software_levels {
     };
 }
 
+/// The texel hooks of an RGBA8 linear kernel: a texel is its own lanes
+/// (load, border, nearest are the identity).
+macro_rules! rgba8_texels {
+    () => {
+        #[inline(always)]
+        fn load(t: Texel) -> Texel {
+            t
+        }
+        #[inline(always)]
+        fn load_border(t: Texel) -> Texel {
+            t
+        }
+        #[inline(always)]
+        fn nearest(t: Texel) -> Texel {
+            t
+        }
+        #[inline(always)]
+        fn border_nearest(t: Texel) -> Texel {
+            t
+        }
+    };
+}
+
+/// Rounding, level blend and probes of a linear kernel whose level value
+/// is the exact 8.16 [`accurate::Wide`] (ACCURATE, and FAST, whose levels
+/// are exact at its 8-bit positions): one definition, the ACCURATE one.
+macro_rules! linear_8_16 {
+    () => {
+        #[inline(always)]
+        fn round(w: Self::Wide) -> Texel {
+            accurate::round_wide_in_range(w)
+        }
+        #[inline(always)]
+        fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
+            accurate::blend_wide_in_range(a, b, t)
+        }
+        #[inline(always)]
+        fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
+            accurate::blend_texels(a, b, t)
+        }
+        #[inline(always)]
+        fn probe(w: Self::Wide) -> [u32; 4] {
+            w
+        }
+        #[inline(always)]
+        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
+            accurate::blend_keep(a, b, t)
+        }
+        #[inline(always)]
+        fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
+            accurate::round_wide_in_range(mean(sum, n))
+        }
+    };
+}
+
 /// `(Σ + n/2) / n` per channel: the rounded mean of `n ≥ 1` probe values.
 #[inline(always)]
 fn mean(sum: [u32; 4], n: u32) -> [u32; 4] {
@@ -201,22 +256,7 @@ impl Kernel for (Linear, Accurate) {
     type Lanes = Texel;
     type Wide = accurate::Wide;
 
-    #[inline(always)]
-    fn load(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn load_border(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn nearest(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn border_nearest(t: Texel) -> Texel {
-        t
-    }
+    rgba8_texels!();
     #[inline(always)]
     fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
         accurate::bilerp_in_range(l, fx, fy)
@@ -258,30 +298,7 @@ impl Kernel for (Linear, Accurate) {
     fn blend_levels(_: Texel, _: Texel, t: u32) -> Texel {
         crate::pcpi::blend(t)
     }
-    #[inline(always)]
-    fn round(w: Self::Wide) -> Texel {
-        accurate::round_wide_in_range(w)
-    }
-    #[inline(always)]
-    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-        accurate::blend_wide_in_range(a, b, t)
-    }
-    #[inline(always)]
-    fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
-        accurate::blend_texels(a, b, t)
-    }
-    #[inline(always)]
-    fn probe(w: Self::Wide) -> [u32; 4] {
-        w
-    }
-    #[inline(always)]
-    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-        accurate::blend_keep(a, b, t)
-    }
-    #[inline(always)]
-    fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
-        accurate::round_wide_in_range(mean(sum, n))
-    }
+    linear_8_16!();
 }
 
 impl Kernel for (Linear, Fast) {
@@ -291,22 +308,7 @@ impl Kernel for (Linear, Fast) {
     type Wide = accurate::Wide;
     software_levels!();
 
-    #[inline(always)]
-    fn load(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn load_border(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn nearest(t: Texel) -> Texel {
-        t
-    }
-    #[inline(always)]
-    fn border_nearest(t: Texel) -> Texel {
-        t
-    }
+    rgba8_texels!();
     #[inline(always)]
     fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
         fast::bilinear(l, fx, fy)
@@ -317,30 +319,7 @@ impl Kernel for (Linear, Fast) {
     }
     // A FAST level value is an exact 8.16 value: rounding, level blend and
     // probes are the ACCURATE kernel's (module docs of `fast`).
-    #[inline(always)]
-    fn round(w: Self::Wide) -> Texel {
-        accurate::round_wide_in_range(w)
-    }
-    #[inline(always)]
-    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-        accurate::blend_wide_in_range(a, b, t)
-    }
-    #[inline(always)]
-    fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
-        accurate::blend_texels(a, b, t)
-    }
-    #[inline(always)]
-    fn probe(w: Self::Wide) -> [u32; 4] {
-        w
-    }
-    #[inline(always)]
-    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-        accurate::blend_keep(a, b, t)
-    }
-    #[inline(always)]
-    fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
-        accurate::round_wide_in_range(mean(sum, n))
-    }
+    linear_8_16!();
 }
 
 /// The sRGB kernels: 16-bit lanes and weights ([`accurate`]), the output
