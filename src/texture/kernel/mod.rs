@@ -211,6 +211,22 @@ macro_rules! rgba8_texels {
     };
 }
 
+/// The probe hooks of a kernel whose wide value is the four channel sums
+/// `[u32; 4]` (linear 8.16 and sRGB 16.8 alike): a probe is the wide value,
+/// the level blend keeps its fraction bits (`accurate::blend_keep`).
+macro_rules! wide_probes {
+    () => {
+        #[inline(always)]
+        fn probe(w: Self::Wide) -> [u32; 4] {
+            w
+        }
+        #[inline(always)]
+        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
+            accurate::blend_keep(a, b, t)
+        }
+    };
+}
+
 /// Rounding, level blend and probes of a linear kernel whose level value
 /// is the exact 8.16 [`accurate::Wide`] (ACCURATE, and FAST, whose levels
 /// are exact at its 8-bit positions): one definition, the ACCURATE one.
@@ -228,14 +244,7 @@ macro_rules! linear_8_16 {
         fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
             accurate::blend_texels(a, b, t)
         }
-        #[inline(always)]
-        fn probe(w: Self::Wide) -> [u32; 4] {
-            w
-        }
-        #[inline(always)]
-        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-            accurate::blend_keep(a, b, t)
-        }
+        wide_probes!();
         #[inline(always)]
         fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
             accurate::round_wide_in_range(mean(sum, n))
@@ -370,14 +379,7 @@ macro_rules! srgb_kernel {
             fn blend_nearest(a: accurate::Lin16, b: accurate::Lin16, t: u32) -> Texel {
                 $out(accurate::blend_keep(srgb::widen(a), srgb::widen(b), t))
             }
-            #[inline(always)]
-            fn probe(w: Self::Wide) -> [u32; 4] {
-                w
-            }
-            #[inline(always)]
-            fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-                accurate::blend_keep(a, b, t)
-            }
+            wide_probes!();
             #[inline(always)]
             fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
                 $out(mean(sum, n))
