@@ -1,4 +1,5 @@
-//! The LOD methods of the talk in fixed point (issue 21): their cost per
+//! The LOD methods of the talk in fixed point (issue 21: table, ray cones,
+//! ray differentials ray-traced and from a G-buffer): their cost per
 //! textured hit on the targets (read from BUDGETS.md, which
 //! `scripts/budgets` and `scripts/softcore` write) and their PSNR against
 //! supersampled ground truth on `builtin:hall`, `builtin:mirrors` and the
@@ -67,12 +68,12 @@ fn cost_table(budgets: &str) -> String {
         (
             "ray differentials, ray-traced (transfer + footprint + lod)",
             "ray differentials, ray-traced",
-            None,
+            Some("ray differentials, ray-traced"),
         ),
         (
-            "ray differentials, G-buffer (set-up + footprint + lod)",
+            "ray differentials, G-buffer, first hit (set-up + footprint + lod)",
             "ray differentials, G-buffer",
-            None,
+            Some("ray differentials, G-buffer"),
         ),
     ] {
         let c = budget_row(budgets, per_hit, row).unwrap_or_default();
@@ -109,7 +110,13 @@ fn psnr_row(
     };
     let truth = render_truth(&prep, &base).to_rgb8();
     let mut row = format!("| {label} |");
-    for method in [Method::Table, Method::Cone, Method::Raydiff, Method::Mip0] {
+    for method in [
+        Method::Table,
+        Method::Cone,
+        Method::Raydiff,
+        Method::Gbuffer,
+        Method::Mip0,
+    ] {
         let mut p = [0.0; 2];
         for (k, precision) in [Precision::Fixed, Precision::Float].into_iter().enumerate() {
             let img = render(
@@ -161,12 +168,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     t += &cost_table(&budgets);
     writeln!(
         t,
-        "\nPSNR against ground truth ({spp} jittered samples per pixel, bilinear in level 0), {}×{}, trilinear at the method's lod, 10 bounces; fixed point = the firmware lod, ray stack and sampler, in parentheses the f64 render of the same method. The renders are deterministic (no timing in this block), so the figures do not depend on the machine. The renderer traces ray differentials from the camera (\"RayDiffs RT\"); it has no G-buffer pass, so the G-buffer variant has a cost row above and no PSNR.\n",
+        "\nPSNR against ground truth ({spp} jittered samples per pixel, bilinear in level 0), {}×{}, trilinear at the method's lod, 10 bounces; fixed point = the firmware lod, ray stack and sampler, in parentheses the f64 render of the same method. The renders are deterministic (no timing in this block), so the figures do not depend on the machine. Ray-traced differentials (\"RayDiffs RT\") start at the camera and are transferred to every hit; G-buffer differentials (\"RayDiffs GB\", `--method gbuffer`) take the first hit's position and normal differentials from a G-buffer pass over the pixel centres (the neighbour with the smaller distance step per axis, `raydiff::gbuffer::first_hit`) and transfer them from there on, so after the first bounce they cost what the ray-traced ones cost.\n",
         size.0, size.1
     )?;
     writeln!(
         t,
-        "| scene | table | ray cones | ray differentials (ray-traced) | mip 0 (no LOD) |\n|---|---|---|---|---|"
+        "| scene | table | ray cones | ray differentials (ray-traced) | ray differentials (G-buffer) | mip 0 (no LOD) |\n|---|---|---|---|---|---|"
     )?;
     for name in ["hall", "mirrors"] {
         writeln!(

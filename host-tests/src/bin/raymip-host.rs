@@ -143,7 +143,7 @@ enum Command {
             long,
             value_enum,
             value_delimiter = ',',
-            default_value = "table,cone,raydiff,mip0"
+            default_value = "table,cone,raydiff,gbuffer,mip0"
         )]
         methods: Vec<Method>,
     },

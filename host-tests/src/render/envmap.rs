@@ -86,9 +86,10 @@ impl EnvLookup {
             Method::Mip0 | Method::Truth => Lod::ZERO,
             Method::Table => self.map.cone_lod(gamma, Some(ray.dq)),
             Method::Cone => self.map.cone_lod(state.cone.spread, Some(ray.dq)),
-            Method::Raydiff => self
-                .map
-                .raydiff_lod(state.diff.dddx, state.diff.dddy, Some(ray.dq)),
+            Method::Raydiff | Method::Gbuffer => {
+                self.map
+                    .raydiff_lod(state.diff.dddx, state.diff.dddy, Some(ray.dq))
+            }
         }
     }
 
@@ -101,7 +102,7 @@ impl EnvLookup {
             Method::Mip0 | Method::Truth => 0.0,
             Method::Table => reference::cone_lod_f64(w, h, gamma, d),
             Method::Cone => reference::cone_lod_f64(w, h, f.spread, d),
-            Method::Raydiff => {
+            Method::Raydiff | Method::Gbuffer => {
                 reference::raydiff_lod_f64(w, h, f.ddx.to_array(), f.ddy.to_array(), d)
             }
         }

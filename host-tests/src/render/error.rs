@@ -94,8 +94,8 @@ impl fmt::Display for RenderError {
             }
             Self::AnisoNeedsRaydiff { method } => write!(
                 f,
-                "--filter aniso needs the footprint axes of --method raydiff; --method {} gives an \
-                 isotropic lod only (use --filter trilinear, or --method raydiff)",
+                "--filter aniso needs the footprint axes of --method raydiff or gbuffer; --method {} \
+                 gives an isotropic lod only (use --filter trilinear, or --method raydiff)",
                 method.name()
             ),
             Self::Transition { value } => write!(f, "--transition {value}: must lie in [0, 1]"),

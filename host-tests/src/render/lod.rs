@@ -146,7 +146,7 @@ fn fixed_lod(prep: &Prepared, method: Method, q: &LodQuery) -> Option<(Lod, Opti
             let nd = U1F31::saturating_from_num(q.n_dot_d);
             (cone_lod(q.state.cone.width, delta, Some(nd)), None)
         }),
-        Method::Raydiff => {
+        Method::Raydiff | Method::Gbuffer => {
             let t = prep.rd_tris[q.tri]?;
             let fp = t.footprint(q.state.diff.dodx, q.state.diff.dody);
             Some((t.lod(&fp), Some(fp)))
@@ -170,7 +170,7 @@ fn float_lod(prep: &Prepared, method: Method, q: &LodQuery) -> (f64, Option<[[f6
             let nd = q.n_dot_d.clamp(2f64.powi(-16), 1.0);
             (delta + w.log2() - nd.log2(), None)
         }
-        Method::Raydiff => {
+        Method::Raydiff | Method::Gbuffer => {
             let axes = raydiff_axes(q);
             (raydiff_lod(q.tex, axes), Some(axes))
         }

@@ -25,6 +25,7 @@ pub mod camera;
 mod counters;
 pub mod envmap;
 mod error;
+pub mod gbuffer;
 pub mod instances;
 pub mod lod;
 mod options;
@@ -140,6 +141,8 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
     };
     let fixed = opts.precision == Precision::Fixed;
     let t0 = Instant::now();
+    // The G-buffer pass (method gbuffer): part of the frame's time.
+    let gbuffer = (opts.method == Method::Gbuffer).then(|| tracer::gbuffer_pass(prep, fixed));
     let tiles: Vec<_> = (0..n_tiles)
         .into_par_iter()
         .map(|ti| {
@@ -159,6 +162,8 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
                 },
                 filter: ff.map(|f| f.filter),
                 rng: raymip::rng::Rng::new(0),
+                gbuffer: gbuffer.as_ref(),
+                px: (0, 0),
             };
             let frame = ff.map_or(0, |f| f.frame);
             let mut px = Vec::new();

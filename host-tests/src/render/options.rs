@@ -15,6 +15,13 @@ pub enum Method {
     /// Ray differentials (Igehy 1999): the firmware's fixed-point ones
     /// (`raymip::raydiff`) in fixed precision, f64 in float precision.
     Raydiff,
+    /// Ray differentials whose first hit comes from a G-buffer (the talk's
+    /// "RayDiffs GB"): a pass over the pixel centres stores each first hit
+    /// (position, shading normal, distance); a path's first hit takes its
+    /// position and normal differentials from the neighbouring pixels'
+    /// (`raymip::raydiff::gbuffer`, the side with the smaller distance
+    /// step), later hits transfer them as the raydiff method does.
+    Gbuffer,
     /// No LOD: bilinear in level 0.
     Mip0,
     /// Ground truth: jittered supersampling, bilinear in level 0.
@@ -29,9 +36,19 @@ impl Method {
             Self::Table => "table",
             Self::Cone => "cone",
             Self::Raydiff => "raydiff",
+            Self::Gbuffer => "gbuffer",
             Self::Mip0 => "mip0",
             Self::Truth => "truth",
         }
+    }
+}
+
+impl Method {
+    /// Ray differentials: a footprint with two axes per hit (for
+    /// anisotropic filtering), not only a lod.
+    #[must_use]
+    pub fn has_footprint(self) -> bool {
+        matches!(self, Self::Raydiff | Self::Gbuffer)
     }
 }
 
@@ -77,8 +94,9 @@ pub struct Options {
     /// Anisotropic filtering with at most this many probes (1..=16) over
     /// the ray-differential footprint (pbrt-style axes; never a ray-cone
     /// ellipse): the firmware's fixed-point footprint in fixed precision,
-    /// the f64 one in float precision. Only [`Method::Raydiff`] has a
-    /// footprint: [`Options::validate`] refuses it with any other method
+    /// the f64 one in float precision. Only the ray-differential methods
+    /// ([`Method::Raydiff`], [`Method::Gbuffer`]) have a footprint:
+    /// [`Options::validate`] refuses it with any other method
     /// (the CLI reports that error); a library caller that sets it anyway
     /// gets isotropic filtering at the chosen method's lod (never a switch
     /// of method). `None` = isotropic (trilinear at the method's lod).
@@ -89,11 +107,11 @@ impl Options {
     /// Checks that the options go together.
     ///
     /// # Errors
-    /// Anisotropic filtering with a method other than [`Method::Raydiff`]:
-    /// the table and cone methods give an isotropic lod and no footprint
-    /// axes.
+    /// Anisotropic filtering with a method other than the ray-differential
+    /// ones ([`Method::Raydiff`], [`Method::Gbuffer`]): the table and cone
+    /// methods give an isotropic lod and no footprint axes.
     pub fn validate(&self) -> Result<(), RenderError> {
-        if self.aniso.is_some() && self.method != Method::Raydiff {
+        if self.aniso.is_some() && !self.method.has_footprint() {
             return Err(RenderError::AnisoNeedsRaydiff {
                 method: self.method,
             });

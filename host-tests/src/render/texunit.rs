@@ -51,7 +51,7 @@ impl Filter {
     pub fn of(method: Method) -> Self {
         match method {
             Method::Mip0 | Method::Truth => Self::BilinearLevel0,
-            Method::Table | Method::Cone | Method::Raydiff => Self::Trilinear,
+            Method::Table | Method::Cone | Method::Raydiff | Method::Gbuffer => Self::Trilinear,
         }
     }
 }

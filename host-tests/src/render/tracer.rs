@@ -6,6 +6,7 @@ use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
 use super::envmap::{FloatMiss, MissRay};
+use super::gbuffer::{FirstHit, Frame, GBuffer, GHit};
 use super::lod::{LodQuery, hit_lod};
 use super::texunit::{FetchLog, Filter, Unit};
 use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
@@ -101,6 +102,10 @@ pub(crate) struct Ctx<'a> {
     pub(crate) filter: Option<Filter>,
     /// The pixel's generator of stochastic-filter bits (reseeded per pixel).
     pub(crate) rng: raymip::rng::Rng,
+    /// The G-buffer ([`Method::Gbuffer`] only): first-hit differentials.
+    pub(crate) gbuffer: Option<&'a Frame>,
+    /// The pixel being traced.
+    pub(crate) px: (u32, u32),
 }
 
 /// Deterministic per-sample random numbers in [0, 1).
@@ -120,6 +125,7 @@ fn hash01(x: u32, y: u32, s: u32, k: u32) -> f64 {
 
 impl Ctx<'_> {
     pub(crate) fn pixel(&mut self, x: u32, y: u32) -> (V3, f64) {
+        self.px = (x, y);
         if self.opts.method == Method::Truth {
             let n = self.opts.spp.max(1);
             let k = (f64::from(n).sqrt() as u32).max(1);
@@ -221,16 +227,28 @@ impl Ctx<'_> {
         let mut state = state.advance(t_fixed);
         let tri = &scene.triangles[hit.tri as usize];
         let mat = &scene.materials[tri.material as usize];
-        // The ray differentials transferred to the hit plane (geometric
-        // normal): the firmware's in fixed precision, f64 in float.
-        let f = HitFrame::new(tri, &ray, &hit, |ng| match ray.float {
-            None => {
+        // A path's first hit takes its differentials from the G-buffer
+        // (method gbuffer), every other hit transfers them.
+        let first = match (self.gbuffer, state.depth) {
+            (Some(g), 0) => g.first_hit(self.px.0, self.px.1, &state.diff),
+            _ => None,
+        };
+        // The ray differentials at the hit plane (geometric normal): the
+        // firmware's in fixed precision, f64 in float.
+        let mut f = HitFrame::new(tri, &ray, &hit, |ng| match (first, ray.float) {
+            (Some(FirstHit::Fixed(d, _, sat)), _) => {
+                state.diff = d;
+                state.saturated |= sat;
+                (v3_of(d.dodx), v3_of(d.dody))
+            }
+            (Some(FirstHit::Float(dp, _)), _) => (dp[0], dp[1]),
+            (None, None) => {
                 let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
                 state.diff = d;
                 state.saturated |= sat;
                 (v3_of(d.dodx), v3_of(d.dody))
             }
-            Some(p) => {
+            (None, Some(p)) => {
                 let transfer = |dp: V3, dd: V3| {
                     let q = dp + dd * hit.t;
                     let dt = -q.dot(ng) / ray.d.dot(ng);
@@ -242,6 +260,13 @@ impl Ctx<'_> {
                 )
             }
         });
+        // ... and its shading-normal differentials, for the reflection and
+        // refraction differentials.
+        match first {
+            Some(FirstHit::Fixed(_, [dnx, dny], _)) => (f.dnx, f.dny) = (v3_dir(dnx), v3_dir(dny)),
+            Some(FirstHit::Float(_, [dnx, dny])) => (f.dnx, f.dny) = (dnx, dny),
+            None => {}
+        }
         if state.saturated {
             self.counters.saturations += 1;
         }
@@ -660,4 +685,54 @@ fn unit_q(v: V3) -> UnitVec {
 /// Firmware position differentials as f64.
 fn v3_of(d: [raymip::raydiff::PosDiff; 3]) -> V3 {
     V3::from(d.map(|x| x.to_num::<f64>()))
+}
+
+/// Firmware direction (normal) differentials as f64 (exact).
+fn v3_dir(d: [raymip::raydiff::DirDiff; 3]) -> V3 {
+    V3::from(d.map(|x| x.to_num::<f64>()))
+}
+
+/// The first hit of pixel `(x, y)`'s primary ray through its centre, as
+/// the G-buffer stores it: position, unit shading normal facing the ray
+/// (flat triangles: the geometric normal) and distance; `None` on a miss.
+fn gbuffer_entry(prep: &Prepared, x: u32, y: u32) -> Option<GHit> {
+    let (dv, _, _) = prep.cam.primary_dir(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    let d = dv.normalize_or_zero();
+    let hit = prep.bvh.closest(prep.cam.eye, d, 0.0, f64::INFINITY)?;
+    let tri = &prep.scene.triangles[hit.tri as usize];
+    let ng = (tri.p[1] - tri.p[0])
+        .cross(tri.p[2] - tri.p[0])
+        .normalize_or_zero();
+    let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
+    let (n, _, _) = shading_normal(tri, ng, b, (0.0, 0.0), (0.0, 0.0));
+    Some(GHit {
+        p: prep.cam.eye + d * hit.t,
+        n: if n.dot(d) > 0.0 { n * -1.0 } else { n },
+        t: hit.t,
+    })
+}
+
+/// The G-buffer pass of a render: every pixel's [`gbuffer_entry`], rows in
+/// parallel, stored in the render's precision (`fixed`: the firmware's
+/// entries).
+pub(crate) fn gbuffer_pass(prep: &Prepared, fixed: bool) -> Frame {
+    use rayon::prelude::*;
+    let (w, h) = (prep.width, prep.height);
+    let hits: Vec<Option<GHit>> = (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| (0..w).map(move |x| gbuffer_entry(prep, x, y)))
+        .collect();
+    if fixed {
+        Frame::Fixed(GBuffer {
+            width: w,
+            height: h,
+            entries: hits.iter().map(|e| e.map(|g| g.to_fixed())).collect(),
+        })
+    } else {
+        Frame::Float(GBuffer {
+            width: w,
+            height: h,
+            entries: hits,
+        })
+    }
 }

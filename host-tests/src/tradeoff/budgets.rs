@@ -54,6 +54,8 @@ pub struct FrameCost {
 /// - ray differentials (`raydiff`): the primary set-up per path, the
 ///   transfer per hit, a reflection or refraction per continuation, and
 ///   the footprint and its lod per textured hit;
+/// - G-buffer ray differentials (`gbuffer`): the same, but the first hit
+///   of each path takes the G-buffer set-up instead of a transfer;
 /// - the sample per isotropic sample (`bilinear sample`, `trilinear
 ///   sample`: the filter stage's call of the mode).
 ///
@@ -81,6 +83,18 @@ pub fn frame_calls(method: Method, filter: Filter, c: &Counters) -> Option<Vec<C
             call("footprint (two texture-space axes)", c.textured_hits),
             call("lod from the footprint (larger axis)", c.textured_hits),
         ],
+        Method::Gbuffer => {
+            let first = c.depth_hist.first().copied().unwrap_or(0);
+            vec![
+                call("primary set-up from the camera", c.paths),
+                call("G-buffer first-hit set-up (four neighbours)", first),
+                call("transfer to a hit", c.hits.saturating_sub(first)),
+                call("reflection (shading-normal differentials)", c.reflections),
+                call("refraction (shading-normal differentials)", c.refractions),
+                call("footprint (two texture-space axes)", c.textured_hits),
+                call("lod from the footprint (larger axis)", c.textured_hits),
+            ]
+        }
         Method::Mip0 => Vec::new(),
         Method::Truth => return None,
     };

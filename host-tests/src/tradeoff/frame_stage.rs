@@ -66,6 +66,16 @@ fn expectation(f: Filter) -> Filter {
 }
 
 /// The filters rendered with `method`.
+/// The frame stage's LOD methods: the talk's three (table and ray cones,
+/// ray differentials ray-traced and from a G-buffer) and no LOD.
+const METHODS: [Method; 5] = [
+    Method::Table,
+    Method::Cone,
+    Method::Raydiff,
+    Method::Gbuffer,
+    Method::Mip0,
+];
+
 fn filters(method: Method) -> Vec<Filter> {
     let mut f = vec![Filter::Nearest, Filter::Bilinear];
     if method != Method::Mip0 {
@@ -87,10 +97,7 @@ pub fn renders_per_scene(s: &Settings) -> u64 {
         let sto = f.len() - det;
         (det * 2 + sto) * s.frame_repeats + sto * s.frame_accumulate as usize
     };
-    1 + [Method::Table, Method::Cone, Method::Raydiff, Method::Mip0]
-        .map(per)
-        .iter()
-        .sum::<usize>() as u64
+    1 + METHODS.map(per).iter().sum::<usize>() as u64
 }
 
 struct Scored<'a> {
@@ -179,7 +186,7 @@ fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, Tra
         tick,
     };
     let mut out = Vec::new();
-    for method in [Method::Table, Method::Cone, Method::Raydiff, Method::Mip0] {
+    for method in METHODS {
         let o = |precision| Options {
             method,
             precision,

@@ -91,17 +91,27 @@ fn fronto_parallel_quad_lod_zero_then_one() {
         }
     }
     // Ray differentials measure the same footprint: f64, and the
-    // firmware's fixed-point ones within their stated bound.
+    // firmware's fixed-point ones within their stated bound. So do the
+    // G-buffer's: on a plane facing the camera the hit point moves
+    // linearly with the pixel, so the neighbour difference is the
+    // derivative.
     let rd_tol = raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR;
-    for (p, tol) in [(Precision::Float, tol), (Precision::Fixed, rd_tol)] {
-        let l1 = centre_lod(1.0, Method::Raydiff, p);
-        let l2 = centre_lod(2.0, Method::Raydiff, p);
-        println!("raydiff {}: lod {l1:.5} at Pb, {l2:.5} at 2·Pb", p.name());
-        assert!(
-            l1.abs() <= tol && (l2 - 1.0).abs() <= tol,
-            "raydiff {}: {l1} {l2}",
-            p.name()
-        );
+    for m in [Method::Raydiff, Method::Gbuffer] {
+        for (p, tol) in [(Precision::Float, tol), (Precision::Fixed, rd_tol)] {
+            let l1 = centre_lod(1.0, m, p);
+            let l2 = centre_lod(2.0, m, p);
+            println!(
+                "{} {}: lod {l1:.5} at Pb, {l2:.5} at 2·Pb",
+                m.name(),
+                p.name()
+            );
+            assert!(
+                l1.abs() <= tol && (l2 - 1.0).abs() <= tol,
+                "{} {}: {l1} {l2}",
+                m.name(),
+                p.name()
+            );
+        }
     }
 }
 
@@ -134,7 +144,14 @@ fn every_filter_samples_at_the_methods_lod() {
     ];
     for pr in [Precision::Fixed, Precision::Float] {
         let mut sums = Vec::new();
-        for m in [Method::Table, Method::Cone, Method::Raydiff, Method::Mip0] {
+        let methods = [
+            Method::Table,
+            Method::Cone,
+            Method::Raydiff,
+            Method::Gbuffer,
+            Method::Mip0,
+        ];
+        for m in methods {
             for filter in filters {
                 let img = render_filtered(&p, &o(m, pr), Some(FrameFilter { filter, frame: 0 }));
                 let c = &img.counters;
@@ -167,16 +184,19 @@ fn every_filter_samples_at_the_methods_lod() {
                 );
             }
         }
-        let aniso = render(
-            &p,
-            &Options {
-                aniso: Some(4),
-                ..o(Method::Raydiff, pr)
-            },
-        );
-        let c = &aniso.counters;
-        assert_eq!(c.aniso_samples, c.textured_hits, "{} aniso", pr.name());
-        assert_eq!(c.samples, 0, "{} aniso: no isotropic sample", pr.name());
+        for m in [Method::Raydiff, Method::Gbuffer] {
+            let aniso = render(
+                &p,
+                &Options {
+                    aniso: Some(4),
+                    ..o(m, pr)
+                },
+            );
+            let c = &aniso.counters;
+            let what = format!("{} {} aniso", m.name(), pr.name());
+            assert_eq!(c.aniso_samples, c.textured_hits, "{what}");
+            assert_eq!(c.samples, 0, "{what}: no isotropic sample");
+        }
     }
 }
 
@@ -306,6 +326,8 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
             (Method::Cone, Precision::Float),
             (Method::Raydiff, Precision::Float),
             (Method::Raydiff, Precision::Fixed),
+            (Method::Gbuffer, Precision::Float),
+            (Method::Gbuffer, Precision::Fixed),
         ] {
             let img = render(&prep, &opts(m, p));
             let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;

@@ -138,6 +138,15 @@ fn quick_run_writes_everything_and_errors_are_sane() {
     assert!(
         cost("table", "fixed accurate", "trilinear") > cost("table", "fixed accurate", "bilinear")
     );
+    // Ray differentials cost more than a cone per frame; a G-buffer's first
+    // hits (set-up instead of transfer) make its frame cheaper than the
+    // ray-traced one's (the talk: about 2× and 3× a cone's cost).
+    let tri = |m| cost(m, "fixed accurate", "trilinear").unwrap_or_else(|| panic!("{m}: no cost"));
+    let (cone, rt, gb) = (tri("cone"), tri("raydiff"), tri("gbuffer"));
+    assert!(
+        cone < gb && gb < rt,
+        "cone {cone}, gbuffer {gb}, raydiff {rt}"
+    );
     assert!(
         rows.iter()
             .any(|r| r.get("pareto_cost") == Some(&Value::Bool(true)))
