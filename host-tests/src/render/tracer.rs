@@ -263,7 +263,10 @@ impl Ctx<'_> {
         // ... and its shading-normal differentials, for the reflection and
         // refraction differentials.
         match first {
-            Some(FirstHit::Fixed(_, [dnx, dny], _)) => (f.dnx, f.dny) = (v3_dir(dnx), v3_dir(dny)),
+            Some(FirstHit::Fixed(_, [dnx, dny], _)) => {
+                (f.dnx, f.dny) = (v3_dir(dnx), v3_dir(dny));
+                f.dn_fixed = Some([dnx, dny]);
+            }
             Some(FirstHit::Float(_, [dnx, dny])) => (f.dnx, f.dny) = (dnx, dny),
             None => {}
         }
@@ -449,7 +452,8 @@ impl Ctx<'_> {
         state: &PathState,
     ) -> (Option<Continuation>, Option<Continuation>) {
         let fw = self.fixed();
-        let (dq, nq, dnxq, dnyq) = (unit_q(ray.d), unit_q(f.ns), unit_q(f.dnx), unit_q(f.dny));
+        let (dq, nq) = (unit_q(ray.d), unit_q(f.ns));
+        let [dnxq, dnyq] = f.dn_fixed.unwrap_or([unit_q(f.dnx), unit_q(f.dny)]);
         let eps = self.eps();
         let ns = f.ns;
         let face_ng = f.face_ng;
@@ -572,6 +576,10 @@ struct HitFrame {
     /// Shading-normal derivatives per pixel in x and y.
     dnx: V3,
     dny: V3,
+    /// The firmware's shading-normal differentials when they come from
+    /// the firmware (the G-buffer's, fixed precision): passed on as they
+    /// are instead of `dnx`, `dny`.
+    dn_fixed: Option<[UnitVec; 2]>,
     /// Position differentials on the hit plane per pixel in x and y.
     dpx: V3,
     dpy: V3,
@@ -617,6 +625,7 @@ impl HitFrame {
             ns,
             dnx,
             dny,
+            dn_fixed: None,
             dpx,
             dpy,
             dbx,
