@@ -23,7 +23,7 @@
 //! | path | calls | log2 | error bound |
 //! |---|---|---|---|
 //! | ACCURATE (bit-identical on every target and to earlier releases) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
-//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count, one [`LodWord`] per hit), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
 //!
 //! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST path
 //! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
@@ -236,36 +236,141 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
     Lod::from_bits((l >> 8).clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
 }
 
+/// A FAST table lod or "untextured" in one 32-bit word, the element
+/// [`table_lod_fast_batch`] writes: a textured hit's [`Lod`] bits
+/// sign-extended (a word in `[−2¹⁵, 2¹⁵)`; the batch's lie in
+/// `[−32512, 32512]`, ±127 levels), an untextured hit any word outside
+/// `[−2¹⁵, 2¹⁵)`, the niche that takes the place of `Option`'s tag, so a
+/// batch stores one word per hit and needs no branch. [`LodWord::get`]
+/// reads it as `Option<Lod>`.
+///
+/// The batch reaches the niche arithmetically: `log2 Pl + 2⁻⁹` lies in
+/// `[−32, 32 + 2⁻⁹]` ([`NormPl`]) and a textured `log2 Pb` in `[−95, 95]`,
+/// so their I16F16 difference lies within ±2²³; the untextured marker
+/// [`Log2Pb::UNTEXTURED`] is `−2³¹` (I16F16 bits), and the wrapping
+/// difference with it flips bit 31, which puts the word (the difference
+/// `>> 8`) within 2¹³ of ±2²³. [`LodWord::UNTEXTURED`] is the canonical
+/// untextured word; equality compares [`LodWord::get`], not the bits.
+///
+/// # Example
+/// ```
+/// use raymip::lod::{LodWord, table_lod_fast_batch, table_lod_norm};
+/// use raymip::log2_fast::NormPl;
+/// use raymip::{Lod, Log2Pb, PathLength};
+/// let key = NormPl::new(PathLength::from_num(12));
+/// let hits = [(key, Log2Pb::from_bits(0)), (key, Log2Pb::UNTEXTURED)];
+/// let mut out = [LodWord::UNTEXTURED; 2];
+/// assert_eq!(table_lod_fast_batch(&hits, &mut out), 2);
+/// assert_eq!(out[0].get(), table_lod_norm(key, Log2Pb::from_bits(0)));
+/// assert!(out[0].get().is_some_and(|l| l > Lod::from_num(3.5)));
+/// assert_eq!(out[1].get(), None);
+/// assert_eq!(out[1], LodWord::UNTEXTURED);
+/// assert_eq!(LodWord::from(Some(Lod::ONE)).to_bits(), 256);
+/// ```
+#[derive(Clone, Copy, Debug)]
+#[repr(transparent)]
+pub struct LodWord(i32);
+
+impl LodWord {
+    /// The canonical untextured word, `i32::MIN` (any word outside
+    /// `[−2¹⁵, 2¹⁵)` reads as untextured).
+    pub const UNTEXTURED: Self = Self(i32::MIN);
+
+    /// The lod, or `None` for an untextured hit (a word outside
+    /// `[−2¹⁵, 2¹⁵)`). Never panics.
+    #[inline]
+    #[must_use]
+    pub const fn get(self) -> Option<Lod> {
+        let lod = self.0 as i16;
+        if lod as i32 == self.0 {
+            Some(Lod::from_bits(lod))
+        } else {
+            None
+        }
+    }
+
+    /// The raw word: [`Lod`] bits in `[−2¹⁵, 2¹⁵)`, else untextured.
+    #[inline]
+    #[must_use]
+    pub const fn to_bits(self) -> i32 {
+        self.0
+    }
+
+    /// A word from its raw value (any value: outside `[−2¹⁵, 2¹⁵)` it
+    /// reads as untextured).
+    #[inline]
+    #[must_use]
+    pub const fn from_bits(bits: i32) -> Self {
+        Self(bits)
+    }
+}
+
+/// [`LodWord::UNTEXTURED`], as `Option`'s default is `None`.
+impl Default for LodWord {
+    fn default() -> Self {
+        Self::UNTEXTURED
+    }
+}
+
+/// Equal when [`LodWord::get`] is: every untextured word equals every other.
+impl PartialEq for LodWord {
+    fn eq(&self, other: &Self) -> bool {
+        self.get() == other.get()
+    }
+}
+
+impl Eq for LodWord {}
+
+/// `Some(lod)` → the lod's bits, `None` → [`LodWord::UNTEXTURED`].
+impl From<Option<Lod>> for LodWord {
+    fn from(lod: Option<Lod>) -> Self {
+        lod.map_or(Self::UNTEXTURED, |l| Self(i32::from(l.to_bits())))
+    }
+}
+
+/// [`LodWord::get`].
+impl From<LodWord> for Option<Lod> {
+    fn from(w: LodWord) -> Self {
+        w.get()
+    }
+}
+
+/// The FAST table lod from a normalised path length as a [`LodWord`],
+/// branch-free (the one home of the arithmetic of [`table_lod_norm`] and
+/// [`table_lod_fast_batch`]): `(log2 Pl + 2⁻⁹ − log2 Pb) >> 8` in I16F16
+/// bits, wrapping, so the untextured marker lands in the niche (see
+/// [`LodWord`]).
+#[inline(always)]
+fn table_lod_norm_word(pl: NormPl, pb: Log2Pb) -> LodWord {
+    LodWord(pl.log2_rounding_bits().wrapping_sub(pb.to_bits()) >> 8)
+}
+
 /// FAST table method from a normalised path length ([`NormPl`], kept in
 /// every ray-stack entry as [`crate::raystack::PathState::pl_norm`]): no
 /// leading-zero count, one table read and two additions. Bit-identical to
 /// [`table_lod_fast`] of the path length the key was made from (tested for
 /// every table index and octave), so within [`LOD_MAX_ERROR`] `= 2⁻⁸`
 /// level of f64 and monotonic in `Pl`. `None` for an untextured triangle.
-/// Never panics (any key word is safe).
+/// Never panics (every key is valid, see [`NormPl`]).
 #[inline]
 #[must_use]
 pub fn table_lod_norm(pl: NormPl, pb: Log2Pb) -> Option<Lod> {
-    if pb.is_untextured() {
-        return None;
-    }
-    // log2 Pl + 0x80 − log2 Pb in I16F16 bits; the I8F8 result is bits 8..24.
-    let d = pl
-        .log2_rounding_bits()
-        .wrapping_sub(pb.to_i16f16().to_bits());
-    Some(Lod::from_bits((d >> 8) as i16))
+    table_lod_norm_word(pl, pb).get()
 }
 
 /// Batch of the FAST table method (error ≤ [`LOD_MAX_ERROR`]) from
-/// normalised path lengths: `out[i] = table_lod_norm(hits[i].0, hits[i].1)`
-/// (equal to [`table_lod_fast`] of the path lengths the keys were made
-/// from) for `i < n = min(hits.len(), out.len())`, in caller memory;
-/// returns `n`. Same results as the per-hit call, bit for bit; never
-/// panics. The keys come from the ray stack
-/// ([`crate::raystack::PathState::pl_norm`]) or [`NormPl::new`].
+/// normalised path lengths, one word per hit: `out[i]` is
+/// `table_lod_norm(hits[i].0, hits[i].1)` as a [`LodWord`] (read it with
+/// [`LodWord::get`]; equal to [`table_lod_fast`] of the path lengths the
+/// keys were made from) for `i < n = min(hits.len(), out.len())`, in
+/// caller memory; returns `n` (words past `n` are left untouched). Same
+/// results as the per-hit call, bit for bit; branch-free per hit (an
+/// untextured entry gives a word in the niche); never panics. The keys come
+/// from the ray stack ([`crate::raystack::PathState::pl_norm`]) or
+/// [`NormPl::new`].
 #[inline]
-pub fn table_lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    batch(hits, out, |(pl, pb)| table_lod_norm(pl, pb))
+pub fn table_lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize {
+    batch(hits, out, |(pl, pb)| table_lod_norm_word(pl, pb))
 }
 
 /// Batch of [`cone_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
@@ -432,8 +537,14 @@ mod tests {
             None
         );
         assert_eq!(table_lod_norm(NormPl::ZERO, pb), Some(Lod::from_num(-34)));
-        for bits in [i32::MIN, -1, 0, 1023, i32::MAX] {
-            let _ = table_lod_norm(NormPl::from_bits(bits), Log2Pb::DEGENERATE_UV);
+        // Raw key words are clamped to valid keys (exponent in [−32, 31]),
+        // so even the extreme words give a lod in [−127, −63] here.
+        for bits in [i32::MIN, -1, 0, 1023, 0xFC00, i32::MAX] {
+            let l = table_lod_norm(NormPl::from_bits(bits), Log2Pb::DEGENERATE_UV).unwrap();
+            assert!(
+                (Lod::from_num(-127)..=Lod::from_num(-63)).contains(&l),
+                "{bits:#x}: {l}"
+            );
         }
         for pl in [PathLength::ZERO, PathLength::from_num(1), PathLength::MAX] {
             for m in [
@@ -477,6 +588,48 @@ mod tests {
                 Lod::MIN
             );
         }
+    }
+
+    #[test]
+    fn lod_word_niche() {
+        // The Lod range reads back, every word outside it is untextured.
+        assert_eq!(LodWord::from_bits(0).get(), Some(Lod::ZERO));
+        assert_eq!(LodWord::from_bits(-1).get(), Some(-Lod::DELTA));
+        assert_eq!(LodWord::from_bits(32767).get(), Some(Lod::MAX));
+        assert_eq!(LodWord::from_bits(-32768).get(), Some(Lod::MIN));
+        for bits in [32768, -32769, 1 << 23, -(1 << 23), i32::MIN, i32::MAX] {
+            assert_eq!(LodWord::from_bits(bits).get(), None, "{bits:#x}");
+            assert_eq!(LodWord::from_bits(bits), LodWord::UNTEXTURED);
+        }
+        assert_eq!(LodWord::UNTEXTURED.to_bits(), i32::MIN);
+        assert_eq!(LodWord::default(), LodWord::UNTEXTURED);
+        assert_eq!(LodWord::from(Some(Lod::from_num(-2.5))).to_bits(), -640);
+        assert_eq!(LodWord::from(None), LodWord::UNTEXTURED);
+        assert_ne!(LodWord::from_bits(1), LodWord::UNTEXTURED);
+        assert_ne!(LodWord::from_bits(1), LodWord::from_bits(2));
+        for l in [Lod::MIN, -Lod::DELTA, Lod::ZERO, Lod::MAX] {
+            assert_eq!(Option::<Lod>::from(LodWord::from(Some(l))), Some(l));
+        }
+        // The untextured marker lands in the niche for the extreme keys:
+        // `log2 Pl + 2⁻⁹` of about −32 and 32 (the wrap goes either way).
+        let max_key = NormPl::from_bits((31 << 16) | 1023);
+        assert_eq!(NormPl::from_bits(i32::MAX), max_key);
+        for key in [NormPl::ZERO, NormPl::new(PathLength::ONE), max_key] {
+            let mut w = [LodWord::from_bits(0); 2];
+            table_lod_fast_batch(&[(key, Log2Pb::UNTEXTURED), (key, Log2Pb::MAX)], &mut w);
+            assert_eq!(w[0].get(), None, "{key:?}: {:#x}", w[0].to_bits());
+            assert!(w[1].get().is_some());
+        }
+        // The ends of the textured range: ±127 levels (±32512 bits).
+        let mut w = [LodWord::UNTEXTURED; 2];
+        table_lod_fast_batch(
+            &[
+                (max_key, Log2Pb::DEGENERATE_GEOMETRY),
+                (NormPl::ZERO, Log2Pb::DEGENERATE_UV),
+            ],
+            &mut w,
+        );
+        assert_eq!(w.map(LodWord::to_bits), [32512, -32512]);
     }
 
     #[test]
@@ -630,6 +783,12 @@ mod tests {
             let fast = table_lod_fast(st.pl, pb).unwrap().to_num::<f64>();
             prop_assert!((fast - want).abs() <= LOD_MAX_ERROR,
                 "fast table lod {} vs f64 {} (Pl {}, log2 Pb {})", fast, want, pl, want_pb);
+            // The FAST batch from the ray stack's normalised Pl.
+            let mut w = [LodWord::UNTEXTURED];
+            table_lod_fast_batch(&[(st.pl_norm, pb)], &mut w);
+            let batch = w[0].get().unwrap().to_num::<f64>();
+            prop_assert!((batch - want).abs() <= LOD_MAX_ERROR,
+                "fast table batch {} vs f64 {} (Pl {}, log2 Pb {})", batch, want, pl, want_pb);
             // Identity: cone with β = 0 and no normal term equals the table,
             // where the cone width is resolved (w ≥ 2^-20 scene units; its
             // step is 2^-32, see the module docs).
@@ -699,6 +858,12 @@ mod tests {
             let acc = table_lod(pl, pb).unwrap();
             prop_assert!((got.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", got, acc);
             prop_assert_eq!(table_lod_norm(NormPl::new(pl), pb), Some(got));
+            // The batch's word, against f64 too.
+            let mut w = [LodWord::UNTEXTURED];
+            prop_assert_eq!(table_lod_fast_batch(&[(NormPl::new(pl), pb)], &mut w), 1);
+            let word = w[0].get().unwrap();
+            prop_assert!((word.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "batch {} vs f64 {}", word, want);
+            prop_assert_eq!(word, got);
             if p < u64::MAX {
                 prop_assert!(table_lod_fast(PathLength::from_bits(p + 1), pb).unwrap() >= got);
             }
@@ -720,26 +885,91 @@ mod tests {
             prop_assert!((l.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", l, acc);
         }
 
-        /// The batches equal the per-hit calls, also with unequal lengths.
+        /// The FAST table batch equals the per-hit calls bit for bit over
+        /// the whole input range: keys of every path length (octaves drawn
+        /// uniformly, zero and the largest included), every table entry
+        /// (the three markers, the finite extremes and any raw word),
+        /// unequal lengths (words past `n` untouched). Against
+        /// `table_lod_fast`, whose arithmetic is separate (leading-zero
+        /// count, the unshifted table).
         #[test]
-        fn fast_batches_equal_per_hit_calls(hits in proptest::collection::vec((any::<u64>(), any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
-            let t: std::vec::Vec<_> = hits.iter().map(|&(p, b, ..)| (PathLength::from_bits(p), Log2Pb::from_bits(b))).collect();
+        fn table_lod_fast_batch_equals_per_hit_calls(
+            hits in proptest::collection::vec((0u32..66, any::<u64>(), 0u8..8, any::<i32>()), 0..40),
+            extra in 0usize..3,
+            longer in any::<bool>(),
+        ) {
+            let t: std::vec::Vec<_> = hits.iter().map(|&(n, m, sel, b)| {
+                let p = match n {
+                    64 => 0,
+                    65 => u64::MAX,
+                    n => (1u64 << n) | (m & ((1u64 << n) - 1)),
+                };
+                let pb = match sel {
+                    0 => Log2Pb::UNTEXTURED,
+                    1 => Log2Pb::DEGENERATE_GEOMETRY,
+                    2 => Log2Pb::DEGENERATE_UV,
+                    3 => Log2Pb::MIN,
+                    4 => Log2Pb::MAX,
+                    _ => Log2Pb::from_bits(b),
+                };
+                (PathLength::from_bits(p), pb)
+            }).collect();
             let k: std::vec::Vec<_> = t.iter().map(|&(pl, pb)| (NormPl::new(pl), pb)).collect();
-            let mut out = std::vec![Some(Lod::MAX); t.len().saturating_sub(extra)];
-            prop_assert_eq!(table_lod_fast_batch(&k, &mut out), out.len());
-            for (o, &(pl, pb)) in out.iter().zip(&t) {
-                prop_assert_eq!(*o, table_lod_fast(pl, pb));
+            const UNTOUCHED: i32 = 0x1234_5678;
+            let len = if longer { t.len() + extra } else { t.len().saturating_sub(extra) };
+            let mut out = std::vec![LodWord::from_bits(UNTOUCHED); len];
+            let n = table_lod_fast_batch(&k, &mut out);
+            prop_assert_eq!(n, t.len().min(len));
+            for (i, (o, &(pl, pb))) in out.iter().zip(&t).enumerate() {
+                prop_assert_eq!(o.get(), table_lod_fast(pl, pb), "hit {}: word {:#x}", i, o.to_bits());
+                prop_assert_eq!(o.get(), table_lod_norm(k[i].0, pb));
             }
-            #[cfg(feature = "cone")]
-            {
-                let c: std::vec::Vec<_> = hits.iter().map(|&(_, b, w, c)| (Width::from_bits(w), I16F16::from_bits(b), c.map(U1F31::from_bits))).collect();
-                let mut out = std::vec![Lod::MAX; c.len() + extra];
-                prop_assert_eq!(cone_lod_fast_batch(&c, &mut out), c.len());
-                for (o, &(w, d, n)) in out.iter().zip(&c) {
-                    prop_assert_eq!(*o, cone_lod_fast(w, d, n));
-                }
-                prop_assert!(out[c.len()..].iter().all(|&o| o == Lod::MAX));
+            prop_assert!(out[n..].iter().all(|o| o.to_bits() == UNTOUCHED));
+        }
+
+        /// Keys from any raw word (clamped by `NormPl::from_bits`) stay
+        /// out of the niche when textured and in it when untextured: the
+        /// batch's word against f64 of the key's path length
+        /// `2^e · (1 + i/1024)` (the table's midpoint is within the FAST
+        /// log2 bound of it).
+        #[test]
+        fn table_lod_fast_batch_any_key_word(bits in any::<i32>(), sel in 0u8..6, b in any::<i32>()) {
+            let key = NormPl::from_bits(bits);
+            let (e, i) = (key.to_bits() >> 16, key.to_bits() & 1023);
+            prop_assert!((-32..=31).contains(&e));
+            prop_assert_eq!(key.to_bits() & 0xFC00, 0);
+            let pb = match sel {
+                0 => Log2Pb::UNTEXTURED,
+                1 => Log2Pb::DEGENERATE_GEOMETRY,
+                2 => Log2Pb::DEGENERATE_UV,
+                _ => Log2Pb::from_bits(b),
+            };
+            let mut w = [LodWord::from_bits(0)];
+            table_lod_fast_batch(&[(key, pb)], &mut w);
+            prop_assert_eq!(w[0].get(), table_lod_norm(key, pb));
+            if pb.is_untextured() {
+                prop_assert_eq!(w[0].get(), None);
+                prop_assert!(w[0].to_bits().unsigned_abs() >= 1 << 22, "{:#x}", w[0].to_bits());
+            } else {
+                let got = w[0].get().unwrap().to_num::<f64>();
+                let want = f64::from(e) + (1.0 + f64::from(i) / 1024.0).log2()
+                    - pb.to_i16f16().to_num::<f64>();
+                prop_assert!((got - want).abs() <= LOD_MAX_ERROR, "{:#x} {:?}: {} vs f64 {}", bits, pb, got, want);
+                prop_assert!(w[0].to_bits().abs() <= 32512);
             }
+        }
+
+        /// The cone batch equals the per-hit calls, also with unequal lengths.
+        #[test]
+        #[cfg(feature = "cone")]
+        fn cone_lod_fast_batch_equals_per_hit_calls(hits in proptest::collection::vec((any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
+            let c: std::vec::Vec<_> = hits.iter().map(|&(b, w, c)| (Width::from_bits(w), I16F16::from_bits(b), c.map(U1F31::from_bits))).collect();
+            let mut out = std::vec![Lod::MAX; c.len() + extra];
+            prop_assert_eq!(cone_lod_fast_batch(&c, &mut out), c.len());
+            for (o, &(w, d, n)) in out.iter().zip(&c) {
+                prop_assert_eq!(*o, cone_lod_fast(w, d, n));
+            }
+            prop_assert!(out[c.len()..].iter().all(|&o| o == Lod::MAX));
         }
 
         #[test]

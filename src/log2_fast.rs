@@ -140,8 +140,11 @@ const NORM_TABLE: [i32; 1 << INDEX_BITS] = {
 /// ([`crate::raystack::PathState::pl_norm`]), so a lod from it
 /// ([`crate::lod::table_lod_norm`], [`crate::lod::table_lod_fast_batch`])
 /// is one table read and two additions. `Pl = 0` is read as 2⁻³² (as
-/// [`log2_u32f32_fast`]). Any bit pattern is a valid key (the index is
-/// masked), so [`NormPl::from_bits`] cannot make a read out of bounds.
+/// [`log2_u32f32_fast`]). Every key is one [`NormPl::new`] can make or lies
+/// between two such keys: [`NormPl::from_bits`] clamps the exponent to
+/// `[−32, 31]` and clears bits 10..16, so `log2 Pl + 2⁻⁹` of any key lies in
+/// `[−32, 32 + 2⁻⁹]` and the lod of any key and any textured [`crate::Log2Pb`]
+/// in `[−127, 127]` levels (the range [`crate::lod::LodWord`] relies on).
 ///
 /// # Example
 /// ```
@@ -189,11 +192,22 @@ impl NormPl {
         self.0
     }
 
-    /// A key from its raw word (any value; the low ten bits are the index).
+    /// A key from a raw word: the inverse of [`NormPl::to_bits`] for every
+    /// key [`NormPl::new`] makes. Any other word is made a valid key: the
+    /// exponent (bits 16..32, signed) clamped to `[−32, 31]`, the index (bits
+    /// 0..10) kept, bits 10..16 cleared. Never panics.
     #[inline]
     #[must_use]
     pub const fn from_bits(bits: i32) -> Self {
-        Self(bits)
+        let e = bits >> 16;
+        let e = if e < -32 {
+            -32
+        } else if e > 31 {
+            31
+        } else {
+            e
+        };
+        Self((e << 16) | (bits & ((1 << INDEX_BITS) - 1)))
     }
 
     /// FAST `log2 Pl` plus the I8F8 rounding offset `0x80`, in I16F16
@@ -323,6 +337,13 @@ mod tests {
             }
         }
         assert_eq!(NormPl::new(U32F32::ZERO), NormPl::ZERO);
+        assert_eq!(NormPl::from_bits(i32::MIN), NormPl::ZERO);
+        assert_eq!(NormPl::from_bits(i32::MAX).to_bits(), (31 << 16) | 1023);
+        assert_eq!(
+            NormPl::from_bits((5 << 16) | 0xFC05).to_bits(),
+            (5 << 16) | 5
+        );
+        assert_eq!(NormPl::from_bits(-1).to_bits(), (-1 << 16) | 1023);
         // Every index of the re-based table against f64.
         for i in 0..1024i32 {
             let want =
@@ -352,7 +373,13 @@ mod tests {
         /// the FAST bound of f64.
         #[test]
         fn norm_pl_any_bits_and_f64(bits in any::<i32>(), n in 0u32..64, m in any::<u64>()) {
-            let _ = NormPl::from_bits(bits).log2();
+            // A raw word becomes a valid key: exponent clamped, bits 10..16
+            // cleared, index kept; log2 within [−32, 32].
+            let raw = NormPl::from_bits(bits);
+            let e = (bits >> 16).clamp(-32, 31);
+            prop_assert_eq!(raw.to_bits(), (e << 16) | (bits & 1023));
+            prop_assert_eq!(NormPl::from_bits(raw.to_bits()), raw);
+            prop_assert!((-32.0..=32.0).contains(&raw.log2().to_num::<f64>()));
             let x = (1u64 << n) | (m & ((1u64 << n) - 1));
             let k = NormPl::new(U32F32::from_bits(x));
             prop_assert_eq!(NormPl::from_bits(k.to_bits()), k);

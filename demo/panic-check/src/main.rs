@@ -31,8 +31,9 @@ use raymip::geomlod::{
     transition_step, visible,
 };
 use raymip::lod::{
-    Lod, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
-    table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch, table_lod_norm,
+    Lod, LodWord, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch,
+    table_lod, table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
+    table_lod_norm,
 };
 use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::log2_fast::{NormPl, log2_u32f32_fast};
@@ -330,10 +331,16 @@ fn main() -> ! {
         ); 4]);
         let norm_hits = bb([(NormPl::from_bits(bb(-7)), pb); 4]);
         bb(table_lod_norm(NormPl::new(pl), pb));
+        bb(NormPl::from_bits(bb(i32::MAX)).to_bits());
+        let mut words = [LodWord::default(); 3];
         bb(table_lod_fast_batch(
             norm_hits.get(..bb(4)).unwrap_or_default(),
-            lods.get_mut(..bb(3)).unwrap_or_default(),
+            words.get_mut(..bb(3)).unwrap_or_default(),
         ));
+        bb(words.map(LodWord::get));
+        bb(LodWord::from_bits(bb(1 << 20)).to_bits());
+        bb(LodWord::from(bb(Some(Lod::ONE))) == LodWord::UNTEXTURED);
+        bb(Option::<Lod>::from(bb(LodWord::UNTEXTURED)));
         let mut cone_out = [Lod::ZERO; 4];
         bb(cone_lod_batch(
             cones.get(..bb(2)).unwrap_or_default(),

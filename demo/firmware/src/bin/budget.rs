@@ -58,8 +58,8 @@ use fixed::types::{I16F16, U1F31};
 use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
 use raymip::lod::{
-    Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
-    table_lod_fast, table_lod_fast_batch,
+    Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
+    table_lod_batch, table_lod_fast, table_lod_fast_batch,
 };
 use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
@@ -162,11 +162,11 @@ pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
     cone_lod_batch(hits, out)
 }
 
-/// A batch of FAST table LODs.
+/// A batch of FAST table LODs (one `LodWord` per hit).
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [Option<Lod>]) -> usize {
+pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [LodWord]) -> usize {
     table_lod_fast_batch(hits, out)
 }
 
@@ -439,6 +439,7 @@ fn rm_budget_driver(
 
     // Batches of N/2 and N hits.
     let mut lod_out = [None; N];
+    let mut lod_words = [LodWord::UNTEXTURED; N];
     let mut cone_out = [Lod::ZERO; N];
     let mut tex_out = [0; N];
     // The FAST batch reads the normalised Pl a ray-stack entry keeps
@@ -447,12 +448,12 @@ fn rm_budget_driver(
     for n in [N / 2, N] {
         bb(rm_batch_lod(bb(&lod_in[..n]), &mut lod_out));
         bb(rm_batch_cone_lod(bb(&cone_in[..n]), &mut cone_out));
-        bb(rm_batch_lod_fast(bb(&lod_norm_in[..n]), &mut lod_out));
+        bb(rm_batch_lod_fast(bb(&lod_norm_in[..n]), &mut lod_words));
         bb(rm_batch_cone_lod_fast(bb(&cone_in[..n]), &mut cone_out));
         bb(rm_batch_bilinear(tex, bb(&bil_in[..n]), &mut tex_out));
         bb(rm_batch_trilinear(tex, bb(&tri_in[..n]), &mut tex_out));
     }
-    bb((&lod_out, &cone_out, &tex_out));
+    bb((&lod_out, &lod_words, &cone_out, &tex_out));
 
     // The TextureSampler rows and the rest of the sampler matrix
     // (`probes::sampler_rows`): the bilinear/trilinear inputs above, BC1 in

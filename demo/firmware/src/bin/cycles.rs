@@ -30,8 +30,8 @@ use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
 use raymip::lod::{
-    Lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod, table_lod_batch,
-    table_lod_fast, table_lod_fast_batch,
+    Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
+    table_lod_batch, table_lod_fast, table_lod_fast_batch,
 };
 use raymip::log2_fast::NormPl;
 use raymip::raystack::{PathLength, Width};
@@ -56,7 +56,7 @@ measured_calls! {
     fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod_fast;
     fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize = table_lod_batch;
     fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize = cone_lod_batch;
-    fn lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [Option<Lod>]) -> usize =
+    fn lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize =
         table_lod_fast_batch;
     fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize =
         cone_lod_fast_batch;
@@ -166,8 +166,10 @@ raymip_demo_entry::main! {
     }
     // Batches: 32 then 64 hits of each kind, one call each.
     let mut lod_out = [None; N];
-    // The FAST batch reads the ray stack's normalised Pl (made outside the count).
+    // The FAST batch reads the ray stack's normalised Pl (made outside the
+    // count) and writes one word per hit.
     let lod_norm_in = lod_in.map(|(pl, pb)| (NormPl::new(pl), pb));
+    let mut lod_words = [LodWord::UNTEXTURED; N];
     let mut cone_out = [Lod::ZERO; N];
     let mut tex_out = [Texel::default(); N];
     let batch = |name: &str, f: &mut dyn FnMut(usize) -> (u32, u32)| {
@@ -189,7 +191,7 @@ raymip_demo_entry::main! {
         once(|| cone_batch(bb(&cone_in[..n]), &mut cone_out))
     });
     batch("lod_fast", &mut |n| {
-        once(|| lod_fast_batch(bb(&lod_norm_in[..n]), &mut lod_out))
+        once(|| lod_fast_batch(bb(&lod_norm_in[..n]), &mut lod_words))
     });
     batch("cone_lod_fast", &mut |n| {
         once(|| cone_fast_batch(bb(&cone_in[..n]), &mut cone_out))
