@@ -5,9 +5,10 @@
 //!
 //! * [`Scatter`]: time (log axis) against error, one colour per series
 //!   (legend), the Pareto front joined by a line and drawn filled (other
-//!   points hollow); only Pareto points labelled, each label placed where it
-//!   meets no other label and no marker or left out ([`place_labels`]; a
-//!   chart with overlapping labels is an error); one panel per group.
+//!   points hollow); only Pareto points labelled, each label placed inside
+//!   the plotting area where it meets no other label and no marker, or left
+//!   out ([`place_labels`]; a chart with overlapping labels is an error);
+//!   one panel per group.
 //! * [`curves`]: lines on log–log axes (convergence over frames).
 
 use std::path::Path;
@@ -252,6 +253,8 @@ fn panel_chart<'a, DB: DrawingBackend>(
         .configure_mesh()
         .x_desc(axes.x.as_str())
         .y_desc(axes.y.as_str())
+        .x_labels(6)
+        .y_labels(8)
         .x_label_formatter(&exp_label)
         .y_label_formatter(y_fmt)
         .label_style(("sans-serif", 13))
@@ -442,7 +445,11 @@ fn labels<DB: DrawingBackend>(
         .iter()
         .map(|q| chart.backend_coord(&(tx(q.x), ty(q.y))))
         .collect();
-    let boxes = place_labels(&anchors, &sizes, &markers);
+    // The plotting area in pixels: a label outside it would cover the
+    // tick labels or be cut at the panel's edge.
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let bounds = (xr.start, yr.start, xr.end, yr.end);
+    let boxes = place_labels(&anchors, &sizes, &markers, bounds);
     if let Some((a, b)) = first_overlap(&boxes) {
         return Err(ChartError::LabelsOverlap {
             panel: p.title.clone(),
@@ -480,14 +487,16 @@ fn overlap(a: LabelBox, b: LabelBox) -> bool {
 
 /// For each label of size `sizes[i]` at the point `anchors[i]` (pixels),
 /// the first of eight places around the point (right, left, above, below
-/// and the corners) whose box meets no box placed before it and no marker
-/// of `markers` (squares of side `2·MARKER_HALF`; the label's own point
-/// included); `None` (label left out) when every place is taken.
+/// and the corners) whose box lies inside `bounds` and meets no box placed
+/// before it and no marker of `markers` (squares of side `2·MARKER_HALF`;
+/// the label's own point included); `None` (label left out) when every
+/// place is taken.
 #[must_use]
 pub fn place_labels(
     anchors: &[(i32, i32)],
     sizes: &[(i32, i32)],
     markers: &[(i32, i32)],
+    bounds: LabelBox,
 ) -> Vec<Option<LabelBox>> {
     let g = MARKER_HALF + 2;
     let mut placed: Vec<LabelBox> = Vec::new();
@@ -504,7 +513,11 @@ pub fn place_labels(
             (px - g - w, py + g),
         ];
         let free = |b: LabelBox| {
-            placed.iter().all(|&o| !overlap(b, o))
+            b.0 >= bounds.0
+                && b.1 >= bounds.1
+                && b.2 <= bounds.2
+                && b.3 <= bounds.3
+                && placed.iter().all(|&o| !overlap(b, o))
                 && markers.iter().all(|&(mx, my)| {
                     !overlap(
                         b,
@@ -550,9 +563,26 @@ mod label_tests {
 
     #[test]
     fn a_lone_label_goes_right_of_its_point() {
-        let b = place_labels(&[(100, 100)], &[(40, 12)], &[(100, 100)]);
+        let b = place_labels(&[(100, 100)], &[(40, 12)], &[(100, 100)], AREA);
         assert_eq!(b, vec![Some((109, 94, 149, 106))]);
     }
+
+    #[test]
+    fn labels_stay_inside_the_plotting_area() {
+        // At the right edge the label goes left; in the top-left corner
+        // below right; a label wider than the area is left out.
+        let b = place_labels(&[(990, 500)], &[(40, 12)], &[(990, 500)], AREA);
+        assert_eq!(b, vec![Some((941, 494, 981, 506))]);
+        let b = place_labels(&[(2, 2)], &[(40, 12)], &[(2, 2)], AREA);
+        assert_eq!(b, vec![Some((11, 11, 51, 23))]);
+        assert_eq!(
+            place_labels(&[(500, 500)], &[(2000, 12)], &[], AREA),
+            vec![None]
+        );
+    }
+
+    /// A 1000 × 1000 plotting area.
+    const AREA: LabelBox = (0, 0, 1000, 1000);
 
     #[test]
     fn crowded_labels_never_overlap_each_other_or_a_marker() {
@@ -562,7 +592,7 @@ mod label_tests {
             .map(|i| (200 + (i % 10) * 6, 200 + (i / 10) * 6))
             .collect();
         let sizes = vec![(50, 12); pts.len()];
-        let boxes = place_labels(&pts, &sizes, &pts);
+        let boxes = place_labels(&pts, &sizes, &pts, AREA);
         assert_eq!(first_overlap(&boxes), None);
         let placed: Vec<LabelBox> = boxes.iter().flatten().copied().collect();
         assert!(!placed.is_empty() && placed.len() < pts.len());

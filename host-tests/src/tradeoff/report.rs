@@ -266,8 +266,7 @@ fn convergence_table(curves: &[Curve]) -> String {
 }
 
 /// x axis of the frame chart's cost panels.
-pub const FRAME_COST_AXIS: &str =
-    "Cortex-M4 instructions per frame, millions (counted calls × BUDGETS.md; log)";
+pub const FRAME_COST_AXIS: &str = "M4 instructions per frame, millions (log)";
 
 /// The Pareto chart of a stage.
 #[must_use]
