@@ -663,7 +663,8 @@ fn shading_normal(
 /// the cone's footprint (width |w|) the shading normal turns by κ·|w|,
 /// κ = |dn|/|dp| from the ray differentials, and the reflected direction by
 /// twice that; positive (spreading) on convex surfaces (dp·dn > 0),
-/// negative on concave ones. Flat: 0. Refracted cones keep β = 0.
+/// negative on concave ones. Flat: 0. Refracted cones keep β = 0 (the
+/// published refraction of a cone is patented: docs/environment-map.md).
 fn surface_spread(f: &HitFrame, width: f64) -> f64 {
     let kappa = |dp: V3, dn: V3| {
         let l = dp.length();
