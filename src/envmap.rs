@@ -421,7 +421,8 @@ pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
     let half = 1i64 << 31;
     let [x, y, z] = d.map(I2F30::to_bits);
     // Longitude atan2(x, −z): magnitudes (≤ 2³¹) normalised to
-    // max ∈ [2³⁰, 2³¹) (units 2^(s−1) raw; s ≤ 1 drops one bit).
+    // max ∈ [2³⁰, 2³¹) (raw·2^(s−1); only s = 0, a component of −2³¹
+    // raw, drops a bit).
     let (ax, az) = (x.unsigned_abs(), z.unsigned_abs());
     let top = ax.max(az);
     if top == 0 {
