@@ -56,7 +56,7 @@ CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
 ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
             ("env_cone_lat", "cone lod with the pole term"),
             ("env_raydiff", "ray-differential lod with the pole term"),
-            ("env_uv", "direction → (u, v), two CORDIC vectorings")]
+            ("env_uv", "direction → (u, v), two 32-bit vectorings (3 CORDIC steps + series)")]
 CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
 # TextureSampler rows: (key, label, wrapper, its calls of this row, the
@@ -723,7 +723,10 @@ def render(work, old_text, readme):
     w("`raymip::envmap` (Ray Tracing Gems ch. 21): the lod of a ray that leaves the scene on a")
     w("2048 × 1024 latitude-longitude map and the map coordinates of its direction, each its own")
     w("wrapper, 64 calls on `inputs::envmap` (cone spreads in [2⁻¹², 2⁻⁸) rad, directions of every")
-    w("latitude, direction differentials up to 2⁻⁸); counted like the calls above. min / mean / max.\n")
+    w("latitude, direction differentials up to 2⁻⁸); counted like the calls above. min / mean / max.")
+    w("`(u, v)` is two `atan2` in 32-bit words, each three CORDIC steps, one division (`udiv` /")
+    w("`divu`), a Newton step and a short series of multiply-highs (within `ENVMAP_UV_MAX_ERROR` =")
+    w("2⁻²⁸); the lods are one or two table logarithms.\n")
     call_table(ENV_ROWS)
     w("\nPer ray that leaves the scene (means): the lod and the lookup coordinates, beside the cone")
     w("lod of a surface hit (with n·d) and its ratio to it.\n")

@@ -66,18 +66,73 @@
 //! within `2⁻¹⁴ + 2⁻¹⁷`, the output rounding 2⁻⁹: at most `2⁻⁹ + 2.6·2⁻¹³
 //! ≈ 2.27·10⁻³`.
 //!
-//! [`direction_uv`] is within [`ENVMAP_UV_MAX_ERROR`] `= 2⁻²⁴` (normalized
-//! texture units, 1/512 texel of a 2¹⁵-texel map) of the f64 mapping of the
-//! same direction: two CORDIC vectorings (Volder 1959: shifts and adds,
-//! no multiplier, no division, no table beyond 26 arctangents), residual
-//! angle `≤ atan 2⁻²⁵`, 60-bit normalised operands.
+//! # The mapping to (u, v)
+//!
+//! [`direction_uv`] works in 32-bit words (the results are 64-bit
+//! [`TexCoord`]s). Each angle is an `atan2` of a pair of magnitudes:
+//! `(|z|, |x|)` for the longitude, `(√(x² + z²), |y|)` for the latitude;
+//! signs and a swap fold it into the first octant, `(a, b)` with
+//! `0 ≤ b ≤ a`, normalised by a leading-zero count to `2³⁰ ≤ a < 2³¹`
+//! (the latitude pair by the larger of its two exponents). Then:
+//!
+//! 1. three CORDIC vectoring steps (Volder 1959; shifts 1, 2, 3, the sign
+//!    of `y` as a mask `m`, `v ^ m = −v − 1` for a negative turn)
+//!    rotate `(a, b)` by `Σ ±atan 2⁻ⁱ` (a table of three angles in 2⁻³⁴
+//!    turns) to `(x, y)`, `x ∈ [2³⁰, 1.65·2³¹)`, residual angle
+//!    `|φ| ≤ atan ⅛` (plus the rounding below);
+//! 2. `t = tan φ = y/x`: `1/x` from one 32-bit division by `x >> 16`
+//!    (relative error in `(−2⁻¹⁶·³, 2⁻¹⁴]`) and one Newton step;
+//! 3. `φ/2π = t·(1 − t²/3 + t⁴/5 − t⁶/7)/2π` (Taylor, four multiply-highs);
+//!    for the longitude also `√(a² + b²) = x·√(1 + t²)/K₃` (binomial series
+//!    to `t⁸`; `K₃ = √(5/4 · 17/16 · 65/64)` the gain of the three steps),
+//!    the `r = √(x² + z²)` of the latitude pair;
+//! 4. the octant angle is rounded to 2⁻³² turns (`u`) or 2⁻³³ turns (the
+//!    latitude, `v = ½ − 2·lat`), clamped to `[0, ⅛]` and unfolded.
+//!
+//! Error of one octant angle, in units of 2⁻³⁴ turn (`2π·2⁻³⁴` rad):
+//!
+//! * the CORDIC roundings: each step leaves each coordinate less than 1
+//!   off (floors; the `−v − 1`), carried through the remaining steps (gain
+//!   `≤ √(17/16 · 65/64)`): `|E| ≤ √2·(1.0389 + 1.0078 + 1) = 4.31` beside
+//!   a vector of length `≥ K₃·2³⁰`, an angle `≤ 3.71·2⁻³⁰` rad: **9.45**
+//!   (and a relative length error `≤ 3.71·2⁻³⁰`);
+//! * the three table angles (rounded) and the `−1` of the negated ones:
+//!   **1.52**;
+//! * `t`: the Newton step leaves `1/x` within the division's error squared
+//!   plus its own floors, `2⁻²⁸ + 1.65·2⁻²⁹ ≤ 1.83·2⁻²⁸` (relative), the
+//!   floor of `t·2³³` 2⁻³³: `|t|·1.83·2⁻²⁸ + 2⁻³³ ≤ 2.08·2⁻³¹` rad for
+//!   `|t| ≤ ⅛`: **2.64**;
+//! * the Taylor remainder `|t|⁹/9 ≤ 2⁻²⁷/9` rad: **2.27**;
+//! * the Horner roundings (four floors, four rounded constants): **1.32**;
+//!
+//! together **17.2** (17.18; measured: 6.2). The length `√(a² + b²)` is
+//! within `5.7·2⁻³⁰` (relative): the CORDIC roundings 3.71, its Horner
+//! roundings 0.82, the final floor 1, `t` and the series remainder 0.16
+//! (measured: 4.0·2⁻³⁰). Per coordinate (normalized texture units, again
+//! in units of 2⁻³⁴):
+//!
+//! * `u`: the octant 17.2, the rounding to 2⁻³² 2, the normalisation's
+//!   dropped bit when `x` or `z` is `−2` (`I2F30::MIN`) 3.6 (`√2·2⁻³⁰` rad):
+//!   **22.8·2⁻³⁴ ≈ 2⁻²⁹·⁵**;
+//! * `v = ½ − 2·lat`, twice the latitude's error: the octant 17.2, the
+//!   latitude pair's normalisation (a right shift of each word) 3.6, the
+//!   length `r` (an angle error of at most half its relative error,
+//!   `2.85·2⁻³⁰` rad) 7.26, the longitude pair's dropped bit at
+//!   `I2F30::MIN` 1.8, the rounding to 2⁻³³ 1: **2·30.9·2⁻³⁴ =
+//!   3.86·2⁻³⁰ < 2⁻²⁸**.
+//!
+//! [`ENVMAP_UV_MAX_ERROR`] `= 2⁻²⁸` (1/8192 texel of a 2¹⁵-texel map)
+//! bounds both against the f64 mapping of the same (quantised) direction,
+//! unit or not (measured over 10⁸ random directions, near-pole and scaled
+//! ones and every combination of powers of two, `±(2ᵏ ± 1)`, 0 and the
+//! extremes: `u` 2⁻³¹·⁰, `v` 2⁻²⁹·⁹).
 
 use core::fmt;
 
 use fixed::types::I2F30;
 
 use crate::lod::Lod;
-use crate::log2::{log2_bits, log2_u32};
+use crate::log2::{clz32, log2_bits, log2_u32};
 use crate::raystack::{Spread, UnitVec};
 use crate::texture::TexCoord;
 
@@ -87,8 +142,9 @@ use crate::texture::TexCoord;
 pub const ENVMAP_LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
 /// Documented error bound of [`direction_uv`] against f64, in normalized
-/// texture units per coordinate: 2⁻²⁴.
-pub const ENVMAP_UV_MAX_ERROR: f64 = 1.0 / 16_777_216.0;
+/// texture units per coordinate: 2⁻²⁸ (derived: `u ≤ 1.43·2⁻³⁰`,
+/// `v ≤ 3.86·2⁻³⁰`, in the [module docs](self#the-mapping-to-u-v)).
+pub const ENVMAP_UV_MAX_ERROR: f64 = 1.0 / 268_435_456.0;
 
 /// Smallest `cos φ` (latitude) used by the pole term: 2⁻¹⁶ (I2F30 raw
 /// `1 << 14`).
@@ -246,61 +302,96 @@ impl EnvMap {
     }
 }
 
-/// CORDIC iterations of [`direction_uv`].
-const CORDIC_STEPS: usize = 26;
+/// `round(atan(2⁻ⁱ)/2π · 2³⁴)` for `i = 1, 2, 3`: the CORDIC angles of
+/// [`direction_uv`] in 2⁻³⁴ turns (the first less 2³⁰, the centre of the
+/// octant: the accumulator stays inside `i32`).
+const ATAN_TURNS: [i32; 3] = [1_267_733_622 - (1 << 30), 669_835_629, 340_019_024];
 
-/// `round(atan(2⁻ⁱ) / 2π · 2⁴⁰)`: the CORDIC angles in 2⁻⁴⁰ turns.
-const ATAN_TURNS: [i64; CORDIC_STEPS] = [
-    137_438_953_472,
-    81_134_951_838,
-    42_869_480_287,
-    21_761_217_566,
-    10_922_836_750,
-    5_466_743_129,
-    2_734_038_620,
-    1_367_102_738,
-    683_561_799,
-    341_782_203,
-    170_891_265,
-    85_445_653,
-    42_722_829,
-    21_361_415,
-    10_680_707,
-    5_340_354,
-    2_670_177,
-    1_335_088,
-    667_544,
-    333_772,
-    166_886,
-    83_443,
-    41_722,
-    20_861,
-    10_430,
-    5_215,
-];
+/// `round(2^(32−2j)/((2j+1)π))`, `j = 0..=3`: `atan(t)/2π` in 2⁻³⁴ turns
+/// is `t·2³³ · Σ (−t²)ʲ/((2j+1)π)` (Taylor), the coefficients at the
+/// Horner scales of [`octant_atan`].
+const ATAN_SERIES: [i32; 4] = [1_367_130_551, 113_927_546, 17_089_132, 3_051_631];
 
-/// The CORDIC gain `K = Π √(1 + 2⁻²ⁱ)` of [`CORDIC_STEPS`] steps, 2⁻³⁰
-/// units.
-const CORDIC_GAIN: i64 = 1_768_195_363;
+/// `round(c_j · 2^(31−2j) / K₃)`, `j = 0..=4`, with `c_j` the binomial
+/// coefficients of `√(1 + s) = 1 + s/2 − s²/8 + s³/16 − 5s⁴/128 + …` and
+/// `K₃ = √(5/4 · 17/16 · 65/64)` the gain of the three CORDIC steps: the
+/// length of the vectored pair, `√(1 + t²)/K₃`, at the Horner scales.
+const LENGTH_SERIES: [i32; 5] = [1_849_028_897, 231_128_612, 14_445_538, 1_805_692, 282_139];
 
-/// CORDIC vectoring of `(x, y)` with `x ≥ 0`, `|x|, |y| < 2⁶⁰`: the angle
-/// `atan2(y, x)` in 2⁻⁴⁰ turns (`[−¼, ¼]`) and `K·√(x² + y²)` (< 2⁶²).
+/// `⌊a·b / 2³²⌋` (signed; one multiply-high).
 #[inline(always)]
-fn vectoring(mut x: i64, mut y: i64) -> (i64, i64) {
-    let mut a = 0i64;
-    for (i, &t) in ATAN_TURNS.iter().enumerate() {
-        let (dx, dy) = (y >> i, x >> i);
-        if y > 0 {
-            x += dx;
-            y -= dy;
-            a += t;
-        } else {
-            x -= dx;
-            y += dy;
-            a -= t;
-        }
+fn mulhi(a: i32, b: i32) -> i32 {
+    ((i64::from(a) * i64::from(b)) >> 32) as i32
+}
+
+/// `⌊a·b / 2³²⌋` (unsigned; one multiply-high).
+#[inline(always)]
+fn mulhi_u(a: u32, b: u32) -> u32 {
+    ((u64::from(a) * u64::from(b)) >> 32) as u32
+}
+
+/// The angle of `(a, b)` in the first octant, `2³⁰ ≤ a < 2³¹`,
+/// `0 ≤ b ≤ a`: `atan(b/a)/2π − 1/16` in 2⁻³⁴ turns (bound in the
+/// [module docs](self#the-mapping-to-u-v)), and `√(a² + b²)` in the units
+/// of `a` (`< 1.42·2³¹`, relative error in the module docs; unused results
+/// are optimised away).
+///
+/// Three CORDIC vectoring steps (shifts 1, 2, 3; the first always turns
+/// by `−atan ½` as `b ≥ 0`) leave a residual angle `|φ| ≤ atan ⅛ + 2⁻²⁸`;
+/// `t = tan φ = y/x` from one division and a Newton step of `1/x`, `φ` by
+/// its Taylor series to `t⁷`, `√(1 + t²)` to `t⁸`.
+#[inline(always)]
+fn octant_atan(a: u32, b: u32) -> (i32, u32) {
+    // Step 1 (σ = +1): x ∈ [2³⁰, 1.5·2³¹), y ∈ [−2²⁹, 2³⁰).
+    let mut x = a + (b >> 1);
+    let mut y = b as i32 - (a >> 1) as i32;
+    let mut c = ATAN_TURNS[0];
+    // Steps 2, 3: σ = sign(y) as a mask m (0 or −1); v ^ m is v or
+    // −v − 1. x only grows (each term is ≥ 0) and stays below 1.65·2³¹.
+    for (i, t) in [(2, ATAN_TURNS[1]), (3, ATAN_TURNS[2])] {
+        let m = y >> 31;
+        let dx = ((y >> i) ^ m) as u32;
+        y -= ((x >> i) as i32) ^ m;
+        x += dx;
+        c += t ^ m;
     }
-    (a, x)
+    // 1/x: q ≈ 2⁶²/x within (−2⁻¹⁶·³, 2⁻¹⁴·(1 + 2⁻¹⁴)] (x >> 16 ≥ 2¹⁴;
+    // never 0: the check folds to one branch), one Newton step
+    // r = q·(2 − x·q/2⁶²)/4 ≈ 2⁶⁰/x ≤ 2³⁰ (relative error ≤ 1.83·2⁻²⁸).
+    let q = u32::MAX.checked_div(x >> 16).unwrap_or(0) << 14;
+    let r = mulhi_u(q, (1 << 31) - mulhi_u(x, q));
+    // t·2³³ (|t| ≤ tan(atan ⅛ + 2⁻²⁸): |T| < 2³⁰ + 2¹⁸), t²·2³⁴ (< 2²⁸·1.0001).
+    let t = ((i64::from(y) * i64::from(r as i32)) >> 27) as i32;
+    let s = mulhi(t, t);
+    let [k1, k3, k5, k7] = ATAN_SERIES;
+    let series = k1 - mulhi(s, k3 - mulhi(s, k5 - mulhi(s, k7)));
+    let [g0, g1, g2, g3, g4] = LENGTH_SERIES;
+    let len = g0 + mulhi(s, g1 - mulhi(s, g2 - mulhi(s, g3 - mulhi(s, g4))));
+    (
+        c + mulhi(t, series),
+        ((u64::from(x) * u64::from(len as u32)) >> 31) as u32,
+    )
+}
+
+/// The angle of `(a, b)`, `a, b ≥ 0`, `2³⁰ ≤ max(a, b) < 2³¹`, in
+/// `2^−(32+e)` turns, `e ∈ {0, 1}` (`[0, 2^(30+e)]`, a quarter turn), and
+/// the length `√(a² + b²)` in the units of `a` (see [`octant_atan`]).
+#[inline(always)]
+fn quadrant_atan<const E: i32>(a: u32, b: u32) -> (u32, u32) {
+    let (swap, a, b) = if b > a { (true, b, a) } else { (false, a, b) };
+    let (c, len) = octant_atan(a, b);
+    // 2⁻³⁴ → 2^−(32+e) turns, rounded, clamped to the octant [0, 1/8].
+    let sh = 2 - E;
+    let octant = ((c + (1 << (sh - 1))) >> sh) + (1 << (28 + E));
+    let octant = octant.clamp(0, 1 << (29 + E)) as u32;
+    (
+        if swap {
+            (1 << (30 + E)) - octant
+        } else {
+            octant
+        },
+        len,
+    )
 }
 
 /// `(u, v)` of a latitude-longitude map for direction `d`
@@ -308,7 +399,7 @@ fn vectoring(mut x: i64, mut y: i64) -> (i64, i64) {
 /// with `asin(y) = atan2(y, √(x² + z²))`, so `d` need not be unit length;
 /// see the [module docs](self)), within [`ENVMAP_UV_MAX_ERROR`] of f64.
 /// At a pole (`x = z = 0`) `u = ½`; the zero vector gives `(½, ½)`. Integer
-/// only; per ray; never panics.
+/// only (32-bit words but for the results); per ray; never panics.
 ///
 /// # Example
 /// ```
@@ -328,42 +419,41 @@ fn vectoring(mut x: i64, mut y: i64) -> (i64, i64) {
 #[must_use]
 pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
     let half = 1i64 << 31;
-    let [x, y, z] = d.map(|c| i64::from(c.to_bits()));
-    // Longitude: atan2(x, −z), operands normalised to a top bit at 2⁵⁹.
-    let (mut cx, mut cy) = (-z, x);
-    let top = cx.unsigned_abs().max(cy.unsigned_abs());
-    let s = top.leading_zeros().saturating_sub(4).min(59);
-    cx <<= s;
-    cy <<= s;
-    // Left half-plane: turn by ½ (the vectoring converges for x ≥ 0).
-    let mut base = 0i64;
-    if cx < 0 {
-        base = if cy >= 0 { 1 << 39 } else { -(1 << 39) };
-        cx = -cx;
-        cy = -cy;
+    let [x, y, z] = d.map(I2F30::to_bits);
+    // Longitude atan2(x, −z): magnitudes (≤ 2³¹) normalised to
+    // max ∈ [2³⁰, 2³¹) (raw·2^(s−1); only s = 0, a component of −2³¹
+    // raw, drops a bit).
+    let (ax, az) = (x.unsigned_abs(), z.unsigned_abs());
+    let top = ax.max(az);
+    if top == 0 {
+        // A pole or the zero vector: u = ½, v = 0, 1 or ½.
+        let v = half - i64::from(y.signum()) * half;
+        return (TexCoord::from_bits(half), TexCoord::from_bits(v));
     }
-    let (lon, r) = if top == 0 {
-        (0, 0)
-    } else {
-        let (a, r) = vectoring(cx, cy);
-        (base + a, r)
+    let s = clz32(top);
+    let (lon, r) = quadrant_atan::<0>((az << s) >> 1, (ax << s) >> 1);
+    // u = ½ ± lon for −z ≥ 0, else 1 − lon (x ≥ 0) or lon (x < 0).
+    let lon = i64::from(lon);
+    let u = match (z > 0, x < 0) {
+        (false, false) => half + lon,
+        (false, true) => half - lon,
+        (true, false) => 2 * half - lon,
+        (true, true) => lon,
     };
-    // Latitude: atan2(y, √(x² + z²)) with y scaled by the same 2ˢ and gain
-    // K as r; both in 2^(−60−s) units (< 2¹²³), normalised below 2⁶⁰.
-    let yk = i128::from(y * CORDIC_GAIN) << s;
-    let rk = i128::from(r) << 30;
-    let top2 = 128 - yk.unsigned_abs().max(rk.unsigned_abs()).leading_zeros();
-    let s2 = top2.saturating_sub(60);
-    let lat = if yk == 0 {
-        0
-    } else {
-        vectoring((rk >> s2) as i64, (yk >> s2) as i64).0
-    };
-    // 2⁻⁴⁰ turns → I32F32 (2⁻³² units), rounded: u = ½ + lon, v = ½ − 2·lat.
-    // The CORDIC residual may overshoot ±½ turn (seam) or ±¼ (poles) by
-    // up to atan 2⁻²⁵: clamped to [0, 1].
-    let u = (half + ((lon + (1 << 7)) >> 8)).clamp(0, 2 * half);
-    let v = (half - ((lat + (1 << 6)) >> 7)).clamp(0, 2 * half);
+    // Latitude atan2(y, r): r is r_raw·2^(s−1) (bit length 30 to 32:
+    // 2³⁰·(1 − 2⁻²⁶) ≤ r < 1.42·2³¹), |y| ≤ 2³¹ raw; both scaled by 2⁻ᵉ,
+    // e chosen so that the larger lies in [2³⁰, 2³¹).
+    let ay = y.unsigned_abs();
+    let len_r = 30 + u32::from(r >= 1 << 30) + u32::from(r >= 1 << 31);
+    let e = (32 - clz32(ay)).max(len_r + 1 - s) as i32 - 31; // −31 ..= 2
+    // r·2^(1−s−e): a left shift of at most 1 or a right shift ≤ 31.
+    let sr = 1 - s as i32 - e;
+    let rn = if sr >= 0 { r << sr } else { r >> -sr };
+    let yn = if e <= 0 { ay << -e } else { ay >> e };
+    let (lat, _) = quadrant_atan::<1>(rn, yn);
+    // v = ½ − 2·lat: lat in 2⁻³³ turns is 2·lat in 2⁻³².
+    let lat = i64::from(lat);
+    let v = if y < 0 { half + lat } else { half - lat };
     (TexCoord::from_bits(u), TexCoord::from_bits(v))
 }
 
@@ -474,6 +564,61 @@ mod tests {
         }
     }
 
+    /// The tables of `direction_uv`, recomputed in f64 from their formulas.
+    #[test]
+    fn uv_tables_match_their_formulas() {
+        use core::f64::consts::PI;
+        let round = |v: f64| v.round() as i64;
+        for (i, &a) in ATAN_TURNS.iter().enumerate() {
+            let off = if i == 0 { 1 << 30 } else { 0 };
+            let want = round(0.5f64.powi(i as i32 + 1).atan() / (2.0 * PI) * 2f64.powi(34));
+            assert_eq!(i64::from(a) + off, want, "atan 2^-{}", i + 1);
+        }
+        for (j, &k) in ATAN_SERIES.iter().enumerate() {
+            let want = round(2f64.powi(32 - 2 * j as i32) / ((2 * j + 1) as f64 * PI));
+            assert_eq!(i64::from(k), want, "atan series {j}");
+        }
+        let gain = (5.0f64 / 4.0 * 17.0 / 16.0 * 65.0 / 64.0).sqrt();
+        let binomial = [1.0, 0.5, 0.125, 0.0625, 5.0 / 128.0];
+        for (j, (&g, c)) in LENGTH_SERIES.iter().zip(binomial).enumerate() {
+            let want = round(c * 2f64.powi(31 - 2 * j as i32) / gain);
+            assert_eq!(i64::from(g), want, "length series {j}");
+        }
+    }
+
+    /// Every combination of 0, `±(2ᵏ ± 1)`, `±2ᵏ` and the extremes: in
+    /// `[0, 1]` and within the bound (the normalisation shifts, the octant
+    /// and quadrant edges and `I2F30::MIN`).
+    #[test]
+    fn uv_at_powers_of_two_and_the_extremes() {
+        let mut vals = std::vec![0, i32::MIN, i32::MAX, i32::MIN + 1];
+        for k in (0..31).step_by(2) {
+            for v in [1i32 << k, (1 << k) - 1, (1 << k) + 1] {
+                vals.extend([v, -v]);
+            }
+        }
+        for &a in &vals {
+            for &b in &vals {
+                for &c in &vals {
+                    let d = [a, b, c].map(I2F30::from_bits);
+                    let (u, v) = direction_uv(d);
+                    let (u, v) = (u.to_num::<f64>(), v.to_num::<f64>());
+                    let (wu, wv) = reference::direction_uv_f64(f(d));
+                    let du = (u - wu).abs();
+                    assert!(
+                        du.min(1.0 - du) <= ENVMAP_UV_MAX_ERROR,
+                        "{d:?}: u {u} vs {wu}"
+                    );
+                    assert!(
+                        (v - wv).abs() <= ENVMAP_UV_MAX_ERROR,
+                        "{d:?}: v {v} vs {wv}"
+                    );
+                    assert!((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+                }
+            }
+        }
+    }
+
     #[test]
     fn uv_at_the_axes_and_the_seam() {
         let (o, z) = (I2F30::ONE, I2F30::ZERO);
@@ -547,6 +692,31 @@ mod tests {
             let dir = with_dir.then(|| q(d));
             let want = reference::raydiff_lod_f64(w, h, dx.map(|c| c.to_num()), dy.map(|c| c.to_num()), dir.map(f));
             check_lod(m.raydiff_lod(dx, dy, dir), want)?;
+        }
+
+        /// One octant of `direction_uv` against f64 over its whole domain
+        /// (`2³⁰ ≤ a < 2³¹`, `0 ≤ b ≤ a`; the edges by the masks): the
+        /// angle within 17.2 units of 2⁻³⁴ turn, the length within
+        /// 5.7·2⁻³⁰ (relative; module docs).
+        #[test]
+        fn octant_atan_within_its_bounds(a in 0u32..1 << 30, b in any::<u32>(), edge in 0u8..6) {
+            let a = match edge {
+                0 => 1 << 30,
+                1 => u32::MAX >> 1,
+                _ => (1 << 30) | a,
+            };
+            let b = match edge {
+                2 => a,
+                3 => 0,
+                4 => b % 4096,
+                _ => b % (a + 1),
+            };
+            let (c, len) = octant_atan(a, b);
+            let (fa, fb) = (f64::from(a), f64::from(b));
+            let want = fb.atan2(fa) / (2.0 * core::f64::consts::PI) * 2f64.powi(34) - 2f64.powi(30);
+            prop_assert!((f64::from(c) - want).abs() <= 17.2, "angle of ({a}, {b}): {c} vs {want}");
+            let l = fa.hypot(fb);
+            prop_assert!((f64::from(len) - l).abs() <= 5.7 * l / 2f64.powi(30), "length of ({a}, {b}): {len} vs {l}");
         }
 
         /// `direction_uv` against f64 for unit directions, near-pole ones

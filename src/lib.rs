@@ -26,7 +26,7 @@
 //! | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
 //! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
 //! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
-//! | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `envmap` | one or two logarithms; two CORDIC vectorings for `(u, v)` |
+//! | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `envmap` | one or two logarithms; `(u, v)`: two 3-step CORDIC vectorings, a division and short series in 32-bit words |
 //! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
 //!
 //! # Cargo features
