@@ -6,6 +6,7 @@
 
 pub mod cli;
 pub mod error;
+pub mod raydiff_chains;
 pub mod reference;
 pub mod render;
 pub mod scene;

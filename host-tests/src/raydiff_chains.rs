@@ -1,0 +1,565 @@
+//! Random camera chains for the ray differentials: a pinhole camera's pixel
+//! ray through 0–10 bounces (planes, convex and concave mirrors,
+//! refractions up to total internal reflection) to a textured triangle, run
+//! through the firmware (`raymip::raydiff`, by the [`Firmware`] adapter) and
+//! through the f64 reference ([`crate::reference::raydiff`]) on the same
+//! quantised inputs, with the lod of each and the chain's error
+//! amplification. One generator per case [`Class`] of the firmware's
+//! documented input range; used by the bound tests
+//! (`tests/harness/raydiff_chains.rs`), the fuzz target `raydiff_chain` and
+//! the `raydiff_accuracy` example (error per class).
+//!
+//! # Amplification
+//!
+//! Besides both lods, [`run`] propagates a first-order bound of the
+//! firmware's error along the chain in f64: each firmware operation is
+//! exact on its (stored) inputs up to a local error of at most
+//! `c_op · |scale_op|` ([`Local`], the constants the firmware's module docs
+//! derive), and each operation's Jacobian carries the input errors forward
+//! (`1/|D·n|` for a transfer, `|κ|` from a curved surface's normal
+//! differentials, `η + |∂μ/∂cos θᵢ|` for a refraction, `|M|` from the
+//! texel-space gradients of the triangle). The result, divided by the
+//! footprint's larger axis, bounds the relative footprint error; its value
+//! with every `c_op = 1` is the chain's amplification [`Outcome::amp`].
+
+use raymip::lod::Lod;
+
+use crate::reference::Rng;
+use crate::reference::raydiff::{
+    self as rf, Diff, MIN_COS, Triangle, V, axpy, cross, dot, norm, scale, unit,
+};
+
+/// The case classes of the input range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Ordinary triangles and UVs, up to two planar bounces, `cos ≥ 2⁻³`.
+    Ordinary,
+    /// Sliver triangles, edge aspect `2¹⁰`–`2²⁰`, planar or unit UVs.
+    Sliver,
+    /// `u` and `v` ranges differing by `2⁴`–`2¹⁶`.
+    Lopsided,
+    /// UV gradients of `2⁻³⁰`–`2⁻²⁰` normalized units per scene unit.
+    SlowUv,
+    /// Collinear or coincident vertices (zero world area): `Lod::MAX`.
+    Collinear,
+    /// Zero UV area (collinear or equal UVs): `Lod::MIN`.
+    FlatUv,
+    /// One to three hits at `|D·n|` down to `MIN_COS`.
+    Grazing,
+    /// Ten bounces through planes, convex and concave mirrors and
+    /// refractions (`η` 0.5–2, near-critical and total internal reflection).
+    Chain,
+    /// A concave mirror and the next hit near its focus.
+    Focus,
+}
+
+/// Every class, in report order.
+pub const CLASSES: [Class; 9] = [
+    Class::Ordinary,
+    Class::Sliver,
+    Class::Lopsided,
+    Class::SlowUv,
+    Class::Collinear,
+    Class::FlatUv,
+    Class::Grazing,
+    Class::Chain,
+    Class::Focus,
+];
+
+impl Class {
+    /// Short name (reports, test names).
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Ordinary => "ordinary",
+            Self::Sliver => "sliver",
+            Self::Lopsided => "lopsided-uv",
+            Self::SlowUv => "slow-uv",
+            Self::Collinear => "collinear",
+            Self::FlatUv => "zero-uv-area",
+            Self::Grazing => "grazing",
+            Self::Chain => "chain-10",
+            Self::Focus => "focus",
+        }
+    }
+}
+
+/// Local error constants of the firmware's operations (relative to each
+/// operation's magnitude scale; see the [module docs](self)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Local {
+    /// Primary set-up, relative to `|∂D|`.
+    pub primary: f64,
+    /// Transfer, relative to `(|∂O| + t·|∂D|)/|D·n|`.
+    pub transfer: f64,
+    /// Reflection, relative to `3|∂D| + 4|∂n|`.
+    pub reflect: f64,
+    /// Refraction, relative to `(η + |c|)|∂D| + (|c| + |μ|)|∂n|`.
+    pub refract: f64,
+    /// Normal differentials handed to the firmware, relative to `|∂n|`.
+    pub normal: f64,
+    /// Footprint, relative to `|M|·|∂P|`.
+    pub footprint: f64,
+    /// Lod from the footprint: absolute, in levels (log2 and rounding).
+    pub lod: f64,
+}
+
+impl Local {
+    /// Every constant 1 (the amplification), no absolute lod term.
+    pub const UNIT: Self = Self {
+        primary: 1.0,
+        transfer: 1.0,
+        reflect: 1.0,
+        refract: 1.0,
+        normal: 1.0,
+        footprint: 1.0,
+        lod: 0.0,
+    };
+}
+
+/// The firmware under test, seen through f64: quantisers (the value the
+/// firmware receives for an f64 input) and the operations on its state.
+pub trait Firmware {
+    /// The firmware's differential state.
+    type State: Copy;
+    /// A unit vector (direction, normal).
+    fn q_unit(&self, v: V) -> V;
+    /// A hit distance.
+    fn q_len(&self, t: f64) -> f64;
+    /// A camera axis step or a normal differential.
+    fn q_dvec(&self, v: V) -> V;
+    /// A relative index of refraction.
+    fn q_eta(&self, eta: f64) -> f64;
+    /// `cos θₜ`.
+    fn q_cos(&self, c: f64) -> f64;
+    /// A vertex coordinate or UV.
+    fn q_coord(&self, x: f64) -> f64;
+    /// Primary set-up.
+    fn primary(&self, d: V, f: V, r: V, u: V) -> Self::State;
+    /// Transfer.
+    fn transfer(&self, s: &Self::State, d: V, t: f64, n: V) -> Self::State;
+    /// Reflection.
+    fn reflect(&self, s: &Self::State, d: V, n: V, dn: [V; 2]) -> Self::State;
+    /// Refraction.
+    #[allow(clippy::too_many_arguments)]
+    fn refract(&self, s: &Self::State, d: V, n: V, dn: [V; 2], eta: f64, cos_t: f64)
+    -> Self::State;
+    /// The state in f64.
+    fn to_f64(&self, s: &Self::State) -> Diff;
+    /// Triangle set-up, footprint and lod of a hit with state `s`.
+    fn lod(&self, tri: &Triangle, s: &Self::State) -> f64;
+    /// The local error constants of the operations.
+    fn local(&self) -> Local;
+}
+
+/// One chain's result.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outcome {
+    /// Its class.
+    pub class: Class,
+    /// The firmware's lod (levels).
+    pub lod: f64,
+    /// The reference lod, clamped to the [`Lod`] range.
+    pub want: f64,
+    /// `|lod − want|`.
+    pub err: f64,
+    /// The firmware's first-order error bound ([`Firmware::local`]), in
+    /// levels (0 for the degenerate classes, which must be exact).
+    pub bound: f64,
+    /// The amplification (the bound's relative part with every constant 1).
+    pub amp: f64,
+    /// Smallest `|D·n|` (and `cos θₜ`) on the path.
+    pub cos_min: f64,
+    /// Bounces before the textured hit.
+    pub bounces: u32,
+}
+
+/// Uniform in `[2^lo, 2^hi)` on a log scale.
+fn log_uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+    rng.range(lo, hi).exp2()
+}
+
+/// A random unit vector.
+fn random_unit(rng: &mut Rng) -> V {
+    loop {
+        let v = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let l = norm(v);
+        if l > 0.1 && l <= 1.0 {
+            return scale(1.0 / l, v);
+        }
+    }
+}
+
+/// Two unit vectors completing `n` to an orthonormal basis.
+fn basis(n: V) -> (V, V) {
+    let h = if n[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let a = unit(cross(n, h));
+    (a, cross(n, a))
+}
+
+/// A unit normal facing `d` at `|D·n| = c`, otherwise random.
+fn facing_normal(rng: &mut Rng, d: V, c: f64) -> V {
+    let (a, b) = basis(d);
+    let phi = rng.range(0.0, core::f64::consts::TAU);
+    let w = axpy(scale(phi.cos(), a), phi.sin(), b);
+    let s = (1.0 - c * c).max(0.0).sqrt();
+    unit(axpy(scale(-c, d), s, w))
+}
+
+/// `|D·n|` of a hit: ordinary in `[2⁻³, 1]`, grazing down to `MIN_COS`.
+fn cosine(rng: &mut Rng, grazing: bool) -> f64 {
+    if grazing {
+        log_uniform(rng, -16.0, -4.0).max(MIN_COS)
+    } else {
+        rng.range(0.125, 1.0)
+    }
+}
+
+/// Both chains' state and the error bounds (absolute, per vector).
+struct Pair<S> {
+    fw: S,
+    rf: Diff,
+    /// Error bounds of `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`, as set by the local
+    /// constants `loc` and, separately, by unit constants (the
+    /// amplification).
+    bound: [[f64; 4]; 2],
+}
+
+/// Runs one chain of class `class` from `rng`.
+pub fn run<F: Firmware>(fw: &F, class: Class, rng: &mut Rng) -> Outcome {
+    let loc = [fw.local(), Local::UNIT];
+    // Camera: unit forward axis, per-pixel steps γ ⟂ f, a pixel anywhere
+    // in a 1024² image.
+    let f = fw.q_unit(random_unit(rng));
+    let (ra, ua) = basis(f);
+    let gamma = log_uniform(rng, -14.0, -6.0);
+    let r = fw.q_dvec(scale(gamma, ra));
+    let u = fw.q_dvec(scale(gamma, ua));
+    let (px, py) = (rng.range(-512.0, 512.0), rng.range(-512.0, 512.0));
+    let mut d = fw.q_unit(unit(axpy(axpy(f, px, r), py, u)));
+    let rf0 = rf::primary(d, f, r, u);
+    let lp: [[f64; 4]; 2] = core::array::from_fn(|k| {
+        let c = loc[k].primary;
+        [0.0, 0.0, c * norm(rf0.ddx), c * norm(rf0.ddy)]
+    });
+    let mut p = Pair {
+        fw: fw.primary(d, f, r, u),
+        rf: rf0,
+        bound: lp,
+    };
+    let bounces = match class {
+        Class::Chain => 10,
+        Class::Focus => 1 + (rng.next_u64() % 3) as u32,
+        Class::Grazing => (rng.next_u64() % 3) as u32,
+        _ => (rng.next_u64() % 3) as u32,
+    };
+    let grazing_at = rng.next_u64() % u64::from(bounces + 1);
+    let mut cos_min = 1.0f64;
+    let mut focus_t = None;
+    let mut last_n = f;
+    for k in 0..=bounces {
+        let graze = class == Class::Grazing && (k == bounces || u64::from(k) == grazing_at);
+        let c = cosine(rng, graze);
+        let n = fw.q_unit(facing_normal(rng, d, c));
+        let t = fw.q_len(focus_t.take().unwrap_or_else(|| log_uniform(rng, -4.0, 8.0)));
+        let dn = dot(d, n).abs().max(MIN_COS);
+        last_n = n;
+        cos_min = cos_min.min(dn);
+        // Transfer both; the bounds grow by the projection's 1/|D·n|.
+        let before = p.rf;
+        p.fw = fw.transfer(&p.fw, d, t, n);
+        p.rf = rf::transfer(&p.rf, d, t, n);
+        for (b, l) in p.bound.iter_mut().zip(&loc) {
+            let s = |o: V, dd: V| (norm(o) + t * norm(dd)) / dn;
+            b[0] = (b[0] + t * b[2]) / dn + l.transfer * s(before.dox, before.ddx);
+            b[1] = (b[1] + t * b[3]) / dn + l.transfer * s(before.doy, before.ddy);
+        }
+        if k == bounces {
+            break;
+        }
+        // The surface: plane, convex or concave sphere (radius R), its
+        // normal differentials ∂n = σ·∂P/R from each side's own ∂P.
+        let roll = rng.next_u64() % 10;
+        let curved = class == Class::Focus || (class == Class::Chain && roll >= 4);
+        let (sigma, radius) = if curved {
+            let concave = class == Class::Focus || rng.next_u64() % 2 == 0;
+            (if concave { -1.0 } else { 1.0 }, t * log_uniform(rng, -3.0, 3.0))
+        } else {
+            (0.0, 1.0)
+        };
+        let kappa = sigma / radius;
+        let dn_of = |dp: V| fw.q_dvec(scale(kappa, dp));
+        let fwd = fw.to_f64(&p.fw);
+        let dn_fw = [dn_of(fwd.dox), dn_of(fwd.doy)];
+        let dn_rf = [scale(kappa, p.rf.dox), scale(kappa, p.rf.doy)];
+        let refractive = class == Class::Chain && roll % 3 == 0;
+        let cosi = dot(d, n).abs();
+        let before = p.rf;
+        let mut next = None;
+        if refractive {
+            let eta = fw.q_eta(log_uniform(rng, -1.0, 1.0));
+            let kk = 1.0 - eta * eta * (1.0 - cosi * cosi);
+            if kk >= 0.0 {
+                let ct = fw.q_cos(kk.sqrt());
+                cos_min = cos_min.min(ct.max(MIN_COS));
+                p.fw = fw.refract(&p.fw, d, n, dn_fw, eta, ct);
+                p.rf = rf::refract(&before, d, n, dn_rf[0], dn_rf[1], eta, ct);
+                let ctc = ct.max(MIN_COS);
+                let mu = eta * cosi - ctc;
+                let coef = (eta - eta * eta * cosi / ctc).abs();
+                for (b, l) in p.bound.iter_mut().zip(&loc) {
+                    for a in 0..2 {
+                        let bn = kappa.abs() * b[a] + l.normal * norm(dn_rf[a]);
+                        let sc = (eta + coef) * norm(before_dd(&before, a))
+                            + (coef + mu.abs()) * norm(dn_rf[a]);
+                        b[2 + a] = (eta + coef) * b[2 + a] + (coef + mu.abs()) * bn + l.refract * sc;
+                    }
+                }
+                next = Some(unit(axpy(scale(eta, d), mu, n)));
+            }
+        }
+        if next.is_none() {
+            p.fw = fw.reflect(&p.fw, d, n, dn_fw);
+            p.rf = rf::reflect(&before, d, n, dn_rf[0], dn_rf[1]);
+            for (b, l) in p.bound.iter_mut().zip(&loc) {
+                for a in 0..2 {
+                    let bn = kappa.abs() * b[a] + l.normal * norm(dn_rf[a]);
+                    let sc = 3.0 * norm(before_dd(&before, a)) + 4.0 * norm(dn_rf[a]);
+                    b[2 + a] += 4.0 * bn + l.reflect * sc;
+                }
+            }
+            next = Some(unit(axpy(d, 2.0 * cosi, n)));
+        }
+        if sigma < 0.0 && (class == Class::Focus || rng.next_u64() % 4 == 0) {
+            // Near the focus of the concave mirror (R/2, paraxial).
+            let off = log_uniform(rng, -12.0, -2.0) * if rng.unit() < 0.5 { -1.0 } else { 1.0 };
+            focus_t = Some(radius / 2.0 * (1.0 + off));
+        }
+        d = fw.q_unit(next.unwrap_or(d));
+    }
+    let tri = triangle(fw, class, rng, last_n);
+    let want_raw = {
+        let fp = tri.footprint(p.rf.dox, p.rf.doy);
+        tri.lod(&fp)
+    };
+    let lo = Lod::MIN.to_num::<f64>();
+    let hi = Lod::MAX.to_num::<f64>();
+    let want = want_raw.clamp(lo, hi);
+    let lod = fw.lod(&tri, &p.fw);
+    let err = (lod - want).abs();
+    let rel = |b: &[f64; 4]| -> f64 {
+        let Some(m) = tri.texel_gradients() else {
+            return 0.0;
+        };
+        let mn = norm(m[0]).hypot(norm(m[1]));
+        let fx = norm([dot(m[0], p.rf.dox), dot(m[1], p.rf.dox), 0.0]);
+        let fy = norm([dot(m[0], p.rf.doy), dot(m[1], p.rf.doy), 0.0]);
+        let big = fx.max(fy);
+        if big == 0.0 {
+            return f64::INFINITY;
+        }
+        let pmax = norm(p.rf.dox).max(norm(p.rf.doy));
+        (mn * b[0].max(b[1])) / big + loc[0].footprint * mn * pmax / big
+    };
+    let degenerate = !want_raw.is_finite();
+    let bound = if degenerate {
+        0.0
+    } else {
+        loc[0].lod + rel(&p.bound[0]) / core::f64::consts::LN_2
+    };
+    Outcome {
+        class,
+        lod,
+        want,
+        err,
+        bound,
+        amp: if degenerate { 0.0 } else { rel(&p.bound[1]) },
+        cos_min,
+        bounces,
+    }
+}
+
+/// `∂D/∂x` (`a = 0`) or `∂D/∂y` of a state.
+fn before_dd(s: &Diff, a: usize) -> V {
+    if a == 0 { s.ddx } else { s.ddy }
+}
+
+/// The textured triangle at the last hit, in the plane of its normal
+/// (`⟂ n`, any offset), shaped by the class; quantised by the firmware's
+/// coordinate format (vertices below 2²⁰ on the 2⁻³² grid: the
+/// reference decides the degenerate classes exactly).
+fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle {
+    let (a, b) = basis(n);
+    let l = if class == Class::SlowUv {
+        log_uniform(rng, 4.0, 12.0)
+    } else {
+        log_uniform(rng, -6.0, 8.0)
+    };
+    let c0 = [
+        rng.range(-1024.0, 1024.0),
+        rng.range(-1024.0, 1024.0),
+        rng.range(-1024.0, 1024.0),
+    ];
+    let at = |x: f64, y: f64| axpy(axpy(c0, l * x, a), l * y, b);
+    let mut p = match class {
+        Class::Sliver => {
+            let s = log_uniform(rng, 10.0, 20.0);
+            let lam = rng.range(-0.5, 1.5);
+            [at(0.0, 0.0), at(1.0, 0.0), at(lam, 1.0 / s)]
+        }
+        _ => loop {
+            let q: [f64; 4] = core::array::from_fn(|_| rng.range(-1.0, 1.0));
+            if (q[0] * q[3] - q[1] * q[2]).abs() > 0.05 {
+                break [at(0.0, 0.0), at(q[0], q[1]), at(q[2], q[3])];
+            }
+        },
+    };
+    p = p.map(|v| v.map(|x| fw.q_coord(x)));
+    if class == Class::Collinear {
+        // p₂ = 2p₁ − p₀ on the grid (exact), or p₁ = p₀.
+        p[2] = if rng.unit() < 0.75 {
+            core::array::from_fn(|k| 2.0 * p[1][k] - p[0][k])
+        } else {
+            p[1]
+        };
+    }
+    // Planar UVs: uv = A·(x, y) + offset with A of gradient scale g (per
+    // scene unit) and anisotropy by class.
+    let g = match class {
+        Class::SlowUv => log_uniform(rng, -30.0, -20.0),
+        _ => log_uniform(rng, -6.0, 4.0) / l,
+    };
+    let (gu, gv) = match class {
+        Class::Lopsided => {
+            let k = log_uniform(rng, 4.0, 16.0);
+            if rng.unit() < 0.5 { (g, g / k) } else { (g / k, g) }
+        }
+        _ => (g * rng.range(0.5, 2.0), g * rng.range(0.5, 2.0)),
+    };
+    let th = rng.range(0.0, core::f64::consts::TAU);
+    let off = [rng.range(-4.0, 4.0), rng.range(-4.0, 4.0)];
+    let proj = |v: V| {
+        let w = axpy(v, -1.0, c0);
+        let (x, y) = (dot(w, a), dot(w, b));
+        let (xr, yr) = (th.cos() * x - th.sin() * y, th.sin() * x + th.cos() * y);
+        [off[0] + gu * xr, off[1] + gv * yr]
+    };
+    let unit_uv = class == Class::Sliver && rng.unit() < 0.5;
+    let mut uv = if unit_uv {
+        [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+    } else {
+        p.map(proj)
+    };
+    uv = uv.map(|v| v.map(|x| fw.q_coord(x)));
+    if class == Class::FlatUv {
+        uv[2] = if rng.unit() < 0.75 {
+            core::array::from_fn(|k| 2.0 * uv[1][k] - uv[0][k])
+        } else {
+            uv[0]
+        };
+        if rng.unit() < 0.2 {
+            uv = [uv[0]; 3];
+        }
+    }
+    let size = |rng: &mut Rng| (log_uniform(rng, 0.0, 12.0).round() as u32).clamp(1, 4096);
+    Triangle {
+        p,
+        uv,
+        w: size(rng),
+        h: size(rng),
+    }
+}
+
+/// The firmware's `raymip::raydiff` through the [`Firmware`] adapter.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Raymip;
+
+mod adapter {
+    use fixed::types::{I2F30, I32F32, U32F32};
+    use raymip::raydiff::footprint::RayDiffTriangle;
+    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+    use raymip::table::{Coord, TexTriangle};
+
+    use super::{Diff, Firmware, Local, Raymip, Triangle, V};
+
+    fn u(v: V) -> [I2F30; 3] {
+        v.map(I2F30::saturating_from_num)
+    }
+    fn dd(v: V) -> [DirDiff; 3] {
+        v.map(DirDiff::saturating_from_num)
+    }
+    fn f<T: fixed::traits::Fixed>(v: [T; 3]) -> V {
+        v.map(|x| x.to_num())
+    }
+
+    impl Firmware for Raymip {
+        type State = RayDiff;
+        fn q_unit(&self, v: V) -> V {
+            f(u(v))
+        }
+        fn q_len(&self, t: f64) -> f64 {
+            U32F32::saturating_from_num(t).to_num()
+        }
+        fn q_dvec(&self, v: V) -> V {
+            f(dd(v))
+        }
+        fn q_eta(&self, eta: f64) -> f64 {
+            Eta::saturating_from_num(eta).to_num()
+        }
+        fn q_cos(&self, c: f64) -> f64 {
+            I2F30::saturating_from_num(c).to_num()
+        }
+        fn q_coord(&self, x: f64) -> f64 {
+            Coord::saturating_from_num(x).to_num()
+        }
+        fn primary(&self, d: V, fw: V, r: V, up: V) -> RayDiff {
+            RayDiff::primary(u(d), u(fw), dd(r), dd(up)).0
+        }
+        fn transfer(&self, s: &RayDiff, d: V, t: f64, n: V) -> RayDiff {
+            s.transfer(u(d), U32F32::saturating_from_num(t), u(n)).0
+        }
+        fn reflect(&self, s: &RayDiff, d: V, n: V, dn: [V; 2]) -> RayDiff {
+            s.reflect(u(d), u(n), dd(dn[0]), dd(dn[1])).0
+        }
+        fn refract(&self, s: &RayDiff, d: V, n: V, dn: [V; 2], eta: f64, cos_t: f64) -> RayDiff {
+            s.refract(
+                u(d),
+                u(n),
+                dd(dn[0]),
+                dd(dn[1]),
+                Eta::saturating_from_num(eta),
+                I2F30::saturating_from_num(cos_t),
+            )
+            .0
+        }
+        fn to_f64(&self, s: &RayDiff) -> Diff {
+            Diff {
+                dox: f(s.dodx),
+                doy: f(s.dody),
+                ddx: f(s.dddx),
+                ddy: f(s.dddy),
+            }
+        }
+        fn lod(&self, tri: &Triangle, s: &RayDiff) -> f64 {
+            let c = |x: f64| I32F32::saturating_from_num(x);
+            let Ok(t) = TexTriangle::new(tri.p.map(|v| v.map(c)), tri.uv.map(|v| v.map(c)), tri.w, tri.h)
+            else {
+                return f64::NAN;
+            };
+            let t = RayDiffTriangle::new(&t);
+            let _: [PosDiff; 3] = s.dodx;
+            t.lod(&t.footprint(s.dodx, s.dody)).to_num()
+        }
+        fn local(&self) -> Local {
+            Local::UNIT
+        }
+    }
+}
