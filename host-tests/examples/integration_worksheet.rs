@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use std::mem::size_of;
 use std::path::Path;
 
-use raymip::raystack::{PATH_STATE_BYTES, stack_bound};
+use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
 use raymip::texture::storage::mip::pyramid_len;
 use raymip::{Log2Pb, Pyramid, TexelCache};
 use raymip_host::cli::output::{publish, write_option};
