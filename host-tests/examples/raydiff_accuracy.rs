@@ -9,7 +9,7 @@
 //! ```
 
 use rayon::prelude::*;
-use raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR;
+use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip_host::raydiff_chains::{CLASSES, Outcome, Raymip, run};
 use raymip_host::reference::Rng;
 

@@ -1,7 +1,7 @@
 //! Random camera chains for the ray differentials: a pinhole camera's pixel
 //! ray through 0–10 bounces (planes, convex and concave mirrors,
 //! refractions up to total internal reflection) to a textured triangle, run
-//! through the firmware (`raymip::raydiff`, by the [`Firmware`] adapter) and
+//! through the firmware (`raymip::path::raydiff`, by the [`Firmware`] adapter) and
 //! through the f64 reference ([`crate::reference::raydiff`]) on the same
 //! quantised inputs, with the lod of each and the chain's error
 //! amplification. One generator per case [`Class`] of the firmware's
@@ -478,15 +478,15 @@ fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle 
     }
 }
 
-/// The firmware's `raymip::raydiff` through the [`Firmware`] adapter.
+/// The firmware's `raymip::path::raydiff` through the [`Firmware`] adapter.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Raymip;
 
 mod adapter {
     use fixed::types::{I2F30, I32F32, U32F32};
-    use raymip::raydiff::footprint::RayDiffTriangle;
-    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
-    use raymip::table::{Coord, TexTriangle};
+    use raymip::lod::raydiff::RayDiffTriangle;
+    use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+    use raymip::setup::table::{Coord, TexTriangle};
 
     use super::{Diff, Firmware, Local, Raymip, Triangle, V};
 
