@@ -179,6 +179,12 @@ mod pb_reference;
 #[path = "../host-tests/src/reference/envmap.rs"]
 mod envmap_reference;
 
+// The harness's f64 reference of the ray differentials.
+#[cfg(all(test, feature = "raydiff"))]
+#[path = "../host-tests/src/reference/raydiff.rs"]
+#[allow(dead_code)]
+mod raydiff_reference;
+
 // The README's Rust example runs as a doctest (`cargo test --doc`), so the
 // front page cannot drift from the API.
 #[cfg(doctest)]

@@ -8,15 +8,18 @@
 //! cargo run --release -p raymip-host --example raydiff_accuracy -- [CHAINS_PER_CLASS] [SEED]
 //! ```
 
-use rayon::prelude::*;
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip_host::raydiff_chains::{CLASSES, Outcome, Raymip, run};
 use raymip_host::reference::Rng;
+use rayon::prelude::*;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: u64 = args.first().and_then(|a| a.parse().ok()).unwrap_or(100_000);
-    let seed: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(0x9E37_79B9);
+    let seed: u64 = args
+        .get(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(0x9E37_79B9);
     println!(
         "| class | chains | max error | 99.9 % | over 2⁻⁷ | over bound | max amplification | smallest cos |"
     );

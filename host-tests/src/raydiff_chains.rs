@@ -84,35 +84,41 @@ impl Class {
     }
 }
 
-/// Local error constants of the firmware's operations (relative to each
-/// operation's magnitude scale; see the [module docs](self)).
+/// Local error constants of the firmware's operations: the largest
+/// component of an operation's error is at most `c_op` times its scale
+/// (the scales of the firmware's module docs, restated per field). See the
+/// [module docs](self).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Local {
-    /// Primary set-up, relative to `|∂D|`.
+    /// Primary set-up, relative to `(|D·f| + 1)·|r|`.
     pub primary: f64,
-    /// Transfer, relative to `(|∂O| + t·|∂D|)/|D·n|`.
+    /// Transfer, relative to `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)`.
     pub transfer: f64,
-    /// Reflection, relative to `3|∂D| + 4|∂n|`.
+    /// Reflection, relative to `|∂D| + 4|∂n|`.
     pub reflect: f64,
-    /// Refraction, relative to `(η + |c|)|∂D| + (|c| + |μ|)|∂n|`.
+    /// Refraction, relative to `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)`.
     pub refract: f64,
-    /// Normal differentials handed to the firmware, relative to `|∂n|`.
+    /// Normal differentials handed to the firmware (their rounding),
+    /// relative to `|∂n|`.
     pub normal: f64,
-    /// Footprint, relative to `|M|·|∂P|`.
+    /// Footprint axis (Euclidean), relative to `|M|∞·|∂P|`, `|M|∞` the
+    /// largest texel-space gradient component.
     pub footprint: f64,
-    /// Lod from the footprint: absolute, in levels (log2 and rounding).
+    /// The lod from the footprint: absolute, in levels (table logarithm
+    /// and rounding).
     pub lod: f64,
 }
 
 impl Local {
-    /// Every constant 1 (the amplification), no absolute lod term.
+    /// Every relative constant 2⁻³⁰ and no absolute lod term: the bound
+    /// is then the chain's amplification times 2⁻³⁰ (see [`Outcome::amp`]).
     pub const UNIT: Self = Self {
-        primary: 1.0,
-        transfer: 1.0,
-        reflect: 1.0,
-        refract: 1.0,
-        normal: 1.0,
-        footprint: 1.0,
+        primary: 1.0 / 1_073_741_824.0,
+        transfer: 1.0 / 1_073_741_824.0,
+        reflect: 1.0 / 1_073_741_824.0,
+        refract: 1.0 / 1_073_741_824.0,
+        normal: 1.0 / 1_073_741_824.0,
+        footprint: 1.0 / 1_073_741_824.0,
         lod: 0.0,
     };
 }
@@ -141,7 +147,6 @@ pub trait Firmware {
     /// Reflection.
     fn reflect(&self, s: &Self::State, d: V, n: V, dn: [V; 2]) -> Self::State;
     /// Refraction.
-    #[allow(clippy::too_many_arguments)]
     fn refract(&self, s: &Self::State, d: V, n: V, dn: [V; 2], eta: f64, cos_t: f64)
     -> Self::State;
     /// The state in f64.
@@ -164,9 +169,11 @@ pub struct Outcome {
     /// `|lod − want|`.
     pub err: f64,
     /// The firmware's first-order error bound ([`Firmware::local`]), in
-    /// levels (0 for the degenerate classes, which must be exact).
+    /// levels (0 for the degenerate classes, which must be exact; `∞`
+    /// where the relative footprint error may reach ½).
     pub bound: f64,
-    /// The amplification (the bound's relative part with every constant 1).
+    /// The chain's amplification: the relative footprint error bound with
+    /// every local constant 1 ([`Local::UNIT`] scaled by 2³⁰).
     pub amp: f64,
     /// Smallest `|D·n|` (and `cos θₜ`) on the path.
     pub cos_min: f64,
@@ -177,6 +184,11 @@ pub struct Outcome {
 /// Uniform in `[2^lo, 2^hi)` on a log scale.
 fn log_uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     rng.range(lo, hi).exp2()
+}
+
+/// True with probability `1/k`.
+fn one_in(rng: &mut Rng, k: u64) -> bool {
+    rng.next_u64().is_multiple_of(k)
 }
 
 /// A random unit vector.
@@ -223,14 +235,97 @@ fn cosine(rng: &mut Rng, grazing: bool) -> f64 {
     }
 }
 
-/// Both chains' state and the error bounds (absolute, per vector).
-struct Pair<S> {
-    fw: S,
+/// Both chains and the first-order error bounds of the firmware's state
+/// (Euclidean, per vector `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`), once with the
+/// firmware's constants and once with [`Local::UNIT`].
+struct Chain<'a, F: Firmware> {
+    fw: &'a F,
+    loc: [Local; 2],
+    s: F::State,
     rf: Diff,
-    /// Error bounds of `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`, as set by the local
-    /// constants `loc` and, separately, by unit constants (the
-    /// amplification).
     bound: [[f64; 4]; 2],
+    d: V,
+    cos_min: f64,
+}
+
+/// `√3`: an ∞-norm bound of a 3-vector as a Euclidean one.
+const SQRT3: f64 = 1.732_050_807_568_877_2;
+
+impl<F: Firmware> Chain<'_, F> {
+    /// Transfer to a hit at `t` on the plane of normal `n`: the bounds
+    /// grow by the projection's `1/|D·n|` and the local error.
+    fn transfer(&mut self, t: f64, n: V) {
+        let c = dot(self.d, n).abs().max(MIN_COS);
+        self.cos_min = self.cos_min.min(c);
+        let before = self.rf;
+        self.s = self.fw.transfer(&self.s, self.d, t, n);
+        self.rf = rf::transfer(&self.rf, self.d, t, n);
+        for (b, l) in self.bound.iter_mut().zip(&self.loc) {
+            for (a, (o, dd)) in [(before.dox, before.ddx), (before.doy, before.ddy)]
+                .into_iter()
+                .enumerate()
+            {
+                let sc = (norm(o) + t * norm(dd)) * (1.0 + 1.0 / c);
+                b[a] = (b[a] + t * b[2 + a]) / c + SQRT3 * l.transfer * sc;
+            }
+        }
+    }
+
+    /// Reflection (`refract: None`) or refraction `(η, cos θₜ)` at a
+    /// surface of normal `n` and curvature `kappa` (`∂n = κ·∂P`, each side
+    /// from its own `∂P`).
+    fn bounce(&mut self, n: V, kappa: f64, refract: Option<(f64, f64)>) {
+        let fwd = self.fw.to_f64(&self.s);
+        let dn_fw = [fwd.dox, fwd.doy].map(|p| self.fw.q_dvec(scale(kappa, p)));
+        let dn = [scale(kappa, self.rf.dox), scale(kappa, self.rf.doy)];
+        let before = self.rf;
+        let dd = [before.ddx, before.ddy];
+        let d = self.d;
+        // (Jacobian of ∂D, of ∂n, the local scale's factor) per operation.
+        let (gd, gn, sc) = match refract {
+            None => {
+                self.s = self.fw.reflect(&self.s, d, n, dn_fw);
+                self.rf = rf::reflect(&before, d, n, dn[0], dn[1]);
+                (
+                    1.0,
+                    4.0,
+                    [
+                        norm(dd[0]) + 4.0 * norm(dn[0]),
+                        norm(dd[1]) + 4.0 * norm(dn[1]),
+                    ],
+                )
+            }
+            Some((eta, ct)) => {
+                let ct = ct.max(MIN_COS);
+                self.cos_min = self.cos_min.min(ct);
+                let ci = -dot(d, n);
+                self.s = self.fw.refract(&self.s, d, n, dn_fw, eta, ct);
+                self.rf = rf::refract(&before, d, n, dn[0], dn[1], eta, ct);
+                let mu = (eta * ci - ct).abs();
+                let coef = (eta - eta * eta * ci / ct).abs();
+                let k = 1.0 + 2.0 * eta + eta * eta / ct;
+                (
+                    eta + coef,
+                    coef + mu,
+                    [
+                        k * (norm(dd[0]) + norm(dn[0])),
+                        k * (norm(dd[1]) + norm(dn[1])),
+                    ],
+                )
+            }
+        };
+        for (b, l) in self.bound.iter_mut().zip(&self.loc) {
+            let local = if refract.is_some() {
+                l.refract
+            } else {
+                l.reflect
+            };
+            for a in 0..2 {
+                let bn = kappa.abs() * b[a] + SQRT3 * l.normal * norm(dn[a]);
+                b[2 + a] = gd * b[2 + a] + gn * bn + SQRT3 * local * sc[a];
+            }
+        }
+    }
 }
 
 /// Runs one chain of class `class` from `rng`.
@@ -244,152 +339,122 @@ pub fn run<F: Firmware>(fw: &F, class: Class, rng: &mut Rng) -> Outcome {
     let r = fw.q_dvec(scale(gamma, ra));
     let u = fw.q_dvec(scale(gamma, ua));
     let (px, py) = (rng.range(-512.0, 512.0), rng.range(-512.0, 512.0));
-    let mut d = fw.q_unit(unit(axpy(axpy(f, px, r), py, u)));
+    let d = fw.q_unit(unit(axpy(axpy(f, px, r), py, u)));
     let rf0 = rf::primary(d, f, r, u);
-    let lp: [[f64; 4]; 2] = core::array::from_fn(|k| {
-        let c = loc[k].primary;
-        [0.0, 0.0, c * norm(rf0.ddx), c * norm(rf0.ddy)]
-    });
-    let mut p = Pair {
-        fw: fw.primary(d, f, r, u),
+    let p = (dot(d, f).abs() + 1.0) * SQRT3;
+    let mut ch = Chain {
+        fw,
+        loc,
+        s: fw.primary(d, f, r, u),
         rf: rf0,
-        bound: lp,
+        bound: loc.map(|l| [0.0, 0.0, p * l.primary * norm(r), p * l.primary * norm(u)]),
+        d,
+        cos_min: 1.0,
     };
     let bounces = match class {
         Class::Chain => 10,
         Class::Focus => 1 + (rng.next_u64() % 3) as u32,
-        Class::Grazing => (rng.next_u64() % 3) as u32,
         _ => (rng.next_u64() % 3) as u32,
     };
-    let grazing_at = rng.next_u64() % u64::from(bounces + 1);
-    let mut cos_min = 1.0f64;
+    let grazing_at = (rng.next_u64() % u64::from(bounces + 1)) as u32;
     let mut focus_t = None;
     let mut last_n = f;
     for k in 0..=bounces {
-        let graze = class == Class::Grazing && (k == bounces || u64::from(k) == grazing_at);
+        let graze = class == Class::Grazing && (k == bounces || k == grazing_at);
         let c = cosine(rng, graze);
-        let n = fw.q_unit(facing_normal(rng, d, c));
-        let t = fw.q_len(focus_t.take().unwrap_or_else(|| log_uniform(rng, -4.0, 8.0)));
-        let dn = dot(d, n).abs().max(MIN_COS);
+        let n = fw.q_unit(facing_normal(rng, ch.d, c));
+        let t = fw.q_len(
+            focus_t
+                .take()
+                .unwrap_or_else(|| log_uniform(rng, -4.0, 8.0)),
+        );
+        ch.transfer(t, n);
         last_n = n;
-        cos_min = cos_min.min(dn);
-        // Transfer both; the bounds grow by the projection's 1/|D·n|.
-        let before = p.rf;
-        p.fw = fw.transfer(&p.fw, d, t, n);
-        p.rf = rf::transfer(&p.rf, d, t, n);
-        for (b, l) in p.bound.iter_mut().zip(&loc) {
-            let s = |o: V, dd: V| (norm(o) + t * norm(dd)) / dn;
-            b[0] = (b[0] + t * b[2]) / dn + l.transfer * s(before.dox, before.ddx);
-            b[1] = (b[1] + t * b[3]) / dn + l.transfer * s(before.doy, before.ddy);
-        }
         if k == bounces {
             break;
         }
-        // The surface: plane, convex or concave sphere (radius R), its
-        // normal differentials ∂n = σ·∂P/R from each side's own ∂P.
+        // The surface: plane, convex or concave sphere of radius R.
         let roll = rng.next_u64() % 10;
         let curved = class == Class::Focus || (class == Class::Chain && roll >= 4);
         let (sigma, radius) = if curved {
-            let concave = class == Class::Focus || rng.next_u64() % 2 == 0;
-            (if concave { -1.0 } else { 1.0 }, t * log_uniform(rng, -3.0, 3.0))
+            let concave = class == Class::Focus || one_in(rng, 2);
+            (
+                if concave { -1.0 } else { 1.0 },
+                t * log_uniform(rng, -3.0, 3.0),
+            )
         } else {
             (0.0, 1.0)
         };
-        let kappa = sigma / radius;
-        let dn_of = |dp: V| fw.q_dvec(scale(kappa, dp));
-        let fwd = fw.to_f64(&p.fw);
-        let dn_fw = [dn_of(fwd.dox), dn_of(fwd.doy)];
-        let dn_rf = [scale(kappa, p.rf.dox), scale(kappa, p.rf.doy)];
-        let refractive = class == Class::Chain && roll % 3 == 0;
-        let cosi = dot(d, n).abs();
-        let before = p.rf;
-        let mut next = None;
-        if refractive {
+        let cosi = dot(ch.d, n).abs();
+        let mut refracted = None;
+        if class == Class::Chain && roll.is_multiple_of(3) {
             let eta = fw.q_eta(log_uniform(rng, -1.0, 1.0));
             let kk = 1.0 - eta * eta * (1.0 - cosi * cosi);
             if kk >= 0.0 {
                 let ct = fw.q_cos(kk.sqrt());
-                cos_min = cos_min.min(ct.max(MIN_COS));
-                p.fw = fw.refract(&p.fw, d, n, dn_fw, eta, ct);
-                p.rf = rf::refract(&before, d, n, dn_rf[0], dn_rf[1], eta, ct);
-                let ctc = ct.max(MIN_COS);
-                let mu = eta * cosi - ctc;
-                let coef = (eta - eta * eta * cosi / ctc).abs();
-                for (b, l) in p.bound.iter_mut().zip(&loc) {
-                    for a in 0..2 {
-                        let bn = kappa.abs() * b[a] + l.normal * norm(dn_rf[a]);
-                        let sc = (eta + coef) * norm(before_dd(&before, a))
-                            + (coef + mu.abs()) * norm(dn_rf[a]);
-                        b[2 + a] = (eta + coef) * b[2 + a] + (coef + mu.abs()) * bn + l.refract * sc;
-                    }
-                }
-                next = Some(unit(axpy(scale(eta, d), mu, n)));
+                ch.bounce(n, sigma / radius, Some((eta, ct)));
+                refracted = Some(unit(axpy(scale(eta, ch.d), eta * cosi - ct, n)));
             }
         }
-        if next.is_none() {
-            p.fw = fw.reflect(&p.fw, d, n, dn_fw);
-            p.rf = rf::reflect(&before, d, n, dn_rf[0], dn_rf[1]);
-            for (b, l) in p.bound.iter_mut().zip(&loc) {
-                for a in 0..2 {
-                    let bn = kappa.abs() * b[a] + l.normal * norm(dn_rf[a]);
-                    let sc = 3.0 * norm(before_dd(&before, a)) + 4.0 * norm(dn_rf[a]);
-                    b[2 + a] += 4.0 * bn + l.reflect * sc;
-                }
-            }
-            next = Some(unit(axpy(d, 2.0 * cosi, n)));
-        }
-        if sigma < 0.0 && (class == Class::Focus || rng.next_u64() % 4 == 0) {
+        let next = refracted.unwrap_or_else(|| {
+            ch.bounce(n, sigma / radius, None);
+            unit(axpy(ch.d, 2.0 * cosi, n))
+        });
+        if sigma < 0.0 && (class == Class::Focus || one_in(rng, 4)) {
             // Near the focus of the concave mirror (R/2, paraxial).
-            let off = log_uniform(rng, -12.0, -2.0) * if rng.unit() < 0.5 { -1.0 } else { 1.0 };
+            let off = log_uniform(rng, -12.0, -2.0) * if one_in(rng, 2) { -1.0 } else { 1.0 };
             focus_t = Some(radius / 2.0 * (1.0 + off));
         }
-        d = fw.q_unit(next.unwrap_or(d));
+        ch.d = fw.q_unit(next);
     }
-    let tri = triangle(fw, class, rng, last_n);
-    let want_raw = {
-        let fp = tri.footprint(p.rf.dox, p.rf.doy);
-        tri.lod(&fp)
-    };
-    let lo = Lod::MIN.to_num::<f64>();
-    let hi = Lod::MAX.to_num::<f64>();
-    let want = want_raw.clamp(lo, hi);
-    let lod = fw.lod(&tri, &p.fw);
-    let err = (lod - want).abs();
-    let rel = |b: &[f64; 4]| -> f64 {
+    finish(&ch, class, triangle(fw, class, rng, last_n), bounces)
+}
+
+/// Both lods of the final state on `tri`, the error and the bound.
+fn finish<F: Firmware>(ch: &Chain<'_, F>, class: Class, tri: Triangle, bounces: u32) -> Outcome {
+    let want_raw = tri.lod(&tri.footprint(ch.rf.dox, ch.rf.doy));
+    let want = want_raw.clamp(Lod::MIN.to_num(), Lod::MAX.to_num());
+    let lod = ch.fw.lod(&tri, &ch.s);
+    // Relative error bound of the larger footprint axis: the texel-space
+    // gradients M carry the ∂P bounds (|M|, Frobenius) and add the
+    // footprint's own error (relative to |M|∞·|∂P|).
+    let rel = |b: &[f64; 4], l: &Local| -> f64 {
         let Some(m) = tri.texel_gradients() else {
             return 0.0;
         };
-        let mn = norm(m[0]).hypot(norm(m[1]));
-        let fx = norm([dot(m[0], p.rf.dox), dot(m[1], p.rf.dox), 0.0]);
-        let fy = norm([dot(m[0], p.rf.doy), dot(m[1], p.rf.doy), 0.0]);
-        let big = fx.max(fy);
+        let mf = norm(m[0]).hypot(norm(m[1]));
+        let minf = m.iter().flatten().fold(0.0f64, |x, y| x.max(y.abs()));
+        let axis = |p: V| norm([dot(m[0], p), dot(m[1], p), 0.0]);
+        let big = axis(ch.rf.dox).max(axis(ch.rf.doy));
+        let pmax = norm(ch.rf.dox).max(norm(ch.rf.doy));
         if big == 0.0 {
             return f64::INFINITY;
         }
-        let pmax = norm(p.rf.dox).max(norm(p.rf.doy));
-        (mn * b[0].max(b[1])) / big + loc[0].footprint * mn * pmax / big
+        (mf * b[0].max(b[1]) + l.footprint * minf * pmax) / big
     };
     let degenerate = !want_raw.is_finite();
+    let rho = rel(&ch.bound[0], &ch.loc[0]);
     let bound = if degenerate {
         0.0
+    } else if rho >= 0.5 {
+        f64::INFINITY
     } else {
-        loc[0].lod + rel(&p.bound[0]) / core::f64::consts::LN_2
+        ch.loc[0].lod + (-(1.0 - rho).log2()).max((1.0 + rho).log2())
     };
     Outcome {
         class,
         lod,
         want,
-        err,
+        err: (lod - want).abs(),
         bound,
-        amp: if degenerate { 0.0 } else { rel(&p.bound[1]) },
-        cos_min,
+        amp: if degenerate {
+            0.0
+        } else {
+            rel(&ch.bound[1], &ch.loc[1]) * 1_073_741_824.0
+        },
+        cos_min: ch.cos_min,
         bounces,
     }
-}
-
-/// `∂D/∂x` (`a = 0`) or `∂D/∂y` of a state.
-fn before_dd(s: &Diff, a: usize) -> V {
-    if a == 0 { s.ddx } else { s.ddy }
 }
 
 /// The textured triangle at the last hit, in the plane of its normal
@@ -440,7 +505,11 @@ fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle 
     let (gu, gv) = match class {
         Class::Lopsided => {
             let k = log_uniform(rng, 4.0, 16.0);
-            if rng.unit() < 0.5 { (g, g / k) } else { (g / k, g) }
+            if rng.unit() < 0.5 {
+                (g, g / k)
+            } else {
+                (g / k, g)
+            }
         }
         _ => (g * rng.range(0.5, 2.0), g * rng.range(0.5, 2.0)),
     };
@@ -483,7 +552,7 @@ fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle 
 pub struct Raymip;
 
 mod adapter {
-    use fixed::types::{I2F30, I32F32, U32F32};
+    use fixed::types::{I2F30, I4F28, I32F32, U32F32};
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
     use raymip::setup::table::{Coord, TexTriangle};
@@ -493,11 +562,11 @@ mod adapter {
     fn u(v: V) -> [I2F30; 3] {
         v.map(I2F30::saturating_from_num)
     }
-    fn dd(v: V) -> [DirDiff; 3] {
-        v.map(DirDiff::saturating_from_num)
-    }
-    fn f<T: fixed::traits::Fixed>(v: [T; 3]) -> V {
+    fn f(v: [I2F30; 3]) -> V {
         v.map(|x| x.to_num())
+    }
+    fn eta(e: f64) -> Eta {
+        Eta::from_fixed(I4F28::saturating_from_num(e))
     }
 
     impl Firmware for Raymip {
@@ -509,10 +578,10 @@ mod adapter {
             U32F32::saturating_from_num(t).to_num()
         }
         fn q_dvec(&self, v: V) -> V {
-            f(dd(v))
+            DirDiff::from_f64(v).to_f64()
         }
-        fn q_eta(&self, eta: f64) -> f64 {
-            Eta::saturating_from_num(eta).to_num()
+        fn q_eta(&self, e: f64) -> f64 {
+            eta(e).to_fixed().to_num()
         }
         fn q_cos(&self, c: f64) -> f64 {
             I2F30::saturating_from_num(c).to_num()
@@ -521,45 +590,63 @@ mod adapter {
             Coord::saturating_from_num(x).to_num()
         }
         fn primary(&self, d: V, fw: V, r: V, up: V) -> RayDiff {
-            RayDiff::primary(u(d), u(fw), dd(r), dd(up)).0
+            RayDiff::primary(u(d), u(fw), DirDiff::from_f64(r), DirDiff::from_f64(up))
         }
         fn transfer(&self, s: &RayDiff, d: V, t: f64, n: V) -> RayDiff {
-            s.transfer(u(d), U32F32::saturating_from_num(t), u(n)).0
+            let mut s = *s;
+            s.transfer(u(d), U32F32::saturating_from_num(t), u(n));
+            s
         }
         fn reflect(&self, s: &RayDiff, d: V, n: V, dn: [V; 2]) -> RayDiff {
-            s.reflect(u(d), u(n), dd(dn[0]), dd(dn[1])).0
+            let mut s = *s;
+            s.reflect(u(d), u(n), dn.map(DirDiff::from_f64));
+            s
         }
-        fn refract(&self, s: &RayDiff, d: V, n: V, dn: [V; 2], eta: f64, cos_t: f64) -> RayDiff {
+        fn refract(&self, s: &RayDiff, d: V, n: V, dn: [V; 2], e: f64, cos_t: f64) -> RayDiff {
+            let mut s = *s;
             s.refract(
                 u(d),
                 u(n),
-                dd(dn[0]),
-                dd(dn[1]),
-                Eta::saturating_from_num(eta),
+                dn.map(DirDiff::from_f64),
+                eta(e),
                 I2F30::saturating_from_num(cos_t),
-            )
-            .0
+            );
+            s
         }
         fn to_f64(&self, s: &RayDiff) -> Diff {
             Diff {
-                dox: f(s.dodx),
-                doy: f(s.dody),
-                ddx: f(s.dddx),
-                ddy: f(s.dddy),
+                dox: s.dox().to_f64(),
+                doy: s.doy().to_f64(),
+                ddx: s.ddx().to_f64(),
+                ddy: s.ddy().to_f64(),
             }
         }
         fn lod(&self, tri: &Triangle, s: &RayDiff) -> f64 {
             let c = |x: f64| I32F32::saturating_from_num(x);
-            let Ok(t) = TexTriangle::new(tri.p.map(|v| v.map(c)), tri.uv.map(|v| v.map(c)), tri.w, tri.h)
-            else {
+            let Ok(t) = TexTriangle::new(
+                tri.p.map(|v| v.map(c)),
+                tri.uv.map(|v| v.map(c)),
+                tri.w,
+                tri.h,
+            ) else {
                 return f64::NAN;
             };
-            let t = RayDiffTriangle::new(&t);
-            let _: [PosDiff; 3] = s.dodx;
-            t.lod(&t.footprint(s.dodx, s.dody)).to_num()
+            let _: PosDiff = s.dox();
+            RayDiffTriangle::new(&t).footprint(s).lod().to_num()
         }
         fn local(&self) -> Local {
-            Local::UNIT
+            use raymip::lod::raydiff as l;
+            use raymip::path::raydiff as p;
+            Local {
+                primary: p::PRIMARY_ERROR,
+                transfer: p::TRANSFER_ERROR,
+                reflect: p::REFLECT_ERROR,
+                refract: p::REFRACT_ERROR,
+                // DirDiff::from_f64 truncates below 2⁻²⁹ of the largest.
+                normal: 2f64.powi(-29),
+                footprint: l::FOOTPRINT_ERROR,
+                lod: l::LOD_ROUNDING_ERROR,
+            }
         }
     }
 }

@@ -254,31 +254,32 @@ impl EnvMap {
     }
 
     /// Lod of a ray with direction differentials `dddx`, `dddy` (per
-    /// pixel; [`crate::path::raydiff::RayDiff::dddx`]) leaving the scene:
-    /// `α = max(|∂D/∂x|, |∂D/∂y|)`, with the pole term of direction `d`
-    /// when given (formula, clamps and bound in the [module docs](self)).
-    /// Features `envmap` and `raydiff`. Per ray; never panics.
+    /// pixel; [`crate::path::raydiff::RayDiff::ddx`]) leaving the scene:
+    /// `α = max(|∂D/∂x|, |∂D/∂y|)` (read as `2⁻³⁰` when smaller, as the
+    /// cone's raw unit), with the pole term of direction `d` when given
+    /// (formula, clamps and bound in the [module docs](self)). Features
+    /// `envmap` and `raydiff`. Per ray; never panics.
     #[cfg(feature = "raydiff")]
     #[inline]
     #[must_use]
     pub fn raydiff_lod(
         &self,
-        dddx: [crate::path::raydiff::DirDiff; 3],
-        dddy: [crate::path::raydiff::DirDiff; 3],
+        dddx: crate::path::raydiff::DirDiff,
+        dddy: crate::path::raydiff::DirDiff,
         d: Option<UnitVec>,
     ) -> Lod {
-        // |∂D|² in 2⁻⁶⁰ units, exact: each square ≤ 2⁶², the sum < 2⁶⁴.
-        let len2 = |v: [crate::path::raydiff::DirDiff; 3]| -> u64 {
-            v.iter()
-                .map(|c| {
-                    let a = u64::from(c.to_bits().unsigned_abs());
+        // |∂D|² = Σ mₖ²·4ᵉ: each square ≤ 2⁶², the sum < 2⁶⁴ (exact).
+        let len2 = |m: [i32; 3]| -> u64 {
+            m.iter()
+                .map(|&c| {
+                    let a = u64::from(c.unsigned_abs());
                     a * a
                 })
-                .fold(0u64, u64::saturating_add)
+                .sum()
         };
-        let l2 = len2(dddx).max(len2(dddy));
-        let la = log2_bits(l2, 60).to_bits() >> 1;
-        self.lod_of(la, d)
+        let ((mx, ex), (my, ey)) = (dddx.parts(), dddy.parts());
+        let la = crate::lod::raydiff::half_log2_max([len2(mx), len2(my)], [ex, ey]);
+        self.lod_of(la.max(-30 << 16), d)
     }
 
     /// `log2 α` (I16F16 bits) plus the larger map term, rounded to [`Lod`].
@@ -552,16 +553,19 @@ mod tests {
     fn raydiff_edges() {
         use crate::path::raydiff::DirDiff;
         let m = EnvMap::new(1024, 512).unwrap();
-        let z = [DirDiff::ZERO; 3];
+        let z = DirDiff::ZERO;
         let g = 2.0 * core::f64::consts::PI / 1024.0;
-        let a = [DirDiff::from_num(g), DirDiff::ZERO, DirDiff::ZERO];
-        // The larger axis rules; zero differentials read as 2⁻³⁰ rad.
+        let a = DirDiff::from_i2f30([I2F30::from_num(g), I2F30::ZERO, I2F30::ZERO]);
+        // The larger axis rules; zero differentials read as 2⁻³⁰ rad, and
+        // so does anything smaller.
         assert!(m.raydiff_lod(a, z, None).abs() <= Lod::from_bits(1));
         assert_eq!(m.raydiff_lod(z, a, None), m.raydiff_lod(a, z, None));
         assert_eq!(m.raydiff_lod(z, z, None), m.cone_lod(Spread::ZERO, None));
-        for v in [[DirDiff::MIN; 3], [DirDiff::MAX; 3]] {
-            assert!(m.raydiff_lod(v, v, Some([I2F30::ZERO; 3])).abs() < Lod::from_num(64));
-        }
+        let tiny = DirDiff::new([1, 2, 3], -400);
+        assert_eq!(m.raydiff_lod(tiny, z, None), m.cone_lod(Spread::ZERO, None));
+        // Huge differentials saturate the lod.
+        let huge = DirDiff::new([i32::MIN; 3], 1000);
+        assert_eq!(m.raydiff_lod(huge, huge, Some([I2F30::ZERO; 3])), Lod::MAX);
     }
 
     /// The tables of `direction_uv`, recomputed in f64 from their formulas.
@@ -684,13 +688,13 @@ mod tests {
         #[test]
         #[cfg(feature = "raydiff")]
         fn raydiff_lod_matches_f64(w in size(), h in size(), a in any::<[i32; 3]>(), b in any::<[i32; 3]>(),
-                                   e in 0u32..32, d in unit(), with_dir in any::<bool>()) {
+                                   ea in -70i32..-20, eb in -70i32..-20, d in unit(), with_dir in any::<bool>()) {
             use crate::path::raydiff::DirDiff;
             let m = EnvMap::new(w, h).unwrap();
-            let dx = a.map(|c| DirDiff::from_bits(c >> e));
-            let dy = b.map(|c| DirDiff::from_bits(c >> (31 - e)));
+            let (dx, dy) = (DirDiff::new(a, ea), DirDiff::new(b, eb));
+            let v = |x: DirDiff| { let (m, e) = x.parts(); m.map(|c| f64::from(c) * f64::from(e).exp2()) };
             let dir = with_dir.then(|| q(d));
-            let want = reference::raydiff_lod_f64(w, h, dx.map(|c| c.to_num()), dy.map(|c| c.to_num()), dir.map(f));
+            let want = reference::raydiff_lod_f64(w, h, v(dx), v(dy), dir.map(f));
             check_lod(m.raydiff_lod(dx, dy, dir), want)?;
         }
 

@@ -158,7 +158,7 @@ fn mantissa_log2_biased(m: u32) -> u32 {
 
 /// `log2(m / 2^31)` in U0F16 bits (`0..=65536`), see [`mantissa_log2_biased`].
 #[inline(always)]
-fn mantissa_log2(m: u32) -> u32 {
+pub(crate) fn mantissa_log2(m: u32) -> u32 {
     mantissa_log2_biased(m) - LOD_BIAS
 }
 

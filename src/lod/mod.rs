@@ -53,7 +53,8 @@ pub mod raydiff;
 
 use fixed::types::I8F8;
 #[cfg(feature = "cone")]
-use fixed::types::{I16F16, U1F31};
+use fixed::types::I16F16;
+use fixed::types::U1F31;
 
 #[cfg(feature = "cone")]
 use crate::lod::log2::LOD_BIAS;
@@ -93,9 +94,9 @@ pub type Lod = I8F8;
 /// levels: 2⁻⁸.
 pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
-/// Smallest `|n·d|` used by the normal term: 2⁻¹⁶ (U1F31 raw `1 << 15`).
-/// Feature `cone`.
-#[cfg(feature = "cone")]
+/// Smallest `|n·d|` used by the normal term, and smallest `|D·n|` and
+/// `cos θₜ` of the ray differentials' transfer and refraction: 2⁻¹⁶
+/// (U1F31 raw `1 << 15`).
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length

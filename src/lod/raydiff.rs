@@ -1,403 +1,602 @@
 //! Texture-space footprint of a hit from its ray differentials: the
 //! barycentric differentials of the transferred `∂P = ∂O'`
-//! ([`crate::path::raydiff::RayDiff::transfer`]), mapped through the triangle's UVs to
-//! `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` (pbrt's `dudx, dvdx, dudy, dvdy`, the
-//! two axes [`crate::texture::sampler::aniso`] takes), and the lod as
-//! `log2` of the larger axis in level-0 texels (the hardware paper's eq. 1).
+//! ([`crate::path::raydiff::RayDiff::transfer`]) mapped through the
+//! triangle's UVs to `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` (pbrt's `dudx,
+//! dvdx, dudy, dvdy`, the two axes [`crate::texture::sampler::aniso`]
+//! takes), and the lod as `log2` of the larger axis in level-0 texels (the
+//! hardware paper's eq. 1).
 //!
 //! # Per-triangle constant
 //!
 //! With `e₁ = p₁ − p₀`, `e₂ = p₂ − p₀`, `N = e₁ × e₂`, the barycentric
-//! differentials of a point differential `∂P` in the plane are
-//! `∂b₁ = ∂P·(e₂ × N)/|N|²`, `∂b₂ = ∂P·(N × e₁)/|N|²`, so
-//! `∂u = ∂P·G_u` with `G_u = ((u₁ − u₀)(e₂ × N) + (u₂ − u₀)(N × e₁))/|N|²`
-//! (and `G_v` alike): [`RayDiffTriangle::new`] computes both once per
-//! triangle in integer arithmetic (edges and UV edges rounded to 20
-//! significant bits, 128-bit products, one division per component: relative
-//! error below 2⁻¹⁸), I32F32 (normalized texture units per scene unit,
-//! `±2³¹`, saturating). A hit then needs four 3-vector dot products.
+//! gradients are `∇b₁ = (e₂ × N)/|N|²`, `∇b₂ = (N × e₁)/|N|²`, so
+//! `∇u = Δu₁∇b₁ + Δu₂∇b₂ = (N × a_u)/|N|²` with
+//! `a_u = Δu₂·e₁ − Δu₁·e₂` (and `∇v` alike). [`RayDiffTriangle::new`]
+//! computes, once per triangle and in integers only:
+//!
+//! * `e₁`, `e₂` and the UV edges exactly (65-bit differences);
+//! * the zero tests exactly: zero world area when every component of
+//!   `e₁ × e₂` is zero (`e₁ᵢe₂ⱼ = e₁ⱼe₂ᵢ`, compared as 128-bit products),
+//!   zero UV area when `Δu₁Δv₂ = Δu₂Δv₁`;
+//! * `N`, `a_u`, `a_v` exactly (129-bit differences of 128-bit products:
+//!   the cancellation of a sliver or of UVs proportional to the positions
+//!   costs nothing), each rounded once to a 62-bit mantissa;
+//! * `N × a`, `|N|²`, the quotient and the texture sizes in 62-bit
+//!   mantissas with exponents (relative error below `2⁻⁵⁸`): no step is
+//!   absolute, so slivers, lopsided UVs and slowly varying UVs keep their
+//!   precision;
+//!
+//! and keeps the texel-space gradients `w·∇u`, `h·∇v` (texels per scene
+//! unit) as six 32-bit mantissas with one exponent (the largest below
+//! `2³⁰`). A hit then needs four 3-vector dot products.
 //!
 //! # Degenerate cases (as the table method's markers)
 //!
-//! * zero world area (`N = 0`): [`RayDiffTriangle::is_degenerate`]; the
-//!   footprint is the largest one [`Footprint`] holds and the lod
-//!   saturates high (coarsest stored level);
-//! * zero UV extent: `G = 0`, footprint 0, lod saturates low (level 0);
-//! * grazing hits: bounded by the transfer's clamp ([`crate::path::raydiff::MIN_COS`]).
+//! * zero world area (collinear or coincident vertices):
+//!   [`RayDiffTriangle::is_degenerate`]; the footprint is the largest one
+//!   and the lod is [`Lod::MAX`] (coarsest stored level);
+//! * zero UV area: [`RayDiffTriangle::is_flat_uv`]; the footprint is zero
+//!   and the lod [`Lod::MIN`] (level 0);
+//! * grazing hits: bounded by the transfer's clamp
+//!   ([`crate::path::raydiff::MIN_COS`]).
 //!
 //! # Error bound
 //!
-//! [`RAYDIFF_LOD_MAX_ERROR`] `= 2⁻⁷` level against the same differentials
-//! in f64 (the harness's tracer), for footprints whose larger axis is at
-//! least `2⁻¹⁶` normalized units and hit states that did not saturate:
-//! `G` within 2⁻¹⁸ relative, the dot products within 2⁻³² absolute
-//! (`≤ 2⁻¹⁴` relative at that size), `log2` of the squared length within
-//! 2⁻¹³ (halved), output rounding 2⁻⁹. Smaller footprints are below the
-//! finest level of any texture up to 2¹⁶ texels wide and clamp to level 0.
-
-use fixed::types::I32F32;
+//! LOD-ERROR-ANALYSIS
 
 use crate::lod::Lod;
-use crate::lod::log2::log2_bits_u128;
-use crate::path::raydiff::PosDiff;
-use crate::setup::table::TexTriangle;
+use crate::lod::log2::{mantissa_log2, normalise64};
+use crate::path::raydiff::{EXP_MIN, PosDiff, RayDiff, mulhi, shr};
+use crate::setup::table::{Coord, TexTriangle};
 use crate::texture::TexCoord;
 use crate::texture::sampler::aniso::Footprint;
 
-/// Documented error bound of [`RayDiffTriangle::lod`] against f64 ray
-/// differentials, in levels: 2⁻⁷ (conditions in the [module docs](self)).
+/// Documented error bound of [`RayDiffFootprint::lod`] against f64 ray
+/// differentials, in levels, where the chain's amplification allows it:
+/// 2⁻⁷ (conditions in the [module docs](self#error-bound)).
 pub const RAYDIFF_LOD_MAX_ERROR: f64 = 1.0 / 128.0;
 
-/// Per-triangle constant of the ray-differential footprint:
-/// `G_u`, `G_v` (normalized texture units per scene unit, I32F32) and the
-/// texture size. Built once per triangle by [`RayDiffTriangle::new`].
+/// Documented bound of [`RayDiffTriangle::footprint`]: the Euclidean error
+/// of each axis (texels per pixel) is at most this times
+/// `|M|∞·|∂P|`, `|M|∞` the largest component of the texel-space gradients
+/// `w·∇u`, `h·∇v`: 2⁻²⁴ (derivation in the [module docs](self#error-bound)).
+pub const FOOTPRINT_ERROR: f64 = 1.0 / 16_777_216.0;
+
+/// Documented bound of [`RayDiffFootprint::lod`] against the exact lod of
+/// its own footprint, in levels: the table logarithm halved (2⁻¹⁴), the
+/// halving and the squared length's truncation (below 2⁻¹⁷) and the
+/// rounding to 1/256 level (2⁻⁹): `2⁻⁹ + 2⁻¹⁴ + 2⁻¹⁶`.
+pub const LOD_ROUNDING_ERROR: f64 = 1.0 / 512.0 + 1.0 / 16_384.0 + 1.0 / 65_536.0;
+
+/// What a triangle's footprint is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Kind {
+    Textured,
+    Degenerate,
+    FlatUv,
+}
+
+/// Per-triangle constant of the ray-differential footprint: the
+/// texel-space gradients `w·∇u`, `h·∇v` (texels per scene unit, 32-bit
+/// mantissas with one exponent), the reciprocal texture size for the
+/// normalized axes, and the degenerate classes. Built once per triangle by
+/// [`RayDiffTriangle::new`].
 ///
 /// # Example
 /// ```
-/// use raymip::TexTriangle;
-/// use raymip::path::raydiff::PosDiff;
+/// use fixed::types::I2F30;
+/// use raymip::{Lod, PathLength, TexTriangle};
 /// use raymip::lod::raydiff::{RAYDIFF_LOD_MAX_ERROR, RayDiffTriangle};
+/// use raymip::path::raydiff::{DirDiff, RayDiff};
 /// // A wall at z = −100 with u = x, v = y, on a 256×256 texture.
 /// let p = [[0.0, 0.0, -100.0], [1.0, 0.0, -100.0], [0.0, 1.0, -100.0]];
 /// let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 /// let tri = RayDiffTriangle::new(&TexTriangle::from_f32(p, uv, 256, 256)?);
-/// assert!(!tri.is_degenerate());
-/// // A hit whose position moves 100·2⁻¹⁰ scene units per pixel in x and in y
-/// // (as `RayDiff::transfer` gives for a 2⁻¹⁰ pixel spread at t = 100).
-/// let (d, z) = (PosDiff::from_num(100.0 / 1024.0), PosDiff::ZERO);
-/// let fp = tri.footprint([d, z, z], [z, d, z]);
-/// // u = x: ∂u/∂x = 100/1024 ≈ 0.098 normalised units = 25 texels.
-/// assert!((fp.x[0].to_num::<f64>() - 100.0 / 1024.0).abs() < 1e-5);
-/// assert!(fp.x[1].abs().to_num::<f64>() < 1e-5);
-/// let lod = tri.lod(&fp).to_num::<f64>();
+/// assert!(!tri.is_degenerate() && !tri.is_flat_uv());
+/// // A camera ray head-on with a 2⁻¹⁰ pixel spread, transferred to the
+/// // wall at t = 100: ∂P = 100·2⁻¹⁰ scene units per pixel.
+/// let (z, o, s) = (I2F30::ZERO, I2F30::ONE, I2F30::from_num(1.0 / 1024.0));
+/// let fwd = [z, z, -o];
+/// let mut ray = RayDiff::primary(fwd, fwd, DirDiff::from_i2f30([s, z, z]), DirDiff::from_i2f30([z, s, z]));
+/// ray.transfer(fwd, PathLength::from_num(100), [z, z, o]);
+/// let fp = tri.footprint(&ray);
+/// // u = x: ∂u/∂x = 100/1024 normalised units = 25 texels.
+/// let lod = fp.lod().to_num::<f64>();
 /// assert!((lod - 25f64.log2()).abs() <= RAYDIFF_LOD_MAX_ERROR);
+/// let axes = fp.axes(&tri);
+/// assert!((axes.x[0].to_num::<f64>() - 100.0 / 1024.0).abs() < 1e-6);
 /// // Collinear vertices: no footprint, the coarsest level.
 /// let line = [[0.0, 0.0, -100.0], [1.0, 0.0, -100.0], [2.0, 0.0, -100.0]];
 /// let flat = RayDiffTriangle::new(&TexTriangle::from_f32(line, uv, 256, 256)?);
 /// assert!(flat.is_degenerate());
-/// assert_eq!(flat.lod(&fp), raymip::Lod::MAX);
+/// assert_eq!(flat.footprint(&ray).lod(), Lod::MAX);
 /// # Ok::<(), raymip::TableError>(())
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct RayDiffTriangle {
-    gu: [I32F32; 3],
-    gv: [I32F32; 3],
-    width: u32,
-    height: u32,
-    degenerate: bool,
+    /// `w·∇u`, `h·∇v` mantissas (the largest `|·|` in `[2²⁹, 2³⁰)`).
+    g: [[i32; 3]; 2],
+    /// Their exponent.
+    e: i32,
+    /// `1/w`, `1/h` mantissas in `(2³⁰, 2³¹]` … with their exponents.
+    inv: [(i32, i32); 2],
+    kind: Kind,
 }
 
-/// `(v >> s, s)` with the smallest `s` such that every `|v[k] >> s| < 2²⁰`.
-fn normalise_top<const N: usize>(v: [i128; N]) -> ([i128; N], u32) {
-    let top = v
-        .iter()
-        .map(|x| 128 - x.unsigned_abs().leading_zeros())
-        .max()
-        .unwrap_or(0);
-    let s = top.saturating_sub(20);
-    (v.map(|x| x >> s), s)
+/// The footprint of one hit in texel space: axis `a` (`x`, `y`) is
+/// `(w·∂u, h·∂v) = m[a]·2^e[a]` texels per pixel. [`RayDiffFootprint::lod`]
+/// takes its larger axis, [`RayDiffFootprint::axes`] gives both in
+/// normalized texture coordinates for anisotropic filtering.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct RayDiffFootprint {
+    m: [[i32; 2]; 2],
+    e: [i32; 2],
 }
 
-fn cross(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+/// A 62-bit soft float for the set-up: `m·2ᵉ`, `|m| ∈ [2⁶¹, 2⁶²)` or `m = 0`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Wide {
+    m: i64,
+    e: i32,
 }
 
-/// `v · 2^e` saturated to I32F32 bits, rounded when `e < 0`.
-fn scale_sat(v: i128, e: i32) -> I32F32 {
-    let r = if e >= 0 {
-        let e = e.unsigned_abs().min(127);
-        if v.unsigned_abs().leading_zeros() <= e {
-            if v < 0 { i128::MIN } else { i128::MAX }
+impl Wide {
+    const ZERO: Self = Self { m: 0, e: EXP_MIN };
+
+    /// `±mag·2ᵉ`, truncated to 62 bits.
+    fn from_mag(neg: bool, mag: u128, e: i32) -> Self {
+        if mag == 0 {
+            return Self::ZERO;
+        }
+        let top = 128 - mag.leading_zeros() as i32; // 1..=128
+        let s = top - 62;
+        let m = if s >= 0 { mag >> s } else { mag << -s } as i64;
+        Self {
+            m: if neg { -m } else { m },
+            e: e.saturating_add(s),
+        }
+    }
+
+    fn from_i128(v: i128, e: i32) -> Self {
+        Self::from_mag(v < 0, v.unsigned_abs(), e)
+    }
+
+    fn mul(self, o: Self) -> Self {
+        // |m·m| < 2¹²⁴.
+        Self::from_i128(
+            i128::from(self.m) * i128::from(o.m),
+            self.e.saturating_add(o.e),
+        )
+    }
+
+    fn add(self, o: Self) -> Self {
+        // Both at the larger exponent with 64 guard bits: |·| < 2¹²⁶ each.
+        let e = self.e.max(o.e);
+        let at = |x: Self| (i128::from(x.m) << 64) >> (e - x.e).clamp(0, 127);
+        Self::from_i128(at(self) + at(o), e.saturating_sub(64))
+    }
+
+    fn neg(self) -> Self {
+        Self { m: -self.m, ..self }
+    }
+
+    /// `self / o` (`o ≠ 0`; zero for `o = 0`): `|m·2⁶⁴ / m'| < 2⁶⁵`.
+    fn div(self, o: Self) -> Self {
+        let q = (i128::from(self.m) << 64)
+            .checked_div(i128::from(o.m))
+            .unwrap_or(0);
+        Self::from_i128(q, self.e.saturating_sub(o.e).saturating_sub(64))
+    }
+}
+
+/// `a·b − c·d` exactly (`|a|, …, |d| < 2⁶⁴`: 128-bit products, the
+/// difference in 129 bits), rounded once to a [`Wide`].
+fn det(a: i128, b: i128, c: i128, d: i128) -> Wide {
+    let (p, sp) = (a.unsigned_abs() * b.unsigned_abs(), (a < 0) != (b < 0));
+    let (q, sq) = (c.unsigned_abs() * d.unsigned_abs(), (c < 0) != (d < 0));
+    if sp == sq {
+        if p >= q {
+            Wide::from_mag(sp, p - q, 0)
         } else {
-            v << e
+            Wide::from_mag(!sp, q - p, 0)
         }
     } else {
-        let e = e.unsigned_abs();
-        if e >= 127 {
-            0
-        } else {
-            (v + (1i128 << (e - 1))) >> e
+        match p.checked_add(q) {
+            Some(s) => Wide::from_mag(sp, s, 0),
+            None => Wide::from_mag(sp, (p >> 1) + (q >> 1) + (p & q & 1), 1),
         }
+    }
+}
+
+/// `a·b = c·d` exactly (`|a|, …, |d| < 2⁶⁴`).
+fn prod_eq(a: i128, b: i128, c: i128, d: i128) -> bool {
+    let p = a.unsigned_abs() * b.unsigned_abs();
+    let q = c.unsigned_abs() * d.unsigned_abs();
+    p == q && (p == 0 || ((a < 0) != (b < 0)) == ((c < 0) != (d < 0)))
+}
+
+/// `value·2^s` as I32F32 bits, saturated (`value = m·2ᵉ`).
+fn texcoord(m: i32, e: i32) -> TexCoord {
+    let s = e + 32;
+    let v = if s >= 0 {
+        let s = s.min(63) as u32;
+        let x = i64::from(m);
+        if x.unsigned_abs().leading_zeros() <= s {
+            if x < 0 { i64::MIN } else { i64::MAX }
+        } else {
+            x << s
+        }
+    } else {
+        i64::from(shr(m, -s))
     };
-    I32F32::from_bits(r.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64)
+    TexCoord::from_bits(v)
 }
 
 impl RayDiffTriangle {
     /// The constant of one textured triangle (set-up time, integer
     /// arithmetic; never panics). A zero-area triangle is marked
-    /// degenerate (see the [module docs](self)).
+    /// degenerate, a zero-UV-area one flat (see the [module docs](self)).
     #[must_use]
     pub fn new(tri: &TexTriangle) -> Self {
-        let (p, uv, width, height) = tri.parts();
-        let sub = |a: [I32F32; 3], b: [I32F32; 3]| -> [i128; 3] {
-            core::array::from_fn(|k| i128::from(a[k].to_bits()) - i128::from(b[k].to_bits()))
-        };
-        let (e, se) = normalise_top::<6>({
-            let (a, b) = (sub(p[1], p[0]), sub(p[2], p[0]));
-            [a[0], a[1], a[2], b[0], b[1], b[2]]
+        let (p, uv, w, h) = tri.parts();
+        let d = |a: Coord, b: Coord| i128::from(b.to_bits()) - i128::from(a.to_bits());
+        let e1: [i128; 3] = core::array::from_fn(|k| d(p[0][k], p[1][k]));
+        let e2: [i128; 3] = core::array::from_fn(|k| d(p[0][k], p[2][k]));
+        let du = [d(uv[0][0], uv[1][0]), d(uv[0][0], uv[2][0])];
+        let dv = [d(uv[0][1], uv[1][1]), d(uv[0][1], uv[2][1])];
+        let inv = [w, h].map(|s| {
+            // 1/s = (2⁶²/s)·2⁻⁶², normalised to 31 bits (s ≥ 1).
+            let q = Wide::from_mag(false, (1u128 << 62) / u128::from(s.max(1)), -62);
+            ((q.m >> 31) as i32, q.e + 31)
         });
-        let (e1, e2) = ([e[0], e[1], e[2]], [e[3], e[4], e[5]]);
-        let n = cross(e1, e2);
-        let den: i128 = n.iter().map(|x| x * x).sum();
-        let zero = Self {
-            gu: [I32F32::ZERO; 3],
-            gv: [I32F32::ZERO; 3],
-            width,
-            height,
-            degenerate: true,
+        let mut t = Self {
+            g: [[0; 3]; 2],
+            e: EXP_MIN,
+            inv,
+            kind: Kind::Degenerate,
         };
-        if den == 0 {
-            return zero;
+        const PAIRS: [(usize, usize); 3] = [(1, 2), (2, 0), (0, 1)];
+        if PAIRS
+            .iter()
+            .all(|&(i, j)| prod_eq(e1[i], e2[j], e1[j], e2[i]))
+        {
+            return t;
         }
-        let a = cross(e2, n); // ∝ ∂b₁ direction, |a| < 2⁶²
-        let b = cross(n, e1);
-        let d =
-            |i: usize, c: usize| i128::from(uv[i][c].to_bits()) - i128::from(uv[0][c].to_bits());
-        let (w, suv) = normalise_top::<4>([d(1, 0), d(2, 0), d(1, 1), d(2, 1)]);
-        // G bits (2⁻³²) = (num/den)·2^(suv − se + 32); num < 2⁸⁴, so num·2⁴⁰ fits.
-        let g = |c1: i128, c2: i128| -> [I32F32; 3] {
-            core::array::from_fn(|k| {
-                let num = c1 * a[k] + c2 * b[k];
-                let q = (num << 40).checked_div(den).unwrap_or(0);
-                scale_sat(q, suv as i32 - se as i32 + 32 - 40)
-            })
+        if prod_eq(du[0], dv[1], du[1], dv[0]) {
+            t.kind = Kind::FlatUv;
+            return t;
+        }
+        // N, a_u, a_v exact, then rounded (units 2⁻⁶⁴ each: they cancel).
+        let n = PAIRS.map(|(i, j)| det(e1[i], e2[j], e1[j], e2[i]));
+        let a = |dd: [i128; 2]| -> [Wide; 3] {
+            core::array::from_fn(|k| det(dd[1], e1[k], dd[0], e2[k]))
         };
-        Self {
-            gu: g(w[0], w[1]),
-            gv: g(w[2], w[3]),
-            degenerate: false,
-            ..zero
-        }
+        let n2 = n[0].mul(n[0]).add(n[1].mul(n[1])).add(n[2].mul(n[2]));
+        let row = |a: [Wide; 3], s: u32| -> [Wide; 3] {
+            let f = Wide::from_mag(false, u128::from(s), 0).div(n2);
+            PAIRS.map(|(i, j)| n[i].mul(a[j]).add(n[j].mul(a[i]).neg()).mul(f))
+        };
+        let rows = [row(a(du), w), row(a(dv), h)];
+        // One exponent for the six: the largest mantissa below 2³⁰.
+        let top = rows
+            .iter()
+            .flatten()
+            .filter(|x| x.m != 0)
+            .map(|x| x.e)
+            .max()
+            .unwrap_or(EXP_MIN);
+        let e = top + 32;
+        t.g = rows.map(|r| r.map(|x| (x.m >> (e - x.e).clamp(0, 63)) as i32));
+        t.e = e;
+        t.kind = Kind::Textured;
+        t
     }
 
     /// True for a zero-area triangle (no footprint: the lod saturates high).
     #[must_use]
     pub const fn is_degenerate(&self) -> bool {
-        self.degenerate
+        matches!(self.kind, Kind::Degenerate)
     }
 
-    /// The footprint of a hit with transferred position differentials
-    /// `dpdx`, `dpdy` ([`crate::path::raydiff::RayDiff::dodx`] after
-    /// [`crate::path::raydiff::RayDiff::transfer`]): `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` in
-    /// normalized texture coordinates, saturating. Degenerate triangle: the
-    /// largest footprint. Per hit; never panics.
+    /// True for a triangle of zero UV area (the lod saturates low).
     #[must_use]
-    pub fn footprint(&self, dpdx: [PosDiff; 3], dpdy: [PosDiff; 3]) -> Footprint {
-        if self.degenerate {
-            return Footprint {
-                x: [TexCoord::MAX, TexCoord::ZERO],
-                y: [TexCoord::ZERO, TexCoord::MAX],
-            };
-        }
-        let dot = |g: [I32F32; 3], p: [PosDiff; 3]| -> TexCoord {
-            let s: i128 = (0..3)
-                .map(|k| {
-                    (i128::from(g[k].to_bits()) * i128::from(p[k].to_bits()) + (1 << 31)) >> 32
-                })
-                .sum();
-            TexCoord::from_bits(s.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64)
-        };
-        Footprint {
-            x: [dot(self.gu, dpdx), dot(self.gv, dpdx)],
-            y: [dot(self.gu, dpdy), dot(self.gv, dpdy)],
-        }
+    pub const fn is_flat_uv(&self) -> bool {
+        matches!(self.kind, Kind::FlatUv)
     }
 
-    /// Lod of a footprint: `log2` of the larger axis length in level-0
-    /// texels, `½·log2 max(|a_x|², |a_y|²)` (the hardware paper's eq. 1),
-    /// rounded to 1/256 level, saturating (a zero footprint gives
-    /// `Lod::MIN`, the degenerate triangle's `Lod::MAX`). Within
-    /// [`RAYDIFF_LOD_MAX_ERROR`] of f64 (conditions in the
-    /// [module docs](self)). Per hit; never panics.
+    /// The footprint of a hit whose state `s` was transferred to it
+    /// ([`RayDiff::transfer`], or set up from a G-buffer): `∂P/∂x`,
+    /// `∂P/∂y` through the texel-space gradients. Degenerate triangle: the
+    /// largest footprint; zero UV area: zero. Per hit; never panics.
     #[must_use]
-    pub fn lod(&self, fp: &Footprint) -> Lod {
-        if self.degenerate {
-            return Lod::MAX;
+    pub fn footprint(&self, s: &RayDiff) -> RayDiffFootprint {
+        match self.kind {
+            Kind::Textured => {}
+            Kind::Degenerate => {
+                return RayDiffFootprint {
+                    m: [[1 << 30, 0], [0, 1 << 30]],
+                    e: [crate::path::raydiff::EXP_MAX; 2],
+                };
+            }
+            Kind::FlatUv => {
+                return RayDiffFootprint {
+                    m: [[0; 2]; 2],
+                    e: [EXP_MIN; 2],
+                };
+            }
         }
-        let (w, h) = (i128::from(self.width), i128::from(self.height));
-        // Texel components in 2⁻³² units, clamped to 2³⁰ texels.
-        let lim = 1i128 << 62;
-        let len2 = |a: [TexCoord; 2]| -> u128 {
-            let x = (i128::from(a[0].to_bits()) * w).clamp(-lim, lim);
-            let y = (i128::from(a[1].to_bits()) * h).clamp(-lim, lim);
-            (x * x + y * y) as u128
+        let g = self.g;
+        // |g·p| ≤ |g|·|p| < √3·2³⁰·√3·2³¹: each sum of three multiply-highs
+        // is below 3·2²⁹.
+        let axis = |p: PosDiff| -> ([i32; 2], i32) {
+            let (m, e) = p.parts();
+            let dot = |r: [i32; 3]| mulhi(r[0], m[0]) + mulhi(r[1], m[1]) + mulhi(r[2], m[2]);
+            ([dot(g[0]), dot(g[1])], self.e + e + 32)
         };
-        let l2 = len2(fp.x).max(len2(fp.y));
-        // log2 of the squared length (2⁻⁶⁴ units), halved, rounded to I8F8.
-        let l = log2_bits_u128(l2, 64).to_bits();
-        let r = ((l >> 1) + 0x80) >> 8;
+        let (x, ex) = axis(s.dox());
+        let (y, ey) = axis(s.doy());
+        RayDiffFootprint {
+            m: [x, y],
+            e: [ex, ey],
+        }
+    }
+}
+
+impl RayDiffFootprint {
+    /// Lod of the footprint: `log2` of the larger axis length in level-0
+    /// texels (the hardware paper's eq. 1), rounded to 1/256 level,
+    /// saturating (a zero footprint gives [`Lod::MIN`], a degenerate
+    /// triangle's [`Lod::MAX`]). Within [`RAYDIFF_LOD_MAX_ERROR`] of f64
+    /// (conditions in the [module docs](self)). Per hit; never panics.
+    #[must_use]
+    pub fn lod(&self) -> Lod {
+        // |a|² of each axis: |u|, |v| < 1.5·2³⁰, so the sum is below 2⁶³.
+        let len2 =
+            |[u, v]: [i32; 2]| (i64::from(u) * i64::from(u) + i64::from(v) * i64::from(v)) as u64;
+        let l = half_log2_max([len2(self.m[0]), len2(self.m[1])], self.e);
+        // I16F16 → I8F8, rounded, saturating.
+        let r = (l + 0x80) >> 8;
         Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
     }
+
+    /// Both axes `[(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)]` in normalized texture
+    /// coordinates (the texel axes times `1/w`, `1/h` of `tri`, the
+    /// triangle it was taken on), saturating: what
+    /// [`crate::texture::sampler::aniso::probes`] takes. Per hit (with
+    /// anisotropic filtering); never panics.
+    #[must_use]
+    pub fn axes(&self, tri: &RayDiffTriangle) -> Footprint {
+        let c = |a: usize, k: usize| {
+            let (im, ie) = tri.inv[k];
+            texcoord(mulhi(self.m[a][k], im), self.e[a] + ie + 32)
+        };
+        Footprint {
+            x: [c(0, 0), c(0, 1)],
+            y: [c(1, 0), c(1, 1)],
+        }
+    }
+}
+
+/// `½·log2 max(s₀·4^e₀, s₁·4^e₁)` in I16F16 bits: the log2 of the larger
+/// of two lengths whose squares are `sᵢ·4^eᵢ` (`eᵢ` clamped to `±1024`, a
+/// zero `sᵢ` never wins, both zero give `−2²⁷`). The square's top 32 bits
+/// and the crate's table logarithm: within `2⁻¹⁴ + 2⁻³¹` of the exact
+/// value (the table's `2⁻¹³` halved). Shared with the environment map's
+/// ray-differential lod.
+#[inline(always)]
+pub(crate) fn half_log2_max(s: [u64; 2], e: [i32; 2]) -> i32 {
+    let key = |i: usize| -> (i32, u32) {
+        let (m, lz) = normalise64(s[i]);
+        let k = 2 * e[i].clamp(-1024, 1024) + 63 - lz as i32;
+        (if s[i] == 0 { i32::MIN } else { k }, m)
+    };
+    let (x, y) = (key(0), key(1));
+    let (k, m) = if y > x { y } else { x };
+    // k ∈ [−4096, 2111] after the max: the I16F16 sum fits.
+    ((k.max(-(1 << 12)) << 16) + mantissa_log2(m) as i32) >> 1
 }
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
-    use crate::path::raydiff::RayDiff;
-    use crate::path::raydiff::tests::{V, add, dot, norm, transfer_f64, uq};
-    use crate::path::raystack::PathLength;
-    use crate::setup::table::Coord;
+    use crate::path::raydiff::DirDiff;
+    use crate::raydiff_reference::{self as rf, V, dot, norm};
     use proptest::prelude::*;
 
-    fn tri(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
-        TexTriangle::new(
-            p.map(|v| v.map(Coord::from_num)),
-            uv.map(|v| v.map(Coord::from_num)),
+    fn tex(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> (TexTriangle, rf::Triangle) {
+        let pq = p.map(|v| v.map(Coord::saturating_from_num));
+        let uq = uv.map(|v| v.map(Coord::saturating_from_num));
+        let t = TexTriangle::new(pq, uq, w, h).unwrap();
+        let r = rf::Triangle {
+            p: pq.map(|v| v.map(|x| x.to_num())),
+            uv: uq.map(|v| v.map(|x| x.to_num())),
             w,
             h,
+        };
+        (t, r)
+    }
+
+    fn state(px: V, py: V) -> RayDiff {
+        RayDiff::new(
+            PosDiff::from_f64(px),
+            PosDiff::from_f64(py),
+            DirDiff::ZERO,
+            DirDiff::ZERO,
         )
-        .unwrap()
     }
 
-    fn crossf(a: V, b: V) -> V {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    }
-
-    /// f64 footprint as the harness writes it (barycentric differentials
-    /// of ∂P, then through the UV edges), and its lod.
-    fn footprint_f64(p: [V; 3], uv: [[f64; 2]; 3], dp: [V; 2]) -> [[f64; 2]; 2] {
-        let e1 = add(p[1], p[0], -1.0);
-        let e2 = add(p[2], p[0], -1.0);
-        let n = crossf(e1, e2);
-        let n2 = dot(n, n);
-        dp.map(|d| {
-            let b1 = dot(crossf(d, e2), n) / n2;
-            let b2 = dot(crossf(e1, d), n) / n2;
-            [
-                b1 * (uv[1][0] - uv[0][0]) + b2 * (uv[2][0] - uv[0][0]),
-                b1 * (uv[1][1] - uv[0][1]) + b2 * (uv[2][1] - uv[0][1]),
-            ]
-        })
-    }
-
-    fn lod_f64(a: [[f64; 2]; 2], w: u32, h: u32) -> f64 {
-        let len =
-            |v: [f64; 2]| ((v[0] * f64::from(w)).powi(2) + (v[1] * f64::from(h)).powi(2)).sqrt();
-        len(a[0]).max(len(a[1])).log2()
+    /// The texel gradients in f64.
+    fn gradients(t: &RayDiffTriangle) -> [V; 2] {
+        t.g.map(|r| r.map(|m| f64::from(m) * f64::from(t.e).exp2()))
     }
 
     #[test]
     fn fronto_parallel_square_one_texel_per_pixel() {
-        // A 1×1 square at z = 0 with a 256² texture, pixel footprint 1/256.
-        let t = RayDiffTriangle::new(&tri(
-            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        let (t, _) = tex(
+            [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
             [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
             256,
             256,
-        ));
+        );
+        let t = RayDiffTriangle::new(&t);
         let s = 1.0 / 256.0;
-        let dp = |x: f64, y: f64| [x, y, 0.0].map(PosDiff::from_num);
-        let fp = t.footprint(dp(s, 0.0), dp(0.0, s));
-        assert_eq!(fp.x[0].to_num::<f64>(), s);
-        assert_eq!(fp.y[1].to_num::<f64>(), s);
-        assert_eq!(t.lod(&fp), Lod::ZERO);
-        let fp = t.footprint(dp(4.0 * s, 0.0), dp(0.0, s));
-        assert_eq!(t.lod(&fp), Lod::from_num(2), "the larger axis");
+        let fp = t.footprint(&state([s, 0.0, 0.0], [0.0, s, 0.0]));
+        assert_eq!(fp.lod(), Lod::ZERO);
+        let axes = fp.axes(&t);
+        assert_eq!(axes.x[0].to_num::<f64>(), s);
+        assert_eq!(axes.y[1].to_num::<f64>(), s);
+        assert_eq!(
+            t.footprint(&state([4.0 * s, 0.0, 0.0], [0.0, s, 0.0]))
+                .lod(),
+            Lod::from_num(2)
+        );
+        assert_eq!(t.footprint(&state([0.0; 3], [0.0; 3])).lod(), Lod::MIN);
     }
 
     #[test]
-    fn degenerate_and_zero_cases() {
-        let flat = RayDiffTriangle::new(&tri(
-            [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]],
-            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            64,
-            64,
-        ));
-        assert!(flat.is_degenerate());
-        let z = [PosDiff::ZERO; 3];
-        assert_eq!(flat.lod(&flat.footprint(z, z)), Lod::MAX);
-        let no_uv = RayDiffTriangle::new(&tri(
-            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            [[0.5, 0.5]; 3],
-            64,
-            64,
-        ));
-        let one = [PosDiff::from_num(1); 3];
-        let fp = no_uv.footprint(one, one);
-        assert_eq!(fp, Footprint::default());
-        assert_eq!(no_uv.lod(&fp), Lod::MIN);
-        // Saturated inputs never panic.
-        let big = [PosDiff::MAX, PosDiff::MIN, PosDiff::MAX];
-        let huge = RayDiffTriangle::new(&tri(
-            [[-3e4, -3e4, 0.0], [3e4, -3e4, 1.0], [0.0, 3e4, -2.0]],
-            [[-1e4, 0.0], [1e4, 1.0], [0.0, -1e4]],
-            4096,
-            4096,
-        ));
-        let fp = huge.footprint(big, big);
-        let _ = huge.lod(&fp);
-        let tiny = RayDiffTriangle::new(&tri(
-            [[0.0, 0.0, 0.0], [1e-8, 0.0, 0.0], [0.0, 1e-8, 0.0]],
-            [[0.0, 0.0], [1e4, 0.0], [0.0, 1e4]],
-            4096,
-            1,
-        ));
-        let _ = tiny.lod(&tiny.footprint(big, big));
+    fn degenerate_classes_are_exact_at_any_size() {
+        let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let c = |x: i64| Coord::from_bits(x);
+        let any = state([1.0, 2.0, 3.0], [-1.0, 0.5, 0.0]);
+        // p₂ = 2p₁ − p₀ exactly, with coordinates up to the I32F32 limits.
+        for (a, b) in [
+            (1i64, 3i64),
+            (i64::MAX / 4, -(i64::MAX / 4)),
+            (-(1 << 62), 1 << 61),
+            (12345, -98765),
+        ] {
+            let p0 = [c(a), c(b), c(a ^ b)];
+            let p1 = [c(b / 2), c(a / 2), c(3)];
+            let p2: [Coord; 3] = core::array::from_fn(|k| c(2 * p1[k].to_bits() - p0[k].to_bits()));
+            let uvq = uv.map(|v| v.map(Coord::from_num));
+            let t = RayDiffTriangle::new(&TexTriangle::new([p0, p1, p2], uvq, 8, 8).unwrap());
+            assert!(t.is_degenerate(), "{a} {b}");
+            assert_eq!(t.footprint(&any).lod(), Lod::MAX);
+            // One raw unit off the line: a sliver, not degenerate.
+            let mut off = p2;
+            off[1] = c(off[1].to_bits() ^ 1);
+            let t = RayDiffTriangle::new(&TexTriangle::new([p0, p1, off], uvq, 8, 8).unwrap());
+            assert!(!t.is_degenerate(), "{a} {b} off");
+            // Coincident vertices.
+            let t = RayDiffTriangle::new(&TexTriangle::new([p0, p1, p1], uvq, 8, 8).unwrap());
+            assert!(t.is_degenerate());
+        }
+        let p = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        for flat in [[[0.5, 0.5]; 3], [[0.0, 0.0], [0.25, 0.5], [0.5, 1.0]]] {
+            let (t, _) = tex(p, flat, 64, 64);
+            let t = RayDiffTriangle::new(&t);
+            assert!(t.is_flat_uv() && !t.is_degenerate());
+            let fp = t.footprint(&any);
+            assert_eq!(fp.lod(), Lod::MIN);
+            assert_eq!(fp.axes(&t), Footprint::default());
+        }
+        // The degenerate footprint is the largest one for anisotropy.
+        let (t, _) = tex([[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]], uv, 64, 64);
+        let t = RayDiffTriangle::new(&t);
+        let a = t.footprint(&any).axes(&t);
+        assert_eq!((a.x[0], a.y[1]), (TexCoord::MAX, TexCoord::MAX));
+    }
+
+    #[test]
+    fn the_larger_of_two_lengths() {
+        let l = |s: [u64; 2], e: [i32; 2]| f64::from(half_log2_max(s, e)) / 65536.0;
+        assert_eq!(l([4, 1], [0, 0]), 1.0);
+        assert_eq!(l([1, 4], [0, 0]), 1.0);
+        assert_eq!(l([1, 1], [3, 0]), 3.0);
+        // A zero axis never wins, whatever its exponent.
+        assert_eq!(l([0, 16], [500, -10]), -8.0);
+        assert_eq!(l([0, 0], [5, 5]), -2048.0);
+        assert_eq!(l([u64::MAX, 1], [i32::MAX, i32::MIN]), 1024.0 + 32.0);
     }
 
     fn coord() -> impl Strategy<Value = f64> {
-        prop_oneof![-1.0e3..1.0e3f64, -10.0..10.0f64]
+        prop_oneof![-1.0e3..1.0e3f64, -4.0..4.0f64]
+    }
+    fn v3() -> impl Strategy<Value = V> {
+        [coord(), coord(), coord()]
+    }
+    fn unit() -> impl Strategy<Value = V> {
+        [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64].prop_filter("non-zero", |v| dot(*v, *v) > 1e-4)
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(3_000))]
+        #![proptest_config(ProptestConfig::with_cases(5_000))]
 
-        /// The whole chain (primary set-up, transfer to the triangle's
-        /// plane, footprint, lod) against f64 of the same quantised inputs.
+        /// Set-up, footprint and lod against f64 over the documented range:
+        /// slivers to 2²⁰:1 (and unit UVs on them: anisotropy 2²⁰), u and v
+        /// ranges differing by up to 2¹⁶, UV gradients from 2⁻³⁰ to 2¹⁰
+        /// units per scene unit, textures of 1–4096 texels. Gradients within
+        /// 2⁻²⁸ of the largest, axes within FOOTPRINT_ERROR, the lod within
+        /// LOD_ROUNDING_ERROR + log2(1 + ρ).
         #[test]
-        fn chain_lod_matches_f64(
-            p in [[coord(), coord(), coord()], [coord(), coord(), coord()], [coord(), coord(), coord()]],
-            uv in [[-50.0..50.0f64, -50.0..50.0], [-50.0..50.0f64, -50.0..50.0], [-50.0..50.0f64, -50.0..50.0]],
-            w in 1u32..4096, h in 1u32..4096,
-            back in 1.0e-2..1.0e3f64,
-            gamma in 1.0e-4..0.05f64,
-            sideways in [-1.0..1.0f64, -1.0..1.0, -1.0..1.0],
+        fn setup_footprint_and_lod_match_f64(
+            p0 in v3(), a in unit(), b in unit(), len in -6.0..10.0f64, aspect in 0.0..20.0f64,
+            lam in -0.5..1.5f64, g in -30.0..10.0f64, lop in -16.0..16.0f64, th in 0.0..6.3f64,
+            unit_uv in any::<bool>(), w in 0u32..13, h in 0u32..13, dpx in unit(), dpy in unit(), ps in -20.0..10.0f64,
         ) {
-            let pq: [V; 3] = p.map(|v| v.map(|x| Coord::from_num(x).to_num()));
-            let uvq = uv.map(|v| v.map(|x| Coord::from_num(x).to_num::<f64>()));
-            let t = RayDiffTriangle::new(&tri(pq, uvq, w, h));
-            prop_assume!(!t.is_degenerate());
-            // A hit on the triangle's plane seen from an eye `back` away.
-            let n = norm(crossf(add(pq[1], pq[0], -1.0), add(pq[2], pq[0], -1.0)));
-            prop_assume!(n.iter().all(|x| x.is_finite()));
-            let dir = norm(add(n.map(|x| -x), sideways, 0.5));
-            let cos = dot(dir, n).abs();
-            prop_assume!(cos > 0.05);
-            let dq = uq(dir).map(|x| x.to_num::<f64>());
-            // Pinhole camera looking along `dir`, pixel steps r, u ⟂ dir.
-            let r = norm(crossf(dq, if dq[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] }));
-            let u = crossf(dq, r);
-            let rq = uq(r.map(|x| x * gamma)).map(|x| x.to_num::<f64>());
-            let uqv = uq(u.map(|x| x * gamma)).map(|x| x.to_num::<f64>());
-            let (s, sat0) = RayDiff::primary(uq(dq), uq(dq), uq(rq), uq(uqv));
-            let tq = PathLength::from_num(back);
-            let nq = uq(n).map(|x| x.to_num::<f64>());
-            let (s, sat1) = s.transfer(uq(dq), tq, uq(nq));
-            prop_assume!(!sat0 && !sat1);
-            let fp = t.footprint(s.dodx, s.dody);
-            // f64: the same set-up and transfer.
-            let ddx: V = core::array::from_fn(|k| rq[k] - dot(dq, rq) * dq[k]);
-            let ddy: V = core::array::from_fn(|k| uqv[k] - dot(dq, uqv) * dq[k]);
-            let tf = tq.to_num::<f64>();
-            let dpx = transfer_f64([0.0; 3], ddx, dq, tf, nq);
-            let dpy = transfer_f64([0.0; 3], ddy, dq, tf, nq);
-            let want = footprint_f64(pq, uvq, [dpx, dpy]);
-            let big = want.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-            prop_assume!(big >= 2f64.powi(-16) && big < 2f64.powi(14));
-            let got = t.lod(&fp).to_num::<f64>();
-            let wl = lod_f64(want, w, h);
-            prop_assume!(wl.abs() < 120.0);
-            prop_assert!((got - wl).abs() <= RAYDIFF_LOD_MAX_ERROR,
-                "lod {} vs f64 {} (footprint {:?} vs {:?})", got, wl, fp, want);
+            let (w, h) = (1u32 << w, (1u32 << h).max(1) - u32::from(h > 3));
+            let l = len.exp2();
+            let bn = rf::unit(rf::axpy(b, -dot(a, b) / dot(a, a), a));
+            prop_assume!(norm(bn) > 0.5);
+            let an = rf::unit(a);
+            let at = |x: f64, y: f64| rf::axpy(rf::axpy(p0, l * x, an), l * y, bn);
+            let p = [at(0.0, 0.0), at(1.0, 0.0), at(lam, (-aspect).exp2())];
+            let (gu, gv) = ((g + lop.max(0.0)).exp2() / l.max(1.0), (g - lop.min(0.0) - lop.max(0.0)).exp2() / l.max(1.0));
+            let uv = if unit_uv {
+                [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+            } else {
+                p.map(|v| {
+                    let (x, y) = (dot(rf::axpy(v, -1.0, p0), an), dot(rf::axpy(v, -1.0, p0), bn));
+                    [gu * (th.cos() * x - th.sin() * y), gv * (th.sin() * x + th.cos() * y)]
+                })
+            };
+            let (tq, tr) = tex(p, uv, w, h);
+            let t = RayDiffTriangle::new(&tq);
+            prop_assert_eq!(t.is_degenerate(), tr.is_degenerate());
+            prop_assert_eq!(t.is_flat_uv(), !tr.is_degenerate() && tr.is_flat_uv());
+            let Some(m) = tr.texel_gradients() else { return Ok(()); };
+            let big = m.iter().flatten().fold(0.0f64, |x, y| x.max(y.abs()));
+            let got = gradients(&t);
+            for r in 0..2 {
+                for k in 0..3 {
+                    prop_assert!((got[r][k] - m[r][k]).abs() <= 2f64.powi(-28) * big,
+                        "M[{}][{}]: {:e} vs {:e}", r, k, got[r][k], m[r][k]);
+                }
+            }
+            // Position differentials in the triangle's plane (as a transfer
+            // leaves them), of any size.
+            let nrm = rf::unit(rf::cross(rf::axpy(tr.p[1], -1.0, tr.p[0]), rf::axpy(tr.p[2], -1.0, tr.p[0])));
+            let inplane = |v: V| rf::scale(ps.exp2(), rf::axpy(v, -dot(v, nrm), nrm));
+            let s = state(inplane(dpx), inplane(dpy));
+            let (px, py) = (s.dox().to_f64(), s.doy().to_f64());
+            let fp = t.footprint(&s);
+            let rf::Footprint::Axes(want) = tr.footprint(px, py) else { unreachable!() };
+            let texel = |a: [f64; 2]| [a[0] * f64::from(w), a[1] * f64::from(h)];
+            let (wx, wy) = (texel(want[0]), texel(want[1]));
+            let fa = |a: usize| -> [f64; 2] { fp.m[a].map(|x| f64::from(x) * f64::from(fp.e[a]).exp2()) };
+            for (a, wa, pa) in [(0, wx, px), (1, wy, py)] {
+                let e = (fa(a)[0] - wa[0]).hypot(fa(a)[1] - wa[1]);
+                prop_assert!(e <= FOOTPRINT_ERROR * big * norm(pa), "axis {}: {:e}", a, e / (big * norm(pa)));
+            }
+            let fmax = wx[0].hypot(wx[1]).max(wy[0].hypot(wy[1]));
+            prop_assume!(fmax > 0.0);
+            let rho = FOOTPRINT_ERROR * big * norm(px).max(norm(py)) / fmax;
+            prop_assume!(rho < 0.5);
+            let want_lod = tr.lod(&tr.footprint(px, py)).clamp(-128.0, 127.99609375);
+            let bound = LOD_ROUNDING_ERROR + (-(1.0 - rho).log2());
+            let got_lod = fp.lod().to_num::<f64>();
+            prop_assert!((got_lod - want_lod).abs() <= bound, "lod {} vs {} (ρ {:e})", got_lod, want_lod, rho);
+            // The normalized axes for anisotropic filtering (I32F32 steps).
+            let ax = fp.axes(&t);
+            let size = [f64::from(w), f64::from(h)];
+            for (g, wa) in [(ax.x, want[0]), (ax.y, want[1])] {
+                for k in 0..2 {
+                    let tol = 2.0 * FOOTPRINT_ERROR * big * norm(px).max(norm(py)) / size[k] + 2f64.powi(-31);
+                    let e = (g[k].to_num::<f64>() - wa[k]).abs();
+                    prop_assert!(e <= tol || g[k].to_num::<f64>().abs() >= 2f64.powi(30), "axes {:e} > {:e}", e, tol);
+                }
+            }
         }
     }
 }

@@ -321,13 +321,13 @@ impl PathState {
 
 /// Bytes of one [`PathState`] (one ray-stack entry) on every target:
 /// 32 with the `cone` feature (the cone is a 16-byte aligned pair), 16
-/// without; the `raydiff` feature adds the 72-byte differential state
-/// (104 with `cone`, 88 without). Checked at compile time on every target.
+/// without; the `raydiff` feature adds the 56-byte differential state
+/// (88 with `cone`, 72 without). Checked at compile time on every target.
 pub const PATH_STATE_BYTES: usize = match (cfg!(feature = "cone"), cfg!(feature = "raydiff")) {
     (true, false) => 32,
     (false, false) => 16,
-    (true, true) => 104,
-    (false, true) => 88,
+    (true, true) => 88,
+    (false, true) => 72,
 };
 const _: () = assert!(core::mem::size_of::<PathState>() == PATH_STATE_BYTES);
 

@@ -121,7 +121,7 @@ pub mod inputs {
         raymip::path::raydiff::UnitVec,
         PathLength,
         raymip::path::raydiff::UnitVec,
-        [raymip::path::raydiff::DirDiff; 3],
+        raymip::path::raydiff::DirDiff,
     );
 
     /// Calls per measured function (and hits per batch).
@@ -364,20 +364,21 @@ pub mod inputs {
     #[cfg(feature = "raydiff")]
     pub fn raydiff(r: &mut Rng) -> RayDiffIn {
         use fixed::types::{I2F30, I32F32};
+        use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
         let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
         let d = [f(2), f(2), I2F30::from_num(-0.7)];
         let n = [f(4), f(4), I2F30::from_num(0.99)];
         let dn = [f(10), f(10), f(10)];
         let dd = [[f(9), f(9), f(9)], [f(9), f(9), f(9)]];
         let mut g = |_| I32F32::from_bits(i64::from(r.next() as i32) >> 7);
-        let o = [core::array::from_fn(&mut g), core::array::from_fn(&mut g)];
+        let o: [[I32F32; 3]; 2] = [core::array::from_fn(&mut g), core::array::from_fn(&mut g)];
         let t = PathLength::from_bits(u64::from(r.next() >> 6) + (1 << 32));
-        let s = raymip::path::raydiff::RayDiff {
-            dodx: o[0],
-            dody: o[1],
-            dddx: dd[0],
-            dddy: dd[1],
-        };
-        (s, d, t, n, dn)
+        let s = RayDiff::new(
+            PosDiff::from_i32f32(o[0]),
+            PosDiff::from_i32f32(o[1]),
+            DirDiff::from_i2f30(dd[0]),
+            DirDiff::from_i2f30(dd[1]),
+        );
+        (s, d, t, n, DirDiff::from_i2f30(dn))
     }
 }

@@ -433,85 +433,74 @@ pub fn sampler_rows<M: Meter>(
 /// G-buffer first-hit set-up, each its own wrapper.
 #[cfg(feature = "raydiff")]
 pub mod rd {
-    use fixed::types::I2F30;
+    use fixed::types::{I2F30, I4F28};
     use raymip::lod::Lod;
-    use raymip::lod::raydiff::RayDiffTriangle;
+    use raymip::lod::raydiff::{RayDiffFootprint, RayDiffTriangle};
     use raymip::path::raydiff::gbuffer::{GSample, first_hit};
-    use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+    use raymip::path::raydiff::{DirDiff, Eta, RayDiff, UnitVec};
     use raymip::path::raystack::PathLength;
-    use raymip::texture::sampler::aniso::Footprint;
 
     /// Primary-ray set-up from the camera axes.
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_primary(
-        d: UnitVec,
-        f: UnitVec,
-        r: [DirDiff; 3],
-        u: [DirDiff; 3],
-    ) -> RayDiff {
-        RayDiff::primary(d, f, r, u).0
+    pub fn rm_bench_rd_primary(d: UnitVec, f: UnitVec, r: DirDiff, u: DirDiff) -> RayDiff {
+        RayDiff::primary(d, f, r, u)
     }
 
     /// One transfer to a hit.
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
-        s.transfer(d, t, n).0
+    pub fn rm_bench_rd_transfer(s: &mut RayDiff, d: UnitVec, t: PathLength, n: UnitVec) {
+        s.transfer(d, t, n);
     }
 
     /// One reflection.
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
-        s.reflect(d, n, dn, dn).0
+    pub fn rm_bench_rd_reflect(s: &mut RayDiff, d: UnitVec, n: UnitVec, dn: DirDiff) {
+        s.reflect(d, n, [dn, dn]);
     }
 
     /// One refraction (η = 1/1.5, cos θₜ = 0.9).
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+    pub fn rm_bench_rd_refract(s: &mut RayDiff, d: UnitVec, n: UnitVec, dn: DirDiff) {
         s.refract(
             d,
             n,
-            dn,
-            dn,
-            Eta::from_bits(0x0AAA_AAAB),
+            [dn, dn],
+            Eta::from_fixed(I4F28::from_bits(0x0AAA_AAAB)),
             I2F30::from_bits(0x3999_999A),
-        )
-        .0
+        );
     }
 
     /// The footprint of a transferred state.
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_footprint(
-        t: &RayDiffTriangle,
-        dpx: [PosDiff; 3],
-        dpy: [PosDiff; 3],
-    ) -> Footprint {
-        t.footprint(dpx, dpy)
+    pub fn rm_bench_rd_footprint(t: &RayDiffTriangle, s: &RayDiff) -> RayDiffFootprint {
+        t.footprint(s)
     }
 
     /// The lod of a footprint.
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
-    pub fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
-        t.lod(fp)
+    pub fn rm_bench_rd_lod(fp: &RayDiffFootprint) -> Lod {
+        fp.lod()
     }
 
-    /// G-buffer first-hit set-up from four neighbours.
+    /// G-buffer first-hit set-up from four neighbours (a buffer at 2⁻²⁴
+    /// scene units).
     #[allow(unsafe_code)]
     #[unsafe(no_mangle)]
     #[inline(never)]
     pub fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
-        first_hit(p, c, nb).0
+        first_hit(p, c, nb, -24).0
     }
 }
 
@@ -526,7 +515,6 @@ pub mod rd {
 pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::GSample;
-    use raymip::path::raystack::PathLength;
     use raymip::setup::table::{Coord, TexTriangle};
     let mut rng = Rng(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
@@ -539,33 +527,40 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     )
     .ok()?;
     let tri = RayDiffTriangle::new(&tri);
-    let h = |x: u32| x & 0xFFFF;
+    let h = |x: i32| (x as u32) & 0xFFFF;
     m.row("rd_primary", &rd_in, |(s, d, _, n, _)| {
-        h(rd::rm_bench_rd_primary(d, n, s.dddx, s.dddy).dddx[0].to_bits() as u32)
+        h(rd::rm_bench_rd_primary(d, n, s.ddx(), s.ddy()).ddx().parts().0[0])
     });
-    m.row("rd_transfer", &rd_in, |(s, d, t, n, _)| {
-        h(rd::rm_bench_rd_transfer(&s, d, t, n).dodx[0].to_bits() as u32)
+    m.row("rd_transfer", &rd_in, |(mut s, d, t, n, _)| {
+        rd::rm_bench_rd_transfer(&mut s, d, t, n);
+        h(s.dox().parts().0[0])
     });
-    m.row("rd_reflect", &rd_in, |(s, d, _, n, dn)| {
-        h(rd::rm_bench_rd_reflect(&s, d, n, dn).dddx[0].to_bits() as u32)
+    m.row("rd_reflect", &rd_in, |(mut s, d, _, n, dn)| {
+        rd::rm_bench_rd_reflect(&mut s, d, n, dn);
+        h(s.ddx().parts().0[0])
     });
-    m.row("rd_refract", &rd_in, |(s, d, _, n, dn)| {
-        h(rd::rm_bench_rd_refract(&s, d, n, dn).dddx[0].to_bits() as u32)
+    m.row("rd_refract", &rd_in, |(mut s, d, _, n, dn)| {
+        rd::rm_bench_rd_refract(&mut s, d, n, dn);
+        h(s.ddx().parts().0[0])
     });
     m.row("rd_footprint", &rd_in, |(s, ..)| {
-        h(rd::rm_bench_rd_footprint(&tri, s.dodx, s.dody).x[0].to_bits() as u32)
+        h(rd::rm_bench_rd_footprint(&tri, &s).lod().to_bits().into())
     });
-    let fps = rd_in.map(|(s, ..)| tri.footprint(s.dodx, s.dody));
-    m.row("rd_lod", &fps, |fp| {
-        rd::rm_bench_rd_lod(&tri, &fp).to_bits() as u32
-    });
+    let fps = rd_in.map(|(s, ..)| tri.footprint(&s));
+    m.row("rd_lod", &fps, |fp| rd::rm_bench_rd_lod(&fp).to_bits() as u32);
+    // G-buffer samples at 2⁻²⁴ scene units: positions from the states'
+    // ∂O mantissas (below 2²⁹), distances from the hit distances.
     let g = rd_in.map(|(s, d, t, n, _)| GSample {
-        p: s.dodx,
+        p: s.dox().parts().0.map(|x| x >> 2),
         n: d,
-        t: t.min(PathLength::from_bits(u64::from(n[0].to_bits() as u32))),
+        t: ((t.to_bits() >> 8) as u32).min(n[0].to_bits() as u32),
     });
     m.row("rd_gbuffer", &rd_in, |(s, _, t, n, _)| {
-        let cen = GSample { p: s.dody, n, t };
+        let cen = GSample {
+            p: s.doy().parts().0.map(|x| x >> 2),
+            n,
+            t: (t.to_bits() >> 8) as u32,
+        };
         let i = (t.to_bits() as usize) % (N - 4);
         h(rd::rm_bench_rd_gbuffer(
             &s,
@@ -577,8 +572,9 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
                 Some(&g[i + 3]),
             ],
         )
-        .dodx[0]
-            .to_bits() as u32)
+        .dox()
+        .parts()
+        .0[0])
     });
     Some(())
 }

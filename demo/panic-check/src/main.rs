@@ -350,29 +350,34 @@ fn main() -> ! {
             cones.get(..bb(2)).unwrap_or_default(),
             cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));
-        // Ray differentials (feature `raydiff`): every per-hit operation.
+        // Ray differentials (feature `raydiff`): every per-hit operation
+        // and the triangle set-up.
         {
             use raymip::lod::raydiff::RayDiffTriangle;
             use raymip::path::raydiff::gbuffer::{GSample, axis, first_hit};
             use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
             let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
-            let s = bb(RayDiff {
-                dodx: [PosDiff::from_bits(bb(7)); 3],
-                dody: [PosDiff::from_bits(bb(-9)); 3],
-                dddx: [DirDiff::from_bits(bb(3)); 3],
-                dddy: [DirDiff::from_bits(bb(-5)); 3],
-            });
-            let (d, n, dn) = (v3(1 << 29), v3(-(1 << 29)), v3(bb(11)));
-            let s = bb(s.transfer(d, pl, n).0);
-            bb(s.reflect(d, n, dn, dn));
-            bb(s.refract(
+            let m3 = |x: i32| bb([x, x.wrapping_mul(3), -x]);
+            let mut s = bb(RayDiff::new(
+                PosDiff::new(m3(bb(7)), bb(-40)),
+                PosDiff::new(m3(bb(-9)), bb(-41)),
+                DirDiff::new(m3(bb(3)), bb(-42)),
+                DirDiff::new(m3(bb(-5)), bb(-43)),
+            ));
+            let (d, n) = (v3(1 << 29), v3(-(1 << 29)));
+            let dn = DirDiff::new(m3(bb(11)), bb(-50));
+            s.transfer(d, pl, n);
+            bb(s);
+            s.reflect(d, n, [dn, dn]);
+            bb(s);
+            s.refract(
                 d,
                 n,
-                dn,
-                dn,
-                Eta::from_bits(bb(1 << 28)),
+                [dn, bb(dn)],
+                Eta::from_fixed(fixed::types::I4F28::from_bits(bb(1 << 28))),
                 fixed::types::I2F30::from_bits(bb(0)),
-            ));
+            );
+            bb(s);
             bb(RayDiff::primary(d, n, dn, dn));
             let c = |x: i64| raymip::setup::table::Coord::from_bits(bb(x));
             if let Ok(t) = raymip::setup::table::TexTriangle::new(
@@ -386,16 +391,17 @@ fn main() -> ! {
                 bb(32),
             ) {
                 let tri = bb(RayDiffTriangle::new(&t));
-                let fp = bb(tri.footprint(s.dodx, s.dody));
-                bb(tri.lod(&fp));
+                let fp = bb(tri.footprint(&s));
+                bb(fp.lod());
+                bb(fp.axes(&tri));
             }
             let g = bb(GSample {
-                p: s.dodx,
+                p: m3(bb(13)),
                 n,
-                t: pl,
+                t: bb(5),
             });
-            bb(axis(&g, Some(&g), None));
-            bb(first_hit(&s, &g, [Some(&g), None, Some(&g), None]));
+            bb(axis(&g, Some(&g), None, bb(-20)));
+            bb(first_hit(&s, &g, [Some(&g), None, Some(&g), None], bb(-20)));
         }
         // Environment map (feature `envmap`): the lods of a ray that leaves
         // the scene and the lat-long (u, v) of its direction.
@@ -405,7 +411,7 @@ fn main() -> ! {
             let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
             if let Ok(map) = EnvMap::new(bb(2048), bb(1024)) {
                 let map = bb(map);
-                let (d, dd) = (v3(bb(1 << 29)), [DirDiff::from_bits(bb(-3)); 3]);
+                let (d, dd) = (v3(bb(1 << 29)), DirDiff::new(bb([-3, 1, 2]), bb(-40)));
                 let g = raymip::path::raystack::Spread::from_bits(bb(1 << 20));
                 bb(map.cone_lod(g, None));
                 bb(map.cone_lod(g, Some(d)));

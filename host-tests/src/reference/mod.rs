@@ -4,8 +4,8 @@
 //! the bench workload, the environment-map lod and mapping, the ray differentials.
 
 pub mod envmap;
-pub mod raydiff;
 mod pb;
+pub mod raydiff;
 mod rng;
 pub mod sampler_ref;
 pub mod texf32;

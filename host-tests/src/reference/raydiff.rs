@@ -274,11 +274,7 @@ impl Triangle {
         let g2 = scale(1.0 / n2, cross(n, e1));
         let uv = self.uv;
         let row = |c: usize, s: u32| {
-            let a = axpy(
-                scale(uv[1][c] - uv[0][c], g1),
-                uv[2][c] - uv[0][c],
-                g2,
-            );
+            let a = axpy(scale(uv[1][c] - uv[0][c], g1), uv[2][c] - uv[0][c], g2);
             scale(f64::from(s), a)
         };
         Some([row(0, self.w), row(1, self.h)])
@@ -321,7 +317,12 @@ mod tests {
         // p2 = 2p1 − p0 exactly (dyadic values): collinear.
         let p1 = axpy(a, 1.0, [0.5, 0.25, 0.125]);
         let line = [a, p1, axpy(scale(2.0, p1), -1.0, a)];
-        let t = Triangle { p: line, uv, w: 4, h: 4 };
+        let t = Triangle {
+            p: line,
+            uv,
+            w: 4,
+            h: 4,
+        };
         assert!(t.is_degenerate());
         assert_eq!(t.lod(&t.footprint(b, b)), f64::INFINITY);
         // One unit in the last place off the line: not degenerate.

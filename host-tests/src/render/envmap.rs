@@ -88,7 +88,7 @@ impl EnvLookup {
             Method::Cone => self.map.cone_lod(state.cone.spread, Some(ray.dq)),
             Method::Raydiff | Method::Gbuffer => {
                 self.map
-                    .raydiff_lod(state.diff.dddx, state.diff.dddy, Some(ray.dq))
+                    .raydiff_lod(state.diff.ddx(), state.diff.ddy(), Some(ray.dq))
             }
         }
     }

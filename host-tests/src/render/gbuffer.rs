@@ -8,9 +8,9 @@
 //! The entries are written in the render's precision (firmware
 //! [`GSample`]s or f64 [`GHit`]s), never both.
 
-use raymip::PathLength;
+use fixed::types::I2F30;
 use raymip::path::raydiff::gbuffer::GSample;
-use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
+use raymip::path::raydiff::{DirDiff, RayDiff};
 
 use crate::scene::V3;
 
@@ -26,22 +26,34 @@ pub struct GHit {
 }
 
 impl GHit {
-    /// The firmware's G-buffer entry of this hit: position as I32F32,
-    /// normal as I2F30, distance as U32F32 (each saturating; a non-finite
+    /// The firmware's G-buffer entry of this hit in a buffer at `2^scale`
+    /// scene units: position and distance as i32 / u32 in those units
+    /// (rounded, saturating), normal as I2F30 (saturating; a non-finite
     /// value reads as 0).
     #[must_use]
-    pub fn to_fixed(&self) -> GSample {
+    pub fn to_fixed(&self, scale: i32) -> GSample {
         let q = |x: f64| if x.is_finite() { x } else { 0.0 };
+        let k = (-f64::from(scale)).exp2();
         GSample {
-            p: self
-                .p
-                .to_array()
-                .map(|x| PosDiff::saturating_from_num(q(x))),
-            n: self
-                .n
-                .to_array()
-                .map(|x| DirDiff::saturating_from_num(q(x))),
-            t: PathLength::saturating_from_num(q(self.t)),
+            p: self.p.to_array().map(|x| (q(x) * k).round() as i32),
+            n: self.n.to_array().map(|x| I2F30::saturating_from_num(q(x))),
+            t: (q(self.t) * k).round() as u32,
+        }
+    }
+
+    /// The scale of a G-buffer holding `hits`: the smallest `2^scale` at
+    /// which every position and distance is below `2³⁰` units.
+    #[must_use]
+    pub fn scale_of<'a>(hits: impl IntoIterator<Item = &'a Self>) -> i32 {
+        let top = hits
+            .into_iter()
+            .flat_map(|h| [h.p.x, h.p.y, h.p.z, h.t])
+            .filter(|x| x.is_finite())
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        if top == 0.0 {
+            0
+        } else {
+            top.log2().floor() as i32 + 1 - 30
         }
     }
 }
@@ -90,8 +102,8 @@ impl<T> GBuffer<T> {
 /// The G-buffer of a render, in its precision.
 #[derive(Clone, Debug)]
 pub enum Frame {
-    /// Firmware entries (fixed precision).
-    Fixed(GBuffer<GSample>),
+    /// Firmware entries (fixed precision) at `2^scale` scene units.
+    Fixed(GBuffer<GSample>, i32),
     /// f64 entries (float precision).
     Float(GBuffer<GHit>),
 }
@@ -101,9 +113,9 @@ pub enum Frame {
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum FirstHit {
     /// The firmware's [`raymip::path::raydiff::gbuffer::first_hit`]: the path's
-    /// differential state at the hit, the normal differentials
-    /// `[∂n/∂x, ∂n/∂y]` and the saturation flag.
-    Fixed(RayDiff, [[DirDiff; 3]; 2], bool),
+    /// differential state at the hit and the normal differentials
+    /// `[∂n/∂x, ∂n/∂y]`.
+    Fixed(RayDiff, [DirDiff; 2]),
     /// f64: `[∂P/∂x, ∂P/∂y]` and `[∂n/∂x, ∂n/∂y]`.
     Float([V3; 2], [V3; 2]),
 }
@@ -114,10 +126,10 @@ impl Frame {
     /// state of the path (fixed precision).
     pub(crate) fn first_hit(&self, x: u32, y: u32, primary: &RayDiff) -> Option<FirstHit> {
         match self {
-            Self::Fixed(g) => {
+            Self::Fixed(g, scale) => {
                 let (c, nb) = g.stencil(x, y)?;
-                let (d, dn, sat) = raymip::path::raydiff::gbuffer::first_hit(primary, c, nb);
-                Some(FirstHit::Fixed(d, dn, sat))
+                let (d, dn) = raymip::path::raydiff::gbuffer::first_hit(primary, c, nb, *scale);
+                Some(FirstHit::Fixed(d, dn))
             }
             Self::Float(g) => {
                 let (c, [l, r, u, d]) = g.stencil(x, y)?;
@@ -159,21 +171,23 @@ mod tests {
 
     /// The firmware's G-buffer rule against [`axis_f64`] on every pixel of
     /// rendered G-buffers (the f64 entries and the firmware's, written
-    /// from them): the same side wherever the two `|Δt|` differ by more
-    /// than the entries' rounding (U32F32: 2⁻³³ each, so 2⁻³¹ for the
-    /// comparison), and then `∂P` within 2⁻³² per component (I32F32
-    /// rounding of two positions) and `∂n` within 2⁻³⁰ (I2F30).
+    /// from them at the buffer's `2^scale`): the same side wherever the two
+    /// `|Δt|` differ by more than the entries' rounding (half a unit each,
+    /// so 2 units for the comparison), and then `∂P` within one unit per
+    /// component (the rounding of two positions; the difference itself is
+    /// exact) and `∂n` within 2⁻³⁰ (I2F30).
     #[test]
     fn the_firmware_rule_matches_the_f64_rule_on_rendered_g_buffers() {
         use crate::render::{Prepared, tracer::gbuffer_pass};
         use crate::scene::builtin;
         for name in ["hall", "mirrors", "glass"] {
             let prep = Prepared::new(builtin::by_name(name).unwrap(), Some((80, 48))).unwrap();
-            let (Frame::Float(g), Frame::Fixed(q)) =
+            let (Frame::Float(g), Frame::Fixed(q, scale)) =
                 (gbuffer_pass(&prep, false), gbuffer_pass(&prep, true))
             else {
                 panic!("{name}: G-buffers in the wrong precision");
             };
+            let unit = f64::from(scale).exp2();
             let (mut compared, mut misses) = (0, 0);
             for y in 0..g.height {
                 for x in 0..g.width {
@@ -187,7 +201,7 @@ mod tests {
                     for (m, p, mq, pq) in [(l, r, lq, rq), (u, d, uq, dq)] {
                         let near_tie = match (m, p) {
                             (Some(m), Some(p)) => {
-                                ((m.t - c.t).abs() - (p.t - c.t).abs()).abs() <= 2f64.powi(-31)
+                                ((m.t - c.t).abs() - (p.t - c.t).abs()).abs() <= 2.0 * unit
                             }
                             _ => false,
                         };
@@ -195,12 +209,12 @@ mod tests {
                             continue;
                         }
                         let (dp, dn) = axis_f64(c, m, p);
-                        let (dpq, dnq, sat) = raymip::path::raydiff::gbuffer::axis(cq, mq, pq);
-                        assert!(!sat, "{name} ({x}, {y})");
+                        let (dpq, dnq) = raymip::path::raydiff::gbuffer::axis(cq, mq, pq, scale);
+                        let (dpq, dnq) = (dpq.to_f64(), dnq.to_f64());
                         for k in 0..3 {
-                            let e = (dpq[k].to_num::<f64>() - dp[k]).abs();
-                            assert!(e <= 2f64.powi(-32), "{name} ({x}, {y}) ∂P[{k}]: {e:e}");
-                            let e = (dnq[k].to_num::<f64>() - dn[k]).abs();
+                            let e = (dpq[k] - dp[k]).abs();
+                            assert!(e <= unit, "{name} ({x}, {y}) ∂P[{k}]: {e:e}");
+                            let e = (dnq[k] - dn[k]).abs();
                             assert!(e <= 2f64.powi(-30), "{name} ({x}, {y}) ∂n[{k}]: {e:e}");
                         }
                         compared += 1;
@@ -208,7 +222,9 @@ mod tests {
                 }
             }
             assert!(compared > 5000, "{name}: {compared} axes compared");
-            println!("{name}: {compared} axes, {misses} pixels without a first hit");
+            println!(
+                "{name}: {compared} axes, {misses} pixels without a first hit (scale 2^{scale})"
+            );
         }
     }
 

@@ -148,8 +148,8 @@ fn fixed_lod(prep: &Prepared, method: Method, q: &LodQuery) -> Option<(Lod, Opti
         }),
         Method::Raydiff | Method::Gbuffer => {
             let t = prep.rd_tris[q.tri]?;
-            let fp = t.footprint(q.state.diff.dodx, q.state.diff.dody);
-            Some((t.lod(&fp), Some(fp)))
+            let fp = t.footprint(&q.state.diff);
+            Some((fp.lod(), Some(fp.axes(&t))))
         }
     }
 }

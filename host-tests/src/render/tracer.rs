@@ -1,7 +1,7 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
 use fixed::types::{I2F30, U32F32};
-use raymip::path::raydiff::{RayDiff, UnitVec};
+use raymip::path::raydiff::{DirDiff, Eta, RayDiff, UnitVec};
 use raymip::path::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
@@ -184,14 +184,12 @@ impl Ctx<'_> {
         if fixed {
             // Firmware set-up: unit direction, forward axis and the change of
             // the unnormalised direction per pixel (its forward part is 1).
-            let (d, sat) = RayDiff::primary(
+            state.diff = RayDiff::primary(
                 unit_q(ray.d),
                 unit_q(prep.cam.fwd),
-                unit_q(dxv),
-                unit_q(dyv),
+                DirDiff::from_f64(dxv.to_array()),
+                DirDiff::from_f64(dyv.to_array()),
             );
-            state.diff = d;
-            self.counters.saturations += u64::from(sat);
         }
         // The primary state always fits an empty stack.
         let _ = stack.push_with(state, ray);
@@ -236,17 +234,14 @@ impl Ctx<'_> {
         // The ray differentials at the hit plane (geometric normal): the
         // firmware's in fixed precision, f64 in float.
         let mut f = HitFrame::new(tri, &ray, &hit, |ng| match (first, ray.float) {
-            (Some(FirstHit::Fixed(d, _, sat)), _) => {
+            (Some(FirstHit::Fixed(d, _)), _) => {
                 state.diff = d;
-                state.saturated |= sat;
-                (v3_of(d.dodx), v3_of(d.dody))
+                (v3_of(d.dox()), v3_of(d.doy()))
             }
             (Some(FirstHit::Float(dp, _)), _) => (dp[0], dp[1]),
             (None, None) => {
-                let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
-                state.diff = d;
-                state.saturated |= sat;
-                (v3_of(d.dodx), v3_of(d.dody))
+                state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
+                (v3_of(state.diff.dox()), v3_of(state.diff.doy()))
             }
             (None, Some(p)) => {
                 let transfer = |dp: V3, dd: V3| {
@@ -263,7 +258,7 @@ impl Ctx<'_> {
         // ... and its shading-normal differentials, for the reflection and
         // refraction differentials.
         match first {
-            Some(FirstHit::Fixed(_, [dnx, dny], _)) => {
+            Some(FirstHit::Fixed(_, [dnx, dny])) => {
                 (f.dnx, f.dny) = (v3_dir(dnx), v3_dir(dny));
                 f.dn_fixed = Some([dnx, dny]);
             }
@@ -453,7 +448,9 @@ impl Ctx<'_> {
     ) -> (Option<Continuation>, Option<Continuation>) {
         let fw = self.fixed();
         let (dq, nq) = (unit_q(ray.d), unit_q(f.ns));
-        let [dnxq, dnyq] = f.dn_fixed.unwrap_or([unit_q(f.dnx), unit_q(f.dny)]);
+        let dnq = f
+            .dn_fixed
+            .unwrap_or([f.dnx, f.dny].map(|v| DirDiff::from_f64(v.to_array())));
         let eps = self.eps();
         let ns = f.ns;
         let face_ng = f.face_ng;
@@ -487,9 +484,11 @@ impl Ctx<'_> {
                     ((dd * eta) + (ns * dmu)) + (dn * mu)
                 };
                 let fd = if fw {
-                    let eta_q = raymip::path::raydiff::Eta::saturating_from_num(eta);
+                    let eta_q = Eta::from_fixed(fixed::types::I4F28::saturating_from_num(eta));
                     let ct = fixed::types::I2F30::saturating_from_num(sk);
-                    state.diff.refract(dq, nq, dnxq, dnyq, eta_q, ct).0
+                    let mut d = state.diff;
+                    d.refract(dq, nq, dnq, eta_q, ct);
+                    d
                 } else {
                     RayDiff::ZERO
                 };
@@ -512,7 +511,9 @@ impl Ctx<'_> {
                 dd - (((dn * dn_) + (ns * ddn)) * 2.0)
             };
             let fd = if fw {
-                state.diff.reflect(dq, nq, dnxq, dnyq).0
+                let mut d = state.diff;
+                d.reflect(dq, nq, dnq);
+                d
             } else {
                 RayDiff::ZERO
             };
@@ -579,7 +580,7 @@ struct HitFrame {
     /// The firmware's shading-normal differentials when they come from
     /// the firmware (the G-buffer's, fixed precision): passed on as they
     /// are instead of `dnx`, `dny`.
-    dn_fixed: Option<[UnitVec; 2]>,
+    dn_fixed: Option<[DirDiff; 2]>,
     /// Position differentials on the hit plane per pixel in x and y.
     dpx: V3,
     dpy: V3,
@@ -692,14 +693,14 @@ fn unit_q(v: V3) -> UnitVec {
     })
 }
 
-/// Firmware position differentials as f64.
-fn v3_of(d: [raymip::path::raydiff::PosDiff; 3]) -> V3 {
-    V3::from(d.map(|x| x.to_num::<f64>()))
+/// Firmware position differentials as f64 (exact).
+fn v3_of(d: raymip::path::raydiff::PosDiff) -> V3 {
+    V3::from(d.to_f64())
 }
 
 /// Firmware direction (normal) differentials as f64 (exact).
-fn v3_dir(d: [raymip::path::raydiff::DirDiff; 3]) -> V3 {
-    V3::from(d.map(|x| x.to_num::<f64>()))
+fn v3_dir(d: DirDiff) -> V3 {
+    V3::from(d.to_f64())
 }
 
 /// The first hit of pixel `(x, y)`'s primary ray through its centre, as
@@ -733,11 +734,15 @@ pub(crate) fn gbuffer_pass(prep: &Prepared, fixed: bool) -> Frame {
         .flat_map_iter(|y| (0..w).map(move |x| gbuffer_entry(prep, x, y)))
         .collect();
     if fixed {
-        Frame::Fixed(GBuffer {
-            width: w,
-            height: h,
-            entries: hits.iter().map(|e| e.map(|g| g.to_fixed())).collect(),
-        })
+        let scale = GHit::scale_of(hits.iter().flatten());
+        Frame::Fixed(
+            GBuffer {
+                width: w,
+                height: h,
+                entries: hits.iter().map(|e| e.map(|g| g.to_fixed(scale))).collect(),
+            },
+            scale,
+        )
     } else {
         Frame::Float(GBuffer {
             width: w,

@@ -4,11 +4,11 @@
 
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
-use raymip::lod::raydiff::RayDiffTriangle;
+use raymip::lod::raydiff::{RayDiffFootprint, RayDiffTriangle};
 use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
+use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
 use raymip::setup::table::{Log2Pb, TexTriangle};
 use raymip::texture::TexCoord;
-use raymip::texture::sampler::aniso::Footprint;
 
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
@@ -267,19 +267,17 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         len(h.axes[0]).max(len(h.axes[1])).max(1e-300).log2()
     };
     let exact: Vec<f64> = hits.iter().map(|&h| raydiff(h)).collect();
-    // The firmware lod of the same footprints (`RayDiffTriangle::lod`, the
+    // The firmware lod of the same footprints (`RayDiffFootprint::lod`, the
     // per-hit step after the footprint's dot products) on a triangle of the
-    // RAYDIFF_TEXELS² texture.
+    // RAYDIFF_TEXELS² texture whose UVs are its x and y: ∂P = axis/texels.
     let tri = raydiff_triangle();
     let texels = f64::from(RAYDIFF_TEXELS);
-    let fps: Vec<Footprint> = hits
+    let fps: Vec<RayDiffFootprint> = hits
         .iter()
         .map(|h| {
-            let n = |a: [f64; 2]| a.map(|x| TexCoord::from_num(x / texels));
-            Footprint {
-                x: n(h.axes[0]),
-                y: n(h.axes[1]),
-            }
+            let p = |a: [f64; 2]| PosDiff::from_f64([a[0] / texels, a[1] / texels, 0.0]);
+            let s = RayDiff::new(p(h.axes[0]), p(h.axes[1]), DirDiff::ZERO, DirDiff::ZERO);
+            tri.footprint(&s)
         })
         .collect();
     out.push(Row {
@@ -287,7 +285,7 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         ..row(
             "raydiff",
             "fixed accurate",
-            measure(&fps, reps, |fp| tri.lod(&fp), |l| l.to_num::<f64>()),
+            measure(&fps, reps, |fp| fp.lod(), |l| l.to_num::<f64>()),
             &exact,
         )
     });

@@ -6,141 +6,96 @@
 //! silhouette is the one with the larger `|Δt|`): `∂P/∂x = P₊ − P` or
 //! `P − P₋`, the same for the normal. A pixel without a neighbour hit on
 //! either side of an axis has no differential in that axis (zero).
+//!
+//! The G-buffer holds positions and distances as 32-bit integers in units
+//! of `2^scale` scene units, one `scale` for the whole buffer (chosen at
+//! set-up from the scene's extent, the largest `|coordinate|` below 2³⁰
+//! units so that the difference of two positions fits), and unit normals
+//! in I2F30: a differential is one 32-bit subtraction per component, exact.
 
-use fixed::types::I2F30;
+use super::{Bfp3, DirDiff, PosDiff, RayDiff, UnitVec};
 
-use super::{DirDiff, PosDiff, RayDiff, UnitVec, sat32, sat64};
-use crate::path::raystack::PathLength;
-
-/// One pixel's first hit in the G-buffer: position (scene units, I32F32
-/// as [`PosDiff`]), unit shading normal and hit distance.
+/// One pixel's first hit in the G-buffer: position and hit distance in
+/// units of the buffer's `2^scale` scene units (positions below `2³⁰` in
+/// magnitude), unit shading normal.
 ///
 /// # Example
 /// ```
-/// use raymip::PathLength;
+/// use fixed::types::I2F30;
 /// use raymip::path::raydiff::gbuffer::{GSample, first_hit};
-/// use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
-/// let q = |x: f64, y: f64| [PosDiff::from_num(x), PosDiff::from_num(y), PosDiff::from_num(-100)];
-/// let n = [DirDiff::ZERO, DirDiff::ZERO, DirDiff::ONE];
-/// let t = PathLength::from_num(100);
+/// use raymip::path::raydiff::RayDiff;
+/// // A buffer at 2⁻²⁰ scene units: positions are x·2²⁰.
+/// let scale = -20;
+/// let q = |x: f64, y: f64| [(x * 1048576.0) as i32, (y * 1048576.0) as i32, -100 << 20];
+/// let n = [I2F30::ZERO, I2F30::ZERO, I2F30::ONE];
+/// let t = 100 << 20;
 /// // The centre pixel's first hit and its neighbours' on the same wall,
 /// // one eighth of a scene unit apart; the pixel above has no hit.
 /// let centre = GSample { p: q(0.0, 0.0), n, t };
 /// let (left, right) = (GSample { p: q(-0.125, 0.0), n, t }, GSample { p: q(0.125, 0.0), n, t });
 /// let down = GSample { p: q(0.0, -0.125), n, t };
-/// let (diff, [dndx, dndy], sat) =
-///     first_hit(&RayDiff::ZERO, &centre, [Some(&left), Some(&right), None, Some(&down)]);
+/// let (diff, [dnx, dny]) =
+///     first_hit(&RayDiff::ZERO, &centre, [Some(&left), Some(&right), None, Some(&down)], scale);
 /// // ∂P/∂x = P₊ − P = right − centre; in y (rows grow downwards) the
 /// // one side there is, P₊ = down: ∂P/∂y = down − centre.
-/// assert_eq!(diff.dodx, [PosDiff::from_num(0.125), PosDiff::ZERO, PosDiff::ZERO]);
-/// assert_eq!(diff.dody, [PosDiff::ZERO, PosDiff::from_num(-0.125), PosDiff::ZERO]);
-/// // One normal everywhere: no normal differentials; nothing saturated.
-/// assert_eq!((dndx, dndy, sat), ([DirDiff::ZERO; 3], [DirDiff::ZERO; 3], false));
+/// let v = |(m, e): ([i32; 3], i32)| m.map(|x| f64::from(x) * f64::from(e).exp2());
+/// assert_eq!(v(diff.dox().parts()), [0.125, 0.0, 0.0]);
+/// assert_eq!(v(diff.doy().parts()), [0.0, -0.125, 0.0]);
+/// // One normal everywhere: no normal differentials.
+/// assert_eq!(v(dnx.parts()), [0.0; 3]);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct GSample {
-    /// Hit position (scene units).
-    pub p: [PosDiff; 3],
+    /// Hit position (`2^scale` scene units).
+    pub p: [i32; 3],
     /// Unit shading normal.
     pub n: UnitVec,
-    /// Hit distance from the camera.
-    pub t: PathLength,
+    /// Hit distance from the camera (`2^scale` scene units).
+    pub t: u32,
 }
 
 /// Differentials of one axis from the centre `c` and its neighbours
-/// `minus`, `plus` (`None`: no hit there): `(∂P, ∂n)` of the side with the
-/// smaller `|t − t_c|` (ties: `plus`), saturating (flag); zero when both
-/// are missing. Never panics.
+/// `minus`, `plus` (`None`: no hit there) of a buffer at `2^scale` scene
+/// units: `(∂P, ∂n)` of the side with the smaller `|t − t_c|` (ties:
+/// `plus`), zero when both are missing. Exact unless a position
+/// difference leaves `i32` (positions beyond the documented `2³⁰`: it then
+/// wraps) or two normals differ by 2 (saturated). Never panics.
 #[must_use]
 pub fn axis(
     c: &GSample,
     minus: Option<&GSample>,
     plus: Option<&GSample>,
-) -> ([PosDiff; 3], [DirDiff; 3], bool) {
+    scale: i32,
+) -> (PosDiff, DirDiff) {
     let dt = |s: &GSample| s.t.abs_diff(c.t);
     let (a, b) = match (minus, plus) {
         (Some(m), Some(p)) if dt(m) < dt(p) => (c, m),
         (_, Some(p)) => (p, c),
         (Some(m), None) => (c, m),
-        (None, None) => return ([PosDiff::ZERO; 3], [DirDiff::ZERO; 3], false),
+        (None, None) => return (PosDiff::ZERO, DirDiff::ZERO),
     };
-    let mut sat = false;
-    let dp = core::array::from_fn(|k| {
-        PosDiff::from_bits(sat64(
-            i128::from(a.p[k].to_bits()) - i128::from(b.p[k].to_bits()),
-            &mut sat,
-        ))
-    });
-    let dn = core::array::from_fn(|k| {
-        I2F30::from_bits(sat32(
-            i128::from(a.n[k].to_bits()) - i128::from(b.n[k].to_bits()),
-            &mut sat,
-        ))
-    });
-    (dp, dn, sat)
+    let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
+    let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
+    (PosDiff(Bfp3::new(dp, scale)), DirDiff(Bfp3::new(dn, -30)))
 }
 
-/// The first hit's differential state from the G-buffer: `∂O` (at the
-/// hit, no transfer needed) from [`axis`] in x (`left`, `right`) and y
-/// (`up`, `down`), `∂D` from the camera's `primary`; also the normal
-/// differentials `(∂n/∂x, ∂n/∂y)` that [`RayDiff::reflect`] and
-/// [`RayDiff::refract`] take, and the saturation flag.
+/// The first hit's differential state from the G-buffer (positions at
+/// `2^scale` scene units): `∂O` (at the hit, no transfer needed) from
+/// [`axis`] in x (`left`, `right`) and y (`up`, `down`), `∂D` from the
+/// camera's `primary`; also the normal differentials `[∂n/∂x, ∂n/∂y]`
+/// that [`RayDiff::reflect`] and [`RayDiff::refract`] take. Per first hit;
+/// never panics.
 #[must_use]
 pub fn first_hit(
     primary: &RayDiff,
     c: &GSample,
     [left, right, up, down]: [Option<&GSample>; 4],
-) -> (RayDiff, [[DirDiff; 3]; 2], bool) {
-    let (dodx, dndx, sx) = axis(c, left, right);
-    let (dody, dndy, sy) = axis(c, up, down);
+    scale: i32,
+) -> (RayDiff, [DirDiff; 2]) {
+    let (dox, dnx) = axis(c, left, right, scale);
+    let (doy, dny) = axis(c, up, down, scale);
     (
-        RayDiff {
-            dodx,
-            dody,
-            ..*primary
-        },
-        [dndx, dndy],
-        sx | sy,
+        RayDiff::new(dox, doy, primary.ddx(), primary.ddy()),
+        [dnx, dny],
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn s(x: f64, t: f64) -> GSample {
-        GSample {
-            p: [x, 0.0, 0.0].map(PosDiff::from_num),
-            n: [0.0, x / 8.0, 1.0 - x / 8.0].map(I2F30::from_num),
-            t: PathLength::from_num(t),
-        }
-    }
-
-    #[test]
-    fn the_side_with_the_smaller_distance_step_wins() {
-        let c = s(1.0, 10.0);
-        let (l, r) = (s(0.5, 10.1), s(1.5, 50.0)); // r is across a silhouette
-        let (dp, dn, sat) = axis(&c, Some(&l), Some(&r));
-        assert!(!sat);
-        assert_eq!(dp[0].to_num::<f64>(), 0.5);
-        assert_eq!(dn[1], c.n[1] - l.n[1]);
-        let (l, r) = (s(0.5, 30.0), s(1.25, 10.5));
-        assert_eq!(axis(&c, Some(&l), Some(&r)).0[0].to_num::<f64>(), 0.25);
-        assert_eq!(axis(&c, None, Some(&r)).0[0].to_num::<f64>(), 0.25);
-        assert_eq!(axis(&c, Some(&l), None).0[0].to_num::<f64>(), 0.5);
-        assert_eq!(axis(&c, None, None).0, [PosDiff::ZERO; 3]);
-        // Extremes saturate with the flag.
-        let mut hi = c;
-        hi.p = [PosDiff::MAX; 3];
-        let mut lo = c;
-        lo.p = [PosDiff::MIN; 3];
-        assert!(axis(&lo, None, Some(&hi)).2);
-        let prim = RayDiff::ZERO;
-        let (d, [nx, ny], sat) = first_hit(&prim, &c, [Some(&l), Some(&r), None, None]);
-        assert!(!sat);
-        assert_eq!(d.dodx[0].to_num::<f64>(), 0.25);
-        assert_eq!(d.dody, [PosDiff::ZERO; 3]);
-        assert_eq!(ny, [DirDiff::ZERO; 3]);
-        assert_eq!(nx[1], r.n[1] - c.n[1]);
-    }
 }

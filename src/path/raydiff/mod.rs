@@ -1,302 +1,572 @@
-//! Ray differentials (Igehy 1999, "Tracing Ray Differentials") in fixed
-//! point: the per-pixel derivatives of a ray's origin and direction,
-//! carried by the ray stack, transferred to each hit, reflected and
-//! refracted there, and turned into a texture-space footprint
-//! ([`crate::lod::raydiff`]) whose larger axis gives the lod and whose two axes drive
-//! anisotropic filtering. Primary rays are set up from the camera
-//! ([`RayDiff::primary`]), or first hits from a G-buffer ([`gbuffer`]).
-//! Feature `raydiff`.
+//! Ray differentials (Igehy 1999, "Tracing Ray Differentials") in 32-bit
+//! block floating point: the per-pixel derivatives of a ray's origin and
+//! direction, carried by the ray stack, transferred to each hit, reflected
+//! and refracted there, and turned into a texture-space footprint
+//! ([`crate::lod::raydiff`]) whose larger axis gives the lod and whose two
+//! axes drive anisotropic filtering. Primary rays are set up from the
+//! camera ([`RayDiff::primary`]), or first hits from a G-buffer
+//! ([`gbuffer`]). Feature `raydiff`.
 //!
 //! # State and number formats
 //!
-//! | quantity | type | range | step |
-//! |---|---|---|---|
-//! | `∂O/∂x`, `∂O/∂y` (scene units per pixel) | [`PosDiff`] = I32F32 | `±2³¹` | `2⁻³²` |
-//! | `∂D/∂x`, `∂D/∂y` (per pixel; `D` a unit vector) | [`DirDiff`] = I2F30 | `±2` | `2⁻³⁰ ≈ 9.3·10⁻¹⁰` |
-//! | ray direction `D`, normals `n` (unit vectors) | [`UnitVec`] = `[I2F30; 3]` | `±2` per component | `2⁻³⁰` |
-//! | hit distance `t` | [`PathLength`] = U32F32 | `[0, 2³²)` | `2⁻³²` |
-//! | relative index `η = n₁/n₂` | [`Eta`] = I4F28 | `±8` | `2⁻²⁸` |
+//! Each of the four differentials is a 3-vector of 32-bit mantissas with
+//! one exponent (block floating point, [`PosDiff`], [`DirDiff`]): the
+//! largest component has 31 significant bits whatever the vector's size,
+//! so a differential keeps its relative precision from `2⁻¹⁶³⁸⁴` to
+//! `2¹⁶³⁸⁴` (a footprint beyond the [`Lod`](crate::lod::Lod) range
+//! saturates the lod, not the state). [`RayDiff`] stores the twelve
+//! mantissas and four 16-bit exponents: 56 bytes.
 //!
-//! A 4K image has a pixel spread of about `2.5·10⁻⁴` radians, so `∂D` is
-//! resolved to about `4·10⁻⁶` relative; `|∂D|` beyond 2 (a mirror curved
-//! more sharply than a pixel) saturates. Every operation returns a flag that
-//! is true when a result saturated (its footprint is then a bound, not a
-//! value), as [`crate::path::raystack::PathState::saturated`]. Intermediate
-//! products are 128-bit (compiler-builtins `__multi3` on 32-bit cores, one
-//! 64-bit division per transfer); the cost per call on the targets is in
-//! `BUDGETS.md`.
+//! | quantity | type | format |
+//! |---|---|---|
+//! | `∂O/∂x`, `∂O/∂y` (scene units per pixel) | [`PosDiff`] | 3 × i32 mantissa, exponent |
+//! | `∂D/∂x`, `∂D/∂y`, `∂n/∂x`, `∂n/∂y` (per pixel) | [`DirDiff`] | 3 × i32 mantissa, exponent |
+//! | ray direction `D`, normal `n` (unit vectors) | [`UnitVec`] | I2F30 components |
+//! | hit distance `t` | [`PathLength`] | U32F32 |
+//! | relative index `η = n₁/n₂` | [`Eta`] | I4F28, `(0, 8)` |
+//! | `cos θₜ` | `I2F30` | `[0, 1]` |
+//!
+//! Every operation is 32-bit: products by multiply-high (`smmul`/`smmla`
+//! and `smull`/`smlal` on the Cortex-M4, `mulh`/`mul` on RV32), the one
+//! reciprocal per transfer or refraction by a 32/16-bit division and a
+//! Newton step, no 128-bit arithmetic and no 64-bit division. Nothing
+//! panics; the exponents saturate at `±2¹⁴` (far beyond every lod).
 //!
 //! # Grazing angles
 //!
 //! A transfer divides by `D·n` and a refraction by `cos θₜ`; both are
-//! clamped to `|·| ≥ `[`MIN_COS`]` = 2⁻¹⁶` (as the cone method's normal
+//! clamped to `|·| ≥ `[`MIN_COS`](crate::lod::MIN_COS)` = 2⁻¹⁶` (as the cone method's normal
 //! term), so the footprint of a grazing hit is at most `2¹⁶` times the
-//! head-on one and stays finite.
+//! head-on one.
 //!
 //! # Error bound
 //!
-//! See [`crate::lod::raydiff`]: the lod from these differentials is within
-//! [`crate::lod::raydiff::RAYDIFF_LOD_MAX_ERROR`] of the same computation in f64.
+//! ERROR-ANALYSIS
 
-use fixed::types::{I2F30, I4F28, I32F32};
+use fixed::types::{I2F30, I4F28};
 
+use crate::lod::MIN_COS;
+use crate::lod::log2::normalise64;
 use crate::path::raystack::PathLength;
 
+mod bfp;
 pub mod gbuffer;
 
-/// A position differential component: scene units per pixel, I32F32.
-/// Example: [`RayDiff`].
-pub type PosDiff = I32F32;
-/// A direction differential component: per pixel, I2F30. Example:
-/// [`RayDiff`].
-pub type DirDiff = I2F30;
+use crate::lod::log2::clz32;
+pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, recip, shr};
+
 /// A unit vector (ray direction, surface normal), I2F30 components
 /// (one home: [`crate::path::raystack::UnitVec`]). Example: [`RayDiff`].
 pub use crate::path::raystack::UnitVec;
-/// Relative index of refraction `η = n₁/n₂` (incident over transmitted
-/// medium), I4F28. Example: [`RayDiff`].
-pub type Eta = I4F28;
 
-/// Smallest `|D·n|` and `cos θₜ` used as a divisor: 2⁻¹⁶ (see
-/// [Grazing angles](self#grazing-angles)).
-pub const MIN_COS: I2F30 = I2F30::from_bits(1 << 14);
+/// Documented bound of [`RayDiff::primary`]: the largest component of the
+/// error of `∂D/∂x` is at most this times `(|D·f| + 1)·|r|` (and `∂D/∂y`
+/// with `u`): 2⁻²⁵ (derivation in the [module docs](self#error-bound)).
+pub const PRIMARY_ERROR: f64 = 1.0 / 33_554_432.0;
+/// Documented bound of [`RayDiff::transfer`]: the largest component of the
+/// error of `∂O'` is at most this times `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)`
+/// (`|D·n|` clamped): 2⁻²⁴.
+pub const TRANSFER_ERROR: f64 = 1.0 / 16_777_216.0;
+/// Documented bound of [`RayDiff::reflect`]: at most this times
+/// `|∂D| + 4·|∂n|` per component: 2⁻²⁴.
+pub const REFLECT_ERROR: f64 = 1.0 / 16_777_216.0;
+/// Documented bound of [`RayDiff::refract`]: at most this times
+/// `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` per component (`cos θₜ`
+/// clamped): 2⁻²⁴.
+pub const REFRACT_ERROR: f64 = 1.0 / 16_777_216.0;
 
-/// The differential state of one ray (one ray-stack entry, feature
-/// `raydiff`): `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y` (formats in the
-/// [module docs](self)). 72 bytes.
+/// [`MIN_COS`] in I2F30 bits (the unit of `UnitVec` dot products).
+const MIN_COS_I2F30: i32 = (MIN_COS.to_bits() >> 1) as i32;
+
+/// A position differential `∂O/∂x` or `∂O/∂y`: scene units per pixel, a
+/// block-floating-point 3-vector (`mₖ·2ᵉ`, the largest `|mₖ|` in
+/// `[2³⁰ − 1, 2³¹]`, see the [module docs](self)).
 ///
 /// # Example
 /// ```
+/// use raymip::path::raydiff::PosDiff;
+/// // (3/8, 0, −1/2) scene units per pixel.
+/// let p = PosDiff::new([3, 0, -4], -3);
+/// let (m, e) = p.parts();
+/// assert_eq!(m.map(|x| f64::from(x) * f64::from(e).exp2()), [0.375, 0.0, -0.5]);
+/// assert_eq!(m[2], -(1 << 30)); // normalised: the largest has 31 bits
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(transparent)]
+pub struct PosDiff(Bfp3);
+
+/// A direction differential `∂D/∂x`, `∂D/∂y` (change of the unit ray
+/// direction per pixel) or a normal differential `∂n/∂x`, `∂n/∂y`: a
+/// block-floating-point 3-vector as [`PosDiff`].
+///
+/// # Example
+/// ```
+/// use fixed::types::I2F30;
+/// use raymip::path::raydiff::DirDiff;
+/// // From I2F30 components (exact): 2⁻¹⁰ along x.
+/// let s = I2F30::from_num(1.0 / 1024.0);
+/// let d = DirDiff::from_i2f30([s, I2F30::ZERO, I2F30::ZERO]);
+/// assert_eq!(d.parts(), ([1 << 30, 0, 0], -40));
+/// assert_eq!(d.to_i2f30(), [s, I2F30::ZERO, I2F30::ZERO]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(transparent)]
+pub struct DirDiff(Bfp3);
+
+macro_rules! diff_vec {
+    ($t:ident) => {
+        impl $t {
+            /// The zero vector.
+            pub const ZERO: Self = Self(Bfp3::ZERO);
+
+            /// `mₖ·2ᵉ`, normalised (any mantissas; exact unless the
+            /// exponent saturates at `±2¹⁴`).
+            #[inline]
+            #[must_use]
+            pub fn new(m: [i32; 3], e: i32) -> Self {
+                Self(Bfp3::new(m, e))
+            }
+
+            /// `mₖ·2ᵉ` from 64-bit mantissas, truncated to 31 significant
+            /// bits of the largest.
+            #[must_use]
+            pub fn from_wide(m: [i64; 3], e: i32) -> Self {
+                Self(Bfp3::from_wide(m, e))
+            }
+
+            /// The normalised mantissas and exponent: component `k` is
+            /// `m[k]·2ᵉ`.
+            #[inline]
+            #[must_use]
+            pub const fn parts(self) -> ([i32; 3], i32) {
+                (self.0.m, self.0.e)
+            }
+
+            /// From f64 components (set-up and host code, not per hit):
+            /// truncated to 31 significant bits of the largest; non-finite
+            /// components read as 0.
+            #[must_use]
+            pub fn from_f64(v: [f64; 3]) -> Self {
+                let v = v.map(|x| if x.is_finite() { x } else { 0.0 });
+                let top = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                if top == 0.0 {
+                    return Self::ZERO;
+                }
+                // 2^(30 − e)·top ∈ [2³⁰, 2³¹) with e = ⌊log2 top⌋ (via the
+                // f64 exponent field; subnormal tops read as 2⁻¹⁰²²).
+                let e = (((top.to_bits() >> 52) & 0x7FF) as i32 - 1023).max(-1022);
+                let m = v.map(|x| (x * pow2(30 - e)) as i32);
+                Self::new(m, e - 30)
+            }
+
+            /// As f64 components (host code, tests): `m·2ᵉ`, 0 or `±∞`
+            /// where the exponent leaves the f64 range.
+            #[must_use]
+            pub fn to_f64(self) -> [f64; 3] {
+                let (m, e) = self.parts();
+                m.map(|x| f64::from(x) * pow2(e))
+            }
+        }
+
+        impl Default for $t {
+            fn default() -> Self {
+                Self::ZERO
+            }
+        }
+    };
+}
+diff_vec!(PosDiff);
+diff_vec!(DirDiff);
+
+impl DirDiff {
+    /// From I2F30 components (exact).
+    #[must_use]
+    pub fn from_i2f30(v: [I2F30; 3]) -> Self {
+        Self::new(v.map(I2F30::to_bits), -30)
+    }
+
+    /// As I2F30 components, rounded towards −∞ below `2⁻³⁰` and saturated
+    /// at `±2`.
+    #[must_use]
+    pub fn to_i2f30(self) -> [I2F30; 3] {
+        let (m, e) = self.parts();
+        let s = e + 30;
+        m.map(|x| {
+            let v = if s >= 0 {
+                // |x| ≤ 2³¹, so 2³² or more saturates whatever x ≠ 0 is.
+                (i64::from(x) << s.min(32)).clamp(i64::from(i32::MIN), i64::from(i32::MAX))
+            } else {
+                i64::from(shr(x, -s))
+            };
+            I2F30::from_bits(v as i32)
+        })
+    }
+}
+
+impl PosDiff {
+    /// From I32F32 components (scene units; e.g. a difference of two
+    /// positions), truncated to 31 significant bits.
+    #[must_use]
+    pub fn from_i32f32(v: [fixed::types::I32F32; 3]) -> Self {
+        Self::from_wide(v.map(fixed::types::I32F32::to_bits), -32)
+    }
+}
+
+/// `2ᵏ` in f64 for `−1022 ≤ k ≤ 1023` (exact; 0 below, ∞ above).
+fn pow2(k: i32) -> f64 {
+    match k {
+        -1022..=1023 => f64::from_bits(((k + 1023) as u64) << 52),
+        k if k < 0 => 0.0,
+        _ => f64::INFINITY,
+    }
+}
+
+/// Relative index of refraction `η = n₁/n₂` (incident over transmitted
+/// medium), I4F28, `(0, 8)`.
+///
+/// # Example
+/// ```
+/// use fixed::types::I4F28;
+/// use raymip::path::raydiff::Eta;
+/// // Air into glass: η = 1/1.5.
+/// let eta = Eta::from_fixed(I4F28::from_num(1.0 / 1.5));
+/// assert_eq!(eta.to_fixed(), I4F28::from_num(1.0 / 1.5));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[repr(transparent)]
+pub struct Eta(I4F28);
+
+impl Eta {
+    /// `η = 1` (no refraction).
+    pub const ONE: Self = Self(I4F28::ONE);
+
+    /// From its I4F28 value.
+    #[inline]
+    #[must_use]
+    pub const fn from_fixed(v: I4F28) -> Self {
+        Self(v)
+    }
+
+    /// Its I4F28 value.
+    #[inline]
+    #[must_use]
+    pub const fn to_fixed(self) -> I4F28 {
+        self.0
+    }
+}
+
+/// The differential state of one ray (one ray-stack entry, feature
+/// `raydiff`): `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y` as four block-floating-point
+/// vectors (formats in the [module docs](self)). 56 bytes.
+///
+/// # Example
+/// ```
+/// use fixed::types::{I2F30, I4F28};
 /// use raymip::PathLength;
 /// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
-/// let (one, zero) = (DirDiff::ONE, DirDiff::ZERO);
+/// let (one, zero) = (I2F30::ONE, I2F30::ZERO);
+/// let v = |p: DirDiff| -> [f64; 3] { let (m, e) = p.parts(); m.map(|x| f64::from(x) * f64::from(e).exp2()) };
 /// // A camera looking down −z; one pixel step turns the unnormalised
 /// // direction by s = 2⁻¹⁰ along x (right) or y (up).
-/// let s = DirDiff::from_num(1.0 / 1024.0);
+/// let s = I2F30::from_num(1.0 / 1024.0);
+/// let (right, up) = (DirDiff::from_i2f30([s, zero, zero]), DirDiff::from_i2f30([zero, s, zero]));
 /// let forward: UnitVec = [zero, zero, -one];
-/// let (primary, _) = RayDiff::primary(forward, forward, [s, zero, zero], [zero, s, zero]);
+/// let mut ray = RayDiff::primary(forward, forward, right, up);
 /// // The centre ray: D·f = 1, D·r = 0, so ∂D/∂x = r and ∂D/∂y = u.
-/// assert_eq!((primary.dddx, primary.dddy), ([s, zero, zero], [zero, s, zero]));
+/// assert_eq!((v(ray.ddx()), v(ray.ddy())), ([1.0 / 1024.0, 0.0, 0.0], [0.0, 1.0 / 1024.0, 0.0]));
 /// // Transfer to a wall facing the camera (n = +z) at t = 100: ∂D·t
 /// // lies in the wall, so ∂O = 100·2⁻¹⁰ scene units per pixel along x.
-/// let up: UnitVec = [zero, zero, one];
-/// let (hit, saturated) = primary.transfer(forward, PathLength::from_num(100), up);
-/// assert!(!saturated);
-/// assert_eq!(hit.dodx, [PosDiff::from_num(100.0 / 1024.0), PosDiff::ZERO, PosDiff::ZERO]);
+/// let wall: UnitVec = [zero, zero, one];
+/// ray.transfer(forward, PathLength::from_num(100), wall);
+/// let (m, e) = ray.dox().parts();
+/// assert_eq!(m.map(|x| f64::from(x) * f64::from(e).exp2()), [100.0 / 1024.0, 0.0, 0.0]);
 /// // A flat mirror (∂n = 0) facing the ray: ∂D ⟂ n stays as it is.
-/// let flat = [zero; 3];
-/// let (mirrored, _) = hit.reflect(forward, up, flat, flat);
-/// assert_eq!(mirrored.dddx, hit.dddx);
+/// let mut mirrored = ray;
+/// mirrored.reflect(forward, wall, [DirDiff::ZERO; 2]);
+/// assert_eq!(v(mirrored.ddx()), v(ray.ddx()));
 /// // Head-on into a denser medium, η = ½ (cos θₜ = 1): ∂T = η·∂D.
-/// let (refracted, _) = hit.refract(forward, up, flat, flat, Eta::from_num(0.5), one);
-/// assert_eq!(refracted.dddx, [DirDiff::from_num(1.0 / 2048.0), zero, zero]);
-/// assert_eq!(refracted.dodx, hit.dodx); // the hit point's ∂O is kept
+/// let mut refracted = ray;
+/// refracted.refract(forward, wall, [DirDiff::ZERO; 2], Eta::from_fixed(I4F28::from_num(0.5)), one);
+/// assert_eq!(v(refracted.ddx()), [1.0 / 2048.0, 0.0, 0.0]);
+/// assert_eq!(refracted.dox(), ray.dox()); // the hit point's ∂O is kept
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct RayDiff {
-    /// `∂O/∂x` (scene units per pixel).
-    pub dodx: [PosDiff; 3],
-    /// `∂O/∂y`.
-    pub dody: [PosDiff; 3],
-    /// `∂D/∂x` (per pixel).
-    pub dddx: [DirDiff; 3],
-    /// `∂D/∂y`.
-    pub dddy: [DirDiff; 3],
+    /// Mantissas of `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`.
+    m: [[i32; 3]; 4],
+    /// Their exponents (`[EXP_MIN, EXP_MAX]`).
+    e: [i16; 4],
 }
 
-/// `round(v / 2ˢ)` for `1 ≤ s ≤ 64` (`|v| < 2¹²⁶`, so the offset cannot
-/// overflow).
-#[inline(always)]
-fn shr_round(v: i128, s: u32) -> i128 {
-    (v + (1i128 << (s - 1))) >> s
+impl Default for RayDiff {
+    fn default() -> Self {
+        Self::ZERO
+    }
 }
 
-/// `v` saturated to `i64`, `sat` set when it did not fit.
+/// `(m, e)` of I2F30 unit-vector components: the raw bits.
 #[inline(always)]
-fn sat64(v: i128, sat: &mut bool) -> i64 {
-    let c = v.clamp(i128::from(i64::MIN), i128::from(i64::MAX));
-    *sat |= c != v;
-    c as i64
-}
-
-/// `v` saturated to `i32`, `sat` set when it did not fit.
-#[inline(always)]
-fn sat32(v: i128, sat: &mut bool) -> i32 {
-    let c = v.clamp(i128::from(i32::MIN), i128::from(i32::MAX));
-    *sat |= c != v;
-    c as i32
-}
-
-/// `a·b` of two I2F30 vectors in 2⁻⁶⁰ units (exact).
-#[inline(always)]
-fn dot60(a: [I2F30; 3], b: [I2F30; 3]) -> i128 {
-    (0..3)
-        .map(|k| i128::from(a[k].to_bits()) * i128::from(b[k].to_bits()))
-        .sum()
-}
-
-/// `a·b` of two I2F30 vectors in 2⁻³⁰ units (rounded).
-#[inline(always)]
-fn dot30(a: [I2F30; 3], b: [I2F30; 3]) -> i128 {
-    shr_round(dot60(a, b), 30)
-}
-
-/// `x` with `|x| ≥ MIN_COS` (sign kept; zero reads as `+MIN_COS`), 2⁻³⁰ units.
-#[inline(always)]
-fn clamp_cos(x: i128) -> i128 {
-    let m = i128::from(MIN_COS.to_bits());
-    if x < 0 { x.min(-m) } else { x.max(m) }
+fn bits(v: UnitVec) -> [i32; 3] {
+    v.map(I2F30::to_bits)
 }
 
 impl RayDiff {
     /// No differential (a pinhole camera's primary ray has `∂O = 0`).
     pub const ZERO: Self = Self {
-        dodx: [PosDiff::ZERO; 3],
-        dody: [PosDiff::ZERO; 3],
-        dddx: [DirDiff::ZERO; 3],
-        dddy: [DirDiff::ZERO; 3],
+        m: [[0; 3]; 4],
+        e: [EXP_MIN as i16; 4],
     };
+
+    /// A state from its four differentials.
+    #[must_use]
+    pub const fn new(dox: PosDiff, doy: PosDiff, ddx: DirDiff, ddy: DirDiff) -> Self {
+        Self {
+            m: [dox.0.m, doy.0.m, ddx.0.m, ddy.0.m],
+            e: [
+                dox.0.e as i16,
+                doy.0.e as i16,
+                ddx.0.e as i16,
+                ddy.0.e as i16,
+            ],
+        }
+    }
+
+    #[inline(always)]
+    fn get(&self, i: usize) -> Bfp3 {
+        Bfp3 {
+            m: self.m[i],
+            e: i32::from(self.e[i]),
+        }
+    }
+
+    #[inline(always)]
+    fn set(&mut self, i: usize, v: Bfp3) {
+        self.m[i] = v.m;
+        // `Bfp3::new` keeps the exponent in [EXP_MIN, EXP_MAX] ⊂ i16.
+        self.e[i] = v.e as i16;
+    }
+
+    /// `∂O/∂x` (scene units per pixel).
+    #[inline]
+    #[must_use]
+    pub fn dox(&self) -> PosDiff {
+        PosDiff(self.get(0))
+    }
+
+    /// `∂O/∂y`.
+    #[inline]
+    #[must_use]
+    pub fn doy(&self) -> PosDiff {
+        PosDiff(self.get(1))
+    }
+
+    /// `∂D/∂x` (per pixel).
+    #[inline]
+    #[must_use]
+    pub fn ddx(&self) -> DirDiff {
+        DirDiff(self.get(2))
+    }
+
+    /// `∂D/∂y`.
+    #[inline]
+    #[must_use]
+    pub fn ddy(&self) -> DirDiff {
+        DirDiff(self.get(3))
+    }
 
     /// Primary ray of a pinhole camera (`∂O = 0`): for the unit ray
     /// direction `d`, the camera's unit forward axis `forward` and the
     /// change of the unnormalised direction `f + x·r + y·u` per pixel in x
-    /// (`right`) and y (`up`) on the image plane at unit distance,
-    /// `∂D/∂x = (D·f)·(r − (D·r)·D)` (the derivative of `d/|d|`, with
-    /// `1/|d| = D·f`), the same with `u` in y. Saturating (flag).
+    /// (`right`) and y (`up`) on the image plane at unit distance
+    /// (`⟂ forward`), `∂D/∂x = (D·f)·(r − (D·r)·D)` (the derivative of
+    /// `d/|d|`, with `1/|d| = D·f`), the same with `u` in y. Set-up per
+    /// pixel; never panics.
     #[must_use]
-    pub fn primary(
-        d: UnitVec,
-        forward: UnitVec,
-        right: [DirDiff; 3],
-        up: [DirDiff; 3],
-    ) -> (Self, bool) {
-        let mut sat = false;
-        let df = dot30(d, forward);
-        let mut axis = |r: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dr = dot30(d, r);
-            core::array::from_fn(|k| {
-                let t = i128::from(r[k].to_bits()) - shr_round(dr * i128::from(d[k].to_bits()), 30);
-                DirDiff::from_bits(sat32(shr_round(df * t, 30), &mut sat))
-            })
+    pub fn primary(d: UnitVec, forward: UnitVec, right: DirDiff, up: DirDiff) -> Self {
+        let d = bits(d);
+        // D·f in 2⁻³⁰ units (one truncation; ≤ 2³⁰ + 1 for unit vectors).
+        let df = (dot64(d, bits(forward)) >> 30) as i32;
+        let axis = |r: Bfp3| -> Bfp3 {
+            // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
+            let dr = (dot64(r.m, d) >> 31) as i32;
+            // (r − (D·r)·D)/8: |·| < 2²⁹.
+            let v = Bfp3::new(
+                core::array::from_fn(|k| (r.m[k] >> 3) - mulhi(dr, d[k])),
+                r.e + 3,
+            );
+            // (D·f)·v = mulhi(v, df)·2²: df is D·f·2³⁰.
+            Bfp3::new(v.m.map(|x| mulhi(x, df)), v.e + 2)
         };
-        let dddx = axis(right);
-        let dddy = axis(up);
-        (
-            Self {
-                dddx,
-                dddy,
-                ..Self::ZERO
-            },
-            sat,
-        )
+        let mut s = Self::ZERO;
+        s.set(2, axis(right.0));
+        s.set(3, axis(up.0));
+        s
     }
 
     /// Transfer to a hit at distance `t` on a surface of unit normal `n`
     /// (Igehy eq. 10–12): `q = ∂O + t·∂D`, `∂t = −(q·n)/(D·n)`,
     /// `∂O' = q + ∂t·D`; `∂D` is unchanged. `∂O'` is then the hit point's
-    /// differential on the tangent plane ([`crate::lod::raydiff`] reads it).
-    /// `|D·n|` is clamped to [`MIN_COS`]. Saturating (flag).
-    #[must_use]
-    pub fn transfer(self, d: UnitVec, t: PathLength, n: UnitVec) -> (Self, bool) {
-        let mut sat = false;
-        // |D·n| ∈ [2⁻¹⁶, 12] after the clamp: 2⁻³⁰ bits fit i64.
-        let dn = clamp_cos(dot30(d, n)) as i64;
-        // 1/(D·n) in 2⁻³⁰ units, |inv| ≤ 2⁴⁶ (dn ≠ 0: the fallback is never taken).
-        let inv = i128::from((1i64 << 60).checked_div(dn).unwrap_or(0));
-        let t = i128::from(t.to_bits());
-        let mut axis = |o: [PosDiff; 3], dd: [DirDiff; 3]| -> [PosDiff; 3] {
-            // q in 2⁻³² units, |q| < 2⁶³ + 2⁶⁶.
-            let q: [i128; 3] = core::array::from_fn(|k| {
-                i128::from(o[k].to_bits()) + shr_round(t * i128::from(dd[k].to_bits()), 30)
-            });
-            let qn: i128 = (0..3)
-                .map(|k| shr_round(q[k] * i128::from(n[k].to_bits()), 30))
-                .sum();
-            // ∂t in 2⁻³² units (|qn·inv| < 2¹¹⁵).
-            let dt = -shr_round(qn * inv, 30);
-            let dt = dt.clamp(-(1i128 << 90), 1i128 << 90);
-            core::array::from_fn(|k| {
-                PosDiff::from_bits(sat64(
-                    q[k] + shr_round(dt * i128::from(d[k].to_bits()), 30),
-                    &mut sat,
-                ))
-            })
-        };
-        let dodx = axis(self.dodx, self.dddx);
-        let dody = axis(self.dody, self.dddy);
-        (Self { dodx, dody, ..self }, sat)
+    /// differential on the tangent plane ([`crate::lod::raydiff`] reads
+    /// it). `|D·n|` is clamped to [`MIN_COS`]. Per hit; never panics.
+    pub fn transfer(&mut self, d: UnitVec, t: PathLength, n: UnitVec) {
+        let (d, n) = (bits(d), bits(n));
+        // D·n exact in 2⁻⁶⁰ units, |D·n| clamped to ≥ MIN_COS (2⁴⁴ units):
+        // the high word is then ≥ 2¹², its leading zeros lz ≤ 19.
+        let c = dot64(d, n);
+        let a = c.unsigned_abs().max((MIN_COS_I2F30 as u64) << 30);
+        let (hi, lo) = ((a >> 32) as u32, a as u32);
+        let lz = hi.leading_zeros();
+        // |D·n| = cm·2^(−28−lz), cm ∈ [2³¹, 2³²) (one truncation).
+        let cm = (hi << lz) | ((lo >> 1) >> (31 - lz));
+        // 1/|D·n| = y·2^(lz−34), so w = D/(D·n) = (D·±y >> 30)·2^(lz−34):
+        // |D·y| < 2⁶¹, one truncation.
+        let y = recip(cm) as i32;
+        let y = if c < 0 { -y } else { y };
+        // |w| < 2³¹ (|D| ≤ 1, y < 2³¹) with at least 29 significant bits
+        // in its largest component (|D|∞ ≥ 1/√3, y ≥ 2³⁰): not normalised.
+        let w = d.map(|x| ((i64::from(x) * i64::from(y)) >> 30) as i32);
+        let ew = lz as i32 - 34;
+        // t = tm·2^et, tm ∈ [2³⁰, 2³¹) (zero: tm = 0 at EXP_MIN).
+        let (tn, tz) = normalise64(t.to_bits());
+        let tm = (tn >> 1) as i32;
+        let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
+        for axis in 0..2 {
+            let (o, dd) = (self.get(axis), self.get(2 + axis));
+            // q = ∂O + t·∂D at 2^eq, |qₖ| < 2³¹ (∂O shifted by at least 1,
+            // t·∂D = mulhi(tm, ∂D)·2^(et+e+32) with |mulhi| ≤ 2³⁰).
+            let ep = et + dd.e + 32;
+            let eq = (o.e + 1).max(ep);
+            let q: [i32; 3] =
+                core::array::from_fn(|k| shr(o.m[k], eq - o.e) + shr(mulhi(tm, dd.m[k]), eq - ep));
+            // q·n = qn·2^(eq+1) (exact dot, one truncation, |qn| < √3·2³⁰),
+            // normalised to qm·2^eqn.
+            let qn = (dot64(q, n) >> 31) as i32;
+            let sn = clz32((((qn ^ (qn >> 31)) as u32) << 1) | 1) as i32;
+            let (qm, eqn) = (qn << sn, eq + 1 - sn);
+            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eqn+e_w+32),
+            // |mulhi| ≤ 2³⁰, and q shifted by at least one: |rₖ| < 2³¹.
+            let et_ = eqn + ew + 32;
+            let er = (eq + 1).max(et_);
+            let r: [i32; 3] =
+                core::array::from_fn(|k| shr(q[k], er - eq) - shr(mulhi(qm, w[k]), er - et_));
+            self.set(axis, Bfp3::new(r, er));
+        }
     }
 
     /// Reflection about the unit shading normal `n` with its per-pixel
-    /// differentials `dndx`, `dndy` (passed by the caller, zero on flat
-    /// triangles) (Igehy eq. 14–15): `∂R = ∂D − 2·((D·n)·∂n + ∂(D·n)·n)`,
-    /// `∂(D·n) = ∂D·n + D·∂n`; `∂O` (the hit's) is kept. Saturating (flag).
-    #[must_use]
-    pub fn reflect(
-        self,
-        d: UnitVec,
-        n: UnitVec,
-        dndx: [DirDiff; 3],
-        dndy: [DirDiff; 3],
-    ) -> (Self, bool) {
-        let mut sat = false;
-        let dn = dot30(d, n);
-        let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let ddn = shr_round(dot60(dd, n) + dot60(d, dnv), 30);
-            core::array::from_fn(|k| {
-                let s = dn * i128::from(dnv[k].to_bits()) + ddn * i128::from(n[k].to_bits());
-                DirDiff::from_bits(sat32(
-                    i128::from(dd[k].to_bits()) - 2 * shr_round(s, 30),
-                    &mut sat,
-                ))
-            })
-        };
-        let dddx = axis(self.dddx, dndx);
-        let dddy = axis(self.dddy, dndy);
-        (Self { dddx, dddy, ..self }, sat)
+    /// differentials `dn = [∂n/∂x, ∂n/∂y]` (zero on flat triangles) (Igehy
+    /// eq. 14–15): `∂R = ∂D − 2·((D·n)·∂n + ∂(D·n)·n)`,
+    /// `∂(D·n) = ∂D·n + D·∂n`; `∂O` (the hit's) is kept. Per hit; never
+    /// panics.
+    pub fn reflect(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2]) {
+        let (d, n) = (bits(d), bits(n));
+        // D·n in 2⁻³⁰ units (one truncation).
+        let c = (dot64(d, n) >> 30) as i32;
+        for (axis, nn) in dn.iter().enumerate() {
+            let (dd, nn) = (self.get(2 + axis), nn.0);
+            // Common exponent with headroom: |∂D| ≤ 2²⁹, |∂n| ≤ 2²⁷ units,
+            // so |∂R|∞ ≤ |∂D| + 4|∂n| ≤ √3·(2²⁹ + 2²⁹) < 2³¹.
+            let e = (dd.e + 2).max(nn.e + 4);
+            let a = dd.m.map(|x| shr(x, e - dd.e));
+            let b = nn.m.map(|x| shr(x, e - nn.e));
+            // ∂(D·n) in units of 2ᵉ: |·| ≤ √3·(2²⁹ + 2²⁷), one truncation.
+            let s = ((dot64(a, n) + dot64(d, b)) >> 30) as i32;
+            let r: [i32; 3] = core::array::from_fn(|k| {
+                // (∂D − 2·((D·n)·∂n + ∂(D·n)·n))·2²⁹ in 64 bits, one
+                // truncation: c and n are 2³⁰ times D·n and n.
+                let acc = (i64::from(a[k]) << 29)
+                    - i64::from(c) * i64::from(b[k])
+                    - i64::from(s) * i64::from(n[k]);
+                (acc >> 29) as i32
+            });
+            self.set(2 + axis, Bfp3::new(r, e));
+        }
     }
 
     /// Refraction through the unit shading normal `n` facing the incoming
-    /// ray (`D·n < 0`) with differentials `dndx`, `dndy`, relative index
-    /// `eta` and `cos_t = cos θₜ = √(1 − η²(1 − (D·n)²))` (the caller has
-    /// it from the refracted direction `T = ηD + μn`); Igehy eq. 16–18 with
+    /// ray (`D·n < 0`) with differentials `dn`, relative index `eta` and
+    /// `cos_t = cos θₜ = √(1 − η²(1 − (D·n)²))` (the caller has it from the
+    /// refracted direction `T = ηD + μn`); Igehy eq. 16–18 with
     /// `cos θᵢ = −D·n`, `μ = η·cos θᵢ − cos θₜ`:
     /// `∂μ = (η − η²·cos θᵢ / cos θₜ)·∂cos θᵢ`, `∂cos θᵢ = −(∂D·n + D·∂n)`,
     /// `∂T = η·∂D + ∂μ·n + μ·∂n`; `∂O` is kept. `cos θₜ` is clamped to
-    /// [`MIN_COS`] (near the critical angle). Saturating (flag).
-    #[must_use]
-    pub fn refract(
-        self,
-        d: UnitVec,
-        n: UnitVec,
-        dndx: [DirDiff; 3],
-        dndy: [DirDiff; 3],
-        eta: Eta,
-        cos_t: I2F30,
-    ) -> (Self, bool) {
-        let mut sat = false;
-        let eta = i128::from(eta.to_bits()); // 2⁻²⁸
-        let cosi = -dot30(d, n); // 2⁻³⁰
-        let cos_t = i128::from(cos_t.to_bits()).max(i128::from(MIN_COS.to_bits()));
-        // μ in 2⁻³⁰ units.
-        let mu = shr_round(eta * cosi, 28) - cos_t;
-        // η²·cos θᵢ / cos θₜ in 2⁻³⁰ units: η² cos θᵢ is 2⁻⁸⁶, / 2⁻³⁰ → 2⁻⁵⁶.
-        // cos_t ≥ 2¹⁴ > 0: the fallback is never taken.
-        let ratio = shr_round((eta * eta * cosi).checked_div(cos_t).unwrap_or(0), 26);
-        let coef = (eta << 2) - ratio; // 2⁻³⁰, |coef| < 2⁵⁵
-        let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dcos = -shr_round(dot60(dd, n) + dot60(d, dnv), 30);
-            let dmu = shr_round(coef * dcos, 30);
-            core::array::from_fn(|k| {
-                let v = shr_round(eta * i128::from(dd[k].to_bits()), 28)
-                    + shr_round(dmu * i128::from(n[k].to_bits()), 30)
-                    + shr_round(mu * i128::from(dnv[k].to_bits()), 30);
-                DirDiff::from_bits(sat32(v, &mut sat))
-            })
-        };
-        let dddx = axis(self.dddx, dndx);
-        let dddy = axis(self.dddy, dndy);
-        (Self { dddx, dddy, ..self }, sat)
+    /// [`MIN_COS`] (near the critical angle). Per hit; never panics.
+    pub fn refract(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2], eta: Eta, cos_t: I2F30) {
+        let (d, n) = (bits(d), bits(n));
+        let eta = eta.0.to_bits();
+        // cos θᵢ in 2⁻³⁰ units (one truncation), cos θₜ clamped.
+        let ci = -((dot64(d, n) >> 30) as i32);
+        let ct = cos_t.to_bits().max(MIN_COS_I2F30);
+        // μ = η·cos θᵢ − cos θₜ in 2⁻²⁸ units (64 bits, one truncation).
+        let mu = Scalar::wide(
+            ((i64::from(eta) * i64::from(ci)) >> 30) - i64::from(ct >> 2),
+            -28,
+        );
+        let eta_s = Scalar::new(eta, -28);
+        // 1/cos θₜ: cos θₜ = x·2^(−30−lz), x = ct·2^lz ∈ [2³¹, 2³²), so
+        // 1/cos θₜ = recip(x)·2^(lz−32).
+        let lz = (ct as u32).leading_zeros();
+        let inv_ct = Scalar::new(recip((ct as u32) << lz) as i32, lz as i32 - 32);
+        // c = η − η²·cos θᵢ/cos θₜ.
+        let coef = eta_s.sub(eta_s.mul(eta_s).mul(Scalar::new(ci, -30)).mul(inv_ct));
+        for (axis, nn) in dn.iter().enumerate() {
+            let (dd, nn) = (self.get(2 + axis), nn.0);
+            // −∂cos θᵢ = ∂D·n + D·∂n, each halved in its own units, then
+            // aligned; ∂μ = −c·(∂D·n + D·∂n).
+            let sa = Scalar::new((dot64(dd.m, n) >> 31) as i32, dd.e + 1);
+            let sb = Scalar::new((dot64(d, nn.m) >> 31) as i32, nn.e + 1);
+            let dmu = coef.mul(sa.add(sb));
+            // The three terms η·∂D, −∂μ·n (mulhi with n: 2⁻³⁰ units),
+            // μ·∂n at their exponents, each below 2³⁰ before the shift.
+            let e1 = dd.e + eta_s.e + 32;
+            let e2 = dmu.e + 2;
+            let e3 = nn.e + mu.e + 32;
+            let e = e1.max(e2).max(e3) + 1;
+            let r: [i32; 3] = core::array::from_fn(|k| {
+                shr(mulhi(dd.m[k], eta_s.m), e - e1) - shr(mulhi(dmu.m, n[k]), e - e2)
+                    + shr(mulhi(nn.m[k], mu.m), e - e3)
+            });
+            self.set(2 + axis, Bfp3::new(r, e));
+        }
+    }
+}
+
+/// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at
+/// [`EXP_MIN`]) for the few scalars of a refraction.
+#[derive(Clone, Copy, Debug)]
+struct Scalar {
+    m: i32,
+    e: i32,
+}
+
+impl Scalar {
+    #[inline(always)]
+    fn new(m: i32, e: i32) -> Self {
+        let v = Bfp3::new([m, 0, 0], e);
+        Self { m: v.m[0], e: v.e }
+    }
+
+    #[inline(always)]
+    fn wide(m: i64, e: i32) -> Self {
+        let v = Bfp3::from_wide([m, 0, 0], e);
+        Self { m: v.m[0], e: v.e }
+    }
+
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        Self::new(mulhi(self.m, o.m), self.e + o.e + 32)
+    }
+
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        let e = self.e.max(o.e) + 1;
+        Self::new(shr(self.m, e - self.e) + shr(o.m, e - o.e), e)
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        let e = self.e.max(o.e) + 1;
+        Self::new(shr(self.m, e - self.e) - shr(o.m, e - o.e), e)
     }
 }
 
@@ -304,205 +574,242 @@ impl RayDiff {
 pub(crate) mod tests {
     extern crate std;
     use super::*;
+    use crate::raydiff_reference::{self as rf, V, dot, norm};
     use proptest::prelude::*;
 
-    pub(crate) type V = [f64; 3];
-
-    pub(crate) fn dot(a: V, b: V) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    /// f64 value of I2F30 unit-vector components.
+    pub(crate) fn vu(v: UnitVec) -> V {
+        v.map(|c| f64::from(c.to_bits()) * 2f64.powi(-30))
     }
-    pub(crate) fn add(a: V, b: V, s: f64) -> V {
-        [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]]
+    /// `v/|v|` as I2F30 components.
+    pub(crate) fn unit_q(v: V) -> UnitVec {
+        let l = norm(v);
+        v.map(|c| I2F30::saturating_from_num(c / l))
     }
-    pub(crate) fn norm(a: V) -> V {
-        let l = dot(a, a).sqrt();
-        [a[0] / l, a[1] / l, a[2] / l]
+    pub(crate) fn state(s: &RayDiff) -> rf::Diff {
+        rf::Diff {
+            dox: s.dox().to_f64(),
+            doy: s.doy().to_f64(),
+            ddx: s.ddx().to_f64(),
+            ddy: s.ddy().to_f64(),
+        }
     }
-    pub(crate) fn uq(a: V) -> UnitVec {
-        a.map(I2F30::from_num)
-    }
-    pub(crate) fn pf(a: [PosDiff; 3]) -> V {
-        a.map(|x| x.to_num())
-    }
-    pub(crate) fn df(a: [DirDiff; 3]) -> V {
-        a.map(|x| x.to_num())
-    }
-
-    /// f64 Igehy transfer, as the harness's tracer writes it.
-    pub(crate) fn transfer_f64(o: V, dd: V, d: V, t: f64, n: V) -> V {
-        let q = add(o, dd, t);
-        let dn = dot(d, n);
-        let dn = if dn.abs() < MIN_COS.to_num::<f64>() {
-            MIN_COS
-                .to_num::<f64>()
-                .copysign(if dn == 0.0 { 1.0 } else { dn })
-        } else {
-            dn
-        };
-        add(q, d, -dot(q, n) / dn)
+    /// Largest component of `a − b`.
+    fn dist(a: V, b: V) -> f64 {
+        (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
     }
 
+    /// A block-floating-point vector of any mantissas (down to one
+    /// significant bit) with an exponent in `e` (f64 values stay normal).
+    fn bfp(e: core::ops::Range<i32>) -> impl Strategy<Value = Bfp3> {
+        (any::<[i32; 3]>(), e, 0u32..32).prop_map(|(m, e, s)| Bfp3::new(m.map(|x| x >> s), e))
+    }
     fn unit() -> impl Strategy<Value = V> {
-        ([-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64])
-            .prop_filter("non-zero", |v| dot(*v, *v) > 1e-3)
-            .prop_map(norm)
+        [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64].prop_filter("non-zero", |v| dot(*v, *v) > 1e-6)
     }
-
-    fn close(a: V, b: V, tol: f64) -> bool {
-        (0..3).all(|k| (a[k] - b[k]).abs() <= tol)
-    }
-
-    #[test]
-    fn primary_of_a_head_on_ray_is_the_pixel_step() {
-        let g = 1.0 / 512.0;
-        let f = [0.0, 0.0, 1.0];
-        let (r, sat) = RayDiff::primary(uq(f), uq(f), uq([g, 0.0, 0.0]), uq([0.0, -g, 0.0]));
-        assert!(!sat);
-        assert_eq!(df(r.dddx), [g, 0.0, 0.0]);
-        assert_eq!(df(r.dddy), [0.0, -g, 0.0]);
-        assert_eq!(r.dodx, [PosDiff::ZERO; 3]);
+    /// A normal at `|D·n| = c` to `d`, facing it, turned by `side`.
+    fn normal_at(d: V, c: f64, side: V) -> V {
+        let s = rf::axpy(side, -dot(side, d), d);
+        let s = rf::scale(1.0 / norm(s).max(1e-300), s);
+        rf::axpy(rf::scale(-c, d), (1.0 - c * c).max(0.0).sqrt(), s)
     }
 
     #[test]
-    fn grazing_and_zero_cases_clamp() {
-        let d = uq([1.0, 0.0, 0.0]);
-        let n = uq([0.0, 0.0, 1.0]); // D·n = 0: clamped
-        let base = RayDiff {
-            dddx: uq([0.0, 0.0, 1.0 / 1024.0]),
-            ..RayDiff::ZERO
-        };
-        let (r, sat) = base.transfer(d, PathLength::from_num(10), n);
+    fn head_on_cases_are_exact() {
+        let (z, o) = (I2F30::ZERO, I2F30::ONE);
+        let s = I2F30::from_num(1.0 / 512.0);
+        let f = [z, z, o];
+        let r = RayDiff::primary(
+            f,
+            f,
+            DirDiff::from_i2f30([s, z, z]),
+            DirDiff::from_i2f30([z, -s, z]),
+        );
+        assert_eq!(r.ddx().to_f64(), [1.0 / 512.0, 0.0, 0.0]);
+        assert_eq!(r.ddy().to_f64(), [0.0, -1.0 / 512.0, 0.0]);
+        assert_eq!(r.dox(), PosDiff::ZERO);
+        let mut t = r;
+        t.transfer(f, PathLength::from_num(3), [z, z, -o]);
+        assert_eq!(t.dox().to_f64(), [3.0 / 512.0, 0.0, 0.0]);
+        assert_eq!(t.ddx(), r.ddx());
+    }
+
+    #[test]
+    fn grazing_zero_and_extreme_inputs() {
+        let (z, o) = (I2F30::ZERO, I2F30::ONE);
+        let d = [o, z, z];
+        let n = [z, z, o]; // D·n = 0: clamped to +2⁻¹⁶
+        let base = RayDiff::new(
+            PosDiff::ZERO,
+            PosDiff::ZERO,
+            DirDiff::new([0, 0, 1], -10),
+            DirDiff::ZERO,
+        );
+        let mut r = base;
+        r.transfer(d, PathLength::from_num(10), n);
         // q = (0, 0, 10/1024); ∂t = −q·n / 2⁻¹⁶; ∂O' = q + ∂t·D.
         let want = -(10.0 / 1024.0) * 65536.0;
-        assert!(!sat);
         assert!(
-            (r.dodx[0].to_num::<f64>() - want).abs() < 1e-6,
+            (r.dox().to_f64()[0] - want).abs() <= want.abs() * 2f64.powi(-24),
             "{:?}",
-            r.dodx
+            r.dox()
         );
-        // Zero state stays zero through every operation.
-        let z = RayDiff::ZERO;
-        assert_eq!(z.transfer(d, PathLength::MAX, n).0, z);
-        assert_eq!(z.reflect(d, n, [DirDiff::ZERO; 3], [DirDiff::ZERO; 3]).0, z);
-        let (rr, _) = z.refract(
-            d,
-            n,
-            [DirDiff::ZERO; 3],
-            [DirDiff::ZERO; 3],
-            Eta::from_num(1),
-            I2F30::ZERO,
+        // t = 0 keeps ∂O; zero states stay zero.
+        let mut k = RayDiff::new(
+            PosDiff::new([5, 0, 0], -3),
+            PosDiff::ZERO,
+            DirDiff::new([1, 2, 3], 4),
+            DirDiff::ZERO,
         );
-        assert_eq!(rr, z);
-        // Extremes saturate with the flag, never panic.
-        let big = RayDiff {
-            dodx: [PosDiff::MAX; 3],
-            dody: [PosDiff::MIN; 3],
-            dddx: [DirDiff::MAX; 3],
-            dddy: [DirDiff::MIN; 3],
-        };
-        let zero = [I2F30::ZERO; 3];
-        assert!(big.transfer(zero, PathLength::MAX, zero).1);
-        for v in [[I2F30::MAX; 3], [I2F30::MIN; 3], zero] {
-            let _ = big.transfer(v, PathLength::MAX, v);
-            let _ = big.reflect(v, v, [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
-            let _ = big.refract(
-                v,
-                v,
-                [DirDiff::MAX; 3],
-                [DirDiff::MIN; 3],
-                Eta::MAX,
-                I2F30::MIN,
-            );
-            let _ = big.refract(
-                v,
-                v,
-                [DirDiff::MIN; 3],
-                [DirDiff::MAX; 3],
-                Eta::MIN,
-                I2F30::MAX,
-            );
-            let _ = RayDiff::primary(v, v, [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
+        k.transfer([z, z, o], PathLength::ZERO, [z, z, -o]);
+        assert_eq!(k.dox().to_f64(), [5.0 / 8.0, 0.0, 0.0]);
+        let zero = RayDiff::ZERO;
+        let mut zz = zero;
+        zz.transfer(d, PathLength::MAX, n);
+        zz.reflect(d, n, [DirDiff::ZERO; 2]);
+        zz.refract(d, n, [DirDiff::ZERO; 2], Eta::ONE, z);
+        assert_eq!(zz, zero);
+        // Every extreme: no panic, exponents inside their range.
+        let big = |e: i32| DirDiff::new([i32::MIN, i32::MAX, -1], e);
+        let pbig = |e: i32| PosDiff::new([i32::MAX, i32::MIN, 1], e);
+        for e in [EXP_MIN, -100, 0, 100, EXP_MAX] {
+            let st = RayDiff::new(pbig(e), pbig(-e), big(e), big(-e));
+            for v in [[I2F30::MAX; 3], [I2F30::MIN; 3], [z; 3], d] {
+                let mut s = st;
+                s.transfer(v, PathLength::MAX, v);
+                s.reflect(v, v, [big(e), big(EXP_MAX)]);
+                s.refract(
+                    v,
+                    v,
+                    [big(EXP_MAX), big(e)],
+                    Eta::from_fixed(I4F28::MAX),
+                    I2F30::MIN,
+                );
+                s.refract(
+                    v,
+                    v,
+                    [big(e), big(e)],
+                    Eta::from_fixed(I4F28::MIN),
+                    I2F30::MAX,
+                );
+                let _ = RayDiff::primary(v, v, big(e), big(EXP_MAX));
+                for p in [s.dox().parts(), s.ddy().parts()] {
+                    assert!((EXP_MIN..=EXP_MAX).contains(&p.1));
+                }
+            }
         }
+    }
+
+    #[test]
+    fn conversions() {
+        let v = [0.375, -1e-9, 3.0e12];
+        let p = PosDiff::from_f64(v).to_f64();
+        for k in 0..3 {
+            assert!((p[k] - v[k]).abs() <= 3.0e12 * 2f64.powi(-29));
+        }
+        assert_eq!(
+            DirDiff::from_f64([0.0, f64::NAN, f64::INFINITY]),
+            DirDiff::ZERO
+        );
+        assert_eq!(
+            DirDiff::from_f64([1.0, 0.5, -0.25]).to_f64(),
+            [1.0, 0.5, -0.25]
+        );
+        let s = I2F30::from_bits(-7);
+        assert_eq!(DirDiff::from_i2f30([s; 3]).to_i2f30(), [s; 3]);
+        assert_eq!(DirDiff::new([1, 0, 0], 40).to_i2f30()[0], I2F30::MAX);
+        assert_eq!(
+            DirDiff::new([1 << 30, 0, 0], -90).to_i2f30()[0],
+            I2F30::ZERO
+        );
+        assert_eq!(core::mem::size_of::<RayDiff>(), 56);
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(3_000))]
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
 
-        /// Transfer, reflection and refraction against f64 of the same
-        /// (quantised) inputs: position differentials within
-        /// `2⁻²⁴ + 2⁻²⁹/|D·n|` relative (+ `2⁻²⁸ + 2⁻³⁰/|D·n|` absolute), reflected
-        /// direction differentials within 2⁻²⁶ of the input magnitudes (+ 8
-        /// LSB), refracted ones within `2⁻²²/cos θₜ` (+ 16 LSB).
+        /// The transfer within `TRANSFER_ERROR·(|∂O| + t|∂D|)(1 + 1/|D·n|)`
+        /// of f64 on the same inputs: any mantissas, exponents across 120
+        /// octaves, t over the whole U32F32 range, |D·n| from 1 down to
+        /// below MIN_COS.
         #[test]
-        fn operations_match_f64(
-            d in unit(), n in unit(), f in unit(),
-            ox in [-1.0..1.0f64, -1.0..1.0, -1.0..1.0],
-            dx in [-1.0..1.0f64, -1.0..1.0, -1.0..1.0],
-            nx in [-1.0..1.0f64, -1.0..1.0, -1.0..1.0],
-            so in -20i32..8, sd in -16i32..-2, sn in -16i32..0,
-            t in 1.0e-3..1.0e3f64,
-            eta in 0.4..2.5f64,
-        ) {
-            let (so, sd, sn) = (2f64.powi(so), 2f64.powi(sd), 2f64.powi(sn));
-            let dq = df(uq(d));
-            let nq = df(uq(n));
-            let o = pf(ox.map(|x| PosDiff::from_num(x * so)));
-            let dd = df(uq(dx.map(|x| x * sd)));
-            let dn = df(uq(nx.map(|x| x * sn)));
-            let tq = PathLength::from_num(t);
-            let s = RayDiff {
-                dodx: o.map(PosDiff::from_num),
-                dody: [PosDiff::ZERO; 3],
-                dddx: uq(dd),
-                dddy: [DirDiff::ZERO; 3],
-            };
-            // Transfer.
-            let cos = dot(dq, nq).abs();
-            prop_assume!(cos > 1e-3);
-            let (r, sat) = s.transfer(uq(dq), tq, uq(nq));
-            let want = transfer_f64(o, dd, dq, tq.to_num(), nq);
-            let mag = want.iter().chain(&o).fold(0.0f64, |m, x| m.max(x.abs())) + sd * t / cos;
-            prop_assert!(!sat);
-            // D·n is resolved to 2⁻³⁰: relative error up to 2⁻²⁹/|D·n| near grazing.
-            let rel = 2f64.powi(-24) + 2f64.powi(-29) / cos;
-            // q is rounded to 2⁻³³ per component; ∂t amplifies that by 1/|D·n|.
-            let abs = 2f64.powi(-28) + 2f64.powi(-30) / cos;
-            prop_assert!(close(pf(r.dodx), want, mag * rel + abs),
-                "transfer {:?} vs {:?}", pf(r.dodx), want);
-            // Reflection (Igehy eq. 14–15).
-            let (r, _) = s.reflect(uq(dq), uq(nq), uq(dn), [DirDiff::ZERO; 3]);
-            let dnd = dot(dq, nq);
-            let ddn = dot(dd, nq) + dot(dq, dn);
-            let want: V = core::array::from_fn(|k| dd[k] - 2.0 * (dnd * dn[k] + ddn * nq[k]));
-            let tol = (sd + sn) * 2f64.powi(-26) + 8.0 * 2f64.powi(-30);
-            prop_assume!(want.iter().all(|x| x.abs() < 1.99));
-            prop_assert!(close(df(r.dddx), want, tol), "reflect {:?} vs {:?}", df(r.dddx), want);
-            // Refraction, with n facing the ray.
-            let nf = if dnd > 0.0 { nq.map(|x| -x) } else { nq };
-            let dnf = if dnd > 0.0 { dn.map(|x| -x) } else { dn };
-            let cosi = -dot(dq, nf);
-            let etaq = Eta::from_num(eta).to_num::<f64>();
-            let k = 1.0 - etaq * etaq * (1.0 - cosi * cosi);
-            if k > 1e-2 {
-                let ct = I2F30::from_num(k.sqrt());
-                let ctf = ct.to_num::<f64>();
-                let (r, sat) = s.refract(uq(dq), uq(nf), uq(dnf), [DirDiff::ZERO; 3], Eta::from_num(eta), ct);
-                let mu = etaq * cosi - ctf;
-                let dcos = -(dot(dd, nf) + dot(dq, dnf));
-                let dmu = (etaq - etaq * etaq * cosi / ctf) * dcos;
-                let want: V = core::array::from_fn(|k| etaq * dd[k] + dmu * nf[k] + mu * dnf[k]);
-                if !sat {
-                    let tol = (sd + sn) * 2f64.powi(-22) / ctf + 16.0 * 2f64.powi(-30);
-                    prop_assert!(close(df(r.dddx), want, tol), "refract {:?} vs {:?}", df(r.dddx), want);
+        fn transfer_within_its_bound(o in bfp(-80..40), dd in bfp(-80..0), t in any::<u64>(), ts in 0u32..64,
+                                     d in unit(), side in unit(), lc in -17.0..0.0f64) {
+            let du = unit_q(d);
+            let df = vu(du);
+            let n = unit_q(normal_at(df, lc.exp2(), side));
+            let t = PathLength::from_bits(t >> ts);
+            let s = RayDiff::new(PosDiff(o), PosDiff(Bfp3::new([1, -2, 3], o.e - 7)), DirDiff(dd), DirDiff::ZERO);
+            let mut got = s;
+            got.transfer(du, t, n);
+            let want = rf::transfer(&state(&s), df, t.to_num(), vu(n));
+            let c = dot(df, vu(n)).abs().max(rf::MIN_COS);
+            for (g, w, o, dd) in [(got.dox(), want.dox, s.dox(), s.ddx()), (got.doy(), want.doy, s.doy(), s.ddy())] {
+                let scale = (norm(o.to_f64()) + t.to_num::<f64>() * norm(dd.to_f64())) * (1.0 + 1.0 / c);
+                let err = dist(g.to_f64(), w);
+                prop_assert!(err <= TRANSFER_ERROR * scale, "{:e} > {:e}: {:?} vs {:?}", err, TRANSFER_ERROR * scale, g.to_f64(), w);
             }
-            }
-            // Primary set-up.
-            let g = sd;
-            let rq = df(uq([g, 0.0, 0.0]));
-            let (p, _) = RayDiff::primary(uq(dq), uq(f), uq(rq), uq(rq));
-            let dr = dot(dq, rq);
-            let want: V = core::array::from_fn(|k| dot(dq, f) * (rq[k] - dr * dq[k]));
-            prop_assert!(close(df(p.dddx), want, 4.0 * 2f64.powi(-30)), "primary {:?} vs {:?}", df(p.dddx), want);
+            prop_assert_eq!(got.ddx(), s.ddx());
         }
+
+        /// The reflection within `REFLECT_ERROR·(|∂D| + 4|∂n|)`.
+        #[test]
+        fn reflect_within_its_bound(dd in bfp(-80..0), dn in bfp(-80..0), d in unit(), n in unit()) {
+            let (du, nu) = (unit_q(d), unit_q(n));
+            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff(dd));
+            let mut got = s;
+            got.reflect(du, nu, [DirDiff(dn), DirDiff::ZERO]);
+            let want = rf::reflect(&state(&s), vu(du), vu(nu), val(dn), [0.0; 3]);
+            let sx = norm(val(dd)) + 4.0 * norm(val(dn));
+            let ex = dist(got.ddx().to_f64(), want.ddx);
+            prop_assert!(ex <= REFLECT_ERROR * sx, "{:e}: {:?} vs {:?}", ex / sx, got.ddx().to_f64(), want.ddx);
+            let ey = dist(got.ddy().to_f64(), want.ddy);
+            prop_assert!(ey <= REFLECT_ERROR * norm(val(dd)));
+            prop_assert_eq!(got.dox(), s.dox());
+        }
+
+        /// The refraction within `REFRACT_ERROR·(1 + 2η + η²/cos θₜ)(|∂D| + |∂n|)`,
+        /// η over the I4F28 range used (0.25–7.9), cos θₜ down to 0.
+        #[test]
+        fn refract_within_its_bound(dd in bfp(-80..0), dn in bfp(-80..0), d in unit(), n in unit(),
+                                    eta in 0.25..7.9f64, ct_frac in 0.0..1.0f64, exact in any::<bool>()) {
+            let du = unit_q(d);
+            let nf = if dot(vu(du), vu(unit_q(n))) > 0.0 { n.map(|x| -x) } else { n };
+            let nu = unit_q(nf);
+            let (df, nq) = (vu(du), vu(nu));
+            let eta = I4F28::from_num(eta);
+            let ef = eta.to_num::<f64>();
+            let ci = -dot(df, nq);
+            let k = 1.0 - ef * ef * (1.0 - ci * ci);
+            // cos θₜ from the directions, or any value (the caller's).
+            let ct = I2F30::from_num(if exact && k >= 0.0 { k.sqrt() } else { ct_frac });
+            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
+            let mut got = s;
+            got.refract(du, nu, [DirDiff(dn), DirDiff::ZERO], Eta::from_fixed(eta), ct);
+            let ctf = ct.to_num::<f64>().max(rf::MIN_COS);
+            let want = rf::refract(&state(&s), df, nq, val(dn), [0.0; 3], ef, ctf);
+            let scale = (1.0 + 2.0 * ef + ef * ef / ctf) * (norm(val(dd)) + norm(val(dn)));
+            let err = dist(got.ddx().to_f64(), want.ddx);
+            prop_assert!(err <= REFRACT_ERROR * scale, "{:e}: {:?} vs {:?}", err / scale, got.ddx().to_f64(), want.ddx);
+        }
+
+        /// The primary set-up within `PRIMARY_ERROR·(|D·f| + 1)·|r|`, any
+        /// direction against any forward axis, steps across 60 octaves.
+        #[test]
+        fn primary_within_its_bound(r in bfp(-60..0), u in bfp(-60..0), d in unit(), f in unit()) {
+            let (du, fu) = (unit_q(d), unit_q(f));
+            let got = RayDiff::primary(du, fu, DirDiff(r), DirDiff(u));
+            let want = rf::primary(vu(du), vu(fu), val(r), val(u));
+            let df = dot(vu(du), vu(fu)).abs() + 1.0;
+            for (g, w, a) in [(got.ddx(), want.ddx, r), (got.ddy(), want.ddy, u)] {
+                let err = dist(g.to_f64(), w);
+                prop_assert!(err <= PRIMARY_ERROR * df * norm(val(a)), "{:e}", err / (df * norm(val(a))));
+            }
+        }
+    }
+
+    /// f64 value of a block-floating-point vector.
+    fn val(v: Bfp3) -> V {
+        PosDiff(v).to_f64()
     }
 }

@@ -334,8 +334,8 @@ mod env {
     #[inline(never)]
     pub fn rm_bench_env_raydiff(
         m: &EnvMap,
-        dx: [raymip::path::raydiff::DirDiff; 3],
-        dy: [raymip::path::raydiff::DirDiff; 3],
+        dx: raymip::path::raydiff::DirDiff,
+        dy: raymip::path::raydiff::DirDiff,
         d: UnitVec,
     ) -> Lod {
         m.raydiff_lod(dx, dy, Some(d))
@@ -368,9 +368,13 @@ fn envmap_rows() {
         env::rm_bench_env_cone_lat(&map, g, d).to_bits() as u32
     });
     #[cfg(feature = "raydiff")]
-    measure(&env_in, |(_, d, dx, dy)| {
-        env::rm_bench_env_raydiff(&map, dx, dy, d).to_bits() as u32
-    });
+    {
+        use raymip::path::raydiff::DirDiff;
+        let rd_in = env_in.map(|(_, d, dx, dy)| (d, DirDiff::from_i2f30(dx), DirDiff::from_i2f30(dy)));
+        measure(&rd_in, |(d, dx, dy)| {
+            env::rm_bench_env_raydiff(&map, dx, dy, d).to_bits() as u32
+        });
+    }
     measure(&env_in, |(_, d, ..)| {
         let (u, v) = env::rm_bench_env_uv(d);
         (u.to_bits() ^ v.to_bits()) as u32

@@ -1,0 +1,189 @@
+//! Block floating point for the ray differentials: a 3-vector of 32-bit
+//! mantissas with one exponent, and the 32-bit kernels the differential
+//! operations are made of (multiply-high, alignment, normalisation, the
+//! reciprocal by one division and a Newton step).
+//!
+//! A vector `(m₀, m₁, m₂; e)` stands for `mₖ·2ᵉ`. Normalised: the largest
+//! `|mₖ|` lies in `[2³⁰ − 1, 2³¹]` (`mₖ ^ (mₖ >> 31)` has one leading zero),
+//! or every `mₖ = 0` with `e` = [`EXP_MIN`]. Truncating a normalised vector
+//! to `2ᵉ` costs less than `2⁻²⁹·(1 + 2⁻³⁰)` of its largest component.
+
+use crate::lod::log2::clz32;
+
+/// Smallest exponent (that of the zero vector): `−2¹⁴`.
+pub const EXP_MIN: i32 = -(1 << 14);
+/// Largest exponent: `2¹⁴ − 1`. A vector there is beyond every lod (the
+/// lod saturates at `Lod::MAX` long before); nothing larger is
+/// represented. (`[EXP_MIN, EXP_MAX]` is one `ssat` on the Cortex-M4.)
+pub const EXP_MAX: i32 = (1 << 14) - 1;
+
+/// `⌊a·b / 2³²⌋` (one `smmul` on the Cortex-M4, one `mulh` on RV32).
+#[inline(always)]
+#[must_use]
+pub(crate) fn mulhi(a: i32, b: i32) -> i32 {
+    ((i64::from(a) * i64::from(b)) >> 32) as i32
+}
+
+/// `⌊a·b / 2³²⌋` unsigned (`umull` / `mulhu`).
+#[inline(always)]
+#[must_use]
+pub(crate) fn mulhi_u(a: u32, b: u32) -> u32 {
+    ((u64::from(a) * u64::from(b)) >> 32) as u32
+}
+
+/// `Σ aₖ·bₖ` exact in 64 bits (`smull` + two `smlal`; `|Σ| < 3·2⁶²`).
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot64(a: [i32; 3], b: [i32; 3]) -> i64 {
+    i64::from(a[0]) * i64::from(b[0])
+        + i64::from(a[1]) * i64::from(b[1])
+        + i64::from(a[2]) * i64::from(b[2])
+}
+
+/// `x >> s` for any `s ≥ 0` (`s ≥ 31` gives the sign: `0` or `−1`); the
+/// shift count saturates in one `usat`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn shr(x: i32, s: i32) -> i32 {
+    x >> s.clamp(0, 31)
+}
+
+/// `≈ 2⁶²/x` for `x ∈ [2³¹, 2³²)`, in `[2³⁰, 2³¹)`, within `3·2⁻³⁰`
+/// relative: one 32/16-bit division (`udiv` / `divu`, relative error
+/// `< 2⁻¹⁵`) and one Newton step, which squares that error (`< 2⁻³⁰`), two
+/// truncations and the clamp below `2³¹` (at `x = 2³¹`).
+#[inline(always)]
+#[must_use]
+pub(crate) fn recip(x: u32) -> u32 {
+    // x >> 16 ∈ [2¹⁵, 2¹⁶); the `| 0x8000` (no change) shows the divisor
+    // is not zero, so no check remains.
+    let q = (u32::MAX / ((x >> 16) | 0x8000)) << 14;
+    // q ≤ 2⁶²/x: p = x·q/2³² ≤ 2³⁰, 2³¹ − p ∈ [2³⁰, 2³¹).
+    let p = mulhi_u(x, q);
+    mulhi_u(q << 1, (0x8000_0000 - p) << 1).min(0x7FFF_FFFF)
+}
+
+/// A normalised block-floating-point 3-vector (see the [module docs](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Bfp3 {
+    /// Mantissas.
+    pub m: [i32; 3],
+    /// Exponent of the mantissas' unit.
+    pub e: i32,
+}
+
+impl Bfp3 {
+    /// The zero vector.
+    pub const ZERO: Self = Self {
+        m: [0; 3],
+        e: EXP_MIN,
+    };
+
+    /// `m·2ᵉ` normalised (any mantissas, any `e`; the exponent saturates at
+    /// [`EXP_MIN`], [`EXP_MAX`]).
+    #[inline(always)]
+    #[must_use]
+    pub fn new(m: [i32; 3], e: i32) -> Self {
+        // The largest magnitude (less one for negatives) has its top bit
+        // clear: one leading zero wanted, `clz((o << 1) | 1) = clz(o) − 1`
+        // ∈ [0, 31] (a zero vector shifts by 31 and stays zero).
+        let o = (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31));
+        let s = clz32(((o as u32) << 1) | 1) as i32;
+        let e = if (m[0] | m[1] | m[2]) == 0 {
+            EXP_MIN
+        } else {
+            (e - s).clamp(EXP_MIN, EXP_MAX)
+        };
+        Self {
+            m: m.map(|x| x << s),
+            e,
+        }
+    }
+
+    /// `m·2ᵉ` from 64-bit mantissas (`|mₖ| ≤ 2⁶³`), truncated to 32 bits
+    /// (set-up and G-buffer conversions; not per hit).
+    #[must_use]
+    pub fn from_wide(m: [i64; 3], e: i32) -> Self {
+        let o = (m[0] ^ (m[0] >> 63)) | (m[1] ^ (m[1] >> 63)) | (m[2] ^ (m[2] >> 63));
+        let s = (64 - o.leading_zeros() as i32 - 31).max(0);
+        Self::new(m.map(|x| (x >> s) as i32), e.saturating_add(s))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use proptest::prelude::*;
+
+    fn value(v: Bfp3) -> [f64; 3] {
+        v.m.map(|m| f64::from(m) * f64::from(v.e).exp2())
+    }
+
+    #[test]
+    fn normalisation_edges() {
+        assert_eq!(Bfp3::new([0; 3], 5), Bfp3::ZERO);
+        let v = Bfp3::new([1, 0, -1], 0);
+        assert_eq!((v.m, v.e), ([1 << 30, 0, -(1 << 30)], -30));
+        let v = Bfp3::new([i32::MIN, 0, 0], 0);
+        assert_eq!((v.m, v.e), ([i32::MIN, 0, 0], 0));
+        let v = Bfp3::new([-(1 << 30), 0, 0], 0);
+        assert_eq!((v.m, v.e), ([i32::MIN, 0, 0], -1));
+        assert_eq!(Bfp3::new([1, 1, 1], EXP_MAX + 100).e, EXP_MAX);
+        assert_eq!(Bfp3::new([1, 1, 1], EXP_MIN - 100).e, EXP_MIN);
+        assert_eq!(Bfp3::new([1, 1, 1], EXP_MIN).e, EXP_MIN);
+        assert_eq!(Bfp3::from_wide([i64::MIN, 0, 1], 0).m[0], i32::MIN);
+        assert_eq!(shr(-5, 40), -1);
+        assert_eq!(shr(5, -3), 5);
+    }
+
+    #[test]
+    fn reciprocal_bound_at_the_ends_and_powers_of_two() {
+        let mut xs: std::vec::Vec<u32> = std::vec![1 << 31, u32::MAX, (1 << 31) + 1];
+        for k in 0..31 {
+            xs.push((1u32 << 31) | (1 << k));
+            xs.push(u32::MAX - (1 << k));
+        }
+        for x in xs {
+            let y = recip(x);
+            let want = 2f64.powi(62) / f64::from(x);
+            let rel = (want - f64::from(y)) / want;
+            assert!(
+                rel.abs() <= 3.0 * 2f64.powi(-30),
+                "{x}: {y} vs {want} ({rel:e})"
+            );
+            assert!((1 << 30..1 << 31).contains(&y));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn reciprocal_within_its_bound(x in (1u32 << 31)..=u32::MAX) {
+            let y = recip(x);
+            let want = 2f64.powi(62) / f64::from(x);
+            let rel = (want - f64::from(y)) / want;
+            prop_assert!(rel.abs() <= 3.0 * 2f64.powi(-30), "{} vs {} ({:e})", y, want, rel);
+        }
+
+        #[test]
+        fn normalise_keeps_the_value(m in any::<[i32; 3]>(), e in -1000i32..1000) {
+            let v = Bfp3::new(m, e);
+            let want = m.map(|x| f64::from(x) * f64::from(e).exp2());
+            prop_assert_eq!(value(v), want);
+            let top = v.m.iter().map(|x| x ^ (x >> 31)).fold(0, |o, x| o | x);
+            prop_assert!(m == [0; 3] || top.leading_zeros() == 1);
+        }
+
+        #[test]
+        fn wide_truncates_below_a_unit(m in any::<[i64; 3]>(), e in -1000i32..900) {
+            let v = Bfp3::from_wide(m, e);
+            let top = m.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0) as f64;
+            for (&mk, got) in m.iter().zip(value(v)) {
+                let want = mk as f64 * f64::from(e).exp2();
+                prop_assert!((got - want).abs() <= 2f64.powi(-29) * top * f64::from(e).exp2() + 1e-300);
+            }
+        }
+    }
+}
