@@ -13,6 +13,7 @@ mod bc_decode;
 mod cli_render;
 mod demo_scene;
 mod geomlod;
+mod raydiff_chains;
 mod skipping;
 mod stress;
 mod texture_f32;

@@ -100,13 +100,14 @@ impl Bfp3 {
         }
     }
 
-    /// `m·2ᵉ` from 64-bit mantissas (`|mₖ| ≤ 2⁶³`), truncated to 32 bits
-    /// (set-up and G-buffer conversions; not per hit).
+    /// `m·2ᵉ` from 64-bit mantissas, truncated to 31 significant bits of
+    /// the largest (any `e`: it saturates).
     #[must_use]
     pub fn from_wide(m: [i64; 3], e: i32) -> Self {
         let o = (m[0] ^ (m[0] >> 63)) | (m[1] ^ (m[1] >> 63)) | (m[2] ^ (m[2] >> 63));
         let s = (64 - o.leading_zeros() as i32 - 31).max(0);
-        Self::new(m.map(|x| (x >> s) as i32), e.saturating_add(s))
+        let e = e.clamp(2 * EXP_MIN, 2 * EXP_MAX) + s;
+        Self::new(m.map(|x| (x >> s) as i32), e)
     }
 }
 

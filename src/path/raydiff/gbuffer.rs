@@ -13,7 +13,7 @@
 //! units so that the difference of two positions fits), and unit normals
 //! in I2F30: a differential is one 32-bit subtraction per component, exact.
 
-use super::{Bfp3, DirDiff, PosDiff, RayDiff, UnitVec};
+use super::{Bfp3, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
 
 /// One pixel's first hit in the G-buffer: position and hit distance in
 /// units of the buffer's `2^scale` scene units (positions below `2³⁰` in
@@ -76,7 +76,10 @@ pub fn axis(
     };
     let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
     let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
-    (PosDiff(Bfp3::new(dp, scale)), DirDiff(Bfp3::new(dn, -30)))
+    (
+        PosDiff(Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX))),
+        DirDiff(Bfp3::new(dn, -30)),
+    )
 }
 
 /// The first hit's differential state from the G-buffer (positions at

@@ -35,13 +35,61 @@
 //! # Grazing angles
 //!
 //! A transfer divides by `D·n` and a refraction by `cos θₜ`; both are
-//! clamped to `|·| ≥ `[`MIN_COS`](crate::lod::MIN_COS)` = 2⁻¹⁶` (as the cone method's normal
+//! clamped to `|·| ≥ `[`MIN_COS`]` = 2⁻¹⁶` (as the cone method's normal
 //! term), so the footprint of a grazing hit is at most `2¹⁶` times the
 //! head-on one.
 //!
 //! # Error bound
 //!
-//! ERROR-ANALYSIS
+//! Each operation is exact on its stored inputs up to a local error found
+//! by counting its truncations: every shift and multiply-high truncates
+//! towards −∞ by less than one unit of its result, and a normalised
+//! vector's unit is at most `u·|v|∞` (`u = 2⁻³⁰`, to first order; the
+//! second-order terms are below `2⁻⁵⁰` of each scale). On the largest
+//! component of the error, for every input (`|·|` Euclidean):
+//!
+//! | operation | constant | scale |
+//! |---|---|---|
+//! | [`RayDiff::primary`] | [`PRIMARY_ERROR`] = 2⁻²⁵ | `(|D·f| + 1)·|r|` |
+//! | [`RayDiff::transfer`] | [`TRANSFER_ERROR`] = 2⁻²³ | `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)` |
+//! | [`RayDiff::reflect`] | [`REFLECT_ERROR`] = 2⁻²⁴ | `|∂D| + 4·|∂n|` |
+//! | [`RayDiff::refract`] | [`REFRACT_ERROR`] = 2⁻²⁴ | `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` |
+//!
+//! * **Primary.** `(D·r)` from an exact 64-bit dot product, one truncation
+//!   (`< 2u|r|`); `r − (D·r)·D` at eight times the unit of `r`: two
+//!   truncations and that error, `< 18u|r|∞`; normalised, times `D·f`
+//!   (exact dot, `< u`) by one multiply-high (`< 4u` of the result):
+//!   `18u·(D·f)|r| + 10u|r| ≤ 32u·(|D·f| + 1)|r|`.
+//! * **Transfer.** `t` to 31 bits (`< u·t`); `t·∂D` by one multiply-high
+//!   of two 31-bit mantissas (at least 29 bits: `< 4u·t|∂D|`); the sum at
+//!   the larger exponent (two truncations, `< 8u·S`, `S = |∂O| + t|∂D|`):
+//!   `|δq| < 13u·S`. `D·n` exact in 64 bits, clamped, its 32-bit mantissa
+//!   (`< u/2`), `1/|D·n|` by one 32/16-bit division and a Newton step (`≤ 3u`), `w = D/(D·n)` by one
+//!   multiply-high (`< 4u/|D·n|`). `q·n` exact, truncated once (`< 8u·S`)
+//!   and normalised; the term `(q·n)·w` by one multiply-high (`< 16u·S/|D·n|`,
+//!   `w` has at least 27 bits); the difference at the larger exponent
+//!   (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|w| ≤ 1/|D·n|` and
+//!   `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 + 1/|D·n|)`.
+//! * **Reflection.** `∂D` and `∂n` at one exponent with 2 and 4 bits of
+//!   headroom (`2ᵉ ≤ 4u|∂D| + 16u|∂n|`, one truncation each); `D·n` to
+//!   `2⁻³⁰` (`< u`); `∂(D·n)` from exact dot products, one truncation
+//!   (`< (1 + 2√3)·2ᵉ` with the inputs'); the result exact in 64 bits and
+//!   truncated once: `12.93·2ᵉ + 2u|∂n| ≤ 64u·(|∂D| + 4|∂n|)`.
+//! * **Refraction.** The scalars `μ`, `1/cos θₜ` (division and Newton step) and
+//!   `c = η − η²·cos θᵢ/cos θₜ` as normalised 31-bit mantissas: each
+//!   multiply-high `< 4u` relative, `cos θᵢ` to `2⁻³⁰`, so
+//!   `|δc| ≤ 19u·η + 20u·η²/cos θₜ` and `|δμ| ≤ (9 + η)u + u|μ|`; `∂cos θᵢ`
+//!   from two exact dot products (`< 10u·N`, `N = |∂D| + |∂n|`), `∂μ`
+//!   (`< (33η + 34η²/cos θₜ)·u·N`); the three terms by one multiply-high
+//!   each and summed at the largest exponent (`< 24u·(η + |c| + |μ|)·N`):
+//!   `(37 + 119η + 62η²/cos θₜ)·u·N ≤ 64u·(1 + 2η + η²/cos θₜ)·N`.
+//!
+//! The footprint and lod add their own ([`crate::lod::raydiff`]); along a
+//! path the local errors propagate with each operation's gain (`1/|D·n|`
+//! for a transfer, 1 for a reflection's `∂D` and 4 for its `∂n`,
+//! `η + |c|` and `|c| + |μ|` for a refraction, `|κ|` from the normal
+//! differentials of a curved surface): the resulting bound of the lod, as
+//! a function of the path, is derived and tested there.
 
 use fixed::types::{I2F30, I4F28};
 
@@ -65,8 +113,8 @@ pub use crate::path::raystack::UnitVec;
 pub const PRIMARY_ERROR: f64 = 1.0 / 33_554_432.0;
 /// Documented bound of [`RayDiff::transfer`]: the largest component of the
 /// error of `∂O'` is at most this times `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)`
-/// (`|D·n|` clamped): 2⁻²⁴.
-pub const TRANSFER_ERROR: f64 = 1.0 / 16_777_216.0;
+/// (`|D·n|` clamped): 2⁻²³.
+pub const TRANSFER_ERROR: f64 = 1.0 / 8_388_608.0;
 /// Documented bound of [`RayDiff::reflect`]: at most this times
 /// `|∂D| + 4·|∂n|` per component: 2⁻²⁴.
 pub const REFLECT_ERROR: f64 = 1.0 / 16_777_216.0;
@@ -119,12 +167,12 @@ macro_rules! diff_vec {
             /// The zero vector.
             pub const ZERO: Self = Self(Bfp3::ZERO);
 
-            /// `mₖ·2ᵉ`, normalised (any mantissas; exact unless the
-            /// exponent saturates at `±2¹⁴`).
+            /// `mₖ·2ᵉ`, normalised (any mantissas and exponent; exact
+            /// unless the exponent saturates at `−2¹⁴` or `2¹⁴ − 1`).
             #[inline]
             #[must_use]
             pub fn new(m: [i32; 3], e: i32) -> Self {
-                Self(Bfp3::new(m, e))
+                Self(Bfp3::new(m, e.clamp(2 * EXP_MIN, 2 * EXP_MAX)))
             }
 
             /// `mₖ·2ᵉ` from 64-bit mantissas, truncated to 31 significant
@@ -418,18 +466,17 @@ impl RayDiff {
         let lz = hi.leading_zeros();
         // |D·n| = cm·2^(−28−lz), cm ∈ [2³¹, 2³²) (one truncation).
         let cm = (hi << lz) | ((lo >> 1) >> (31 - lz));
-        // 1/|D·n| = y·2^(lz−34), so w = D/(D·n) = (D·±y >> 30)·2^(lz−34):
-        // |D·y| < 2⁶¹, one truncation.
+        // 1/|D·n| = y·2^(lz−34), so w = D/(D·n) = mulhi(D, ±y)·2^(lz−32),
+        // |w| < 2²⁹ with at least 27 significant bits in its largest
+        // component (|D|∞ ≥ 1/√3, y ≥ 2³⁰): not normalised.
         let y = recip(cm) as i32;
         let y = if c < 0 { -y } else { y };
-        // |w| < 2³¹ (|D| ≤ 1, y < 2³¹) with at least 29 significant bits
-        // in its largest component (|D|∞ ≥ 1/√3, y ≥ 2³⁰): not normalised.
-        let w = d.map(|x| ((i64::from(x) * i64::from(y)) >> 30) as i32);
-        let ew = lz as i32 - 34;
+        let w = d.map(|x| mulhi(x, y));
         // t = tm·2^et, tm ∈ [2³⁰, 2³¹) (zero: tm = 0 at EXP_MIN).
         let (tn, tz) = normalise64(t.to_bits());
         let tm = (tn >> 1) as i32;
         let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
+        let ew = lz as i32 - 32;
         for axis in 0..2 {
             let (o, dd) = (self.get(axis), self.get(2 + axis));
             // q = ∂O + t·∂D at 2^eq, |qₖ| < 2³¹ (∂O shifted by at least 1,
@@ -444,7 +491,7 @@ impl RayDiff {
             let sn = clz32((((qn ^ (qn >> 31)) as u32) << 1) | 1) as i32;
             let (qm, eqn) = (qn << sn, eq + 1 - sn);
             // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eqn+e_w+32),
-            // |mulhi| ≤ 2³⁰, and q shifted by at least one: |rₖ| < 2³¹.
+            // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
             let et_ = eqn + ew + 32;
             let er = (eq + 1).max(et_);
             let r: [i32; 3] =
