@@ -47,10 +47,30 @@ RD_ROWS = [("rd_primary", "primary set-up from the camera"),
            ("rd_transfer", "transfer to a hit"),
            ("rd_reflect", "reflection (shading-normal differentials)"),
            ("rd_refract", "refraction (shading-normal differentials)"),
-           ("rd_footprint", "footprint (two texture-space axes)"),
+           ("rd_footprint", "footprint (two texel-space axes)"),
            ("rd_lod", "lod from the footprint (larger axis)"),
            ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
 CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
+# Cortex-M4 goals of the ray differentials (issue 33; max instructions):
+# per call, and per textured hit as sums of rows.
+RD_GOALS = {"rd_primary": 150, "rd_transfer": 150, "rd_reflect": 120, "rd_refract": 300,
+            "rd_gbuffer": 150}
+RD_SUM_GOALS = [("footprint + lod", ["rd_footprint", "rd_lod"], 150),
+                ("ray-traced per textured hit (transfer + footprint + lod)",
+                 ["rd_transfer", "rd_footprint", "rd_lod"], 300),
+                ("G-buffer per first hit (set-up + footprint + lod)",
+                 ["rd_gbuffer", "rd_footprint", "rd_lod"], 180)]
+# CI ceilings of the ray differentials (max instructions per call): the goal
+# where it is met, else this measurement's maximum + 10 %.
+RD_CEILINGS = {
+    "rd_primary": {"m4": 150, "rv": 150, "rvzbb": 150},
+    "rd_transfer": {"m4": 150, "rv": 150, "rvzbb": 150},
+    "rd_reflect": {"m4": 120, "rv": 120, "rvzbb": 120},
+    "rd_refract": {"m4": 300, "rv": 300, "rvzbb": 300},
+    "rd_footprint": {"m4": 150, "rv": 150, "rvzbb": 150},
+    "rd_lod": {"m4": 150, "rv": 150, "rvzbb": 150},
+    "rd_gbuffer": {"m4": 150, "rv": 150, "rvzbb": 150},
+}
 # Environment map (feature `envmap`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
 ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
@@ -681,11 +701,13 @@ def render(work, old_text, readme):
     matrix_section(res, w, bad)
 
     w("\n## Ray differentials (feature `raydiff`)\n")
-    w("`raymip::path::raydiff` (Igehy's ray differentials in fixed point), each stage its own wrapper, 64")
-    w("calls on `inputs::raydiff` (a primary-like state, directions near `(±½, ±½, −0.7)`, normals")
-    w("near `+z` with small differentials), the footprint and lod on one 4 × 3 triangle of the demo")
-    w("texture size; counted like the calls above. min / mean / max.\n")
+    w("`raymip::path::raydiff` (Igehy's ray differentials in 32-bit block floating point), each stage")
+    w("its own wrapper, 64 calls on `inputs::raydiff` (a primary-like state, directions near")
+    w("`(±½, ±½, −0.7)`, normals near `+z` with small differentials), the footprint and lod on one")
+    w("4 × 3 triangle of the demo texture size; counted like the calls above. min / mean / max; the")
+    w("Cortex-M4 goal (issue 33) and the CI ceiling apply to the max.\n")
     mean = lambda k, c: stat(res[k]["rm_bench_" + c])[1]
+    rd_max = lambda k, c: stat(res[k]["rm_bench_" + c])[2]
 
     def call_table(rows):
         """min / mean / max of each (key, label) wrapper `rm_bench_<key>`."""
@@ -701,8 +723,31 @@ def render(work, old_text, readme):
         for label, f in per.items():
             w(f"| {label} | " + " | ".join(f"{f(k):.1f} | {f(k) / mean(k, 'cone_lod'):.2f}" for k, _ in ISAS) + " |")
 
-    call_table(RD_ROWS)
-    w("\nPer textured hit beside the other methods (means): ray-traced differentials = transfer +")
+    w("| call | Cortex-M4 | RV32IMAC | RV32IMAC+Zbb | goal M4 | ceiling M4 / RV32 / Zbb |")
+    w("|---|---|---|---|---|---|")
+    for key, label in RD_ROWS:
+        goal = RD_GOALS.get(key)
+        w(f"| {label} | " + " | ".join(fmt(stat(res[k]["rm_bench_" + key])) for k, _ in ISAS)
+          + f" | {'≤ ' + str(goal) if goal else '—'} | "
+          + " / ".join(str(RD_CEILINGS[key][k]) for k, _ in ISAS) + " |")
+        for k, _ in ISAS:
+            if rd_max(k, key) > RD_CEILINGS[key][k]:
+                bad.append(f"{k} {key}: max {rd_max(k, key)} instructions > ceiling {RD_CEILINGS[key][k]}")
+    met = [label for key, label in RD_ROWS if key in RD_GOALS and rd_max("m4", key) <= RD_GOALS[key]]
+    missed = [f"{label} ({rd_max('m4', key)} > {RD_GOALS[key]})" for key, label in RD_ROWS
+              if key in RD_GOALS and rd_max("m4", key) > RD_GOALS[key]]
+    for label, keys, goal in RD_SUM_GOALS:
+        total = sum(rd_max("m4", key) for key in keys)
+        (met if total <= goal else missed).append(
+            label if total <= goal else f"{label} ({total} > {goal})")
+    w(f"\nGoals met on the Cortex-M4 (max): {', '.join(met) if met else 'none'}. Missed: "
+      f"{'; '.join(missed) if missed else 'none'}. Where a goal is missed the ceiling is this")
+    w("measurement + 10 %. Each operation normalises its result vectors (a leading-zero count and")
+    w("a shift per component) and aligns its terms to one exponent (a shift per component and")
+    w("term); a transfer also normalises `D·n`, `t` and `q·n` and takes one reciprocal, and the")
+    w("two axes' temporaries exceed the Cortex-M4's registers (spills). The ray-stack state is read")
+    w("and written in place (`&mut RayDiff`).\n")
+    w("Per textured hit beside the other methods (means): ray-traced differentials = transfer +")
     w("footprint + lod; G-buffer differentials (first hit) = G-buffer set-up + footprint + lod; the")
     w("ratio is to the cone lod with the normal term (accurate; the talk measured about 3× and 2×")
     w("on a GPU). A bounce adds a reflection or refraction to the ray-traced path.\n")

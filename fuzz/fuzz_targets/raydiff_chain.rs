@@ -77,7 +77,7 @@ fn api(u: &mut Unstructured) -> Result<()> {
         Ok(GSample { p: u.arbitrary()?, n: unit(u)?, t: u.arbitrary()? })
     };
     let (cen, l, r) = (g(u)?, g(u)?, g(u)?);
-    let _ = first_hit(&s, &cen, [Some(&l), Some(&r), None, Some(&cen)], u.arbitrary()?);
+    let _ = first_hit(&mut s, &cen, [Some(&l), Some(&r), None, Some(&cen)], u.arbitrary()?);
     if let Ok(map) = raymip::lod::envmap::EnvMap::new(u.int_in_range(1..=1 << 15)?, u.int_in_range(1..=1 << 15)?) {
         let _ = map.raydiff_lod(s.ddx(), s.ddy(), Some(unit(u)?));
     }

@@ -14,11 +14,11 @@
 use std::fmt::Write as _;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip_host::cli::output::{machine_line, publish, write_option};
 use raymip_host::raydiff_chains::{CLASSES, Outcome, Raymip, run};
 use raymip_host::reference::Rng;
+use rayon::prelude::*;
 
 const BLOCK: &str = "raydiff-accuracy";
 
@@ -26,8 +26,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: u64 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(100_000);
     let write = write_option(&args);
-    let bar = ProgressBar::new(n * CLASSES.len() as u64)
-        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} chains {eta}")?);
+    let bar = ProgressBar::new(n * CLASSES.len() as u64).with_style(ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} chains {eta}",
+    )?);
     let mut t = String::new();
     writeln!(
         t,
@@ -52,7 +53,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let max = out.last().map_or(0.0, |o| o.err);
         let over = out.iter().filter(|o| o.err > RAYDIFF_LOD_MAX_ERROR).count();
         let over_bound = out.iter().filter(|o| o.err > o.bound).count();
-        let tight = out.iter().filter(|o| o.bound <= RAYDIFF_LOD_MAX_ERROR).count();
+        let tight = out
+            .iter()
+            .filter(|o| o.bound <= RAYDIFF_LOD_MAX_ERROR)
+            .count();
         let cos = out.iter().map(|o| o.cos_min).fold(1.0f64, f64::min);
         writeln!(
             t,

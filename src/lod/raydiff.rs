@@ -426,22 +426,30 @@ impl RayDiffFootprint {
 }
 
 /// `½·log2 max(s₀·4^e₀, s₁·4^e₁)` in I16F16 bits: the log2 of the larger
-/// of two lengths whose squares are `sᵢ·4^eᵢ` (`eᵢ` clamped to `±1024`, a
-/// zero `sᵢ` never wins, both zero give `−2²⁷`). The square's top 32 bits
+/// of two lengths whose squares are `sᵢ·4^eᵢ` (`eᵢ` clamped to
+/// `[−1024, 1023]`, a zero `sᵢ` never wins, both zero give `−2²⁷`). The square's top 32 bits
 /// and the crate's table logarithm: within `2⁻¹⁴ + 2⁻³¹` of the exact
 /// value (the table's `2⁻¹³` halved). Shared with the environment map's
 /// ray-differential lod.
 #[inline(always)]
 pub(crate) fn half_log2_max(s: [u64; 2], e: [i32; 2]) -> i32 {
-    let key = |i: usize| -> (i32, u32) {
+    // The key orders (log2 integer part, mantissa) as one u64: 2·e
+    // (clamped to [−2048, 2046], one `ssat`) plus the top bit's index,
+    // offset to stay positive, above the normalised mantissa. A zero
+    // square gets key 0 and never wins.
+    let key = |i: usize| -> u64 {
         let (m, lz) = normalise64(s[i]);
-        let k = 2 * e[i].clamp(-1024, 1024) + 63 - lz as i32;
-        (if s[i] == 0 { i32::MIN } else { k }, m)
+        let k = (2 * e[i].clamp(-1024, 1023) + 63 - lz as i32 + 4096) as u64;
+        if s[i] == 0 {
+            0
+        } else {
+            (k << 32) | u64::from(m)
+        }
     };
-    let (x, y) = (key(0), key(1));
-    let (k, m) = if y > x { y } else { x };
-    // k ∈ [−4096, 2111] after the max: the I16F16 sum fits.
-    ((k.max(-(1 << 12)) << 16) + mantissa_log2(m) as i32) >> 1
+    let top = key(0).max(key(1));
+    let (k, m) = ((top >> 32) as i32 - 4096, top as u32);
+    // k ∈ [−4096, 2109] (−4096: both zero): the I16F16 sum fits.
+    ((k << 16) + mantissa_log2(m) as i32) >> 1
 }
 
 #[cfg(test)]
@@ -555,7 +563,7 @@ mod tests {
         // A zero axis never wins, whatever its exponent.
         assert_eq!(l([0, 16], [500, -10]), -8.0);
         assert_eq!(l([0, 0], [5, 5]), -2048.0);
-        assert_eq!(l([u64::MAX, 1], [i32::MAX, i32::MIN]), 1024.0 + 32.0);
+        assert_eq!(l([u64::MAX, 1], [i32::MAX, i32::MIN]), 1023.0 + 32.0);
     }
 
     fn coord() -> impl Strategy<Value = f64> {

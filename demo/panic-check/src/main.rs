@@ -401,7 +401,8 @@ fn main() -> ! {
                 t: bb(5),
             });
             bb(axis(&g, Some(&g), None, bb(-20)));
-            bb(first_hit(&s, &g, [Some(&g), None, Some(&g), None], bb(-20)));
+            bb(first_hit(&mut s, &g, [Some(&g), None, Some(&g), None], bb(-20)));
+            bb(s);
         }
         // Environment map (feature `envmap`): the lods of a ray that leaves
         // the scene and the lat-long (u, v) of its direction.

@@ -128,7 +128,8 @@ impl Frame {
         match self {
             Self::Fixed(g, scale) => {
                 let (c, nb) = g.stencil(x, y)?;
-                let (d, dn) = raymip::path::raydiff::gbuffer::first_hit(primary, c, nb, *scale);
+                let mut d = *primary;
+                let dn = raymip::path::raydiff::gbuffer::first_hit(&mut d, c, nb, *scale);
                 Some(FirstHit::Fixed(d, dn))
             }
             Self::Float(g) => {

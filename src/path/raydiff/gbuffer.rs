@@ -34,8 +34,9 @@ use super::{Bfp3, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
 /// let centre = GSample { p: q(0.0, 0.0), n, t };
 /// let (left, right) = (GSample { p: q(-0.125, 0.0), n, t }, GSample { p: q(0.125, 0.0), n, t });
 /// let down = GSample { p: q(0.0, -0.125), n, t };
-/// let (diff, [dnx, dny]) =
-///     first_hit(&RayDiff::ZERO, &centre, [Some(&left), Some(&right), None, Some(&down)], scale);
+/// let mut diff = RayDiff::ZERO; // the camera's differentials of the pixel
+/// let [dnx, _] =
+///     first_hit(&mut diff, &centre, [Some(&left), Some(&right), None, Some(&down)], scale);
 /// // ∂P/∂x = P₊ − P = right − centre; in y (rows grow downwards) the
 /// // one side there is, P₊ = down: ∂P/∂y = down − centre.
 /// let v = |(m, e): ([i32; 3], i32)| m.map(|x| f64::from(x) * f64::from(e).exp2());
@@ -67,38 +68,48 @@ pub fn axis(
     plus: Option<&GSample>,
     scale: i32,
 ) -> (PosDiff, DirDiff) {
+    let (p, n) = axis_parts(c, minus, plus, scale);
+    (PosDiff(p), DirDiff(n))
+}
+
+#[inline(always)]
+fn axis_parts(
+    c: &GSample,
+    minus: Option<&GSample>,
+    plus: Option<&GSample>,
+    scale: i32,
+) -> (Bfp3, Bfp3) {
     let dt = |s: &GSample| s.t.abs_diff(c.t);
     let (a, b) = match (minus, plus) {
         (Some(m), Some(p)) if dt(m) < dt(p) => (c, m),
         (_, Some(p)) => (p, c),
         (Some(m), None) => (c, m),
-        (None, None) => return (PosDiff::ZERO, DirDiff::ZERO),
+        (None, None) => return (Bfp3::ZERO, Bfp3::ZERO),
     };
     let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
     let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
     (
-        PosDiff(Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX))),
-        DirDiff(Bfp3::new(dn, -30)),
+        Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX)),
+        Bfp3::new(dn, -30),
     )
 }
 
 /// The first hit's differential state from the G-buffer (positions at
-/// `2^scale` scene units): `∂O` (at the hit, no transfer needed) from
-/// [`axis`] in x (`left`, `right`) and y (`up`, `down`), `∂D` from the
-/// camera's `primary`; also the normal differentials `[∂n/∂x, ∂n/∂y]`
-/// that [`RayDiff::reflect`] and [`RayDiff::refract`] take. Per first hit;
-/// never panics.
-#[must_use]
+/// `2^scale` scene units), in place: `s` holds the camera's differentials
+/// of the pixel ([`RayDiff::primary`]); its `∂D` is kept and its `∂O` (at
+/// the hit, no transfer needed) set from [`axis`] in x (`left`, `right`)
+/// and y (`up`, `down`). Returns the normal differentials
+/// `[∂n/∂x, ∂n/∂y]` that [`RayDiff::reflect`] and [`RayDiff::refract`]
+/// take. Per first hit; never panics.
 pub fn first_hit(
-    primary: &RayDiff,
+    s: &mut RayDiff,
     c: &GSample,
     [left, right, up, down]: [Option<&GSample>; 4],
     scale: i32,
-) -> (RayDiff, [DirDiff; 2]) {
-    let (dox, dnx) = axis(c, left, right, scale);
-    let (doy, dny) = axis(c, up, down, scale);
-    (
-        RayDiff::new(dox, doy, primary.ddx(), primary.ddy()),
-        [dnx, dny],
-    )
+) -> [DirDiff; 2] {
+    let (dox, dnx) = axis_parts(c, left, right, scale);
+    let (doy, dny) = axis_parts(c, up, down, scale);
+    s.set(0, dox);
+    s.set(1, doy);
+    [DirDiff(dnx), DirDiff(dny)]
 }

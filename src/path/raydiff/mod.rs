@@ -52,7 +52,7 @@
 //! |---|---|---|
 //! | [`RayDiff::primary`] | [`PRIMARY_ERROR`] = 2⁻²⁵ | `(|D·f| + 1)·|r|` |
 //! | [`RayDiff::transfer`] | [`TRANSFER_ERROR`] = 2⁻²³ | `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)` |
-//! | [`RayDiff::reflect`] | [`REFLECT_ERROR`] = 2⁻²⁴ | `|∂D| + 4·|∂n|` |
+//! | [`RayDiff::reflect`] | [`REFLECT_ERROR`] = 2⁻²³ | `|∂D| + 4·|∂n|` |
 //! | [`RayDiff::refract`] | [`REFRACT_ERROR`] = 2⁻²⁴ | `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` |
 //!
 //! * **Primary.** `(D·r)` from an exact 64-bit dot product, one truncation
@@ -70,11 +70,11 @@
 //!   `w` has at least 27 bits); the difference at the larger exponent
 //!   (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|w| ≤ 1/|D·n|` and
 //!   `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 + 1/|D·n|)`.
-//! * **Reflection.** `∂D` and `∂n` at one exponent with 2 and 4 bits of
-//!   headroom (`2ᵉ ≤ 4u|∂D| + 16u|∂n|`, one truncation each); `D·n` to
+//! * **Reflection.** `∂D` and `∂n` at one exponent with 3 and 5 bits of
+//!   headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation each); `D·n` to
 //!   `2⁻³⁰` (`< u`); `∂(D·n)` from exact dot products, one truncation
-//!   (`< (1 + 2√3)·2ᵉ` with the inputs'); the result exact in 64 bits and
-//!   truncated once: `12.93·2ᵉ + 2u|∂n| ≤ 64u·(|∂D| + 4|∂n|)`.
+//!   (`< (1 + 2√3)·2ᵉ` with the inputs'); `2((D·n)·∂n + ∂(D·n)·n)` exact
+//!   in 64 bits and truncated once: `12.93·2ᵉ + 2u|∂n| ≤ 128u·(|∂D| + 4|∂n|)`.
 //! * **Refraction.** The scalars `μ`, `1/cos θₜ` (division and Newton step) and
 //!   `c = η − η²·cos θᵢ/cos θₜ` as normalised 31-bit mantissas: each
 //!   multiply-high `< 4u` relative, `cos θᵢ` to `2⁻³⁰`, so
@@ -116,8 +116,8 @@ pub const PRIMARY_ERROR: f64 = 1.0 / 33_554_432.0;
 /// (`|D·n|` clamped): 2⁻²³.
 pub const TRANSFER_ERROR: f64 = 1.0 / 8_388_608.0;
 /// Documented bound of [`RayDiff::reflect`]: at most this times
-/// `|∂D| + 4·|∂n|` per component: 2⁻²⁴.
-pub const REFLECT_ERROR: f64 = 1.0 / 16_777_216.0;
+/// `|∂D| + 4·|∂n|` per component: 2⁻²³.
+pub const REFLECT_ERROR: f64 = 1.0 / 8_388_608.0;
 /// Documented bound of [`RayDiff::refract`]: at most this times
 /// `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` per component (`cos θₜ`
 /// clamped): 2⁻²⁴.
@@ -511,20 +511,18 @@ impl RayDiff {
         let c = (dot64(d, n) >> 30) as i32;
         for (axis, nn) in dn.iter().enumerate() {
             let (dd, nn) = (self.get(2 + axis), nn.0);
-            // Common exponent with headroom: |∂D| ≤ 2²⁹, |∂n| ≤ 2²⁷ units,
-            // so |∂R|∞ ≤ |∂D| + 4|∂n| ≤ √3·(2²⁹ + 2²⁹) < 2³¹.
-            let e = (dd.e + 2).max(nn.e + 4);
+            // Common exponent with headroom: |∂D| ≤ 2²⁸, |∂n| ≤ 2²⁶ units,
+            // so |∂(D·n)| < √3·(2²⁸ + 2²⁶) and the term below < 1.2·2³⁰.
+            let e = (dd.e + 3).max(nn.e + 5);
             let a = dd.m.map(|x| shr(x, e - dd.e));
             let b = nn.m.map(|x| shr(x, e - nn.e));
-            // ∂(D·n) in units of 2ᵉ: |·| ≤ √3·(2²⁹ + 2²⁷), one truncation.
+            // ∂(D·n) in units of 2ᵉ, one truncation.
             let s = ((dot64(a, n) + dot64(d, b)) >> 30) as i32;
             let r: [i32; 3] = core::array::from_fn(|k| {
-                // (∂D − 2·((D·n)·∂n + ∂(D·n)·n))·2²⁹ in 64 bits, one
-                // truncation: c and n are 2³⁰ times D·n and n.
-                let acc = (i64::from(a[k]) << 29)
-                    - i64::from(c) * i64::from(b[k])
-                    - i64::from(s) * i64::from(n[k]);
-                (acc >> 29) as i32
+                // 2·((D·n)·∂n + ∂(D·n)·n) = (c·b + s·n)/2²⁹: exact in 64
+                // bits, one truncation (c and n are 2³⁰ times D·n and n).
+                let t = i64::from(c) * i64::from(b[k]) + i64::from(s) * i64::from(n[k]);
+                a[k] - (t >> 29) as i32
             });
             self.set(2 + axis, Bfp3::new(r, e));
         }
