@@ -169,16 +169,6 @@ pub mod rng;
 pub mod setup;
 pub mod texture;
 
-// The harness's f64 reference of `log2 Pb`, shared by the unit tests.
-#[cfg(test)]
-#[path = "../host-tests/src/reference/pb.rs"]
-mod pb_reference;
-
-// The harness's f64 reference of the environment-map lod and mapping.
-#[cfg(all(test, feature = "envmap"))]
-#[path = "../host-tests/src/reference/envmap.rs"]
-mod envmap_reference;
-
 // The README's Rust example runs as a doctest (`cargo test --doc`), so the
 // front page cannot drift from the API.
 #[cfg(doctest)]

@@ -24,11 +24,11 @@ use std::path::Path;
 use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
 use raymip::texture::storage::mip::pyramid_len;
 use raymip::{Log2Pb, Pyramid, TexelCache};
-use raymip_host::cli::output::{publish, write_option};
 use raymip_host::cli::parse_size;
+use raymip_host::output::report::{publish, write_option};
 use raymip_host::render::skip::plan;
 use raymip_host::render::texunit::Filter;
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
 use raymip_host::tradeoff::budgets::{Budgets, frame_calls};
 
@@ -65,7 +65,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: BOUNCES,
         spp: 1,
