@@ -1,5 +1,5 @@
 //! ns per bilinear and trilinear sample: firmware fixed point against the
-//! f32 implementation (`raymip_host::texf32`), one run, same pyramid and
+//! f32 implementation (`raymip::baseline_f32`), one run, same pyramid and
 //! inputs; then texel-cache hit rates for a scanline walk at lod 0 and 2
 //! (printed).
 //!
