@@ -36,7 +36,7 @@ pub static TEX: [u32; TEX_LEN] = {
 /// their `.text`/`.rodata` difference is unchanged.
 pub mod type_sizes {
     use core::mem::size_of;
-    use raymip::raystack::PathState;
+    use raymip::path::raystack::PathState;
     use raymip::texture::address::Wrap;
     use raymip::texture::storage::mip::Pyramid;
     use raymip::texture::{Cfg, Sampler};

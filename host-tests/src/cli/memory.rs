@@ -21,9 +21,9 @@ use std::mem::size_of;
 use std::path::{Path, PathBuf};
 
 use raymip::Log2Pb;
-use raymip::analysis::LodRange;
 use raymip::lod::Lod;
-use raymip::raystack::{PATH_STATE_BYTES, stack_bound};
+use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
+use raymip::setup::analysis::LodRange;
 use raymip::texture::Mode;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::TexelFormat;

@@ -4,7 +4,7 @@
 // ray stack. Integer arithmetic only: no float, no allocator, no panic.
 use fixed::types::{I2F30, I32F32};
 use raymip::lod::table_lod;
-use raymip::raystack::stack_bound;
+use raymip::path::raystack::stack_bound;
 use raymip::texture::storage::mip::pyramid_len;
 use raymip::{Geometry, Log2Pb, Mode, PathLength, PathState, PbTable, PixelSpread};
 use raymip::{Pyramid, RayStack, Sampler, Spread, TexCoord, TexTriangle, Texel};
