@@ -1,11 +1,12 @@
 //! The CLI commands and their output: `render`, `compare`, `table1`,
-//! `sample`, `stress` and the demo's `gen-data`, as library functions (the binaries
+//! `sample`, `stress`, `memory` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
 pub mod compare;
 pub mod demo_data;
 mod error;
 pub mod instances;
+pub mod memory;
 pub mod pcpi_vectors;
 pub mod render;
 pub mod sample;
