@@ -425,22 +425,20 @@ mod tests {
         let n = 4;
         let got = |a: Address| (-5..9).map(|i| a.index(i, n)).collect::<Vec<_>>();
         let s = |v: &[i64]| v.iter().map(|&x| Some(x)).collect::<Vec<_>>();
-        assert_eq!(
-            got(Address::Wrap),
-            s(&[3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0])
-        );
-        assert_eq!(
-            got(Address::Mirror),
-            s(&[3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 2, 1, 0, 0])
-        );
-        assert_eq!(
-            got(Address::ClampToEdge),
-            s(&[0, 0, 0, 0, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3])
-        );
-        assert_eq!(
-            got(Address::MirrorOnce),
-            s(&[3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3])
-        );
+        for (a, want) in [
+            (Address::Wrap, [3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0]),
+            (Address::Mirror, [3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 2, 1, 0, 0]),
+            (
+                Address::ClampToEdge,
+                [0, 0, 0, 0, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3],
+            ),
+            (
+                Address::MirrorOnce,
+                [3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3],
+            ),
+        ] {
+            assert_eq!(got(a), s(&want), "{a:?}");
+        }
         let border = got(Address::ClampToBorder);
         assert_eq!(border.iter().filter(|x| x.is_some()).count(), 4);
         assert_eq!(border[5..9], s(&[0, 1, 2, 3])[..]);

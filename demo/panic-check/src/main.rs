@@ -116,14 +116,11 @@ fn c_abi() {
         };
         bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
         bb(rm_sampler_init_wrap(bb(&mut sampler), &tex));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        // One sample at texel (5, 6) and the table's lod.
+        let sample = |s: &mut RmSampler, out: &mut u32| {
+            bb(rm_sample(s, bb(5), bb(6), bb(lod), RmModeBits(bb(0)), out))
+        };
+        sample(&mut sampler, &mut out);
         let mut desc = RmSamplerDesc::default();
         bb(rm_sampler_desc_default(&mut desc));
         let desc = bb(desc);
@@ -151,14 +148,7 @@ fn c_abi() {
         });
         bb(rm_image_len(bb(16), bb(16), bb(5), bb(7)));
         bb(rm_sampler_init_image(&mut sampler, &img, &desc));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        sample(&mut sampler, &mut out);
     }
     let mut pyr = [0u32; 21];
     // SAFETY: `pyr` holds 21 writable texels.
