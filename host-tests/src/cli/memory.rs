@@ -32,7 +32,7 @@ use raymip::texture::storage::mip::{Pyramid, full_levels};
 
 use super::parse_size;
 use super::sample::FormatArg;
-use crate::output::report::write_between_markers;
+use crate::output::report::{markdown_cells, write_between_markers};
 use crate::render::skip::plan;
 use crate::render::{Arithmetic, Method, Options, Prepared};
 use crate::scene::scene_label;
@@ -236,16 +236,9 @@ fn measured(budgets: &str, target: &str) -> Result<Vec<Measured>, MemoryError> {
             .map(str::to_string)
             .collect()
     };
-    let cells = |line: &str| -> Vec<String> {
-        line.trim()
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect()
-    };
     let mut sets: Vec<Measured> = Vec::new();
     for line in block.lines().filter(|l| l.starts_with("| ")) {
-        let c = cells(line);
+        let c = markdown_cells(line);
         let num = |i: usize| c.get(i).and_then(|v| v.parse::<u64>().ok());
         if let Some(t) = c.get(1).filter(|v| v.starts_with('`')) {
             // | set | `target` | PathState | Sampler | TexelCache 8x2 |

@@ -28,6 +28,16 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
     fs::write(path, text).map_err(|e| FileError::write(path, e).into())
 }
 
+/// The trimmed cells of one Markdown table row (`| a | b |` → `["a", "b"]`).
+#[must_use]
+pub fn markdown_cells(line: &str) -> Vec<String> {
+    line.trim()
+        .trim_matches('|')
+        .split('|')
+        .map(|c| c.trim().to_string())
+        .collect()
+}
+
 /// Replaces the text between the lines `<!-- NAME:begin -->` and
 /// `<!-- NAME:end -->` of the file `path` (a README) with `text`: how the
 /// measurement commands write their tables.
