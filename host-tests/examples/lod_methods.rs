@@ -23,7 +23,7 @@ use std::path::Path;
 use raymip_host::cli::MeasureArgs;
 use raymip_host::output::machine::machine_line;
 use raymip_host::output::metrics::psnr;
-use raymip_host::output::report::publish;
+use raymip_host::output::report::{markdown_cells, publish};
 use raymip_host::render::{Method, Options, Prepared, render_fixed_and_float, render_truth};
 use raymip_host::scene::{Scene, builtin, default_bart_dir, load_scene_dir};
 
@@ -34,12 +34,7 @@ const BLOCK: &str = "lod-methods";
 fn budget_row(budgets: &str, section: &str, first: &str) -> Option<Vec<String>> {
     let text = &budgets[budgets.find(section)?..];
     text.lines().find_map(|l| {
-        let cells: Vec<String> = l
-            .trim()
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect();
+        let cells = markdown_cells(l);
         (l.starts_with('|') && cells.first().is_some_and(|c| c == first))
             .then(|| cells[1..].to_vec())
     })
