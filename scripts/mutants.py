@@ -38,7 +38,7 @@ DOC = os.path.join(ROOT, "docs", "reliability.md")
 BEGIN, END = "<!-- mutants:begin -->", "<!-- mutants:end -->"
 PACKAGE = "raymip"
 # Every CI feature set at once (the defaults come with `ffi`); `pcpi` builds
-# only for riscv32 (src/pcpi.rs is excluded in .cargo/mutants.toml).
+# only for riscv32 (src/coproc is excluded in .cargo/mutants.toml).
 FEATURES = "ffi,f32,raydiff,envmap"
 OUTCOMES = {"CaughtMutant": "caught", "MissedMutant": "missed", "Unviable": "unviable",
             "Timeout": "timeout"}
@@ -418,8 +418,8 @@ def report(args, quiet=False):
            f"{'; '.join(machines)})" if used_runs else "")
         + f", against the {total['mutants']} mutants cargo-mutants lists today for the "
         f"firmware crate with features `{FEATURES}` (every CI feature set but `pcpi`; the "
-        "harness's f64 references included by `#[path]` and `src/pcpi.rs` are not firmware "
-        "mutants). Each mutant's newest record counts; a mutant whose function changed since "
+        "harness's f64 references included by `#[path]` and the co-processor module "
+        "`src/coproc` are not firmware mutants). Each mutant's newest record counts; a mutant whose function changed since "
         "its record is *unrecorded* until it is run again. Timeouts count as missed.")
     lines.append("")
     lines.append("| module | mutants | " + " | ".join(cols) + " |")
