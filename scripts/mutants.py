@@ -262,75 +262,34 @@ def run(args):
             if m["key"] in eq:
                 cmd += ["-E", escape_name(m["name"])]
     started = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
-    load0 = os.getloadavg()[0]
-    t0 = time.monotonic()
-    ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    rec = Record(started, label, len(todo), {m["name"]: m for m in mutants if m["key"] not in eq},
+                 os.path.join(out_dir, "mutants.out", "outcomes.json"))
     proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
                             cwd=ROOT, start_new_session=True)
+    deadline = time.monotonic() + args.time_box if args.time_box else None
     timed_out = False
-    try:
-        proc.wait(timeout=args.time_box)
-    except subprocess.TimeoutExpired:
-        # cargo-mutants stops on SIGINT, kills its cargo and cleans its
-        # build directory; what it finished is in outcomes.json.
-        timed_out = True
-        os.killpg(proc.pid, signal.SIGINT)
-        try:
-            proc.wait(timeout=60)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
-    wall = time.monotonic() - t0
-    ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (ru1.ru_utime - ru0.ru_utime) + (ru1.ru_stime - ru0.ru_stime)
-    load1 = os.getloadavg()[0]
-    outcomes_file = os.path.join(out_dir, "mutants.out", "outcomes.json")
-    if not os.path.exists(outcomes_file):
-        sys.exit(f"cargo mutants wrote no {outcomes_file} (exit {proc.returncode})")
-    with open(outcomes_file, encoding="utf-8") as f:
-        outcomes = json.load(f)
-    by_name = {m["name"]: m for m in mutants if m["key"] not in eq}
-    rows, baseline_ok = [], True
-    for o in outcomes["outcomes"]:
-        sc = o["scenario"]
-        if sc == "Baseline":
-            baseline_ok = o["summary"] == "Success"
-            continue
-        name = sc["Mutant"]["name"]
-        m = by_name.get(name)
-        if m is None or o["summary"] not in OUTCOMES:
-            continue
-        d = {p["phase"]: p["duration"] for p in o["phase_results"]}
-        rows.append((m["key"], OUTCOMES[o["summary"]], d.get("Build", 0.0), d.get("Test", 0.0),
-                     name))
-    if not baseline_ok:
-        sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline); "
-                 "nothing recorded")
-    stamp = started.replace(":", "").replace("-", "")
-    os.makedirs(RUNS, exist_ok=True)
-    rec = os.path.join(RUNS, f"{stamp}-{label}.tsv")
-    commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
-                            capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"], cwd=ROOT,
-                           capture_output=True, text=True).stdout.strip()
-    with open(rec, "w", encoding="utf-8") as f:
-        f.write(f"# started: {started}\n")
-        f.write(f"# selection: {label}\n")
-        f.write(f"# commit: {commit}{' + uncommitted changes' if dirty else ''}\n")
-        f.write(f"# cargo-mutants: {outcomes.get('cargo_mutants_version', '?')}\n")
-        f.write(f"# features: {FEATURES}\n")
-        f.write(f"# machine: {machine()}\n")
-        f.write(f"# load average: {load0:.1f} at start, {load1:.1f} at end\n")
-        f.write(f"# nice: {os.nice(0)}\n")
-        f.write(f"# wall seconds: {wall:.0f}\n")
-        f.write(f"# cpu seconds: {cpu:.0f}\n")
-        f.write(f"# mutants tested: {len(rows)} of {len(todo)} selected"
-                f"{' (time box reached)' if timed_out else ''}\n")
-        f.write("key\toutcome\tbuild_s\ttest_s\tname\n")
-        for r in rows:
-            f.write(f"{r[0]}\t{r[1]}\t{r[2]:.1f}\t{r[3]:.1f}\t{r[4]}\n")
+    while proc.poll() is None:
+        # The record is rewritten as outcomes arrive: an interrupted run
+        # keeps what it finished.
+        rec.update(proc.pid)
+        if deadline and time.monotonic() > deadline:
+            # cargo-mutants stops on SIGINT, kills its cargo and removes
+            # its build directory; what it finished is in outcomes.json.
+            timed_out = True
+            os.killpg(proc.pid, signal.SIGINT)
+            try:
+                proc.wait(timeout=60)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+            break
+        time.sleep(5)
+    rec.update(None, timed_out=timed_out)
+    if not rec.baseline_ok:
+        sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
+    rows = rec.rows
     counts = Counter(r[1] for r in rows)
-    print(f"mutants: recorded {len(rows)} in {os.path.relpath(rec, ROOT)}: "
+    print(f"mutants: recorded {len(rows)} in {os.path.relpath(rec.path, ROOT)}: "
           + ", ".join(f"{counts[o]} {o}" for o in OUTCOMES.values())
           + (f"; time box of {args.time_box:.0f} s reached, {len(todo) - len(rows)} not run"
              if timed_out else ""))
@@ -340,6 +299,85 @@ def run(args):
     if not args.no_report:
         report(args, quiet=True)
     return 1 if bad else 0
+
+
+class Record:
+    """One run's record file in mutation/runs/, rewritten from outcomes.json."""
+
+    def __init__(self, started, label, selected, by_name, outcomes_file):
+        self.started, self.label, self.selected = started, label, selected
+        self.by_name, self.outcomes_file = by_name, outcomes_file
+        self.path = os.path.join(RUNS, f"{started.replace(':', '').replace('-', '')}-{label}.tsv")
+        self.load0 = os.getloadavg()[0]
+        self.t0 = time.monotonic()
+        self.ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        self.cpu_live = 0.0
+        self.rows, self.baseline_ok, self.version = [], True, "?"
+        self.commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
+                                     capture_output=True, text=True).stdout.strip()
+        self.dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"],
+                                    cwd=ROOT, capture_output=True, text=True).stdout.strip()
+
+    def update(self, pid, timed_out=False):
+        if pid is not None:
+            self.cpu_live = process_cpu(pid)
+            cpu = self.cpu_live
+        else:
+            ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = (ru1.ru_utime - self.ru0.ru_utime) + (ru1.ru_stime - self.ru0.ru_stime)
+        try:
+            with open(self.outcomes_file, encoding="utf-8") as f:
+                outcomes = json.load(f)
+        except (OSError, ValueError):
+            return
+        self.version = outcomes.get("cargo_mutants_version", "?")
+        rows = []
+        for o in outcomes["outcomes"]:
+            sc = o["scenario"]
+            if sc == "Baseline":
+                self.baseline_ok = o["summary"] == "Success"
+                continue
+            name = sc["Mutant"]["name"]
+            m = self.by_name.get(name)
+            if m is None or o["summary"] not in OUTCOMES:
+                continue
+            d = {p["phase"]: p["duration"] for p in o["phase_results"]}
+            rows.append((m["key"], OUTCOMES[o["summary"]], d.get("Build", 0.0),
+                         d.get("Test", 0.0), name))
+        self.rows = rows
+        if not rows or not self.baseline_ok:
+            return
+        os.makedirs(RUNS, exist_ok=True)
+        tmp = self.path + ".tmp"
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(f"# started: {self.started}\n")
+            f.write(f"# selection: {self.label}\n")
+            f.write(f"# commit: {self.commit}{' + uncommitted changes' if self.dirty else ''}\n")
+            f.write(f"# cargo-mutants: {self.version}\n")
+            f.write(f"# features: {FEATURES}\n")
+            f.write(f"# machine: {machine()}\n")
+            f.write(f"# load average: {self.load0:.1f} at start, {os.getloadavg()[0]:.1f} "
+                    "at end\n")
+            f.write(f"# nice: {os.nice(0)}\n")
+            f.write(f"# wall seconds: {time.monotonic() - self.t0:.0f}\n")
+            f.write(f"# cpu seconds: {cpu:.0f}\n")
+            f.write(f"# mutants tested: {len(rows)} of {self.selected} selected"
+                    f"{' (time box reached)' if timed_out else ''}"
+                    f"{' (running)' if pid is not None else ''}\n")
+            f.write("key\toutcome\tbuild_s\ttest_s\tname\n")
+            for r in rows:
+                f.write(f"{r[0]}\t{r[1]}\t{r[2]:.1f}\t{r[3]:.1f}\t{r[4]}\n")
+        os.replace(tmp, self.path)
+
+
+def process_cpu(pid):
+    """CPU seconds of a running process and its waited-for descendants (/proc)."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="utf-8") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return sum(int(x) for x in fields[11:15]) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return 0.0
 
 
 def last_doc_commit():
