@@ -214,6 +214,9 @@ def run(args):
     if args.unrecorded:
         todo = [m for m in todo if m["key"] not in recorded]
         label += "-unrecorded"
+    if args.caught:
+        todo = [m for m in todo if recorded.get(m["key"], ("",))[0] == "caught"]
+        label += "-caught"
     if args.missed:
         todo = [m for m in todo if recorded.get(m["key"], ("",))[0] in ("missed", "timeout")]
         label += "-missed"
@@ -524,6 +527,8 @@ def main():
                          "that touched docs/reliability.md)")
     ap.add_argument("--unrecorded", action="store_true",
                     help="only mutants without a record (new or changed code)")
+    ap.add_argument("--caught", action="store_true",
+                    help="only mutants whose newest record is caught (re-verification)")
     ap.add_argument("--missed", action="store_true",
                     help="only mutants whose newest record is missed or timeout")
     ap.add_argument("--file", action="append", help="only mutants in this file or folder")
