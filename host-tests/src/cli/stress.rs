@@ -1223,7 +1223,11 @@ fn c_abi_sample(r: &mut Runner) {
             }
             let want: Vec<u8> = (0..ffi::RM_RAY_STACK_CAPACITY as u8).rev().collect();
             if pushed.last() == Some(&RmStatus::StackFull) && popped == want {
-                err("StackFull on the 11th push; 10 entries kept, LIFO")
+                err(format!(
+                    "StackFull on push {}; {} entries kept, LIFO",
+                    ffi::RM_RAY_STACK_CAPACITY + 1,
+                    ffi::RM_RAY_STACK_CAPACITY
+                ))
             } else {
                 bad(format!("{pushed:?} {popped:?}"))
             }
