@@ -269,12 +269,16 @@ def run(args):
                  os.path.join(out_dir, "mutants.out", "outcomes.json"))
     proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
                             cwd=ROOT, start_new_session=True)
-    deadline = time.monotonic() + args.time_box if args.time_box else None
+    deadline = None
     timed_out = False
     while proc.poll() is None:
         # The record is rewritten as outcomes arrive: an interrupted run
         # keeps what it finished.
         rec.update(proc.pid)
+        if args.time_box and deadline is None and rec.baseline_done:
+            # The time box counts from the end of the baseline (the build of
+            # the copied tree and one run of the tests): mutants only.
+            deadline = time.monotonic() + args.time_box
         if deadline and time.monotonic() > deadline:
             # cargo-mutants stops on SIGINT, kills its cargo and removes
             # its build directory; what it finished is in outcomes.json.
@@ -315,7 +319,7 @@ class Record:
         self.t0 = time.monotonic()
         self.ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         self.cpu_live = 0.0
-        self.rows, self.baseline_ok, self.version = [], True, "?"
+        self.rows, self.baseline_ok, self.baseline_done, self.version = [], True, False, "?"
         self.commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
                                      capture_output=True, text=True).stdout.strip()
         self.dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"],
@@ -339,6 +343,7 @@ class Record:
             sc = o["scenario"]
             if sc == "Baseline":
                 self.baseline_ok = o["summary"] == "Success"
+                self.baseline_done = True
                 continue
             name = sc["Mutant"]["name"]
             m = self.by_name.get(name)
@@ -537,7 +542,8 @@ def main():
                     help="N consecutive mutants of the selection, starting N further on with "
                          "each commit (git rev-list --count HEAD)")
     ap.add_argument("--time-box", type=float, metavar="S",
-                    help="stop cargo-mutants after S seconds; what finished is recorded")
+                    help="stop cargo-mutants S seconds after its baseline (the unmutated "
+                         "build and tests); what finished is recorded")
     ap.add_argument("--list", action="store_true", help="print the selection, run nothing")
     ap.add_argument("--report", action="store_true",
                     help="only rewrite the docs/reliability.md block from the records")
