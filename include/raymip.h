@@ -176,7 +176,7 @@ typedef uint8_t RmAddress;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Precision tier of a sampler (`RmSamplerDesc::precision`).
+// Precision tier of a sampler (the `precision` field of `RmSamplerDesc`).
 enum RmPrecision
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
@@ -200,7 +200,7 @@ typedef uint8_t RmPrecision;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Result encoding of an sRGB texture (`RmSamplerDesc::srgb_output`).
+// Result encoding of an sRGB texture (the `srgb_output` field of `RmSamplerDesc`).
 enum RmSrgbOutput
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t

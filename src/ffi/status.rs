@@ -93,7 +93,7 @@ impl RmAddress {
     }
 }
 
-/// Precision tier of a sampler ([`RmSamplerDesc::precision`]).
+/// Precision tier of a sampler (the `precision` field of [`RmSamplerDesc`]).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmPrecision {
@@ -108,7 +108,7 @@ pub enum RmPrecision {
     Fast = 1,
 }
 
-/// Result encoding of an sRGB texture ([`RmSamplerDesc::srgb_output`]).
+/// Result encoding of an sRGB texture (the `srgb_output` field of [`RmSamplerDesc`]).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmSrgbOutput {
