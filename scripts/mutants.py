@@ -540,10 +540,10 @@ def report(args, quiet=False):
         + (f" ({starts[0]} to {starts[-1]}; cargo-mutants {', '.join(versions)}; "
            f"{'; '.join(machines)})" if used_runs else "")
         + f", against the {total['mutants']} mutants cargo-mutants lists today for the "
-        f"firmware crate with features `{FEATURES}` (every CI feature set but `pcpi`; the "
-        "harness's f64 references included by `#[path]` and the co-processor module "
-        "`src/coproc` are not firmware mutants). Each mutant's newest record counts; a mutant whose function changed since "
-        "its record is *unrecorded* until it is run again. Timeouts count as missed.")
+        f"firmware crate with features `{FEATURES}` (every CI feature set but `pcpi`: the "
+        "co-processor module `src/coproc` is not mutated; test code is not either). Each "
+        "mutant's newest record counts; a mutant whose function changed since its record "
+        "is *unrecorded* until it is run again. Timeouts count as missed.")
     lines.append("")
     lines.append("| module | mutants | " + " | ".join(cols) + " |")
     lines.append("|---|" + "---:|" * (len(cols) + 1))
