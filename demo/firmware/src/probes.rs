@@ -301,18 +301,18 @@ pub fn sampler_rows<M: Meter>(
     tri_in: &[SampleIn; N],
     aniso_in: &[AnisoIn; N],
 ) {
-    m.row("ts_bil", bil_in, |(u, v, l)| {
-        rm_bench_ts_bilinear(&mut s.rgba, u, v, l)
-    });
-    m.row("ts_tri", tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear(&mut s.rgba, u, v, l)
-    });
-    m.row("ts_srgb", tri_in, |(u, v, l)| {
-        rm_bench_ts_srgb(&mut s.srgb, u, v, l)
-    });
-    m.row("ts_565", tri_in, |(u, v, l)| {
-        rm_bench_ts_rgb565(&mut s.rgb565, u, v, l)
-    });
+    // `m.row(key, inputs, ..)` of one wrapper call per input.
+    macro_rules! rows {
+        ($($key:literal, $inputs:expr, $wrapper:ident($s:expr);)+) => {
+            $(m.row($key, $inputs, |(u, v, l)| $wrapper($s, u, v, l));)+
+        };
+    }
+    rows! {
+        "ts_bil", bil_in, rm_bench_ts_bilinear(&mut s.rgba);
+        "ts_tri", tri_in, rm_bench_ts_trilinear(&mut s.rgba);
+        "ts_srgb", tri_in, rm_bench_ts_srgb(&mut s.srgb);
+        "ts_565", tri_in, rm_bench_ts_rgb565(&mut s.rgb565);
+    }
     m.pairs(
         ["ts_bc1_fill", "ts_bc1_hit"],
         &mut s.bc1,
@@ -325,41 +325,33 @@ pub fn sampler_rows<M: Meter>(
     }
 
     let (wa, wf) = &mut s.wrap;
-    m.row("tw_bil", bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
-    m.row("tw_tri", tri_in, |(u, v, l)| {
-        rm_bench_trilinear(wa, u, v, l)
-    });
-    m.row("tw_bil_f", bil_in, |(u, v, l)| {
-        rm_bench_bilinear_fast(wf, u, v, l)
-    });
-    m.row("tw_tri_f", tri_in, |(u, v, l)| {
-        rm_bench_trilinear_fast(wf, u, v, l)
-    });
+    rows! {
+        "tw_bil", bil_in, rm_bench_bilinear(wa);
+        "tw_tri", tri_in, rm_bench_trilinear(wa);
+        "tw_bil_f", bil_in, rm_bench_bilinear_fast(wf);
+        "tw_tri_f", tri_in, rm_bench_trilinear_fast(wf);
+    }
     let mut out = [0; N];
-    m.batch("tw_bil", |n| {
-        rm_batch_bilinear(wa, bb(&bil_in[..n]), &mut out)
-    });
-    m.batch("tw_tri", |n| {
-        rm_batch_trilinear(wa, bb(&tri_in[..n]), &mut out)
-    });
-    m.batch("tw_bil_f", |n| {
-        rm_batch_bilinear_fast(wf, bb(&bil_in[..n]), &mut out)
-    });
-    m.batch("tw_tri_f", |n| {
-        rm_batch_trilinear_fast(wf, bb(&tri_in[..n]), &mut out)
-    });
+    // `m.batch(key, ..)` of one wrapper call on the first `n` inputs.
+    macro_rules! batches {
+        ($($key:literal, $inputs:expr, $wrapper:ident($s:expr);)+) => {
+            $(m.batch($key, |n| $wrapper($s, bb(&$inputs[..n]), &mut out));)+
+        };
+    }
+    batches! {
+        "tw_bil", bil_in, rm_batch_bilinear(wa);
+        "tw_tri", tri_in, rm_batch_trilinear(wa);
+        "tw_bil_f", bil_in, rm_batch_bilinear_fast(wf);
+        "tw_tri_f", tri_in, rm_batch_trilinear_fast(wf);
+    }
     bb(&out);
 
     let (rgba, rgb565, bc1) = &mut s.fast;
-    m.row("ts_bil_f", bil_in, |(u, v, l)| {
-        rm_bench_ts_bilinear_fast(rgba, u, v, l)
-    });
-    m.row("ts_tri_f", tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear_fast(rgba, u, v, l)
-    });
-    m.row("ts_565_f", tri_in, |(u, v, l)| {
-        rm_bench_ts_rgb565_fast(rgb565, u, v, l)
-    });
+    rows! {
+        "ts_bil_f", bil_in, rm_bench_ts_bilinear_fast(rgba);
+        "ts_tri_f", tri_in, rm_bench_ts_trilinear_fast(rgba);
+        "ts_565_f", tri_in, rm_bench_ts_rgb565_fast(rgb565);
+    }
     m.pairs(
         ["ts_bc1_fill_f", "ts_bc1_hit_f"],
         bc1,
