@@ -25,28 +25,32 @@ use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
-use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
-use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
+use raymip::texture::storage::mip::{Geometry, Texel};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{Cfg, Mode, NoStats, Sampler, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
 use crate::inputs::{self, N, Rng};
 
 /// The plain sampler: RGBA8 pyramid, wrap, ACCURATE.
-pub type Tex = Sampler<Pyramid<'static>>;
+pub type Tex = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Accurate, NoStats>>;
 /// The plain sampler at the FAST tier.
-pub type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
+pub type TexFast = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast, NoStats>>;
 /// One bilinear or trilinear input: `u`, `v`, lod.
 pub type SampleIn = (TexCoord, TexCoord, Lod);
 /// One anisotropic input: `u`, `v`, footprint.
 pub type AnisoIn = (TexCoord, TexCoord, Footprint);
 /// The state rows' key: mirror on u, clamp-to-border on v.
-pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
+pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C, Accurate, NoStats>>;
 /// The BC1 image behind an 8×2-block texel cache.
 pub type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
 /// The state rows' key at the FAST tier.
-pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
+pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast, NoStats>>;
+/// The wrap key with fetch statistics (`FetchStats`, the default key's
+/// counting): the matrix's counted row.
+pub type TexCounted<'a> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap>>;
 /// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
-pub type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
+pub type Tw<'a, P = Accurate> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P, NoStats>>;
 
 /// One bilinear sample at the nearest level.
 #[allow(unsafe_code)]
@@ -93,7 +97,7 @@ pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> 
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+pub fn rm_bench_ts_bilinear(s: &mut Ts<Pow2Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
     s.sample(u, v, lod, Mode::BilinearNearestLevel)
 }
 
@@ -101,7 +105,7 @@ pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, l
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+pub fn rm_bench_ts_trilinear(s: &mut Ts<Pow2Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
@@ -111,7 +115,7 @@ pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, 
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_ts_srgb(
-    s: &mut Ts<Pyramid<'_>, Srgb>,
+    s: &mut Ts<Pow2Pyramid<'_>, Srgb>,
     u: TexCoord,
     v: TexCoord,
     lod: Lod,
@@ -149,7 +153,7 @@ pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: 
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_ts_aniso(
-    s: &mut Sampler<Pyramid<'_>>,
+    s: &mut Tw<'_>,
     u: TexCoord,
     v: TexCoord,
     fp: &Footprint,
@@ -180,11 +184,15 @@ sample_wrapper!(
     /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
     rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
 sample_wrapper!(
+    /// RGBA8 trilinear, wrap, bias and clamp set, ACCURATE, counting its
+    /// texel reads (`FetchStats`).
+    rm_bench_trilinear_counted, TexCounted<'_>, Mode::Trilinear);
+sample_wrapper!(
     /// RGBA8 bilinear, mirror/border key, FAST.
-    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
+    rm_bench_ts_bilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::BilinearNearestLevel);
 sample_wrapper!(
     /// RGBA8 trilinear, mirror/border key, FAST.
-    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
+    rm_bench_ts_trilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::Trilinear);
 sample_wrapper!(
     /// RGB565 trilinear, mirror/border key, FAST.
     rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
@@ -265,21 +273,22 @@ impl Default for Images {
 /// [`Subjects::new`]).
 pub struct Subjects<'a> {
     /// RGBA8, [`inputs::sampler_state`], linear.
-    pub rgba: Ts<Pyramid<'a>>,
+    pub rgba: Ts<Pow2Pyramid<'a>>,
     /// The same texels read as sRGB, results re-encoded.
-    pub srgb: Ts<Pyramid<'a>, Srgb>,
+    pub srgb: Ts<Pow2Pyramid<'a>, Srgb>,
     /// The demo texture converted to RGB565.
     pub rgb565: Ts<Image<'a, Rgb565>>,
     /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
     pub bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
-    pub aniso: [Sampler<Pyramid<'a>>; 3],
+    pub aniso: [Tw<'a>; 3],
     /// The same at the FAST tier.
     pub aniso_fast: [Tw<'a, Fast>; 3],
-    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
-    pub wrap: (Tex, TexFast),
+    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST (no statistics),
+    /// ACCURATE counting its reads.
+    pub wrap: (Tex, TexFast, TexCounted<'a>),
     /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    pub fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
+    pub fast: (TsF<Pow2Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
 }
 
 impl<'a> Subjects<'a> {
@@ -287,7 +296,7 @@ impl<'a> Subjects<'a> {
     /// (`None` cannot happen with the demo texture and the states of
     /// [`inputs`]).
     #[must_use]
-    pub fn new(g: Geometry, p: Pyramid<'static>, images: &'a Images) -> Option<Self> {
+    pub fn new(g: Geometry, p: Pow2Pyramid<'static>, images: &'a Images) -> Option<Self> {
         let state = inputs::sampler_state()?;
         let rgb565 = Image::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
         let bc1 = Image::typed(g, ColorSpace::Linear, &images.bc1).ok()?;
@@ -302,6 +311,7 @@ impl<'a> Subjects<'a> {
             aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
             aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
             wrap: (
+                Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
             ),
@@ -341,8 +351,8 @@ pub trait Meter {
 /// (mirror u / border v, ACCURATE: RGBA8 bilinear and trilinear, sRGB,
 /// RGB565, BC1 fill/hit pairs, anisotropic 2×, 4×, 16×), then the rest of
 /// the matrix: the wrap rows (single calls, then batches of 32 and 64
-/// hits), the FAST tier of the mirror/border rows and anisotropic FAST.
-/// Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
+/// hits), the FAST tier of the mirror/border rows, anisotropic FAST and
+/// the wrap trilinear row with fetch statistics. Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
 /// single-call row). The inputs are drawn by the caller (the budgets' order).
 #[inline(always)]
 pub fn sampler_rows<M: Meter>(
@@ -375,7 +385,7 @@ pub fn sampler_rows<M: Meter>(
         m.row(key, aniso_in, |(u, v, fp)| rm_bench_ts_aniso(a, u, v, &fp));
     }
 
-    let (wa, wf) = &mut s.wrap;
+    let (wa, wf, wc) = &mut s.wrap;
     m.row("tw_bil", bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
     m.row("tw_tri", tri_in, |(u, v, l)| {
         rm_bench_trilinear(wa, u, v, l)
@@ -426,6 +436,9 @@ pub fn sampler_rows<M: Meter>(
             rm_bench_ts_aniso_fast(a, u, v, &fp)
         });
     }
+    m.row("tw_tri_n", tri_in, |(u, v, l)| {
+        rm_bench_trilinear_counted(wc, u, v, l)
+    });
 }
 
 /// Ray differentials (feature `raydiff`): the primary set-up, one
