@@ -245,7 +245,15 @@ impl AddressMode {
     /// and an XOR per tap), the clamping modes as for any size. Equal to
     /// `taps` for every input (tested).
     #[inline(always)]
-    pub(crate) fn pow2_taps(self, coord: TexCoord, n: u32, m: u32, s: u32, c: u32, bits: u32) -> AxisTaps {
+    pub(crate) fn pow2_taps(
+        self,
+        coord: TexCoord,
+        n: u32,
+        m: u32,
+        s: u32,
+        c: u32,
+        bits: u32,
+    ) -> AxisTaps {
         match self {
             Self::Wrap => {
                 let (i0, i1, f) = pow2_wrap_taps(coord, n, m, c, bits);
@@ -277,7 +285,8 @@ impl AddressMode {
 pub(crate) fn pow2_mirror_taps(coord: TexCoord, n: u32, m: u32, s: u32, bits: u32) -> AxisTaps {
     let b = coord.to_bits();
     let q = (b >> 32) as u32 & 1;
-    let start = (u64::from(q.wrapping_mul(n).wrapping_sub(1)) << 32) | u64::from((1u32 << 31) | (1 << (31 - bits)));
+    let start = (u64::from(q.wrapping_mul(n).wrapping_sub(1)) << 32)
+        | u64::from((1u32 << 31) | (1 << (31 - bits)));
     let p = u64::from(b as u32)
         .wrapping_mul(u64::from(n))
         .wrapping_add(start);
@@ -320,7 +329,13 @@ pub(crate) const fn wrap_constant(k: u32, bits: u32) -> u32 {
 /// index folds into it). Tested equal to
 /// `taps` for every side up to [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE).
 #[inline(always)]
-pub(crate) fn pow2_wrap_taps(coord: TexCoord, size: u32, m: u32, c: u32, bits: u32) -> (u32, u32, u32) {
+pub(crate) fn pow2_wrap_taps(
+    coord: TexCoord,
+    size: u32,
+    m: u32,
+    c: u32,
+    bits: u32,
+) -> (u32, u32, u32) {
     let y = (coord.to_bits() as u32).wrapping_add(c);
     let p = u64::from(y) * u64::from(size);
     let i0 = (p >> 32) as u32;

@@ -266,8 +266,16 @@ fn hashes(w: u32, h: u32, levels: u8) -> [u64; 4] {
     // Power-of-two sides: the direct path of the level views gives the
     // same results and counters.
     if let Ok(d) = Pow2Pyramid::new(p) {
-        assert_eq!(hash_all(&samples, || Sampler::wrap(d)), out[0], "direct wrap");
-        assert_eq!(hash_all(&samples, || Sampler::clamp(d)), out[1], "direct clamp");
+        assert_eq!(
+            hash_all(&samples, || Sampler::wrap(d)),
+            out[0],
+            "direct wrap"
+        );
+        assert_eq!(
+            hash_all(&samples, || Sampler::clamp(d)),
+            out[1],
+            "direct clamp"
+        );
     }
     // The run-time forms give the same results: the address matched per
     // axis, and the key table of the C ABI.

@@ -97,7 +97,12 @@ pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> 
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_bilinear(s: &mut Ts<Pow2Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+pub fn rm_bench_ts_bilinear(
+    s: &mut Ts<Pow2Pyramid<'_>>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
     s.sample(u, v, lod, Mode::BilinearNearestLevel)
 }
 
@@ -105,7 +110,12 @@ pub fn rm_bench_ts_bilinear(s: &mut Ts<Pow2Pyramid<'_>>, u: TexCoord, v: TexCoor
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_trilinear(s: &mut Ts<Pow2Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+pub fn rm_bench_ts_trilinear(
+    s: &mut Ts<Pow2Pyramid<'_>>,
+    u: TexCoord,
+    v: TexCoord,
+    lod: Lod,
+) -> Texel {
     s.sample(u, v, lod, Mode::Trilinear)
 }
 
@@ -152,12 +162,7 @@ pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: 
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_ts_aniso(
-    s: &mut Tw<'_>,
-    u: TexCoord,
-    v: TexCoord,
-    fp: &Footprint,
-) -> Texel {
+pub fn rm_bench_ts_aniso(s: &mut Tw<'_>, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
     s.sample_aniso(u, v, fp)
 }
 
@@ -288,7 +293,11 @@ pub struct Subjects<'a> {
     /// ACCURATE counting its reads.
     pub wrap: (Tex, TexFast, TexCounted<'a>),
     /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    pub fast: (TsF<Pow2Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
+    pub fast: (
+        TsF<Pow2Pyramid<'a>>,
+        TsF<Image<'a, Rgb565>>,
+        TsF<Bc1Cache<'a>>,
+    ),
 }
 
 impl<'a> Subjects<'a> {

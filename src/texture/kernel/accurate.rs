@@ -452,7 +452,11 @@ mod tests {
                     assert_eq!(wc, (exact + (1 << 7)) >> 8, "{t:x?} {fx} {fy} {c}");
                     rounded |= ((exact + (1 << 7) + (1 << 23)) >> 24) << (8 * c);
                 }
-                assert_eq!(bilerp_rounded(t, fx, fy, ROUND_TEXEL), rounded, "{t:x?} {fx} {fy}");
+                assert_eq!(
+                    bilerp_rounded(t, fx, fy, ROUND_TEXEL),
+                    rounded,
+                    "{t:x?} {fx} {fy}"
+                );
             }
         }
     }
@@ -477,7 +481,11 @@ mod tests {
                 for c in 0..4 {
                     want |= ((a[c] * (256 - t) + b[c] * t + (1 << 23)) >> 24) << (8 * c);
                 }
-                assert_eq!(blend_wide_in_range(a, b, t, ROUND_BLEND), want, "{a:x?} {b:x?} {t}");
+                assert_eq!(
+                    blend_wide_in_range(a, b, t, ROUND_BLEND),
+                    want,
+                    "{a:x?} {b:x?} {t}"
+                );
             }
         }
     }

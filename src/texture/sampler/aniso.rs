@@ -31,9 +31,9 @@
 use fixed::types::I16F16;
 
 use super::{Key, Sampler};
-use crate::texture::Stats;
 use crate::lod::Lod;
 use crate::lod::log2::log2_bits;
+use crate::texture::Stats;
 use crate::texture::TexCoord;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};

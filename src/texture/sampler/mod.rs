@@ -59,7 +59,7 @@ pub trait Key: 'static {
     type V: Axis;
     /// The filter kernel (colour space and precision tier).
     type Kernel: Kernel;
-    /// The fetch statistics ([`FetchStats`] or [`NoStats`]).
+    /// The fetch statistics ([`FetchStats`] or [`NoStats`](crate::texture::NoStats)).
     type Stats: Stats;
 }
 
@@ -72,7 +72,7 @@ pub trait Key: 'static {
 /// ([`Linear`], [`Srgb`](crate::texture::kernel::Srgb),
 /// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
 /// tier `P` ([`Accurate`], [`Fast`](crate::texture::kernel::Fast)) and
-/// what it counts, `N` ([`FetchStats`], the default, or [`NoStats`]).
+/// what it counts, `N` ([`FetchStats`], the default, or [`NoStats`](crate::texture::NoStats)).
 /// `Cfg` alone is wrap, linear, ACCURATE, counted.
 ///
 /// # Example
@@ -583,7 +583,9 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             (xt, yt, t)
         };
         let mut lanes = t.map(Kern::<K>::load);
-        if (K::U::MAY_BORDER || K::V::MAY_BORDER) && (xt.border != [false; 2] || yt.border != [false; 2]) {
+        if (K::U::MAY_BORDER || K::V::MAY_BORDER)
+            && (xt.border != [false; 2] || yt.border != [false; 2])
+        {
             let out = [
                 xt.border[0] | yt.border[0],
                 xt.border[1] | yt.border[0],
@@ -893,7 +895,8 @@ mod tests {
             let d = Pow2Pyramid::new(p).unwrap();
             let mut direct = Sampler::<_, K>::with_state(d, state).unwrap();
             let mut generic = Sampler::<_, K>::with_state(p, state).unwrap();
-            let mut cached = Sampler::<_, K>::with_state(TexelCache::<_, 4, 2>::new(p), state).unwrap();
+            let mut cached =
+                Sampler::<_, K>::with_state(TexelCache::<_, 4, 2>::new(p), state).unwrap();
             let mut x = 12345u64 ^ u64::from(n);
             for _ in 0..n {
                 x ^= x << 13;

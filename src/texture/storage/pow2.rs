@@ -193,7 +193,13 @@ impl<'a> LevelView<'a> {
     /// with the side (so `i₀ < w`, resp. `< h`) and `i₁ = (i₀ + 1) & m`.
     #[inline(always)]
     #[must_use]
-    pub fn wrap_footprint(&self, u: TexCoord, v: TexCoord, [cx, cy]: [u32; 2], bits: u32) -> ([Texel; 4], u32, u32) {
+    pub(crate) fn wrap_footprint(
+        &self,
+        u: TexCoord,
+        v: TexCoord,
+        [cx, cy]: [u32; 2],
+        bits: u32,
+    ) -> ([Texel; 4], u32, u32) {
         let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.mx, cx, bits);
         let (y0, y1, fy) = pow2_wrap_taps(v, self.h, self.my, cy, bits);
         let t = [
