@@ -115,14 +115,15 @@ impl Lanes for Texel {
     }
 }
 
-/// Four 16-bit linear channels (65535 = 1.0), two per word:
-/// `[r | g << 16, b | a << 16]` (decoded sRGB texels, [`super::srgb`]).
-pub type Lin16 = [u32; 2];
+/// Four 16-bit linear channels (65535 = 1.0), one per word: `[r, g, b,
+/// a]` (decoded sRGB texels, [`super::srgb`]), so that the filter reads a
+/// channel without an extract.
+pub type Lin16 = [u32; 4];
 
 impl Lanes for Lin16 {
     #[inline(always)]
     fn ch(self, c: usize) -> u32 {
-        (self[(c >> 1) & 1] >> (16 * (c & 1))) & 0xFFFF
+        self[c & 3]
     }
 }
 

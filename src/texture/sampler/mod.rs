@@ -897,6 +897,16 @@ mod tests {
             let mut generic = Sampler::<_, K>::with_state(p, state).unwrap();
             let mut cached =
                 Sampler::<_, K>::with_state(TexelCache::<_, 4, 2>::new(p), state).unwrap();
+            // An image of the same texels (untrimmed pyramids only: an
+            // image stores every level).
+            let bytes: Vec<u8> = p.texels().iter().flat_map(|t| t.to_le_bytes()).collect();
+            let g = p.geometry();
+            let mut image = g.is_full().then(|| {
+                use crate::texture::storage::format::{Format, TexelFormat};
+                use crate::texture::storage::image::Image;
+                let i = Image::new(g, Format::linear(TexelFormat::Rgba8), &bytes).unwrap();
+                Sampler::<_, K>::with_state(i, state).unwrap()
+            });
             let mut x = 12345u64 ^ u64::from(n);
             for _ in 0..n {
                 x ^= x << 13;
@@ -916,6 +926,9 @@ mod tests {
                     let what = (g.width(), g.height(), state.address(), mode, u, v, lod);
                     assert_eq!(direct.sample(u, v, lod, mode), want, "{what:?}");
                     assert_eq!(cached.sample(u, v, lod, mode), want, "{what:?}");
+                    if let Some(image) = image.as_mut() {
+                        assert_eq!(image.sample(u, v, lod, mode), want, "{what:?}");
+                    }
                 }
             }
             assert_eq!(direct.stats(), generic.stats());
