@@ -14,8 +14,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, publish, write_option, write_png};
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::output::image::write_png;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::{publish, write_option};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -55,18 +57,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut psnrs = Vec::new();
         let mut fetched = 0.0;
         let mut time = 0.0;
-        for precision in [Precision::Fixed, Precision::Float] {
+        for arithmetic in [Arithmetic::Fixed, Arithmetic::Float] {
             let img = render(
                 &prep,
                 &Options {
-                    precision,
+                    arithmetic,
                     aniso,
                     ..base.clone()
                 },
             );
             let rgb = img.to_rgb8();
             psnrs.push(psnr(&rgb, &truth));
-            if precision == Precision::Fixed {
+            if arithmetic == Arithmetic::Fixed {
                 fetched = img.counters.fetched as f64 / img.counters.textured_hits.max(1) as f64;
                 time = img.render_s;
                 let file = match aniso {

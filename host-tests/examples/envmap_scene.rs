@@ -17,8 +17,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, publish, write_option, write_png};
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::output::image::write_png;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::{publish, write_option};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -72,18 +74,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
     ] {
         let mut psnrs = Vec::new();
-        for precision in [Precision::Fixed, Precision::Float] {
+        for arithmetic in [Arithmetic::Fixed, Arithmetic::Float] {
             let img = render(
                 &prep,
                 &Options {
                     method,
-                    precision,
+                    arithmetic,
                     ..base.clone()
                 },
             );
             let rgb = img.to_rgb8();
             psnrs.push(psnr(&rgb, &truth_rgb));
-            if precision == Precision::Fixed && !file.is_empty() {
+            if arithmetic == Arithmetic::Fixed && !file.is_empty() {
                 write_png(&docs.join(file), img.width, img.height, &rgb)?;
             }
         }

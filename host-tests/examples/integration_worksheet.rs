@@ -22,10 +22,10 @@ use std::path::Path;
 
 use clap::Parser;
 use raymip_host::cli::memory::{MemoryArgs, memory_table};
-use raymip_host::cli::output::{publish, write_option};
 use raymip_host::cli::parse_size;
+use raymip_host::output::report::{publish, write_option};
 use raymip_host::render::texunit::Filter;
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
 use raymip_host::tradeoff::budgets::{Budgets, frame_calls};
 
@@ -78,7 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: BOUNCES,
         spp: 1,

@@ -20,9 +20,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{machine_line, psnr, publish, write_option};
 use raymip_host::cli::parse_size;
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::output::machine::machine_line;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::{publish, write_option};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render, render_truth};
 use raymip_host::scene::{Scene, builtin, default_bart_dir, load_scene_dir};
 
 /// The block's name in the Markdown file.
@@ -118,12 +120,15 @@ fn psnr_row(
         Method::Mip0,
     ] {
         let mut p = [0.0; 2];
-        for (k, precision) in [Precision::Fixed, Precision::Float].into_iter().enumerate() {
+        for (k, arithmetic) in [Arithmetic::Fixed, Arithmetic::Float]
+            .into_iter()
+            .enumerate()
+        {
             let img = render(
                 &prep,
                 &Options {
                     method,
-                    precision,
+                    arithmetic,
                     ..base.clone()
                 },
             );

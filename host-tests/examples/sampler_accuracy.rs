@@ -1,5 +1,5 @@
 //! Writes the docs/texture-sampling.md table of the sampler's error per format, filter and
-//! precision tier, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
+//! precision tier, measured against the f64 reference (`raymip_reference::sampler`, through `raymip_host::accuracy`).
 //!
 //! ```sh
 //! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write docs/texture-sampling.md]
@@ -12,8 +12,8 @@
 use std::fmt::Write as _;
 
 use raymip::texture::kernel::Precision;
-use raymip_host::cli::output::{publish, write_option};
-use raymip_host::reference::sampler_ref::{FILTERS, measure};
+use raymip_host::accuracy::{FILTERS, measure};
+use raymip_host::output::report::{publish, write_option};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

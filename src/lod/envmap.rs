@@ -461,8 +461,8 @@ pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::envmap_reference as reference;
     use proptest::prelude::*;
+    use raymip_reference::envmap as reference;
 
     fn q(v: [f64; 3]) -> UnitVec {
         v.map(I2F30::saturating_from_num)

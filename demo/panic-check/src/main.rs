@@ -17,12 +17,13 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::ffi::{
-    RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage, RmModeBits, RmPathState,
-    RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod,
-    rm_delta, rm_image_len, rm_mip_generate, rm_path_advance, rm_path_bounce, rm_path_primary,
-    rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop, rm_ray_stack_push, rm_sample,
-    rm_sample_aniso, rm_sample_batch, rm_sampler_desc_default, rm_sampler_init,
-    rm_sampler_init_desc, rm_sampler_init_image, rm_table_build, rm_table_lod, rm_table_update,
+    RM_RAY_STACK_CAPACITY, RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage,
+    RmModeBits, RmPathState, RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle,
+    rm_clamp_lod, rm_cone_lod, rm_delta, rm_image_len, rm_mip_generate, rm_path_advance,
+    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
+    rm_ray_stack_push, rm_sample, rm_sample_aniso, rm_sample_batch, rm_sampler_desc_default,
+    rm_sampler_init, rm_sampler_init_desc, rm_sampler_init_image, rm_sampler_init_wrap,
+    rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::geomlod::{
     Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
@@ -70,7 +71,7 @@ fn c_abi() {
         textured: 1,
     });
     let mut stack = bb(RmRayStack {
-        entries: [RmPathState::default(); 10],
+        entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
         len: 0,
     });
     let mut st = RmPathState::default();
@@ -114,6 +115,7 @@ fn c_abi() {
             opaque: [0; RM_SAMPLER_WORDS],
         };
         bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
+        bb(rm_sampler_init_wrap(bb(&mut sampler), &tex));
         bb(rm_sample(
             &mut sampler,
             bb(5),

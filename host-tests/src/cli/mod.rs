@@ -2,14 +2,11 @@
 //! `sample`, `stress`, `memory` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
-use std::path::Path;
-
 pub mod compare;
 pub mod demo_data;
 mod error;
 pub mod instances;
 pub mod memory;
-pub mod output;
 pub mod pcpi_vectors;
 pub mod render;
 pub mod sample;
@@ -75,17 +72,6 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), SizeError> {
             })
     };
     Ok((p(w)?, p(h)?))
-}
-
-pub(crate) fn scene_label(spec: &str) -> String {
-    spec.strip_prefix("builtin:").map_or_else(
-        || {
-            Path::new(spec)
-                .file_stem()
-                .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
-        },
-        str::to_string,
-    )
 }
 
 #[cfg(test)]
