@@ -525,6 +525,12 @@ mod tests {
         std::println!(
             "log2: max |error| over the octave sweep = {worst:.3e} (limit {LOG2_MAX_ERROR:.3e})"
         );
+        // The documented bound is a tight one: within 4× of the measured
+        // error (callers size their own error budgets from it).
+        assert!(
+            worst > LOG2_MAX_ERROR / 4.0,
+            "LOG2_MAX_ERROR {LOG2_MAX_ERROR:.3e} is over 4x the measured {worst:.3e}"
+        );
     }
 
     #[test]
