@@ -1,4 +1,4 @@
-//! Cycles of the sampler-matrix calls (issue 20) on the PicoRV32 soft core
+//! Cycles of the sampler-matrix calls on the PicoRV32 soft core
 //! (feature `softcore`; `scripts/softcore` runs it on the Verilator model
 //! of `demo/softcore/soc.v` beside `cycles` and writes the matrix table of
 //! BUDGETS.md's soft-core block). The ray differentials are a second
