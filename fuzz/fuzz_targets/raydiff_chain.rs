@@ -20,7 +20,7 @@ use raymip::path::raydiff::gbuffer::{GSample, first_hit};
 use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
 use raymip::setup::table::TexTriangle;
 use raymip_host::raydiff_chains::{CLASSES, Class, Raymip, run};
-use raymip_host::reference::Rng;
+use raymip_reference::Rng;
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);

@@ -15,9 +15,10 @@ use std::fmt::Write as _;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
-use raymip_host::cli::output::{machine_line, publish, write_option};
+use raymip_host::output::machine::machine_line;
+use raymip_host::output::report::{publish, write_option};
 use raymip_host::raydiff_chains::{CLASSES, Outcome, Raymip, run};
-use raymip_host::reference::Rng;
+use raymip_reference::Rng;
 use rayon::prelude::*;
 
 const BLOCK: &str = "raydiff-accuracy";

@@ -2,7 +2,7 @@
 //! ray through 0–10 bounces (planes, convex and concave mirrors,
 //! refractions up to total internal reflection) to a textured triangle, run
 //! through the firmware (`raymip::path::raydiff`, by the [`Firmware`] adapter) and
-//! through the f64 reference ([`crate::reference::raydiff`]) on the same
+//! through the f64 reference ([`raymip_reference::raydiff`]) on the same
 //! quantised inputs, with the lod of each and the chain's error
 //! amplification. One generator per case [`Class`] of the firmware's
 //! documented input range; used by the bound tests
@@ -24,8 +24,8 @@
 
 use raymip::lod::Lod;
 
-use crate::reference::Rng;
-use crate::reference::raydiff::{
+use raymip_reference::Rng;
+use raymip_reference::raydiff::{
     self as rf, Diff, MIN_COS, Triangle, V, axpy, cross, dot, norm, scale, unit,
 };
 

@@ -457,8 +457,8 @@ mod tests {
     extern crate std;
     use super::*;
     use crate::path::raydiff::DirDiff;
-    use crate::raydiff_reference::{self as rf, V, dot, norm};
     use proptest::prelude::*;
+    use raymip_reference::raydiff::{self as rf, V, dot, norm};
 
     fn tex(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> (TexTriangle, rf::Triangle) {
         let pq = p.map(|v| v.map(Coord::saturating_from_num));

@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip_host::raydiff_chains::{CLASSES, Class, Raymip, run};
-use raymip_host::reference::Rng;
+use raymip_reference::Rng;
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(20_000))]

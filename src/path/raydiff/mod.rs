@@ -619,8 +619,8 @@ impl Scalar {
 pub(crate) mod tests {
     extern crate std;
     use super::*;
-    use crate::raydiff_reference::{self as rf, V, dot, norm};
     use proptest::prelude::*;
+    use raymip_reference::raydiff::{self as rf, V, dot, norm};
 
     /// f64 value of I2F30 unit-vector components.
     pub(crate) fn vu(v: UnitVec) -> V {

@@ -12,9 +12,6 @@
 //!   quantised vertices) has the lod `+∞` (the firmware's `Lod::MAX`);
 //! * a triangle of zero UV area (`Δu₁Δv₂ − Δu₂Δv₁ = 0`, exactly) and a
 //!   zero footprint have the lod `−∞` (`Lod::MIN`).
-//!
-//! Dependency-free (f64 and `core` only), so that the firmware's unit tests
-//! can include this same file.
 
 /// A 3-vector.
 pub type V = [f64; 3];
@@ -244,16 +241,14 @@ impl Triangle {
     }
 
     /// The lod of a footprint: `log2` of the larger axis in level-0 texels
-    /// (`±∞` for the degenerate classes and `−∞` for a zero footprint).
+    /// ([`crate::lod::footprint`]; `±∞` for the degenerate classes).
     #[must_use]
     pub fn lod(&self, fp: &Footprint) -> f64 {
         match fp {
             Footprint::Degenerate => f64::INFINITY,
             Footprint::FlatUv => f64::NEG_INFINITY,
-            Footprint::Axes([x, y]) => {
-                let (w, h) = (f64::from(self.w), f64::from(self.h));
-                let len = |a: [f64; 2]| (a[0] * w).hypot(a[1] * h);
-                len(*x).max(len(*y)).log2()
+            Footprint::Axes(axes) => {
+                crate::lod::footprint(*axes, (f64::from(self.w), f64::from(self.h)))
             }
         }
     }
