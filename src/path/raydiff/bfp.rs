@@ -31,13 +31,16 @@ pub(crate) fn mulhi_u(a: u32, b: u32) -> u32 {
     ((u64::from(a) * u64::from(b)) >> 32) as u32
 }
 
-/// `Σ aₖ·bₖ` exact in 64 bits (`smull` + two `smlal`; `|Σ| < 3·2⁶²`).
+/// `Σ aₖ·bₖ` in 64 bits (`smull` + two `smlal`): exact when `|Σ| < 2⁶³`,
+/// which holds whenever one side has components of magnitude at most
+/// `2³⁰` (a unit vector in I2F30); wrapping otherwise (inputs outside
+/// every documented range).
 #[inline(always)]
 #[must_use]
 pub(crate) fn dot64(a: [i32; 3], b: [i32; 3]) -> i64 {
-    i64::from(a[0]) * i64::from(b[0])
-        + i64::from(a[1]) * i64::from(b[1])
-        + i64::from(a[2]) * i64::from(b[2])
+    (i64::from(a[0]) * i64::from(b[0]))
+        .wrapping_add(i64::from(a[1]) * i64::from(b[1]))
+        .wrapping_add(i64::from(a[2]) * i64::from(b[2]))
 }
 
 /// `x >> s` for any `s ≥ 0` (`s ≥ 31` gives the sign: `0` or `−1`); the
