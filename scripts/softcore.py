@@ -69,6 +69,13 @@ SOFTCORE_CEILINGS = {
     "rd_refract": 36757, "rd_footprint": 5465, "rd_lod": 2996, "rd_gbuffer": 8054,
 }
 SOFTCORE_BATCH_CEILINGS = {"tw_bil": 775, "tw_bil_f": 700, "tw_tri": 1436, "tw_tri_f": 1324}
+# The same on VexRiscv in the LiteX SoC (issue 34): max cycles per call
+# (batches: steady cycles per hit), achieved + 10 %.
+VEX_CEILINGS = {}
+VEX_BATCH_CEILINGS = {}
+# Issue 34's goals on VexRiscv: LOD + trilinear per textured hit (table lod +
+# trilinear sample, RGBA8, wrap), the max of the 64 inputs, cycles.
+VEX_GOAL = 350
 
 CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
                      r"instret min (\d+) sum (\d+) max (\d+)$")
@@ -121,6 +128,19 @@ def parse_demo(text):
     return counters, render, ram
 
 
+def parse_variant(rd, name):
+    """The demo and `cycles` outputs of SoC variant `name` (files
+    NAME-cycles.out, NAME-demo.out) as a dict: calls, batches, base,
+    counters, render, ram. Exits when a call or line is missing."""
+    calls, base = parse_cycles(rd(f"{name}-cycles.out"))
+    batches = parse_batches(rd(f"{name}-cycles.out"))
+    counters, render, ram = parse_demo(rd(f"{name}-demo.out"))
+    missing = [k for k, _ in CALLS if k not in calls or calls[k]["n"] != 64 or k not in batches]
+    if missing or base is None or render is None or ram is None:
+        sys.exit(f"softcore.py: {name}-cycles.out / {name}-demo.out lack {missing or 'a line'}")
+    return {"calls": calls, "batches": batches, "base": base, "counters": counters, "render": render, "ram": ram}
+
+
 def loaded_bytes(size_text):
     """Bytes of RAM the image occupies: every allocated section of `size -A`
     except the stack/heap reservations and non-loaded metadata."""
@@ -165,11 +185,25 @@ def ceiling_cell(key, value, table, bad, what):
     return str(ceil) if ceil is not None else "—"
 
 
-def matrix_lines(calls, batches, mx, bad):
+def matrix_lines(calls, batches, mx, bad, vx=None):
     """The soft-core block's sampler-matrix and ray-differential sections
     (lines); ceiling failures appended to `bad`. `mx`: (matrix calls,
-    matrix baseline, matrix batches, raydiff calls, raydiff baseline)."""
+    matrix baseline, matrix batches, raydiff calls, raydiff baseline);
+    `vx`: the same measured on VexRiscv (the LiteX SoC), its columns after
+    PicoRV32's, or None."""
     mcalls, mbase, mbatches, rcalls, rbase = mx
+    vhead = " VexRiscv cycles | VexRiscv ceiling |" if vx else ""
+    vsep = "---|---|" if vx else ""
+
+    def vcells(key, table, ceilings, what, steady=False):
+        if not vx:
+            return ""
+        if steady:
+            c32, _, c64, _ = table[key]
+            v = (c64 - c32) / 32
+            return f" {v:.1f} | {ceiling_cell(key, v, ceilings, bad, what)} |"
+        c = table[key]
+        return f" {fmt3(c['cycles'])} | {ceiling_cell(key, c['cycles'][2], ceilings, bad, what)} |"
     cpi = lambda c: c["cycles"][1] / c["instret"][1]
     L = ["\n### Sampler matrix (issue 20)\n"]
     L.append("The rows of the \"Sampler matrix\" section above: the same wrappers, subjects, inputs and")
@@ -178,32 +212,39 @@ def matrix_lines(calls, batches, mx, bad):
     L.append(f"{mbase[0]} cycles, {mbase[2]} instruction). A BC1 row counts the first call of each pair (cache")
     L.append("emptied, blocks decoded) or the second (hits). min / mean / max over the 64 inputs; the CI")
     L.append("ceiling applies to the max cycles (achieved + 10 %, `SOFTCORE_CEILINGS` in `scripts/softcore.py`).\n")
-    L.append("| call | tier | cycles | instructions | CPI | ceiling (max cycles) |")
-    L.append("|---|---|---|---|---|---|")
+    if vx:
+        L.append("VexRiscv columns: the same binary built for the LiteX SoC (below), warm caches, its own")
+        L.append("ceilings (`VEX_CEILINGS`).\n")
+    L.append("| call | tier | cycles | instructions | CPI | ceiling (max cycles) |" + vhead)
+    L.append("|---|---|---|---|---|---|" + vsep)
     for key, label, tier, *_ in MATRIX_ROWS:
         c = mcalls[key]
         ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "matrix")
-        L.append(f"| {label} | {tier} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+        L.append(f"| {label} | {tier} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |" +
+                 vcells(key, vx and vx[0], VEX_CEILINGS, "VexRiscv matrix"))
     L.append("\nBatches of the wrap rows (`Sampler::sample_batch`, 32 then 64 hits per call): steady per hit =")
     L.append("(count for 64 − count for 32) / 32, amortised = count for 64 / 64.\n")
-    L.append("| batch | tier | cycles steady | cycles amortised | instructions steady | CPI steady | ceiling (steady cycles) |")
-    L.append("|---|---|---|---|---|---|---|")
+    L.append("| batch | tier | cycles steady | cycles amortised | instructions steady | CPI steady | ceiling (steady cycles) |" +
+             vhead.replace("cycles", "cycles steady"))
+    L.append("|---|---|---|---|---|---|---|" + vsep)
     for label, tier, _, key in MATRIX_BATCHES:
         c32, i32, c64, i64 = mbatches[key]
         cs, is_ = (c64 - c32) / 32, (i64 - i32) / 32
         ceil = ceiling_cell(key, cs, SOFTCORE_BATCH_CEILINGS, bad, "matrix batch")
-        L.append(f"| {label} | {tier} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {cs / is_:.2f} | {ceil} |")
+        L.append(f"| {label} | {tier} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {cs / is_:.2f} | {ceil} |" +
+                 vcells(key, vx and vx[1], VEX_BATCH_CEILINGS, "VexRiscv matrix batch", steady=True))
     L.append("\n### Ray differentials (issue 21)\n")
     L.append("The rows of the \"Ray differentials\" section above (`probes::raydiff_rows`, the same inputs), by")
     L.append("`demo/firmware/src/bin/cycles_raydiff.rs` (feature `raydiff`; a binary of its own, as the matrix and")
     L.append(f"the ray differentials together exceed the RAM), minus the counter reads ({rbase[0]} cycles, {rbase[2]}")
     L.append("instruction). min / mean / max; ceiling on the max cycles as above.\n")
-    L.append("| call | cycles | instructions | CPI | ceiling (max cycles) |")
-    L.append("|---|---|---|---|---|")
+    L.append("| call | cycles | instructions | CPI | ceiling (max cycles) |" + vhead)
+    L.append("|---|---|---|---|---|" + vsep)
     for key, label in RD_ROWS:
         c = rcalls[key]
         ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "raydiff")
-        L.append(f"| {label} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+        L.append(f"| {label} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |" +
+                 vcells(key, vx and vx[2], VEX_CEILINGS, "VexRiscv raydiff"))
     mean = lambda d, k: d[k]["cycles"][1]
     c32, _, c64, _ = batches["lod_fast"]
     per = {
@@ -224,8 +265,44 @@ def matrix_lines(calls, batches, mx, bad):
     return L
 
 
+def vex_lines(a, calls, vex):
+    """The soft-core block's VexRiscv section (lines): the per-call and batch
+    tables beside PicoRV32's, the demo tile. `vex`: dict with the parsed
+    `calls`, `batches`, `base`, `counters`, `render`, `ram` of the LiteX SoC."""
+    vc, vb = vex["calls"], vex["batches"]
+    L = ["\n### VexRiscv in a LiteX SoC (issue 34)\n"]
+    L.append(f"The same binaries built for `riscv32im-unknown-none-elf` with feature `litex`, on the SoC of")
+    L.append(f"`demo/softcore/litex_soc.py` generated by LiteX's SoC builder for its simulation platform ({a.litex}):")
+    L.append(f"VexRiscv `full` (`{a.vex_file}` sha256 {a.vex_sha}… from the installed pythondata-cpu-vexriscv:")
+    L.append("RV32IM, 5-stage pipeline, 4 KiB direct-mapped instruction and data caches with 32-byte lines, static")
+    L.append("branch prediction, barrel shifter, pipelined multiplier (`MulPlugin`), iterative divider")
+    L.append("(`MulDivIterativePlugin`, one bit a cycle), machine-mode CSRs with the 64-bit counters),")
+    L.append(f"{vex['ram']} KiB integrated main RAM (code and data) on LiteX's Wishbone bus, LiteX's UART; simulated cycle by")
+    L.append(f"cycle by {a.verilator} with the driver `demo/softcore/litex_sim.cpp`. With caches, each series runs")
+    L.append("once untimed before the timed pass (`WARM_UP` in `demo/firmware/src/counters.rs`): warm caches, as in")
+    L.append("a per-hit loop; the direct-mapped caches make every count depend on the image's layout (a change")
+    L.append(f"elsewhere in the code can move a row by tens of cycles). Empty measurement {vex['base'][0]} cycles.\n")
+    L.append("| call | PicoRV32 cycles (mean) | VexRiscv cycles | VexRiscv instructions | VexRiscv CPI | VexRiscv batch steady |")
+    L.append("|---|---|---|---|---|---|")
+    for k, name in CALLS:
+        c, v = calls[k], vc[k]
+        c32, _, c64, _ = vb[k]
+        L.append(f"| {name} | {c['cycles'][1]:.1f} | {fmt3(v['cycles'])} | {fmt3(v['instret'])} | "
+                 f"{v['cycles'][1] / v['instret'][1]:.2f} | {(c64 - c32) / 32:.1f} |")
+    lt = [vc["lod"]["cycles"][i] + vc["trilinear"]["cycles"][i] for i in (0, 1, 2)]
+    ok = "met" if vc["lod"]["cycles"][2] + vc["trilinear"]["cycles"][2] <= VEX_GOAL else "missed"
+    L.append(f"\nLOD + trilinear per textured hit (table lod + trilinear sample, RGBA8, wrap): "
+             f"{lt[0]} / {lt[1]:.1f} / {vc['lod']['cycles'][2] + vc['trilinear']['cycles'][2]} cycles "
+             f"(min / mean / sum of the maxima); issue 34's goal ≤ {VEX_GOAL} cycles at the max: {ok}.")
+    cyc, ins = vex["render"]
+    px = vex["counters"].get("pixels", 1)
+    L.append(f"Whole demo tile (checksum and counters equal to the host's): {cyc} cycles, {ins} instructions,")
+    L.append(f"CPI {cyc / ins:.2f}; {cyc / px:.0f} cycles per pixel.")
+    return L
+
+
 def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc=None,
-                  mx=None, bad=None):
+                  mx=None, bad=None, vex=None):
     L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
     L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
     src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
@@ -303,8 +380,10 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
             s0 = sum(steady(batches, k) for k in ks)
             s1 = sum(steady(pbatches, k) for k in ks)
             L.append(f"| {label} | {c0:.1f} | {c1:.1f} | {s0:.1f} | {s1:.1f} |")
+    if vex is not None:
+        L += vex_lines(a, calls, vex)
     if mx is not None:
-        L += matrix_lines(calls, batches, mx, bad)
+        L += matrix_lines(calls, batches, mx, bad, vex and vex["mx"])
     L.append(B_END)
     return "\n".join(L)
 
@@ -447,6 +526,8 @@ def main():
     ap.add_argument("--budgets")
     ap.add_argument("--readme")
     ap.add_argument("--docs")
+    ap.add_argument("--litex", help="LiteX and pythondata-cpu-vexriscv versions (the VexRiscv runs)")
+    ap.add_argument("--vex-rtl", help="the VexRiscv Verilog file the LiteX SoC used")
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     if a.self_test:
@@ -498,9 +579,22 @@ def main():
     missing += [k for k, _ in RD_ROWS if k not in rcalls or rcalls[k]["n"] != 64]
     if missing or mbase is None or rbase is None:
         sys.exit(f"softcore.py: matrix.out / raydiff.out lack {missing or 'the baseline'}")
+    vex = None
+    if os.path.exists(os.path.join(a.work, "vex-cycles.out")):
+        vex = parse_variant(rd, "vex")
+        vm, _ = parse_cycles(rd("vex-matrix.out"))
+        vmb = parse_batches(rd("vex-matrix.out"))
+        vr, _ = parse_cycles(rd("vex-raydiff.out"))
+        missing = [k for k, *_ in MATRIX_ROWS if k not in vm] + [k for *_, k in MATRIX_BATCHES if k not in vmb]
+        missing += [k for k, _ in RD_ROWS if k not in vr]
+        if missing:
+            sys.exit(f"softcore.py: vex-matrix.out / vex-raydiff.out lack {missing}")
+        vex["mx"] = (vm, vmb, vr)
+        a.vex_file = os.path.basename(a.vex_rtl)
+        a.vex_sha = hashlib.sha256(open(a.vex_rtl, "rb").read()).hexdigest()[:16]
     bad = []
     bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc,
-                       (mcalls, mbase, mbatches, rcalls, rbase), bad)
+                       (mcalls, mbase, mbatches, rcalls, rbase), bad, vex)
     rb = readme_block(calls, counters, render, rows)
     targets = [(a.budgets, B_BEGIN, B_END, bb, "## Code size"), (a.readme, R_BEGIN, R_END, rb, None)]
     if a.docs and pc is not None:
@@ -537,6 +631,11 @@ def main():
           {k: plus10(d[k]["cycles"][2]) for d, rows in ((mcalls, MATRIX_ROWS), (rcalls, RD_ROWS))
            for k, *_ in rows},
           {k: plus10((mbatches[k][2] - mbatches[k][0]) / 32) for *_, k in MATRIX_BATCHES})
+    if vex:
+        vm, vmb, vr = vex["mx"]
+        print("softcore.py: VexRiscv + 10 % (VEX_CEILINGS, VEX_BATCH_CEILINGS):",
+              {k: plus10(d[k]["cycles"][2]) for d, rows in ((vm, MATRIX_ROWS), (vr, RD_ROWS)) for k, *_ in rows},
+              {k: plus10((vmb[k][2] - vmb[k][0]) / 32) for *_, k in MATRIX_BATCHES})
     if bad:
         print("softcore.py: FAIL (above the ceiling)\n  " + "\n  ".join(bad))
         return 1
