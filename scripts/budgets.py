@@ -618,7 +618,7 @@ def render(work, old_text, readme):
       + (f": {how}" if how else "") + ").")
 
     w("\n## Fixed point beside f32\n")
-    w("The same four stages in f32 (`raymip::float`, feature `f32`, `libm`), on the same 64 inputs")
+    w("The same four stages in f32 (`raymip::baseline_f32`, feature `f32`, `libm`), on the same 64 inputs")
     w("converted to f32 outside the counted call, counted by the same trace script: on the")
     w("Cortex-M4F with its single-precision FPU (`thumbv7em-none-eabihf`), on RV32IMAC with soft")
     w("float (`__addsf3`, `__mulsf3`, … from compiler-builtins). Mean instructions per call;")
@@ -681,7 +681,7 @@ def render(work, old_text, readme):
     matrix_section(res, w, bad)
 
     w("\n## Ray differentials (feature `raydiff`)\n")
-    w("`raymip::raydiff` (Igehy's ray differentials in fixed point), each stage its own wrapper, 64")
+    w("`raymip::path::raydiff` (Igehy's ray differentials in fixed point), each stage its own wrapper, 64")
     w("calls on `inputs::raydiff` (a primary-like state, directions near `(±½, ±½, −0.7)`, normals")
     w("near `+z` with small differentials), the footprint and lod on one 4 × 3 triangle of the demo")
     w("texture size; counted like the calls above. min / mean / max.\n")
@@ -720,7 +720,7 @@ def render(work, old_text, readme):
     w("compile time on every target).")
 
     w("\n## Environment map (feature `envmap`)\n")
-    w("`raymip::envmap` (Ray Tracing Gems ch. 21): the lod of a ray that leaves the scene on a")
+    w("`raymip::lod::envmap` (Ray Tracing Gems ch. 21): the lod of a ray that leaves the scene on a")
     w("2048 × 1024 latitude-longitude map and the map coordinates of its direction, each its own")
     w("wrapper, 64 calls on `inputs::envmap` (cone spreads in [2⁻¹², 2⁻⁸) rad, directions of every")
     w("latitude, direction differentials up to 2⁻⁸); counted like the calls above. min / mean / max.")

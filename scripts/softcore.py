@@ -344,7 +344,7 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
         L.append("\n### With the texture co-processor\n")
         L.append("The same measurement on the SoC with `ENABLE_TEX = 1` (`demo/softcore/pcpi_tex.v` on the")
         L.append("core's PCPI port: `tex.log2pl`, `tex.lod`, and the ACCURATE filter's `tex.bw`, `tex.bt`, `tex.bb`,")
-        L.append("`tex.blend`) and the firmware built with feature `pcpi` (`src/pcpi.rs`: table lod = the two lod")
+        L.append("`tex.blend`) and the firmware built with feature `pcpi` (`src/coproc/pcpi.rs`: table lod = the two lod")
         L.append("instructions, cone lod's two log2 = `tex.log2pl`, each bilinear level = `tex.bw` + `tex.bt` + `tex.bb`,")
         L.append("the trilinear level blend = `tex.blend`; the FAST lods and the FAST, nearest and sRGB kernels are")
         L.append("unchanged). Demo tile: checksum and counters equal to the host's.")

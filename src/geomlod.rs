@@ -26,7 +26,7 @@
 //!
 //! [`ray_mask`]: one uniformly random bit `1 << (r & 7)` from the
 //! [`crate::rng::Rng`] of the pixel and frame; the path keeps it in its
-//! [`crate::raystack::PathState::mask`] for every later ray (reflection,
+//! [`crate::path::raystack::PathState::mask`] for every later ray (reflection,
 //! refraction, shadow, ambient occlusion). An instance is visible to a ray
 //! iff `instance_mask & ray_mask != 0` ([`visible`]).
 //!

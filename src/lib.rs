@@ -11,23 +11,29 @@
 //! no floats on the per-hit path, no panics: saturating arithmetic with
 //! documented ranges and small error enums at the API edges.
 //!
-//! Data flows one way, one module per stage:
+//! Data flows one way, one folder per part of the pipeline, one module per
+//! stage:
 //!
-//! | stage | module | per hit |
-//! |---|---|---|
-//! | fixed-point logarithm | [`log2`] | leading zeros + 64-entry table |
-//! | camera pixel spread `γ` (set-up) | [`camera`] | – |
-//! | per-triangle `log2 Pb` (set-up) | [`table`] | one table read |
-//! | path state across bounces | [`raystack`] | `Pl += t`, `w += γ·t` |
-//! | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
-//! | texture storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
-//! | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
-//! | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
-//! | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
-//! | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
-//! | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
-//! | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `envmap` | one or two logarithms; `(u, v)`: two 3-step CORDIC vectorings, a division and short series in 32-bit words |
-//! | scene analysis: MIP levels a scene can select per texture, skips (set-up) | [`analysis`] | — (trimmed pyramids, untextured marks) |
+//! | part | stage | module | per hit |
+//! |---|---|---|---|
+//! | set-up | camera pixel spread `γ` | [`setup::camera`] | – |
+//! | set-up | per-triangle `log2 Pb` | [`setup::table`] | one table read |
+//! | set-up | scene analysis: MIP levels a scene can select per texture, skips | [`setup::analysis`] | — (trimmed pyramids, untextured marks) |
+//! | path state | path state across bounces | [`path::raystack`] | `Pl += t`, `w += γ·t` |
+//! | path state | ray differentials (feature `raydiff`) | `path::raydiff` | transfer, reflection, refraction per hit |
+//! | lod | fixed-point logarithms, ACCURATE and FAST | [`lod::log2`], [`lod::log2_fast`] | leading zeros + table read |
+//! | lod | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
+//! | lod | texture-space footprint and lod from ray differentials (feature `raydiff`) | `lod::raydiff` | four dot products, one logarithm |
+//! | lod | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `lod::envmap` | one or two logarithms; `(u, v)`: two 3-step CORDIC vectorings, a division and short series in 32-bit words |
+//! | texture | storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
+//! | texture | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
+//! | texture | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
+//! | texture | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
+//! | geometric LOD | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
+//! | – | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
+//! | co-processor | custom instructions of a soft core's texture unit (feature `pcpi`) | [`coproc`] | the same bits in hardware |
+//! | f32 baseline | the per-hit stages in `f32` (feature `f32`) | `baseline_f32` | – (comparison only) |
+//! | C ABI | `extern "C"` functions and `#[repr(C)]` types (feature `ffi`) | `ffi` | – |
 //!
 //! # Cargo features
 //!
@@ -36,20 +42,22 @@
 //! `default-features = false` and lists what it uses. Code a program does
 //! not call is not linked anyway; what a feature removes beyond that is
 //! the part every per-hit call carries (the cone update in
-//! [`PathState::advance`](raystack::PathState::advance), the linear-level
+//! [`PathState::advance`](path::raystack::PathState::advance), the linear-level
 //! arms of [`Sampler::sample`](texture::Sampler::sample)) and API surface.
 //! Linked `.text` / `.rodata` per feature set on both targets:
 //! `BUDGETS.md`, "Feature sets" (written by `scripts/features`).
 //!
 //! | feature | default | stage | left out |
 //! |---|---|---|---|
-//! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`raystack::PathState`] is 16 bytes instead of 32 ([`raystack::PATH_STATE_BYTES`]) |
+//! | `cone` | yes | ray cones: `lod::cone_lod`, `Log2Pb::delta`, cone state on the ray stack | table method only; a [`path::raystack::PathState`] is 16 bytes instead of 32 ([`path::raystack::PATH_STATE_BYTES`]) |
 //! | `trilinear` | yes | linear-between-levels modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`) | nearest-level modes only |
 //! | `cache` | yes | texel cache, images in any format, BC decoding (`texture::storage::{cache, image}`) | the sampler reads RGBA8 pyramids in memory directly |
 //! | `mipgen` | yes | in-place pyramid generation (`mip::generate`) | pyramids prebuilt (host, flash) |
 //! | `ffi` | no | C ABI (`ffi`, `include/raymip.h`); implies all four above | — |
-//! | `envmap` | no | environment-map lod (cone; with `raydiff` also ray differentials) and the latitude-longitude `(u, v)` of a direction (`envmap`) | no environment-map stage |
-//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod and the ACCURATE linear bilinear/trilinear filter (`pcpi`, riscv32 only; no effect on other targets) | software log2 and filter |
+//! | `envmap` | no | environment-map lod (cone; with `raydiff` also ray differentials) and the latitude-longitude `(u, v)` of a direction (`lod::envmap`) | no environment-map stage |
+//! | `raydiff` | no | fixed-point ray differentials in every path state, their transfer, reflection, refraction, G-buffer set-up, texture-space footprint and lod (`path::raydiff`, `lod::raydiff`) | table and cone methods only; no differential state on the ray stack |
+//! | `f32` | no | the per-hit stages in `f32`, the comparison baseline (`baseline_f32`); implies `trilinear` | no float code |
+//! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod and the ACCURATE linear bilinear/trilinear filter (`coproc::pcpi`, riscv32 only; no effect on other targets) | software log2 and filter |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
 //! specialised at compile time by its key `K` (address mode per axis,
@@ -60,9 +68,9 @@
 //! ```
 //! use fixed::types::U32F32;
 //! use raymip::lod::{table_lod, Lod};
-//! use raymip::raystack::{PathState, RayStack, Spread};
-//! use raymip::camera::PixelSpread;
-//! use raymip::table::{Log2Pb, PbTable, TexTriangle};
+//! use raymip::path::raystack::{PathState, RayStack, Spread};
+//! use raymip::setup::camera::PixelSpread;
+//! use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
 //!
 //! // Set-up: camera with 60° vertical field of view, 480 rows.
 //! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
@@ -149,25 +157,16 @@
 #[macro_use]
 mod macros;
 
-pub mod analysis;
-pub mod camera;
-#[cfg(feature = "envmap")]
-pub mod envmap;
+#[cfg(feature = "f32")]
+pub mod baseline_f32;
+pub mod coproc;
 #[cfg(feature = "ffi")]
 pub mod ffi;
-#[cfg(feature = "f32")]
-pub mod float;
 pub mod geomlod;
 pub mod lod;
-pub mod log2;
-pub mod log2_fast;
-#[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
-pub mod pcpi;
-#[cfg(feature = "raydiff")]
-pub mod raydiff;
-pub mod raystack;
+pub mod path;
 pub mod rng;
-pub mod table;
+pub mod setup;
 pub mod texture;
 
 // The harness's f64 reference of `log2 Pb`, shared by the unit tests.
@@ -187,10 +186,10 @@ mod envmap_reference;
 struct ReadmeExample;
 
 // The everyday types, re-exported at the crate root.
-pub use camera::{CameraError, PixelSpread};
 pub use lod::Lod;
-pub use raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
-pub use table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};
+pub use path::raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
+pub use setup::camera::{CameraError, PixelSpread};
+pub use setup::table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};
 #[cfg(feature = "cache")]
 pub use texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
 pub use texture::storage::mip::{Geometry, MipError, Pyramid, Texel};

@@ -1,5 +1,5 @@
 //! `include/raymip.h` is exactly what cbindgen (as a library, so the test
-//! command needs no `cargo install cbindgen`) generates from `src/ffi.rs`
+//! command needs no `cargo install cbindgen`) generates from `src/ffi/mod.rs`
 //! with `cbindgen.toml`, with the rustdoc link brackets taken out of the
 //! comments (a link to `rm_sample` reads `rm_sample` in C, not
 //! ``[`rm_sample`]``). `RAYMIP_WRITE_HEADER=1` rewrites the header instead
@@ -16,9 +16,9 @@ fn header_is_up_to_date() {
         cbindgen::Config::from_file(root.join("cbindgen.toml")).expect("cbindgen.toml parses");
     let bindings = cbindgen::Builder::new()
         .with_config(config)
-        .with_src(root.join("src/ffi.rs"))
+        .with_src(root.join("src/ffi/mod.rs"))
         .generate()
-        .expect("cbindgen parses src/ffi.rs");
+        .expect("cbindgen parses src/ffi/mod.rs");
     let mut raw = Vec::new();
     bindings.write(&mut raw);
     let generated = without_link_brackets(&String::from_utf8(raw).expect("cbindgen writes UTF-8"));

@@ -13,11 +13,11 @@ mod common;
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use raymip::camera::PixelSpread;
 use raymip::ffi::*;
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
-use raymip::raystack::PathState;
-use raymip::table::{Log2Pb, PbTable};
+use raymip::path::raystack::PathState;
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Log2Pb, PbTable};
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::texture::{AddressMode, Mode, Sampler};
 

@@ -3,7 +3,7 @@
 //! fine detail. PSNR against a supersampled ground truth of the lookups of
 //! rays that leave the scene at level 0 (mip0), at the cone lod and at the
 //! ray-differential lod (both with the pole term), fixed point (the
-//! firmware's `raymip::envmap` lod and CORDIC `(u, v)`, the firmware
+//! firmware's `raymip::lod::envmap` lod and CORDIC `(u, v)`, the firmware
 //! sampler) and f64.
 //!
 //! ```sh

@@ -3,11 +3,11 @@
 //! maxima (quoted in docs/accuracy.md) and checks the documented bounds.
 
 use fixed::types::{I32F32, U1F31};
-use raymip::camera::PixelSpread;
+use raymip::lod::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::lod::{LOD_MAX_ERROR, cone_lod, table_lod};
-use raymip::log2::{LOG2_MAX_ERROR, log2_bits};
-use raymip::raystack::{PathLength, PathState, Spread};
-use raymip::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
+use raymip::path::raystack::{PathLength, PathState, Spread};
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
 
 use crate::common;
 use common::{Rng, log2_pb_f64};

@@ -106,8 +106,8 @@ pub mod inputs {
     use fixed::types::{I16F16, U1F31};
     use raymip::geomlod::{Depth, LodBias, LodMode, LodRange, Selector, Transition};
     use raymip::lod::Lod;
-    use raymip::raystack::{PathLength, Width};
-    use raymip::table::Log2Pb;
+    use raymip::path::raystack::{PathLength, Width};
+    use raymip::setup::table::Log2Pb;
     use raymip::texture::TexCoord;
     use raymip::texture::address::AddressMode;
     use raymip::texture::sampler::aniso::Footprint;
@@ -117,11 +117,11 @@ pub mod inputs {
     /// and its differential (feature `raydiff`).
     #[cfg(feature = "raydiff")]
     pub type RayDiffIn = (
-        raymip::raydiff::RayDiff,
-        raymip::raydiff::UnitVec,
+        raymip::path::raydiff::RayDiff,
+        raymip::path::raydiff::UnitVec,
         PathLength,
-        raymip::raydiff::UnitVec,
-        [raymip::raydiff::DirDiff; 3],
+        raymip::path::raydiff::UnitVec,
+        [raymip::path::raydiff::DirDiff; 3],
     );
 
     /// Calls per measured function (and hits per batch).
@@ -343,8 +343,8 @@ pub mod inputs {
     pub fn envmap(
         r: &mut Rng,
     ) -> (
-        raymip::raystack::Spread,
-        raymip::raystack::UnitVec,
+        raymip::path::raystack::Spread,
+        raymip::path::raystack::UnitVec,
         [fixed::types::I2F30; 3],
         [fixed::types::I2F30; 3],
     ) {
@@ -372,7 +372,7 @@ pub mod inputs {
         let mut g = |_| I32F32::from_bits(i64::from(r.next() as i32) >> 7);
         let o = [core::array::from_fn(&mut g), core::array::from_fn(&mut g)];
         let t = PathLength::from_bits(u64::from(r.next() >> 6) + (1 << 32));
-        let s = raymip::raydiff::RayDiff {
+        let s = raymip::path::raydiff::RayDiff {
             dodx: o[0],
             dody: o[1],
             dddx: dd[0],

@@ -435,10 +435,10 @@ pub fn sampler_rows<M: Meter>(
 pub mod rd {
     use fixed::types::I2F30;
     use raymip::lod::Lod;
-    use raymip::raydiff::footprint::RayDiffTriangle;
-    use raymip::raydiff::gbuffer::{GSample, first_hit};
-    use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
-    use raymip::raystack::PathLength;
+    use raymip::lod::raydiff::RayDiffTriangle;
+    use raymip::path::raydiff::gbuffer::{GSample, first_hit};
+    use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+    use raymip::path::raystack::PathLength;
     use raymip::texture::sampler::aniso::Footprint;
 
     /// Primary-ray set-up from the camera axes.
@@ -524,10 +524,10 @@ pub mod rd {
 #[cfg(feature = "raydiff")]
 #[inline(always)]
 pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
-    use raymip::raydiff::footprint::RayDiffTriangle;
-    use raymip::raydiff::gbuffer::GSample;
-    use raymip::raystack::PathLength;
-    use raymip::table::{Coord, TexTriangle};
+    use raymip::lod::raydiff::RayDiffTriangle;
+    use raymip::path::raydiff::gbuffer::GSample;
+    use raymip::path::raystack::PathLength;
+    use raymip::setup::table::{Coord, TexTriangle};
     let mut rng = Rng(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
     let c = |x: i32| Coord::from_bits(i64::from(x) << 32);

@@ -16,8 +16,6 @@ use core::hint::black_box as bb;
 
 use cortex_m_rt::entry;
 use panic_never as _;
-use raymip::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
-use raymip::camera::PixelSpread;
 use raymip::ffi::{
     RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage, RmModeBits, RmPathState,
     RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod,
@@ -30,16 +28,18 @@ use raymip::geomlod::{
     Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
     transition_step, visible,
 };
+use raymip::lod::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
+use raymip::lod::log2_fast::{NormPl, log2_u32f32_fast};
 use raymip::lod::{
     Lod, LodWord, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch,
     table_lod, table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
     table_lod_norm,
 };
-use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
-use raymip::log2_fast::{NormPl, log2_u32f32_fast};
-use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::path::raystack::{PathLength, PathState, RayStack, Spread, Width};
 use raymip::rng::{Rng, mix32};
-use raymip::table::{Log2Pb, PbTable};
+use raymip::setup::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Log2Pb, PbTable};
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
 use raymip::texture::kernel::{Fast, Linear, Precision, SrgbToLinear};
@@ -352,9 +352,9 @@ fn main() -> ! {
         ));
         // Ray differentials (feature `raydiff`): every per-hit operation.
         {
-            use raymip::raydiff::footprint::RayDiffTriangle;
-            use raymip::raydiff::gbuffer::{GSample, axis, first_hit};
-            use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+            use raymip::lod::raydiff::RayDiffTriangle;
+            use raymip::path::raydiff::gbuffer::{GSample, axis, first_hit};
+            use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
             let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
             let s = bb(RayDiff {
                 dodx: [PosDiff::from_bits(bb(7)); 3],
@@ -374,8 +374,8 @@ fn main() -> ! {
                 fixed::types::I2F30::from_bits(bb(0)),
             ));
             bb(RayDiff::primary(d, n, dn, dn));
-            let c = |x: i64| raymip::table::Coord::from_bits(bb(x));
-            if let Ok(t) = raymip::table::TexTriangle::new(
+            let c = |x: i64| raymip::setup::table::Coord::from_bits(bb(x));
+            if let Ok(t) = raymip::setup::table::TexTriangle::new(
                 [
                     [c(0), c(1), c(2)],
                     [c(3 << 32), c(0), c(5)],
@@ -400,13 +400,13 @@ fn main() -> ! {
         // Environment map (feature `envmap`): the lods of a ray that leaves
         // the scene and the lat-long (u, v) of its direction.
         {
-            use raymip::envmap::{EnvMap, direction_uv};
-            use raymip::raydiff::DirDiff;
+            use raymip::lod::envmap::{EnvMap, direction_uv};
+            use raymip::path::raydiff::DirDiff;
             let v3 = |x: i32| bb([fixed::types::I2F30::from_bits(x); 3]);
             if let Ok(map) = EnvMap::new(bb(2048), bb(1024)) {
                 let map = bb(map);
                 let (d, dd) = (v3(bb(1 << 29)), [DirDiff::from_bits(bb(-3)); 3]);
-                let g = raymip::raystack::Spread::from_bits(bb(1 << 20));
+                let g = raymip::path::raystack::Spread::from_bits(bb(1 << 20));
                 bb(map.cone_lod(g, None));
                 bb(map.cone_lod(g, Some(d)));
                 bb(map.raydiff_lod(dd, bb(dd), bb(Some(d))));

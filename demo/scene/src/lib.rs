@@ -40,10 +40,10 @@ use core::fmt;
 pub mod parity;
 
 use fixed::types::I2F30;
-use raymip::camera::PixelSpread;
 use raymip::lod::{Lod, clamp_lod, table_lod};
-use raymip::raystack::{PathLength, PathState, RayStack, Spread};
-use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Coord, Log2Pb, PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::texture::{Mode, Sampler, TexCoord};
@@ -77,9 +77,9 @@ pub const MAX_DEPTH: u8 = 8;
 /// Ray stack capacity of the demo (the paper's 10 entries). Each hit
 /// pushes at most one continuation (the mirror term) and the tracer pops it
 /// at once, so a path needs `stack_bound(MAX_DEPTH, 1) = 1` entry (derivation
-/// in `raymip::raystack`): the stack never fills and `stack_full` stays 0.
+/// in `raymip::path::raystack`): the stack never fills and `stack_full` stays 0.
 pub const STACK: usize = 10;
-const _: () = assert!(STACK >= raymip::raystack::stack_bound(MAX_DEPTH, 1));
+const _: () = assert!(STACK >= raymip::path::raystack::stack_bound(MAX_DEPTH, 1));
 /// Texture size (level 0) of both demo textures, texels per side.
 pub const TEX_SIZE: u32 = 32;
 /// Number of MIP levels of the demo textures (32 → 1).

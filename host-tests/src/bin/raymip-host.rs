@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use raymip_host::cli::instances::{cmd_bench, cmd_render as cmd_render_instances};
+use raymip_host::cli::memory::{MemoryArgs, cmd_memory};
 use raymip_host::cli::sample::{self, SampleArgs};
 use raymip_host::cli::stress::cmd_stress;
 use raymip_host::cli::tradeoff::{Args as TradeoffArgs, cmd_tradeoff};
@@ -185,6 +186,11 @@ enum Command {
         #[arg(long)]
         write_readme: Option<PathBuf>,
     },
+    /// The memory a firmware needs for a scene (a scene file, or numbers:
+    /// --triangles, --texture, --path-range) on a target with a feature set:
+    /// Pb table, pyramids full and trimmed, ray stack, texel caches,
+    /// samplers, code.
+    Memory(MemoryArgs),
     /// Table I: mip-level shares and texel-cache hit rates (mip mapping off/on) per BART scene.
     Table1 {
         /// Folder with one sub-folder per scene (default ../shared/scenes/bart).
@@ -248,6 +254,7 @@ fn main() -> ExitCode {
             };
             cmd_render_instances(&cfg, geom.reference, &args.out).map_err(Into::into)
         }
+        Command::Memory(args) => cmd_memory(args).map_err(Into::into),
         Command::Stress { write_readme } => cmd_stress(write_readme.as_deref()).map_err(Into::into),
         Command::GeomlodBench {
             size,

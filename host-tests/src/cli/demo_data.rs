@@ -6,8 +6,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use raymip::camera::PixelSpread;
-use raymip::table::PbTable;
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::PbTable;
 use raymip_demo_scene::{FOV_Y_DEGREES, HEIGHT, TRIANGLES, triangles};
 
 /// Folder of the generated files, relative to the repository root.
@@ -38,9 +38,9 @@ pub fn checksum_line(checksum: u32) -> String {
 #[non_exhaustive]
 pub enum DataError {
     /// The camera's pixel spread is invalid.
-    Camera(raymip::camera::CameraError),
+    Camera(raymip::setup::camera::CameraError),
     /// The Pb table could not be built.
-    Table(raymip::table::TableError),
+    Table(raymip::setup::table::TableError),
     /// A texture pyramid could not be built.
     Mip(raymip::texture::storage::mip::MipError),
 }
@@ -64,7 +64,7 @@ impl std::error::Error for DataError {}
 pub fn generate_data() -> Result<Vec<DataFile>, DataError> {
     let fov = FOV_Y_DEGREES.to_radians();
     let spread = PixelSpread::from_fov_y(fov, HEIGHT).map_err(DataError::Camera)?;
-    let mut entries = [raymip::table::Log2Pb::UNTEXTURED; TRIANGLES];
+    let mut entries = [raymip::setup::table::Log2Pb::UNTEXTURED; TRIANGLES];
     PbTable::new(&mut entries)
         .build(triangles(), &spread)
         .map_err(DataError::Table)?;

@@ -1,5 +1,5 @@
 //! The CLI commands and their output: `render`, `compare`, `table1`,
-//! `sample`, `stress` and the demo's `gen-data`, as library functions (the binaries
+//! `sample`, `stress`, `memory` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
 use std::path::Path;
@@ -8,6 +8,7 @@ pub mod compare;
 pub mod demo_data;
 mod error;
 pub mod instances;
+pub mod memory;
 pub mod output;
 pub mod pcpi_vectors;
 pub mod render;

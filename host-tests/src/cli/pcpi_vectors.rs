@@ -8,7 +8,7 @@
 //! funct3; RS1, RS2, RD 32-bit words):
 //! * `0` `tex.log2pl`: `RS1`/`RS2` the low/high word of a U32F32 path length,
 //!   `RD = log2_u32f32(Pl).to_bits() + 0x80` (the value the firmware's
-//!   `table_lod` and `cone_lod` subtract from; see `raymip::pcpi`);
+//!   `table_lod` and `cone_lod` subtract from; see `raymip::coproc::pcpi`);
 //! * `1` `tex.lod`: `RS1` the `tex.log2pl` value of `Pl` (as above), `RS2`
 //!   the bits of a `Log2Pb` entry, `RD = table_lod(Pl, Pb)` sign-extended,
 //!   `0x8000_0000` for `None` (untextured);
@@ -33,11 +33,11 @@
 use std::fmt::Write as _;
 
 use fixed::types::U32F32;
+use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
-use raymip::log2::log2_u32f32;
-use raymip::raystack::PathLength;
+use raymip::path::raystack::PathLength;
 use raymip::rng::Rng;
-use raymip::table::Log2Pb;
+use raymip::setup::table::Log2Pb;
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
@@ -246,7 +246,7 @@ mod tests {
             let got = f64::from(log2pl(p).wrapping_sub(0x80) as i32) / 65536.0;
             let want = (p.max(1) as f64).log2() - 32.0;
             assert!(
-                (got - want).abs() <= raymip::log2::LOG2_MAX_ERROR,
+                (got - want).abs() <= raymip::lod::log2::LOG2_MAX_ERROR,
                 "{p:#x}: {got} vs {want}"
             );
             for pb in [Log2Pb::MIN, Log2Pb::MAX, Log2Pb::from_bits(0x12345)] {

@@ -25,15 +25,15 @@ use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
 use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31};
-use raymip::camera::{CameraError, PixelSpread};
+use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::ffi::{
     self, RM_UNTEXTURED, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmStatus,
     RmTexture,
 };
-use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::lod::{Lod, MIN_COS, clamp_lod, cone_lod, table_lod};
-use raymip::raystack::{DEFAULT_CAPACITY, PathLength, PathState, RayStack, Spread, Width};
-use raymip::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::path::raystack::{DEFAULT_CAPACITY, PathLength, PathState, RayStack, Spread, Width};
+use raymip::setup::camera::{CameraError, PixelSpread};
+use raymip::setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
 use raymip::texture::storage::mip::{
     self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len,
 };

@@ -1,6 +1,6 @@
 //! The f32 implementation of the firmware's texture filters used by the
 //! fixed-vs-float bench and tests: it lives in the firmware crate
-//! (`raymip::float`, feature `f32`) so the bare-metal budgets count the same
+//! (`raymip::baseline_f32`, feature `f32`) so the bare-metal budgets count the same
 //! code on Cortex-M4F and RV32IMAC.
 
-pub use raymip::float::SamplerF32;
+pub use raymip::baseline_f32::SamplerF32;

@@ -3,7 +3,7 @@
 //! the firmware's [`PixelSpread`] from the same field of view for the fixed
 //! path, [`CameraFrame::pixel_spread`]).
 
-use raymip::camera::PixelSpread;
+use raymip::setup::camera::PixelSpread;
 
 use super::RenderError;
 use crate::scene::{Camera, V3};

@@ -32,7 +32,7 @@ pub struct Counters {
     /// Continuations dropped because the ray stack was full.
     pub stack_full: u64,
     /// Most entries on one path's ray stack (at most
-    /// [`stack_bound`](raymip::raystack::stack_bound)`(bounces, 2)`).
+    /// [`stack_bound`](raymip::path::raystack::stack_bound)`(bounces, 2)`).
     pub stack_peak: u64,
     /// Hits whose path state saturated (lod is then a bound).
     pub saturations: u64,

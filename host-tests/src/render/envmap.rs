@@ -1,6 +1,6 @@
 //! Rays that leave the scene: a latitude-longitude environment map
 //! (`Scene::environment`) sampled at the method's environment-map lod
-//! (Ray Tracing Gems ch. 21; the firmware's `raymip::envmap`), through the
+//! (Ray Tracing Gems ch. 21; the firmware's `raymip::lod::envmap`), through the
 //! same texture units as surface hits ([`Unit`]: the firmware sampler in
 //! fixed point, the f64 one in float).
 //!
@@ -15,9 +15,9 @@
 //! Addressing wraps on both axes (the units' one mode): the seam in `u` is
 //! seamless, the poles blend with the opposite row at coarse levels.
 
-use raymip::envmap::{EnvMap, direction_uv};
 use raymip::lod::Lod;
-use raymip::raystack::{PathState, Spread, UnitVec};
+use raymip::lod::envmap::{EnvMap, direction_uv};
+use raymip::path::raystack::{PathState, Spread, UnitVec};
 
 use super::RenderError;
 use super::options::{Method, Options};

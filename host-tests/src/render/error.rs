@@ -4,10 +4,10 @@
 
 use std::fmt;
 
-use raymip::camera::CameraError;
-use raymip::envmap::EnvMapError;
 use raymip::geomlod::{ConfigError, RecordsFull};
-use raymip::table::TableError;
+use raymip::lod::envmap::EnvMapError;
+use raymip::setup::camera::CameraError;
+use raymip::setup::table::TableError;
 use raymip::texture::storage::mip::MipError;
 
 use super::Method;

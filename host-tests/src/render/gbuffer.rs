@@ -3,14 +3,14 @@
 //! pixel's first hit (position, unit shading normal facing the ray, hit
 //! distance); the first hit of a path then takes its position and normal
 //! differentials from the neighbouring pixels' entries instead of a
-//! transfer, by the firmware's rule ([`raymip::raydiff::gbuffer`]) in fixed
+//! transfer, by the firmware's rule ([`raymip::path::raydiff::gbuffer`]) in fixed
 //! precision and by [`axis_f64`], the same rule in f64, in float precision.
 //! The entries are written in the render's precision (firmware
 //! [`GSample`]s or f64 [`GHit`]s), never both.
 
 use raymip::PathLength;
-use raymip::raydiff::gbuffer::GSample;
-use raymip::raydiff::{DirDiff, PosDiff, RayDiff};
+use raymip::path::raydiff::gbuffer::GSample;
+use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
 
 use crate::scene::V3;
 
@@ -100,7 +100,7 @@ pub enum Frame {
 /// precision.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum FirstHit {
-    /// The firmware's [`raymip::raydiff::gbuffer::first_hit`]: the path's
+    /// The firmware's [`raymip::path::raydiff::gbuffer::first_hit`]: the path's
     /// differential state at the hit, the normal differentials
     /// `[∂n/∂x, ∂n/∂y]` and the saturation flag.
     Fixed(RayDiff, [[DirDiff; 3]; 2], bool),
@@ -116,7 +116,7 @@ impl Frame {
         match self {
             Self::Fixed(g) => {
                 let (c, nb) = g.stencil(x, y)?;
-                let (d, dn, sat) = raymip::raydiff::gbuffer::first_hit(primary, c, nb);
+                let (d, dn, sat) = raymip::path::raydiff::gbuffer::first_hit(primary, c, nb);
                 Some(FirstHit::Fixed(d, dn, sat))
             }
             Self::Float(g) => {
@@ -130,7 +130,7 @@ impl Frame {
 }
 
 /// The G-buffer rule in f64 (the reference of
-/// [`raymip::raydiff::gbuffer::axis`]): `(∂P, ∂n)` of one axis from the
+/// [`raymip::path::raydiff::gbuffer::axis`]): `(∂P, ∂n)` of one axis from the
 /// centre `c` and its neighbours, the side whose `|t − t_c|` is smaller
 /// (ties: `plus`), `plus − c` or `c − minus`; zero without a neighbour.
 #[must_use]
@@ -195,7 +195,7 @@ mod tests {
                             continue;
                         }
                         let (dp, dn) = axis_f64(c, m, p);
-                        let (dpq, dnq, sat) = raymip::raydiff::gbuffer::axis(cq, mq, pq);
+                        let (dpq, dnq, sat) = raymip::path::raydiff::gbuffer::axis(cq, mq, pq);
                         assert!(!sat, "{name} ({x}, {y})");
                         for k in 0..3 {
                             let e = (dpq[k].to_num::<f64>() - dp[k]).abs();

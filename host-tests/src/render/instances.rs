@@ -22,12 +22,12 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use raymip::camera::PixelSpread;
 use raymip::geomlod::{
     Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, ray_mask, visible,
 };
-use raymip::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
 use raymip::rng::Rng;
+use raymip::setup::camera::PixelSpread;
 use rayon::prelude::*;
 use serde::Serialize;
 

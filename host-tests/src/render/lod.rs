@@ -6,7 +6,7 @@
 
 use fixed::types::U1F31;
 use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
-use raymip::raystack::PathState;
+use raymip::path::raystack::PathState;
 use raymip::rng::Rng;
 use raymip::texture::sampler::aniso::Footprint;
 

@@ -1,6 +1,6 @@
 //! Whitted ray tracer: point lights with shadows, mirror reflection and
-//! refraction up to `bounces` levels, the firmware [`RayStack`](raymip::raystack::RayStack) /
-//! [`PathState`](raymip::raystack::PathState) carrying `Pl` and the ray cone (with the surface spread
+//! refraction up to `bounces` levels, the firmware [`RayStack`](raymip::path::raystack::RayStack) /
+//! [`PathState`](raymip::path::raystack::PathState) carrying `Pl` and the ray cone (with the surface spread
 //! angle β of curved mirrors) along each path, and a
 //! texture LOD chosen per [`Method`] and [`Precision`].
 //!

@@ -13,13 +13,13 @@ pub enum Method {
     /// Ray cones (Akenine-Möller et al., RTG ch. 20), with the |n·d| term.
     Cone,
     /// Ray differentials (Igehy 1999): the firmware's fixed-point ones
-    /// (`raymip::raydiff`) in fixed precision, f64 in float precision.
+    /// (`raymip::path::raydiff`) in fixed precision, f64 in float precision.
     Raydiff,
     /// Ray differentials whose first hit comes from a G-buffer (the talk's
     /// "RayDiffs GB"): a pass over the pixel centres stores each first hit
     /// (position, shading normal, distance); a path's first hit takes its
     /// position and normal differentials from the neighbouring pixels'
-    /// (`raymip::raydiff::gbuffer`, the side with the smaller distance
+    /// (`raymip::path::raydiff::gbuffer`, the side with the smaller distance
     /// step), later hits transfer them as the raydiff method does.
     Gbuffer,
     /// No LOD: bilinear in level 0.

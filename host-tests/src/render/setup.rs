@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use raymip::camera::PixelSpread;
-use raymip::raydiff::footprint::RayDiffTriangle;
-use raymip::table::{Log2Pb, PbTable, TexTriangle};
+use raymip::lod::raydiff::RayDiffTriangle;
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
 use rayon::prelude::*;
 use serde::Serialize;
 

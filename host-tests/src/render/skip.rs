@@ -1,6 +1,6 @@
 //! What a scene doesn't need (issue 13), on the host: path-length bounds per
 //! texture from the scene's geometry, the firmware's set-up analysis
-//! (`raymip::analysis`) over the Pb table, pyramids trimmed to the levels
+//! (`raymip::setup::analysis`) over the Pb table, pyramids trimmed to the levels
 //! any hit can select, and a render with them.
 //!
 //! Bounds ([`path_bounds`]), per texture, from the triangles that use it
@@ -19,11 +19,13 @@
 //! (float rounding of the distances, fixed-point rounding of each
 //! segment). Only the firmware table method and the level-0 methods (mip0,
 //! truth) are trimmed; cone, ray-differential and float renders keep full
-//! pyramids (see `raymip::analysis` on cones).
+//! pyramids (see `raymip::setup::analysis` on cones).
 
-use raymip::analysis::{LevelRange, LodRange, PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::lod::Lod;
-use raymip::raystack::PathLength;
+use raymip::path::raystack::PathLength;
+use raymip::setup::analysis::{
+    LevelRange, LodRange, PathBounds, TextureUse, analyse, mark_skipped,
+};
 use raymip::texture::Mode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource};
 use serde::Serialize;

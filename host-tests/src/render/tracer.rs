@@ -1,8 +1,8 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
 use fixed::types::{I2F30, U32F32};
-use raymip::raydiff::{RayDiff, UnitVec};
-use raymip::raystack::{PathState, RayStack, Spread, stack_bound};
+use raymip::path::raydiff::{RayDiff, UnitVec};
+use raymip::path::raystack::{PathState, RayStack, Spread, stack_bound};
 
 use super::bvh::Hit;
 use super::envmap::{FloatMiss, MissRay};
@@ -487,7 +487,7 @@ impl Ctx<'_> {
                     ((dd * eta) + (ns * dmu)) + (dn * mu)
                 };
                 let fd = if fw {
-                    let eta_q = raymip::raydiff::Eta::saturating_from_num(eta);
+                    let eta_q = raymip::path::raydiff::Eta::saturating_from_num(eta);
                     let ct = fixed::types::I2F30::saturating_from_num(sk);
                     state.diff.refract(dq, nq, dnxq, dnyq, eta_q, ct).0
                 } else {
@@ -693,12 +693,12 @@ fn unit_q(v: V3) -> UnitVec {
 }
 
 /// Firmware position differentials as f64.
-fn v3_of(d: [raymip::raydiff::PosDiff; 3]) -> V3 {
+fn v3_of(d: [raymip::path::raydiff::PosDiff; 3]) -> V3 {
     V3::from(d.map(|x| x.to_num::<f64>()))
 }
 
 /// Firmware direction (normal) differentials as f64 (exact).
-fn v3_dir(d: [raymip::raydiff::DirDiff; 3]) -> V3 {
+fn v3_dir(d: [raymip::path::raydiff::DirDiff; 3]) -> V3 {
     V3::from(d.map(|x| x.to_num::<f64>()))
 }
 

@@ -1,5 +1,5 @@
 //! Filter per sample: nearest, bilinear, trilinear and the stochastic
-//! filters, fixed point (the firmware sampler) and f32 (`raymip::float`),
+//! filters, fixed point (the firmware sampler) and f32 (`raymip::baseline_f32`),
 //! timed per call; error in 8-bit LSB per channel against the exact f64
 //! trilinear filter (`reference::sampler_ref::RefSampler`) at the same
 //! inputs (the common target every filter approximates: the chart axis)
@@ -20,7 +20,7 @@
 //! chart axis for these rows) and against the exact f64 filter of the
 //! row's own cap.
 
-use raymip::float::SamplerF32;
+use raymip::baseline_f32::SamplerF32;
 use raymip::lod::Lod;
 use raymip::rng::Rng as FrameRng;
 use raymip::texture::address::{AddressMode, Wrap};

@@ -3,10 +3,10 @@
 //! inputs (error in levels).
 
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
-use raymip::float::{cone_lod_f32, table_lod_f32};
+use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
+use raymip::lod::raydiff::RayDiffTriangle;
 use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
-use raymip::raydiff::footprint::RayDiffTriangle;
-use raymip::table::{Log2Pb, TexTriangle};
+use raymip::setup::table::{Log2Pb, TexTriangle};
 use raymip::texture::TexCoord;
 use raymip::texture::sampler::aniso::Footprint;
 

@@ -52,7 +52,7 @@ fn demo_table_entries_match_f64_geometry() {
         for k in 0..2 {
             let got = table[quad.tri + k].to_i16f16().to_num::<f64>();
             assert!(
-                (got - want).abs() <= raymip::table::TABLE_MAX_ERROR,
+                (got - want).abs() <= raymip::setup::table::TABLE_MAX_ERROR,
                 "triangle {}: log2 Pb {got} vs f64 {want}",
                 quad.tri + k
             );

@@ -72,7 +72,7 @@ fn fronto_parallel_quad_lod_zero_then_one() {
     // G-buffer's: on a plane facing the camera the hit point moves
     // linearly with the pixel, so the neighbour difference is the
     // derivative.
-    let rd_tol = raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR;
+    let rd_tol = raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
     for m in [
         Method::Table,
         Method::Cone,
@@ -328,7 +328,7 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
             println!("{} {} k={k}: lod {l:.5}", m.name(), p.name());
             // The firmware ray differentials: within their stated bound.
             let tol = if (m, p) == (Method::Raydiff, Precision::Fixed) {
-                raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR
+                raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR
             } else {
                 tol
             };
@@ -408,7 +408,7 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
 /// all (no branch dropped) and the peak is exactly the bound.
 #[test]
 fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
-    use raymip::raystack::stack_bound;
+    use raymip::path::raystack::stack_bound;
     use raymip_host::scene::{Camera, Light, Material, Scene, V3};
     let mat = |diffuse: f64, specular: f64, transmission: f64| Material {
         ambient: V3::splat(diffuse),

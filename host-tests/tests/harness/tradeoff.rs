@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use raymip::lod::LOD_MAX_ERROR;
-use raymip::raydiff::footprint::RAYDIFF_LOD_MAX_ERROR;
+use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip_host::reference::sampler_ref::ANISO_LOD_ERROR_LSB;
 use serde_json::Value;

@@ -140,7 +140,7 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// the kernel keeps it for [`round_level`](Self::round_level) or
     /// [`blend_levels`](Self::blend_levels) (the [`bilinear`](Self::bilinear)
     /// value; with feature `pcpi` on riscv32 the ACCURATE linear kernel
-    /// keeps it in the co-processor, `raymip::pcpi` (`src/pcpi.rs`), and returns the
+    /// keeps it in the co-processor, `raymip::coproc::pcpi` (`src/coproc/pcpi.rs`), and returns the
     /// rounded texel).
     type Level: Copy;
     /// The [`Level`](Self::Level) of the footprint `l` with weights `fx, fy`.
@@ -280,9 +280,9 @@ impl Kernel for (Linear, Accurate) {
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        crate::pcpi::bw(fx, fy);
-        crate::pcpi::bt(l[0], l[1]);
-        crate::pcpi::bb(l[2], l[3])
+        crate::coproc::pcpi::bw(fx, fy);
+        crate::coproc::pcpi::bt(l[0], l[1]);
+        crate::coproc::pcpi::bb(l[2], l[3])
     }
     // Feature `pcpi` on riscv32: each level on the co-processor (the
     // rounded texel returned, `bilinear_texel`; the 8.16 value kept), the
@@ -305,7 +305,7 @@ impl Kernel for (Linear, Accurate) {
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
     fn blend_levels(_: Texel, _: Texel, t: u32) -> Texel {
-        crate::pcpi::blend(t)
+        crate::coproc::pcpi::blend(t)
     }
     linear_8_16!();
 }

@@ -15,7 +15,7 @@
 //! * `rm_bench_trilinear_fast`: the same through the FAST tier's wrap
 //!   sampler (`Cfg<Wrap, Wrap, Linear, Fast>`: 8-bit positions, exact
 //!   corner weights, bound 1.5 LSB);
-//! * `rm_bench_f32_*`: the same four stages in f32 (`raymip::float`, libm)
+//! * `rm_bench_f32_*`: the same four stages in f32 (`raymip::baseline_f32`, libm)
 //!   on the same inputs converted to f32 outside the call: hardware FPU on
 //!   the Cortex-M4F, soft float on RV32IMAC;
 //! * `rm_batch_*`: the batch entry points (slice of hits in, slice of
@@ -55,15 +55,15 @@
 use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
-use raymip::float::{SamplerF32, cone_lod_f32, table_lod_f32};
+use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
+use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
     table_lod_batch, table_lod_fast, table_lod_fast_batch,
 };
-use raymip::log2_fast::NormPl;
-use raymip::raystack::{PathLength, Width};
-use raymip::table::Log2Pb;
+use raymip::path::raystack::{PathLength, Width};
+use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::{Pyramid, Texel};
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip_demo_firmware::inputs::{self, Draws, N};
@@ -306,9 +306,9 @@ impl Meter for Traced {
 /// direction → `(u, v)` mapping, each its own wrapper.
 #[cfg(feature = "envmap")]
 mod env {
-    use raymip::envmap::{EnvMap, direction_uv};
     use raymip::lod::Lod;
-    use raymip::raystack::{Spread, UnitVec};
+    use raymip::lod::envmap::{EnvMap, direction_uv};
+    use raymip::path::raystack::{Spread, UnitVec};
     use raymip::texture::TexCoord;
 
     /// Cone lod, equator texel (no direction).
@@ -334,8 +334,8 @@ mod env {
     #[inline(never)]
     pub fn rm_bench_env_raydiff(
         m: &EnvMap,
-        dx: [raymip::raydiff::DirDiff; 3],
-        dy: [raymip::raydiff::DirDiff; 3],
+        dx: [raymip::path::raydiff::DirDiff; 3],
+        dy: [raymip::path::raydiff::DirDiff; 3],
         d: UnitVec,
     ) -> Lod {
         m.raydiff_lod(dx, dy, Some(d))
@@ -357,7 +357,7 @@ mod env {
 fn envmap_rows() {
     let mut rng = inputs::Rng(inputs::SEED ^ 0xE0E0);
     let env_in = inputs::draw(&mut rng, inputs::envmap);
-    let Ok(map) = raymip::envmap::EnvMap::new(2048, 1024) else {
+    let Ok(map) = raymip::lod::envmap::EnvMap::new(2048, 1024) else {
         process::exit(1)
     };
     let map = bb(map);
@@ -487,7 +487,7 @@ fn rm_budget_driver(
         }
         println!(
             "path state raydiff: {} bytes",
-            core::mem::size_of::<raymip::raystack::PathState>()
+            core::mem::size_of::<raymip::path::raystack::PathState>()
         );
     }
     #[cfg(feature = "envmap")]

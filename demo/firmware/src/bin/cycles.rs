@@ -31,13 +31,13 @@
 use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
+use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
     table_lod_batch, table_lod_fast, table_lod_fast_batch,
 };
-use raymip::log2_fast::NormPl;
-use raymip::raystack::{PathLength, Width};
-use raymip::table::Log2Pb;
+use raymip::path::raystack::{PathLength, Width};
+use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::{Pyramid, Texel};
 use raymip::texture::{Mode, Sampler, TexCoord};
 use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};

@@ -14,10 +14,10 @@ use core::hint::black_box as bb;
 use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 
 use fixed::types::I2F30;
-use raymip::camera::PixelSpread;
 use raymip::lod::{Lod, table_lod_clamped};
-use raymip::raystack::{PathLength, PathState, RayStack, Spread};
-use raymip::table::{Log2Pb, PbTable};
+use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Log2Pb, PbTable};
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler, TexCoord};
 
@@ -82,5 +82,6 @@ raymip_demo_entry::main! {
     #[cfg(feature = "cache")]
     let acc = acc ^ cached.sample(u, v, lod, mode);
     bb(acc);
+    raymip_size_probe::keep_type_sizes();
     exit(0)
 }

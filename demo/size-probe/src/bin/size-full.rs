@@ -12,10 +12,10 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use fixed::types::{I2F30, I16F16, U1F31};
-use raymip::camera::PixelSpread;
 use raymip::lod::{Lod, cone_lod, table_lod_clamped};
-use raymip::raystack::{PathLength, PathState, RayStack, Spread, Width};
-use raymip::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::path::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::setup::camera::PixelSpread;
+use raymip::setup::table::{Coord, Log2Pb, PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate};
 use raymip::texture::{Mode, Sampler, TexCoord};

@@ -10,8 +10,8 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use raymip::lod::table_lod_clamped;
-use raymip::raystack::PathLength;
-use raymip::table::{Log2Pb, PbTable};
+use raymip::path::raystack::PathLength;
+use raymip::setup::table::{Log2Pb, PbTable};
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler, TexCoord};
 

@@ -39,7 +39,7 @@
 //!
 //! # Safety
 //!
-//! This is the crate's only module besides `ffi` with `unsafe` code: each
+//! With the C ABI (`ffi`), this is the only code with `unsafe`: each
 //! wrapper is one `asm!` block holding exactly one `.insn` instruction that
 //! reads general-purpose registers and writes at most one. No instruction
 //! reads or writes memory or changes any other register, CSR or the
@@ -62,14 +62,14 @@
 //! the feature only for that SoC.
 #![allow(unsafe_code)]
 
-/// The `tex.lod` result for the untextured marker ([`crate::table::Log2Pb::UNTEXTURED`]):
+/// The `tex.lod` result for the untextured marker ([`crate::setup::table::Log2Pb::UNTEXTURED`]):
 /// `0x8000_0000`, below every sign-extended I8F8 value (`table_lod` returns `None`).
 pub const UNTEXTURED: i32 = i32::MIN;
 
 /// `tex.log2pl`: `log2` of the U32F32 raw value `pl` in I16F16 bits plus
 /// `0x80` (the I8F8 rounding offset), range `[−32·2¹⁶ + 0x80, 32·2¹⁶ + 0x80]`;
 /// `pl = 0` reads as one raw unit (`−32·2¹⁶ + 0x80`). Equal to
-/// `log2_u32f32(pl).to_bits() + 0x80` of [`crate::log2`] for every input.
+/// `log2_u32f32(pl).to_bits() + 0x80` of [`crate::lod::log2`] for every input.
 #[inline(always)]
 #[must_use]
 pub fn log2pl(pl: u64) -> i32 {

@@ -37,7 +37,7 @@
 //! products cannot overflow. Then
 //! `log2(A/N) = ½·log2|e₁×e₂|² − log2|uv₁×uv₂| − log2 w − log2 h`
 //! needs no square root and no division. Each of the four logarithms is off
-//! by at most [`LOG2_MAX_ERROR`](crate::log2::LOG2_MAX_ERROR), so an entry is
+//! by at most [`LOG2_MAX_ERROR`](crate::lod::log2::LOG2_MAX_ERROR), so an entry is
 //! within [`TABLE_MAX_ERROR`] `= 2⁻¹⁰` level of the exact value.
 //!
 //! # Degenerate triangles (documented values, never a panic)
@@ -52,8 +52,8 @@
 
 use fixed::types::{I16F16, I32F32};
 
-use crate::camera::PixelSpread;
-use crate::log2::{log2_bits_u128, log2_u32};
+use crate::lod::log2::{log2_bits_u128, log2_u32};
+use crate::setup::camera::PixelSpread;
 
 /// World-space position or texture coordinate: I32F32 (range ±2³¹ scene
 /// units or texture repeats, step 2⁻³²). Example: [`BuildStats`].
@@ -65,7 +65,7 @@ pub type Coord = I32F32;
 /// # Example
 /// ```
 /// use raymip::{Delta, Log2Pb, PixelSpread, TexTriangle};
-/// use raymip::table::TABLE_MAX_ERROR;
+/// use raymip::setup::table::TABLE_MAX_ERROR;
 /// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
 /// // World area A = ½·2·2 = 2; UV area ½ on a 64×64 texture: N = 2048
 /// // texels; Δ = ½·log2(N/A) = ½·log2 1024 = 5 levels (no camera term).
@@ -368,7 +368,7 @@ impl Log2Pb {
 ///
 /// # Example
 /// ```
-/// use raymip::table::{BuildStats, Coord};
+/// use raymip::setup::table::{BuildStats, Coord};
 /// use raymip::{Log2Pb, PbTable, PixelSpread, TexTriangle};
 /// let spread = PixelSpread::from_fov_y(1.0, 240)?;
 /// let c = |x: i32| Coord::from_num(x);

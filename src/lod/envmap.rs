@@ -60,7 +60,7 @@
 //!
 //! Every lod is within [`ENVMAP_LOD_MAX_ERROR`] `= 2⁻⁸` level of the same
 //! formula in f64 on the same (quantised) inputs, for every input: the
-//! spread's `log2` within 2⁻¹³ ([`crate::log2::LOG2_MAX_ERROR`]; halved for
+//! spread's `log2` within 2⁻¹³ ([`crate::lod::log2::LOG2_MAX_ERROR`]; halved for
 //! the squared `|∂D|²`), the map constant `log2 W − log2 2π` within
 //! `2⁻¹³ + 2⁻¹⁷`, the latitude term (`½·log2(x² + z²)`, `x² + z²` exact)
 //! within `2⁻¹⁴ + 2⁻¹⁷`, the output rounding 2⁻⁹: at most `2⁻⁹ + 2.6·2⁻¹³
@@ -132,8 +132,8 @@ use core::fmt;
 use fixed::types::I2F30;
 
 use crate::lod::Lod;
-use crate::log2::{clz32, log2_bits, log2_u32};
-use crate::raystack::{Spread, UnitVec};
+use crate::lod::log2::{clz32, log2_bits, log2_u32};
+use crate::path::raystack::{Spread, UnitVec};
 use crate::texture::TexCoord;
 
 /// Documented error bound of [`EnvMap::cone_lod`] and
@@ -185,7 +185,7 @@ impl core::error::Error for EnvMapError {}
 ///
 /// # Example
 /// ```
-/// use raymip::envmap::{ENVMAP_LOD_MAX_ERROR, EnvMap};
+/// use raymip::lod::envmap::{ENVMAP_LOD_MAX_ERROR, EnvMap};
 /// use raymip::{Lod, Spread};
 /// use fixed::types::I2F30;
 /// // A 2048×1024 map: one texel is 2π/2048 ≈ 3.07 mrad both ways.
@@ -203,7 +203,7 @@ impl core::error::Error for EnvMapError {}
 /// // At the pole the longitude term is clamped to 16 levels.
 /// let up = [I2F30::ZERO, I2F30::ONE, I2F30::ZERO];
 /// assert!((map.cone_lod(g, Some(up)).to_num::<f64>() - 18.0).abs() <= ENVMAP_LOD_MAX_ERROR);
-/// # Ok::<(), raymip::envmap::EnvMapError>(())
+/// # Ok::<(), raymip::lod::envmap::EnvMapError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EnvMap {
@@ -243,7 +243,7 @@ impl EnvMap {
     }
 
     /// Lod of a ray cone leaving the scene: `α = |γ|` (the cone's spread
-    /// angle, radians; [`crate::raystack::RayCone::spread`]), with the
+    /// angle, radians; [`crate::path::raystack::RayCone::spread`]), with the
     /// pole term of direction `d` when given (formula, clamps and bound in
     /// the [module docs](self)). Per ray; never panics.
     #[inline]
@@ -254,7 +254,7 @@ impl EnvMap {
     }
 
     /// Lod of a ray with direction differentials `dddx`, `dddy` (per
-    /// pixel; [`crate::raydiff::RayDiff::dddx`]) leaving the scene:
+    /// pixel; [`crate::path::raydiff::RayDiff::dddx`]) leaving the scene:
     /// `α = max(|∂D/∂x|, |∂D/∂y|)`, with the pole term of direction `d`
     /// when given (formula, clamps and bound in the [module docs](self)).
     /// Features `envmap` and `raydiff`. Per ray; never panics.
@@ -263,12 +263,12 @@ impl EnvMap {
     #[must_use]
     pub fn raydiff_lod(
         &self,
-        dddx: [crate::raydiff::DirDiff; 3],
-        dddy: [crate::raydiff::DirDiff; 3],
+        dddx: [crate::path::raydiff::DirDiff; 3],
+        dddy: [crate::path::raydiff::DirDiff; 3],
         d: Option<UnitVec>,
     ) -> Lod {
         // |∂D|² in 2⁻⁶⁰ units, exact: each square ≤ 2⁶², the sum < 2⁶⁴.
-        let len2 = |v: [crate::raydiff::DirDiff; 3]| -> u64 {
+        let len2 = |v: [crate::path::raydiff::DirDiff; 3]| -> u64 {
             v.iter()
                 .map(|c| {
                     let a = u64::from(c.to_bits().unsigned_abs());
@@ -403,7 +403,7 @@ fn quadrant_atan<const E: i32>(a: u32, b: u32) -> (u32, u32) {
 ///
 /// # Example
 /// ```
-/// use raymip::envmap::{ENVMAP_UV_MAX_ERROR, direction_uv};
+/// use raymip::lod::envmap::{ENVMAP_UV_MAX_ERROR, direction_uv};
 /// use fixed::types::I2F30;
 /// let (o, z) = (I2F30::ONE, I2F30::ZERO);
 /// let near = |a: raymip::TexCoord, b: f64| (a.to_num::<f64>() - b).abs() <= ENVMAP_UV_MAX_ERROR;
@@ -550,7 +550,7 @@ mod tests {
     #[test]
     #[cfg(feature = "raydiff")]
     fn raydiff_edges() {
-        use crate::raydiff::DirDiff;
+        use crate::path::raydiff::DirDiff;
         let m = EnvMap::new(1024, 512).unwrap();
         let z = [DirDiff::ZERO; 3];
         let g = 2.0 * core::f64::consts::PI / 1024.0;
@@ -685,7 +685,7 @@ mod tests {
         #[cfg(feature = "raydiff")]
         fn raydiff_lod_matches_f64(w in size(), h in size(), a in any::<[i32; 3]>(), b in any::<[i32; 3]>(),
                                    e in 0u32..32, d in unit(), with_dir in any::<bool>()) {
-            use crate::raydiff::DirDiff;
+            use crate::path::raydiff::DirDiff;
             let m = EnvMap::new(w, h).unwrap();
             let dx = a.map(|c| DirDiff::from_bits(c >> e));
             let dy = b.map(|c| DirDiff::from_bits(c >> (31 - e)));

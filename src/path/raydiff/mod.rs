@@ -2,7 +2,7 @@
 //! point: the per-pixel derivatives of a ray's origin and direction,
 //! carried by the ray stack, transferred to each hit, reflected and
 //! refracted there, and turned into a texture-space footprint
-//! ([`footprint`]) whose larger axis gives the lod and whose two axes drive
+//! ([`crate::lod::raydiff`]) whose larger axis gives the lod and whose two axes drive
 //! anisotropic filtering. Primary rays are set up from the camera
 //! ([`RayDiff::primary`]), or first hits from a G-buffer ([`gbuffer`]).
 //! Feature `raydiff`.
@@ -21,7 +21,7 @@
 //! resolved to about `4·10⁻⁶` relative; `|∂D|` beyond 2 (a mirror curved
 //! more sharply than a pixel) saturates. Every operation returns a flag that
 //! is true when a result saturated (its footprint is then a bound, not a
-//! value), as [`crate::raystack::PathState::saturated`]. Intermediate
+//! value), as [`crate::path::raystack::PathState::saturated`]. Intermediate
 //! products are 128-bit (compiler-builtins `__multi3` on 32-bit cores, one
 //! 64-bit division per transfer); the cost per call on the targets is in
 //! `BUDGETS.md`.
@@ -35,14 +35,13 @@
 //!
 //! # Error bound
 //!
-//! See [`footprint`]: the lod from these differentials is within
-//! [`footprint::RAYDIFF_LOD_MAX_ERROR`] of the same computation in f64.
+//! See [`crate::lod::raydiff`]: the lod from these differentials is within
+//! [`crate::lod::raydiff::RAYDIFF_LOD_MAX_ERROR`] of the same computation in f64.
 
 use fixed::types::{I2F30, I4F28, I32F32};
 
-use crate::raystack::PathLength;
+use crate::path::raystack::PathLength;
 
-pub mod footprint;
 pub mod gbuffer;
 
 /// A position differential component: scene units per pixel, I32F32.
@@ -52,8 +51,8 @@ pub type PosDiff = I32F32;
 /// [`RayDiff`].
 pub type DirDiff = I2F30;
 /// A unit vector (ray direction, surface normal), I2F30 components
-/// (one home: [`crate::raystack::UnitVec`]). Example: [`RayDiff`].
-pub use crate::raystack::UnitVec;
+/// (one home: [`crate::path::raystack::UnitVec`]). Example: [`RayDiff`].
+pub use crate::path::raystack::UnitVec;
 /// Relative index of refraction `η = n₁/n₂` (incident over transmitted
 /// medium), I4F28. Example: [`RayDiff`].
 pub type Eta = I4F28;
@@ -69,7 +68,7 @@ pub const MIN_COS: I2F30 = I2F30::from_bits(1 << 14);
 /// # Example
 /// ```
 /// use raymip::PathLength;
-/// use raymip::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+/// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
 /// let (one, zero) = (DirDiff::ONE, DirDiff::ZERO);
 /// // A camera looking down −z; one pixel step turns the unnormalised
 /// // direction by s = 2⁻¹⁰ along x (right) or y (up).
@@ -195,7 +194,7 @@ impl RayDiff {
     /// Transfer to a hit at distance `t` on a surface of unit normal `n`
     /// (Igehy eq. 10–12): `q = ∂O + t·∂D`, `∂t = −(q·n)/(D·n)`,
     /// `∂O' = q + ∂t·D`; `∂D` is unchanged. `∂O'` is then the hit point's
-    /// differential on the tangent plane ([`footprint`] reads it).
+    /// differential on the tangent plane ([`crate::lod::raydiff`] reads it).
     /// `|D·n|` is clamped to [`MIN_COS`]. Saturating (flag).
     #[must_use]
     pub fn transfer(self, d: UnitVec, t: PathLength, n: UnitVec) -> (Self, bool) {

@@ -46,7 +46,7 @@ pub fn cone_lod_f32(width: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
 ///
 /// # Example
 /// ```
-/// use raymip::float::SamplerF32;
+/// use raymip::baseline_f32::SamplerF32;
 /// use raymip::{AddressMode, Geometry, Mode};
 /// // A 2×1 texture, opaque black then white.
 /// let texels = [0xFF00_0000u32, 0xFFFF_FFFF];

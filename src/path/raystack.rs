@@ -51,8 +51,8 @@ use core::fmt;
 
 use fixed::types::{I2F30, I32F32, U32F32};
 
-use crate::camera::PixelSpread;
-use crate::log2_fast::NormPl;
+use crate::lod::log2_fast::NormPl;
+use crate::setup::camera::PixelSpread;
 
 /// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units
 /// (range `[0, 2³²)`, step 2⁻³²). Example: [`PathState`].
@@ -117,7 +117,7 @@ pub const fn stack_bound(bounces: u8, branches: u8) -> usize {
 ///
 /// # Example
 /// ```
-/// use raymip::raystack::RayCone;
+/// use raymip::path::raystack::RayCone;
 /// use raymip::{PathLength, Spread, Width};
 /// // A cone from a point (w = 0) with spread γ = 2⁻¹⁰ rad (exact in I2F30).
 /// let cone = RayCone { width: Width::ZERO, spread: Spread::from_num(1.0 / 1024.0) };
@@ -241,10 +241,10 @@ pub struct PathState {
     pub cone: RayCone,
     /// Ray differentials of the path's current ray (feature `raydiff`):
     /// zero in [`PathState::primary`]; the caller sets them up
-    /// ([`crate::raydiff::RayDiff::primary`]) and updates them at each hit
+    /// ([`crate::path::raydiff::RayDiff::primary`]) and updates them at each hit
     /// (transfer, then reflection or refraction for a continuation).
     #[cfg(feature = "raydiff")]
-    pub diff: crate::raydiff::RayDiff,
+    pub diff: crate::path::raydiff::RayDiff,
     /// 8-bit ray mask of the path.
     pub mask: u8,
     /// Bounces so far (0 for a primary ray; saturates at 255).
@@ -269,7 +269,7 @@ impl PathState {
                 spread: spread.angle(),
             },
             #[cfg(feature = "raydiff")]
-            diff: crate::raydiff::RayDiff::ZERO,
+            diff: crate::path::raydiff::RayDiff::ZERO,
             mask,
             depth: 0,
             saturated: false,

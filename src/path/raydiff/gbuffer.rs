@@ -10,7 +10,7 @@
 use fixed::types::I2F30;
 
 use super::{DirDiff, PosDiff, RayDiff, UnitVec, sat32, sat64};
-use crate::raystack::PathLength;
+use crate::path::raystack::PathLength;
 
 /// One pixel's first hit in the G-buffer: position (scene units, I32F32
 /// as [`PosDiff`]), unit shading normal and hit distance.
@@ -18,8 +18,8 @@ use crate::raystack::PathLength;
 /// # Example
 /// ```
 /// use raymip::PathLength;
-/// use raymip::raydiff::gbuffer::{GSample, first_hit};
-/// use raymip::raydiff::{DirDiff, PosDiff, RayDiff};
+/// use raymip::path::raydiff::gbuffer::{GSample, first_hit};
+/// use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
 /// let q = |x: f64, y: f64| [PosDiff::from_num(x), PosDiff::from_num(y), PosDiff::from_num(-100)];
 /// let n = [DirDiff::ZERO, DirDiff::ZERO, DirDiff::ONE];
 /// let t = PathLength::from_num(100);

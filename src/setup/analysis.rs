@@ -52,8 +52,8 @@
 use core::fmt;
 
 use crate::lod::{Lod, clamp_lod, table_lod};
-use crate::raystack::PathLength;
-use crate::table::Log2Pb;
+use crate::path::raystack::PathLength;
+use crate::setup::table::Log2Pb;
 use crate::texture::Mode;
 
 /// The nearest and farthest accumulated path length `Pl` (scene units)
@@ -124,7 +124,7 @@ pub struct AnalysisStats {
 ///
 /// # Example
 /// ```
-/// use raymip::analysis::{AnalysisError, PathBounds, TextureUse, analyse};
+/// use raymip::setup::analysis::{AnalysisError, PathBounds, TextureUse, analyse};
 /// use raymip::{Log2Pb, PathLength};
 /// let entries = [Log2Pb::from_bits(0); 3];
 /// let bounds = [Some(PathBounds { nearest: PathLength::ONE, farthest: PathLength::ONE })];
@@ -179,7 +179,7 @@ impl core::error::Error for AnalysisError {}
 ///
 /// # Example
 /// ```
-/// use raymip::analysis::{AnalysisStats, LevelRange, LodRange, PathBounds, TextureUse, analyse};
+/// use raymip::setup::analysis::{AnalysisStats, LevelRange, LodRange, PathBounds, TextureUse, analyse};
 /// use raymip::{Lod, Log2Pb, Mode, PathLength};
 /// // Texture 0 on two triangles, log2 Pb = 0 and 1; triangle 2 untextured;
 /// // triangle 3 uses texture 1, which the caller knows no hit can reach.

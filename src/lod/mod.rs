@@ -23,7 +23,7 @@
 //! | path | calls | log2 | error bound |
 //! |---|---|---|---|
 //! | ACCURATE (bit-identical on every target and to earlier releases) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
-//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count, one [`LodWord`] per hit), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count, one [`LodWord`] per hit), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::lod::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
 //!
 //! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST path
 //! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
@@ -33,25 +33,42 @@
 //!
 //! `−log2|n·d|` grows without bound as `n·d → 0`; `|n·d|` is clamped to
 //! `[MIN_COS = 2⁻¹⁶, 1]`, so the normal term lies in `[0, 16]` levels.
+//!
+//! # Submodules
+//!
+//! * [`log2`], [`log2_fast`]: the fixed-point logarithms of the ACCURATE
+//!   and FAST paths.
+//! * `raydiff` (feature `raydiff`): the texture-space footprint of a hit
+//!   from its ray differentials, and its lod.
+//! * `envmap` (feature `envmap`): the lods of rays that leave the scene on
+//!   a latitude-longitude environment map, and the direction → `(u, v)`
+//!   mapping.
+
+#[cfg(feature = "envmap")]
+pub mod envmap;
+pub mod log2;
+pub mod log2_fast;
+#[cfg(feature = "raydiff")]
+pub mod raydiff;
 
 use fixed::types::I8F8;
 #[cfg(feature = "cone")]
 use fixed::types::{I16F16, U1F31};
 
 #[cfg(feature = "cone")]
-use crate::log2::LOD_BIAS;
+use crate::lod::log2::LOD_BIAS;
 #[cfg(all(feature = "cone", not(all(feature = "pcpi", target_arch = "riscv32"))))]
-use crate::log2::log2_u1f31_biased;
-use crate::log2::log2_u32f32_parts;
+use crate::lod::log2::log2_u1f31_biased;
+use crate::lod::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
-use crate::log2_fast::log2_u1f31_fast_biased;
-use crate::log2_fast::{NormPl, log2_u32f32_fast_parts};
-use crate::raystack::PathLength;
+use crate::lod::log2_fast::log2_u1f31_fast_biased;
+use crate::lod::log2_fast::{NormPl, log2_u32f32_fast_parts};
+use crate::path::raystack::PathLength;
 #[cfg(feature = "cone")]
-use crate::raystack::Width;
+use crate::path::raystack::Width;
 #[cfg(feature = "cone")]
-use crate::table::Delta;
-use crate::table::Log2Pb;
+use crate::setup::table::Delta;
+use crate::setup::table::Log2Pb;
 
 /// A MIP level of detail in levels: signed, 8 fractional bits
 /// (range `[−128, 128)`, step 1/256 level).
@@ -94,7 +111,7 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     // (the untextured marker comes back as `pcpi::UNTEXTURED`).
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     {
-        use crate::pcpi;
+        use crate::coproc::pcpi;
         let r = pcpi::lod(pcpi::log2pl(pl.to_bits()), pb.to_bits());
         if r == pcpi::UNTEXTURED {
             None
@@ -143,7 +160,7 @@ pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
     // (1 << 16) − 0x80`.
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     let l = {
-        use crate::pcpi::log2pl;
+        use crate::coproc::pcpi::log2pl;
         let mut l = delta + log2pl(width.to_bits().unsigned_abs());
         if let Some(c) = n_dot_d {
             let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
@@ -197,7 +214,7 @@ pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) 
 }
 
 /// FAST table method: [`table_lod`] with the 1024-entry log2 table read
-/// without interpolation ([`crate::log2_fast`]). Error ≤ [`LOD_MAX_ERROR`]
+/// without interpolation ([`crate::lod::log2_fast`]). Error ≤ [`LOD_MAX_ERROR`]
 /// `= 2⁻⁸` level (as the ACCURATE [`table_lod`]: log2 ≤ 2⁻¹⁰, entry ≤
 /// 2⁻¹⁰, output rounding ≤ 2⁻⁹), monotonic non-decreasing in `Pl`; results
 /// may differ from [`table_lod`] by one step (1/256 level), identical on
@@ -216,7 +233,7 @@ pub fn table_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 }
 
 /// FAST ray-cone method: [`cone_lod`] with both logarithms from the
-/// 1024-entry table without interpolation ([`crate::log2_fast`]). Error ≤
+/// 1024-entry table without interpolation ([`crate::lod::log2_fast`]). Error ≤
 /// [`LOD_MAX_ERROR`] `= 2⁻⁸` level against f64 of the same inputs (two
 /// log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`cone_lod`]
 /// by one step. Same clamps and saturation as [`cone_lod`]. Feature `cone`.
@@ -255,7 +272,7 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
 /// # Example
 /// ```
 /// use raymip::lod::{LodWord, table_lod_fast_batch, table_lod_norm};
-/// use raymip::log2_fast::NormPl;
+/// use raymip::lod::log2_fast::NormPl;
 /// use raymip::{Lod, Log2Pb, PathLength};
 /// let key = NormPl::new(PathLength::from_num(12));
 /// let hits = [(key, Log2Pb::from_bits(0)), (key, Log2Pb::UNTEXTURED)];
@@ -346,7 +363,7 @@ fn table_lod_norm_word(pl: NormPl, pb: Log2Pb) -> LodWord {
 }
 
 /// FAST table method from a normalised path length ([`NormPl`], kept in
-/// every ray-stack entry as [`crate::raystack::PathState::pl_norm`]): no
+/// every ray-stack entry as [`crate::path::raystack::PathState::pl_norm`]): no
 /// leading-zero count, one table read and two additions. Bit-identical to
 /// [`table_lod_fast`] of the path length the key was made from (tested for
 /// every table index and octave), so within [`LOD_MAX_ERROR`] `= 2⁻⁸`
@@ -366,7 +383,7 @@ pub fn table_lod_norm(pl: NormPl, pb: Log2Pb) -> Option<Lod> {
 /// caller memory; returns `n` (words past `n` are left untouched). Same
 /// results as the per-hit call, bit for bit; branch-free per hit (an
 /// untextured entry gives a word in the niche); never panics. The keys come
-/// from the ray stack ([`crate::raystack::PathState::pl_norm`]) or
+/// from the ray stack ([`crate::path::raystack::PathState::pl_norm`]) or
 /// [`NormPl::new`].
 #[inline]
 pub fn table_lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize {
@@ -406,9 +423,9 @@ pub fn table_lod_clamped(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> 
 mod tests {
     extern crate std;
     use super::*;
-    use crate::camera::PixelSpread;
-    use crate::raystack::{PathState, Spread};
-    use crate::table::{Coord, TexTriangle};
+    use crate::path::raystack::{PathState, Spread};
+    use crate::setup::camera::PixelSpread;
+    use crate::setup::table::{Coord, TexTriangle};
     use fixed::types::I2F30;
     use fixed::types::I16F16;
     #[cfg(feature = "cone")]
@@ -677,13 +694,13 @@ mod tests {
         if pb.is_untextured() {
             return None;
         }
-        let d = crate::log2::log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
+        let d = crate::lod::log2::log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
         Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
     }
 
     #[cfg(feature = "cone")]
     fn cone_lod_formula(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-        use crate::log2::log2_bits;
+        use crate::lod::log2::log2_bits;
         let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
         let mut l = delta.saturating_add(lw);
         if let Some(c) = n_dot_d {

@@ -1,6 +1,6 @@
 //! Texture-space footprint of a hit from its ray differentials: the
 //! barycentric differentials of the transferred `∂P = ∂O'`
-//! ([`super::RayDiff::transfer`]), mapped through the triangle's UVs to
+//! ([`crate::path::raydiff::RayDiff::transfer`]), mapped through the triangle's UVs to
 //! `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` (pbrt's `dudx, dvdx, dudy, dvdy`, the
 //! two axes [`crate::texture::sampler::aniso`] takes), and the lod as
 //! `log2` of the larger axis in level-0 texels (the hardware paper's eq. 1).
@@ -23,7 +23,7 @@
 //!   footprint is the largest one [`Footprint`] holds and the lod
 //!   saturates high (coarsest stored level);
 //! * zero UV extent: `G = 0`, footprint 0, lod saturates low (level 0);
-//! * grazing hits: bounded by the transfer's clamp ([`super::MIN_COS`]).
+//! * grazing hits: bounded by the transfer's clamp ([`crate::path::raydiff::MIN_COS`]).
 //!
 //! # Error bound
 //!
@@ -37,10 +37,10 @@
 
 use fixed::types::I32F32;
 
-use super::PosDiff;
 use crate::lod::Lod;
-use crate::log2::log2_bits_u128;
-use crate::table::TexTriangle;
+use crate::lod::log2::log2_bits_u128;
+use crate::path::raydiff::PosDiff;
+use crate::setup::table::TexTriangle;
 use crate::texture::TexCoord;
 use crate::texture::sampler::aniso::Footprint;
 
@@ -55,8 +55,8 @@ pub const RAYDIFF_LOD_MAX_ERROR: f64 = 1.0 / 128.0;
 /// # Example
 /// ```
 /// use raymip::TexTriangle;
-/// use raymip::raydiff::PosDiff;
-/// use raymip::raydiff::footprint::{RAYDIFF_LOD_MAX_ERROR, RayDiffTriangle};
+/// use raymip::path::raydiff::PosDiff;
+/// use raymip::lod::raydiff::{RAYDIFF_LOD_MAX_ERROR, RayDiffTriangle};
 /// // A wall at z = −100 with u = x, v = y, on a 256×256 texture.
 /// let p = [[0.0, 0.0, -100.0], [1.0, 0.0, -100.0], [0.0, 1.0, -100.0]];
 /// let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
@@ -181,8 +181,8 @@ impl RayDiffTriangle {
     }
 
     /// The footprint of a hit with transferred position differentials
-    /// `dpdx`, `dpdy` ([`super::RayDiff::dodx`] after
-    /// [`super::RayDiff::transfer`]): `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` in
+    /// `dpdx`, `dpdy` ([`crate::path::raydiff::RayDiff::dodx`] after
+    /// [`crate::path::raydiff::RayDiff::transfer`]): `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` in
     /// normalized texture coordinates, saturating. Degenerate triangle: the
     /// largest footprint. Per hit; never panics.
     #[must_use]
@@ -237,11 +237,11 @@ impl RayDiffTriangle {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::super::RayDiff;
-    use super::super::tests::{V, add, dot, norm, transfer_f64, uq};
     use super::*;
-    use crate::raystack::PathLength;
-    use crate::table::Coord;
+    use crate::path::raydiff::RayDiff;
+    use crate::path::raydiff::tests::{V, add, dot, norm, transfer_f64, uq};
+    use crate::path::raystack::PathLength;
+    use crate::setup::table::Coord;
     use proptest::prelude::*;
 
     fn tri(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {

@@ -1,0 +1,196 @@
+//! Result codes and the enums C passes as bytes (filter mode, addressing,
+//! precision tier, sRGB output, pixel format), with their checked byte
+//! forms and the pointer check every function makes.
+
+use crate::texture::storage::format::TexelFormat;
+use crate::texture::{AddressMode, Mode};
+
+// The sampler and image types the enums are documented against.
+#[cfg(doc)]
+use super::*;
+
+/// Result codes of the C ABI (`0` = success, negative = error, positive =
+/// a documented non-error outcome).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmStatus {
+    /// Success.
+    Ok = 0,
+    /// The triangle is untextured: no lod (nothing to fetch).
+    Untextured = 1,
+    /// A required pointer was null.
+    NullPointer = -1,
+    /// A size, level count, mode or address value is out of range.
+    OutOfRange = -2,
+    /// Ray stack full: the state was not pushed.
+    StackFull = -3,
+    /// Ray stack empty: nothing popped.
+    StackEmpty = -4,
+    /// Texture width or height is zero.
+    ZeroSize = -5,
+    /// Spread angle outside `(0, 2)` radians.
+    BadAngle = -6,
+    /// More triangles than table entries (the ones that fit were written).
+    TableFull = -7,
+    /// The texel buffer is shorter than the pyramid.
+    BufferTooShort = -8,
+    /// A pointer is not aligned for its type (nothing was read or written).
+    Misaligned = -9,
+    /// The [`RmSampler`] was not set up by [`rm_sampler_init`].
+    Uninitialised = -10,
+}
+
+/// Filter mode of [`rm_sample`] (the numbering of the Rust `Mode`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmMode {
+    /// Bilinear within a level, linear between levels.
+    Trilinear = 0,
+    /// Bilinear within the nearest level `floor(lod + 1/2)`.
+    BilinearNearestLevel = 1,
+    /// Nearest texel of the nearest level.
+    Nearest = 2,
+    /// Nearest texel in each of two levels, linear between levels.
+    NearestTexelLinearLevel = 3,
+}
+const _: () = assert!(
+    RmMode::Trilinear as u8 == Mode::Trilinear as u8
+        && RmMode::BilinearNearestLevel as u8 == Mode::BilinearNearestLevel as u8
+        && RmMode::Nearest as u8 == Mode::Nearest as u8
+        && RmMode::NearestTexelLinearLevel as u8 == Mode::NearestTexelLinearLevel as u8
+);
+
+/// Addressing of a texture axis: [`rm_sampler_init`] takes one for both
+/// axes, [`RmSamplerDesc`] one per axis.
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmAddress {
+    /// Repeat: only the fractional part of a coordinate is used.
+    Wrap = 0,
+    /// Clamp to edge.
+    Clamp = 1,
+    /// Repeat, every other copy mirrored (D3D `MIRROR`).
+    Mirror = 2,
+    /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`).
+    MirrorOnce = 3,
+    /// Texels outside the level read the border colour (D3D `BORDER`).
+    Border = 4,
+}
+
+impl RmAddress {
+    /// The address mode numbered `n` (the discriminants above).
+    pub(super) fn mode(n: u8) -> Option<AddressMode> {
+        match n {
+            0 => Some(AddressMode::Wrap),
+            1 => Some(AddressMode::ClampToEdge),
+            2 => Some(AddressMode::Mirror),
+            3 => Some(AddressMode::MirrorOnce),
+            4 => Some(AddressMode::ClampToBorder),
+            _ => None,
+        }
+    }
+}
+
+/// Precision tier of a sampler ([`RmSamplerDesc::precision`]).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmPrecision {
+    /// ACCURATE (default): linear filtering ≤ 0.5625 LSB from the exact
+    /// f64 filter, sRGB re-encoded ≤ 0.6875 LSB; bit-identical on every
+    /// target.
+    Accurate = 0,
+    /// FAST: GPU precision (8-bit sub-texel weights and lod fraction,
+    /// exact filter at the quantized position), linear filtering ≤ 1.5 LSB
+    /// from the exact f64 filter (proof in the Rust `texture::kernel::fast`
+    /// docs); bit-identical on every target.
+    Fast = 1,
+}
+
+/// Result encoding of an sRGB texture ([`RmSamplerDesc::srgb_output`]).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmSrgbOutput {
+    /// Re-encoded to sRGB (what a GPU writes to an sRGB render target).
+    Encoded = 0,
+    /// Linear, rounded to 8 bits (what a shader reads from an sRGB view).
+    Linear = 1,
+}
+
+/// Pixel format of an [`RmImage`] (the numbering of the Rust
+/// `TexelFormat`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RmFormat {
+    /// 8 bits per channel, bytes r, g, b, a.
+    Rgba8 = 0,
+    /// 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
+    Rgb565 = 1,
+    /// 16 bits: red 5, green 5, blue 5, alpha 1.
+    Rgba5551 = 2,
+    /// 16 bits: 4 bits per channel.
+    Rgba4444 = 3,
+    /// Luminance and alpha, 8 bits each.
+    La8 = 4,
+    /// Luminance, 8 bits.
+    L8 = 5,
+    /// Alpha, 8 bits (colour 0).
+    A8 = 6,
+    /// BC1 (DXT1): 8 bytes per 4×4 block.
+    Bc1 = 7,
+    /// BC2 (DXT3): 16 bytes per block.
+    Bc2 = 8,
+    /// BC3 (DXT5): 16 bytes per block.
+    Bc3 = 9,
+    /// BC4: 8 bytes per block, one channel (red).
+    Bc4 = 10,
+}
+const _: () = {
+    let c = [
+        RmFormat::Rgba8,
+        RmFormat::Rgb565,
+        RmFormat::Rgba5551,
+        RmFormat::Rgba4444,
+        RmFormat::La8,
+        RmFormat::L8,
+        RmFormat::A8,
+        RmFormat::Bc1,
+        RmFormat::Bc2,
+        RmFormat::Bc3,
+        RmFormat::Bc4,
+    ];
+    assert!(c.len() == TexelFormat::ALL.len());
+    let mut i = 0;
+    while i < c.len() {
+        assert!(c[i] as u8 == TexelFormat::ALL[i] as u8);
+        i += 1;
+    }
+};
+
+/// An [`RmMode`] as it crosses the boundary: any byte (an enum parameter
+/// holding a value outside the enum would be undefined behaviour in Rust),
+/// checked by the callee (`OutOfRange`). The header names it `RmMode`.
+#[repr(transparent)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmModeBits(pub u8);
+
+/// An [`RmAddress`] as it crosses the boundary (any byte, checked; see
+/// [`RmModeBits`]). The header names it `RmAddress`.
+#[repr(transparent)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RmAddressBits(pub u8);
+
+/// `NullPointer` if `p` is null and `may_be_null` is false, `Misaligned` if
+/// it is not aligned for `T` (null counts as aligned).
+pub(super) fn check_ptr<T>(p: *const T, may_be_null: bool) -> Result<(), RmStatus> {
+    if p.is_null() {
+        if may_be_null {
+            Ok(())
+        } else {
+            Err(RmStatus::NullPointer)
+        }
+    } else if p.is_aligned() {
+        Ok(())
+    } else {
+        Err(RmStatus::Misaligned)
+    }
+}
