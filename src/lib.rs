@@ -58,6 +58,7 @@
 //! | `raydiff` | no | fixed-point ray differentials in every path state, their transfer, reflection, refraction, G-buffer set-up, texture-space footprint and lod (`path::raydiff`, `lod::raydiff`) | table and cone methods only; no differential state on the ray stack |
 //! | `f32` | no | the per-hit stages in `f32`, the comparison baseline (`baseline_f32`); implies `trilinear` | no float code |
 //! | `pcpi` | no | PicoRV32 texture co-processor instructions for the ACCURATE table and cone lod and the ACCURATE linear bilinear/trilinear filter (`coproc::pcpi`, riscv32 only; no effect on other targets) | software log2 and filter |
+//! | `cfu` | no | the same instructions on VexRiscv's CFU port plus texture addressing of power-of-two pyramids in memory (`coproc::cfu`; turns on `pcpi`; riscv32 only) | software log2, filter and addressing |
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
 //! specialised at compile time by its key `K` (address mode per axis,
@@ -136,8 +137,9 @@
 //! ```
 #![no_std]
 // Safe Rust only; with the `ffi` feature the C ABI module may use `unsafe`
-// for caller pointers, and with `pcpi` on riscv32 the co-processor module
-// for its one-instruction `asm!` wrappers: `deny` then, `forbid` otherwise.
+// for caller pointers, and with `pcpi` (or `cfu`, which turns it on) on
+// riscv32 the co-processor modules for their one-instruction `asm!`
+// wrappers and the CFU's texel reads: `deny` then, `forbid` otherwise.
 #![cfg_attr(
     not(any(feature = "ffi", all(feature = "pcpi", target_arch = "riscv32"))),
     forbid(unsafe_code)

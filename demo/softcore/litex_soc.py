@@ -4,6 +4,8 @@ or `full+cfu` with the texture co-processor demo/softcore/cfu_tex.v on its
 CFU port), one integrated main RAM holding code and data, LiteX's UART and
 a simulation exit register, for LiteX's simulation platform.
 
+--cfu names cfu_tex.v; its tex_log2pl.v beside it is added too.
+
 Generates the SoC's Verilog with LiteX's SoC builder (SoCCore, SimPlatform)
 into --out: `sim.v` (top module `sim`), the CPU's and the CFU's Verilog
 files listed in `sources.txt` (the installed packages' paths: nothing is
@@ -93,6 +95,9 @@ class RaymipSoC(SoCCore):
             uart_name="sim",
             with_timer=False,
         )
+        if cfu:
+            # The CFU's logarithm pipeline, shared with the PicoRV32 unit.
+            platform.add_source(os.path.join(os.path.dirname(cfu), "tex_log2pl.v"))
         self.sim_exit = SimExit(platform.request("sim_exit"))
         # An interrupt-free firmware and a UART without the host's side:
         # the sink (host → SoC) stays idle.

@@ -48,10 +48,10 @@ pub fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
 
-#[cfg(feature = "softcore")]
-pub use softcore::{Console, exit};
 #[cfg(feature = "litex")]
 pub use litex::{Console, exit};
+#[cfg(feature = "softcore")]
+pub use softcore::{Console, exit};
 
 /// The memory-mapped registers of the soft-core SoC (`demo/softcore/soc.v`).
 #[cfg(feature = "softcore")]
@@ -156,6 +156,14 @@ mod litex {
     fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
         crate::println!("panic: {info}");
         exit(101)
+    }
+
+    /// With feature `cfu`: VexRiscv's CFU plugin takes custom instructions
+    /// only once enabled; before `main` (riscv-rt's post-init hook).
+    #[cfg(feature = "cfu")]
+    #[riscv_rt::post_init]
+    fn enable_cfu() {
+        raymip::coproc::cfu::enable();
     }
 
     /// Every exception (illegal instruction, e.g. a co-processor
