@@ -3,7 +3,7 @@
 between <!-- fpga:begin --> and <!-- fpga:end -->, which carries the figures
 as a `<!-- fpga-data: {...} -->` comment for scripts/softcore.py) and
 docs/softcore.md (<!-- fpga-docs:begin --> … <!-- fpga-docs:end -->), and the
-ECP5 figures of the LiteX SoC (issue 34) into their own blocks
+ECP5 figures of the LiteX SoC into their own blocks
 (<!-- fpga-ecp5:begin --> … and <!-- fpga-ecp5-docs:begin --> …, data as an
 `ecp5-data` comment) from ecp5-stat-vex/cfu.txt and ecp5-pnr-*.log. Every
 number comes from the files in --work: stat-0/1.txt (Yosys `stat` of the

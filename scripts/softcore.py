@@ -70,7 +70,7 @@ SOFTCORE_CEILINGS = {
     "rd_refract": 36757, "rd_footprint": 5465, "rd_lod": 2996, "rd_gbuffer": 8054,
 }
 SOFTCORE_BATCH_CEILINGS = {"tw_bil": 775, "tw_bil_f": 700, "tw_tri": 1436, "tw_tri_f": 1324}
-# The same on VexRiscv in the LiteX SoC (issue 34): max cycles per call
+# The same on VexRiscv in the LiteX SoC: max cycles per call
 # (batches: steady cycles per hit), achieved + 10 %.
 VEX_CEILINGS = {
     "tw_bil": 259, "tw_bil_f": 350, "tw_tri": 490, "tw_tri_f": 621, "ts_bil": 378, "ts_bil_f": 422,
@@ -80,7 +80,7 @@ VEX_CEILINGS = {
     "rd_reflect": 10199, "rd_refract": 19717, "rd_footprint": 2059, "rd_lod": 1039, "rd_gbuffer": 3154,
 }
 VEX_BATCH_CEILINGS = {"tw_bil": 180, "tw_bil_f": 188, "tw_tri": 350, "tw_tri_f": 325}
-# Issue 34's goals on VexRiscv: LOD + trilinear per textured hit (table lod +
+# The goals on VexRiscv: LOD + trilinear per textured hit (table lod +
 # trilinear sample, RGBA8, wrap), the max of the 64 inputs, cycles; alone
 # and with the co-processor on the CFU port.
 VEX_GOAL = 350
