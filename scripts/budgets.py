@@ -576,6 +576,9 @@ def render(work, old_text, readme):
     L = []
     w = L.append
     w("# raymip firmware budgets\n")
+    w("[← README](README.md)\n")
+    w("**Measurement page** for engineers sizing a controller's firmware: every budget measured on the")
+    w("targets (instructions, cycles, code, stack, FPGA logic), each table against its ceiling.")
     w("Written by `scripts/budgets` (`scripts/budgets.py`; checked by `scripts/test-all`, a stale")
     w("file fails); do not edit. Toolchain: see `rustc --version` in CI logs; release profile")
     w("(opt-level 3, codegen-units 1); QEMU 10.0 (`mps2-an386` Cortex-M4, `virt` RV32).\n")

@@ -21,11 +21,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use clap::Parser;
+use raymip_host::cli::MeasureArgs;
 use raymip_host::cli::memory::{MemoryArgs, memory_table};
-use raymip_host::cli::output::{publish, write_option};
-use raymip_host::cli::parse_size;
+use raymip_host::output::report::publish;
 use raymip_host::render::texunit::Filter;
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
 use raymip_host::tradeoff::budgets::{Budgets, frame_calls};
 
@@ -52,12 +52,9 @@ const MEMORY: [(&str, &str); 2] = [
 ];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((640, 384));
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((640, 384));
+    let write = cmd.write.as_deref();
     let dir = default_bart_dir().join("kitchen");
     if !dir.is_dir() {
         println!(
@@ -78,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: BOUNCES,
         spp: 1,

@@ -30,11 +30,12 @@ use raymip::texture::storage::format::TexelFormat;
 use raymip::texture::storage::image::image_len;
 use raymip::texture::storage::mip::{Pyramid, full_levels};
 
-use super::output::write_between_markers;
+use super::parse_size;
 use super::sample::FormatArg;
-use super::{parse_size, scene_label};
+use crate::output::report::{markdown_cells, write_between_markers};
 use crate::render::skip::plan;
-use crate::render::{Method, Options, Precision, Prepared};
+use crate::render::{Arithmetic, Method, Options, Prepared};
+use crate::scene::scene_label;
 use crate::scene::{load_scene, load_scene_dir};
 
 /// BUDGETS.md as built: the "Feature sets" tables of `scripts/features`.
@@ -235,16 +236,9 @@ fn measured(budgets: &str, target: &str) -> Result<Vec<Measured>, MemoryError> {
             .map(str::to_string)
             .collect()
     };
-    let cells = |line: &str| -> Vec<String> {
-        line.trim()
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect()
-    };
     let mut sets: Vec<Measured> = Vec::new();
     for line in block.lines().filter(|l| l.starts_with("| ")) {
-        let c = cells(line);
+        let c = markdown_cells(line);
         let num = |i: usize| c.get(i).and_then(|v| v.parse::<u64>().ok());
         if let Some(t) = c.get(1).filter(|v| v.starts_with('`')) {
             // | set | `target` | PathState | Sampler | TexelCache 8x2 |
@@ -334,7 +328,7 @@ fn from_scene(
     let prep = Prepared::new(scene, size).map_err(|e| MemoryError::Scene(e.to_string()))?;
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some((prep.width, prep.height)),
         bounces,
         spp: 1,

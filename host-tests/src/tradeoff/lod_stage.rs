@@ -13,7 +13,7 @@ use raymip::texture::sampler::aniso::Footprint;
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
-use crate::reference::Rng;
+use raymip_reference::Rng;
 
 /// One hit's inputs, exactly representable in the firmware's formats.
 #[derive(Clone, Copy, Debug)]
