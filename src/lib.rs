@@ -145,18 +145,12 @@
 #![no_std]
 // docs.rs (`--cfg docsrs`, Cargo.toml): a badge on every feature-gated item.
 #![cfg_attr(docsrs, feature(doc_cfg))]
-// Safe Rust only; with the `ffi` feature the C ABI module may use `unsafe`
-// for caller pointers, and with `pcpi` (or `cfu`, which turns it on) on
-// riscv32 the co-processor modules for their one-instruction `asm!`
-// wrappers and the CFU's texel reads: `deny` then, `forbid` otherwise.
-#![cfg_attr(
-    not(any(feature = "ffi", all(feature = "pcpi", target_arch = "riscv32"))),
-    forbid(unsafe_code)
-)]
-#![cfg_attr(
-    any(feature = "ffi", all(feature = "pcpi", target_arch = "riscv32")),
-    deny(unsafe_code)
-)]
+// Safe Rust but for three modules, each with its safety argument: the C
+// ABI (`ffi`, caller pointers), the co-processors (`coproc::pcpi` and
+// `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers and the
+// CFU's texel reads) and the direct texel reads of
+// `texture::storage::pow2` (indices reduced to validated level views).
+#![deny(unsafe_code)]
 #![deny(
     missing_docs,
     missing_debug_implementations,

@@ -31,16 +31,19 @@
 //! return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
 //! by construction of the RTL (every mode's index map ends in a mask or a
 //! clamp to the level; the Verilator testbench checks every address bit
-//! of the reference vectors, `scripts/softcore`), where `base` is the
-//! start of the slice `lv` and `lv.len() = 2^(kx + ky)` is checked before
-//! the first instruction: so each address is that of an element of `lv`,
-//! aligned and initialised, read while `lv` is borrowed. On a core without
-//! the co-processor the first instruction traps (illegal instruction)
-//! before any read.
+//! of the reference vectors, `scripts/softcore`), where `base`, `2^kx` and
+//! `2^ky` are a [`LevelView`]'s first texel and sides: the view guarantees
+//! `2^(kx + ky)` initialised texels there for as long as it lives (its
+//! construction checks them against a borrowed slice,
+//! `texture::storage::pow2`). So each address is that of one of those
+//! texels, aligned, read while the view is borrowed. On a core without the
+//! co-processor the first instruction traps (illegal instruction) before
+//! any read.
 #![allow(unsafe_code)]
 
 use super::{TAP01, TAP10, TAP11};
 use crate::texture::storage::mip::Texel;
+use crate::texture::storage::pow2::LevelView;
 
 /// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the
 /// custom instructions are illegal. Idempotent.
@@ -123,33 +126,23 @@ pub fn tap<const F3: u32>() -> u32 {
 }
 
 /// The bilinear footprint `[t00, t10, t01, t11]` of the coordinates
-/// `(u, v)` ([`super::coord_i4f28`] operands) on the level `lv` of
-/// `2^log2_len` texels, `2^kx` a row, addressed in the modes of `modes`
-/// (`level_config(0, 0, mu, mv)`); the weights stay latched in the
-/// co-processor for `tex.bt`/`tex.bb`. `None` (nothing issued) unless
-/// `lv` holds exactly `2^log2_len` texels with `kx ≤ 15` and
-/// `log2_len − kx ≤ 15`; the texels are those the software taps select
-/// (same bits, `scripts/softcore`).
+/// `(u, v)` ([`super::coord_i4f28`] operands) on the level `l`, addressed
+/// in the modes of `modes` (`level_config(0, 0, mu, mv)`); the weights
+/// stay latched in the co-processor for `tex.bt`/`tex.bb`. The texels are
+/// those the software taps select (same bits, `scripts/softcore`).
 #[inline(always)]
 #[must_use]
-pub fn footprint(
-    lv: &[Texel],
-    log2_len: u32,
-    kx: u32,
-    modes: u32,
-    u: u32,
-    v: u32,
-) -> Option<[Texel; 4]> {
-    let ky = log2_len.wrapping_sub(kx);
-    if kx > 15 || ky > 15 || lv.len() != 1 << log2_len {
-        return None;
-    }
-    let base = lv.as_ptr().expose_provenance() as u32;
+pub fn footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4] {
+    // `shift = 31 − log2(side)`, sides ≤ 2¹⁵ (`LevelView::new`).
+    let (kx, ky) = (31 - l.shift_x(), 31 - l.shift_y());
+    let base = l.base().as_ptr().expose_provenance() as u32;
     level(base, kx | ky << 4 | modes);
     let a = [addr(u, v), tap::<TAP10>(), tap::<TAP01>(), tap::<TAP11>()];
-    // SAFETY: each address is that of an element of `lv` (module docs:
-    // `base + 4·j` with `j < 2^(kx + ky) = lv.len()`, aligned), whose
-    // provenance `expose_provenance` exposed above; `lv` is borrowed for
-    // the reads and `Texel` (u32) has no invalid values.
-    Some(a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() }))
+    // SAFETY: each address is that of one of the `2^(kx + ky)` texels at
+    // `base` (module docs: `base + 4·j`, `j < 2^(kx + ky)`, aligned), which
+    // the view keeps initialised and unwritten while it lives (its
+    // invariant, `LevelView::base`); `expose_provenance` exposed the
+    // provenance of that memory above, and `Texel` (u32) has no invalid
+    // values.
+    a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() })
 }

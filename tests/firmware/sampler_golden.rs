@@ -18,7 +18,8 @@ use raymip::texture::sampler::Key;
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Pyramid, TexelSource, full_levels};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{AddressMode, FetchStats, Mode, Sampler, TexCoord};
 
 use crate::common;
 use common::{random_texture, samples_for};
@@ -52,7 +53,7 @@ const STOCHASTIC: [StochasticMode; 3] = [
 ];
 
 /// Hash of every ACCURATE result and counter of `make()`'s sampler.
-fn hash_all<S: TexelSource, K: Key>(
+fn hash_all<S: TexelSource, K: Key<Stats = FetchStats>>(
     samples: &[(TexCoord, TexCoord, Lod)],
     mut make: impl FnMut() -> Sampler<S, K>,
 ) -> u64 {
@@ -200,6 +201,20 @@ fn hashes(w: u32, h: u32, levels: u8) -> [u64; 4] {
     out[1] = hash_all(&samples, || Sampler::clamp(p));
     out[2] = hash_all(&samples, || Sampler::wrap(cached()));
     out[3] = hash_all(&samples, || Sampler::clamp(cached()));
+    // Power-of-two sides: the direct path of the level views gives the
+    // same results and counters.
+    if let Ok(d) = Pow2Pyramid::new(p) {
+        assert_eq!(
+            hash_all(&samples, || Sampler::wrap(d)),
+            out[0],
+            "direct wrap"
+        );
+        assert_eq!(
+            hash_all(&samples, || Sampler::clamp(d)),
+            out[1],
+            "direct clamp"
+        );
+    }
     // The run-time forms give the same results: the address matched per
     // axis, and the key table of the C ABI.
     for (i, a) in [AddressMode::Wrap, AddressMode::ClampToEdge]
