@@ -73,13 +73,14 @@ SOFTCORE_BATCH_CEILINGS = {"tw_bil": 775, "tw_bil_f": 700, "tw_tri": 1436, "tw_t
 # The same on VexRiscv in the LiteX SoC: max cycles per call
 # (batches: steady cycles per hit), achieved + 10 %.
 VEX_CEILINGS = {
-    "tw_bil": 259, "tw_bil_f": 350, "tw_tri": 490, "tw_tri_f": 621, "ts_bil": 378, "ts_bil_f": 422,
-    "ts_tri": 903, "ts_tri_f": 717, "ts_srgb": 2292, "ts_565": 2609, "ts_565_f": 1286, "ts_bc1_hit": 3758,
-    "ts_bc1_hit_f": 3006, "ts_bc1_fill": 9801, "ts_bc1_fill_f": 8539, "an2": 3787, "an4": 4898,
-    "an16": 9946, "an2_f": 4331, "an4_f": 5076, "an16_f": 10277, "rd_primary": 7220, "rd_transfer": 10567,
-    "rd_reflect": 10199, "rd_refract": 19717, "rd_footprint": 2059, "rd_lod": 1039, "rd_gbuffer": 3154,
+    "tw_bil": 229, "tw_bil_f": 233, "tw_tri": 442, "tw_tri_f": 645, "tw_tri_n": 711, "ts_bil": 284,
+    "ts_bil_f": 307, "ts_tri": 767, "ts_tri_f": 776, "ts_srgb": 1103, "ts_565": 1275, "ts_565_f": 2431,
+    "ts_bc1_hit": 3255, "ts_bc1_hit_f": 2714, "ts_bc1_fill": 9951, "ts_bc1_fill_f": 10313, "an2": 3972,
+    "an4": 4719, "an16": 10095, "an2_f": 2285, "an4_f": 2928, "an16_f": 7563, "rd_primary": 7220,
+    "rd_transfer": 10567, "rd_reflect": 10199, "rd_refract": 19717, "rd_footprint": 2059, "rd_lod": 1039,
+    "rd_gbuffer": 3154,
 }
-VEX_BATCH_CEILINGS = {"tw_bil": 180, "tw_bil_f": 188, "tw_tri": 350, "tw_tri_f": 325}
+VEX_BATCH_CEILINGS = {"tw_bil": 165, "tw_bil_f": 156, "tw_tri": 283, "tw_tri_f": 275}
 # The goals on VexRiscv: LOD + trilinear per textured hit (table lod +
 # trilinear sample, RGBA8, wrap), the max of the 64 inputs, cycles; alone
 # and with the co-processor on the CFU port.
