@@ -124,7 +124,7 @@ def ecp5_data(a, old_text):
         v = parse_ecp5_stat(open(os.path.join(a.work, f"ecp5-stat-{key}.txt")).read())
         if v["lut"] == 0:
             sys.exit(f"fpga.py: ecp5-stat-{key}.txt has no LUT4 count")
-        if a.pnr:
+        if a.pnr and os.path.exists(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")):
             p = parse_ecp5_pnr(open(os.path.join(a.work, f"ecp5-pnr-{key}.log")).read())
             if p is None:
                 sys.exit(f"fpga.py: ecp5-pnr-{key}.log has no utilisation / frequency")

@@ -40,8 +40,10 @@
 // no way to refuse an instruction).
 //
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready
-// and answers one cycle later (rsp_valid registered), except tex.log2pl,
-// three cycles later (the two normalisation steps of tex_log2pl.v).
+// and answers one cycle later (rsp_valid registered), except tex.addr, two
+// cycles later (the scaled positions, then the index maps and addresses),
+// and tex.log2pl, three cycles later (the two normalisation steps of
+// tex_log2pl.v).
 // Unlike pcpi_tex.v the filter runs the four channels in parallel and
 // tex.bb in one multiply level, for an FPGA with DSP blocks to spare:
 // X_c = (t11_c − t01_c)·fx·fy + t01_c·fy·2¹² + top_c·(2¹² − fy), the same
@@ -77,8 +79,10 @@ module Cfu (
     // tex.log2pl in flight: answers when `lcnt` reaches 2.
     reg  [1:0] lcnt;
     reg        lbusy;
-    // A new instruction when no answer waits and no tex.log2pl runs.
-    assign cmd_ready = !lbusy && (!rsp_valid || rsp_ready);
+    // A new instruction when no answer waits and no tex.log2pl or
+    // tex.addr runs.
+    wire       abusy_w;
+    assign cmd_ready = !lbusy && !abusy_w && (!rsp_valid || rsp_ready);
     wire fire = cmd_valid && cmd_ready;
 
     wire [31:0] log2pl;
@@ -178,8 +182,13 @@ module Cfu (
         end
     endfunction
 
+    // tex.addr in two registered steps: the scaled positions and weights
+    // of the operands, then the index maps and the addresses.
     wire [43:0] sx = scaled(a, kx, mu), sy = scaled(b, ky, mv);
-    wire [31:0] ix = sx[43:12], iy = sy[43:12];
+    reg  [31:0] ix, iy;
+    reg  [11:0] wx, wy;
+    reg         abusy;
+    assign abusy_w = abusy;
     wire [15:0] x0 = mapi(ix, kx, mu), x1 = mapi(ix + 32'd1, kx, mu);
     wire [15:0] y0 = mapi(iy, ky, mv), y1 = mapi(iy + 32'd1, ky, mv);
     // base + 4·(y·2^kx + x): the index has at most 30 bits (kx + ky ≤ 30).
@@ -191,6 +200,16 @@ module Cfu (
     always @(posedge clk) begin
         fxy <= fx * fy;
         if (rsp_valid && rsp_ready) rsp_valid <= 1'b0;
+        if (abusy) begin
+            abusy                 <= 1'b0;
+            fx                    <= {1'b0, wx};
+            fy                    <= {1'b0, wy};
+            a10                   <= texel(x1, y0);
+            a01                   <= texel(x0, y1);
+            a11                   <= texel(x1, y1);
+            rsp_valid             <= 1'b1;
+            rsp_payload_outputs_0 <= texel(x0, y0);
+        end
         if (lbusy) begin
             lcnt <= lcnt + 2'd1;
             if (lcnt == 2'd1) begin
@@ -200,7 +219,7 @@ module Cfu (
             end
         end
         if (fire) begin
-            rsp_valid             <= funct7 != 7'd0 || funct3 != 3'd0;
+            rsp_valid             <= !(funct7 == 7'd0 && funct3 == 3'd0) && !(funct7 == 7'd1 && funct3 == 3'd1);
             rsp_payload_outputs_0 <= 32'd0;
             if (funct7 == 7'd0) begin
                 case (funct3)
@@ -232,12 +251,11 @@ module Cfu (
                         mv   <= b[11:10];
                     end
                     3'd1: begin
-                        fx  <= {1'b0, sx[11:0]};
-                        fy  <= {1'b0, sy[11:0]};
-                        a10 <= texel(x1, y0);
-                        a01 <= texel(x0, y1);
-                        a11 <= texel(x1, y1);
-                        rsp_payload_outputs_0 <= texel(x0, y0);
+                        abusy <= 1'b1;
+                        ix    <= sx[43:12];
+                        iy    <= sy[43:12];
+                        wx    <= sx[11:0];
+                        wy    <= sy[11:0];
                     end
                     3'd2: rsp_payload_outputs_0 <= a10;
                     3'd3: rsp_payload_outputs_0 <= a01;
@@ -249,6 +267,7 @@ module Cfu (
         if (reset) begin
             rsp_valid <= 1'b0;
             lbusy     <= 1'b0;
+            abusy     <= 1'b0;
         end
     end
 endmodule

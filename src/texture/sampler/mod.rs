@@ -558,7 +558,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// and the kernel.
     #[cfg(feature = "trilinear")]
     #[inline(always)]
-    fn level_value(&mut self, u: TexCoord, v: TexCoord, level: usize) -> <Kern<K> as Kernel>::Level {
+    fn level_value(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> <Kern<K> as Kernel>::Level {
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
         if let Some(a) = self.coproc_level(u, v, level) {
             return a;
@@ -576,7 +581,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// otherwise (decided at compile time but for the source).
     #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
     #[inline(always)]
-    fn coproc_level(&self, u: TexCoord, v: TexCoord, level: usize) -> Option<<Kern<K> as Kernel>::Level> {
+    fn coproc_level(
+        &self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> Option<<Kern<K> as Kernel>::Level> {
         use crate::coproc::{addressable, cfu, coord_i4f28, level_config};
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
         if !Kern::<K>::COPROC_FOOTPRINT || !addressable(mu) || !addressable(mv) {
