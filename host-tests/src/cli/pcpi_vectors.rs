@@ -1,5 +1,4 @@
-//! Reference vectors of the texture co-processor (`demo/softcore/pcpi_tex.v`,
-//! issue 23), written by the firmware's software paths: `raymip-demo
+//! Reference vectors of the texture co-processor (`demo/softcore/pcpi_tex.v`), written by the firmware's software paths: `raymip-demo
 //! pcpi-vectors FILE` writes them and the Verilator testbench
 //! `demo/softcore/tb_pcpi_tex.cpp` checks every output bit of the RTL
 //! against them (`scripts/softcore`).

@@ -38,8 +38,7 @@ use raymip::lod::{
 };
 use raymip::path::raystack::{PathLength, Width};
 use raymip::setup::table::Log2Pb;
-use raymip::texture::storage::mip::{Pyramid, Texel};
-use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::storage::mip::Texel;
 use raymip::texture::{Mode, Sampler, TexCoord};
 use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
@@ -127,13 +126,7 @@ fn measure<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> (Stat, Stat
 }
 
 raymip_demo_entry::main! {
-    let Some(g) = raymip_demo_scene::tex_geometry() else {
-        exit(1)
-    };
-    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
-        .ok()
-        .and_then(|p| Pow2Pyramid::new(p).ok())
-    else {
+    let Some((_, p)) = raymip_demo_scene::tex0_pow2() else {
         exit(1)
     };
     let mut tex: Tex = Sampler::new(p);
