@@ -1,4 +1,4 @@
-//! The sampler-matrix (issue 20) and ray-differential (issue 21) probes in
+//! The sampler-matrix and ray-differential probes in
 //! one place for every counter that times them: the QEMU instruction traces
 //! of `src/bin/budget.rs` (`scripts/budgets`) and the PicoRV32 cycle
 //! counters of `src/bin/cycles_matrix.rs` (`scripts/softcore`).
@@ -25,28 +25,34 @@ use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
-use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
-use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
+use raymip::texture::storage::mip::{Geometry, Texel};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{Cfg, Mode, NoStats, Sampler, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
 use crate::inputs::{self, N, Rng};
 
-/// The plain sampler: RGBA8 pyramid, wrap, ACCURATE.
-pub type Tex = Sampler<Pyramid<'static>>;
+/// The plain sampler: RGBA8 power-of-two pyramid (direct level views),
+/// wrap, ACCURATE, no fetch statistics (the matrix's keys count none: a
+/// firmware that reads no statistics).
+pub type Tex = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Accurate, NoStats>>;
 /// The plain sampler at the FAST tier.
-pub type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
+pub type TexFast = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast, NoStats>>;
 /// One bilinear or trilinear input: `u`, `v`, lod.
 pub type SampleIn = (TexCoord, TexCoord, Lod);
 /// One anisotropic input: `u`, `v`, footprint.
 pub type AnisoIn = (TexCoord, TexCoord, Footprint);
 /// The state rows' key: mirror on u, clamp-to-border on v.
-pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
+pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C, Accurate, NoStats>>;
 /// The BC1 image behind an 8×2-block texel cache.
 pub type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
 /// The state rows' key at the FAST tier.
-pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
+pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast, NoStats>>;
+/// The wrap key with fetch statistics (`FetchStats`, the default key's
+/// counting): the matrix's counted row.
+pub type TexCounted<'a> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap>>;
 /// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
-pub type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
+pub type Tw<'a, P = Accurate> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P, NoStats>>;
 
 /// A measured wrapper: the function, public, with a stable symbol name for
 /// the traces (`no_mangle`) and never inlined.
@@ -110,16 +116,16 @@ batch_wrapper!(
 sample_wrapper!(
     /// One bilinear sample with the state key (RGBA8, mirror/border
     /// addressing, bias and lod clamp).
-    rm_bench_ts_bilinear, Ts<Pyramid<'_>>, Mode::BilinearNearestLevel);
+    rm_bench_ts_bilinear, Ts<Pow2Pyramid<'_>>, Mode::BilinearNearestLevel);
 
 sample_wrapper!(
     /// One trilinear sample of an RGBA8 pyramid with the state key.
-    rm_bench_ts_trilinear, Ts<Pyramid<'_>>, Mode::Trilinear);
+    rm_bench_ts_trilinear, Ts<Pow2Pyramid<'_>>, Mode::Trilinear);
 
 sample_wrapper!(
     /// One trilinear sample of the same texels read as sRGB (decoded to
     /// linear, filtered, re-encoded).
-    rm_bench_ts_srgb, Ts<Pyramid<'_>, Srgb>, Mode::Trilinear);
+    rm_bench_ts_srgb, Ts<Pow2Pyramid<'_>, Srgb>, Mode::Trilinear);
 
 sample_wrapper!(
     /// One trilinear sample of an RGB565 image (decoded per texel read).
@@ -135,7 +141,7 @@ sample_wrapper!(
 aniso_wrapper!(
     /// One anisotropic sample (trilinear probes): called 64 times with at
     /// most 2 probes, then 4, then 16 (three samplers, one per cap).
-    rm_bench_ts_aniso, Sampler<Pyramid<'_>>);
+    rm_bench_ts_aniso, Tw<'_>);
 
 // The sampler matrix: one wrapper per call, key and tier. The wrap rows
 // (RGBA8, wrap on both axes, lod bias and clamp set:
@@ -149,11 +155,15 @@ sample_wrapper!(
     /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
     rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
 sample_wrapper!(
+    /// RGBA8 trilinear, wrap, bias and clamp set, ACCURATE, counting its
+    /// texel reads (`FetchStats`).
+    rm_bench_trilinear_counted, TexCounted<'_>, Mode::Trilinear);
+sample_wrapper!(
     /// RGBA8 bilinear, mirror/border key, FAST.
-    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
+    rm_bench_ts_bilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::BilinearNearestLevel);
 sample_wrapper!(
     /// RGBA8 trilinear, mirror/border key, FAST.
-    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
+    rm_bench_ts_trilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::Trilinear);
 sample_wrapper!(
     /// RGB565 trilinear, mirror/border key, FAST.
     rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
@@ -210,25 +220,30 @@ impl Default for Images {
     }
 }
 
-/// The samplers of the `TextureSampler` and matrix rows (built by
+/// The samplers of the state-key (`Ts`) and matrix rows (built by
 /// [`Subjects::new`]).
 pub struct Subjects<'a> {
     /// RGBA8, [`inputs::sampler_state`], linear.
-    pub rgba: Ts<Pyramid<'a>>,
+    pub rgba: Ts<Pow2Pyramid<'a>>,
     /// The same texels read as sRGB, results re-encoded.
-    pub srgb: Ts<Pyramid<'a>, Srgb>,
+    pub srgb: Ts<Pow2Pyramid<'a>, Srgb>,
     /// The demo texture converted to RGB565.
     pub rgb565: Ts<Image<'a, Rgb565>>,
     /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
     pub bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
-    pub aniso: [Sampler<Pyramid<'a>>; 3],
+    pub aniso: [Tw<'a>; 3],
     /// The same at the FAST tier.
     pub aniso_fast: [Tw<'a, Fast>; 3],
-    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
-    pub wrap: (Tex, TexFast),
+    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST (no statistics),
+    /// ACCURATE counting its reads.
+    pub wrap: (Tex, TexFast, TexCounted<'a>),
     /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    pub fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
+    pub fast: (
+        TsF<Pow2Pyramid<'a>>,
+        TsF<Image<'a, Rgb565>>,
+        TsF<Bc1Cache<'a>>,
+    ),
 }
 
 impl<'a> Subjects<'a> {
@@ -236,7 +251,7 @@ impl<'a> Subjects<'a> {
     /// (`None` cannot happen with the demo texture and the states of
     /// [`inputs`]).
     #[must_use]
-    pub fn new(g: Geometry, p: Pyramid<'static>, images: &'a Images) -> Option<Self> {
+    pub fn new(g: Geometry, p: Pow2Pyramid<'static>, images: &'a Images) -> Option<Self> {
         let state = inputs::sampler_state()?;
         let rgb565 = Image::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
         let bc1 = Image::typed(g, ColorSpace::Linear, &images.bc1).ok()?;
@@ -251,6 +266,7 @@ impl<'a> Subjects<'a> {
             aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
             aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
             wrap: (
+                Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
             ),
@@ -286,12 +302,12 @@ pub trait Meter {
     fn batch(&mut self, key: &str, call: impl FnMut(usize) -> usize);
 }
 
-/// The sampler rows of `s`, in this order: the `TextureSampler` rows
+/// The sampler rows of `s`, in this order: the state-key rows
 /// (mirror u / border v, ACCURATE: RGBA8 bilinear and trilinear, sRGB,
 /// RGB565, BC1 fill/hit pairs, anisotropic 2×, 4×, 16×), then the rest of
 /// the matrix: the wrap rows (single calls, then batches of 32 and 64
-/// hits), the FAST tier of the mirror/border rows and anisotropic FAST.
-/// Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
+/// hits), the FAST tier of the mirror/border rows, anisotropic FAST and
+/// the wrap trilinear row with fetch statistics. Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
 /// single-call row). The inputs are drawn by the caller (the budgets' order).
 #[inline(always)]
 pub fn sampler_rows<M: Meter>(
@@ -324,7 +340,7 @@ pub fn sampler_rows<M: Meter>(
         m.row(key, aniso_in, |(u, v, fp)| rm_bench_ts_aniso(a, u, v, &fp));
     }
 
-    let (wa, wf) = &mut s.wrap;
+    let (wa, wf, wc) = &mut s.wrap;
     rows! {
         "tw_bil", bil_in, rm_bench_bilinear(wa);
         "tw_tri", tri_in, rm_bench_trilinear(wa);
@@ -366,6 +382,9 @@ pub fn sampler_rows<M: Meter>(
         m.row(key, aniso_in, |(u, v, fp)| {
             rm_bench_ts_aniso_fast(a, u, v, &fp)
         });
+    }
+    rows! {
+        "tw_tri_n", tri_in, rm_bench_trilinear_counted(wc);
     }
 }
 
