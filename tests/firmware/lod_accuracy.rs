@@ -63,7 +63,7 @@ fn measured_error_of_every_lod_stage() {
             st = st.advance(t).bounce(Spread::ZERO);
             pl += t.to_num::<f64>();
         }
-        let want = pl.log2() - want_pb;
+        let want = raymip_reference::lod::table(pl, want_pb);
         if want.abs() > 120.0 {
             continue;
         }
