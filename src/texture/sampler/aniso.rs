@@ -246,8 +246,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
         let p = probes(
             fp,
-            self.geometry.width(),
-            self.geometry.height(),
+            self.source.geometry().width(),
+            self.source.geometry().height(),
             self.state.max_anisotropy(),
         );
         let bits = self.lod.apply(p.lod);

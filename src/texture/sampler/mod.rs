@@ -165,14 +165,21 @@ impl core::error::Error for SamplerError {}
 
 /// The addressing constants of one level of a power-of-two geometry, per
 /// axis `[u, v]`: the wrap constant [`wrap_constant`]`(k, bits)` for the
-/// kernel's weight width, the mask `n − 1` of the side `n = 2^k ≤ 2¹⁵` and
-/// the shift `31 − k` (with `n`, the arguments of
-/// `AddressMode::pow2_taps`), in 16 bytes.
+/// kernel's weight width and the shift `s = 31 − k` of the side
+/// `n = 2^k ≤ 2¹⁵` (the mask is `n − 1 = (2³¹ − 1) >> s`), in 12 bytes:
+/// the arguments of `AddressMode::pow2_taps`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 struct LevelAddr {
     c: [u32; 2],
-    m: [u16; 2],
     s: [u8; 2],
+}
+
+impl LevelAddr {
+    /// The masks `n − 1` of both axes.
+    #[inline(always)]
+    fn masks(&self) -> [u32; 2] {
+        self.s.map(|s| i32::MAX as u32 >> (s & 31))
+    }
 }
 
 /// The [`LevelAddr`] of every level index `0 ..= 16` of `g` (levels past
@@ -186,10 +193,8 @@ fn level_table(g: &Geometry, bits: u32) -> Option<[LevelAddr; MAX_LEVELS as usiz
     for (k, e) in (0u8..).zip(t.iter_mut()) {
         let (w, h) = g.level_size(k);
         let n = [w, h];
-        // Sides ≤ 2¹⁵ (the geometry's bound): the masks fit u16.
         *e = LevelAddr {
             c: n.map(|n| wrap_constant(n.trailing_zeros(), bits)),
-            m: n.map(|n| (n - 1) as u16),
             s: n.map(|n| n.leading_zeros() as u8),
         };
     }
@@ -253,7 +258,6 @@ impl LodWindow {
 /// ```
 pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     source: S,
-    geometry: Geometry,
     state: SamplerState,
     axes: (K::U, K::V),
     lod: LodWindow,
@@ -352,7 +356,6 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             border: Kern::<K>::load_border(state.border()),
             border_nearest: Kern::<K>::border_nearest(state.border()),
             source,
-            geometry,
             state,
             axes,
             stats: K::Stats::default(),
@@ -601,14 +604,14 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             // general taps.
             let (xt, yt) = if self.pow2 {
                 let a = &self.levels[level];
-                let [mx, my] = a.m.map(u32::from);
+                let [mx, my] = a.masks();
                 let [sx, sy] = a.s.map(u32::from);
                 (
                     mu.pow2_taps(u, mx + 1, mx, sx, a.c[0], bits),
                     mv.pow2_taps(v, my + 1, my, sy, a.c[1], bits),
                 )
             } else {
-                let (w, h) = self.geometry.level_size(level as u8);
+                let (w, h) = self.source.geometry().level_size(level as u8);
                 (mu.taps(u, w, bits), mv.taps(v, h, bits))
             };
             let t = self.source.footprint(level as u8, xt.i, yt.i);
@@ -636,7 +639,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// Nearest texel at `level` (counted) and whether it is the border.
     #[inline(always)]
     fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> (Texel, bool) {
-        let (w, h) = self.geometry.level_size(level);
+        let (w, h) = self.source.geometry().level_size(level);
         let (x, bx) = self.axes.0.mode().nearest_tap(u, w);
         let (y, by) = self.axes.1.mode().nearest_tap(v, h);
         self.stats.count(1, 0);
@@ -678,10 +681,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         &self.state
     }
 
-    /// The source's geometry (read once at construction).
+    /// The source's geometry.
     #[must_use]
     pub fn geometry(&self) -> Geometry {
-        self.geometry
+        self.source.geometry()
     }
 
     /// The texel source.

@@ -169,9 +169,6 @@ pub struct Geometry {
     /// Offset of level k in texels (0 below `first`); entries past `last`
     /// hold the total.
     offsets: [u32; MAX_LEVELS as usize + 1],
-    /// Size of level index k (clamped to the stored levels), so that
-    /// [`level_size`](Self::level_size) is one table read.
-    sizes: [[u16; 2]; MAX_LEVELS as usize + 1],
 }
 
 impl Geometry {
@@ -242,21 +239,6 @@ impl Geometry {
             k += 1;
         }
         offsets[MAX_LEVELS as usize] = total;
-        let mut sizes = [[0u16; 2]; MAX_LEVELS as usize + 1];
-        let mut k = 0u8;
-        while k <= MAX_LEVELS {
-            let clamped = if k > last {
-                last
-            } else if k < first {
-                first
-            } else {
-                k
-            };
-            let (w, h) = level_dims(width, height, clamped);
-            // Sides ≤ MAX_SIZE = 2¹⁵: they fit u16.
-            sizes[k as usize] = [w as u16, h as u16];
-            k += 1;
-        }
         Ok(Self {
             width,
             height,
@@ -264,7 +246,6 @@ impl Geometry {
             first,
             last,
             offsets,
-            sizes,
         })
     }
 
@@ -346,13 +327,7 @@ impl Geometry {
     #[inline]
     #[must_use]
     pub const fn level_size(&self, level: u8) -> (u32, u32) {
-        let k = if level > MAX_LEVELS {
-            MAX_LEVELS
-        } else {
-            level
-        };
-        let [w, h] = self.sizes[k as usize];
-        (w as u32, h as u32)
+        level_dims(self.width, self.height, self.stored_level(level))
     }
 
     /// Offset of `level` in texels from the start of the stored texels
