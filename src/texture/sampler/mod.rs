@@ -424,15 +424,13 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // next to `lower`'s entry (one address for both levels).
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
-        let (ta, fxa, fya) = self.footprint(u, v, lower);
         let k = self.rounding;
-        let a = Kern::<K>::level(ta, fxa, fya, k);
+        let a = self.level_value(u, v, lower);
         if t == 0 {
             count(&mut self.stats, true);
             Kern::<K>::round_level(a)
         } else {
-            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
-            let b = Kern::<K>::level(tb, fxb, fyb, k);
+            let b = self.level_value(u, v, lower + 1);
             count(&mut self.stats, false);
             Kern::<K>::blend_levels(a, b, t, k)
         }
@@ -448,8 +446,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
     #[inline(always)]
     fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-        let level = Self::nearest_level(self.lod.apply(lod));
-        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+        let level = usize::from(Self::nearest_level(self.lod.apply(lod))) & 15;
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(a) = self.coproc_level(u, v, level) {
+            return Kern::<K>::round_level(a);
+        }
+        let (t, fx, fy) = self.footprint(u, v, level);
         Kern::<K>::bilinear_texel(t, fx, fy, self.rounding)
     }
 
@@ -572,6 +574,52 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let v = tex_coord_from_f64(reduce_f64(self.axes.1.mode(), v))?;
         let lod = Lod::saturating_from_num(lod);
         Ok(self.sample(u, v, lod, mode))
+    }
+
+    /// The kernel's level value of the footprint at `level` (`≤ 16`):
+    /// through the co-processor's addressing where it applies
+    /// ([`coproc_level`](Self::coproc_level)), else [`footprint`](Self::footprint)
+    /// and the kernel.
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    fn level_value(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> <Kern<K> as Kernel>::Level {
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(a) = self.coproc_level(u, v, level) {
+            return a;
+        }
+        let (t, fx, fy) = self.footprint(u, v, level);
+        Kern::<K>::level(t, fx, fy, self.rounding)
+    }
+
+    /// Feature `cfu` on riscv32: the level value at `level` (`≤ 16`) with
+    /// the footprint and its weights from the co-processor's addressing
+    /// instructions (`coproc::cfu::footprint`: the same taps and weights as
+    /// [`footprint`](Self::footprint)'s direct path, tested bit for bit),
+    /// for a kernel that keeps its weights there, addressable axes (no
+    /// border colour) and a source with direct level views; `None`
+    /// otherwise (decided at compile time but for the source).
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn coproc_level(
+        &self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> Option<<Kern<K> as Kernel>::Level> {
+        use crate::coproc::{addressable, cfu, coord_i4f28, level_config};
+        let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
+        if !Kern::<K>::COPROC_FOOTPRINT || !addressable(mu) || !addressable(mv) {
+            return None;
+        }
+        let l = self.source.levels()?.level(level);
+        let modes = level_config(0, 0, mu, mv);
+        let t = cfu::footprint(l, modes, coord_i4f28(mu, u), coord_i4f28(mv, v));
+        Some(Kern::<K>::coproc_level(t, self.rounding))
     }
 
     /// The 2×2 footprint at `level` as the kernel's lanes (border taps
