@@ -80,7 +80,7 @@ pub fn frame_calls(method: Method, filter: Filter, c: &Counters) -> Option<Vec<C
             call("transfer to a hit", c.hits),
             call("reflection (shading-normal differentials)", c.reflections),
             call("refraction (shading-normal differentials)", c.refractions),
-            call("footprint (two texture-space axes)", c.textured_hits),
+            call("footprint (two texel-space axes)", c.textured_hits),
             call("lod from the footprint (larger axis)", c.textured_hits),
         ],
         Method::Gbuffer => {
@@ -91,7 +91,7 @@ pub fn frame_calls(method: Method, filter: Filter, c: &Counters) -> Option<Vec<C
                 call("transfer to a hit", c.hits.saturating_sub(first)),
                 call("reflection (shading-normal differentials)", c.reflections),
                 call("refraction (shading-normal differentials)", c.refractions),
-                call("footprint (two texture-space axes)", c.textured_hits),
+                call("footprint (two texel-space axes)", c.textured_hits),
                 call("lod from the footprint (larger axis)", c.textured_hits),
             ]
         }
