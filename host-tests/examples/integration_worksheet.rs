@@ -1,4 +1,4 @@
-//! Writes the worked example of docs/integration.md (issue 22): the memory
+//! Writes the worked example of docs/integration.md: the memory
 //! a controller needs for the BART kitchen and what one frame's texture work
 //! costs it, every figure measured or computed here, none typed.
 //!
@@ -21,9 +21,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use clap::Parser;
+use raymip_host::cli::MeasureArgs;
 use raymip_host::cli::memory::{MemoryArgs, memory_table};
-use raymip_host::cli::parse_size;
-use raymip_host::output::report::{publish, write_option};
+use raymip_host::output::report::publish;
 use raymip_host::render::texunit::Filter;
 use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
@@ -52,12 +52,9 @@ const MEMORY: [(&str, &str); 2] = [
 ];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((640, 384));
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((640, 384));
+    let write = cmd.write.as_deref();
     let dir = default_bart_dir().join("kitchen");
     if !dir.is_dir() {
         println!(

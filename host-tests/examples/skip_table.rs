@@ -1,4 +1,4 @@
-//! Writes the docs/skipping.md table of what each scene doesn't need (issue 13): per
+//! Writes the docs/skipping.md table of what each scene doesn't need: per
 //! scene, the pyramid bytes the set-up analysis lets a table-method render
 //! leave out, the per-hit skips, and the render time with full and with
 //! trimmed pyramids (best of `REPEATS` each), checked bit-identical.
@@ -14,9 +14,9 @@
 
 use std::fmt::Write as _;
 
-use raymip_host::cli::parse_size;
+use raymip_host::cli::MeasureArgs;
 use raymip_host::output::machine::cpu_model;
-use raymip_host::output::report::{publish, write_option};
+use raymip_host::output::report::publish;
 use raymip_host::render::skip::{bit_identical, plan, render_trimmed};
 use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
@@ -39,12 +39,9 @@ fn cpu() -> String {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((640, 384));
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((640, 384));
+    let write = cmd.write.as_deref();
     let mut scenes: Vec<(String, Load)> = builtin::NAMES
         .iter()
         .map(|&n| {

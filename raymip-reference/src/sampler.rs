@@ -32,37 +32,47 @@ pub fn linear_to_srgb(l: f64) -> f64 {
     }
 }
 
-/// Address mode of one axis (numbered as the firmware's `AddressMode`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Address {
-    /// Vulkan `REPEAT`.
-    Wrap = 0,
-    /// Vulkan `MIRRORED_REPEAT`.
-    Mirror = 1,
-    /// Vulkan `CLAMP_TO_EDGE`.
-    ClampToEdge = 2,
-    /// Vulkan `MIRROR_CLAMP_TO_EDGE`.
-    MirrorOnce = 3,
-    /// Vulkan `CLAMP_TO_BORDER`.
-    ClampToBorder = 4,
+// An enum numbered as its firmware counterpart: the variants in number
+// order, `ALL` in that order and `from_index`, the variant of a firmware
+// number (the firmware's tests check that the names agree).
+macro_rules! numbered {
+    ($(#[$m:meta])* $name:ident: $n:literal { $($(#[$vm:meta])* $v:ident,)+ }) => {
+        $(#[$m])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum $name {
+            $($(#[$vm])* $v,)+
+        }
+
+        impl $name {
+            /// Every variant, in number order.
+            pub const ALL: [Self; $n] = [$(Self::$v,)+];
+
+            /// The variant numbered `n`, `None` past the last.
+            #[must_use]
+            pub fn from_index(n: u8) -> Option<Self> {
+                Self::ALL.get(usize::from(n)).copied()
+            }
+        }
+    };
+}
+
+numbered! {
+    /// Address mode of one axis (numbered as the firmware's `AddressMode`).
+    Address: 5 {
+        /// Vulkan `REPEAT`.
+        Wrap,
+        /// Vulkan `MIRRORED_REPEAT`.
+        Mirror,
+        /// Vulkan `CLAMP_TO_EDGE`.
+        ClampToEdge,
+        /// Vulkan `MIRROR_CLAMP_TO_EDGE`.
+        MirrorOnce,
+        /// Vulkan `CLAMP_TO_BORDER`.
+        ClampToBorder,
+    }
 }
 
 impl Address {
-    /// Every mode, in number order.
-    pub const ALL: [Self; 5] = [
-        Self::Wrap,
-        Self::Mirror,
-        Self::ClampToEdge,
-        Self::MirrorOnce,
-        Self::ClampToBorder,
-    ];
-
-    /// The mode numbered `n`, `None` past the last.
-    #[must_use]
-    pub fn from_index(n: u8) -> Option<Self> {
-        Self::ALL.get(usize::from(n)).copied()
-    }
-
     /// The wrapping operation on an integer texel index `i` of a level
     /// `n ≥ 1` texels wide: the texel read, or `None` for the border colour.
     #[must_use]
@@ -78,33 +88,18 @@ impl Address {
     }
 }
 
-/// Filter mode (numbered as the firmware's `Mode`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
-    /// Bilinear within a level, linear between the levels around the lod.
-    Trilinear = 0,
-    /// Bilinear within the nearest level.
-    BilinearNearestLevel = 1,
-    /// Nearest texel of the nearest level.
-    Nearest = 2,
-    /// Nearest texel in each of the two levels around the lod, linear
-    /// between them.
-    NearestTexelLinearLevel = 3,
-}
-
-impl Mode {
-    /// Every mode, in number order.
-    pub const ALL: [Self; 4] = [
-        Self::Trilinear,
-        Self::BilinearNearestLevel,
-        Self::Nearest,
-        Self::NearestTexelLinearLevel,
-    ];
-
-    /// The mode numbered `n`, `None` past the last.
-    #[must_use]
-    pub fn from_index(n: u8) -> Option<Self> {
-        Self::ALL.get(usize::from(n)).copied()
+numbered! {
+    /// Filter mode (numbered as the firmware's `Mode`).
+    Mode: 4 {
+        /// Bilinear within a level, linear between the levels around the lod.
+        Trilinear,
+        /// Bilinear within the nearest level.
+        BilinearNearestLevel,
+        /// Nearest texel of the nearest level.
+        Nearest,
+        /// Nearest texel in each of the two levels around the lod, linear
+        /// between them.
+        NearestTexelLinearLevel,
     }
 }
 
@@ -430,22 +425,20 @@ mod tests {
         let n = 4;
         let got = |a: Address| (-5..9).map(|i| a.index(i, n)).collect::<Vec<_>>();
         let s = |v: &[i64]| v.iter().map(|&x| Some(x)).collect::<Vec<_>>();
-        assert_eq!(
-            got(Address::Wrap),
-            s(&[3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0])
-        );
-        assert_eq!(
-            got(Address::Mirror),
-            s(&[3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 2, 1, 0, 0])
-        );
-        assert_eq!(
-            got(Address::ClampToEdge),
-            s(&[0, 0, 0, 0, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3])
-        );
-        assert_eq!(
-            got(Address::MirrorOnce),
-            s(&[3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3])
-        );
+        for (a, want) in [
+            (Address::Wrap, [3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0]),
+            (Address::Mirror, [3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 2, 1, 0, 0]),
+            (
+                Address::ClampToEdge,
+                [0, 0, 0, 0, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3],
+            ),
+            (
+                Address::MirrorOnce,
+                [3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3],
+            ),
+        ] {
+            assert_eq!(got(a), s(&want), "{a:?}");
+        }
         let border = got(Address::ClampToBorder);
         assert_eq!(border.iter().filter(|x| x.is_some()).count(), 4);
         assert_eq!(border[5..9], s(&[0, 1, 2, 3])[..]);

@@ -1,12 +1,12 @@
 //! RGBA8 wrap / clamp-to-edge results of the ACCURATE paths, bit for bit,
 //! against hashes recorded from the `filter::Sampler` of commit b4ea951
 //! (the static keys `Sampler::wrap` / `Sampler::clamp`, and the run-time
-//! form `Sampler::with_address`)
-//! (before the texture half became one sampler, issue 20): every filter
-//! mode, the batch entry point, stochastic filtering, direct pyramid reads
-//! and reads through a texel cache, on power-of-two and other sizes,
-//! tiny, one-wide and partial chains. The inputs are the random and edge
-//! samples of `texture_accuracy.rs` (same generator, own seeds).
+//! form `Sampler::with_address`): every filter mode, the batch entry
+//! point, stochastic filtering, direct pyramid reads and reads through a
+//! texel cache, on power-of-two and other sizes, tiny, one-wide and
+//! partial chains. The inputs are `common::samples_for` over the full
+//! coordinate and lod range (the generator of `texture_accuracy.rs`, own
+//! seeds).
 //!
 //! The recorded values come from the old implementation, not from the code
 //! under test: a change of any result (or fetch counter) of these
@@ -18,7 +18,8 @@ use raymip::texture::sampler::Key;
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Pyramid, TexelSource, full_levels};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{AddressMode, FetchStats, Mode, Sampler, TexCoord};
 
 use crate::common;
 use common::{random_texture, samples_for};
@@ -52,7 +53,7 @@ const STOCHASTIC: [StochasticMode; 3] = [
 ];
 
 /// Hash of every ACCURATE result and counter of `make()`'s sampler.
-fn hash_all<S: TexelSource, K: Key>(
+fn hash_all<S: TexelSource, K: Key<Stats = FetchStats>>(
     samples: &[(TexCoord, TexCoord, Lod)],
     mut make: impl FnMut() -> Sampler<S, K>,
 ) -> u64 {
@@ -200,6 +201,20 @@ fn hashes(w: u32, h: u32, levels: u8) -> [u64; 4] {
     out[1] = hash_all(&samples, || Sampler::clamp(p));
     out[2] = hash_all(&samples, || Sampler::wrap(cached()));
     out[3] = hash_all(&samples, || Sampler::clamp(cached()));
+    // Power-of-two sides: the direct path of the level views gives the
+    // same results and counters.
+    if let Ok(d) = Pow2Pyramid::new(p) {
+        assert_eq!(
+            hash_all(&samples, || Sampler::wrap(d)),
+            out[0],
+            "direct wrap"
+        );
+        assert_eq!(
+            hash_all(&samples, || Sampler::clamp(d)),
+            out[1],
+            "direct clamp"
+        );
+    }
     // The run-time forms give the same results: the address matched per
     // axis, and the key table of the C ABI.
     for (i, a) in [AddressMode::Wrap, AddressMode::ClampToEdge]

@@ -67,6 +67,25 @@ fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: AddressMode) -> [
     sampler.sample(u, v, lod, reference::Mode::from_index(mode as u8).unwrap())
 }
 
+/// The reference's address and filter modes are numbered as the
+/// firmware's (`reference()` maps one to the other by number).
+#[test]
+fn reference_modes_are_numbered_as_the_firmware() {
+    for a in AddressMode::ALL {
+        let r = reference::Address::from_index(a as u8).unwrap();
+        assert_eq!(format!("{r:?}"), format!("{a:?}"));
+    }
+    assert_eq!(
+        reference::Address::from_index(AddressMode::ALL.len() as u8),
+        None
+    );
+    for m in MODES {
+        let r = reference::Mode::from_index(m as u8).unwrap();
+        assert_eq!(format!("{r:?}"), format!("{m:?}"));
+    }
+    assert_eq!(reference::Mode::from_index(MODES.len() as u8), None);
+}
+
 /// Largest per-channel |fixed − reference| over the samples, per mode
 /// (in `MODES` order), ACCURATE then FAST.
 #[derive(Default, Debug)]

@@ -116,14 +116,11 @@ fn c_abi() {
         };
         bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
         bb(rm_sampler_init_wrap(bb(&mut sampler), &tex));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        // One sample at texel (5, 6) and the table's lod.
+        let sample = |s: &mut RmSampler, out: &mut u32| {
+            bb(rm_sample(s, bb(5), bb(6), bb(lod), RmModeBits(bb(0)), out))
+        };
+        sample(&mut sampler, &mut out);
         let mut desc = RmSamplerDesc::default();
         bb(rm_sampler_desc_default(&mut desc));
         let desc = bb(desc);
@@ -151,14 +148,7 @@ fn c_abi() {
         });
         bb(rm_image_len(bb(16), bb(16), bb(5), bb(7)));
         bb(rm_sampler_init_image(&mut sampler, &img, &desc));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        sample(&mut sampler, &mut out);
     }
     let mut pyr = [0u32; 21];
     // SAFETY: `pyr` holds 21 writable texels.
@@ -417,17 +407,20 @@ fn main() -> ! {
         }
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];
+        // `sample_batch` of a sampler (any key) with `n` samples into `k`
+        // texel slots (unequal lengths: the shorter one bounds the batch).
+        macro_rules! batch {
+            ($s:expr, $m:expr, $n:expr, $k:expr) => {
+                bb($s.sample_batch(
+                    samples.get(..bb($n)).unwrap_or_default(),
+                    bb($m),
+                    texels.get_mut(..bb($k)).unwrap_or_default(),
+                ))
+            };
+        }
         for &m in &modes {
-            bb(direct.sample_batch(
-                samples.get(..bb(4)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(3)).unwrap_or_default(),
-            ));
-            bb(cached.sample_batch(
-                samples.get(..bb(3)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(4)).unwrap_or_default(),
-            ));
+            batch!(direct, m, 4, 3);
+            batch!(cached, m, 3, 4);
         }
         for m in [
             StochasticMode::Trilinear,
@@ -451,16 +444,8 @@ fn main() -> ! {
         for &m in &modes {
             bb(gpu.sample(u, v, lod, bb(m)));
             bb(gpu_direct.sample(u, v, lod, bb(m)));
-            bb(gpu.sample_batch(
-                samples.get(..bb(3)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(4)).unwrap_or_default(),
-            ));
-            bb(direct_fast.sample_batch(
-                samples.get(..bb(4)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(3)).unwrap_or_default(),
-            ));
+            batch!(gpu, m, 3, 4);
+            batch!(direct_fast, m, 4, 3);
         }
         bb(gpu.sample_aniso(u, v, &fp));
         bb(gpu_direct.sample_aniso(u, v, &fp));

@@ -46,6 +46,7 @@ use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::{Coord, Log2Pb, PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Mode, Sampler, TexCoord};
 
 mod data;
@@ -446,6 +447,15 @@ pub fn tex_geometry() -> Option<Geometry> {
     Geometry::new(TEX_SIZE, TEX_SIZE, TEX_LEVELS).ok()
 }
 
+/// The first demo texture ([`TEX0`]) as a power-of-two pyramid (direct
+/// level views), with its geometry: the texture the budget and cycle
+/// binaries sample.
+#[must_use]
+pub fn tex0_pow2() -> Option<(Geometry, Pow2Pyramid<'static>)> {
+    let g = tex_geometry()?;
+    Some((g, Pow2Pyramid::new(Pyramid::new(g, &TEX0).ok()?).ok()?))
+}
+
 /// Pyramid texels that differ between `stored` and a pyramid regenerated
 /// from its level 0 with [`raymip::texture::storage::mip::generate`] (run at start-up on
 /// each target: MIP generation must be bit-identical too).
@@ -479,7 +489,7 @@ const SKY: [u32; 3] = [30, 30, 60];
 #[inline(never)]
 fn sample_tex(
     tex0: &mut Sampler<Tex0Cache>,
-    tex1: &mut Sampler<Pyramid<'static>>,
+    tex1: &mut Sampler<Pow2Pyramid<'static>>,
     tex: u8,
     u: TexCoord,
     v: TexCoord,
@@ -498,7 +508,7 @@ pub struct Renderer {
     table: [Log2Pb; TRIANGLES],
     spread: PixelSpread,
     tex0: Sampler<Tex0Cache>,
-    tex1: Sampler<Pyramid<'static>>,
+    tex1: Sampler<Pow2Pyramid<'static>>,
     /// Counters so far.
     pub counters: Counters,
 }
@@ -524,7 +534,7 @@ impl Renderer {
         };
         let g = tex_geometry()?;
         let p0 = Pyramid::new(g, &TEX0).ok()?;
-        let p1 = Pyramid::new(g, &TEX1).ok()?;
+        let p1 = Pow2Pyramid::new(Pyramid::new(g, &TEX1).ok()?).ok()?;
         Some(Self {
             // The static table is what the firmware uses (flash data).
             table: static_table(),

@@ -101,6 +101,22 @@ pub fn render(prep: &Prepared, opts: &Options) -> Image {
     render_filtered(prep, opts, None)
 }
 
+/// The frame of `opts` in both arithmetics, `[fixed, float]` (rendered in
+/// that order; `opts.arithmetic` is not read): how the examples and tests
+/// compare the firmware path with the f64 one.
+#[must_use]
+pub fn render_fixed_and_float(prep: &Prepared, opts: &Options) -> [Image; 2] {
+    [Arithmetic::Fixed, Arithmetic::Float].map(|arithmetic| {
+        render(
+            prep,
+            &Options {
+                arithmetic,
+                ..opts.clone()
+            },
+        )
+    })
+}
+
 /// A texture-filter override for one frame of a render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FrameFilter {

@@ -38,7 +38,7 @@ pub enum Filter {
     /// Nearest texel of the nearest level.
     Nearest,
     /// A firmware stochastic filter (`raymip::texture::sampler::stochastic`), driven by the
-    /// random bits passed to [`Unit::sample`]. The f64 unit has no
+    /// random bits passed to [`FirmwareUnit::sample_rgb`]. The f64 unit has no
     /// stochastic mode: it returns the filter's expectation (trilinear for
     /// the level-choosing modes, bilinear for stochastic bilinear).
     Stochastic(StochasticMode),

@@ -9,7 +9,7 @@
 //!   the plotting area where it meets no other label and no marker, or left
 //!   out ([`place_labels`]; a chart with overlapping labels is an error);
 //!   one panel per group.
-//! * [`curves`]: lines on log–log axes (convergence over frames).
+//! * [`Curves`]: lines on log–log axes (convergence over frames).
 
 use std::path::Path;
 use std::sync::Once;

@@ -29,6 +29,7 @@ use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
 
 use super::timing::measure;
@@ -70,16 +71,22 @@ impl TestTexture {
         Pyramid::new(self.geometry, &self.texels).unwrap_or_else(|e| panic!("{e}"))
     }
 
+    /// The pyramid with its direct level views (power-of-two sides).
+    #[must_use]
+    pub fn direct(&self) -> Pow2Pyramid<'_> {
+        Pow2Pyramid::new(self.pyramid()).unwrap_or_else(|e| panic!("{e}"))
+    }
+
     /// A firmware sampler over it (wrap addressing, ACCURATE).
     #[must_use]
-    pub fn sampler(&self) -> Sampler<Pyramid<'_>> {
-        Sampler::wrap(self.pyramid())
+    pub fn sampler(&self) -> Sampler<Pow2Pyramid<'_>> {
+        Sampler::wrap(self.direct())
     }
 
     /// A firmware sampler over it (wrap addressing, FAST).
     #[must_use]
-    pub fn sampler_fast(&self) -> Sampler<Pyramid<'_>, Cfg<Wrap, Wrap, Linear, Fast>> {
-        Sampler::new(self.pyramid())
+    pub fn sampler_fast(&self) -> Sampler<Pow2Pyramid<'_>, Cfg<Wrap, Wrap, Linear, Fast>> {
+        Sampler::new(self.direct())
     }
 
     /// The exact f64 reference over the same texels (wrap, no bias).

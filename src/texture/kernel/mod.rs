@@ -75,6 +75,41 @@ mod sealed {
     impl<C, P> Sealed for (C, P) {}
 }
 
+/// The rounding terms of the filter arithmetic, made once per sampler
+/// ([`Rounding::new`]) and handed to every kernel call: each
+/// multiply-accumulate chain then starts from a register holding its
+/// rounding term, instead of a separate add after the chain (which is what
+/// a compiler emits for a constant it can see). The values are fixed
+/// ([`accurate::ROUND_WIDE`], [`accurate::ROUND_TEXEL`],
+/// [`accurate::ROUND_BLEND`], [`fast::ROUND_PAIR`]); only where they come
+/// from differs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rounding {
+    wide: u32,
+    texel: u32,
+    blend: u32,
+    pair: u64,
+}
+
+impl Rounding {
+    /// The rounding terms.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            wide: accurate::ROUND_WIDE,
+            texel: accurate::ROUND_TEXEL,
+            blend: accurate::ROUND_BLEND,
+            pair: fast::ROUND_PAIR,
+        }
+    }
+}
+
+impl Default for Rounding {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// A filter kernel: the arithmetic of one colour space and precision
 /// tier on texel footprints (implemented for the pairs `(C, P)` of the
 /// table above; sealed).
@@ -130,10 +165,11 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// The border colour as a nearest-texel result.
     fn border_nearest(t: Texel) -> Texel;
     /// One level's bilinear value of the footprint `l` (`t00, t10, t01,
-    /// t11`) with position weights `fx, fy < 2^WEIGHT_BITS`.
-    fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide;
+    /// t11`) with position weights `fx, fy < 2^WEIGHT_BITS` (`k`: the
+    /// sampler's [`Rounding`], as for every filter below).
+    fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide;
     /// [`bilinear`](Self::bilinear) rounded to a result texel.
-    fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Texel;
+    fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Texel;
     /// A level value rounded to a result texel.
     fn round(w: Self::Wide) -> Texel;
     /// One level of a trilinear sample: the footprint's filtered value as
@@ -144,16 +180,29 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// rounded texel).
     type Level: Copy;
     /// The [`Level`](Self::Level) of the footprint `l` with weights `fx, fy`.
-    fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Level;
+    fn level(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Level;
     /// A level alone rounded to a result texel (the
     /// [`round`](Self::round) of its value).
     fn round_level(a: Self::Level) -> Texel;
+    /// Whether the sampler may take this kernel's footprints from the
+    /// co-processor's addressing instructions (feature `cfu` on riscv32:
+    /// the ACCURATE linear kernel, whose weights the co-processor then
+    /// keeps) and filter them with [`coproc_level`](Self::coproc_level).
+    const COPROC_FOOTPRINT: bool = false;
+    /// The [`Level`](Self::Level) of the footprint `t` (`t00, t10, t01,
+    /// t11` as stored) with the weights the co-processor latched (only
+    /// called when [`COPROC_FOOTPRINT`](Self::COPROC_FOOTPRINT); otherwise
+    /// the level with zero weights).
+    #[inline(always)]
+    fn coproc_level(t: [Texel; 4], k: Rounding) -> Self::Level {
+        Self::level(t.map(Self::load), 0, 0, k)
+    }
     /// The [`blend`](Self::blend) of the levels `a` and then `b` (the last
     /// two [`level`](Self::level) calls, in that order) with `t ∈ [1, 255]`.
-    fn blend_levels(a: Self::Level, b: Self::Level, t: u32) -> Texel;
+    fn blend_levels(a: Self::Level, b: Self::Level, t: u32, k: Rounding) -> Texel;
     /// The blend of two levels' values with the 8-bit lod fraction
     /// `t ∈ [1, 255]`, rounded to a result texel.
-    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel;
+    fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel;
     /// The blend of two nearest texels' lanes, rounded.
     fn blend_nearest(a: Self::Lanes, b: Self::Lanes, t: u32) -> Texel;
     /// A level value as a probe value that sums over 16 probes: four
@@ -161,7 +210,7 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// linear for sRGB data).
     fn probe(w: Self::Wide) -> [u32; 4];
     /// [`blend`](Self::blend) as a probe value.
-    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4];
+    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> [u32; 4];
     /// The mean of `n ∈ [1, 16]` probe values (their channel sums),
     /// rounded to a result texel.
     fn probe_mean(sum: [u32; 4], n: u32) -> Texel;
@@ -174,16 +223,16 @@ macro_rules! software_levels {
     () => {
         type Level = Self::Wide;
         #[inline(always)]
-        fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide {
-            Self::bilinear(l, fx, fy)
+        fn level(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+            Self::bilinear(l, fx, fy, k)
         }
         #[inline(always)]
         fn round_level(a: Self::Wide) -> Texel {
             Self::round(a)
         }
         #[inline(always)]
-        fn blend_levels(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-            Self::blend(a, b, t)
+        fn blend_levels(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+            Self::blend(a, b, t, k)
         }
     };
 }
@@ -221,8 +270,8 @@ macro_rules! wide_probes {
             w
         }
         #[inline(always)]
-        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-            accurate::blend_keep(a, b, t)
+        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> [u32; 4] {
+            accurate::blend_keep(a, b, t, k.wide)
         }
     };
 }
@@ -237,8 +286,8 @@ macro_rules! linear_8_16 {
             accurate::round_wide_in_range(w)
         }
         #[inline(always)]
-        fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-            accurate::blend_wide_in_range(a, b, t)
+        fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+            accurate::blend_wide_in_range(a, b, t, k.blend)
         }
         #[inline(always)]
         fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
@@ -267,19 +316,19 @@ impl Kernel for (Linear, Accurate) {
 
     rgba8_texels!();
     #[inline(always)]
-    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
-        accurate::bilerp_in_range(l, fx, fy)
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+        accurate::bilerp_in_range(l, fx, fy, k.wide)
     }
     #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        accurate::bilerp_rounded(l, fx, fy)
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        accurate::bilerp_rounded(l, fx, fy, k.texel)
     }
     // Feature `pcpi` on riscv32: the co-processor's corner sum, the same
     // bits as `bilerp_rounded` (`fx, fy < 4096`).
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::bw(fx, fy);
         crate::coproc::pcpi::bt(l[0], l[1]);
         crate::coproc::pcpi::bb(l[2], l[3])
@@ -294,8 +343,8 @@ impl Kernel for (Linear, Accurate) {
     type Level = Texel;
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn level(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        Self::bilinear_texel(l, fx, fy)
+    fn level(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        Self::bilinear_texel(l, fx, fy, k)
     }
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
@@ -304,8 +353,18 @@ impl Kernel for (Linear, Accurate) {
     }
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn blend_levels(_: Texel, _: Texel, t: u32) -> Texel {
+    fn blend_levels(_: Texel, _: Texel, t: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::blend(t)
+    }
+    // Feature `cfu` on riscv32: the footprint's weights are the ones
+    // `tex.addr` latched, so a level is `tex.bt` and `tex.bb` alone.
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    const COPROC_FOOTPRINT: bool = true;
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn coproc_level(t: [Texel; 4], _: Rounding) -> Texel {
+        crate::coproc::pcpi::bt(t[0], t[1]);
+        crate::coproc::pcpi::bb(t[2], t[3])
     }
     linear_8_16!();
 }
@@ -319,12 +378,12 @@ impl Kernel for (Linear, Fast) {
 
     rgba8_texels!();
     #[inline(always)]
-    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Self::Wide {
         fast::bilinear(l, fx, fy)
     }
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        fast::bilinear_texel(l, fx, fy)
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        fast::bilinear_texel_rounded(l, fx, fy, k.pair)
     }
     // A FAST level value is an exact 8.16 value: rounding, level blend and
     // probes are the ACCURATE kernel's (module docs of `fast`).
@@ -360,24 +419,29 @@ macro_rules! srgb_kernel {
                 $border(t)
             }
             #[inline(always)]
-            fn bilinear(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Self::Wide {
-                accurate::bilerp_lanes(l, accurate::corner_weights16(fx, fy))
+            fn bilinear(l: [accurate::Lin16; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+                accurate::bilerp_lanes(l, accurate::corner_weights16(fx, fy), k.wide)
             }
             #[inline(always)]
-            fn bilinear_texel(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Texel {
-                $out(Self::bilinear(l, fx, fy))
+            fn bilinear_texel(l: [accurate::Lin16; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+                $out(Self::bilinear(l, fx, fy, k))
             }
             #[inline(always)]
             fn round(w: Self::Wide) -> Texel {
                 $out(w)
             }
             #[inline(always)]
-            fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-                $out(accurate::blend_keep(a, b, t))
+            fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+                $out(accurate::blend_keep(a, b, t, k.wide))
             }
             #[inline(always)]
             fn blend_nearest(a: accurate::Lin16, b: accurate::Lin16, t: u32) -> Texel {
-                $out(accurate::blend_keep(srgb::widen(a), srgb::widen(b), t))
+                $out(accurate::blend_keep(
+                    srgb::widen(a),
+                    srgb::widen(b),
+                    t,
+                    accurate::ROUND_WIDE,
+                ))
             }
             wide_probes!();
             #[inline(always)]

@@ -64,7 +64,7 @@ use raymip::lod::{
 };
 use raymip::path::raystack::{PathLength, Width};
 use raymip::setup::table::Log2Pb;
-use raymip::texture::storage::mip::{Pyramid, Texel};
+use raymip::texture::storage::mip::Texel;
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip_demo_firmware::inputs::{self, Draws, N};
 use raymip_demo_firmware::probes::{
@@ -527,16 +527,13 @@ fn rm_budget_driver(
 }
 
 raymip_demo_entry::main! {
-    let Some(g) = raymip_demo_scene::tex_geometry() else {
-        process::exit(1)
-    };
-    let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
+    let Some((g, p)) = raymip_demo_scene::tex0_pow2() else {
         process::exit(1)
     };
     let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, AddressMode::Wrap) else {
         process::exit(1)
     };
-    let mut tex = Sampler::wrap(p);
+    let mut tex: Tex = Sampler::new(p);
     let images = Images::new();
     let Some(mut par) = Subjects::new(g, p, &images) else {
         process::exit(1)
