@@ -44,29 +44,59 @@ fn unit(u: &mut Unstructured) -> Result<[I2F30; 3]> {
 }
 
 fn diff(u: &mut Unstructured) -> Result<(([i32; 3], i32), ([i32; 3], i32))> {
-    Ok(((u.arbitrary()?, u.arbitrary()?), (u.arbitrary()?, u.arbitrary()?)))
+    Ok((
+        (u.arbitrary()?, u.arbitrary()?),
+        (u.arbitrary()?, u.arbitrary()?),
+    ))
 }
 
 fn api(u: &mut Unstructured) -> Result<()> {
     let ((a, ea), (b, eb)) = diff(u)?;
     let ((c, ec), (d, ed)) = diff(u)?;
-    let mut s = RayDiff::new(PosDiff::new(a, ea), PosDiff::new(b, eb), DirDiff::new(c, ec), DirDiff::new(d, ed));
-    let dn = [DirDiff::new(u.arbitrary()?, u.arbitrary()?), DirDiff::new(u.arbitrary()?, u.arbitrary()?)];
+    let mut s = RayDiff::new(
+        PosDiff::new(a, ea),
+        PosDiff::new(b, eb),
+        DirDiff::new(c, ec),
+        DirDiff::new(d, ed),
+    );
+    let dn = [
+        DirDiff::new(u.arbitrary()?, u.arbitrary()?),
+        DirDiff::new(u.arbitrary()?, u.arbitrary()?),
+    ];
     for _ in 0..u.int_in_range(0..=12)? {
         let (dir, n) = (unit(u)?, unit(u)?);
         match u.int_in_range(0..=3)? {
             0 => s.transfer(dir, U32F32::from_bits(u.arbitrary()?), n),
             1 => s.reflect(dir, n, dn),
-            2 => s.refract(dir, n, dn, Eta::from_fixed(I4F28::from_bits(u.arbitrary()?)), I2F30::from_bits(u.arbitrary()?)),
+            2 => s.refract(
+                dir,
+                n,
+                dn,
+                Eta::from_fixed(I4F28::from_bits(u.arbitrary()?)),
+                I2F30::from_bits(u.arbitrary()?),
+            ),
             _ => s = RayDiff::primary(dir, n, dn[0], dn[1]),
         }
-        for v in [s.dox().parts(), s.doy().parts(), s.ddx().parts(), s.ddy().parts()] {
+        for v in [
+            s.dox().parts(),
+            s.doy().parts(),
+            s.ddx().parts(),
+            s.ddy().parts(),
+        ] {
             assert!((-(1 << 14)..1 << 14).contains(&v.1), "{s:?}");
         }
     }
     let mut coord = || -> Result<I32F32> { Ok(I32F32::from_bits(u.arbitrary()?)) };
-    let p = [[coord()?, coord()?, coord()?], [coord()?, coord()?, coord()?], [coord()?, coord()?, coord()?]];
-    let uv = [[coord()?, coord()?], [coord()?, coord()?], [coord()?, coord()?]];
+    let p = [
+        [coord()?, coord()?, coord()?],
+        [coord()?, coord()?, coord()?],
+        [coord()?, coord()?, coord()?],
+    ];
+    let uv = [
+        [coord()?, coord()?],
+        [coord()?, coord()?],
+        [coord()?, coord()?],
+    ];
     if let Ok(t) = TexTriangle::new(p, uv, u.arbitrary::<u32>()? | 1, u.arbitrary::<u32>()? | 1) {
         let tri = RayDiffTriangle::new(&t);
         let fp = tri.footprint(&s);
@@ -74,11 +104,22 @@ fn api(u: &mut Unstructured) -> Result<()> {
         let _ = fp.axes(&tri);
     }
     let g = |u: &mut Unstructured| -> Result<GSample> {
-        Ok(GSample { p: u.arbitrary()?, n: unit(u)?, t: u.arbitrary()? })
+        Ok(GSample {
+            p: u.arbitrary()?,
+            n: unit(u)?,
+            t: u.arbitrary()?,
+        })
     };
     let (cen, l, r) = (g(u)?, g(u)?, g(u)?);
-    let _ = first_hit(&mut s, &cen, [Some(&l), Some(&r), None, Some(&cen)], u.arbitrary()?);
-    if let Ok(map) = raymip::lod::envmap::EnvMap::new(u.int_in_range(1..=1 << 15)?, u.int_in_range(1..=1 << 15)?) {
+    let _ = first_hit(
+        &mut s,
+        &cen,
+        [Some(&l), Some(&r), None, Some(&cen)],
+        u.arbitrary()?,
+    );
+    if let Ok(map) =
+        raymip::lod::envmap::EnvMap::new(u.int_in_range(1..=1 << 15)?, u.int_in_range(1..=1 << 15)?)
+    {
         let _ = map.raydiff_lod(s.ddx(), s.ddy(), Some(unit(u)?));
     }
     Ok(())

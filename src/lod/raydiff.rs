@@ -280,6 +280,18 @@ fn texcoord(m: i32, e: i32) -> TexCoord {
     TexCoord::from_bits(v)
 }
 
+/// The three components of a cross product `u × v` through `f`:
+/// component `k` is `f(u[i], v[j], u[j], v[i])` with `(i, j)` = (1, 2),
+/// (2, 0), (0, 1) for `k` = 0, 1, 2 (for `f(a, b, c, d) = a·b − c·d`, the
+/// cross product). Constant indices: no bounds check survives.
+fn cross_terms<T: Copy, R>(u: [T; 3], v: [T; 3], f: impl Fn(T, T, T, T) -> R) -> [R; 3] {
+    [
+        f(u[1], v[2], u[2], v[1]),
+        f(u[2], v[0], u[0], v[2]),
+        f(u[0], v[1], u[1], v[0]),
+    ]
+}
+
 impl RayDiffTriangle {
     /// The constant of one textured triangle (set-up time, integer
     /// arithmetic; never panics). A zero-area triangle is marked
@@ -303,11 +315,7 @@ impl RayDiffTriangle {
             inv,
             kind: Kind::Degenerate,
         };
-        const PAIRS: [(usize, usize); 3] = [(1, 2), (2, 0), (0, 1)];
-        if PAIRS
-            .iter()
-            .all(|&(i, j)| prod_eq(e1[i], e2[j], e1[j], e2[i]))
-        {
+        if cross_terms(e1, e2, prod_eq).iter().all(|&eq| eq) {
             return t;
         }
         if prod_eq(du[0], dv[1], du[1], dv[0]) {
@@ -315,14 +323,16 @@ impl RayDiffTriangle {
             return t;
         }
         // N, a_u, a_v exact, then rounded (units 2⁻⁶⁴ each: they cancel).
-        let n = PAIRS.map(|(i, j)| det(e1[i], e2[j], e1[j], e2[i]));
+        let n = cross_terms(e1, e2, det);
         let a = |dd: [i128; 2]| -> [Wide; 3] {
             core::array::from_fn(|k| det(dd[1], e1[k], dd[0], e2[k]))
         };
         let n2 = n[0].mul(n[0]).add(n[1].mul(n[1])).add(n[2].mul(n[2]));
         let row = |a: [Wide; 3], s: u32| -> [Wide; 3] {
             let f = Wide::from_mag(false, u128::from(s), 0).div(n2);
-            PAIRS.map(|(i, j)| n[i].mul(a[j]).add(n[j].mul(a[i]).neg()).mul(f))
+            cross_terms(n, a, |ni, aj, nj, ai| {
+                ni.mul(aj).add(nj.mul(ai).neg()).mul(f)
+            })
         };
         let rows = [row(a(du), w), row(a(dv), h)];
         // One exponent for the six: the largest mantissa below 2³⁰.
