@@ -635,7 +635,7 @@ def render(work, old_text, readme):
         w("| " + " | ".join(row) + " |")
 
     w("\n## Batch entry points\n")
-    w("`table_lod_batch`, `cone_lod_batch`, their FAST forms `table_lod_fast_batch`,")
+    w("`table_lod_batch`, `cone_lod_batch`, their FAST forms `table_lod_norm_batch`,")
     w("`cone_lod_fast_batch`, `Sampler::sample_batch` (slice of hits in, slice of")
     w("results out, caller memory), each called once with the first 32 and once with all 64 inputs")
     w("above. Steady state per hit = (count for 64 − count for 32) / 32; amortised = count for")

@@ -11,7 +11,7 @@
 
 use std::fmt::Write as _;
 
-use raymip::texture::kernel::Precision;
+use raymip::units::Precision;
 use raymip_host::cli::output::{publish, write_option};
 use raymip_host::reference::sampler_ref::{FILTERS, measure};
 

@@ -1,9 +1,6 @@
 //! Texture sampling through C: an opaque sampler in caller memory set up
 //! once per texture, then single, batched and anisotropic samples.
 
-use fixed::types::{I8F8, I32F32};
-
-use crate::texture::kernel::Precision;
 use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
@@ -11,6 +8,7 @@ use crate::texture::storage::format::{AnyFormat, ColorSpace, Format, TexelFormat
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, Texel};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
+use crate::units::{Lod, Precision, TexCoord};
 
 use super::*;
 
@@ -137,9 +135,9 @@ impl RmSamplerDesc {
             address_u,
             address_v,
             border: self.border,
-            lod_bias: I8F8::from_bits(self.lod_bias),
-            min_lod: I8F8::from_bits(self.min_lod),
-            max_lod: I8F8::from_bits(self.max_lod),
+            lod_bias: Lod::from_bits(self.lod_bias),
+            min_lod: Lod::from_bits(self.min_lod),
+            max_lod: Lod::from_bits(self.max_lod),
             max_anisotropy: self.max_anisotropy,
             srgb_output,
         })
@@ -387,9 +385,9 @@ pub unsafe extern "C" fn rm_sample(
         return RmStatus::OutOfRange;
     };
     let (u, v, lod) = (
-        I32F32::from_bits(u),
-        I32F32::from_bits(v),
-        I8F8::from_bits(lod),
+        TexCoord::from_bits(u),
+        TexCoord::from_bits(v),
+        Lod::from_bits(lod),
     );
     let texel = each_slot!(slot, s => s.sample(u, v, lod, mode));
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
@@ -443,13 +441,13 @@ pub unsafe extern "C" fn rm_sample_batch(
             core::slice::from_raw_parts_mut(out, n),
         )
     };
-    let mut buf = [(I32F32::ZERO, I32F32::ZERO, I8F8::ZERO); BATCH_CHUNK];
+    let mut buf = [(TexCoord::ZERO, TexCoord::ZERO, Lod::ZERO); BATCH_CHUNK];
     for (h, o) in hits.chunks(BATCH_CHUNK).zip(out.chunks_mut(BATCH_CHUNK)) {
         for (b, x) in buf.iter_mut().zip(h) {
             *b = (
-                I32F32::from_bits(x.u),
-                I32F32::from_bits(x.v),
-                I8F8::from_bits(x.lod),
+                TexCoord::from_bits(x.u),
+                TexCoord::from_bits(x.v),
+                Lod::from_bits(x.lod),
             );
         }
         let k = h.len().min(BATCH_CHUNK);
@@ -488,10 +486,10 @@ pub unsafe extern "C" fn rm_sample_aniso(
         Err(e) => return e,
     };
     let fp = Footprint {
-        x: [I32F32::from_bits(f.dudx), I32F32::from_bits(f.dvdx)],
-        y: [I32F32::from_bits(f.dudy), I32F32::from_bits(f.dvdy)],
+        x: [TexCoord::from_bits(f.dudx), TexCoord::from_bits(f.dvdx)],
+        y: [TexCoord::from_bits(f.dudy), TexCoord::from_bits(f.dvdy)],
     };
-    let (u, v) = (I32F32::from_bits(u), I32F32::from_bits(v));
+    let (u, v) = (TexCoord::from_bits(u), TexCoord::from_bits(v));
     let texel: Texel = each_slot!(slot, s => s.sample_aniso(u, v, &fp));
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended.

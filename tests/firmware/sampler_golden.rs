@@ -13,12 +13,12 @@
 //! configurations changes a hash. To find the first differing sample,
 //! check out b4ea951 and print the outputs of the same loop.
 
-use raymip::lod::Lod;
 use raymip::texture::sampler::Key;
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 
 use crate::common;
 use common::{Rng, random_texture};

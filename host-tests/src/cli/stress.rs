@@ -24,20 +24,21 @@ use std::fmt::{self, Write as _};
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
-use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31};
+use fixed::types::{I2F30, I8F8, I16F16, U1F31};
 use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::ffi::{
     self, RM_UNTEXTURED, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmStatus,
     RmTexture,
 };
-use raymip::lod::{Lod, MIN_COS, clamp_lod, cone_lod, table_lod};
-use raymip::path::raystack::{DEFAULT_CAPACITY, PathLength, PathState, RayStack, Spread, Width};
+use raymip::lod::{MIN_COS, clamp_lod, cone_lod, table_lod};
+use raymip::path::raystack::{DEFAULT_CAPACITY, PathState, RayStack};
 use raymip::setup::camera::{CameraError, PixelSpread};
 use raymip::setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
 use raymip::texture::storage::mip::{
     self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len,
 };
-use raymip::texture::{AddressMode, FilterError, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, FilterError, Mode, Sampler};
+use raymip::units::{Accurate, Coord, Delta, Lod, PathLength, Spread, TexCoord, Width};
 
 use super::output::{OutputError, write_between_markers};
 
@@ -335,7 +336,10 @@ fn camera(r: &mut Runner) {
         ("I2F30 MAX", I2F30::MAX),
     ] {
         r.case(name, "camera: PixelSpread::from_angle", || {
-            match (PixelSpread::from_angle(a), a > I2F30::ZERO) {
+            match (
+                PixelSpread::from_angle(Spread::from_fixed(a)),
+                a > I2F30::ZERO,
+            ) {
                 (Err(CameraError::BadAngle), false) => err("BadAngle"),
                 (Ok(s), true) => {
                     let want = a.to_num::<f64>().log2();
@@ -466,8 +470,8 @@ fn table_geometry(r: &mut Runner) {
         "table: PbTable::update",
         || {
             let h = 2f64.powi(-32);
-            let p = [[0i64; 3], [1 << 32, 0, 0], [0, 1, 0]].map(|v| v.map(I32F32::from_bits));
-            let uv = TRI_UV.map(|v| v.map(I32F32::from_num));
+            let p = [[0i64; 3], [1 << 32, 0, 0], [0, 1, 0]].map(|v| v.map(Coord::from_bits));
+            let uv = TRI_UV.map(|v| v.map(TexCoord::from_num));
             let t = TexTriangle::new(p, uv, 256, 256).map_err(|e| e.to_string())?;
             let (e, _) = entry_of(t)?;
             // Pb = sqrt(A_world/A_tex)/γ with A_world = h/2, A_tex = 256²/2.
@@ -484,10 +488,10 @@ fn table_limits(r: &mut Runner) {
         "largest coordinates (±(2^31 − 2^-32))",
         "table: PbTable::update",
         || {
-            let m = I32F32::MAX;
-            let n = I32F32::MIN;
+            let m = Coord::MAX;
+            let n = Coord::MIN;
             let p = [[n, n, n], [m, n, n], [n, m, n]];
-            let uv = TRI_UV.map(|v| v.map(I32F32::from_num));
+            let uv = TRI_UV.map(|v| v.map(TexCoord::from_num));
             let t = TexTriangle::new(p, uv, 1, 1).map_err(|e| e.to_string())?;
             let (e, _) = entry_of(t)?;
             // Edges 2^32: A_world = 2^63, A_tex = 1/2: Pb = 2^32/γ.
@@ -560,7 +564,7 @@ fn lods(r: &mut Runner) {
     for (pn, pl) in pls {
         for (bn, pb) in pbs {
             r.case(format!("{pn}, entry {bn}"), "lod: table_lod", move || {
-                match table_lod(pl, pb) {
+                match table_lod::<Accurate>(pl, pb) {
                     None if pb.is_untextured() => clamp("None (untextured)"),
                     Some(l) if !pb.is_untextured() => {
                         // Pl = 0 reads as its smallest step, 2^-32.
@@ -621,7 +625,7 @@ fn cone_lods(r: &mut Runner) {
         for (dn, d) in deltas {
             for (cn, c) in cosines {
                 r.case(format!("{wn}, {dn}, {cn}"), "lod: cone_lod", move || {
-                    let got = cone_lod(w, d, c).to_num::<f64>();
+                    let got = cone_lod::<Accurate>(w, Delta::from_fixed(d), c).to_num::<f64>();
                     let lw = w.to_num::<f64>().abs().max(2f64.powi(-32)).log2();
                     let ln = c.map_or(0.0, |c| {
                         c.to_num::<f64>().clamp(MIN_COS.to_num(), 1.0).log2()
@@ -647,7 +651,7 @@ fn lods_float(r: &mut Runner) {
         || {
             let w = Width::from_num(0.01);
             let d = I16F16::from_num(3);
-            let at = |c: U1F31| cone_lod(w, d, Some(c));
+            let at = |c: U1F31| cone_lod::<Accurate>(w, Delta::from_fixed(d), Some(c));
             let (a, b, m) = (at(U1F31::ZERO), at(U1F31::from_bits(1 << 14)), at(MIN_COS));
             if a == m && b == m && at(U1F31::from_bits(1 << 16)) < m {
                 clamp(format!("{m} levels (normal term 16)"))
@@ -819,7 +823,7 @@ fn path(r: &mut Runner) {
             for _ in 0..12 {
                 s = s.advance(PathLength::MAX).bounce(Spread::from_num(0.5));
             }
-            let l = table_lod(s.pl, Log2Pb::MIN).ok_or("untextured")?;
+            let l = table_lod::<Accurate>(s.pl, Log2Pb::MIN).ok_or("untextured")?;
             let want = lod_ref(32.0 + 64.0);
             let ok = s.pl == PathLength::MAX
                 && s.saturated
@@ -1067,9 +1071,9 @@ fn c_abi_lod(r: &mut Runner) {
                 for d in [i32::MIN, 0, i32::MAX] {
                     for c in [0u32, 1, 1 << 15, u32::MAX] {
                         let got = ffi::rm_cone_lod(w, d, c);
-                        let rust = cone_lod(
+                        let rust = cone_lod::<Accurate>(
                             Width::from_bits(w),
-                            I16F16::from_bits(d),
+                            Delta::from_bits(d),
                             Some(U1F31::from_bits(c)),
                         );
                         if got != rust.to_bits() {

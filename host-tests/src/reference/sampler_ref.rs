@@ -13,9 +13,8 @@
 //! ([`RefTexture::from_rgba8`]); `tests/bc_decode.rs` checks the firmware
 //! decoder bit for bit.
 
-use raymip::lod::Lod;
+use raymip::texture::Mode;
 use raymip::texture::address::AddressMode;
-use raymip::texture::kernel::Precision;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip::texture::kernel::fast::FAST_MAX_ERROR_LSB;
 use raymip::texture::kernel::srgb::{SRGB_LINEAR_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB};
@@ -25,7 +24,7 @@ use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::Image;
 use raymip::texture::storage::mip::{Geometry, Texel};
-use raymip::texture::{Mode, TexCoord};
+use raymip::units::{Lod, Precision, TexCoord};
 
 use super::Rng;
 

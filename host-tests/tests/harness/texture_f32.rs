@@ -3,9 +3,9 @@
 //! exact), and the same texel for nearest modes except where f32 rounding
 //! of `u·w` crosses a texel boundary (rare; counted).
 
-use raymip::lod::Lod;
 use raymip::texture::storage::mip::{Geometry, Pyramid, full_levels, generate};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 use raymip_host::reference::texf32::SamplerF32;
 
 #[test]

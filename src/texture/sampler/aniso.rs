@@ -31,11 +31,10 @@
 use fixed::types::I16F16;
 
 use super::{Key, Sampler};
-use crate::lod::Lod;
 use crate::lod::log2::log2_bits;
-use crate::texture::TexCoord;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};
+use crate::units::{Lod, TexCoord};
 
 /// A pixel's footprint: the two axis vectors in normalized texture
 /// coordinates (change of `(u, v)` per pixel step in x and in y). Any

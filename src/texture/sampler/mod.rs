@@ -37,12 +37,12 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crate::lod::Lod;
 use crate::texture::address::{AddressMode, AnyAxis, Axis, AxisTaps, ClampToEdge, Wrap};
 use crate::texture::address::{pow2_wrap_taps, wrap_constant};
-use crate::texture::kernel::{Accurate, Kernel, Linear, Precision};
+use crate::texture::kernel::{Kernel, Linear};
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
-use crate::texture::{FetchStats, FilterError, Mode, TexCoord, tex_coord_from_f64};
+use crate::texture::{FetchStats, FilterError, Mode, tex_coord_from_f64};
+use crate::units::{Accurate, Lod, Precision, TexCoord};
 
 pub mod aniso;
 pub mod dynamic;
@@ -69,7 +69,7 @@ pub trait Key: 'static {
 /// [`AnyAxis`]), of `v` (default: as `u`), colour space `C`
 /// ([`Linear`], [`Srgb`](crate::texture::kernel::Srgb),
 /// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
-/// tier `P` ([`Accurate`], [`Fast`](crate::texture::kernel::Fast)).
+/// tier `P` ([`Accurate`], [`Fast`](crate::units::Fast)).
 /// `Cfg` alone is wrap, linear, ACCURATE.
 ///
 /// # Example
@@ -783,7 +783,8 @@ mod tests {
     use super::*;
     use crate::texture::address::AddressMode;
     use crate::texture::storage::mip::{Pyramid, generate};
-    use crate::texture::{FetchStats, FilterError, Mode, TexCoord, tex_coord_from_f64};
+    use crate::texture::{FetchStats, FilterError, Mode, tex_coord_from_f64};
+    use crate::units::TexCoord;
     use std::vec;
     use std::vec::Vec;
 
