@@ -69,8 +69,8 @@
 //! use raymip::lod::table_lod;
 //! use raymip::path::raystack::{PathState, RayStack};
 //! use raymip::setup::camera::PixelSpread;
-//! use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
-//! use raymip::units::{Accurate, Lod, PathLength, Spread};
+//! use raymip::setup::table::{PbTable, TexTriangle};
+//! use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread};
 //!
 //! // Set-up: camera with 60° vertical field of view, 480 rows.
 //! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
@@ -189,9 +189,9 @@ struct ReadmeExample;
 // The everyday types, re-exported at the crate root.
 pub use path::raystack::{PathState, RayStack, StackFull};
 pub use setup::camera::{CameraError, PixelSpread};
-pub use setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
+pub use setup::table::{PbTable, TableError, TexTriangle};
 #[cfg(feature = "cache")]
 pub use texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
 pub use texture::storage::mip::{Geometry, MipError, Pyramid, Texel};
 pub use texture::{AddressMode, Cfg, Mode, Sampler, SamplerState};
-pub use units::{Delta, Lod, PathLength, Spread, TexCoord, Width};
+pub use units::{Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};

@@ -527,6 +527,133 @@ signed_quantity!(LodBias, I16F16, i32);
 pub struct Transition(U16F16);
 unsigned_quantity!(Transition, U16F16, u32);
 
+/// One table entry: `log2 Pb` in I16F16 (log2 of scene units), limited to
+/// `[−64, 64]` (Pb from 5·10⁻²⁰ to 1.8·10¹⁹ scene units), or one of three
+/// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`] range
+/// without saturating arithmetic on the per-hit path. Computed at set-up
+/// by [`Log2Pb::compute`] ([`crate::setup::table`]), stored in a
+/// [`PbTable`](crate::PbTable), read per hit by
+/// [`table_lod`](crate::lod::table_lod).
+///
+/// # Example
+/// ```
+/// use raymip::lod::table_lod;
+/// use raymip::units::Accurate;
+/// use raymip::{Log2Pb, PathLength};
+/// // Entries round-trip through their raw bits (C tables, flash images).
+/// let e = Log2Pb::from_bits(-3 << 16); // log2 Pb = −3: Pb = 1/8 scene unit
+/// assert_eq!(Log2Pb::from_bits(e.to_bits()), e);
+/// // lod = log2 Pl − log2 Pb: at Pl = 1, three levels.
+/// assert_eq!(table_lod::<Accurate>(PathLength::ONE, e).map(|l| l.to_num::<f64>()), Some(3.0));
+/// // An untextured triangle has no lod.
+/// assert_eq!(table_lod::<Accurate>(PathLength::ONE, Log2Pb::UNTEXTURED), None);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Log2Pb(I16F16);
+
+impl Log2Pb {
+    /// Marker for an untextured triangle.
+    pub const UNTEXTURED: Self = Self(I16F16::MIN);
+    /// Zero world area: `Pb = 0`, stored as `log2 Pb = −95`: every lod is
+    /// ≥ 63, so the coarsest stored level is used.
+    pub const DEGENERATE_GEOMETRY: Self = Self(I16F16::from_bits(-95 << 16));
+    /// Zero UV area: `Pb = ∞`, stored as `log2 Pb = +95`: every lod is
+    /// ≤ −63, so level 0 is used.
+    pub const DEGENERATE_UV: Self = Self(I16F16::from_bits(95 << 16));
+    /// Smallest finite entry: −64.
+    pub const MIN: Self = Self(I16F16::from_bits(-64 << 16));
+    /// Largest finite entry: +64.
+    pub const MAX: Self = Self(I16F16::from_bits(64 << 16));
+
+    /// An entry from a given `log2 Pb`, clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`].
+    #[must_use]
+    pub fn from_log2(v: I16F16) -> Self {
+        Self(v.clamp(Self::MIN.0, Self::MAX.0))
+    }
+
+    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_bits`]
+    /// (C tables, `static` data): the three markers are kept, any other
+    /// value is clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`]. Never panics.
+    #[must_use]
+    pub const fn from_bits(bits: i32) -> Self {
+        let markers = [
+            Self::UNTEXTURED.0.to_bits(),
+            Self::DEGENERATE_GEOMETRY.0.to_bits(),
+            Self::DEGENERATE_UV.0.to_bits(),
+        ];
+        if bits == markers[0] || bits == markers[1] || bits == markers[2] {
+            return Self(I16F16::from_bits(bits));
+        }
+        let (lo, hi) = (Self::MIN.0.to_bits(), Self::MAX.0.to_bits());
+        let v = if bits < lo {
+            lo
+        } else if bits > hi {
+            hi
+        } else {
+            bits
+        };
+        Self(I16F16::from_bits(v))
+    }
+
+    /// The raw value (markers included).
+    #[must_use]
+    pub const fn to_i16f16(self) -> I16F16 {
+        self.0
+    }
+
+    /// The raw I16F16 bits (markers included): the inverse of
+    /// [`Log2Pb::from_bits`] for every entry this type holds.
+    #[must_use]
+    pub const fn to_bits(self) -> i32 {
+        self.0.to_bits()
+    }
+
+    /// True for [`Log2Pb::UNTEXTURED`].
+    #[must_use]
+    pub const fn is_untextured(self) -> bool {
+        self.0.to_bits() == i32::MIN
+    }
+}
+
+/// A pixel's footprint: the two axis vectors in normalized texture
+/// coordinates (change of `(u, v)` per pixel step in x and in y). Any
+/// values are accepted (huge ones saturate).
+///
+/// # Example
+/// ```
+/// use raymip::texture::sampler::aniso::{Probes, probes};
+/// use raymip::units::Footprint;
+/// use raymip::texture::storage::mip::pyramid_len;
+/// use raymip::texture::SamplerDesc;
+/// use raymip::{Geometry, Lod, Pyramid, Sampler, SamplerState, TexCoord};
+/// let t = |texels: f64| TexCoord::from_num(texels / 256.0); // on a 256×256 texture
+/// // A pixel 16 texels long along u and 2 wide along v: ratio 8.
+/// let fp = Footprint { x: [t(16.0), t(0.0)], y: [t(0.0), t(2.0)] };
+/// // 8 probes, lod log2 2 = 1, spaced 16/8 = 2 texels, the first at
+/// // t₀·a = (1 − 8)/16 · 16 = −7 texels from the sample point.
+/// let expected = Probes { count: 8, lod: Lod::ONE, first: [t(-7.0), t(0.0)], step: [t(2.0), t(0.0)] };
+/// assert_eq!(probes(&fp, 256, 256, 16), expected);
+/// // At most 4 probes: the minor axis widens to 16/4 = 4 texels, lod 2.
+/// let capped = probes(&fp, 256, 256, 4);
+/// assert_eq!((capped.count, capped.lod), (4, Lod::from_num(2)));
+/// // Sampling: the mean of the probes of a uniform texture is its colour.
+/// let texels = [0xFF20_4080u32; pyramid_len(4, 4, 3)];
+/// let state = SamplerState::new(SamplerDesc { max_anisotropy: 4, ..SamplerDesc::default() })?;
+/// let pyramid = Pyramid::new(Geometry::new(4, 4, 3)?, &texels)?;
+/// let mut sampler: Sampler<_> = Sampler::with_state(pyramid, state)?; // wrap, linear, ACCURATE
+/// let half = TexCoord::from_num(0.5);
+/// assert_eq!(sampler.sample_aniso(half, half, &fp), 0xFF20_4080);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Footprint {
+    /// `(du/dx, dv/dx)`.
+    pub x: [TexCoord; 2],
+    /// `(du/dy, dv/dy)`.
+    pub y: [TexCoord; 2],
+}
+
 /// A unit vector (ray direction, surface normal): three I2F30 components
 /// (range `[−2, 2)` per component, step 2⁻³⁰); `v[k]` reads component
 /// `k`. Used by the ray differentials and the environment map.

@@ -4,10 +4,9 @@
 use fixed::types::U1F31;
 
 use crate::lod::{clamp_lod, cone_lod, table_lod};
-use crate::setup::table::Log2Pb;
+use crate::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Width};
 
 use super::*;
-use crate::units::{Accurate, Delta, Lod, PathLength, Width};
 
 /// Table lod `log2 Pl − log2 Pb` for path length `pl` (U32F32 bits) and
 /// table entry `entry` (I16F16 bits); writes the lod (I8F8 bits) to `out`.

@@ -1,14 +1,13 @@
 //! Texture sampling through C: an opaque sampler in caller memory set up
 //! once per texture, then single, batched and anisotropic samples.
 
-use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
 use crate::texture::storage::format::{AnyFormat, ColorSpace, Format, TexelFormat};
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, Texel};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
-use crate::units::{Lod, Precision, TexCoord};
+use crate::units::{Footprint, Lod, Precision, TexCoord};
 
 use super::*;
 

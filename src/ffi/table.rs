@@ -2,10 +2,10 @@
 //! ray-cone constant `Δ` of an entry.
 
 use crate::setup::camera::PixelSpread;
-use crate::setup::table::{BuildStats, Log2Pb, PbTable, TableError, TexTriangle};
+use crate::setup::table::{BuildStats, PbTable, TableError, TexTriangle};
+use crate::units::{Coord, Log2Pb, Spread, TexCoord};
 
 use super::*;
-use crate::units::{Coord, Spread, TexCoord};
 
 /// Raw bits of the untextured table marker (`INT32_MIN`).
 pub const RM_UNTEXTURED: i32 = i32::MIN;

@@ -8,15 +8,15 @@ use fixed::types::{I2F30, I16F16, I32F32, U1F31};
 use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::path::raystack::PathState;
 use crate::setup::camera::PixelSpread;
-use crate::setup::table::Log2Pb;
-use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
 use crate::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, pyramid_len};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
-use crate::units::{Accurate, Delta, Lod, PathLength, Precision, Spread, TexCoord, Width};
+use crate::units::{
+    Accurate, Delta, Footprint, Lod, Log2Pb, PathLength, Precision, Spread, TexCoord, Width,
+};
 
 use super::*;
 use proptest::prelude::*;

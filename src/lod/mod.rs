@@ -65,14 +65,13 @@ use crate::lod::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::lod::log2_fast::log2_u1f31_fast_biased;
 use crate::lod::log2_fast::{NormPl, log2_u32f32_fast_parts};
-use crate::setup::table::Log2Pb;
 #[cfg(feature = "cone")]
 use crate::units::Delta;
 #[cfg(feature = "cone")]
 use crate::units::Width;
 #[cfg(doc)]
 use crate::units::{Accurate, Fast};
-use crate::units::{Lod, PathLength, Precision, Tier};
+use crate::units::{Lod, Log2Pb, PathLength, Precision, Tier};
 
 /// Documented error bound of [`table_lod`] and [`cone_lod`] against f64, in
 /// levels: 2⁻⁸.

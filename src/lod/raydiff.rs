@@ -40,8 +40,7 @@ use fixed::types::I32F32;
 use crate::lod::log2::log2_bits_u128;
 use crate::path::raydiff::PosDiff;
 use crate::setup::table::TexTriangle;
-use crate::texture::sampler::aniso::Footprint;
-use crate::units::{Coord, Lod, TexCoord};
+use crate::units::{Coord, Footprint, Lod, TexCoord};
 
 /// Documented error bound of [`RayDiffTriangle::lod`] against f64 ray
 /// differentials, in levels: 2⁻⁷ (conditions in the [module docs](self)).

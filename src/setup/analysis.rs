@@ -52,9 +52,8 @@
 use core::fmt;
 
 use crate::lod::{clamp_lod, table_lod};
-use crate::setup::table::Log2Pb;
 use crate::texture::Mode;
-use crate::units::{Accurate, Lod, PathLength};
+use crate::units::{Accurate, Lod, Log2Pb, PathLength};
 
 /// The nearest and farthest accumulated path length `Pl` (scene units)
 /// any hit on a texture can have. `nearest ≤ farthest` is not required

@@ -56,7 +56,7 @@ use crate::lod::log2::{log2_bits_u128, log2_u32};
 use crate::setup::camera::PixelSpread;
 #[cfg(feature = "cone")]
 use crate::units::Delta;
-use crate::units::{Coord, TexCoord};
+use crate::units::{Coord, Log2Pb, TexCoord};
 
 /// Documented maximum absolute error of a table entry against exact
 /// arithmetic, in levels: 2⁻¹⁰.
@@ -234,42 +234,10 @@ fn half(x: I16F16) -> I16F16 {
     I16F16::from_bits(x.to_bits() >> 1)
 }
 
-/// One table entry: `log2 Pb` in I16F16 (log2 of scene units), limited to
-/// `[−64, 64]` (Pb from 5·10⁻²⁰ to 1.8·10¹⁹ scene units), or one of three
-/// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`](crate::units::Lod)
-/// range without saturating arithmetic on the per-hit path.
-///
-/// # Example
-/// ```
-/// use raymip::lod::table_lod;
-/// use raymip::units::Accurate;
-/// use raymip::{Log2Pb, PathLength};
-/// // Entries round-trip through their raw bits (C tables, flash images).
-/// let e = Log2Pb::from_bits(-3 << 16); // log2 Pb = −3: Pb = 1/8 scene unit
-/// assert_eq!(Log2Pb::from_bits(e.to_bits()), e);
-/// // lod = log2 Pl − log2 Pb: at Pl = 1, three levels.
-/// assert_eq!(table_lod::<Accurate>(PathLength::ONE, e).map(|l| l.to_num::<f64>()), Some(3.0));
-/// // An untextured triangle has no lod.
-/// assert_eq!(table_lod::<Accurate>(PathLength::ONE, Log2Pb::UNTEXTURED), None);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-#[repr(transparent)]
-pub struct Log2Pb(I16F16);
-
+/// The set-up of a [`Log2Pb`] (the type is a quantity of [`crate::units`]):
+/// computing an entry from a triangle and a camera, and the ray-cone
+/// constant `Δ` of an entry.
 impl Log2Pb {
-    /// Marker for an untextured triangle.
-    pub const UNTEXTURED: Self = Self(I16F16::MIN);
-    /// Zero world area: `Pb = 0`, stored as `log2 Pb = −95`: every lod is
-    /// ≥ 63, so the coarsest stored level is used.
-    pub const DEGENERATE_GEOMETRY: Self = Self(I16F16::from_bits(-95 << 16));
-    /// Zero UV area: `Pb = ∞`, stored as `log2 Pb = +95`: every lod is
-    /// ≤ −63, so level 0 is used.
-    pub const DEGENERATE_UV: Self = Self(I16F16::from_bits(95 << 16));
-    /// Smallest finite entry: −64.
-    pub const MIN: Self = Self(I16F16::from_bits(-64 << 16));
-    /// Largest finite entry: +64.
-    pub const MAX: Self = Self(I16F16::from_bits(64 << 16));
-
     /// Computes the entry of one textured triangle (see the module docs).
     #[must_use]
     pub fn compute(tri: &TexTriangle, spread: &PixelSpread) -> Self {
@@ -284,55 +252,6 @@ impl Log2Pb {
         Self::from_log2(v)
     }
 
-    /// An entry from a given `log2 Pb`, clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`].
-    #[must_use]
-    pub fn from_log2(v: I16F16) -> Self {
-        Self(v.clamp(Self::MIN.0, Self::MAX.0))
-    }
-
-    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_bits`]
-    /// (C tables, `static` data): the three markers are kept, any other
-    /// value is clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`]. Never panics.
-    #[must_use]
-    pub const fn from_bits(bits: i32) -> Self {
-        let markers = [
-            Self::UNTEXTURED.0.to_bits(),
-            Self::DEGENERATE_GEOMETRY.0.to_bits(),
-            Self::DEGENERATE_UV.0.to_bits(),
-        ];
-        if bits == markers[0] || bits == markers[1] || bits == markers[2] {
-            return Self(I16F16::from_bits(bits));
-        }
-        let (lo, hi) = (Self::MIN.0.to_bits(), Self::MAX.0.to_bits());
-        let v = if bits < lo {
-            lo
-        } else if bits > hi {
-            hi
-        } else {
-            bits
-        };
-        Self(I16F16::from_bits(v))
-    }
-
-    /// The raw value (markers included).
-    #[must_use]
-    pub const fn to_i16f16(self) -> I16F16 {
-        self.0
-    }
-
-    /// The raw I16F16 bits (markers included): the inverse of
-    /// [`Log2Pb::from_bits`] for every entry this type holds.
-    #[must_use]
-    pub const fn to_bits(self) -> i32 {
-        self.0.to_bits()
-    }
-
-    /// True for [`Log2Pb::UNTEXTURED`].
-    #[must_use]
-    pub const fn is_untextured(self) -> bool {
-        self.0.to_bits() == i32::MIN
-    }
-
     /// The ray-cone triangle constant `Δ = ½·log2(N/A) = −log2 Pb − log2 γ`
     /// (I16F16, saturating; `None` when untextured). Feature `cone`.
     #[cfg(feature = "cone")]
@@ -342,7 +261,9 @@ impl Log2Pb {
             return None;
         }
         Some(Delta::from_fixed(
-            self.0.saturating_neg().saturating_sub(spread.log2()),
+            self.to_i16f16()
+                .saturating_neg()
+                .saturating_sub(spread.log2()),
         ))
     }
 }
@@ -473,7 +394,7 @@ impl<'a> PbTable<'a> {
 
 #[cfg(test)]
 mod tests {
-    use crate::units::Spread;
+    use crate::units::{Log2Pb, Spread};
     extern crate std;
     use super::*;
     use fixed::types::I2F30;

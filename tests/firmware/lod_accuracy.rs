@@ -7,8 +7,8 @@ use raymip::lod::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::lod::{LOD_MAX_ERROR, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
-use raymip::units::{Accurate, Coord, PathLength, Spread, TexCoord, Width};
+use raymip::setup::table::{TABLE_MAX_ERROR, TexTriangle};
+use raymip::units::{Accurate, Coord, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 use crate::common;
 use common::{Rng, log2_pb_f64};

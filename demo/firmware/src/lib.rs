@@ -105,12 +105,10 @@ pub mod stack {
 pub mod inputs {
     use fixed::types::{I16F16, U1F31};
     use raymip::geomlod::{LodMode, LodRange, Selector};
-    use raymip::setup::table::Log2Pb;
     use raymip::texture::address::AddressMode;
-    use raymip::texture::sampler::aniso::Footprint;
     use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
     use raymip::units::{
-        Delta, Depth, Lod, LodBias, PathLength, TexCoord, Transition, UnitVec, Width,
+        Delta, Depth, Footprint, Lod, LodBias, Log2Pb, PathLength, TexCoord, Transition, Width,
     };
 
     /// One ray-differential input: state, direction, hit distance, normal
@@ -349,12 +347,12 @@ pub mod inputs {
         [fixed::types::I2F30; 3],
     ) {
         use fixed::types::I2F30;
-        let g = I2F30::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
+        let g = raymip::units::Spread::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
         let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
         let d = [f(1), f(1), f(2)];
         let dx = [f(9), f(9), f(9)];
         let dy = [f(9), f(9), f(9)];
-        (Spread::from_fixed(g), UnitVec::new(d), dx, dy)
+        (g, raymip::units::UnitVec::new(d), dx, dy)
     }
 
     /// Ray differentials (feature `raydiff`): one ray of a primary-like
@@ -378,6 +376,12 @@ pub mod inputs {
             dddx: dd[0],
             dddy: dd[1],
         };
-        (s, UnitVec::new(d), t, UnitVec::new(n), dn)
+        (
+            s,
+            raymip::units::UnitVec::new(d),
+            t,
+            raymip::units::UnitVec::new(n),
+            dn,
+        )
     }
 }

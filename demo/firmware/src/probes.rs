@@ -20,13 +20,12 @@ use core::hint::black_box as bb;
 
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
 use raymip::texture::kernel::{Linear, Srgb};
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
 use raymip::texture::{Cfg, Mode, Sampler};
-use raymip::units::{Accurate, Fast, Lod, TexCoord};
+use raymip::units::{Accurate, Fast, Footprint, Lod, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
 use crate::inputs::{self, N, Rng};
@@ -437,8 +436,7 @@ pub mod rd {
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::{GSample, first_hit};
     use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
-    use raymip::texture::sampler::aniso::Footprint;
-    use raymip::units::{Coord, Lod, PathLength, UnitVec};
+    use raymip::units::{Footprint, Lod, PathLength, UnitVec};
 
     /// Primary-ray set-up from the camera axes.
     #[allow(unsafe_code)]
@@ -526,6 +524,7 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::GSample;
     use raymip::setup::table::TexTriangle;
+    use raymip::units::{Coord, PathLength};
     let mut rng = Rng(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
     let c = |x: i32| Coord::from_bits(i64::from(x) << 32);

@@ -37,11 +37,11 @@ use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::{Rng, mix32};
 use raymip::setup::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
 use raymip::texture::kernel::{Linear, SrgbToLinear};
-use raymip::texture::sampler::aniso::{Footprint, probes};
+use raymip::texture::sampler::aniso::probes;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::texture::sampler::stochastic::StochasticMode;
@@ -56,6 +56,7 @@ use raymip::units::{
     Accurate, Delta, Depth, Fast, Lod, LodBias, PathLength, Precision, Spread, TexCoord,
     Transition, UnitVec, Width,
 };
+use raymip::units::{Footprint, Log2Pb};
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
 static BYTES: [u8; 4096] = [0x5A; 4096];

@@ -42,11 +42,11 @@ pub mod parity;
 use raymip::lod::{clamp_lod, table_lod};
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
+use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Coord, Lod, PathLength, Spread, TexCoord};
+use raymip::units::{Accurate, Coord, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 mod data;
 pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};

@@ -36,9 +36,8 @@ use fixed::types::U32F32;
 use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
 use raymip::rng::Rng;
-use raymip::setup::table::Log2Pb;
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
-use raymip::units::{Accurate, PathLength};
+use raymip::units::{Accurate, Log2Pb, PathLength};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
 /// rounding offset `0x80`.

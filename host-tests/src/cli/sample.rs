@@ -28,7 +28,6 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use raymip::texture::address::AddressMode;
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::SamplerStateError;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
@@ -40,7 +39,7 @@ use raymip::texture::storage::image::ImageTooShort;
 use raymip::texture::storage::mip::TexelSource;
 use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
 use raymip::texture::{FilterError, Mode, tex_coord_from_f64};
-use raymip::units::{Lod, Precision, TexCoord};
+use raymip::units::{Footprint, Lod, Precision, TexCoord};
 
 use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 

@@ -33,12 +33,12 @@ use raymip::ffi::{
 use raymip::lod::{MIN_COS, clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::{DEFAULT_CAPACITY, PathState, RayStack};
 use raymip::setup::camera::{CameraError, PixelSpread};
-use raymip::setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::setup::table::{PbTable, TableError, TexTriangle};
 use raymip::texture::storage::mip::{
     self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len,
 };
 use raymip::texture::{AddressMode, FilterError, Mode, Sampler};
-use raymip::units::{Accurate, Coord, Delta, Lod, PathLength, Spread, TexCoord, Width};
+use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 use super::output::{OutputError, write_between_markers};
 

@@ -627,7 +627,7 @@ fn sample_pair(
     if tie {
         return None;
     }
-    let fp = raymip::texture::sampler::aniso::Footprint { x: ax, y: ay };
+    let fp = raymip::units::Footprint { x: ax, y: ay };
     Some((
         fw.sample_aniso(u, v, &fp),
         rs.sample_aniso(uf, vf, axes, Mode::Trilinear),

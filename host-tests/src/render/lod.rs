@@ -8,8 +8,7 @@ use fixed::types::U1F31;
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::rng::Rng;
-use raymip::texture::sampler::aniso::Footprint;
-use raymip::units::{Accurate, Lod};
+use raymip::units::{Accurate, Footprint, Lod};
 
 use super::options::Method;
 use super::setup::Prepared;

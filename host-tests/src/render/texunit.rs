@@ -13,13 +13,12 @@
 //! (`Sampler::sample_aniso`), the float unit averages its own trilinear
 //! samples at the probes of `reference::sampler_ref::aniso_probes`.
 
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::BlockLayout;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Lod, TexCoord};
+use raymip::units::{Footprint, Lod, TexCoord};
 
 use super::RenderError;
 use super::options::Method;

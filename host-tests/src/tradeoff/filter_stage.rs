@@ -24,12 +24,11 @@ use raymip::baseline_f32::SamplerF32;
 use raymip::rng::Rng as FrameRng;
 use raymip::texture::address::{AddressMode, Wrap};
 use raymip::texture::kernel::Linear;
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 use raymip::texture::{Cfg, Mode, Sampler};
-use raymip::units::{Fast, Lod, TexCoord};
+use raymip::units::{Fast, Footprint, Lod, TexCoord};
 
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};

@@ -6,9 +6,8 @@ use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
 use raymip::lod::raydiff::RayDiffTriangle;
 use raymip::lod::{cone_lod, table_lod};
-use raymip::setup::table::{Log2Pb, TexTriangle};
-use raymip::texture::sampler::aniso::Footprint;
-use raymip::units::{Accurate, Delta, Fast, Lod, PathLength, TexCoord, Width};
+use raymip::setup::table::TexTriangle;
+use raymip::units::{Accurate, Delta, Fast, Footprint, Lod, Log2Pb, PathLength, TexCoord, Width};
 
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;

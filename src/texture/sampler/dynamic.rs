@@ -16,7 +16,6 @@
 //! bit (tested). A firmware that knows its textures names the static
 //! [`Sampler`] type instead and links one key's code.
 
-use super::aniso::Footprint;
 use super::stochastic::StochasticMode;
 use super::{Cfg, Sampler, SamplerState, SrgbOutput};
 use crate::texture::address::{AddressMode, AnyAxis, ClampToEdge, Wrap};
@@ -24,7 +23,7 @@ use crate::texture::kernel::{Linear, Srgb, SrgbToLinear};
 use crate::texture::storage::format::ColorSpace;
 use crate::texture::storage::mip::{Geometry, Texel, TexelSource};
 use crate::texture::{FetchStats, Mode};
-use crate::units::{Fast, Lod, Precision, TexCoord};
+use crate::units::{Fast, Footprint, Lod, Precision, TexCoord};
 
 /// Which entry of the key table a [`DynSampler`] runs (module docs).
 /// Example: [`DynSampler`].

@@ -61,10 +61,9 @@ use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::{Pyramid, Texel};
 use raymip::texture::{AddressMode, Mode, Sampler};
-use raymip::units::{Accurate, Delta, Depth, Fast, Lod, PathLength, Width};
+use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};
 use raymip_demo_firmware::inputs::{self, Draws, N};
 use raymip_demo_firmware::probes::{
     self, Images, Meter, SampleIn, Subjects, Tex, TexFast, rm_batch_bilinear, rm_batch_trilinear,

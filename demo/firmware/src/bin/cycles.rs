@@ -33,10 +33,9 @@ use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::{Pyramid, Texel};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Delta, Fast, Lod, PathLength, TexCoord, Width};
+use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
 use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, measured_calls, println};

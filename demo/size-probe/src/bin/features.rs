@@ -16,10 +16,10 @@ use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 use raymip::lod::table_lod_clamped;
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Delta, Lod, PathLength, Spread, TexCoord};
+use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)

@@ -15,11 +15,11 @@ use fixed::types::U1F31;
 use raymip::lod::{cone_lod, table_lod_clamped};
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
+use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Coord, Delta, Lod, PathLength, Spread, TexCoord, Width};
+use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)

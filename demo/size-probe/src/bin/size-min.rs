@@ -10,10 +10,10 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use raymip::lod::table_lod_clamped;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, PathLength, TexCoord};
+use raymip::units::{Accurate, Log2Pb, PathLength, TexCoord};
 
 raymip_demo_entry::main! {
     let mut entries = bb([Log2Pb::UNTEXTURED; 4]);
