@@ -1,4 +1,30 @@
-/* raymip C ABI: table build/update, ray stack, lod and texture sampling in fixed point. Values are raw fixed-point bits; see the comments of each type and function. Link against libraymip_ffi.a (crate raymip-ffi). */
+/* raymip C ABI: the Pb table, the ray stack, level of detail and texture
+ * sampling in fixed point, for a texture unit's controller firmware.
+ * Link against libraymip_ffi.a (crate raymip-ffi: `cargo build --release
+ * -p raymip-ffi --target <target>`) with --gc-sections.
+ *
+ * Values cross as the raw bits of fixed-point numbers; the helpers below
+ * make them from C numbers (RM_I32F32(0.75), RM_U32F32_INT(100),
+ * RM_I2F30_RATIO(1, 1024)) and back (RM_I8F8_TO_DOUBLE(lod)):
+ *
+ *   value                                  format   C type    range
+ *   position, UV, texture coordinate, cone
+ *   width, footprint derivative            I32F32   int64_t   [-2^31, 2^31), step 2^-32
+ *   path length Pl, hit distance t         U32F32   uint64_t  [0, 2^32), step 2^-32
+ *   spread angle (radians)                 I2F30    int32_t   [-2, 2), step 2^-30
+ *   table entry log2 Pb, cone constant     I16F16   int32_t   [-32768, 32768), step 2^-16
+ *   level of detail, bias, lod clamps      I8F8     int16_t   [-128, 128), step 2^-8
+ *   |n.d|                                  U1F31    uint32_t  [0, 2), step 2^-31
+ *   texel                                  RGBA8    uint32_t  red in bits 0-7, green 8-15,
+ *                                                             blue 16-23, alpha 24-31
+ *                                                             (bytes r, g, b, a in memory
+ *                                                             on a little-endian core)
+ *
+ * Every function that can fail returns an RmStatus: RM_STATUS_OK (0), a
+ * documented outcome (> 0, e.g. RM_STATUS_UNTEXTURED) or an error (< 0);
+ * each function's comment lists the codes it returns. Nothing is written
+ * on error unless the comment says so. No function allocates, and none
+ * panics or aborts. */
 
 #ifndef RAYMIP_H
 #define RAYMIP_H
@@ -8,6 +34,44 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* RM_<FORMAT>(x): the raw bits of the double x, rounded to nearest (for
+ * constants and set-up code; no float at run time when x is a constant).
+ * RM_<FORMAT>_INT(n): the integer n, exact. RM_<FORMAT>_RATIO(n, d): n/d
+ * truncated towards zero, in integer arithmetic (n, d integers, d != 0).
+ * RM_<FORMAT>_TO_DOUBLE(bits): the value of raw bits. Out-of-range inputs
+ * are undefined, as for any C conversion. */
+#define RM_FIXED_(x, scale) ((x) * (scale) + ((x) < 0 ? -0.5 : 0.5))
+#define RM_I32F32(x) ((int64_t)RM_FIXED_((x), 4294967296.0))
+#define RM_I32F32_INT(n) ((int64_t)((uint64_t)(int64_t)(n) << 32))
+#define RM_I32F32_RATIO(n, d) ((int64_t)(((int64_t)(n) * INT64_C(4294967296)) / (int64_t)(d)))
+#define RM_I32F32_TO_DOUBLE(bits) ((double)(bits) / 4294967296.0)
+#define RM_U32F32(x) ((uint64_t)RM_FIXED_((x), 4294967296.0))
+#define RM_U32F32_INT(n) ((uint64_t)(n) << 32)
+#define RM_U32F32_RATIO(n, d) ((uint64_t)(((uint64_t)(n) << 32) / (uint64_t)(d)))
+#define RM_U32F32_TO_DOUBLE(bits) ((double)(bits) / 4294967296.0)
+#define RM_I2F30(x) ((int32_t)RM_FIXED_((x), 1073741824.0))
+#define RM_I2F30_INT(n) ((int32_t)((int32_t)(n) * (INT32_C(1) << 30)))
+#define RM_I2F30_RATIO(n, d) ((int32_t)(((int64_t)(n) * (INT64_C(1) << 30)) / (int64_t)(d)))
+#define RM_I2F30_TO_DOUBLE(bits) ((double)(bits) / 1073741824.0)
+#define RM_I16F16(x) ((int32_t)RM_FIXED_((x), 65536.0))
+#define RM_I16F16_INT(n) ((int32_t)((int32_t)(n) * INT32_C(65536)))
+#define RM_I16F16_RATIO(n, d) ((int32_t)(((int64_t)(n) * INT64_C(65536)) / (int64_t)(d)))
+#define RM_I16F16_TO_DOUBLE(bits) ((double)(bits) / 65536.0)
+#define RM_I8F8(x) ((int16_t)RM_FIXED_((x), 256.0))
+#define RM_I8F8_INT(n) ((int16_t)((int32_t)(n) * 256))
+#define RM_I8F8_RATIO(n, d) ((int16_t)(((int32_t)(n) * 256) / (int32_t)(d)))
+#define RM_I8F8_TO_DOUBLE(bits) ((double)(bits) / 256.0)
+#define RM_U1F31(x) ((uint32_t)RM_FIXED_((x), 2147483648.0))
+#define RM_U1F31_INT(n) ((uint32_t)(n) << 31)
+#define RM_U1F31_RATIO(n, d) ((uint32_t)(((uint64_t)(n) << 31) / (uint64_t)(d)))
+#define RM_U1F31_TO_DOUBLE(bits) ((double)(bits) / 2147483648.0)
+
+/* Ray-stack entries a depth-first tracer needs for paths of `bounces`
+ * bounces when each hit pushes at most `branches` continuations (>= 1) and
+ * pop takes the newest: (branches - 1) * bounces + 1. */
+#define RM_STACK_BOUND(bounces, branches) (((branches) - 1) * (bounces) + 1)
+
+
 // Raw bits of the untextured table marker (`INT32_MIN`).
 #define RM_UNTEXTURED INT32_MIN
 
@@ -15,12 +79,21 @@
 // normal term out (`log2 1 = 0` exactly).
 #define RM_COS_ONE 2147483648
 
-// Capacity of `RmRayStack` (10, as in the hardware paper).
-#define RM_RAY_STACK_CAPACITY 10
+// Bounces per path that an `RmRayStack` holds with two continuations
+// (a reflection and a refraction) pushed per hit: the hardware paper's 10.
+#define RM_MAX_BOUNCES 10
+
+// Capacity of `RmRayStack`: `RM_STACK_BOUND(RM_MAX_BOUNCES, 2)` =
+// `(2 − 1) · 10 + 1` = 11 entries, what a depth-first tracer needs for
+// `RM_MAX_BOUNCES` bounces of two continuations per hit (checked at
+// compile time, in the library and in this header with `RM_STACK_BOUND`).
+// A stack of the paper's 10 entries would drop a branch of the deepest
+// paths.
+#define RM_RAY_STACK_CAPACITY 11
 
 // Size of an `RmSampler` in 64-bit words (1024 bytes: enough for the
 // sampler of a pyramid or an image on 32- and 64-bit targets, checked at
-// compile time; 808 bytes are used on x86-64).
+// compile time).
 #define RM_SAMPLER_WORDS 128
 
 // Result codes of the C ABI (`0` = success, negative = error, positive =
@@ -48,11 +121,13 @@ typedef enum RmStatus {
   RM_STATUS_BUFFER_TOO_SHORT = -8,
   // A pointer is not aligned for its type (nothing was read or written).
   RM_STATUS_MISALIGNED = -9,
-  // The `RmSampler` was not set up by `rm_sampler_init`.
+  // The `RmSampler` was not set up by an init function
+  // (`rm_sampler_init`, `rm_sampler_init_desc`,
+  // `rm_sampler_init_image`); a zeroed one is recognised.
   RM_STATUS_UNINITIALISED = -10,
 } RmStatus;
 
-// Filter mode of `rm_sample` (the numbering of the Rust `Mode`).
+// Filter mode of `rm_sample` and `rm_sample_batch`.
 enum RmMode
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
@@ -101,7 +176,7 @@ typedef uint8_t RmAddress;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Precision tier of a sampler (`RmSamplerDesc::precision`).
+// Precision tier of a sampler (the `precision` field of `RmSamplerDesc`).
 enum RmPrecision
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
@@ -113,8 +188,8 @@ enum RmPrecision
   RM_PRECISION_ACCURATE = 0,
   // FAST: GPU precision (8-bit sub-texel weights and lod fraction,
   // exact filter at the quantized position), linear filtering ≤ 1.5 LSB
-  // from the exact f64 filter (proof in the Rust `texture::kernel::fast`
-  // docs); bit-identical on every target.
+  // from the exact f64 filter (derived in raymip's documentation and
+  // tested against f64); bit-identical on every target.
   RM_PRECISION_FAST = 1,
 };
 #ifndef __cplusplus
@@ -125,7 +200,7 @@ typedef uint8_t RmPrecision;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Result encoding of an sRGB texture (`RmSamplerDesc::srgb_output`).
+// Result encoding of an sRGB texture (the `srgb_output` field of `RmSamplerDesc`).
 enum RmSrgbOutput
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
@@ -144,14 +219,14 @@ typedef uint8_t RmSrgbOutput;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// Pixel format of an `RmImage` (the numbering of the Rust
-// `TexelFormat`).
+// Pixel format of an `RmImage`.
 enum RmFormat
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
-  // 8 bits per channel, bytes r, g, b, a.
+  // 8 bits per channel, bytes r, g, b, a in memory (as a `uint32_t`
+  // on a little-endian core: red in bits 0–7, alpha in bits 24–31).
   RM_FORMAT_RGBA8 = 0,
   // 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
   RM_FORMAT_RGB565 = 1,
@@ -227,16 +302,10 @@ typedef struct RmPathState {
 // A fixed-capacity ray stack in caller memory (initialise with
 // `rm_ray_stack_init`).
 //
-// A C struct of plain integers rather than the Rust `RayStack` in opaque
-// storage (as `RmSampler` is): C code reads its entries (peeks, pushes
-// one of its own entries), and every bit pattern a C caller may leave in
-// it is valid, so a corrupt `len` is an error case (read as full, popped
-// in range) instead of undefined behaviour. `RayStack` keeps its entries
-// in a `heapless::Vec` whose layout is not fixed and its `PathState`s hold
-// a `bool`; in caller memory, a stray write would be undefined behaviour.
-// The capacity is the Rust default (checked at compile time) and the
-// entries are converted to and from `PathState`; what is left is a bounds
-// check and a length update per push or pop.
+// Plain integers, not opaque: C code may read its entries, and any bits
+// a caller leaves in it are handled (a `len` above the capacity is read
+// as full and popped in range). Holds `RM_RAY_STACK_CAPACITY` entries:
+// paths of `RM_MAX_BOUNCES` bounces with two continuations per hit.
 typedef struct RmRayStack {
   // Storage; entries `0 .. len` are valid.
   struct RmPathState entries[RM_RAY_STACK_CAPACITY];
@@ -250,24 +319,29 @@ typedef struct RmRayStack {
 // clamp, isotropic, sRGB re-encoded, ACCURATE); every field is checked at
 // set-up, none per sample.
 typedef struct RmSamplerDesc {
-  // Border colour (RGBA8888, linear) of `RM_ADDRESS_BORDER`.
+  // Border colour of `RM_ADDRESS_BORDER` (RGBA8, linear: red in bits
+  // 0–7, alpha in bits 24–31). Default 0 (transparent black).
   uint32_t border;
-  // LOD bias, I8F8 bits, `[−16, 16)` levels.
+  // LOD bias added to every lod, I8F8 bits, `[−16, 16)` levels
+  // (`[-4096, 4095]` in bits). Default 0.
   int16_t lod_bias;
-  // Lower lod clamp, I8F8 bits (at most `max_lod`).
+  // Lower lod clamp (after the bias), I8F8 bits, any value up to
+  // `max_lod`. Default `INT16_MIN` (−128 levels: no clamp).
   int16_t min_lod;
-  // Upper lod clamp, I8F8 bits.
+  // Upper lod clamp, I8F8 bits, at least `min_lod`. Default `INT16_MAX`
+  // (128 levels: no clamp; the stored levels clamp anyway).
   int16_t max_lod;
-  // Address mode of `u` (`RM_ADDRESS_*`).
+  // Address mode of `u` (`RM_ADDRESS_*`). Default `RM_ADDRESS_WRAP`.
   RmAddress address_u;
-  // Address mode of `v` (`RM_ADDRESS_*`).
+  // Address mode of `v` (`RM_ADDRESS_*`). Default `RM_ADDRESS_WRAP`.
   RmAddress address_v;
   // Maximum anisotropy of `rm_sample_aniso`, `1 ..= 16` (1 =
-  // isotropic).
+  // isotropic). Default 1.
   uint8_t max_anisotropy;
-  // Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`).
+  // Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`). Default
+  // `RM_SRGB_OUTPUT_ENCODED`.
   uint8_t srgb_output;
-  // Precision tier (`RM_PRECISION_*`).
+  // Precision tier (`RM_PRECISION_*`). Default `RM_PRECISION_ACCURATE`.
   uint8_t precision;
 } RmSamplerDesc;
 
@@ -286,7 +360,7 @@ typedef struct RmSampler {
 // A MIP pyramid in caller memory: levels stored one after another, level 0
 // first, each row-major (`rm_pyramid_len` texels in all).
 typedef struct RmTexture {
-  // The texels (RGBA8888).
+  // The texels (RGBA8: red in bits 0–7, alpha in bits 24–31).
   const uint32_t *texels;
   // Number of texels at `texels`.
   size_t len;
@@ -350,9 +424,13 @@ extern "C" {
 // Computes table entries `start .. start + count` of `entries` (length
 // `len`) from `tris[0 .. count]` for a camera with pixel spread angle
 // `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
-// Returns `TableFull` when `start + count > len` (the entries that fit are
-// written), `BadAngle`, `ZeroSize` (a textured triangle with a zero texture
-// side; entries before it are written), `NullPointer`, `Misaligned`.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_TABLE_FULL` when `start + count >
+// len` (the entries that fit are written); `RM_STATUS_ZERO_SIZE` for a
+// textured triangle with a zero texture side (the entries before it are
+// written); `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2` radians;
+// `RM_STATUS_NULL_POINTER` (`entries` or `tris` null with a non-zero
+// length); `RM_STATUS_MISALIGNED` (a pointer not aligned for its type).
 //
 // # Safety
 // `entries` points to `len` writable `int32_t`, `tris` to `count`
@@ -366,7 +444,7 @@ enum RmStatus rm_table_update(int32_t *entries,
                               int32_t spread,
                               struct RmBuildStats *stats);
 
-// `rm_table_update` from entry 0 (a whole build).
+// `rm_table_update` from entry 0 (a whole build); the same status codes.
 //
 // # Safety
 // As `rm_table_update`.
@@ -380,49 +458,63 @@ enum RmStatus rm_table_build(int32_t *entries,
 // Ray-cone triangle constant `Δ = −log2 Pb − log2 γ` (I16F16 bits, as
 // `rm_cone_lod` takes it) of table entry `entry_bits` (I16F16 bits) for a
 // camera with pixel spread angle `spread` (I2F30 bits, `0 < γ < 2`
-// radians); the same value as the Rust `Log2Pb::delta`, saturating.
-// Returns `Untextured` (and writes nothing) for `RM_UNTEXTURED`,
-// `BadAngle` for `γ ≤ 0`.
+// radians), saturating.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_UNTEXTURED` (nothing written) for
+// `RM_UNTEXTURED`; `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2`
+// radians; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
 //
 // # Safety
-// `out` is null (→ `NullPointer`) or points to a writable `int32_t`
-// (→ `Misaligned` if it is not aligned).
+// `out` is null or points to a writable `int32_t`.
 enum RmStatus rm_delta(int32_t entry_bits, int32_t spread, int32_t *out);
 
 // Table lod `log2 Pl − log2 Pb` for path length `pl` (U32F32 bits) and
 // table entry `entry` (I16F16 bits); writes the lod (I8F8 bits) to `out`.
-// Returns `Untextured` (and writes nothing) for `RM_UNTEXTURED`.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_UNTEXTURED` (nothing written) for
+// `RM_UNTEXTURED`; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
 //
 // # Safety
-// `out` is null (→ `NullPointer`) or points to a writable `int16_t`.
+// `out` is null or points to a writable `int16_t`.
 enum RmStatus rm_table_lod(uint64_t pl, int32_t entry_bits, int16_t *out);
 
 // Ray-cone lod `Δ + log2|w| − log2|n·d|` (I8F8 bits) for cone width
 // `width` (I32F32 bits), triangle constant `delta` (I16F16 bits) and
-// `|n·d|` (U1F31 bits), exactly as the Rust `cone_lod`: `|n·d|` is clamped
-// to `[2⁻¹⁶, 1]`, so a grazing hit (`n_dot_d = 0`) is 16 levels coarser
-// than a head-on one. `RM_COS_ONE` (or more) leaves the normal term out.
+// `|n·d|` (U1F31 bits): `|n·d|` is clamped to `[2⁻¹⁶, 1]`, so a grazing
+// hit (`n_dot_d = 0`) is 16 levels coarser than a head-on one.
+// `RM_COS_ONE` (or more) leaves the normal term out. Saturates at the
+// I8F8 range `[−128, 128)`; no status (it cannot fail).
 int16_t rm_cone_lod(int64_t width, int32_t delta, uint32_t n_dot_d);
 
-// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]`.
+// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]` (to 0
+// for `levels` 0 or 1); no status (it cannot fail).
 int16_t rm_clamp_lod(int16_t lod, uint8_t levels);
 
 // Empties `stack`.
 //
+// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+// `RM_STATUS_MISALIGNED`.
+//
 // # Safety
-// `stack` is null (→ `NullPointer`) or points to a writable `RmRayStack`.
+// `stack` is null or points to a writable `RmRayStack`.
 enum RmStatus rm_ray_stack_init(struct RmRayStack *stack);
 
 // Pushes `state` (which may point into `stack`, e.g. to one of its
-// entries); `StackFull` (stack unchanged) when full.
+// entries).
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_STACK_FULL` (stack unchanged) when
+// it holds `RM_RAY_STACK_CAPACITY` entries; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`.
 //
 // # Safety
-// `stack` and `state` are null (→ `NullPointer`), misaligned
-// (→ `Misaligned`) or valid (`stack` initialised by `rm_ray_stack_init`;
-// a corrupt `len` above the capacity is read as full).
+// `stack` and `state` are null, misaligned or valid (`stack` initialised
+// by `rm_ray_stack_init`; a `len` above the capacity is read as full).
 enum RmStatus rm_ray_stack_push(struct RmRayStack *stack, const struct RmPathState *state);
 
-// Pops the most recent state into `out`; `StackEmpty` when empty.
+// Pops the most recent state into `out`.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_STACK_EMPTY` (nothing written) when
+// empty; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
 //
 // # Safety
 // As `rm_ray_stack_push`; `out` writable.
@@ -431,39 +523,50 @@ enum RmStatus rm_ray_stack_pop(struct RmRayStack *stack, struct RmPathState *out
 // A primary ray's state (`Pl = 0`, width 0, spread `spread` in I2F30
 // bits) with ray mask `mask`.
 //
+// Returns `RM_STATUS_OK`; `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2`
+// radians; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
+//
 // # Safety
-// `out` is null (→ `NullPointer`) or writable.
+// `out` is null or writable.
 enum RmStatus rm_path_primary(int32_t spread, uint8_t mask, struct RmPathState *out);
 
 // After a hit at distance `t` (U32F32 bits): `Pl += t`, `w += γ·t`
 // (saturating; sets `saturated`).
 //
+// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+// `RM_STATUS_MISALIGNED`.
+//
 // # Safety
-// `state` is null (→ `NullPointer`) or valid and writable.
+// `state` is null or valid and writable.
 enum RmStatus rm_path_advance(struct RmPathState *state, uint64_t t);
 
 // A reflection/refraction continuation: spread `+= beta` (I2F30 bits,
-// surface spread angle), depth + 1.
+// surface spread angle; 0 for a flat surface), depth + 1 (saturating).
+//
+// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+// `RM_STATUS_MISALIGNED`.
 //
 // # Safety
 // As `rm_path_advance`.
 enum RmStatus rm_path_bounce(struct RmPathState *state, int32_t beta);
 
-// Texels of a pyramid of `levels` levels of a `width × height` texture
-// (0 when a side is 0).
+// Texels of a pyramid of `levels` levels (capped at the full chain) of a
+// `width × height` texture (0 when a side is 0); no status (it cannot
+// fail).
 size_t rm_pyramid_len(uint32_t width, uint32_t height, uint8_t levels);
 
 // Generates levels `1 .. levels` of a `width × height` pyramid in place
-// from level 0 (the first `width·height` texels at `texels`), with the
-// filter of `mip::generate` (2×2 box, round half up; exact area box for odd
-// sides). Set-up time, not per hit.
+// from level 0 (the first `width·height` texels at `texels`): a 2×2 box
+// filter rounding half up (an exact area box for odd sides). Set-up time,
+// not per hit.
 //
-// Returns `NullPointer`, `ZeroSize`, `OutOfRange` (bad level count or side
-// above 32768) or `BufferTooShort` (`len` < `rm_pyramid_len`; nothing is
-// written).
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`;
+// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_OUT_OF_RANGE` (a level count outside
+// `1 ..=` the full chain, or a side above 32768); `RM_STATUS_BUFFER_TOO_SHORT`
+// (`len` < `rm_pyramid_len`; nothing written).
 //
 // # Safety
-// `texels` is null (→ `NullPointer`) or points to `len` writable texels.
+// `texels` is null or points to `len` writable texels.
 enum RmStatus rm_mip_generate(uint32_t *texels,
                               size_t len,
                               uint32_t width,
@@ -472,15 +575,17 @@ enum RmStatus rm_mip_generate(uint32_t *texels,
 
 // Bytes an `RmImage` of `format` with `levels` levels (capped at the
 // full chain) of a `width × height` level 0 needs; 0 for a zero side or
-// an unknown format.
+// an unknown format (no status: it cannot fail).
 size_t rm_image_len(uint32_t width, uint32_t height, uint8_t levels, uint8_t format);
 
-// Writes the default `RmSamplerDesc` to `out` (see its docs). Returns
-// `NullPointer` or `Misaligned`.
+// Writes the default `RmSamplerDesc` to `out` (the defaults are in its
+// field docs).
+//
+// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+// `RM_STATUS_MISALIGNED`.
 //
 // # Safety
-// `out` is null (→ `NullPointer`) or points to a writable
-// `RmSamplerDesc`.
+// `out` is null or points to a writable `RmSamplerDesc`.
 enum RmStatus rm_sampler_desc_default(struct RmSamplerDesc *out);
 
 // Sets up `sampler` for the pyramid `tex` with addressing `address`
@@ -488,28 +593,48 @@ enum RmStatus rm_sampler_desc_default(struct RmSamplerDesc *out);
 // texture once (size, levels, length) and stores what `rm_sample`
 // needs. On error `sampler` is left unchanged.
 //
-// Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
-// or a side above 32768), `ZeroSize` or `BufferTooShort`.
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (the address byte, a
+// level count outside `1 ..=` the full chain, or a side above 32768);
+// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT` (`tex->len` below
+// `rm_pyramid_len`).
 //
 // # Safety
-// `sampler` and `tex` are null (→ `NullPointer`) or valid;
+// `sampler` and `tex` are null or valid;
 // `tex->texels` points to `tex->len` readable texels that stay valid and
 // unchanged while the sampler is used.
 enum RmStatus rm_sampler_init(struct RmSampler *sampler,
                               const struct RmTexture *tex,
                               RmAddress address);
 
-// Sets up `sampler` for the RGBA8 pyramid `tex` with the settings `desc`
-// (address mode per axis, border, bias and clamps, anisotropy, tier),
-// checked once here: every sample then runs the specialised path of the
-// configuration (the Rust `DynSampler` key table). On error `sampler` is
-// left unchanged.
+// Sets up `sampler` for the pyramid `tex` with wrap addressing on both
+// axes and otherwise default settings, as `rm_sampler_init` with
+// `RM_ADDRESS_WRAP` does; a firmware that sets up its samplers only
+// this way links the sampling code of this one configuration (`.text`
+// per configuration in docs/bare-metal.md). On error `sampler` is left
+// unchanged.
 //
-// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, level
-// count or a side above 32768), `ZeroSize` or `BufferTooShort`.
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a level count outside
+// `1 ..=` the full chain, or a side above 32768); `RM_STATUS_ZERO_SIZE`;
+// `RM_STATUS_BUFFER_TOO_SHORT` (`tex->len` below `rm_pyramid_len`).
 //
 // # Safety
-// `sampler`, `tex` and `desc` are null (→ `NullPointer`) or valid;
+// As `rm_sampler_init`.
+enum RmStatus rm_sampler_init_wrap(struct RmSampler *sampler, const struct RmTexture *tex);
+
+// Sets up `sampler` for the RGBA8 pyramid `tex` with the settings `desc`
+// (address mode per axis, border, bias and clamps, anisotropy, tier),
+// checked once here: every sample then runs the code specialised for the
+// configuration. On error `sampler` is left unchanged.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a `desc` field outside
+// its range, a level count outside `1 ..=` the full chain, or a side above
+// 32768); `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT`.
+//
+// # Safety
+// `sampler`, `tex` and `desc` are null or valid;
 // `tex->texels` points to `tex->len` readable texels that stay valid and
 // unchanged while the sampler is used.
 enum RmStatus rm_sampler_init_desc(struct RmSampler *sampler,
@@ -518,15 +643,18 @@ enum RmStatus rm_sampler_init_desc(struct RmSampler *sampler,
 
 // Sets up `sampler` for the image `img` (any `RmFormat`, linear or
 // sRGB) with the settings `desc`, checked once here. Formats are decoded
-// per texel read (BC1–BC4 decode the texel's block; a Rust firmware puts
-// a texel cache in front). On error `sampler` is left unchanged.
+// per texel read (BC1–BC4 decode the texel's 4×4 block each time). On
+// error `sampler` is left unchanged.
 //
-// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, the
-// format, an sRGB flag the format has no variant for, level count or a
-// side above 32768), `ZeroSize` or `BufferTooShort`.
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a `desc` field, the
+// format, an `srgb` flag the format has no sRGB variant for, a level
+// count outside `1 ..=` the full chain, or a side above 32768);
+// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT` (`img->len` below
+// `rm_image_len`).
 //
 // # Safety
-// `sampler`, `img` and `desc` are null (→ `NullPointer`) or valid;
+// `sampler`, `img` and `desc` are null or valid;
 // `img->bytes` points to `img->len` readable bytes that stay valid and
 // unchanged while the sampler is used.
 enum RmStatus rm_sampler_init_image(struct RmSampler *sampler,
@@ -536,14 +664,17 @@ enum RmStatus rm_sampler_init_image(struct RmSampler *sampler,
 // Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
 // `(i + 0.5)/size`) and lod `lod` (I8F8 bits; the sampler's bias and
 // clamps apply, then the stored levels) with filter `mode` (`RM_MODE_*`)
-// from the texture `sampler` was set up with; writes RGBA8888 to `out`.
-// The same texel as the Rust `Sampler::sample` of that configuration.
-// Returns `NullPointer`, `Misaligned`, `Uninitialised` (`sampler` not
-// written by an init function; a zeroed one is recognised) or
-// `OutOfRange` (mode).
+// from the texture `sampler` was set up with; writes the RGBA8 texel to
+// `out` (red in bits 0–7, alpha in bits 24–31). Bit-identical on every
+// target.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+// `RM_STATUS_MISALIGNED`; `RM_STATUS_UNINITIALISED` (`sampler` not written
+// by an init function; a zeroed one is recognised); `RM_STATUS_OUT_OF_RANGE`
+// (`mode`).
 //
 // # Safety
-// `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
+// `sampler` and `out` are null or valid; `sampler` was
 // zeroed or set up by an init function (and not written since), and its
 // texels are still valid. Not for two threads at once on one sampler (it
 // keeps fetch counters).
@@ -556,9 +687,12 @@ enum RmStatus rm_sample(struct RmSampler *sampler,
 
 // `out[i]` = `rm_sample` of `hits[i]` with filter `mode`, for
 // `i < n`: the same texels and counters as `n` single calls, one status
-// for all. Returns `NullPointer` (either array null with `n > 0`),
-// `Misaligned`, `Uninitialised` or `OutOfRange` (mode); on error nothing
-// is written.
+// for all.
+//
+// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER` (`sampler` null, or
+// either array null with `n > 0`); `RM_STATUS_MISALIGNED`;
+// `RM_STATUS_UNINITIALISED`; `RM_STATUS_OUT_OF_RANGE` (`mode`). On error
+// nothing is written.
 //
 // # Safety
 // `sampler` as for `rm_sample`; `hits` points to `n` readable
@@ -573,9 +707,10 @@ enum RmStatus rm_sample_batch(struct RmSampler *sampler,
 // Anisotropic filtered texel at `(u, v)` for the pixel footprint `fp`
 // (the texture-coordinate derivatives): up to the sampler's
 // `max_anisotropy` trilinear probes along the footprint's major axis at
-// the lod of its minor axis (the Rust `Sampler::sample_aniso`); writes
-// RGBA8888 to `out`. Returns `NullPointer`, `Misaligned` or
-// `Uninitialised`.
+// the lod of its minor axis; writes the RGBA8 texel to `out`.
+//
+// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER`,
+// `RM_STATUS_MISALIGNED` or `RM_STATUS_UNINITIALISED`.
 //
 // # Safety
 // `sampler` as for `rm_sample`; `fp` points to a readable
@@ -592,3 +727,13 @@ enum RmStatus rm_sample_aniso(struct RmSampler *sampler,
 #endif  // __cplusplus
 
 #endif  /* RAYMIP_H */
+
+/* The stack bound, checked once per translation unit. */
+#ifndef RAYMIP_H_STACK_CHECKED
+#define RAYMIP_H_STACK_CHECKED
+#if defined(__cplusplus)
+static_assert(RM_RAY_STACK_CAPACITY >= RM_STACK_BOUND(RM_MAX_BOUNCES, 2), "RmRayStack holds RM_MAX_BOUNCES bounces of two continuations");
+#elif __STDC_VERSION__ >= 201112L
+_Static_assert(RM_RAY_STACK_CAPACITY >= RM_STACK_BOUND(RM_MAX_BOUNCES, 2), "RmRayStack holds RM_MAX_BOUNCES bounces of two continuations");
+#endif
+#endif

@@ -43,7 +43,7 @@ QCOMMON=(-nographic -monitor none -serial none -semihosting-config enable=on,tar
 QTIMEOUT=${QEMU_TIMEOUT:-120}
 
 OVERFLOW_CHECKED=()
-for _lib_p in raymip raymip-host raymip-ffi raymip-demo-scene; do
+for _lib_p in raymip raymip-host raymip-ffi raymip-demo-scene raymip-reference; do
     OVERFLOW_CHECKED+=(--config "profile.release.package.$_lib_p.overflow-checks=true")
 done
 unset _lib_p

@@ -444,6 +444,36 @@ mod tests {
         ((x - x.round()).abs() > 1e-9 || x == 0.0 || x == 9.0).then(|| x.floor() as u32)
     }
 
+    /// The largest error of `lod_param` against f64 on a fixed grid of
+    /// ranges, depths and biases: within [`LOD_PARAM_MAX_ERROR`], and that
+    /// documented bound within 4× of it.
+    #[test]
+    fn lod_param_bound_is_tight() {
+        let mut worst = 0.0f64;
+        for (near, span) in [(0.0, 8.0), (-3.25, 0.7), (1.0e3, 1.7e4), (12.5, 0.001)] {
+            for levels in 1u8..=8 {
+                for bias in [-1.5, 0.0, 0.3] {
+                    let (zn, zf, b) = (d(near), d(near + span), LodBias::from_num(bias));
+                    let r = LodRange::new(zn, zf, levels, b).unwrap();
+                    let (znf, zff) = (zn.to_num::<f64>(), zf.to_num::<f64>());
+                    for k in 0..=1000 {
+                        let z = d(near + span * f64::from(k) / 1000.0);
+                        let f = ((z.to_num::<f64>() - znf) / (zff - znf)).clamp(0.0, 1.0);
+                        let l = f64::from(levels) * f + b.to_num::<f64>();
+                        let want = l.clamp(0.0, f64::from(levels - 1));
+                        worst = worst.max((r.lod_param(z).to_num::<f64>() - want).abs());
+                    }
+                }
+            }
+        }
+        std::println!("lod_param: max |error| {worst:.3e} (bound {LOD_PARAM_MAX_ERROR:.3e})");
+        assert!(worst <= LOD_PARAM_MAX_ERROR);
+        assert!(
+            LOD_PARAM_MAX_ERROR <= 4.0 * worst,
+            "bound over 4x the measured {worst:.3e}"
+        );
+    }
+
     #[test]
     fn reference_vectors() {
         let r = LodRange::new(d(0.0), d(8.0), 8, LodBias::ZERO).unwrap();

@@ -125,6 +125,28 @@ mod tests {
     }
 
     #[test]
+    fn for_pixel_hashes_frame_then_row_then_column() {
+        // The documented derivation in u64 arithmetic: each combining step
+        // is an xor (an `|` or `&` there would still look uniform).
+        let m = 0xFFFF_FFFFu64;
+        let mut s = 7u64;
+        for _ in 0..2_000 {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (x, y, f) = (s as u32 >> 8, (s >> 24) as u32, (s >> 40) as u32);
+            let h = mix_ref((u64::from(f) + u64::from(WEYL)) & m);
+            let h = mix_ref(h ^ ((u64::from(y) * 0x85EB_CA6B) & m));
+            let want = mix_ref(h ^ ((u64::from(x) * 0xC2B2_AE35) & m));
+            assert_eq!(
+                u64::from(Rng::for_pixel(x, y, f).state),
+                want,
+                "{x} {y} {f}"
+            );
+        }
+    }
+
+    #[test]
     fn mix_is_bijective_on_a_subspace() {
         // Injective on 2^20 consecutive inputs (a bijection has no collision).
         let mut seen: Vec<u32> = (0..1u32 << 20).map(mix32).collect();

@@ -18,9 +18,9 @@ use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
-use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);

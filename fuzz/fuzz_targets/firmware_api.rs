@@ -17,10 +17,10 @@ use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::{PbTable, TableError, TexTriangle};
-use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 const TABLE: usize = 8;
 const STACK: usize = 4;

@@ -34,14 +34,6 @@ fn pyramid() -> &'static OwnedPyramid {
     })
 }
 
-const ADDRESS: [AddressArg; 5] = [
-    AddressArg::Wrap,
-    AddressArg::Clamp,
-    AddressArg::Mirror,
-    AddressArg::MirrorOnce,
-    AddressArg::Border,
-];
-
 fn args(u: &mut Unstructured) -> Result<SampleArgs> {
     let opt_f64 = |u: &mut Unstructured| -> Result<Option<f64>> {
         Ok(if u.ratio(1, 3)? {
@@ -53,7 +45,7 @@ fn args(u: &mut Unstructured) -> Result<SampleArgs> {
     let n_addr = u.int_in_range(1..=2)?;
     let mut address = Vec::new();
     for _ in 0..n_addr {
-        address.push(*u.choose(&ADDRESS)?);
+        address.push(*u.choose(AddressArg::value_variants())?);
     }
     Ok(SampleArgs {
         texture: PathBuf::from("fuzz.ppm"),

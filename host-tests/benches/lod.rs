@@ -9,7 +9,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::lod::{cone_lod, table_lod};
 use raymip::units::{Accurate, Delta, Log2Pb, PathLength, Width};
-use raymip_host::reference::Rng;
+use raymip_reference::Rng;
 
 const N: usize = 1024;
 

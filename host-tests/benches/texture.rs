@@ -1,5 +1,5 @@
 //! ns per bilinear and trilinear sample: firmware fixed point against the
-//! f32 implementation (`raymip_host::texf32`), one run, same pyramid and
+//! f32 implementation (`raymip::baseline_f32`), one run, same pyramid and
 //! inputs; then texel-cache hit rates for a scanline walk at lod 0 and 2
 //! (printed).
 //!
@@ -8,12 +8,12 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group};
+use raymip::baseline_f32::SamplerF32;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Lod, TexCoord};
-use raymip_host::reference::texf32::SamplerF32;
-use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
+use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
 
 const N: usize = 1024;
 /// Side of the texture of the timing runs: 256×256 RGBA8 plus levels

@@ -14,18 +14,18 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, publish, write_option, write_png};
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::cli::MeasureArgs;
+use raymip_host::output::image::write_png;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::publish;
+use raymip_host::render::{Method, Options, Prepared, render_fixed_and_float, render_truth};
 use raymip_host::scene::load_scene;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| raymip_host::cli::parse_size(a).ok())
-        .unwrap_or((400, 240));
-    let spp: u32 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(256);
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((400, 240));
+    let spp = cmd.number.unwrap_or(256);
+    let write = cmd.write.as_deref();
     let prep = Prepared::new(load_scene("builtin:hall", 0.0)?, Some(size))?;
     let base = Options {
         method: Method::Raydiff,
@@ -52,33 +52,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "trilinear (isotropic, lod of the major axis)".to_string(),
             |n| format!("anisotropic, max {n}×"),
         );
-        let mut psnrs = Vec::new();
-        let mut fetched = 0.0;
-        let mut time = 0.0;
-        for precision in [Precision::Fixed, Precision::Float] {
-            let img = render(
-                &prep,
-                &Options {
-                    precision,
-                    aniso,
-                    ..base.clone()
-                },
-            );
-            let rgb = img.to_rgb8();
-            psnrs.push(psnr(&rgb, &truth));
-            if precision == Precision::Fixed {
-                fetched = img.counters.fetched as f64 / img.counters.textured_hits.max(1) as f64;
-                time = img.render_s;
-                let file = match aniso {
-                    None => Some("hall_trilinear.png"),
-                    Some(16) => Some("hall_aniso16.png"),
-                    _ => None,
-                };
-                if let Some(f) = file {
-                    std::fs::create_dir_all(docs)?;
-                    write_png(&docs.join(f), img.width, img.height, &rgb)?;
-                }
-            }
+        let [fixed, float] = render_fixed_and_float(
+            &prep,
+            &Options {
+                aniso,
+                ..base.clone()
+            },
+        );
+        let rgb = fixed.to_rgb8();
+        let psnrs = [psnr(&rgb, &truth), psnr(&float.to_rgb8(), &truth)];
+        let fetched = fixed.counters.fetched as f64 / fixed.counters.textured_hits.max(1) as f64;
+        let time = fixed.render_s;
+        let file = match aniso {
+            None => Some("hall_trilinear.png"),
+            Some(16) => Some("hall_aniso16.png"),
+            _ => None,
+        };
+        if let Some(f) = file {
+            std::fs::create_dir_all(docs)?;
+            write_png(&docs.join(f), fixed.width, fixed.height, &rgb)?;
         }
         writeln!(
             table,

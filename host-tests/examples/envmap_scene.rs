@@ -17,18 +17,18 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{psnr, publish, write_option, write_png};
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::cli::MeasureArgs;
+use raymip_host::output::image::write_png;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::publish;
+use raymip_host::render::{Method, Options, Prepared, render_fixed_and_float, render_truth};
 use raymip_host::scene::load_scene;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| raymip_host::cli::parse_size(a).ok())
-        .unwrap_or((320, 192));
-    let spp: u32 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(64);
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((320, 192));
+    let spp = cmd.number.unwrap_or(64);
+    let write = cmd.write.as_deref();
     let prep = Prepared::new(load_scene("builtin:envmap", 0.0)?, Some(size))?;
     let base = Options {
         size: Some(size),
@@ -71,21 +71,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "envmap_raydiff.png",
         ),
     ] {
-        let mut psnrs = Vec::new();
-        for precision in [Precision::Fixed, Precision::Float] {
-            let img = render(
-                &prep,
-                &Options {
-                    method,
-                    precision,
-                    ..base.clone()
-                },
-            );
-            let rgb = img.to_rgb8();
-            psnrs.push(psnr(&rgb, &truth_rgb));
-            if precision == Precision::Fixed && !file.is_empty() {
-                write_png(&docs.join(file), img.width, img.height, &rgb)?;
-            }
+        let [fixed, float] = render_fixed_and_float(
+            &prep,
+            &Options {
+                method,
+                ..base.clone()
+            },
+        );
+        let rgb = fixed.to_rgb8();
+        let psnrs = [psnr(&rgb, &truth_rgb), psnr(&float.to_rgb8(), &truth_rgb)];
+        if !file.is_empty() {
+            write_png(&docs.join(file), fixed.width, fixed.height, &rgb)?;
         }
         writeln!(
             table,

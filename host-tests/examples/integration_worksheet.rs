@@ -18,33 +18,43 @@
 //! `<!-- integration:begin -->` and `<!-- integration:end -->` with `--write`.
 
 use std::fmt::Write as _;
-use std::mem::size_of;
 use std::path::Path;
 
-use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
-use raymip::texture::storage::mip::pyramid_len;
-use raymip::{Log2Pb, Pyramid, TexelCache};
-use raymip_host::cli::output::{publish, write_option};
-use raymip_host::cli::parse_size;
-use raymip_host::render::skip::plan;
+use clap::Parser;
+use raymip_host::cli::MeasureArgs;
+use raymip_host::cli::memory::{MemoryArgs, memory_table};
+use raymip_host::output::report::publish;
 use raymip_host::render::texunit::Filter;
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{default_bart_dir, load_scene_dir};
 use raymip_host::tradeoff::budgets::{Budgets, frame_calls};
 
 const BOUNCES: u8 = 10;
 
-fn kib(bytes: u64) -> String {
-    format!("{:.1} KiB", bytes as f64 / 1024.0)
+/// `raymip-host memory`'s arguments.
+#[derive(Parser)]
+struct MemoryCli {
+    #[command(flatten)]
+    args: MemoryArgs,
 }
 
+/// The memory blocks of docs/integration.md: the kitchen, and a made-up
+/// scene described by numbers (block name, `raymip-host memory` arguments).
+const MEMORY: [(&str, &str); 2] = [
+    (
+        "memory-kitchen",
+        "--scene ../shared/scenes/bart/kitchen --size 640x384 --cache 64x4 --cached-textures 1",
+    ),
+    (
+        "memory-example",
+        "--triangles 50000 --texture 1024x1024*20 --bounces 10 --cache 64x4 --path-range 50..2000 --texel-size 0.002..0.01",
+    ),
+];
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((640, 384));
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((640, 384));
+    let write = cmd.write.as_deref();
     let dir = default_bart_dir().join("kitchen");
     if !dir.is_dir() {
         println!(
@@ -65,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let prep = Prepared::new(load_scene_dir(&dir, 0.0)?, Some(size))?;
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: BOUNCES,
         spp: 1,
@@ -73,68 +83,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         progress: false,
         aniso: None,
     };
-    let p = plan(&prep, &opts);
     let c = render(&prep, &opts).counters;
-
-    let triangles = prep.pb_fixed.len() as u64;
-    let textured = prep
-        .pb_fixed
-        .iter()
-        .filter(|&&e| e != Log2Pb::UNTEXTURED)
-        .count();
-    let table_bytes = triangles * size_of::<Log2Pb>() as u64;
-    let largest = prep
-        .textures
-        .iter()
-        .max_by_key(|t| u64::from(t.width) * u64::from(t.height))
-        .ok_or("the kitchen has no texture")?;
-    let largest_bytes = (pyramid_len(largest.width, largest.height, largest.levels) * 4) as u64;
-    let stack_entries = stack_bound(BOUNCES, 2);
-    let stack_bytes = (stack_entries * PATH_STATE_BYTES) as u64;
-    let cache_bytes = size_of::<TexelCache<Pyramid<'static>, 64, 4>>() as u64;
 
     let mut t = String::new();
     writeln!(
         t,
         "BART kitchen, {}×{}, table method, firmware fixed point, {BOUNCES} bounces, trilinear \
-         (`cargo run --release -p raymip-host --example integration_worksheet -- {}x{} --write docs/integration.md`).\n",
+         (`cargo run --release -p raymip-host --example integration_worksheet -- {}x{} --write docs/integration.md`).",
         size.0, size.1, size.0, size.1
-    )?;
-    writeln!(t, "| memory | count | bytes each | total |")?;
-    writeln!(t, "|---|---|---|---|")?;
-    writeln!(
-        t,
-        "| Pb table (`Log2Pb` per triangle; {textured} textured) | {triangles} triangles | {} | {} |",
-        size_of::<Log2Pb>(),
-        kib(table_bytes)
-    )?;
-    writeln!(
-        t,
-        "| pyramids, full (RGBA8, every level) | {} textures | largest {}×{}, {} levels: {} | {} |",
-        prep.textures.len(),
-        largest.width,
-        largest.height,
-        largest.levels,
-        kib(largest_bytes),
-        kib(p.full_bytes)
-    )?;
-    writeln!(
-        t,
-        "| pyramids, trimmed by the set-up analysis | {} textures skipped | — | {} ({:.1} % saved) |",
-        p.textures_skipped,
-        kib(p.stored_bytes),
-        p.saved_percent()
-    )?;
-    writeln!(
-        t,
-        "| ray stack, `stack_bound({BOUNCES}, 2)` entries (`cone` + `raydiff`) | {stack_entries} entries | {PATH_STATE_BYTES} | {} |",
-        kib(stack_bytes)
-    )?;
-    writeln!(
-        t,
-        "| texel cache `TexelCache<Pyramid, 64, 4>` ({} data, tags, LRU stamps; `size_of` on the host) | 1 | {cache_bytes} | {} |",
-        kib(64 * 4 * 64),
-        kib(cache_bytes)
     )?;
     let calls = frame_calls(Method::Table, Filter::Trilinear, &c).ok_or("no counted calls")?;
     let frame_m4 = budgets
@@ -178,5 +134,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "| **texture work of one frame** | | | **{:.2} M** |",
         frame_m4 / 1e6
     )?;
-    Ok(publish(&t, write, "integration")?)
+    publish(&t, write, "integration")?;
+
+    let bart = default_bart_dir();
+    for (block, line) in MEMORY {
+        let run = line.replace("../shared/scenes/bart", &bart.to_string_lossy());
+        let cli =
+            MemoryCli::try_parse_from(std::iter::once("memory").chain(run.split_whitespace()))?;
+        let table = format!(
+            "`cargo run --release -p raymip-host -- memory {line}`\n\n{}",
+            memory_table(&cli.args)?
+        );
+        publish(&table, write, block)?;
+    }
+    Ok(())
 }

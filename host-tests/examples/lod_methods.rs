@@ -20,9 +20,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use raymip_host::cli::output::{machine_line, psnr, publish, write_option};
-use raymip_host::cli::parse_size;
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::cli::MeasureArgs;
+use raymip_host::output::machine::machine_line;
+use raymip_host::output::metrics::psnr;
+use raymip_host::output::report::{markdown_cells, publish};
+use raymip_host::render::{Method, Options, Prepared, render_fixed_and_float, render_truth};
 use raymip_host::scene::{Scene, builtin, default_bart_dir, load_scene_dir};
 
 /// The block's name in the Markdown file.
@@ -32,12 +34,7 @@ const BLOCK: &str = "lod-methods";
 fn budget_row(budgets: &str, section: &str, first: &str) -> Option<Vec<String>> {
     let text = &budgets[budgets.find(section)?..];
     text.lines().find_map(|l| {
-        let cells: Vec<String> = l
-            .trim()
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect();
+        let cells = markdown_cells(l);
         (l.starts_with('|') && cells.first().is_some_and(|c| c == first))
             .then(|| cells[1..].to_vec())
     })
@@ -117,35 +114,29 @@ fn psnr_row(
         Method::Gbuffer,
         Method::Mip0,
     ] {
-        let mut p = [0.0; 2];
-        for (k, precision) in [Precision::Fixed, Precision::Float].into_iter().enumerate() {
-            let img = render(
-                &prep,
-                &Options {
-                    method,
-                    precision,
-                    ..base.clone()
-                },
-            );
-            p[k] = psnr(&img.to_rgb8(), &truth);
-        }
+        let p = render_fixed_and_float(
+            &prep,
+            &Options {
+                method,
+                ..base.clone()
+            },
+        )
+        .map(|img| psnr(&img.to_rgb8(), &truth));
         let _ = write!(row, " {:.2} ({:.2}) |", p[0], p[1]);
     }
     Ok(row)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((320, 192));
-    let spp: u32 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(64);
-    let write = write_option(&args);
-    let check = args
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((320, 192));
+    let spp = cmd.number.unwrap_or(64);
+    let write = cmd.write.as_deref();
+    let check = cmd
+        .args
         .iter()
         .position(|a| a == "--check")
-        .and_then(|i| args.get(i + 1))
+        .and_then(|i| cmd.args.get(i + 1))
         .map(Path::new);
     let kitchen = default_bart_dir().join("kitchen");
     if check.is_some() && !kitchen.is_dir() {

@@ -1,5 +1,5 @@
 //! Writes the docs/texture-sampling.md table of the sampler's error per format, filter and
-//! precision tier, measured against the f64 reference (`raymip_host::reference::sampler_ref`).
+//! precision tier, measured against the f64 reference (`raymip_reference::sampler`, through `raymip_host::accuracy`).
 //!
 //! ```sh
 //! cargo run --release -p raymip-host --example sampler_accuracy -- [SAMPLES] [--write docs/texture-sampling.md]
@@ -12,16 +12,14 @@
 use std::fmt::Write as _;
 
 use raymip::units::Precision;
-use raymip_host::cli::output::{publish, write_option};
-use raymip_host::reference::sampler_ref::{FILTERS, measure};
+use raymip_host::accuracy::{FILTERS, measure};
+use raymip_host::cli::MeasureArgs;
+use raymip_host::output::report::publish;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let samples: usize = args
-        .iter()
-        .find(|a| a.parse::<usize>().is_ok())
-        .map_or(Ok(20_000), |a| a.parse())?;
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let samples = cmd.number.map_or(20_000, |n| n as usize);
+    let write = cmd.write.as_deref();
     let mut rows = measure(samples, 0x5EED_2026, Precision::Accurate);
     rows.extend(measure(samples, 0x5EED_2027, Precision::Fast));
     let mut table = String::new();

@@ -14,10 +14,11 @@
 
 use std::fmt::Write as _;
 
-use raymip_host::cli::output::{cpu_model, publish, write_option};
-use raymip_host::cli::parse_size;
+use raymip_host::cli::MeasureArgs;
+use raymip_host::output::machine::cpu_model;
+use raymip_host::output::report::publish;
 use raymip_host::render::skip::{bit_identical, plan, render_trimmed};
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
 
 const REPEATS: usize = 3;
@@ -38,12 +39,9 @@ fn cpu() -> String {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let size = args
-        .iter()
-        .find_map(|a| parse_size(a).ok())
-        .unwrap_or((640, 384));
-    let write = write_option(&args);
+    let cmd = MeasureArgs::from_env();
+    let size = cmd.size.unwrap_or((640, 384));
+    let write = cmd.write.as_deref();
     let mut scenes: Vec<(String, Load)> = builtin::NAMES
         .iter()
         .map(|&n| {
@@ -68,7 +66,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let opts = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: 10,
         spp: 1,

@@ -12,10 +12,10 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
+use raymip::baseline_f32::SamplerF32;
 use raymip::texture::storage::mip::Pyramid;
 use raymip::texture::{AddressMode, Mode, Sampler};
-use raymip_host::reference::texf32::SamplerF32;
-use raymip_host::reference::workload::{random_inputs, random_pyramid, to_fixed};
+use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
 
 /// Samples per run.
 const N: usize = 100_000;

@@ -1,12 +1,16 @@
-//! Host harness for raymip: f64 references, scene loaders, renderer, CLI.
+//! Host harness for raymip: scene loaders, renderer, CLI, the sampler's
+//! accuracy against the f64 references (`raymip-reference`), benchmarks.
 #![warn(missing_docs)]
 // No function over 100 lines (clippy counts code lines; the default limit).
 #![warn(clippy::too_many_lines)]
 #![allow(clippy::needless_range_loop)]
 
+pub mod accuracy;
 pub mod cli;
 pub mod error;
-pub mod reference;
+pub mod output;
 pub mod render;
 pub mod scene;
+pub mod stress;
 pub mod tradeoff;
+pub mod workload;

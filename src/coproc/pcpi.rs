@@ -39,7 +39,8 @@
 //!
 //! # Safety
 //!
-//! With the C ABI (`ffi`), this is the only code with `unsafe`: each
+//! With the C ABI (`ffi`) and the texel reads of the level views
+//! (`texture::storage::pow2`), this is the only code with `unsafe`: each
 //! wrapper is one `asm!` block holding exactly one `.insn` instruction that
 //! reads general-purpose registers and writes at most one. No instruction
 //! reads or writes memory or changes any other register, CSR or the

@@ -12,7 +12,7 @@ use super::*;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct RmTexture {
-    /// The texels (RGBA8888).
+    /// The texels (RGBA8: red in bits 0–7, alpha in bits 24–31).
     pub texels: *const u32,
     /// Number of texels at `texels`.
     pub len: usize,
@@ -32,24 +32,26 @@ pub(super) fn mip_status(e: MipError) -> RmStatus {
     }
 }
 
-/// Texels of a pyramid of `levels` levels of a `width × height` texture
-/// (0 when a side is 0).
+/// Texels of a pyramid of `levels` levels (capped at the full chain) of a
+/// `width × height` texture (0 when a side is 0); no status (it cannot
+/// fail).
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_pyramid_len(width: u32, height: u32, levels: u8) -> usize {
     pyramid_len(width, height, levels)
 }
 
 /// Generates levels `1 .. levels` of a `width × height` pyramid in place
-/// from level 0 (the first `width·height` texels at `texels`), with the
-/// filter of `mip::generate` (2×2 box, round half up; exact area box for odd
-/// sides). Set-up time, not per hit.
+/// from level 0 (the first `width·height` texels at `texels`): a 2×2 box
+/// filter rounding half up (an exact area box for odd sides). Set-up time,
+/// not per hit.
 ///
-/// Returns `NullPointer`, `ZeroSize`, `OutOfRange` (bad level count or side
-/// above 32768) or `BufferTooShort` (`len` < [`rm_pyramid_len`]; nothing is
-/// written).
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`;
+/// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_OUT_OF_RANGE` (a level count outside
+/// `1 ..=` the full chain, or a side above 32768); `RM_STATUS_BUFFER_TOO_SHORT`
+/// (`len` < [`rm_pyramid_len`]; nothing written).
 ///
 /// # Safety
-/// `texels` is null (→ `NullPointer`) or points to `len` writable texels.
+/// `texels` is null or points to `len` writable texels.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_mip_generate(
     texels: *mut u32,
@@ -99,7 +101,7 @@ pub struct RmImage {
 
 /// Bytes an [`RmImage`] of `format` with `levels` levels (capped at the
 /// full chain) of a `width × height` level 0 needs; 0 for a zero side or
-/// an unknown format.
+/// an unknown format (no status: it cannot fail).
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_image_len(width: u32, height: u32, levels: u8, format: u8) -> usize {
     match TexelFormat::from_index(format) {

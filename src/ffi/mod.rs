@@ -29,9 +29,10 @@
 //!
 //! # Safety
 //!
-//! With the co-processor wrappers ([`crate::coproc`]), this is the only
-//! code with `unsafe` (the crate is `#![deny(unsafe_code)]` with either
-//! feature, `#![forbid(unsafe_code)]` without): turning caller pointers
+//! With the co-processor wrappers ([`crate::coproc`]) and the texel reads
+//! of the level views ([`crate::texture::storage::pow2`]), this is the only
+//! code with `unsafe` (the crate is `#![deny(unsafe_code)]`, each of these
+//! modules allowing it with its safety argument): turning caller pointers
 //! into references and slices. Each function documents what the caller
 //! guarantees: non-null pointers (null is checked and reported), pointing to the stated number of valid,
 //! aligned, initialised elements. A pointer that is not aligned for its

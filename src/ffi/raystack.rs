@@ -2,14 +2,23 @@
 //! plain integers in caller memory, and the primary, advance and bounce
 //! steps of a path state.
 
-use crate::path::raystack::{DEFAULT_CAPACITY, PathState, RayCone};
+use crate::path::raystack::{PathState, RayCone, stack_bound};
 
 use super::*;
 use crate::units::{PathLength, Spread, Width};
 
-/// Capacity of [`RmRayStack`] (10, as in the hardware paper).
-pub const RM_RAY_STACK_CAPACITY: usize = 10;
-const _: () = assert!(RM_RAY_STACK_CAPACITY == DEFAULT_CAPACITY);
+/// Bounces per path that an [`RmRayStack`] holds with two continuations
+/// (a reflection and a refraction) pushed per hit: the hardware paper's 10.
+pub const RM_MAX_BOUNCES: u8 = 10;
+
+/// Capacity of [`RmRayStack`]: `RM_STACK_BOUND(RM_MAX_BOUNCES, 2)` =
+/// `(2 − 1) · 10 + 1` = 11 entries, what a depth-first tracer needs for
+/// `RM_MAX_BOUNCES` bounces of two continuations per hit (checked at
+/// compile time, in the library and in this header with `RM_STACK_BOUND`).
+/// A stack of the paper's 10 entries would drop a branch of the deepest
+/// paths.
+pub const RM_RAY_STACK_CAPACITY: usize = 11;
+const _: () = assert!(RM_RAY_STACK_CAPACITY == stack_bound(RM_MAX_BOUNCES, 2));
 
 /// One ray stack entry: the path state LOD needs across bounces.
 #[repr(C)]
@@ -32,16 +41,10 @@ pub struct RmPathState {
 /// A fixed-capacity ray stack in caller memory (initialise with
 /// [`rm_ray_stack_init`]).
 ///
-/// A C struct of plain integers rather than the Rust `RayStack` in opaque
-/// storage (as [`RmSampler`] is): C code reads its entries (peeks, pushes
-/// one of its own entries), and every bit pattern a C caller may leave in
-/// it is valid, so a corrupt `len` is an error case (read as full, popped
-/// in range) instead of undefined behaviour. `RayStack` keeps its entries
-/// in a `heapless::Vec` whose layout is not fixed and its `PathState`s hold
-/// a `bool`; in caller memory, a stray write would be undefined behaviour.
-/// The capacity is the Rust default (checked at compile time) and the
-/// entries are converted to and from `PathState`; what is left is a bounds
-/// check and a length update per push or pop.
+/// Plain integers, not opaque: C code may read its entries, and any bits
+/// a caller leaves in it are handled (a `len` above the capacity is read
+/// as full and popped in range). Holds `RM_RAY_STACK_CAPACITY` entries:
+/// paths of `RM_MAX_BOUNCES` bounces with two continuations per hit.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RmRayStack {
@@ -86,8 +89,11 @@ impl From<RmPathState> for PathState {
 
 /// Empties `stack`.
 ///
+/// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+/// `RM_STATUS_MISALIGNED`.
+///
 /// # Safety
-/// `stack` is null (→ `NullPointer`) or points to a writable [`RmRayStack`].
+/// `stack` is null or points to a writable [`RmRayStack`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_ray_stack_init(stack: *mut RmRayStack) -> RmStatus {
     if let Err(e) = check_ptr(stack.cast_const(), false) {
@@ -104,12 +110,15 @@ pub unsafe extern "C" fn rm_ray_stack_init(stack: *mut RmRayStack) -> RmStatus {
 }
 
 /// Pushes `state` (which may point into `stack`, e.g. to one of its
-/// entries); `StackFull` (stack unchanged) when full.
+/// entries).
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_STACK_FULL` (stack unchanged) when
+/// it holds `RM_RAY_STACK_CAPACITY` entries; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`.
 ///
 /// # Safety
-/// `stack` and `state` are null (→ `NullPointer`), misaligned
-/// (→ `Misaligned`) or valid (`stack` initialised by [`rm_ray_stack_init`];
-/// a corrupt `len` above the capacity is read as full).
+/// `stack` and `state` are null, misaligned or valid (`stack` initialised
+/// by [`rm_ray_stack_init`]; a `len` above the capacity is read as full).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_ray_stack_push(
     stack: *mut RmRayStack,
@@ -120,7 +129,9 @@ pub unsafe extern "C" fn rm_ray_stack_push(
     }
     // SAFETY: non-null, aligned (checked), valid (caller). The input is
     // copied out before the stack is borrowed mutably, so `state` may alias it.
-    let state = unsafe { state.read() };
+    // Held in a local the optimiser must keep (`black_box`): a direct copy
+    // between entries that may overlap would link a `memmove` for it.
+    let state = core::hint::black_box(unsafe { state.read() });
     // SAFETY: as above; no other reference to the stack is live.
     let stack = unsafe { &mut *stack };
     let Some(slot) = stack.entries.get_mut(stack.len as usize) else {
@@ -131,7 +142,10 @@ pub unsafe extern "C" fn rm_ray_stack_push(
     RmStatus::Ok
 }
 
-/// Pops the most recent state into `out`; `StackEmpty` when empty.
+/// Pops the most recent state into `out`.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_STACK_EMPTY` (nothing written) when
+/// empty; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
 ///
 /// # Safety
 /// As [`rm_ray_stack_push`]; `out` writable.
@@ -155,7 +169,9 @@ pub unsafe extern "C" fn rm_ray_stack_pop(
             return RmStatus::StackEmpty;
         };
         stack.len = i as u32;
-        s
+        // Through a local, as in `rm_ray_stack_push`: `out` may point
+        // into the stack.
+        core::hint::black_box(s)
     };
     // SAFETY: non-null, aligned (checked), writable (caller).
     unsafe { out.write(s) };
@@ -165,8 +181,11 @@ pub unsafe extern "C" fn rm_ray_stack_pop(
 /// A primary ray's state (`Pl = 0`, width 0, spread `spread` in I2F30
 /// bits) with ray mask `mask`.
 ///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2`
+/// radians; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
+///
 /// # Safety
-/// `out` is null (→ `NullPointer`) or writable.
+/// `out` is null or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPathState) -> RmStatus {
     let spread = match check_ptr(out.cast_const(), false).and(spread_from_bits(spread)) {
@@ -181,8 +200,11 @@ pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPath
 /// After a hit at distance `t` (U32F32 bits): `Pl += t`, `w += γ·t`
 /// (saturating; sets `saturated`).
 ///
+/// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+/// `RM_STATUS_MISALIGNED`.
+///
 /// # Safety
-/// `state` is null (→ `NullPointer`) or valid and writable.
+/// `state` is null or valid and writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmStatus {
     // SAFETY: same contract.
@@ -190,7 +212,10 @@ pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmS
 }
 
 /// A reflection/refraction continuation: spread `+= beta` (I2F30 bits,
-/// surface spread angle), depth + 1.
+/// surface spread angle; 0 for a flat surface), depth + 1 (saturating).
+///
+/// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+/// `RM_STATUS_MISALIGNED`.
 ///
 /// # Safety
 /// As [`rm_path_advance`].

@@ -1,11 +1,14 @@
 //! Texture sampling through C: an opaque sampler in caller memory set up
 //! once per texture, then single, batched and anisotropic samples.
 
+use fixed::types::{I8F8, I32F32};
+
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
 use crate::texture::storage::format::{AnyFormat, ColorSpace, Format, TexelFormat};
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, Texel};
+use crate::texture::{AddressMode, Sampler};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
 use crate::units::{Footprint, Lod, Precision, TexCoord};
 
@@ -13,7 +16,7 @@ use super::*;
 
 /// Size of an [`RmSampler`] in 64-bit words (1024 bytes: enough for the
 /// sampler of a pyramid or an image on 32- and 64-bit targets, checked at
-/// compile time; 808 bytes are used on x86-64).
+/// compile time).
 pub const RM_SAMPLER_WORDS: usize = 128;
 
 /// A texture sampler in caller memory: set up once per texture and
@@ -35,27 +38,93 @@ pub struct RmSampler {
 pub(super) const SAMPLER_MAGIC: u64 = u64::from_le_bytes(*b"raymipSm");
 
 /// The texture behind a sampler: an RGBA8 pyramid or an image in any
-/// format. One `match` per call picks it (none per texel).
+/// format, in the sampler of its key.
 pub(super) enum SlotSampler {
     Pyramid(DynSampler<Pyramid<'static>>),
     Image(DynSampler<Image<'static, AnyFormat>>),
 }
 
-/// `$s` bound to the slot's [`DynSampler`] in both arms.
-macro_rules! each_slot {
-    ($slot:expr, $s:ident => $e:expr) => {
-        match $slot {
-            SlotSampler::Pyramid($s) => $e,
-            SlotSampler::Image($s) => $e,
-        }
-    };
+/// A batch of hits as the Rust batch loop takes them.
+type Hits<'a> = &'a [(TexCoord, TexCoord, Lod)];
+
+/// The sampling function of one key (slot kind and [`DynSampler`]
+/// variant). An init function stores the one of the key it set up, and
+/// `rm_sample` calls through it, so a firmware links the sampling code of
+/// the keys its init calls can select and no other
+/// (`rm_sampler_init_wrap`: one key). It answers only its own variant
+/// (transparent black otherwise, which an init never pairs). The batch and
+/// anisotropic entry points match every key: their code is linked only
+/// when they are called.
+pub(super) struct SlotOps {
+    sample: fn(&mut SlotSampler, TexCoord, TexCoord, Lod, Mode) -> Texel,
 }
 
-/// What an [`RmSampler`] holds: the magic word, then the Rust sampler over
-/// the caller's texels (their lifetime is the caller's promise).
+/// `const NAME: SlotOps` for the slot kind `$kind` and key `$key`.
+macro_rules! slot_ops {
+    ($($name:ident = $kind:ident $key:ident;)*) => {$(
+        const $name: SlotOps = SlotOps {
+            sample: |slot, u, v, lod, mode| match slot {
+                SlotSampler::$kind(DynSampler::$key(s)) => s.sample(u, v, lod, mode),
+                _ => 0,
+            },
+        };
+    )*};
+}
+
+slot_ops! {
+    PYRAMID_WRAP_ACCURATE = Pyramid WrapAccurate;
+    PYRAMID_CLAMP_ACCURATE = Pyramid ClampAccurate;
+    PYRAMID_ANY_ACCURATE = Pyramid AnyAccurate;
+    PYRAMID_WRAP_FAST = Pyramid WrapFast;
+    PYRAMID_CLAMP_FAST = Pyramid ClampFast;
+    PYRAMID_ANY_FAST = Pyramid AnyFast;
+    PYRAMID_SRGB = Pyramid Srgb;
+    PYRAMID_SRGB_TO_LINEAR = Pyramid SrgbToLinear;
+    IMAGE_WRAP_ACCURATE = Image WrapAccurate;
+    IMAGE_CLAMP_ACCURATE = Image ClampAccurate;
+    IMAGE_ANY_ACCURATE = Image AnyAccurate;
+    IMAGE_WRAP_FAST = Image WrapFast;
+    IMAGE_CLAMP_FAST = Image ClampFast;
+    IMAGE_ANY_FAST = Image AnyFast;
+    IMAGE_SRGB = Image Srgb;
+    IMAGE_SRGB_TO_LINEAR = Image SrgbToLinear;
+}
+
+/// The table of a pyramid sampler's key.
+fn pyramid_ops(s: &DynSampler<Pyramid<'static>>) -> &'static SlotOps {
+    match s {
+        DynSampler::WrapAccurate(_) => &PYRAMID_WRAP_ACCURATE,
+        DynSampler::ClampAccurate(_) => &PYRAMID_CLAMP_ACCURATE,
+        DynSampler::AnyAccurate(_) => &PYRAMID_ANY_ACCURATE,
+        DynSampler::WrapFast(_) => &PYRAMID_WRAP_FAST,
+        DynSampler::ClampFast(_) => &PYRAMID_CLAMP_FAST,
+        DynSampler::AnyFast(_) => &PYRAMID_ANY_FAST,
+        DynSampler::Srgb(_) => &PYRAMID_SRGB,
+        DynSampler::SrgbToLinear(_) => &PYRAMID_SRGB_TO_LINEAR,
+    }
+}
+
+/// The table of an image sampler's key.
+fn image_ops(s: &DynSampler<Image<'static, AnyFormat>>) -> &'static SlotOps {
+    match s {
+        DynSampler::WrapAccurate(_) => &IMAGE_WRAP_ACCURATE,
+        DynSampler::ClampAccurate(_) => &IMAGE_CLAMP_ACCURATE,
+        DynSampler::AnyAccurate(_) => &IMAGE_ANY_ACCURATE,
+        DynSampler::WrapFast(_) => &IMAGE_WRAP_FAST,
+        DynSampler::ClampFast(_) => &IMAGE_CLAMP_FAST,
+        DynSampler::AnyFast(_) => &IMAGE_ANY_FAST,
+        DynSampler::Srgb(_) => &IMAGE_SRGB,
+        DynSampler::SrgbToLinear(_) => &IMAGE_SRGB_TO_LINEAR,
+    }
+}
+
+/// What an [`RmSampler`] holds: the magic word, the sampling functions of
+/// its key, then the Rust sampler over the caller's texels (their lifetime
+/// is the caller's promise).
 #[repr(C)]
 pub(super) struct SamplerSlot {
     magic: u64,
+    ops: &'static SlotOps,
     sampler: SlotSampler,
 }
 
@@ -72,24 +141,29 @@ const _: () = assert!(
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RmSamplerDesc {
-    /// Border colour (RGBA8888, linear) of `RM_ADDRESS_BORDER`.
+    /// Border colour of `RM_ADDRESS_BORDER` (RGBA8, linear: red in bits
+    /// 0–7, alpha in bits 24–31). Default 0 (transparent black).
     pub border: u32,
-    /// LOD bias, I8F8 bits, `[−16, 16)` levels.
+    /// LOD bias added to every lod, I8F8 bits, `[−16, 16)` levels
+    /// (`[-4096, 4095]` in bits). Default 0.
     pub lod_bias: i16,
-    /// Lower lod clamp, I8F8 bits (at most `max_lod`).
+    /// Lower lod clamp (after the bias), I8F8 bits, any value up to
+    /// `max_lod`. Default `INT16_MIN` (−128 levels: no clamp).
     pub min_lod: i16,
-    /// Upper lod clamp, I8F8 bits.
+    /// Upper lod clamp, I8F8 bits, at least `min_lod`. Default `INT16_MAX`
+    /// (128 levels: no clamp; the stored levels clamp anyway).
     pub max_lod: i16,
-    /// Address mode of `u` (`RM_ADDRESS_*`).
+    /// Address mode of `u` (`RM_ADDRESS_*`). Default `RM_ADDRESS_WRAP`.
     pub address_u: RmAddressBits,
-    /// Address mode of `v` (`RM_ADDRESS_*`).
+    /// Address mode of `v` (`RM_ADDRESS_*`). Default `RM_ADDRESS_WRAP`.
     pub address_v: RmAddressBits,
     /// Maximum anisotropy of [`rm_sample_aniso`], `1 ..= 16` (1 =
-    /// isotropic).
+    /// isotropic). Default 1.
     pub max_anisotropy: u8,
-    /// Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`).
+    /// Result encoding of sRGB images (`RM_SRGB_OUTPUT_*`). Default
+    /// `RM_SRGB_OUTPUT_ENCODED`.
     pub srgb_output: u8,
-    /// Precision tier (`RM_PRECISION_*`).
+    /// Precision tier (`RM_PRECISION_*`). Default `RM_PRECISION_ACCURATE`.
     pub precision: u8,
 }
 
@@ -172,12 +246,14 @@ pub struct RmFootprint {
     pub dvdy: i64,
 }
 
-/// Writes the default [`RmSamplerDesc`] to `out` (see its docs). Returns
-/// `NullPointer` or `Misaligned`.
+/// Writes the default [`RmSamplerDesc`] to `out` (the defaults are in its
+/// field docs).
+///
+/// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER` or
+/// `RM_STATUS_MISALIGNED`.
 ///
 /// # Safety
-/// `out` is null (→ `NullPointer`) or points to a writable
-/// [`RmSamplerDesc`].
+/// `out` is null or points to a writable [`RmSamplerDesc`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_sampler_desc_default(out: *mut RmSamplerDesc) -> RmStatus {
     if let Err(e) = check_ptr(out.cast_const(), false) {
@@ -188,13 +264,19 @@ pub unsafe extern "C" fn rm_sampler_desc_default(out: *mut RmSamplerDesc) -> RmS
     RmStatus::Ok
 }
 
-/// Writes `slot` into `sampler`.
+/// Writes `sampler_slot` with the sampling functions `ops` of its key
+/// into `sampler`.
 ///
 /// # Safety
 /// `sampler` is non-null, aligned and writable.
-pub(super) unsafe fn write_slot(sampler: *mut RmSampler, sampler_slot: SlotSampler) {
+pub(super) unsafe fn write_slot(
+    sampler: *mut RmSampler,
+    sampler_slot: SlotSampler,
+    ops: &'static SlotOps,
+) {
     let slot = SamplerSlot {
         magic: SAMPLER_MAGIC,
+        ops,
         sampler: sampler_slot,
     };
     // SAFETY: non-null, aligned and large enough (caller; size and
@@ -207,11 +289,14 @@ pub(super) unsafe fn write_slot(sampler: *mut RmSampler, sampler_slot: SlotSampl
 /// texture once (size, levels, length) and stores what [`rm_sample`]
 /// needs. On error `sampler` is left unchanged.
 ///
-/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (address, level count
-/// or a side above 32768), `ZeroSize` or `BufferTooShort`.
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (the address byte, a
+/// level count outside `1 ..=` the full chain, or a side above 32768);
+/// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT` (`tex->len` below
+/// `rm_pyramid_len`).
 ///
 /// # Safety
-/// `sampler` and `tex` are null (→ `NullPointer`) or valid;
+/// `sampler` and `tex` are null or valid;
 /// `tex->texels` points to `tex->len` readable texels that stay valid and
 /// unchanged while the sampler is used.
 #[unsafe(no_mangle)]
@@ -220,27 +305,83 @@ pub unsafe extern "C" fn rm_sampler_init(
     tex: *const RmTexture,
     address: RmAddressBits,
 ) -> RmStatus {
-    let desc = RmSamplerDesc {
-        address_u: address,
-        address_v: address,
-        ..RmSamplerDesc::default()
+    if let Err(e) = check_ptr(sampler.cast_const(), false) {
+        return e;
+    }
+    let Some(mode) = RmAddress::mode(address.0) else {
+        return RmStatus::OutOfRange;
     };
-    // SAFETY: the caller's guarantees are this function's; `desc` is a
-    // valid local.
-    unsafe { rm_sampler_init_desc(sampler, tex, &desc) }
+    // SAFETY: `tex` as the caller guarantees.
+    let p = match unsafe { pyramid_of(tex) } {
+        Ok(p) => p,
+        Err(e) => return e,
+    };
+    // The keys of the default settings with one address mode, and no other:
+    // the same samplers as `rm_sampler_init_desc` builds for them.
+    let (s, ops) = match mode {
+        AddressMode::Wrap => (
+            DynSampler::WrapAccurate(Sampler::wrap(p)),
+            &PYRAMID_WRAP_ACCURATE,
+        ),
+        AddressMode::ClampToEdge => (
+            DynSampler::ClampAccurate(Sampler::clamp(p)),
+            &PYRAMID_CLAMP_ACCURATE,
+        ),
+        _ => (
+            DynSampler::AnyAccurate(Sampler::with_address(p, mode)),
+            &PYRAMID_ANY_ACCURATE,
+        ),
+    };
+    // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
+    unsafe { write_slot(sampler, SlotSampler::Pyramid(s), ops) };
+    RmStatus::Ok
+}
+
+/// Sets up `sampler` for the pyramid `tex` with wrap addressing on both
+/// axes and otherwise default settings, as `rm_sampler_init` with
+/// `RM_ADDRESS_WRAP` does; a firmware that sets up its samplers only
+/// this way links the sampling code of this one configuration (`.text`
+/// per configuration in docs/bare-metal.md). On error `sampler` is left
+/// unchanged.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a level count outside
+/// `1 ..=` the full chain, or a side above 32768); `RM_STATUS_ZERO_SIZE`;
+/// `RM_STATUS_BUFFER_TOO_SHORT` (`tex->len` below `rm_pyramid_len`).
+///
+/// # Safety
+/// As [`rm_sampler_init`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rm_sampler_init_wrap(
+    sampler: *mut RmSampler,
+    tex: *const RmTexture,
+) -> RmStatus {
+    if let Err(e) = check_ptr(sampler.cast_const(), false) {
+        return e;
+    }
+    // SAFETY: `tex` as the caller guarantees.
+    let p = match unsafe { pyramid_of(tex) } {
+        Ok(p) => p,
+        Err(e) => return e,
+    };
+    let s = DynSampler::WrapAccurate(Sampler::wrap(p));
+    // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
+    unsafe { write_slot(sampler, SlotSampler::Pyramid(s), &PYRAMID_WRAP_ACCURATE) };
+    RmStatus::Ok
 }
 
 /// Sets up `sampler` for the RGBA8 pyramid `tex` with the settings `desc`
 /// (address mode per axis, border, bias and clamps, anisotropy, tier),
-/// checked once here: every sample then runs the specialised path of the
-/// configuration (the Rust `DynSampler` key table). On error `sampler` is
-/// left unchanged.
+/// checked once here: every sample then runs the code specialised for the
+/// configuration. On error `sampler` is left unchanged.
 ///
-/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, level
-/// count or a side above 32768), `ZeroSize` or `BufferTooShort`.
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a `desc` field outside
+/// its range, a level count outside `1 ..=` the full chain, or a side above
+/// 32768); `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT`.
 ///
 /// # Safety
-/// `sampler`, `tex` and `desc` are null (→ `NullPointer`) or valid;
+/// `sampler`, `tex` and `desc` are null or valid;
 /// `tex->texels` points to `tex->len` readable texels that stay valid and
 /// unchanged while the sampler is used.
 #[unsafe(no_mangle)]
@@ -263,22 +404,26 @@ pub unsafe extern "C" fn rm_sampler_init_desc(
         Err(e) => return e,
     };
     let s = DynSampler::new(p, state, ColorSpace::Linear, precision);
+    let ops = pyramid_ops(&s);
     // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
-    unsafe { write_slot(sampler, SlotSampler::Pyramid(s)) };
+    unsafe { write_slot(sampler, SlotSampler::Pyramid(s), ops) };
     RmStatus::Ok
 }
 
 /// Sets up `sampler` for the image `img` (any [`RmFormat`], linear or
 /// sRGB) with the settings `desc`, checked once here. Formats are decoded
-/// per texel read (BC1–BC4 decode the texel's block; a Rust firmware puts
-/// a texel cache in front). On error `sampler` is left unchanged.
+/// per texel read (BC1–BC4 decode the texel's 4×4 block each time). On
+/// error `sampler` is left unchanged.
 ///
-/// Returns `NullPointer`, `Misaligned`, `OutOfRange` (a `desc` field, the
-/// format, an sRGB flag the format has no variant for, level count or a
-/// side above 32768), `ZeroSize` or `BufferTooShort`.
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`; `RM_STATUS_OUT_OF_RANGE` (a `desc` field, the
+/// format, an `srgb` flag the format has no sRGB variant for, a level
+/// count outside `1 ..=` the full chain, or a side above 32768);
+/// `RM_STATUS_ZERO_SIZE`; `RM_STATUS_BUFFER_TOO_SHORT` (`img->len` below
+/// `rm_image_len`).
 ///
 /// # Safety
-/// `sampler`, `img` and `desc` are null (→ `NullPointer`) or valid;
+/// `sampler`, `img` and `desc` are null or valid;
 /// `img->bytes` points to `img->len` readable bytes that stay valid and
 /// unchanged while the sampler is used.
 #[unsafe(no_mangle)]
@@ -325,18 +470,21 @@ pub unsafe extern "C" fn rm_sampler_init_image(
         return RmStatus::BufferTooShort;
     };
     let s = DynSampler::new(image, state, space, precision);
+    let ops = image_ops(&s);
     // SAFETY: `sampler` non-null, aligned (checked), writable (caller).
-    unsafe { write_slot(sampler, SlotSampler::Image(s)) };
+    unsafe { write_slot(sampler, SlotSampler::Image(s), ops) };
     RmStatus::Ok
 }
 
-/// The set-up sampler behind `sampler`, or `NullPointer`, `Misaligned`,
-/// `Uninitialised`.
+/// The set-up sampler behind `sampler` and its key's sampling functions,
+/// or `NullPointer`, `Misaligned`, `Uninitialised`.
 ///
 /// # Safety
 /// `sampler` is null or valid and zeroed or set up by an init function;
 /// no other reference to it is live for `'a`.
-pub(super) unsafe fn slot_of<'a>(sampler: *mut RmSampler) -> Result<&'a mut SlotSampler, RmStatus> {
+pub(super) unsafe fn slot_of<'a>(
+    sampler: *mut RmSampler,
+) -> Result<(&'static SlotOps, &'a mut SlotSampler), RmStatus> {
     check_ptr(sampler.cast_const(), false)?;
     let slot = sampler.cast::<SamplerSlot>();
     // SAFETY: non-null, aligned (checked), readable (caller); only the
@@ -346,20 +494,24 @@ pub(super) unsafe fn slot_of<'a>(sampler: *mut RmSampler) -> Result<&'a mut Slot
     }
     // SAFETY: written by an init function (magic, caller); no other
     // reference to it is live; its texels are valid (caller).
-    Ok(unsafe { &mut (*slot).sampler })
+    let slot = unsafe { &mut *slot };
+    Ok((slot.ops, &mut slot.sampler))
 }
 
 /// Filtered texel at `(u, v)` (I32F32 bits, normalised; texel centres at
 /// `(i + 0.5)/size`) and lod `lod` (I8F8 bits; the sampler's bias and
 /// clamps apply, then the stored levels) with filter `mode` (`RM_MODE_*`)
-/// from the texture `sampler` was set up with; writes RGBA8888 to `out`.
-/// The same texel as the Rust `Sampler::sample` of that configuration.
-/// Returns `NullPointer`, `Misaligned`, `Uninitialised` (`sampler` not
-/// written by an init function; a zeroed one is recognised) or
-/// `OutOfRange` (mode).
+/// from the texture `sampler` was set up with; writes the RGBA8 texel to
+/// `out` (red in bits 0–7, alpha in bits 24–31). Bit-identical on every
+/// target.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER`;
+/// `RM_STATUS_MISALIGNED`; `RM_STATUS_UNINITIALISED` (`sampler` not written
+/// by an init function; a zeroed one is recognised); `RM_STATUS_OUT_OF_RANGE`
+/// (`mode`).
 ///
 /// # Safety
-/// `sampler` and `out` are null (→ `NullPointer`) or valid; `sampler` was
+/// `sampler` and `out` are null or valid; `sampler` was
 /// zeroed or set up by an init function (and not written since), and its
 /// texels are still valid. Not for two threads at once on one sampler (it
 /// keeps fetch counters).
@@ -376,7 +528,7 @@ pub unsafe extern "C" fn rm_sample(
         return e;
     }
     // SAFETY: as the caller guarantees; the borrow ends in this function.
-    let slot = match unsafe { slot_of(sampler) } {
+    let (ops, slot) = match unsafe { slot_of(sampler) } {
         Ok(s) => s,
         Err(e) => return e,
     };
@@ -384,11 +536,17 @@ pub unsafe extern "C" fn rm_sample(
         return RmStatus::OutOfRange;
     };
     let (u, v, lod) = (
-        TexCoord::from_bits(u),
-        TexCoord::from_bits(v),
-        Lod::from_bits(lod),
+        I32F32::from_bits(u),
+        I32F32::from_bits(v),
+        I8F8::from_bits(lod),
     );
-    let texel = each_slot!(slot, s => s.sample(u, v, lod, mode));
+    let texel = (ops.sample)(
+        slot,
+        TexCoord::from_fixed(u),
+        TexCoord::from_fixed(v),
+        Lod::from_fixed(lod),
+        mode,
+    );
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended (an `out` inside it would corrupt it).
     unsafe { *out = texel };
@@ -401,9 +559,12 @@ pub(super) const BATCH_CHUNK: usize = 16;
 
 /// `out[i]` = [`rm_sample`] of `hits[i]` with filter `mode`, for
 /// `i < n`: the same texels and counters as `n` single calls, one status
-/// for all. Returns `NullPointer` (either array null with `n > 0`),
-/// `Misaligned`, `Uninitialised` or `OutOfRange` (mode); on error nothing
-/// is written.
+/// for all.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_NULL_POINTER` (`sampler` null, or
+/// either array null with `n > 0`); `RM_STATUS_MISALIGNED`;
+/// `RM_STATUS_UNINITIALISED`; `RM_STATUS_OUT_OF_RANGE` (`mode`). On error
+/// nothing is written.
 ///
 /// # Safety
 /// `sampler` as for [`rm_sample`]; `hits` points to `n` readable
@@ -421,7 +582,7 @@ pub unsafe extern "C" fn rm_sample_batch(
         return e;
     }
     // SAFETY: as the caller guarantees; the borrow ends in this function.
-    let slot = match unsafe { slot_of(sampler) } {
+    let (_, slot) = match unsafe { slot_of(sampler) } {
         Ok(s) => s,
         Err(e) => return e,
     };
@@ -450,7 +611,11 @@ pub unsafe extern "C" fn rm_sample_batch(
             );
         }
         let k = h.len().min(BATCH_CHUNK);
-        each_slot!(&mut *slot, s => s.sample_batch(buf.get(..k).unwrap_or(&[]), mode, o));
+        let hits: Hits<'_> = buf.get(..k).unwrap_or(&[]);
+        match &mut *slot {
+            SlotSampler::Pyramid(s) => s.sample_batch(hits, mode, o),
+            SlotSampler::Image(s) => s.sample_batch(hits, mode, o),
+        };
     }
     RmStatus::Ok
 }
@@ -458,9 +623,10 @@ pub unsafe extern "C" fn rm_sample_batch(
 /// Anisotropic filtered texel at `(u, v)` for the pixel footprint `fp`
 /// (the texture-coordinate derivatives): up to the sampler's
 /// `max_anisotropy` trilinear probes along the footprint's major axis at
-/// the lod of its minor axis (the Rust `Sampler::sample_aniso`); writes
-/// RGBA8888 to `out`. Returns `NullPointer`, `Misaligned` or
-/// `Uninitialised`.
+/// the lod of its minor axis; writes the RGBA8 texel to `out`.
+///
+/// Returns `RM_STATUS_OK`, `RM_STATUS_NULL_POINTER`,
+/// `RM_STATUS_MISALIGNED` or `RM_STATUS_UNINITIALISED`.
 ///
 /// # Safety
 /// `sampler` as for [`rm_sample`]; `fp` points to a readable
@@ -480,7 +646,7 @@ pub unsafe extern "C" fn rm_sample_aniso(
     // SAFETY: non-null, aligned (checked), readable (caller).
     let f = unsafe { fp.read() };
     // SAFETY: as the caller guarantees; the borrow ends in this function.
-    let slot = match unsafe { slot_of(sampler) } {
+    let (_, slot) = match unsafe { slot_of(sampler) } {
         Ok(s) => s,
         Err(e) => return e,
     };
@@ -488,8 +654,16 @@ pub unsafe extern "C" fn rm_sample_aniso(
         x: [TexCoord::from_bits(f.dudx), TexCoord::from_bits(f.dvdx)],
         y: [TexCoord::from_bits(f.dudy), TexCoord::from_bits(f.dvdy)],
     };
-    let (u, v) = (TexCoord::from_bits(u), TexCoord::from_bits(v));
-    let texel: Texel = each_slot!(slot, s => s.sample_aniso(u, v, &fp));
+    let (u, v) = (I32F32::from_bits(u), I32F32::from_bits(v));
+    // Every key's anisotropic code: linked only when this is called.
+    let texel: Texel = match slot {
+        SlotSampler::Pyramid(s) => {
+            s.sample_aniso(TexCoord::from_fixed(u), TexCoord::from_fixed(v), &fp)
+        }
+        SlotSampler::Image(s) => {
+            s.sample_aniso(TexCoord::from_fixed(u), TexCoord::from_fixed(v), &fp)
+        }
+    };
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended.
     unsafe { *out = texel };

@@ -36,11 +36,13 @@ pub enum RmStatus {
     BufferTooShort = -8,
     /// A pointer is not aligned for its type (nothing was read or written).
     Misaligned = -9,
-    /// The [`RmSampler`] was not set up by [`rm_sampler_init`].
+    /// The [`RmSampler`] was not set up by an init function
+    /// ([`rm_sampler_init`], [`rm_sampler_init_desc`],
+    /// [`rm_sampler_init_image`]); a zeroed one is recognised.
     Uninitialised = -10,
 }
 
-/// Filter mode of [`rm_sample`] (the numbering of the Rust `Mode`).
+/// Filter mode of [`rm_sample`] and [`rm_sample_batch`].
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmMode {
@@ -91,7 +93,7 @@ impl RmAddress {
     }
 }
 
-/// Precision tier of a sampler ([`RmSamplerDesc::precision`]).
+/// Precision tier of a sampler (the `precision` field of [`RmSamplerDesc`]).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmPrecision {
@@ -101,12 +103,12 @@ pub enum RmPrecision {
     Accurate = 0,
     /// FAST: GPU precision (8-bit sub-texel weights and lod fraction,
     /// exact filter at the quantized position), linear filtering ≤ 1.5 LSB
-    /// from the exact f64 filter (proof in the Rust `texture::kernel::fast`
-    /// docs); bit-identical on every target.
+    /// from the exact f64 filter (derived in raymip's documentation and
+    /// tested against f64); bit-identical on every target.
     Fast = 1,
 }
 
-/// Result encoding of an sRGB texture ([`RmSamplerDesc::srgb_output`]).
+/// Result encoding of an sRGB texture (the `srgb_output` field of [`RmSamplerDesc`]).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmSrgbOutput {
@@ -116,12 +118,12 @@ pub enum RmSrgbOutput {
     Linear = 1,
 }
 
-/// Pixel format of an [`RmImage`] (the numbering of the Rust
-/// `TexelFormat`).
+/// Pixel format of an [`RmImage`].
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmFormat {
-    /// 8 bits per channel, bytes r, g, b, a.
+    /// 8 bits per channel, bytes r, g, b, a in memory (as a `uint32_t`
+    /// on a little-endian core: red in bits 0–7, alpha in bits 24–31).
     Rgba8 = 0,
     /// 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
     Rgb565 = 1,

@@ -27,11 +27,11 @@ pub struct RmTriangle {
 }
 
 impl RmTriangle {
-    /// The Rust table input: `None` when untextured, `ZeroTextureSize`
-    /// for a textured triangle with a zero texture side.
+    /// The table's input: `None` when untextured.
     ///
     /// # Errors
-    /// [`TableError::ZeroTextureSize`].
+    /// [`TableError::ZeroTextureSize`] for a textured triangle with a zero
+    /// texture side.
     pub fn tex_triangle(&self) -> Result<Option<TexTriangle>, TableError> {
         if self.textured == 0 {
             return Ok(None);
@@ -88,9 +88,13 @@ pub(super) fn spread_from_bits(bits: i32) -> Result<PixelSpread, RmStatus> {
 /// Computes table entries `start .. start + count` of `entries` (length
 /// `len`) from `tris[0 .. count]` for a camera with pixel spread angle
 /// `spread` (I2F30 bits, `0 < γ < 2` radians); fills `stats` if not null.
-/// Returns `TableFull` when `start + count > len` (the entries that fit are
-/// written), `BadAngle`, `ZeroSize` (a textured triangle with a zero texture
-/// side; entries before it are written), `NullPointer`, `Misaligned`.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_TABLE_FULL` when `start + count >
+/// len` (the entries that fit are written); `RM_STATUS_ZERO_SIZE` for a
+/// textured triangle with a zero texture side (the entries before it are
+/// written); `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2` radians;
+/// `RM_STATUS_NULL_POINTER` (`entries` or `tris` null with a non-zero
+/// length); `RM_STATUS_MISALIGNED` (a pointer not aligned for its type).
 ///
 /// # Safety
 /// `entries` points to `len` writable `int32_t`, `tris` to `count`
@@ -155,7 +159,7 @@ pub unsafe extern "C" fn rm_table_update(
     status
 }
 
-/// [`rm_table_update`] from entry 0 (a whole build).
+/// [`rm_table_update`] from entry 0 (a whole build); the same status codes.
 ///
 /// # Safety
 /// As [`rm_table_update`].
@@ -175,13 +179,14 @@ pub unsafe extern "C" fn rm_table_build(
 /// Ray-cone triangle constant `Δ = −log2 Pb − log2 γ` (I16F16 bits, as
 /// [`rm_cone_lod`] takes it) of table entry `entry_bits` (I16F16 bits) for a
 /// camera with pixel spread angle `spread` (I2F30 bits, `0 < γ < 2`
-/// radians); the same value as the Rust `Log2Pb::delta`, saturating.
-/// Returns `Untextured` (and writes nothing) for [`RM_UNTEXTURED`],
-/// `BadAngle` for `γ ≤ 0`.
+/// radians), saturating.
+///
+/// Returns `RM_STATUS_OK`; `RM_STATUS_UNTEXTURED` (nothing written) for
+/// [`RM_UNTEXTURED`]; `RM_STATUS_BAD_ANGLE` unless `0 < spread < 2`
+/// radians; `RM_STATUS_NULL_POINTER`; `RM_STATUS_MISALIGNED`.
 ///
 /// # Safety
-/// `out` is null (→ `NullPointer`) or points to a writable `int32_t`
-/// (→ `Misaligned` if it is not aligned).
+/// `out` is null or points to a writable `int32_t`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_delta(entry_bits: i32, spread: i32, out: *mut i32) -> RmStatus {
     let spread = match check_ptr(out.cast_const(), false).and(spread_from_bits(spread)) {

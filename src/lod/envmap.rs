@@ -461,8 +461,8 @@ pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::envmap_reference as reference;
     use proptest::prelude::*;
+    use raymip_reference::envmap as reference;
 
     fn q(v: [f64; 3]) -> UnitVec {
         UnitVec(v.map(I2F30::saturating_from_num))
@@ -604,6 +604,7 @@ mod tests {
                 vals.extend([v, -v]);
             }
         }
+        let mut worst = 0.0f64;
         for &a in &vals {
             for &b in &vals {
                 for &c in &vals {
@@ -621,9 +622,61 @@ mod tests {
                         "{d:?}: v {v} vs {wv}"
                     );
                     assert!((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+                    worst = worst.max(du.min(1.0 - du)).max((v - wv).abs());
                 }
             }
         }
+        // The documented bound is not far above the measured error.
+        std::println!("direction_uv: max |error| {worst:.3e} (bound {ENVMAP_UV_MAX_ERROR:.3e})");
+        assert!(
+            ENVMAP_UV_MAX_ERROR <= 8.0 * worst,
+            "bound over 8x {worst:.3e}"
+        );
+    }
+
+    /// The cone lod against f64 on a grid of map sizes, spreads (every
+    /// power of two and its neighbours) and directions: within
+    /// [`ENVMAP_LOD_MAX_ERROR`], and that bound within 4× of the measured
+    /// error.
+    #[test]
+    fn cone_lod_bound_is_tight() {
+        let dirs = [
+            None,
+            Some([0.0, 0.0, 1.0]),
+            Some([0.6, 0.0, 0.8]),
+            Some([0.1, 0.99, 0.0]),
+            Some([-0.48, -0.6, 0.64]),
+        ];
+        let mut worst = 0.0f64;
+        for (w, h) in [
+            (1, 1),
+            (7, 3),
+            (256, 128),
+            (1000, 500),
+            (MAX_SIZE, MAX_SIZE),
+        ] {
+            let m = EnvMap::new(w, h).unwrap();
+            for k in 0..31 {
+                for g in [1i32 << k, (1 << k) + 1, (1 << k) - 1, 3 << k.min(29)] {
+                    let g = Spread::from_bits(g.max(1));
+                    for dir in dirs {
+                        let dir = dir.map(|d: [f64; 3]| UnitVec(d.map(I2F30::from_num)));
+                        let want = reference::cone_lod_f64(w, h, g.to_num(), dir.map(f));
+                        let got = m.cone_lod(g, dir).to_num::<f64>();
+                        assert!(
+                            (got - want).abs() <= ENVMAP_LOD_MAX_ERROR,
+                            "{got} vs {want}"
+                        );
+                        worst = worst.max((got - want).abs());
+                    }
+                }
+            }
+        }
+        std::println!("cone_lod: max |error| {worst:.3e} (bound {ENVMAP_LOD_MAX_ERROR:.3e})");
+        assert!(
+            ENVMAP_LOD_MAX_ERROR <= 4.0 * worst,
+            "bound over 4x {worst:.3e}"
+        );
     }
 
     #[test]

@@ -279,6 +279,11 @@ mod tests {
         }
         std::println!("fast log2: max |error| = {worst:.3e} (limit {FAST_LOG2_MAX_ERROR:.3e})");
         assert!(worst > 6.5e-4, "the sweep must reach the interval ends");
+        // The documented bound is a tight one: within 4× of the measured error.
+        assert!(
+            worst > FAST_LOG2_MAX_ERROR / 4.0,
+            "FAST_LOG2_MAX_ERROR {FAST_LOG2_MAX_ERROR:.3e} is over 4x the measured {worst:.3e}"
+        );
     }
 
     #[test]

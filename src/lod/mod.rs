@@ -810,7 +810,7 @@ mod tests {
             let gq = Spread::from_num(g);
             let spread = PixelSpread::from_angle(gq).unwrap();
             let pb = Log2Pb::compute(&make(p, uv, w, h), &spread);
-            let want_pb = crate::pb_reference::log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
+            let want_pb = raymip_reference::pb::log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
             prop_assume!(want_pb.is_finite() && want_pb.abs() < 100.0);
             // Segments whose sum lies in [2^-16, 2^16].
             let n = segs.len() as f64;

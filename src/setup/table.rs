@@ -402,7 +402,7 @@ mod tests {
 
     /// The harness's independent f64 reference of log2 Pb.
     fn reference(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: f64, h: f64, gamma: f64) -> f64 {
-        crate::pb_reference::log2_pb_f64(&p, &uv, w, h, gamma)
+        raymip_reference::pb::log2_pb_f64(&p, &uv, w, h, gamma)
     }
 
     fn tri(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {

@@ -212,11 +212,21 @@ impl AddressMode {
     /// 2^−(bits+1)` (the half step rounds the weight to nearest),
     /// `i₀ = floor(x)`, `i₁ = i₀ + 1`, weight of `i₁` the top `bits` bits
     /// of `frac(x)`. Indices are always `< size`.
+    /// Both taps inside the level (`0 ≤ i₀`, `i₁ ≤ size − 1`: one
+    /// unsigned compare) are their own texels in every mode; only the
+    /// others go through [`map`](Self::map) (decided once per axis).
     #[inline(always)]
     pub(crate) fn taps(self, coord: TexCoord, size: u32, bits: u32) -> AxisTaps {
         let offset = (1i64 << (31 - bits)) - (1 << 31);
         let (i, frac) = self.scaled(coord, size, offset);
         let f = frac >> (32 - bits);
+        if (i as u32) < size.wrapping_sub(1) {
+            return AxisTaps {
+                i: [i as u32, (i as u32).wrapping_add(1)],
+                f,
+                border: [false; 2],
+            };
+        }
         let (i0, b0) = self.map(i, size);
         let (i1, b1) = self.map(i.wrapping_add(1), size);
         AxisTaps {
@@ -224,6 +234,68 @@ impl AddressMode {
             f,
             border: [b0, b1],
         }
+    }
+}
+
+impl AddressMode {
+    /// [`taps`](Self::taps) on a power-of-two side `n = 2^k` with
+    /// `m = n − 1`, `s = 31 − k` and the wrap constant `c =`
+    /// [`wrap_constant`]`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
+    /// multiply), mirror by [`pow2_mirror_taps`] (a multiply-accumulate
+    /// and an XOR per tap), the clamping modes as for any size. Equal to
+    /// `taps` for every input (tested).
+    #[inline(always)]
+    pub(crate) fn pow2_taps(
+        self,
+        coord: TexCoord,
+        n: u32,
+        m: u32,
+        s: u32,
+        c: u32,
+        bits: u32,
+    ) -> AxisTaps {
+        match self {
+            Self::Wrap => {
+                let (i0, i1, f) = pow2_wrap_taps(coord, n, m, c, bits);
+                AxisTaps {
+                    i: [i0, i1],
+                    f,
+                    border: [false; 2],
+                }
+            }
+            Self::Mirror => pow2_mirror_taps(coord, n, m, s, bits),
+            _ => self.taps(coord, n, bits),
+        }
+    }
+}
+
+/// [`AddressMode::taps`] of [`Mirror`](AddressMode::Mirror) for a
+/// power-of-two side `n = 2^k`, `m = n − 1`, `s = 31 − k`. With `q = floor(u) mod 2`
+/// and `lo` the fractional bits of `u`, the position
+/// `x = (u mod 2)·n − ½ + 2^−(bits+1)` in 32.32 fixed point is
+/// `lo·n + q·n·2³² + 2^(31−bits) − 2³¹`: one 32×32→64-bit
+/// multiply-accumulate (`umlal` on the M4) onto the constant
+/// `(q·n − 1)·2³² + 2³¹ + 2^(31−bits)`. Its high word `j ∈ [−1, 2n − 1]`
+/// is the tap in the unfolded period `[0, 2n)` (−1 and `2n` its seam
+/// neighbours), the weight is the top `bits` bits of the low word. A tap
+/// `j` of the second copy (bit `k` set) maps to `2n − 1 − j`, i.e. its low
+/// `k` bits inverted: `(j ^ (bit k of j ? all ones : 0)) & (n − 1)`, the
+/// sign of `j << s` spread by an arithmetic shift (−1 and `2n` go to 0).
+#[inline(always)]
+pub(crate) fn pow2_mirror_taps(coord: TexCoord, n: u32, m: u32, s: u32, bits: u32) -> AxisTaps {
+    let b = coord.to_bits();
+    let q = (b >> 32) as u32 & 1;
+    let start = (u64::from(q.wrapping_mul(n).wrapping_sub(1)) << 32)
+        | u64::from((1u32 << 31) | (1 << (31 - bits)));
+    let p = u64::from(b as u32)
+        .wrapping_mul(u64::from(n))
+        .wrapping_add(start);
+    let j = (p >> 32) as u32;
+    let fold = |j: u32| (j ^ ((j.wrapping_shl(s) as i32 >> 31) as u32)) & m;
+    AxisTaps {
+        i: [fold(j), fold(j.wrapping_add(1))],
+        f: (p as u32) >> (32 - bits),
+        border: [false; 2],
     }
 }
 
@@ -252,15 +324,23 @@ pub(crate) const fn wrap_constant(k: u32, bits: u32) -> u32 {
 /// `x = size·y` for the integer `y = u + c` (exact for `k ≤ 31 − bits`).
 /// For `y mod 2³²` the product `size·y` has `i₀ = floor(x / 2³²)` already
 /// wrapped to `[0, size)` in its high word and the weight in the top
-/// `bits` bits of its low word; `i₁ = (i₀ + 1) mod size`. Tested equal to
+/// `bits` bits of its low word; `i₁ = (i₀ + 1) & m` with `m = size − 1`
+/// (given: a level view's mask, so that the view's own mask of the same
+/// index folds into it). Tested equal to
 /// `taps` for every side up to [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE).
 #[inline(always)]
-pub(crate) fn pow2_wrap_taps(coord: TexCoord, size: u32, c: u32, bits: u32) -> (u32, u32, u32) {
+pub(crate) fn pow2_wrap_taps(
+    coord: TexCoord,
+    size: u32,
+    m: u32,
+    c: u32,
+    bits: u32,
+) -> (u32, u32, u32) {
     let y = (coord.to_bits() as u32).wrapping_add(c);
     let p = u64::from(y) * u64::from(size);
     let i0 = (p >> 32) as u32;
     let f = (p as u32) >> (32 - bits);
-    (i0, i0.wrapping_add(1) & size.wrapping_sub(1), f)
+    (i0, i0.wrapping_add(1) & m, f)
 }
 
 /// An address mode as a type: what a [`Sampler`](crate::texture::Sampler)
@@ -436,6 +516,43 @@ mod tests {
                 // (clamping reductions may change it otherwise).
                 if r0 != r1 {
                     prop_assert_eq!(f, w);
+                }
+            }
+        }
+    }
+
+    /// The power-of-two forms (`pow2_taps`: wrap by one multiply, mirror
+    /// by a multiply-accumulate and an XOR, the clamping modes decided
+    /// once per axis) equal the general taps for every mode, side `2^k`,
+    /// weight width, and random, seam and edge coordinates.
+    #[test]
+    fn pow2_taps_equal_general_taps() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for m in AddressMode::ALL {
+            for k in 0..=15u32 {
+                let size = 1u32 << k;
+                for n in 0..if cfg!(miri) { 10 } else { 2000u64 } {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    // Random bits, and the seam/edge values of this size.
+                    let edge = (n % (4 * u64::from(size) + 1)) << (31 - k);
+                    for bits in [
+                        x as i64,
+                        edge as i64,
+                        -(edge as i64),
+                        (edge as i64) + (3 << 32),
+                        (x as i64) >> (n % 40),
+                    ] {
+                        let c = TexCoord::from_bits(bits);
+                        for b in [8, 12, 16] {
+                            assert_eq!(
+                                m.pow2_taps(c, size, size - 1, 31 - k, wrap_constant(k, b), b),
+                                m.taps(c, size, b),
+                                "{m:?} k {k} bits {bits:#x} weight bits {b}"
+                            );
+                        }
+                    }
                 }
             }
         }

@@ -135,6 +135,59 @@ pub struct FetchStats {
     pub skipped: u64,
 }
 
+/// What a [`Sampler`] counts of its texel reads: the statistics part of
+/// its key ([`Cfg`]'s last parameter). [`FetchStats`] (the default)
+/// counts every read exactly; [`NoStats`] counts nothing, for a firmware
+/// that reads no statistics (each count is then no instruction, where
+/// [`FetchStats`] costs a 64-bit add per call). Sealed.
+pub trait Stats: sealed::Sealed + Copy + Default + fmt::Debug + Send + Sync + 'static {
+    /// Adds `fetched` texel reads and `skipped` avoided ones.
+    fn count(&mut self, fetched: u64, skipped: u64);
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::FetchStats {}
+    impl Sealed for super::NoStats {}
+}
+
+impl Stats for FetchStats {
+    #[inline(always)]
+    fn count(&mut self, fetched: u64, skipped: u64) {
+        self.fetched += fetched;
+        self.skipped += skipped;
+    }
+}
+
+/// No fetch statistics ([`Stats`]): a sampler with this key part has no
+/// counters and no `stats()` method.
+///
+/// # Example
+/// ```
+/// use raymip::texture::NoStats;
+/// use raymip::texture::address::Wrap;
+/// use raymip::texture::kernel::Linear;
+/// use raymip::units::Accurate;
+/// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
+/// let texels = [0xFF80_8080u32; 1];
+/// let pyramid = Pyramid::new(Geometry::new(1, 1, 1)?, &texels)?;
+/// // The same results as the counting sampler, without the counters.
+/// let mut quiet: Sampler<_, Cfg<Wrap, Wrap, Linear, Accurate, NoStats>> = Sampler::new(pyramid);
+/// let mut counted = Sampler::wrap(pyramid);
+/// let c = TexCoord::from_num(0.5);
+/// let mode = Mode::Trilinear;
+/// assert_eq!(quiet.sample(c, c, Lod::ZERO, mode), counted.sample(c, c, Lod::ZERO, mode));
+/// assert_eq!(counted.stats().fetched, 4);
+/// # Ok::<(), raymip::MipError>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NoStats;
+
+impl Stats for NoStats {
+    #[inline(always)]
+    fn count(&mut self, _fetched: u64, _skipped: u64) {}
+}
+
 /// Errors at the float edge of the sampler.
 ///
 /// # Example

@@ -400,9 +400,60 @@ static void test_sampler_state(void) {
     CHECK(rm_sampler_init_desc(&s, &tex, &d) == RM_STATUS_OUT_OF_RANGE, "anisotropy out of range");
 }
 
+/* Depth-first paths of RM_MAX_BOUNCES (10) bounces, each hit pushing two
+ * continuations (a reflection and a refraction): every push succeeds,
+ * 2^11 - 1 hits in all, and the stack is full at its deepest (one waiting
+ * sibling per depth 1 .. 9, plus the two newest: 11 = (2 - 1) * 10 + 1,
+ * worked out here by simulation, not taken from the header). */
+static void test_deep_paths(void) {
+    RmRayStack stack;
+    RmPathState s;
+    CHECK(rm_ray_stack_init(&stack) == RM_STATUS_OK, "init");
+    CHECK(rm_path_primary(1 << 20, 0xFF, &s) == RM_STATUS_OK && rm_ray_stack_push(&stack, &s) == RM_STATUS_OK, "primary");
+    long hits = 0, dropped = 0;
+    unsigned most = stack.len, sim_len = 1, sim_most = 1;
+    while (rm_ray_stack_pop(&stack, &s) == RM_STATUS_OK) {
+        sim_len--;
+        hits++;
+        if (s.depth < 10) {
+            for (int k = 0; k < 2; k++) {
+                RmPathState c = s;
+                rm_path_bounce(&c, 0);
+                sim_len++;
+                if (rm_ray_stack_push(&stack, &c) != RM_STATUS_OK) dropped++;
+            }
+        }
+        most = stack.len > most ? stack.len : most;
+        sim_most = sim_len > sim_most ? sim_len : sim_most;
+    }
+    CHECK(dropped == 0, "%ld continuations dropped", dropped);
+    CHECK(hits == (1L << 11) - 1, "%ld hits", hits);
+    CHECK(most == sim_most && most == RM_RAY_STACK_CAPACITY, "high water %u, simulated %u", most, sim_most);
+    CHECK(RM_STACK_BOUND(10, 2) == 11 && RM_STACK_BOUND(7, 1) == 1 && RM_STACK_BOUND(4, 3) == 9, "RM_STACK_BOUND");
+}
+
+/* The fixed-point helpers of every format against the scaling by hand. */
+static void test_helpers(void) {
+    CHECK(RM_I32F32(0.75) == 3LL << 30 && RM_I32F32(-1.5) == -(3LL << 31), "I32F32");
+    CHECK(RM_I32F32_INT(-3) == -(3LL << 32) && RM_I32F32_RATIO(3, 4) == 3LL << 30, "I32F32 int/ratio");
+    CHECK(fabs(RM_I32F32_TO_DOUBLE(RM_I32F32(0.3)) - 0.3) < 1e-9, "I32F32 back");
+    CHECK(RM_U32F32(100.5) == (100ULL << 32 | 1ULL << 31) && RM_U32F32_INT(147) == 147ULL << 32, "U32F32");
+    CHECK(RM_U32F32_RATIO(1, 3) == 0x55555555ULL && RM_U32F32_TO_DOUBLE(RM_U32F32_INT(9)) == 9.0, "U32F32 ratio/back");
+    CHECK(RM_I2F30(1.0 / 1024) == 1 << 20 && RM_I2F30_INT(1) == 1 << 30 && RM_I2F30_RATIO(-1, 1024) == -(1 << 20), "I2F30");
+    CHECK(RM_I2F30_TO_DOUBLE(1 << 29) == 0.5, "I2F30 back");
+    CHECK(RM_I16F16(-2.25) == -(9 << 14) && RM_I16F16_INT(-7) == -7 * 65536 && RM_I16F16_RATIO(1, 8) == 8192, "I16F16");
+    CHECK(RM_I16F16_TO_DOUBLE(3 << 15) == 1.5, "I16F16 back");
+    CHECK(RM_I8F8(1.62) == 415 && RM_I8F8_INT(-3) == -768 && RM_I8F8_RATIO(5, 2) == 640, "I8F8");
+    CHECK(RM_I8F8_TO_DOUBLE(-384) == -1.5, "I8F8 back");
+    CHECK(RM_U1F31(0.5) == 1u << 30 && RM_U1F31_INT(1) == RM_COS_ONE && RM_U1F31_RATIO(1, 4) == 1u << 29, "U1F31");
+    CHECK(RM_U1F31_TO_DOUBLE(RM_COS_ONE) == 1.0, "U1F31 back");
+}
+
 int main(void) {
     test_table_and_lod();
     test_ray_stack();
+    test_deep_paths();
+    test_helpers();
     test_sampling();
     test_sampler_state();
     printf("%d passed, %d failed\n", passed, failed);

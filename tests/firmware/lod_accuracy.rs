@@ -64,7 +64,7 @@ fn measured_error_of_every_lod_stage() {
             st = st.advance(t).bounce(Spread::ZERO);
             pl += t.to_num::<f64>();
         }
-        let want = pl.log2() - want_pb;
+        let want = raymip_reference::lod::table(pl, want_pb);
         if want.abs() > 120.0 {
             continue;
         }
@@ -86,9 +86,25 @@ fn measured_error_of_every_lod_stage() {
     println!("  cone lod, no normal term            {e_cone:.3e}  bound {LOD_MAX_ERROR:.3e}");
     println!("  cone lod with normal term           {e_normal:.3e}  bound {LOD_MAX_ERROR:.3e}");
     assert!(n_lod > 10_000, "too few lod samples: {n_lod}");
-    assert!(e_log2 <= LOG2_MAX_ERROR, "log2 {e_log2}");
-    assert!(e_table <= TABLE_MAX_ERROR, "table {e_table}");
-    assert!(e_lod <= LOD_MAX_ERROR, "lod {e_lod}");
-    assert!(e_cone <= LOD_MAX_ERROR, "cone {e_cone}");
-    assert!(e_normal <= LOD_MAX_ERROR, "cone+normal {e_normal}");
+    // Each documented bound holds, and is not far above what is measured
+    // (callers size their error budgets from it): the lod bounds within 4×,
+    // log2 within 8× (random inputs; the unit test sweeps for 4×),
+    // the table's (it covers any triangle, these are random ones) within 32×.
+    within("log2", e_log2, LOG2_MAX_ERROR, 8.0);
+    within("table", e_table, TABLE_MAX_ERROR, 32.0);
+    within("lod", e_lod, LOD_MAX_ERROR, 4.0);
+    within("cone", e_cone, LOD_MAX_ERROR, 4.0);
+    within("cone+normal", e_normal, LOD_MAX_ERROR, 4.0);
+}
+
+/// `measured ≤ bound ≤ slack · measured`.
+fn within(what: &str, measured: f64, bound: f64, slack: f64) {
+    assert!(
+        measured <= bound,
+        "{what}: {measured:.3e} above the bound {bound:.3e}"
+    );
+    assert!(
+        bound <= slack * measured,
+        "{what}: the bound {bound:.3e} is over {slack}x the measured {measured:.3e}"
+    );
 }

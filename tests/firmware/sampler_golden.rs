@@ -16,12 +16,13 @@
 use raymip::texture::sampler::Key;
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::TexelCache;
-use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
-use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::texture::storage::mip::{Pyramid, TexelSource, full_levels};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{AddressMode, FetchStats, Mode, Sampler};
 use raymip::units::{Lod, TexCoord};
 
 use crate::common;
-use common::{Rng, random_texture};
+use common::{random_texture, samples_for};
 
 /// FNV-1a, 64 bit.
 struct Fnv(u64);
@@ -38,68 +39,6 @@ impl Fnv {
     }
 }
 
-/// Random and edge samples (as `texture_accuracy.rs`).
-fn samples_for(g: &Geometry, n: usize, seed: u64) -> Vec<(TexCoord, TexCoord, Lod)> {
-    let mut rng = Rng(seed | 1);
-    let top = f64::from(g.levels() - 1);
-    let mut out = Vec::new();
-    let lods = [
-        -3.0,
-        0.0,
-        0.25,
-        0.5,
-        1.0,
-        1.5,
-        top - 0.5,
-        top,
-        top + 2.0,
-        1.0 / 256.0,
-        255.0 / 256.0,
-    ];
-    let q = |x: f64| TexCoord::from_num(x);
-    for _ in 0..n {
-        let u = rng.unit() * 5.0 - 2.0;
-        let v = rng.unit() * 5.0 - 2.0;
-        let lod = rng.unit() * (top + 2.0) - 1.0;
-        out.push((q(u), q(v), Lod::from_num(lod)));
-    }
-    for k in 0..g.levels() {
-        let (w, h) = g.level_size(k);
-        for _ in 0..n / 8 + 4 {
-            let i = (rng.next_u64() % u64::from(w)) as f64;
-            let j = (rng.next_u64() % u64::from(h)) as f64;
-            let lod = Lod::from_num(lods[(rng.next_u64() % lods.len() as u64) as usize]);
-            let kl = Lod::from_num(f64::from(k));
-            out.push((q((i + 0.5) / f64::from(w)), q((j + 0.5) / f64::from(h)), kl));
-            out.push((q(i / f64::from(w)), q(j / f64::from(h)), kl));
-            out.push((q((i + 0.5) / f64::from(w)), q(j / f64::from(h)), lod));
-        }
-    }
-    let eps = TexCoord::from_bits(1);
-    for &lod in &lods {
-        let l = Lod::from_num(lod);
-        for (u, v) in [
-            (TexCoord::ZERO, TexCoord::ZERO),
-            (TexCoord::ONE, TexCoord::ONE),
-            (-eps, eps),
-            (TexCoord::ONE - eps, TexCoord::ONE + eps),
-            (q(1e6 + 0.3), q(-1e6 - 0.7)),
-            (q(-1e6), q(1e6)),
-            (q(0.5), q(-3.999)),
-            (TexCoord::MIN, TexCoord::MAX),
-        ] {
-            out.push((u, v, l));
-        }
-    }
-    // Raw bit patterns over the whole coordinate and lod range.
-    for _ in 0..n / 4 {
-        let u = TexCoord::from_bits(rng.next_u64() as i64 >> (rng.next_u64() % 33));
-        let v = TexCoord::from_bits(rng.next_u64() as i64 >> (rng.next_u64() % 33));
-        out.push((u, v, Lod::from_bits(rng.next_u64() as i16)));
-    }
-    out
-}
-
 const MODES: [Mode; 4] = [
     Mode::Trilinear,
     Mode::BilinearNearestLevel,
@@ -114,7 +53,7 @@ const STOCHASTIC: [StochasticMode; 3] = [
 ];
 
 /// Hash of every ACCURATE result and counter of `make()`'s sampler.
-fn hash_all<S: TexelSource, K: Key>(
+fn hash_all<S: TexelSource, K: Key<Stats = FetchStats>>(
     samples: &[(TexCoord, TexCoord, Lod)],
     mut make: impl FnMut() -> Sampler<S, K>,
 ) -> u64 {
@@ -255,13 +194,27 @@ fn hashes(w: u32, h: u32, levels: u8) -> [u64; 4] {
     let (g, buf) = random_texture(w, h, levels, u64::from(w) * 104_729 + u64::from(h)).unwrap();
     let p = Pyramid::new(g, &buf).unwrap();
     let n = if cfg!(miri) { 8 } else { 400 };
-    let samples = samples_for(&g, n, u64::from(w) << 8 ^ u64::from(h) ^ 0xA5);
+    let samples = samples_for(&g, n, u64::from(w) << 8 ^ u64::from(h) ^ 0xA5, true);
     let mut out = [0u64; 4];
     let cached = || TexelCache::<_, 4, 2>::new(p);
     out[0] = hash_all(&samples, || Sampler::wrap(p));
     out[1] = hash_all(&samples, || Sampler::clamp(p));
     out[2] = hash_all(&samples, || Sampler::wrap(cached()));
     out[3] = hash_all(&samples, || Sampler::clamp(cached()));
+    // Power-of-two sides: the direct path of the level views gives the
+    // same results and counters.
+    if let Ok(d) = Pow2Pyramid::new(p) {
+        assert_eq!(
+            hash_all(&samples, || Sampler::wrap(d)),
+            out[0],
+            "direct wrap"
+        );
+        assert_eq!(
+            hash_all(&samples, || Sampler::clamp(d)),
+            out[1],
+            "direct clamp"
+        );
+    }
     // The run-time forms give the same results: the address matched per
     // axis, and the key table of the C ABI.
     for (i, a) in [AddressMode::Wrap, AddressMode::ClampToEdge]

@@ -1,8 +1,8 @@
-//! Filtering of linear RGBA8 data against an f64 reference written here
-//! from the definitions (texel centres at (i + ½)/size; every address mode
-//! as the Vulkan wrapping operation defines it, the border colour for
-//! clamp-to-border; lod clamped to the stored levels, nearest level =
-//! floor(lod + ½)), for both precision tiers.
+//! Filtering of linear RGBA8 data against the f64 reference sampler
+//! (`raymip_reference::sampler`: texel centres at (i + ½)/size; every
+//! address mode as the Vulkan wrapping operation defines it, the border
+//! colour for clamp-to-border; lod clamped to the stored levels, nearest
+//! level = floor(lod + ½)), for both precision tiers.
 //!
 //! Bounds: nearest-texel modes exact (nearest texel, nearest level) or
 //! within ½ LSB (nearest texel, linear level: one rounding of an exact
@@ -22,115 +22,66 @@ use raymip::texture::{AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc,
 use raymip::units::{Fast, Lod, TexCoord};
 
 use crate::common;
-use common::{Rng, random_texture};
+use common::{Rng, random_texture, samples_for};
+use raymip_reference::sampler::{self as reference, Texture};
 
-/// A generated pyramid with random level 0, owned.
+/// A generated pyramid with random level 0, owned, and the reference's
+/// copy of its texels.
 struct Tex {
     g: Geometry,
     buf: Vec<Texel>,
+    reference: Texture,
 }
 
 impl Tex {
+    fn new(g: Geometry, buf: Vec<Texel>) -> Self {
+        let reference = Texture::from_rgba8_levels(g.width(), g.height(), g.levels(), &buf);
+        Tex { g, buf, reference }
+    }
     fn random(w: u32, h: u32, levels: u8, seed: u64) -> Self {
         let (g, buf) = random_texture(w, h, levels, seed).unwrap();
-        Tex { g, buf }
+        Self::new(g, buf)
     }
     fn pyramid(&self) -> Pyramid<'_> {
         Pyramid::new(self.g, &self.buf).unwrap()
-    }
-    /// Channels of an addressed texel, or of the border colour.
-    fn at(&self, k: u32, x: Option<i64>, y: Option<i64>) -> [f64; 4] {
-        match (x, y) {
-            (Some(x), Some(y)) => self.texel(k, x, y),
-            _ => border(),
-        }
-    }
-    /// Channels of texel (x, y) of level k, straight from the buffer.
-    fn texel(&self, k: u32, x: i64, y: i64) -> [f64; 4] {
-        let (w, _) = ref_size(&self.g, k);
-        let off: usize = (0..k)
-            .map(|j| {
-                let (a, b) = ref_size(&self.g, j);
-                (a * b) as usize
-            })
-            .sum();
-        let t = self.buf[off + (y as usize) * w as usize + x as usize];
-        [0, 1, 2, 3].map(|c| f64::from((t >> (8 * c)) & 0xFF))
-    }
-}
-
-/// Level size from the definition.
-fn ref_size(g: &Geometry, k: u32) -> (u32, u32) {
-    ((g.width() >> k).max(1), (g.height() >> k).max(1))
-}
-
-/// Addressed integer index (`None`: the border colour), the Vulkan
-/// wrapping operation written independently of the firmware.
-fn addr(i: i64, n: u32, a: AddressMode) -> Option<i64> {
-    let n = i64::from(n);
-    match a {
-        AddressMode::Wrap => Some(i.rem_euclid(n)),
-        AddressMode::Mirror => {
-            let m = i.rem_euclid(2 * n);
-            Some(if m < n { m } else { 2 * n - 1 - m })
-        }
-        AddressMode::ClampToEdge => Some(i.clamp(0, n - 1)),
-        AddressMode::MirrorOnce => Some((if i < 0 { -1 - i } else { i }).clamp(0, n - 1)),
-        AddressMode::ClampToBorder => (0..n).contains(&i).then_some(i),
     }
 }
 
 /// The border colour of every sampler here (linear RGBA8).
 const BORDER: Texel = 0x80FF_4010;
 
-fn border() -> [f64; 4] {
-    [0, 1, 2, 3].map(|c| f64::from((BORDER >> (8 * c)) & 0xFF))
-}
-
-fn ref_nearest(t: &Tex, k: u32, u: f64, v: f64, a: AddressMode) -> [f64; 4] {
-    let (w, h) = ref_size(&t.g, k);
-    let x = addr((u * f64::from(w)).floor() as i64, w, a);
-    let y = addr((v * f64::from(h)).floor() as i64, h, a);
-    t.at(k, x, y)
-}
-
-fn ref_bilinear(t: &Tex, k: u32, u: f64, v: f64, a: AddressMode) -> [f64; 4] {
-    let (w, h) = ref_size(&t.g, k);
-    let x = u * f64::from(w) - 0.5;
-    let y = v * f64::from(h) - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let (xa, xb) = (addr(x0 as i64, w, a), addr(x0 as i64 + 1, w, a));
-    let (ya, yb) = (addr(y0 as i64, h, a), addr(y0 as i64 + 1, h, a));
-    let (p, q, r, s) = (
-        t.at(k, xa, ya),
-        t.at(k, xb, ya),
-        t.at(k, xa, yb),
-        t.at(k, xb, yb),
-    );
-    [0, 1, 2, 3].map(|c| {
-        (1.0 - fy) * ((1.0 - fx) * p[c] + fx * q[c]) + fy * ((1.0 - fx) * r[c] + fx * s[c])
-    })
-}
-
-/// Reference sample; `u`, `v`, `lod` are the exact values of the fixed inputs.
+/// Reference sample (channel values 0..=255); `u`, `v`, `lod` are the
+/// exact values of the fixed inputs.
 fn reference(t: &Tex, u: f64, v: f64, lod: f64, mode: Mode, a: AddressMode) -> [f64; 4] {
-    let top = f64::from(t.g.levels() - 1);
-    let lod = lod.clamp(0.0, top);
-    let lower = lod.floor();
-    let frac = lod - lower;
-    let nearest_level = (lod + 0.5).floor().min(top) as u32;
-    let blend = |p: [f64; 4], q: [f64; 4]| [0, 1, 2, 3].map(|c| (1.0 - frac) * p[c] + frac * q[c]);
-    let l0 = lower as u32;
-    let l1 = (l0 + 1).min(top as u32);
-    match mode {
-        Mode::Trilinear => blend(ref_bilinear(t, l0, u, v, a), ref_bilinear(t, l1, u, v, a)),
-        Mode::BilinearNearestLevel => ref_bilinear(t, nearest_level, u, v, a),
-        Mode::Nearest => ref_nearest(t, nearest_level, u, v, a),
-        Mode::NearestTexelLinearLevel => {
-            blend(ref_nearest(t, l0, u, v, a), ref_nearest(t, l1, u, v, a))
-        }
+    let address = reference::Address::from_index(a as u8).unwrap();
+    let sampler = reference::Sampler {
+        tex: &t.reference,
+        state: reference::State {
+            address: [address; 2],
+            border: BORDER.to_le_bytes().map(f64::from),
+            ..reference::State::default()
+        },
+    };
+    sampler.sample(u, v, lod, reference::Mode::from_index(mode as u8).unwrap())
+}
+
+/// The reference's address and filter modes are numbered as the
+/// firmware's (`reference()` maps one to the other by number).
+#[test]
+fn reference_modes_are_numbered_as_the_firmware() {
+    for a in AddressMode::ALL {
+        let r = reference::Address::from_index(a as u8).unwrap();
+        assert_eq!(format!("{r:?}"), format!("{a:?}"));
     }
+    assert_eq!(
+        reference::Address::from_index(AddressMode::ALL.len() as u8),
+        None
+    );
+    for m in MODES {
+        let r = reference::Mode::from_index(m as u8).unwrap();
+        assert_eq!(format!("{r:?}"), format!("{m:?}"));
+    }
+    assert_eq!(reference::Mode::from_index(MODES.len() as u8), None);
 }
 
 /// Largest per-channel |fixed − reference| over the samples, per mode
@@ -256,64 +207,6 @@ fn check_samples(t: &Tex, samples: &[(TexCoord, TexCoord, Lod)], worst: &mut Wor
     }
 }
 
-/// Random samples plus edge samples (texel centres, corners, wrap seams,
-/// integer/fractional/out-of-range lod, large coordinates).
-fn samples_for(g: &Geometry, n: usize, seed: u64) -> Vec<(TexCoord, TexCoord, Lod)> {
-    let mut rng = Rng(seed | 1);
-    let top = f64::from(g.levels() - 1);
-    let mut out = Vec::new();
-    let lods = [
-        -3.0,
-        0.0,
-        0.25,
-        0.5,
-        1.0,
-        1.5,
-        top - 0.5,
-        top,
-        top + 2.0,
-        1.0 / 256.0,
-        255.0 / 256.0,
-    ];
-    let q = |x: f64| TexCoord::from_num(x);
-    // Random, lod random in [−1, top + 1].
-    for _ in 0..n {
-        let u = rng.unit() * 5.0 - 2.0;
-        let v = rng.unit() * 5.0 - 2.0;
-        let lod = rng.unit() * (top + 2.0) - 1.0;
-        out.push((q(u), q(v), Lod::from_num(lod)));
-    }
-    // Texel centres and corners of each level, wrap seams.
-    for k in 0..g.levels() {
-        let (w, h) = g.level_size(k);
-        for _ in 0..n / 8 + 4 {
-            let i = (rng.next_u64() % u64::from(w)) as f64;
-            let j = (rng.next_u64() % u64::from(h)) as f64;
-            let lod = Lod::from_num(lods[(rng.next_u64() % lods.len() as u64) as usize]);
-            let kl = Lod::from_num(f64::from(k));
-            out.push((q((i + 0.5) / f64::from(w)), q((j + 0.5) / f64::from(h)), kl));
-            out.push((q(i / f64::from(w)), q(j / f64::from(h)), kl));
-            out.push((q((i + 0.5) / f64::from(w)), q(j / f64::from(h)), lod));
-        }
-    }
-    let eps = TexCoord::from_bits(1);
-    for &lod in &lods {
-        let l = Lod::from_num(lod);
-        for (u, v) in [
-            (TexCoord::ZERO, TexCoord::ZERO),
-            (TexCoord::ONE, TexCoord::ONE),
-            (-eps, eps),
-            (TexCoord::ONE - eps, TexCoord::ONE + eps),
-            (q(1e6 + 0.3), q(-1e6 - 0.7)),
-            (q(-1e6), q(1e6)),
-            (q(0.5), q(-3.999)),
-        ] {
-            out.push((u, v, l));
-        }
-    }
-    out
-}
-
 fn run(w: u32, h: u32, n: usize) -> Worst {
     run_levels(w, h, full_levels(w, h), n)
 }
@@ -323,7 +216,7 @@ fn run_levels(w: u32, h: u32, levels: u8, n: usize) -> Worst {
     let mut worst = Worst::default();
     check_samples(
         &t,
-        &samples_for(&t.g, n, u64::from(w ^ (h << 3))),
+        &samples_for(&t.g, n, u64::from(w ^ (h << 3)), false),
         &mut worst,
     );
     println!(
@@ -402,7 +295,7 @@ fn high_contrast_edges() {
         }
     }
     generate(&g, &mut buf).unwrap();
-    let t = Tex { g, buf };
+    let t = Tex::new(g, buf);
     let mut rng = Rng(99);
     let mut samples = Vec::new();
     for _ in 0..20_000 {
@@ -528,7 +421,7 @@ fn fast_trilinear_every_lod_step() {
             };
         }
         generate(&g, &mut bw).unwrap();
-        for t in [Tex { g, buf: bw }, Tex::random(w, h, levels, 17)] {
+        for t in [Tex::new(g, bw), Tex::random(w, h, levels, 17)] {
             let mut rng = Rng(u64::from(w) * 31 + 1);
             let mut samples = Vec::new();
             for lb in 0..=(i16::from(levels) * 256) {

@@ -23,167 +23,146 @@ use raymip::texture::kernel::{Linear, Srgb};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
-use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
-use raymip::texture::{Cfg, Mode, Sampler};
+use raymip::texture::storage::mip::{Geometry, Texel};
+use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::{Cfg, Mode, NoStats, Sampler};
 use raymip::units::{Accurate, Fast, Footprint, Lod, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
 use crate::inputs::{self, N, Rng};
 
-/// The plain sampler: RGBA8 pyramid, wrap, ACCURATE.
-pub type Tex = Sampler<Pyramid<'static>>;
+/// The plain sampler: RGBA8 power-of-two pyramid (direct level views),
+/// wrap, ACCURATE, no fetch statistics (the matrix's keys count none: a
+/// firmware that reads no statistics).
+pub type Tex = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Accurate, NoStats>>;
 /// The plain sampler at the FAST tier.
-pub type TexFast = Sampler<Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast>>;
+pub type TexFast = Sampler<Pow2Pyramid<'static>, Cfg<Wrap, Wrap, Linear, Fast, NoStats>>;
 /// One bilinear or trilinear input: `u`, `v`, lod.
 pub type SampleIn = (TexCoord, TexCoord, Lod);
 /// One anisotropic input: `u`, `v`, footprint.
 pub type AnisoIn = (TexCoord, TexCoord, Footprint);
 /// The state rows' key: mirror on u, clamp-to-border on v.
-pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C>>;
+pub type Ts<S, C = Linear> = Sampler<S, Cfg<Mirror, ClampToBorder, C, Accurate, NoStats>>;
 /// The BC1 image behind an 8×2-block texel cache.
 pub type Bc1Cache<'a> = TexelCache<Image<'a, Bc1>, 8, 2>;
 /// The state rows' key at the FAST tier.
-pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast>>;
+pub type TsF<S> = Sampler<S, Cfg<Mirror, ClampToBorder, Linear, Fast, NoStats>>;
+/// The wrap key with fetch statistics (`FetchStats`, the default key's
+/// counting): the matrix's counted row.
+pub type TexCounted<'a> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap>>;
 /// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
-pub type Tw<'a, P = Accurate> = Sampler<Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P>>;
+pub type Tw<'a, P = Accurate> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P, NoStats>>;
 
-/// One bilinear sample at the nearest level.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_bilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::BilinearNearestLevel)
-}
-
-/// One trilinear sample.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_trilinear(s: &mut Tex, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One FAST trilinear sample (the FAST tier's wrap sampler).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_trilinear_fast(s: &mut TexFast, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// A batch of bilinear samples at the nearest level.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_bilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-    s.sample_batch(hits, Mode::BilinearNearestLevel, out)
-}
-
-/// A batch of trilinear samples.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_trilinear(s: &mut Tex, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-    s.sample_batch(hits, Mode::Trilinear, out)
-}
-
-/// One bilinear sample through `TextureSampler` (RGBA8, state with
-/// mirror/border addressing, bias and lod clamp).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_bilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::BilinearNearestLevel)
-}
-
-/// One trilinear sample of an RGBA8 pyramid with the state key.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_trilinear(s: &mut Ts<Pyramid<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of the same texels read as sRGB (decoded to
-/// linear, filtered, re-encoded).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_srgb(
-    s: &mut Ts<Pyramid<'_>, Srgb>,
-    u: TexCoord,
-    v: TexCoord,
-    lod: Lod,
-) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of an RGB565 image (decoded per texel read).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_rgb565(
-    s: &mut Ts<Image<'_, Rgb565>>,
-    u: TexCoord,
-    v: TexCoord,
-    lod: Lod,
-) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One trilinear sample of a BC1 image through an 8×2-block texel cache,
-/// called in pairs: first with the cache emptied by the caller (every
-/// block the sample reads is filled, i.e. decoded), then the same sample
-/// again (every texel read hits).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_bc1(s: &mut Ts<Bc1Cache<'_>>, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
-}
-
-/// One anisotropic sample (trilinear probes): called 64 times with at
-/// most 2 probes, then 4, then 16 (three samplers, one per cap).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_aniso(
-    s: &mut Sampler<Pyramid<'_>>,
-    u: TexCoord,
-    v: TexCoord,
-    fp: &Footprint,
-) -> Texel {
-    s.sample_aniso(u, v, fp)
-}
-
-/// The sampler matrix of issue 20: one wrapper per call, key and tier.
-/// The wrap rows (RGBA8, wrap on both axes, lod bias and clamp set:
-/// [`inputs::wrap_state`]) have the type of the plain rows, so they call
-/// the plain rows' wrappers a second time (a second wrapper of the same
-/// type would be merged with the first by the compiler), plus
-/// `rm_bench_bilinear_fast` / `rm_batch_*_fast` for the FAST bilinear and
-/// batches; `rm_bench_ts_*_fast`: the FAST tier of the `rm_bench_ts_*`
-/// rows above (mirror/border key).
-macro_rules! sample_wrapper {
-    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+/// A measured wrapper: the function, public, with a stable symbol name for
+/// the traces (`no_mangle`) and never inlined.
+macro_rules! probe {
+    ($(#[$m:meta])* fn $name:ident($($a:ident: $t:ty),*) -> $ret:ty $body:block) => {
         $(#[$m])*
         #[allow(unsafe_code)]
         #[unsafe(no_mangle)]
         #[inline(never)]
-        pub fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-            s.sample(u, v, lod, $mode)
-        }
+        pub fn $name($($a: $t),*) -> $ret $body
     };
 }
+
+/// One sample of `mode` through a sampler of type `ty`.
+macro_rules! sample_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        probe!($(#[$m])* fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+            s.sample(u, v, lod, $mode)
+        });
+    };
+}
+
+/// A batch of samples of `mode` through a sampler of type `ty`.
+macro_rules! batch_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
+        probe!($(#[$m])* fn $name(s: &mut $ty, hits: &[SampleIn], out: &mut [Texel]) -> usize {
+            s.sample_batch(hits, $mode, out)
+        });
+    };
+}
+
+/// One anisotropic sample through a sampler of type `ty`.
+macro_rules! aniso_wrapper {
+    ($(#[$m:meta])* $name:ident, $ty:ty) => {
+        probe!($(#[$m])* fn $name(s: &mut $ty, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
+            s.sample_aniso(u, v, fp)
+        });
+    };
+}
+
+sample_wrapper!(
+    /// One bilinear sample at the nearest level.
+    rm_bench_bilinear, Tex, Mode::BilinearNearestLevel);
+
+sample_wrapper!(
+    /// One trilinear sample.
+    rm_bench_trilinear, Tex, Mode::Trilinear);
+
+sample_wrapper!(
+    /// One FAST trilinear sample (the FAST tier's wrap sampler).
+    rm_bench_trilinear_fast, TexFast, Mode::Trilinear);
+
+batch_wrapper!(
+    /// A batch of bilinear samples at the nearest level.
+    rm_batch_bilinear, Tex, Mode::BilinearNearestLevel);
+
+batch_wrapper!(
+    /// A batch of trilinear samples.
+    rm_batch_trilinear, Tex, Mode::Trilinear);
+
+sample_wrapper!(
+    /// One bilinear sample with the state key (RGBA8, mirror/border
+    /// addressing, bias and lod clamp).
+    rm_bench_ts_bilinear, Ts<Pow2Pyramid<'_>>, Mode::BilinearNearestLevel);
+
+sample_wrapper!(
+    /// One trilinear sample of an RGBA8 pyramid with the state key.
+    rm_bench_ts_trilinear, Ts<Pow2Pyramid<'_>>, Mode::Trilinear);
+
+sample_wrapper!(
+    /// One trilinear sample of the same texels read as sRGB (decoded to
+    /// linear, filtered, re-encoded).
+    rm_bench_ts_srgb, Ts<Pow2Pyramid<'_>, Srgb>, Mode::Trilinear);
+
+sample_wrapper!(
+    /// One trilinear sample of an RGB565 image (decoded per texel read).
+    rm_bench_ts_rgb565, Ts<Image<'_, Rgb565>>, Mode::Trilinear);
+
+sample_wrapper!(
+    /// One trilinear sample of a BC1 image through an 8×2-block texel cache,
+    /// called in pairs: first with the cache emptied by the caller (every
+    /// block the sample reads is filled, i.e. decoded), then the same sample
+    /// again (every texel read hits).
+    rm_bench_ts_bc1, Ts<Bc1Cache<'_>>, Mode::Trilinear);
+
+aniso_wrapper!(
+    /// One anisotropic sample (trilinear probes): called 64 times with at
+    /// most 2 probes, then 4, then 16 (three samplers, one per cap).
+    rm_bench_ts_aniso, Tw<'_>);
+
+// The sampler matrix: one wrapper per call, key and tier. The wrap rows
+// (RGBA8, wrap on both axes, lod bias and clamp set:
+// `inputs::wrap_state`) have the type of the plain rows, so they call the
+// plain rows' wrappers a second time (a second wrapper of the same type
+// would be merged with the first by the compiler), plus
+// `rm_bench_bilinear_fast` / `rm_batch_*_fast` for the FAST bilinear and
+// batches; `rm_bench_ts_*_fast`: the FAST tier of the `rm_bench_ts_*`
+// rows above (mirror/border key).
 sample_wrapper!(
     /// RGBA8 bilinear, wrap, bias and clamp set, FAST.
     rm_bench_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
 sample_wrapper!(
+    /// RGBA8 trilinear, wrap, bias and clamp set, ACCURATE, counting its
+    /// texel reads (`FetchStats`).
+    rm_bench_trilinear_counted, TexCounted<'_>, Mode::Trilinear);
+sample_wrapper!(
     /// RGBA8 bilinear, mirror/border key, FAST.
-    rm_bench_ts_bilinear_fast, TsF<Pyramid<'_>>, Mode::BilinearNearestLevel);
+    rm_bench_ts_bilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::BilinearNearestLevel);
 sample_wrapper!(
     /// RGBA8 trilinear, mirror/border key, FAST.
-    rm_bench_ts_trilinear_fast, TsF<Pyramid<'_>>, Mode::Trilinear);
+    rm_bench_ts_trilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::Trilinear);
 sample_wrapper!(
     /// RGB565 trilinear, mirror/border key, FAST.
     rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
@@ -192,32 +171,12 @@ sample_wrapper!(
     /// (called in pairs like [`rm_bench_ts_bc1`]).
     rm_bench_ts_bc1_fast, TsF<Bc1Cache<'_>>, Mode::Trilinear);
 
-/// One anisotropic sample at the FAST tier (trilinear probes), called like
-/// [`rm_bench_ts_aniso`].
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_ts_aniso_fast(
-    s: &mut Tw<'_, Fast>,
-    u: TexCoord,
-    v: TexCoord,
-    fp: &Footprint,
-) -> Texel {
-    s.sample_aniso(u, v, fp)
-}
+aniso_wrapper!(
+    /// One anisotropic sample at the FAST tier (trilinear probes), called like
+    /// [`rm_bench_ts_aniso`].
+    rm_bench_ts_aniso_fast, Tw<'_, Fast>);
 
-/// Batches of the wrap rows (32, then 64 hits per call).
-macro_rules! batch_wrapper {
-    ($(#[$m:meta])* $name:ident, $ty:ty, $mode:expr) => {
-        $(#[$m])*
-        #[allow(unsafe_code)]
-        #[unsafe(no_mangle)]
-        #[inline(never)]
-        pub fn $name(s: &mut $ty, hits: &[SampleIn], out: &mut [Texel]) -> usize {
-            s.sample_batch(hits, $mode, out)
-        }
-    };
-}
+// Batches of the wrap rows (32, then 64 hits per call).
 batch_wrapper!(
     /// Batch: RGBA8 bilinear, wrap, bias and clamp set, FAST.
     rm_batch_bilinear_fast, Tw<'_, Fast>, Mode::BilinearNearestLevel);
@@ -264,21 +223,26 @@ impl Default for Images {
 /// [`Subjects::new`]).
 pub struct Subjects<'a> {
     /// RGBA8, [`inputs::sampler_state`], linear.
-    pub rgba: Ts<Pyramid<'a>>,
+    pub rgba: Ts<Pow2Pyramid<'a>>,
     /// The same texels read as sRGB, results re-encoded.
-    pub srgb: Ts<Pyramid<'a>, Srgb>,
+    pub srgb: Ts<Pow2Pyramid<'a>, Srgb>,
     /// The demo texture converted to RGB565.
     pub rgb565: Ts<Image<'a, Rgb565>>,
     /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
     pub bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
-    pub aniso: [Sampler<Pyramid<'a>>; 3],
+    pub aniso: [Tw<'a>; 3],
     /// The same at the FAST tier.
     pub aniso_fast: [Tw<'a, Fast>; 3],
-    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST.
-    pub wrap: (Tex, TexFast),
+    /// RGBA8, wrap, bias and clamp set: ACCURATE, FAST (no statistics),
+    /// ACCURATE counting its reads.
+    pub wrap: (Tex, TexFast, TexCounted<'a>),
     /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    pub fast: (TsF<Pyramid<'a>>, TsF<Image<'a, Rgb565>>, TsF<Bc1Cache<'a>>),
+    pub fast: (
+        TsF<Pow2Pyramid<'a>>,
+        TsF<Image<'a, Rgb565>>,
+        TsF<Bc1Cache<'a>>,
+    ),
 }
 
 impl<'a> Subjects<'a> {
@@ -286,7 +250,7 @@ impl<'a> Subjects<'a> {
     /// (`None` cannot happen with the demo texture and the states of
     /// [`inputs`]).
     #[must_use]
-    pub fn new(g: Geometry, p: Pyramid<'static>, images: &'a Images) -> Option<Self> {
+    pub fn new(g: Geometry, p: Pow2Pyramid<'static>, images: &'a Images) -> Option<Self> {
         let state = inputs::sampler_state()?;
         let rgb565 = Image::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
         let bc1 = Image::typed(g, ColorSpace::Linear, &images.bc1).ok()?;
@@ -301,6 +265,7 @@ impl<'a> Subjects<'a> {
             aniso: [aniso(2)?, aniso(4)?, aniso(16)?],
             aniso_fast: [anisof(2)?, anisof(4)?, anisof(16)?],
             wrap: (
+                Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
                 Sampler::with_state(p, wrap).ok()?,
             ),
@@ -340,8 +305,8 @@ pub trait Meter {
 /// (mirror u / border v, ACCURATE: RGBA8 bilinear and trilinear, sRGB,
 /// RGB565, BC1 fill/hit pairs, anisotropic 2×, 4×, 16×), then the rest of
 /// the matrix: the wrap rows (single calls, then batches of 32 and 64
-/// hits), the FAST tier of the mirror/border rows and anisotropic FAST.
-/// Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
+/// hits), the FAST tier of the mirror/border rows, anisotropic FAST and
+/// the wrap trilinear row with fetch statistics. Keys: `scripts/budgets.py` `MATRIX_ROWS` (batches: the key of the
 /// single-call row). The inputs are drawn by the caller (the budgets' order).
 #[inline(always)]
 pub fn sampler_rows<M: Meter>(
@@ -351,18 +316,18 @@ pub fn sampler_rows<M: Meter>(
     tri_in: &[SampleIn; N],
     aniso_in: &[AnisoIn; N],
 ) {
-    m.row("ts_bil", bil_in, |(u, v, l)| {
-        rm_bench_ts_bilinear(&mut s.rgba, u, v, l)
-    });
-    m.row("ts_tri", tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear(&mut s.rgba, u, v, l)
-    });
-    m.row("ts_srgb", tri_in, |(u, v, l)| {
-        rm_bench_ts_srgb(&mut s.srgb, u, v, l)
-    });
-    m.row("ts_565", tri_in, |(u, v, l)| {
-        rm_bench_ts_rgb565(&mut s.rgb565, u, v, l)
-    });
+    // `m.row(key, inputs, ..)` of one wrapper call per input.
+    macro_rules! rows {
+        ($($key:literal, $inputs:expr, $wrapper:ident($s:expr);)+) => {
+            $(m.row($key, $inputs, |(u, v, l)| $wrapper($s, u, v, l));)+
+        };
+    }
+    rows! {
+        "ts_bil", bil_in, rm_bench_ts_bilinear(&mut s.rgba);
+        "ts_tri", tri_in, rm_bench_ts_trilinear(&mut s.rgba);
+        "ts_srgb", tri_in, rm_bench_ts_srgb(&mut s.srgb);
+        "ts_565", tri_in, rm_bench_ts_rgb565(&mut s.rgb565);
+    }
     m.pairs(
         ["ts_bc1_fill", "ts_bc1_hit"],
         &mut s.bc1,
@@ -374,42 +339,34 @@ pub fn sampler_rows<M: Meter>(
         m.row(key, aniso_in, |(u, v, fp)| rm_bench_ts_aniso(a, u, v, &fp));
     }
 
-    let (wa, wf) = &mut s.wrap;
-    m.row("tw_bil", bil_in, |(u, v, l)| rm_bench_bilinear(wa, u, v, l));
-    m.row("tw_tri", tri_in, |(u, v, l)| {
-        rm_bench_trilinear(wa, u, v, l)
-    });
-    m.row("tw_bil_f", bil_in, |(u, v, l)| {
-        rm_bench_bilinear_fast(wf, u, v, l)
-    });
-    m.row("tw_tri_f", tri_in, |(u, v, l)| {
-        rm_bench_trilinear_fast(wf, u, v, l)
-    });
+    let (wa, wf, wc) = &mut s.wrap;
+    rows! {
+        "tw_bil", bil_in, rm_bench_bilinear(wa);
+        "tw_tri", tri_in, rm_bench_trilinear(wa);
+        "tw_bil_f", bil_in, rm_bench_bilinear_fast(wf);
+        "tw_tri_f", tri_in, rm_bench_trilinear_fast(wf);
+    }
     let mut out = [0; N];
-    m.batch("tw_bil", |n| {
-        rm_batch_bilinear(wa, bb(&bil_in[..n]), &mut out)
-    });
-    m.batch("tw_tri", |n| {
-        rm_batch_trilinear(wa, bb(&tri_in[..n]), &mut out)
-    });
-    m.batch("tw_bil_f", |n| {
-        rm_batch_bilinear_fast(wf, bb(&bil_in[..n]), &mut out)
-    });
-    m.batch("tw_tri_f", |n| {
-        rm_batch_trilinear_fast(wf, bb(&tri_in[..n]), &mut out)
-    });
+    // `m.batch(key, ..)` of one wrapper call on the first `n` inputs.
+    macro_rules! batches {
+        ($($key:literal, $inputs:expr, $wrapper:ident($s:expr);)+) => {
+            $(m.batch($key, |n| $wrapper($s, bb(&$inputs[..n]), &mut out));)+
+        };
+    }
+    batches! {
+        "tw_bil", bil_in, rm_batch_bilinear(wa);
+        "tw_tri", tri_in, rm_batch_trilinear(wa);
+        "tw_bil_f", bil_in, rm_batch_bilinear_fast(wf);
+        "tw_tri_f", tri_in, rm_batch_trilinear_fast(wf);
+    }
     bb(&out);
 
     let (rgba, rgb565, bc1) = &mut s.fast;
-    m.row("ts_bil_f", bil_in, |(u, v, l)| {
-        rm_bench_ts_bilinear_fast(rgba, u, v, l)
-    });
-    m.row("ts_tri_f", tri_in, |(u, v, l)| {
-        rm_bench_ts_trilinear_fast(rgba, u, v, l)
-    });
-    m.row("ts_565_f", tri_in, |(u, v, l)| {
-        rm_bench_ts_rgb565_fast(rgb565, u, v, l)
-    });
+    rows! {
+        "ts_bil_f", bil_in, rm_bench_ts_bilinear_fast(rgba);
+        "ts_tri_f", tri_in, rm_bench_ts_trilinear_fast(rgba);
+        "ts_565_f", tri_in, rm_bench_ts_rgb565_fast(rgb565);
+    }
     m.pairs(
         ["ts_bc1_fill_f", "ts_bc1_hit_f"],
         bc1,
@@ -425,6 +382,9 @@ pub fn sampler_rows<M: Meter>(
             rm_bench_ts_aniso_fast(a, u, v, &fp)
         });
     }
+    rows! {
+        "tw_tri_n", tri_in, rm_bench_trilinear_counted(wc);
+    }
 }
 
 /// Ray differentials (feature `raydiff`): the primary set-up, one
@@ -436,79 +396,75 @@ pub mod rd {
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::{GSample, first_hit};
     use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
-    use raymip::units::{Footprint, Lod, PathLength, UnitVec};
+    use raymip::units::Footprint;
+    use raymip::units::Lod;
+    use raymip::units::PathLength;
+    use raymip::units::UnitVec;
 
-    /// Primary-ray set-up from the camera axes.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_primary(
-        d: UnitVec,
-        f: UnitVec,
-        r: [DirDiff; 3],
-        u: [DirDiff; 3],
-    ) -> RayDiff {
-        RayDiff::primary(d, f, r, u).0
+    probe! {
+        /// Primary-ray set-up from the camera axes.
+        fn rm_bench_rd_primary(
+            d: UnitVec,
+            f: UnitVec,
+            r: [DirDiff; 3],
+            u: [DirDiff; 3]
+        ) -> RayDiff {
+            RayDiff::primary(d, f, r, u).0
+        }
     }
 
-    /// One transfer to a hit.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
-        s.transfer(d, t, n).0
+    probe! {
+        /// One transfer to a hit.
+        fn rm_bench_rd_transfer(s: &RayDiff, d: UnitVec, t: PathLength, n: UnitVec) -> RayDiff {
+            s.transfer(d, t, n).0
+        }
     }
 
-    /// One reflection.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
-        s.reflect(d, n, dn, dn).0
+    probe! {
+        /// One reflection.
+        fn rm_bench_rd_reflect(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+            s.reflect(d, n, dn, dn).0
+        }
     }
 
-    /// One refraction (η = 1/1.5, cos θₜ = 0.9).
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
-        s.refract(
-            d,
-            n,
-            dn,
-            dn,
-            Eta::from_bits(0x0AAA_AAAB),
-            I2F30::from_bits(0x3999_999A),
-        )
-        .0
+    probe! {
+        /// One refraction (η = 1/1.5, cos θₜ = 0.9).
+        fn rm_bench_rd_refract(s: &RayDiff, d: UnitVec, n: UnitVec, dn: [DirDiff; 3]) -> RayDiff {
+            s.refract(
+                d,
+                n,
+                dn,
+                dn,
+                Eta::from_bits(0x0AAA_AAAB),
+                I2F30::from_bits(0x3999_999A),
+            )
+            .0
+        }
     }
 
-    /// The footprint of a transferred state.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_footprint(
-        t: &RayDiffTriangle,
-        dpx: [PosDiff; 3],
-        dpy: [PosDiff; 3],
-    ) -> Footprint {
-        t.footprint(dpx, dpy)
+    probe! {
+        /// The footprint of a transferred state.
+        fn rm_bench_rd_footprint(
+            t: &RayDiffTriangle,
+            dpx: [PosDiff; 3],
+            dpy: [PosDiff; 3]
+        ) -> Footprint {
+            t.footprint(dpx, dpy)
+        }
     }
 
-    /// The lod of a footprint.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
-        t.lod(fp)
+    probe! {
+        /// The lod of a footprint.
+        fn rm_bench_rd_lod(t: &RayDiffTriangle, fp: &Footprint) -> Lod {
+            t.lod(fp)
+        }
     }
 
-    /// G-buffer first-hit set-up from four neighbours.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
-        first_hit(p, c, nb).0
+    probe! {
+        /// G-buffer first-hit set-up from four neighbours.
+        fn rm_bench_rd_gbuffer(p: &RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> RayDiff {
+            first_hit(p, c, nb).0
+        }
     }
 }
 

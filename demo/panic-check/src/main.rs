@@ -17,12 +17,13 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use panic_never as _;
 use raymip::ffi::{
-    RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage, RmModeBits, RmPathState,
-    RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle, rm_clamp_lod, rm_cone_lod,
-    rm_delta, rm_image_len, rm_mip_generate, rm_path_advance, rm_path_bounce, rm_path_primary,
-    rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop, rm_ray_stack_push, rm_sample,
-    rm_sample_aniso, rm_sample_batch, rm_sampler_desc_default, rm_sampler_init,
-    rm_sampler_init_desc, rm_sampler_init_image, rm_table_build, rm_table_lod, rm_table_update,
+    RM_RAY_STACK_CAPACITY, RM_SAMPLER_WORDS, RmAddressBits, RmFootprint, RmHit, RmImage,
+    RmModeBits, RmPathState, RmRayStack, RmSampler, RmSamplerDesc, RmTexture, RmTriangle,
+    rm_clamp_lod, rm_cone_lod, rm_delta, rm_image_len, rm_mip_generate, rm_path_advance,
+    rm_path_bounce, rm_path_primary, rm_pyramid_len, rm_ray_stack_init, rm_ray_stack_pop,
+    rm_ray_stack_push, rm_sample, rm_sample_aniso, rm_sample_batch, rm_sampler_desc_default,
+    rm_sampler_init, rm_sampler_init_desc, rm_sampler_init_image, rm_sampler_init_wrap,
+    rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::geomlod::{
     InstanceLod, LodMode, LodRange, Selector, choose, ray_mask, transition_step, visible,
@@ -73,7 +74,7 @@ fn c_abi() {
         textured: 1,
     });
     let mut stack = bb(RmRayStack {
-        entries: [RmPathState::default(); 10],
+        entries: [RmPathState::default(); RM_RAY_STACK_CAPACITY],
         len: 0,
     });
     let mut st = RmPathState::default();
@@ -117,14 +118,12 @@ fn c_abi() {
             opaque: [0; RM_SAMPLER_WORDS],
         };
         bb(rm_sampler_init(&mut sampler, &tex, RmAddressBits(bb(1))));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        bb(rm_sampler_init_wrap(bb(&mut sampler), &tex));
+        // One sample at texel (5, 6) and the table's lod.
+        let sample = |s: &mut RmSampler, out: &mut u32| {
+            bb(rm_sample(s, bb(5), bb(6), bb(lod), RmModeBits(bb(0)), out))
+        };
+        sample(&mut sampler, &mut out);
         let mut desc = RmSamplerDesc::default();
         bb(rm_sampler_desc_default(&mut desc));
         let desc = bb(desc);
@@ -152,14 +151,7 @@ fn c_abi() {
         });
         bb(rm_image_len(bb(16), bb(16), bb(5), bb(7)));
         bb(rm_sampler_init_image(&mut sampler, &img, &desc));
-        bb(rm_sample(
-            &mut sampler,
-            bb(5),
-            bb(6),
-            bb(lod),
-            RmModeBits(bb(0)),
-            &mut out,
-        ));
+        sample(&mut sampler, &mut out);
     }
     let mut pyr = [0u32; 21];
     // SAFETY: `pyr` holds 21 writable texels.
@@ -419,17 +411,20 @@ fn main() -> ! {
         }
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];
+        // `sample_batch` of a sampler (any key) with `n` samples into `k`
+        // texel slots (unequal lengths: the shorter one bounds the batch).
+        macro_rules! batch {
+            ($s:expr, $m:expr, $n:expr, $k:expr) => {
+                bb($s.sample_batch(
+                    samples.get(..bb($n)).unwrap_or_default(),
+                    bb($m),
+                    texels.get_mut(..bb($k)).unwrap_or_default(),
+                ))
+            };
+        }
         for &m in &modes {
-            bb(direct.sample_batch(
-                samples.get(..bb(4)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(3)).unwrap_or_default(),
-            ));
-            bb(cached.sample_batch(
-                samples.get(..bb(3)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(4)).unwrap_or_default(),
-            ));
+            batch!(direct, m, 4, 3);
+            batch!(cached, m, 3, 4);
         }
         for m in [
             StochasticMode::Trilinear,
@@ -453,16 +448,8 @@ fn main() -> ! {
         for &m in &modes {
             bb(gpu.sample(u, v, lod, bb(m)));
             bb(gpu_direct.sample(u, v, lod, bb(m)));
-            bb(gpu.sample_batch(
-                samples.get(..bb(3)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(4)).unwrap_or_default(),
-            ));
-            bb(direct_fast.sample_batch(
-                samples.get(..bb(4)).unwrap_or_default(),
-                bb(m),
-                texels.get_mut(..bb(3)).unwrap_or_default(),
-            ));
+            batch!(gpu, m, 3, 4);
+            batch!(direct_fast, m, 4, 3);
         }
         bb(gpu.sample_aniso(u, v, &fp));
         bb(gpu_direct.sample_aniso(u, v, &fp));

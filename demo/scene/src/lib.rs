@@ -45,6 +45,7 @@ use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Coord, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
@@ -479,7 +480,7 @@ const SKY: [u32; 3] = [30, 30, 60];
 #[inline(never)]
 fn sample_tex(
     tex0: &mut Sampler<Tex0Cache>,
-    tex1: &mut Sampler<Pyramid<'static>>,
+    tex1: &mut Sampler<Pow2Pyramid<'static>>,
     tex: u8,
     u: TexCoord,
     v: TexCoord,
@@ -498,7 +499,7 @@ pub struct Renderer {
     table: [Log2Pb; TRIANGLES],
     spread: PixelSpread,
     tex0: Sampler<Tex0Cache>,
-    tex1: Sampler<Pyramid<'static>>,
+    tex1: Sampler<Pow2Pyramid<'static>>,
     /// Counters so far.
     pub counters: Counters,
 }
@@ -524,7 +525,7 @@ impl Renderer {
         };
         let g = tex_geometry()?;
         let p0 = Pyramid::new(g, &TEX0).ok()?;
-        let p1 = Pyramid::new(g, &TEX1).ok()?;
+        let p1 = Pow2Pyramid::new(Pyramid::new(g, &TEX1).ok()?).ok()?;
         Some(Self {
             // The static table is what the firmware uses (flash data).
             table: static_table(),

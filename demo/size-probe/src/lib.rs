@@ -29,6 +29,40 @@ pub static TEX: [u32; TEX_LEN] = {
     t
 };
 
+/// Sizes on this target of the types a firmware keeps per path and per
+/// texture, as the sizes of symbols: `scripts/features` reads them with
+/// `nm -S` for each feature set (`raymip-host memory` uses them). Zeroed
+/// (`.bss`), and kept in both feature-set probes by [`keep_type_sizes`]:
+/// their `.text`/`.rodata` difference is unchanged.
+pub mod type_sizes {
+    use core::mem::size_of;
+    use raymip::path::raystack::PathState;
+    use raymip::texture::address::Wrap;
+    use raymip::texture::storage::mip::Pyramid;
+    use raymip::texture::{Cfg, Sampler};
+
+    /// One ray-stack entry.
+    pub static RAYMIP_SIZE_PATH_STATE: [u8; size_of::<PathState>()] = [0; size_of::<PathState>()];
+    /// A wrapping ACCURATE sampler of a pyramid in memory.
+    pub static RAYMIP_SIZE_SAMPLER: [u8; size_of::<Sampler<Pyramid<'static>, Cfg<Wrap>>>()] =
+        [0; size_of::<Sampler<Pyramid<'static>, Cfg<Wrap>>>()];
+    /// A texel cache of 8 sets × 2 ways in front of a pyramid.
+    #[cfg(feature = "cache")]
+    pub static RAYMIP_SIZE_CACHE_8X2: [u8; size_of::<
+        raymip::texture::storage::cache::TexelCache<Pyramid<'static>, 8, 2>,
+    >()] = [0; size_of::<raymip::texture::storage::cache::TexelCache<Pyramid<'static>, 8, 2>>()];
+}
+
+/// Keeps the [`type_sizes`] symbols in the image (one out-of-line call in
+/// each probe).
+#[inline(never)]
+pub fn keep_type_sizes() {
+    core::hint::black_box(&type_sizes::RAYMIP_SIZE_PATH_STATE);
+    core::hint::black_box(&type_sizes::RAYMIP_SIZE_SAMPLER);
+    #[cfg(feature = "cache")]
+    core::hint::black_box(&type_sizes::RAYMIP_SIZE_CACHE_8X2);
+}
+
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     semihosting::process::exit(101)

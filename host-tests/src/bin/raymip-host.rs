@@ -9,12 +9,13 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use raymip_host::cli::instances::{cmd_bench, cmd_render as cmd_render_instances};
+use raymip_host::cli::memory::{MemoryArgs, cmd_memory};
 use raymip_host::cli::sample::{self, SampleArgs};
 use raymip_host::cli::stress::cmd_stress;
 use raymip_host::cli::tradeoff::{Args as TradeoffArgs, cmd_tradeoff};
 use raymip_host::cli::{cmd_compare, cmd_render, cmd_table1, parse_size};
 use raymip_host::render::instances::{Config, GeomLodMode, MaskPolicy};
-use raymip_host::render::{Method, Options, Precision};
+use raymip_host::render::{Arithmetic, Method, Options};
 use raymip_host::scene::default_bart_dir;
 use raymip_host::scene::instances::{DEFAULT_SIZE, View};
 
@@ -99,9 +100,10 @@ enum Command {
         /// Texture LOD method.
         #[arg(long, value_enum, default_value_t = Method::Table)]
         method: Method,
-        /// Fixed point (firmware) or f64 reference.
-        #[arg(long, value_enum, default_value_t = Precision::Fixed)]
-        precision: Precision,
+        /// Arithmetic of the lod and the texture unit: fixed point
+        /// (firmware) or the f64 reference (`--precision` is an alias).
+        #[arg(long, value_enum, alias = "precision", default_value_t = Arithmetic::Fixed)]
+        arithmetic: Arithmetic,
         /// Texture filter: trilinear at the method's lod, or anisotropic
         /// over the pixel footprint from ray differentials (pbrt-style
         /// axes; the method then only sets the level histogram).
@@ -185,6 +187,11 @@ enum Command {
         #[arg(long)]
         write_readme: Option<PathBuf>,
     },
+    /// The memory a firmware needs for a scene (a scene file, or numbers:
+    /// --triangles, --texture, --path-range) on a target with a feature set:
+    /// Pb table, pyramids full and trimmed, ray stack, texel caches,
+    /// samplers, code.
+    Memory(MemoryArgs),
     /// Table I: mip-level shares and texel-cache hit rates (mip mapping off/on) per BART scene.
     Table1 {
         /// Folder with one sub-folder per scene (default ../shared/scenes/bart).
@@ -212,10 +219,10 @@ enum Command {
     },
 }
 
-fn options(a: &RenderArgs, method: Method, precision: Precision) -> Options {
+fn options(a: &RenderArgs, method: Method, arithmetic: Arithmetic) -> Options {
     Options {
         method,
-        precision,
+        arithmetic,
         size: a.size,
         bounces: a.bounces,
         spp: a.spp,
@@ -248,6 +255,7 @@ fn main() -> ExitCode {
             };
             cmd_render_instances(&cfg, geom.reference, &args.out).map_err(Into::into)
         }
+        Command::Memory(args) => cmd_memory(args).map_err(Into::into),
         Command::Stress { write_readme } => cmd_stress(write_readme.as_deref()).map_err(Into::into),
         Command::GeomlodBench {
             size,
@@ -259,7 +267,7 @@ fn main() -> ExitCode {
         Command::Render {
             args,
             method,
-            precision,
+            arithmetic,
             filter,
             max_aniso,
             ..
@@ -268,7 +276,7 @@ fn main() -> ExitCode {
             args.time,
             &Options {
                 aniso: (*filter == FilterArg::Aniso).then_some(*max_aniso),
-                ..options(args, *method, *precision)
+                ..options(args, *method, *arithmetic)
             },
             &args.out,
         )
@@ -276,7 +284,7 @@ fn main() -> ExitCode {
         Command::Compare { args, methods } => cmd_compare(
             &args.scene,
             args.time,
-            &options(args, Method::Table, Precision::Fixed),
+            &options(args, Method::Table, Arithmetic::Fixed),
             methods,
             &args.out,
         )

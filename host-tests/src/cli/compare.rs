@@ -7,9 +7,11 @@ use serde::Serialize;
 use serde_json::json;
 
 use super::error::CommandError;
-use super::output::{heat_map, max_diff, psnr, write_json, write_png, write_text};
 use crate::error::FileError;
-use crate::render::{Image, Method, Options, Precision, Prepared, render, render_truth};
+use crate::output::image::write_png;
+use crate::output::metrics::{heat_map, max_diff, psnr};
+use crate::output::report::{write_json, write_text};
+use crate::render::{Arithmetic, Image, Method, Options, Prepared, render, render_truth};
 use crate::scene::{builtin, load_scene};
 
 /// One comparison row.
@@ -17,8 +19,8 @@ use crate::scene::{builtin, load_scene};
 pub struct Row {
     /// Method.
     pub method: Method,
-    /// Precision of the image compared with truth.
-    pub precision: Precision,
+    /// Arithmetic of the image compared with truth.
+    pub arithmetic: Arithmetic,
     /// PSNR vs ground truth (dB).
     pub psnr_vs_truth: f64,
     /// Max channel difference vs ground truth.
@@ -42,10 +44,10 @@ pub struct Comparison {
     pub truth_s: f64,
 }
 
-fn opts(base: &Options, method: Method, precision: Precision) -> Options {
+fn opts(base: &Options, method: Method, arithmetic: Arithmetic) -> Options {
     Options {
         method,
-        precision,
+        arithmetic,
         ..base.clone()
     }
 }
@@ -69,8 +71,8 @@ pub fn compare(
     save("truth.png", &t8)?;
     let mut rows = Vec::new();
     for &m in methods.iter().filter(|&&m| m != Method::Truth) {
-        let fixed: Image = render(prep, &opts(base, m, Precision::Fixed));
-        let float: Image = render(prep, &opts(base, m, Precision::Float));
+        let fixed: Image = render(prep, &opts(base, m, Arithmetic::Fixed));
+        let float: Image = render(prep, &opts(base, m, Arithmetic::Float));
         let (a, b) = (fixed.to_rgb8(), float.to_rgb8());
         save(&format!("{}_fixed.png", m.name()), &a)?;
         save(&format!("{}_float.png", m.name()), &b)?;
@@ -84,7 +86,7 @@ pub fn compare(
         )?;
         rows.push(Row {
             method: m,
-            precision: Precision::Fixed,
+            arithmetic: Arithmetic::Fixed,
             psnr_vs_truth: psnr(&a, &t8),
             max_diff_vs_truth: max_diff(&a, &t8),
             psnr_fixed_vs_float: Some(psnr(&a, &b)),
@@ -93,7 +95,7 @@ pub fn compare(
         });
         rows.push(Row {
             method: m,
-            precision: Precision::Float,
+            arithmetic: Arithmetic::Float,
             psnr_vs_truth: psnr(&b, &t8),
             max_diff_vs_truth: max_diff(&b, &t8),
             psnr_fixed_vs_float: None,
@@ -125,7 +127,7 @@ pub fn markdown(c: &Comparison) -> String {
         s += &format!(
             "| {} | {} | {} | {} | {} | {} | {:.2} |\n",
             r.method.name(),
-            r.precision.name(),
+            r.arithmetic.name(),
             f(r.psnr_vs_truth),
             r.max_diff_vs_truth,
             r.psnr_fixed_vs_float.map_or("".into(), f),

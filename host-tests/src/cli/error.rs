@@ -5,8 +5,8 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use super::output::OutputError;
 use crate::error::FileError;
+use crate::output::OutputError;
 use crate::render::RenderError;
 use crate::scene::SceneError;
 

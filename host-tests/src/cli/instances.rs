@@ -11,11 +11,13 @@ use serde::Serialize;
 use serde_json::json;
 
 use super::error::CommandError;
-use super::output::{write_between_markers, write_json, write_png, write_text};
 use crate::error::FileError;
+use crate::output::image::write_png;
+use crate::output::report::{write_between_markers, write_json, write_text};
+use crate::render::instances::InstanceScene;
 use crate::render::instances::{Config, FrameStats, GeomLodMode, Prepared, accumulate, blend, rms};
 use crate::scene::V3;
-use crate::scene::instances::{GRID, InstanceScene, View};
+use crate::scene::instances::{GRID, View};
 
 /// Linear RGB in [0, 1] to 8-bit sRGB-ish (gamma 2.2).
 fn to_rgb8(c: &[V3], gamma: bool) -> Vec<[u8; 3]> {
@@ -323,7 +325,7 @@ pub fn cmd_bench(
     let (rows, md) = bench(size, repeats, bounces)?;
     let md = format!(
         "Measured on {} by `bash scripts/geomlod-bench` (`raymip-host geomlod-bench --size {}x{} --repeats {repeats} --bounces {bounces}`).\n\n{md}",
-        super::output::machine_line(),
+        crate::output::machine::machine_line(),
         size.0,
         size.1,
     );

@@ -1,14 +1,16 @@
 //! The CLI commands and their output: `render`, `compare`, `table1`,
-//! `sample`, `stress` and the demo's `gen-data`, as library functions (the binaries
+//! `sample`, `stress`, `memory` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use crate::output::report::write_option;
 
 pub mod compare;
 pub mod demo_data;
 mod error;
 pub mod instances;
-pub mod output;
+pub mod memory;
 pub mod pcpi_vectors;
 pub mod render;
 pub mod sample;
@@ -76,15 +78,39 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), SizeError> {
     Ok((p(w)?, p(h)?))
 }
 
-pub(crate) fn scene_label(spec: &str) -> String {
-    spec.strip_prefix("builtin:").map_or_else(
-        || {
-            Path::new(spec)
-                .file_stem()
-                .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
-        },
-        str::to_string,
-    )
+/// The command line of a measurement example (`cargo run --release -p
+/// raymip-host --example NAME -- [WxH] [N] [--write FILE]`): a `WxH`
+/// size, a whole number (samples, where the example takes one) and the
+/// page whose generated block `--write` rewrites, in any order.
+#[derive(Clone, Debug, Default)]
+pub struct MeasureArgs {
+    /// Every argument, for options of the example's own.
+    pub args: Vec<String>,
+    /// The first argument that is a `WxH` size.
+    pub size: Option<(u32, u32)>,
+    /// The first argument that is a whole number.
+    pub number: Option<u32>,
+    /// The file after `--write`.
+    pub write: Option<PathBuf>,
+}
+
+impl MeasureArgs {
+    /// The arguments of this process.
+    #[must_use]
+    pub fn from_env() -> Self {
+        Self::parse(std::env::args().skip(1).collect())
+    }
+
+    /// Reads `args`.
+    #[must_use]
+    pub fn parse(args: Vec<String>) -> Self {
+        Self {
+            size: args.iter().find_map(|a| parse_size(a).ok()),
+            number: args.iter().find_map(|a| a.parse().ok()),
+            write: write_option(&args).map(Path::to_path_buf),
+            args,
+        }
+    }
 }
 
 #[cfg(test)]

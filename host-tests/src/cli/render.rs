@@ -6,11 +6,12 @@ use std::time::Instant;
 use serde_json::json;
 
 use super::error::CommandError;
-use super::output::{level_image, write_json, write_png, write_text};
-use super::scene_label;
 use crate::error::FileError;
+use crate::output::image::{level_image, write_png};
+use crate::output::report::{write_json, write_text};
 use crate::render::skip::{SkipPlan, bit_identical, plan, render_trimmed};
 use crate::render::{Counters, Image, Method, Options, Prepared, render};
+use crate::scene::scene_label;
 use crate::scene::{builtin, load_scene};
 
 /// `render`: writes `image.png`, `levels.png`, `report.json`, `report.md` into `out`.
@@ -45,7 +46,7 @@ pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(
     )?;
     let c = &img.counters;
     let report = json!({
-        "scene": spec, "time": time, "method": opts.method, "precision": opts.precision, "max_aniso": opts.aniso,
+        "scene": spec, "time": time, "method": opts.method, "precision": opts.arithmetic, "max_aniso": opts.aniso,
         "width": img.width, "height": img.height, "bounces": opts.bounces,
         "spp": if opts.method == Method::Truth { opts.spp } else { 1 },
         "triangles": prep.scene.triangles.len(), "textured_triangles": prep.scene.textured_count(),
@@ -61,7 +62,7 @@ pub fn cmd_render(spec: &str, time: f64, opts: &Options, out: &Path) -> Result<(
         "# raymip render: {}\n\n| | |\n|---|---|\n| method / precision | {} / {} |\n| size | {}×{} |\n| bounces (max) | {} |\n| triangles (textured) | {} ({}) |\n| threads | {} |\n| load / BVH / pyramids / table (s) | {:.3} / {:.3} / {:.3} / {:.3} |\n| render (s) | {:.3} |\n| total (s) | {:.3} |\n| paths / rays / hits | {} / {} / {} |\n| textured hits / untextured skipped | {} / {} |\n| bounces pushed / stack full | {} / {} |\n| deepest hit (bounces) | {} |\n| saturations | {} |\n| shadow rays | {} |\n| texels fetched / skipped | {} / {} |\n\nTextured hits per mip level:\n\n| level | share |\n|---|---|\n",
         spec,
         opts.method.name(),
-        opts.precision.name(),
+        opts.arithmetic.name(),
         img.width,
         img.height,
         opts.bounces,
@@ -213,7 +214,7 @@ fn print_summary(spec: &str, opts: &Options, img: &Image, total_s: f64, out: &Pa
         "{} {} {}: {}x{} in {:.2} s (render {:.2} s), {} textured hits, deepest path {} bounces -> {}",
         scene_label(spec),
         opts.method.name(),
-        opts.precision.name(),
+        opts.arithmetic.name(),
         img.width,
         img.height,
         total_s,

@@ -751,7 +751,7 @@ pub fn sample_lines_state<R: BufRead, W: Write>(
     output: W,
     input_name: &str,
 ) -> Result<usize, SampleError> {
-    let bytes = crate::reference::texformat::encode_pyramid(
+    let bytes = crate::accuracy::texformat::encode_pyramid(
         &pyramid.geometry,
         &pyramid.texels,
         format.texel(),

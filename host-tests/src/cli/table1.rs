@@ -18,9 +18,9 @@ use serde::Serialize;
 use serde_json::json;
 
 use super::error::CommandError;
-use super::output::{write_json, write_text};
 use crate::error::FileError;
-use crate::render::{Counters, Method, Options, Precision, Prepared, render};
+use crate::output::report::{write_json, write_text};
+use crate::render::{Arithmetic, Counters, Method, Options, Prepared, render};
 use crate::scene::Scene;
 use crate::scene::{SceneError, builtin, default_bart_dir, load_scene_dir};
 
@@ -104,7 +104,7 @@ pub fn measure(
     let _ = t0;
     let base = Options {
         method: Method::Mip0,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces,
         spp: 1,

@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::output::machine_line;
-use super::output::{write_between_markers, write_json, write_text};
 use crate::error::FileError;
+use crate::output::machine::machine_line;
+use crate::output::report::{write_between_markers, write_json, write_text};
 use crate::tradeoff::budgets::Budgets;
 use crate::tradeoff::report;
 use crate::tradeoff::{

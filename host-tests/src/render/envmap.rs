@@ -4,7 +4,7 @@
 //! same texture units as surface hits ([`Unit`]: the firmware sampler in
 //! fixed point, the f64 one in float).
 //!
-//! | method | lod of a miss (fixed: firmware; float: `reference::envmap`) |
+//! | method | lod of a miss (fixed: firmware; float: `raymip_reference::envmap`) |
 //! |---|---|
 //! | mip0, truth | 0 (bilinear in level 0, the method's filter) |
 //! | table | the camera's pixel spread `γ` as the cone spread (the table method assumes flat surfaces) |
@@ -22,8 +22,8 @@ use raymip::units::{Lod, Spread, UnitVec};
 use super::RenderError;
 use super::options::{Method, Options};
 use super::texunit::{FetchLog, Filter, MipTexture, Unit};
-use crate::reference::envmap as reference;
 use crate::scene::{TextureImage, V3};
+use raymip_reference::envmap as reference;
 
 /// An environment map ready to sample: its pyramid and the firmware's lod
 /// constants.

@@ -2,9 +2,9 @@
 //! "Implementing Stochastic Levels of Detail with DirectX Raytracing").
 //!
 //! The scene ([`crate::scene::instances`]): a 64 × 60 grid of randomly rotated instances of one dense mesh
-//! ([`crate::lodmesh`]: displaced icosphere, 81 920 triangles, 8 LODs
+//! ([`crate::scene::lodmesh`]: displaced icosphere, 81 920 triangles, 8 LODs
 //! halving each time) on a reflective ground plane, in a two-level BVH
-//! ([`crate::tlas`]). Per frame the firmware ([`raymip::geomlod`]) turns
+//! ([`super::tlas`]). Per frame the firmware ([`raymip::geomlod`]) turns
 //! each instance's camera-space depth into LOD records (one, or two with
 //! complementary 8-bit masks during a transition); per path the firmware
 //! generator ([`raymip::rng`]) draws one ray-mask bit, which the firmware
@@ -30,12 +30,15 @@ use raymip::units::{Depth, LodBias, PathLength, Spread, Transition};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::tlas::{Instance, TwoLevel, TwoLevelStats, rotation_from_quaternion};
+use super::bvh::Bvh;
+use super::tlas::{Instance, TwoLevel, TwoLevelStats};
 use super::{CameraFrame, RenderError};
 use crate::scene::V3;
 use crate::scene::instances::{
-    DEFAULT_SIZE, GROUND, InstanceScene, LEVELS, View, Z_FAR, Z_NEAR, lod_color,
+    DEFAULT_SIZE, GROUND, LEVELS, Placement, SUBDIVISIONS, View, Z_FAR, Z_NEAR, ground, lod_color,
+    placements, rotation_from_quaternion,
 };
+use crate::scene::lodmesh::{displaced_icosphere, lod_chain};
 
 /// Sun direction (towards the sun) and colour; ambient; sky.
 const SUN: V3 = V3::new(-0.38, 0.85, 0.36);
@@ -125,7 +128,40 @@ impl Config {
     }
 }
 
+/// The scene of `builtin:instances` ready to trace: the meshes (8 LODs,
+/// then the ground) as bottom-level BVHs, and the grid.
+#[derive(Debug)]
+pub struct InstanceScene {
+    /// Bottom levels: LOD 0…7, then the ground quad.
+    pub meshes: Vec<Bvh>,
+    /// Triangles per LOD.
+    pub lod_triangles: Vec<usize>,
+    /// The grid cells (id = index).
+    pub placements: Vec<Placement>,
+    /// Seconds to make the mesh, simplify it and build the bottom levels.
+    pub build_s: f64,
+}
+
 impl InstanceScene {
+    /// Builds the scene (about a second in release mode).
+    #[must_use]
+    pub fn build() -> Self {
+        let t0 = Instant::now();
+        let chain = lod_chain(&displaced_icosphere(SUBDIVISIONS), usize::from(LEVELS));
+        let lod_triangles = chain.iter().map(|m| m.triangle_count()).collect();
+        let mut meshes: Vec<Bvh> = chain
+            .par_iter()
+            .map(|m| Bvh::build(m.triangles()))
+            .collect();
+        meshes.push(Bvh::build(ground()));
+        Self {
+            meshes,
+            lod_triangles,
+            placements: placements(),
+            build_s: t0.elapsed().as_secs_f64(),
+        }
+    }
+
     /// The firmware's LOD records for a camera (ids = grid cells):
     /// `none` gives every instance LOD 0 with mask 0xFF.
     pub fn select(&self, cam: &CameraFrame, cfg: &Config) -> Result<Vec<InstanceLod>, RenderError> {

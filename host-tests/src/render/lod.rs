@@ -9,6 +9,7 @@ use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::rng::Rng;
 use raymip::units::{Accurate, Footprint, Lod};
+use raymip_reference::lod as reference;
 
 use super::options::Method;
 use super::setup::Prepared;
@@ -162,20 +163,15 @@ fn float_lod(prep: &Prepared, method: Method, q: &LodQuery) -> (f64, Option<[[f6
     let pbf = prep.pb_float[q.tri];
     match method {
         Method::Mip0 | Method::Truth => (0.0, None),
-        Method::Table => (q.pl.log2() - pbf, None),
+        Method::Table => (reference::table(q.pl, pbf), None),
         Method::Cone => {
             let delta = -pbf - prep.cam.gamma.log2();
-            let w = if q.width == 0.0 {
-                2f64.powi(-32)
-            } else {
-                q.width.abs()
-            };
-            let nd = q.n_dot_d.clamp(2f64.powi(-16), 1.0);
-            (delta + w.log2() - nd.log2(), None)
+            (reference::cone(delta, q.width, Some(q.n_dot_d)), None)
         }
         Method::Raydiff | Method::Gbuffer => {
             let axes = raydiff_axes(q);
-            (raydiff_lod(q.tex, axes), Some(axes))
+            let size = (f64::from(q.tex.width), f64::from(q.tex.height));
+            (reference::footprint(axes, size), Some(axes))
         }
     }
 }
@@ -252,12 +248,4 @@ fn raydiff_axes(q: &LodQuery) -> [[f64; 2]; 2] {
         ]
     };
     [axis(q.dbx), axis(q.dby)]
-}
-
-/// Ray-differential lod (Igehy 1999): log2 of the larger texel-space
-/// footprint edge of `axes` per pixel in `tex`.
-fn raydiff_lod(tex: &MipTexture, [x, y]: [[f64; 2]; 2]) -> f64 {
-    let (tw, th) = (f64::from(tex.width), f64::from(tex.height));
-    let len = |a: [f64; 2]| ((a[0] * tw).powi(2) + (a[1] * th).powi(2)).sqrt();
-    len(x).max(len(y)).max(1e-300).log2()
 }

@@ -2,7 +2,7 @@
 //! refraction up to `bounces` levels, the firmware [`RayStack`](raymip::path::raystack::RayStack) /
 //! [`PathState`](raymip::path::raystack::PathState) carrying `Pl` and the ray cone (with the surface spread
 //! angle β of curved mirrors) along each path, and a
-//! texture LOD chosen per [`Method`] and [`Precision`].
+//! texture LOD chosen per [`Method`] and [`Arithmetic`].
 //!
 //! Pixels are traversed in 8×8 tiles in row-major tile order (the order the
 //! cache study replays); tiles are rendered in parallel with rayon.
@@ -38,7 +38,7 @@ mod tracer;
 pub use camera::CameraFrame;
 pub use counters::Counters;
 pub use error::RenderError;
-pub use options::{Method, Options, Precision};
+pub use options::{Arithmetic, Method, Options};
 pub use setup::{Prepared, SetupTimes};
 pub use tracer::STACK_CAPACITY;
 
@@ -89,7 +89,7 @@ pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
         prep,
         &Options {
             method: Method::Truth,
-            precision: Precision::Float,
+            arithmetic: Arithmetic::Float,
             ..base.clone()
         },
     )
@@ -99,6 +99,22 @@ pub fn render_truth(prep: &Prepared, base: &Options) -> Image {
 #[must_use]
 pub fn render(prep: &Prepared, opts: &Options) -> Image {
     render_filtered(prep, opts, None)
+}
+
+/// The frame of `opts` in both arithmetics, `[fixed, float]` (rendered in
+/// that order; `opts.arithmetic` is not read): how the examples and tests
+/// compare the firmware path with the f64 one.
+#[must_use]
+pub fn render_fixed_and_float(prep: &Prepared, opts: &Options) -> [Image; 2] {
+    [Arithmetic::Fixed, Arithmetic::Float].map(|arithmetic| {
+        render(
+            prep,
+            &Options {
+                arithmetic,
+                ..opts.clone()
+            },
+        )
+    })
 }
 
 /// A texture-filter override for one frame of a render.
@@ -131,7 +147,7 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
         b.set_message(format!(
             "{} {} {}x{}",
             opts.method.name(),
-            opts.precision.name(),
+            opts.arithmetic.name(),
             w,
             h
         ));
@@ -139,7 +155,7 @@ pub fn render_filtered(prep: &Prepared, opts: &Options, ff: Option<FrameFilter>)
     } else {
         ProgressBar::hidden()
     };
-    let fixed = opts.precision == Precision::Fixed;
+    let fixed = opts.arithmetic == Arithmetic::Fixed;
     let t0 = Instant::now();
     // The G-buffer pass (method gbuffer): part of the frame's time.
     let gbuffer = (opts.method == Method::Gbuffer).then(|| tracer::gbuffer_pass(prep, fixed));

@@ -52,17 +52,19 @@ impl Method {
     }
 }
 
-/// Arithmetic of the LOD and the texture unit.
+/// Arithmetic of the LOD and the texture unit of a render (not the
+/// firmware's precision tier, `raymip::units::Precision`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
-pub enum Precision {
+pub enum Arithmetic {
     /// Firmware fixed point (table, ray stack, lod, sampler).
     Fixed,
-    /// f64 reference written in this crate.
+    /// f64: the reference sampler (`raymip_reference::sampler`) and the
+    /// f64 lods of this crate.
     Float,
 }
 
-impl Precision {
+impl Arithmetic {
     /// Lower-case name.
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -78,8 +80,8 @@ impl Precision {
 pub struct Options {
     /// LOD method.
     pub method: Method,
-    /// Precision.
-    pub precision: Precision,
+    /// Arithmetic.
+    pub arithmetic: Arithmetic,
     /// Image size; `None` = the scene camera's.
     pub size: Option<(u32, u32)>,
     /// Maximum reflection/refraction depth (every value fits the ray
@@ -124,7 +126,7 @@ impl Default for Options {
     fn default() -> Self {
         Self {
             method: Method::Table,
-            precision: Precision::Fixed,
+            arithmetic: Arithmetic::Fixed,
             size: None,
             bounces: 10,
             spp: 256,

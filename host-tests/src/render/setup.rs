@@ -15,8 +15,8 @@ use super::bvh::Bvh;
 use super::camera::CameraFrame;
 use super::envmap::EnvLookup;
 use super::texunit::{MipTexture, assign_block_bases};
-use crate::reference::log2_pb_f64;
 use crate::scene::{Scene, V3};
+use raymip_reference::pb::log2_pb_f64;
 
 /// Set-up timings (seconds).
 #[derive(Clone, Debug, Default, Serialize)]

@@ -30,7 +30,7 @@ use raymip::units::{Lod, PathLength};
 use serde::Serialize;
 
 use super::texunit::MipTexture;
-use super::{Image, Method, Options, Precision, Prepared, render};
+use super::{Arithmetic, Image, Method, Options, Prepared, render};
 use crate::scene::V3;
 
 /// Bytes per stored texel (RGBA8888).
@@ -205,7 +205,7 @@ pub fn path_bounds(prep: &Prepared, bounces: u8) -> Vec<Option<PathBounds>> {
 /// does not bound.
 #[must_use]
 pub fn plan(prep: &Prepared, opts: &Options) -> SkipPlan {
-    let fixed = opts.precision == Precision::Fixed;
+    let fixed = opts.arithmetic == Arithmetic::Fixed;
     // Anisotropic probes choose their own lods: not bounded here.
     let applies = fixed
         && opts.aniso.is_none()
@@ -335,7 +335,7 @@ pub fn bit_identical(a: &Image, b: &Image) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reference::Rng;
+    use raymip_reference::Rng;
 
     /// The closest-point distance against a dense barycentric sampling of
     /// the triangle: never larger than any sample's distance (a bound that

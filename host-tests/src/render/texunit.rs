@@ -5,13 +5,13 @@
 //!   `raymip::texture::Sampler` per texture (fixed point: [`TexCoord`],
 //!   [`Lod`], [`Mode`] in, a texel out; wrap addressing), which also records
 //!   the texel-block address of every fetch for the cache study;
-//! * [`FloatUnit`]: an independent f64 trilinear/bilinear sampler written
-//!   here (same texel-centre convention `(i + 0.5)/size`, wrap addressing).
+//! * [`FloatUnit`]: the f64 reference sampler (`raymip_reference::sampler`,
+//!   wrap addressing) over the same texels, counting the texels it reads.
 //!
 //! Anisotropic filtering (`Options::aniso`): the firmware unit's samplers
 //! carry the maximum anisotropy in their state and sample the footprint
-//! (`Sampler::sample_aniso`), the float unit averages its own trilinear
-//! samples at the probes of `reference::sampler_ref::aniso_probes`.
+//! (`Sampler::sample_aniso`), the float unit takes the reference's
+//! anisotropic sample (trilinear probes of `aniso_probes`).
 
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
@@ -22,8 +22,8 @@ use raymip::units::{Footprint, Lod, TexCoord};
 
 use super::RenderError;
 use super::options::Method;
-use crate::reference::sampler_ref::aniso_probes;
 use crate::scene::TextureImage;
+use raymip_reference::sampler::{self as reference, Texels, aniso_probes};
 
 /// Which filter a sample uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,7 +37,7 @@ pub enum Filter {
     /// Nearest texel of the nearest level.
     Nearest,
     /// A firmware stochastic filter (`raymip::texture::sampler::stochastic`), driven by the
-    /// random bits passed to [`Unit::sample`]. The f64 unit has no
+    /// random bits passed to [`FirmwareUnit::sample_rgb`]. The f64 unit has no
     /// stochastic mode: it returns the filter's expectation (trilinear for
     /// the level-choosing modes, bilinear for stochastic bilinear).
     Stochastic(StochasticMode),
@@ -225,45 +225,63 @@ pub struct FloatUnit<'a> {
     max_aniso: u8,
 }
 
-fn bilinear_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
-    let (w, h) = tex.level_size(level);
-    let x = u * f64::from(w) - 0.5;
-    let y = v * f64::from(h) - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let wrap = |a: f64, n: u32| (a.rem_euclid(f64::from(n))) as u32 % n;
-    let xs = [wrap(x0, w), wrap(x0 + 1.0, w)];
-    let ys = [wrap(y0, h), wrap(y0 + 1.0, h)];
-    let mut out = [0.0; 4];
-    for (j, &yy) in ys.iter().enumerate() {
-        for (i, &xx) in xs.iter().enumerate() {
-            let wgt = (if i == 0 { 1.0 - fx } else { fx }) * (if j == 0 { 1.0 - fy } else { fy });
-            let t = tex.texel(level, xx, yy).to_le_bytes();
-            log.fetched += 1;
-            for c in 0..4 {
-                out[c] += wgt * f64::from(t[c]);
-            }
-        }
-    }
-    out
+/// One texture as the reference reads it, counting the texels read.
+struct Counted<'a> {
+    tex: &'a MipTexture,
+    reads: std::cell::Cell<u64>,
 }
 
-fn nearest_f64(tex: &MipTexture, level: u8, u: f64, v: f64, log: &mut FetchLog) -> [f64; 4] {
-    let (w, h) = tex.level_size(level);
-    let idx = |a: f64, n: u32| {
-        ((a - a.floor()) * f64::from(n))
-            .floor()
-            .min(f64::from(n - 1)) as u32
-    };
-    log.fetched += 1;
-    tex.texel(level, idx(u, w), idx(v, h))
-        .to_le_bytes()
-        .map(f64::from)
+impl Texels for Counted<'_> {
+    fn levels(&self) -> usize {
+        usize::from(self.tex.levels)
+    }
+
+    fn size(&self, level: usize) -> (u32, u32) {
+        self.tex.level_size(level as u8)
+    }
+
+    fn texel(&self, level: usize, x: u32, y: u32) -> [f64; 4] {
+        self.reads.set(self.reads.get() + 1);
+        self.tex
+            .texel(level as u8, x, y)
+            .to_le_bytes()
+            .map(f64::from)
+    }
 }
 
 impl FloatUnit<'_> {
+    /// Runs `f` on the reference sampler of texture `tex` (wrap, the
+    /// render's maximum anisotropy) and adds the texels it read to `log`;
+    /// black for an unknown texture.
+    fn with_reference(
+        &self,
+        tex: usize,
+        log: &mut FetchLog,
+        f: impl FnOnce(&reference::Sampler<'_, Counted<'_>>) -> [f64; 4],
+    ) -> [f64; 3] {
+        let Some(tex) = self.textures.get(tex) else {
+            return [0.0; 3];
+        };
+        let counted = Counted {
+            tex,
+            reads: std::cell::Cell::new(0),
+        };
+        let sampler = reference::Sampler {
+            tex: &counted,
+            state: reference::State {
+                max_aniso: u32::from(self.max_aniso),
+                ..reference::State::default()
+            },
+        };
+        let c = f(&sampler);
+        log.fetched += counted.reads.get();
+        [c[0], c[1], c[2]]
+    }
+
     /// One sample of texture `tex` (f64 lod, clamped to the stored levels;
     /// NaN = level 0), linear RGB in 0..1; black for an unknown texture.
+    /// A trilinear sample that reads one level (the lod is a whole level)
+    /// counts the other level's four texels as skipped.
     pub fn sample(
         &self,
         tex: usize,
@@ -273,41 +291,26 @@ impl FloatUnit<'_> {
         filter: Filter,
         log: &mut FetchLog,
     ) -> [f64; 3] {
-        let Some(tex) = self.textures.get(tex) else {
-            return [0.0; 3];
-        };
-        let top = f64::from(tex.levels - 1);
-        let clamped = if lod.is_nan() {
-            0.0
-        } else {
-            lod.clamp(0.0, top)
-        };
-        let nearest = (clamped + 0.5).floor().min(top) as u8;
-        let c = match filter {
-            Filter::BilinearLevel0 => bilinear_f64(tex, 0, u, v, log),
+        let (mode, lod) = match filter {
+            Filter::BilinearLevel0 => (reference::Mode::BilinearNearestLevel, 0.0),
             Filter::Bilinear | Filter::Stochastic(StochasticMode::Bilinear) => {
-                bilinear_f64(tex, nearest, u, v, log)
+                (reference::Mode::BilinearNearestLevel, lod)
             }
-            Filter::Nearest => nearest_f64(tex, nearest, u, v, log),
-            Filter::Trilinear | Filter::Stochastic(_) => {
-                let l = clamped;
-                let l0 = l.floor();
-                let f = l - l0;
-                let a = bilinear_f64(tex, l0 as u8, u, v, log);
-                if f > 0.0 && l0 < top {
-                    let b = bilinear_f64(tex, l0 as u8 + 1, u, v, log);
-                    std::array::from_fn(|k| a[k] + f * (b[k] - a[k]))
-                } else {
-                    log.skipped += 4;
-                    a
-                }
-            }
+            Filter::Nearest => (reference::Mode::Nearest, lod),
+            Filter::Trilinear | Filter::Stochastic(_) => (reference::Mode::Trilinear, lod),
         };
-        [c[0] / 255.0, c[1] / 255.0, c[2] / 255.0]
+        let before = log.fetched;
+        let rgb = self.with_reference(tex, log, |s| s.sample_linear(u, v, lod, mode));
+        if mode == reference::Mode::Trilinear && log.fetched - before == 4 {
+            log.skipped += 4;
+        }
+        rgb
     }
 
-    /// Anisotropic sample: the mean of trilinear samples at the probes of
-    /// [`aniso_probes`] (exact positions and lod), linear RGB in 0..1.
+    /// Anisotropic sample: the reference's mean of trilinear samples at
+    /// the probes of `aniso_probes` (exact positions and lod), linear RGB
+    /// in 0..1. Probes at a whole-level lod count the other level's texels
+    /// as skipped, as [`sample`](Self::sample) does.
     pub fn sample_aniso(
         &self,
         tex: usize,
@@ -316,19 +319,14 @@ impl FloatUnit<'_> {
         axes: [[f64; 2]; 2],
         log: &mut FetchLog,
     ) -> [f64; 3] {
-        let Some(t) = self.textures.get(tex) else {
-            return [0.0; 3];
-        };
-        let (n, lod, probes) =
-            aniso_probes((t.width, t.height), u32::from(self.max_aniso), u, v, axes);
-        let mut acc = [0.0; 3];
-        for p in probes {
-            let s = self.sample(tex, p[0], p[1], lod, Filter::Trilinear, log);
-            for c in 0..3 {
-                acc[c] += s[c] / f64::from(n);
-            }
-        }
-        acc
+        let mut probes = 0;
+        let before = log.fetched;
+        let rgb = self.with_reference(tex, log, |s| {
+            probes = u64::from(aniso_probes(s.tex.size(0), s.state.max_aniso, u, v, axes).0);
+            s.sample_aniso_linear(u, v, axes, reference::Mode::Trilinear)
+        });
+        log.skipped += 8 * probes - (log.fetched - before);
+        rgb
     }
 }
 

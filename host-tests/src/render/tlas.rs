@@ -9,9 +9,7 @@ use raymip::geomlod::visible;
 
 use super::bvh::{Aabb, Bvh, Hierarchy, Hit, TraversalStats};
 use crate::scene::V3;
-
-/// A rotation matrix (rows), object → world.
-pub type Mat3 = [V3; 3];
+use crate::scene::instances::Mat3;
 
 /// One instance: `world = rotation · object + translation`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,34 +166,11 @@ impl<'a> TwoLevel<'a> {
     }
 }
 
-/// A rotation from a unit quaternion `(w, x, y, z)` (normalised here).
-#[must_use]
-pub fn rotation_from_quaternion(q: [f64; 4]) -> Mat3 {
-    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    [
-        V3::new(
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ),
-        V3::new(
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ),
-        V3::new(
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ),
-    ]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::bvh::intersect;
+    use crate::scene::instances::rotation_from_quaternion;
 
     fn lcg(s: &mut raymip::rng::Rng) -> f64 {
         f64::from(s.next_u32()) / 4_294_967_296.0

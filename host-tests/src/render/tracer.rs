@@ -10,7 +10,7 @@ use super::envmap::{FloatMiss, MissRay};
 use super::gbuffer::{FirstHit, Frame, GBuffer, GHit};
 use super::lod::{LodQuery, hit_lod};
 use super::texunit::{FetchLog, Filter, Unit};
-use super::{Counters, HIST_LEVELS, Method, Options, Precision, Prepared};
+use super::{Arithmetic, Counters, HIST_LEVELS, Method, Options, Prepared};
 use crate::scene::{Material, Triangle, V3};
 
 /// f64 ray-differential state (Igehy 1999): position and unit-direction
@@ -430,7 +430,7 @@ impl Ctx<'_> {
     /// Fixed precision: the firmware path state (Pl, cone, ray
     /// differentials) is the only LOD state of a path.
     fn fixed(&self) -> bool {
-        self.opts.precision == Precision::Fixed
+        self.opts.arithmetic == Arithmetic::Fixed
     }
 
     /// Ray offset along the normal (scene-relative).

@@ -3,18 +3,13 @@
 //! Raytracing", 2020): a 64 × 60 grid of randomly rotated instances of one
 //! dense mesh ([`super::lodmesh`]: displaced icosphere, 81 920 triangles,
 //! 8 LODs halving each time) on a ground plane, the four camera views and
-//! the LOD colours. Rendered by [`crate::render::instances`].
-
-use std::time::Instant;
+//! the LOD colours. The renderer builds its bottom-level BVHs from these
+//! meshes (`render::instances::InstanceScene`).
 
 use raymip::rng::Rng;
-use rayon::prelude::*;
 use serde::Serialize;
 
-use super::lodmesh::{displaced_icosphere, lod_chain};
 use super::{Camera, V3};
-use crate::render::bvh::Bvh;
-use crate::render::tlas::rotation_from_quaternion;
 
 /// Instances along x and z.
 pub const GRID: (u32, u32) = (64, 60);
@@ -31,7 +26,7 @@ pub const Z_NEAR: f64 = 4.0;
 pub const Z_FAR: f64 = 300.0;
 /// Default image size.
 pub const DEFAULT_SIZE: (u32, u32) = (800, 480);
-/// Index of the ground mesh in [`InstanceScene::meshes`].
+/// Index of the ground mesh among the meshes (after the LODs).
 pub const GROUND: u32 = LEVELS as u32;
 /// Height of the instance centres above the ground.
 const CENTRE_Y: f64 = 1.25;
@@ -90,83 +85,91 @@ impl View {
     }
 }
 
+/// A rotation matrix (rows), object → world.
+pub type Mat3 = [V3; 3];
+
+/// A rotation from a unit quaternion `(w, x, y, z)` (normalised here).
+#[must_use]
+pub fn rotation_from_quaternion(q: [f64; 4]) -> Mat3 {
+    let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
+    let [w, x, y, z] = q.map(|c| c / n);
+    [
+        V3::new(
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ),
+        V3::new(
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ),
+        V3::new(
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ),
+    ]
+}
+
 /// One grid cell: where the instance stands and how it looks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
     /// Object → world rotation.
-    pub rotation: crate::render::tlas::Mat3,
+    pub rotation: Mat3,
     /// Centre.
     pub translation: V3,
     /// Diffuse colour.
     pub albedo: V3,
 }
 
-/// The meshes (8 LODs + ground) and the grid.
-#[derive(Debug)]
-pub struct InstanceScene {
-    /// Bottom levels: LOD 0…7, then the ground quad.
-    pub meshes: Vec<Bvh>,
-    /// Triangles per LOD.
-    pub lod_triangles: Vec<usize>,
-    /// The grid cells (id = index).
-    pub placements: Vec<Placement>,
-    /// Seconds to make the mesh, simplify it and build the bottom levels.
-    pub build_s: f64,
+/// The ground quad under the grid (two triangles, 40 units past the grid
+/// on every side).
+#[must_use]
+pub fn ground() -> Vec<[V3; 3]> {
+    let (hx, hz) = (
+        f64::from(GRID.0) * SPACING * 0.5 + 40.0,
+        f64::from(GRID.1) * SPACING * 0.5 + 40.0,
+    );
+    let g = |x: f64, z: f64| V3::new(x, 0.0, z);
+    vec![
+        [g(-hx, -hz), g(-hx, hz), g(hx, hz)],
+        [g(-hx, -hz), g(hx, hz), g(hx, -hz)],
+    ]
 }
 
-impl InstanceScene {
-    /// Builds the scene (about a second in release mode).
-    #[must_use]
-    pub fn build() -> Self {
-        let t0 = Instant::now();
-        let chain = lod_chain(&displaced_icosphere(SUBDIVISIONS), usize::from(LEVELS));
-        let lod_triangles = chain.iter().map(|m| m.triangle_count()).collect();
-        let mut meshes: Vec<Bvh> = chain
-            .par_iter()
-            .map(|m| Bvh::build(m.triangles()))
-            .collect();
-        let (hx, hz) = (
-            f64::from(GRID.0) * SPACING * 0.5 + 40.0,
-            f64::from(GRID.1) * SPACING * 0.5 + 40.0,
-        );
-        let g = |x: f64, z: f64| V3::new(x, 0.0, z);
-        meshes.push(Bvh::build(vec![
-            [g(-hx, -hz), g(-hx, hz), g(hx, hz)],
-            [g(-hx, -hz), g(hx, hz), g(hx, -hz)],
-        ]));
-        let mut rng = Rng::new(0x5EED_0001);
-        let mut uni = move || f64::from(rng.next_u32()) / 4_294_967_296.0;
-        let mut placements = Vec::with_capacity((GRID.0 * GRID.1) as usize);
-        for j in 0..GRID.1 {
-            for i in 0..GRID.0 {
-                // Uniform random rotation (Shoemake's quaternion from three uniforms).
-                let (u1, u2, u3) = (uni(), uni(), uni());
-                let tau = std::f64::consts::TAU;
-                let q = [
-                    (1.0 - u1).sqrt() * (tau * u2).sin(),
-                    (1.0 - u1).sqrt() * (tau * u2).cos(),
-                    u1.sqrt() * (tau * u3).sin(),
-                    u1.sqrt() * (tau * u3).cos(),
-                ];
-                let hue = uni();
-                placements.push(Placement {
-                    rotation: rotation_from_quaternion(q),
-                    translation: V3::new(
-                        (f64::from(i) - (f64::from(GRID.0) - 1.0) / 2.0) * SPACING,
-                        CENTRE_Y,
-                        (f64::from(j) - (f64::from(GRID.1) - 1.0) / 2.0) * SPACING,
-                    ),
-                    albedo: (V3::splat(0.25) + (hue_color(hue * 300.0) * 0.5)),
-                });
-            }
-        }
-        Self {
-            meshes,
-            lod_triangles,
-            placements,
-            build_s: t0.elapsed().as_secs_f64(),
+/// The grid cells (id = index), row by row: each instance uniformly
+/// randomly rotated and coloured by the firmware generator seeded
+/// `0x5EED_0001`.
+#[must_use]
+pub fn placements() -> Vec<Placement> {
+    let mut rng = Rng::new(0x5EED_0001);
+    let mut uni = move || f64::from(rng.next_u32()) / 4_294_967_296.0;
+    let mut placements = Vec::with_capacity((GRID.0 * GRID.1) as usize);
+    for j in 0..GRID.1 {
+        for i in 0..GRID.0 {
+            // Uniform random rotation (Shoemake's quaternion from three uniforms).
+            let (u1, u2, u3) = (uni(), uni(), uni());
+            let tau = std::f64::consts::TAU;
+            let q = [
+                (1.0 - u1).sqrt() * (tau * u2).sin(),
+                (1.0 - u1).sqrt() * (tau * u2).cos(),
+                u1.sqrt() * (tau * u3).sin(),
+                u1.sqrt() * (tau * u3).cos(),
+            ];
+            let hue = uni();
+            placements.push(Placement {
+                rotation: rotation_from_quaternion(q),
+                translation: V3::new(
+                    (f64::from(i) - (f64::from(GRID.0) - 1.0) / 2.0) * SPACING,
+                    CENTRE_Y,
+                    (f64::from(j) - (f64::from(GRID.1) - 1.0) / 2.0) * SPACING,
+                ),
+                albedo: (V3::splat(0.25) + (hue_color(hue * 300.0) * 0.5)),
+            });
         }
     }
+    placements
 }
 
 /// HSV hue (degrees, full saturation, value 0.9) to linear RGB.

@@ -47,6 +47,20 @@ impl From<AffError> for SceneError {
     }
 }
 
+/// Short name of a scene spec for file names and tables: the builtin's
+/// name, or the file stem of a path ("scene" without one).
+#[must_use]
+pub fn scene_label(spec: &str) -> String {
+    spec.strip_prefix("builtin:").map_or_else(
+        || {
+            Path::new(spec)
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+        },
+        str::to_string,
+    )
+}
+
 /// Loads `builtin:NAME` or an `.aff` file at animation time `time`.
 pub fn load_scene(spec: &str, time: f64) -> Result<Scene, SceneError> {
     if let Some(name) = spec.strip_prefix("builtin:") {

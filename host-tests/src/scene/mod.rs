@@ -10,7 +10,7 @@ mod load;
 pub mod lodmesh;
 pub mod ppm;
 
-pub use load::{SceneError, default_bart_dir, load_aff, load_scene, load_scene_dir};
+pub use load::{SceneError, default_bart_dir, load_aff, load_scene, load_scene_dir, scene_label};
 
 /// A 3-vector of scene units (or a linear RGB colour): `glam`'s f64
 /// vector, the one home of the harness's vector math.

@@ -1,5 +1,5 @@
 //! Charts with `plotters`, each written as SVG and as PNG (bitmap backend
-//! into a buffer, encoded by `cli::output::write_png`). Text is drawn by
+//! into a buffer, encoded by `output::image::write_png`). Text is drawn by
 //! `ab_glyph` with DejaVu Sans embedded from the `dejavu` crate, so no
 //! system font or fontconfig is needed.
 //!
@@ -9,7 +9,7 @@
 //!   the plotting area where it meets no other label and no marker, or left
 //!   out ([`place_labels`]; a chart with overlapping labels is an error);
 //!   one panel per group.
-//! * [`curves`]: lines on log–log axes (convergence over frames).
+//! * [`Curves`]: lines on log–log axes (convergence over frames).
 
 use std::path::Path;
 use std::sync::Once;
@@ -19,8 +19,9 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::cli::output::{OutputError, write_png};
 use crate::error::FileError;
+use crate::output::OutputError;
+use crate::output::image::write_png;
 
 /// One point of a scatter chart.
 #[derive(Clone, Debug)]

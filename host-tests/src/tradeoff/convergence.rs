@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::render::texunit::Filter;
-use crate::render::{FrameFilter, Method, Options, Precision, render_filtered};
+use crate::render::{Arithmetic, FrameFilter, Method, Options, render_filtered};
 
 use super::filter_stage::{
     self, Input, STOCHASTIC, TestTexture, channels, expectation, stochastic_name,
@@ -77,7 +77,7 @@ fn frame_curves(s: &Settings, tick: &dyn Fn()) -> Result<Vec<Curve>, TradeoffErr
     let prep = prepare(spec, s.size)?;
     let o = Options {
         method: Method::Table,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(s.size),
         bounces: s.bounces,
         ..Options::default()

@@ -1,7 +1,7 @@
 //! Filter per sample: nearest, bilinear, trilinear and the stochastic
 //! filters, fixed point (the firmware sampler) and f32 (`raymip::baseline_f32`),
 //! timed per call; error in 8-bit LSB per channel against the exact f64
-//! trilinear filter (`reference::sampler_ref::RefSampler`) at the same
+//! trilinear filter (`raymip_reference::sampler::Sampler`) at the same
 //! inputs (the common target every filter approximates: the chart axis)
 //! and against the exact f64 version of the row's own filter (the
 //! implementation error).
@@ -16,7 +16,7 @@
 //! on their own inputs, long footprints ([`aniso_inputs`]: 16 to 32 times
 //! longer than wide, so every cap is reached): their error is measured
 //! against the exact f64 anisotropic 16× filter over the same footprint
-//! (`RefSampler::sample_aniso`, the best filter of that footprint: the
+//! (`Sampler::sample_aniso` of the reference, the best filter of that footprint: the
 //! chart axis for these rows) and against the exact f64 filter of the
 //! row's own cap.
 
@@ -27,13 +27,18 @@ use raymip::texture::kernel::Linear;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Cfg, Mode, Sampler};
 use raymip::units::{Fast, Footprint, Lod, TexCoord};
 
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
-use crate::reference::Rng;
-use crate::reference::sampler_ref::{RefSampler, RefState, RefTexture};
+use crate::accuracy;
+use raymip_reference::Rng;
+use raymip_reference::sampler::{self as reference, State, Texture};
+
+/// The f64 reference sampler over a test texture.
+type RefSampler<'a> = reference::Sampler<'a, Texture>;
 
 /// A random RGBA8 texture and its firmware pyramid.
 pub struct TestTexture {
@@ -65,38 +70,35 @@ impl TestTexture {
         Pyramid::new(self.geometry, &self.texels).unwrap_or_else(|e| panic!("{e}"))
     }
 
+    /// The pyramid with its direct level views (power-of-two sides).
+    #[must_use]
+    pub fn direct(&self) -> Pow2Pyramid<'_> {
+        Pow2Pyramid::new(self.pyramid()).unwrap_or_else(|e| panic!("{e}"))
+    }
+
     /// A firmware sampler over it (wrap addressing, ACCURATE).
     #[must_use]
-    pub fn sampler(&self) -> Sampler<Pyramid<'_>> {
-        Sampler::wrap(self.pyramid())
+    pub fn sampler(&self) -> Sampler<Pow2Pyramid<'_>> {
+        Sampler::wrap(self.direct())
     }
 
     /// A firmware sampler over it (wrap addressing, FAST).
     #[must_use]
-    pub fn sampler_fast(&self) -> Sampler<Pyramid<'_>, Cfg<Wrap, Wrap, Linear, Fast>> {
-        Sampler::new(self.pyramid())
+    pub fn sampler_fast(&self) -> Sampler<Pow2Pyramid<'_>, Cfg<Wrap, Wrap, Linear, Fast>> {
+        Sampler::new(self.direct())
     }
 
     /// The exact f64 reference over the same texels (wrap, no bias).
     #[must_use]
-    pub fn reference(&self) -> RefTexture {
-        RefTexture::from_rgba8(&self.geometry, &self.texels)
+    pub fn reference(&self) -> Texture {
+        accuracy::texture_rgba8(&self.geometry, &self.texels)
     }
 }
 
 /// The reference sampler state: wrap, no bias or clamps, linear.
 #[must_use]
-pub fn ref_state() -> RefState {
-    RefState {
-        address: [AddressMode::Wrap; 2],
-        border: [0.0; 4],
-        bias: 0.0,
-        min_lod: f64::NEG_INFINITY,
-        max_lod: f64::INFINITY,
-        max_aniso: 1,
-        srgb: false,
-        encode_srgb: false,
-    }
+pub fn ref_state() -> State {
+    State::default()
 }
 
 /// One sample position: exact in both I32F32 and f64; lod a multiple of
@@ -195,7 +197,7 @@ fn row(filter: &str, precision: &str, ns: f64, got: &[[f64; 4]], ex: &Exact) -> 
 /// The exact filter at every input.
 fn exact(r: &RefSampler, inp: &[Input], mode: Mode) -> Vec<[f64; 4]> {
     inp.iter()
-        .map(|&(u, v, l)| r.sample(u.to_num(), v.to_num(), l.to_num(), mode))
+        .map(|&(u, v, l)| r.sample(u.to_num(), v.to_num(), l.to_num(), accuracy::mode(mode)))
         .collect()
 }
 
@@ -353,18 +355,25 @@ pub fn aniso_name(cap: u8) -> String {
 
 /// The exact f64 anisotropic filter with at most `cap` probes at every
 /// input.
-fn exact_aniso(tex: &RefTexture, inp: &[AnisoInput], cap: u8) -> Vec<[f64; 4]> {
+fn exact_aniso(tex: &Texture, inp: &[AnisoInput], cap: u8) -> Vec<[f64; 4]> {
     let mut state = ref_state();
     state.max_aniso = u32::from(cap);
-    let r = RefSampler { tex, state };
+    let r = reference::Sampler { tex, state };
     inp.iter()
-        .map(|(u, v, fp)| r.sample_aniso(u.to_num(), v.to_num(), axes_f64(fp), Mode::Trilinear))
+        .map(|(u, v, fp)| {
+            r.sample_aniso(
+                u.to_num(),
+                v.to_num(),
+                axes_f64(fp),
+                reference::Mode::Trilinear,
+            )
+        })
         .collect()
 }
 
 /// Anisotropic rows: each cap fixed and f32 (error against the exact
 /// 16× filter and against the exact filter of the row's cap).
-fn anisotropic(tex: &TestTexture, rt: &RefTexture, inp: &[AnisoInput], reps: usize) -> Vec<Row> {
+fn anisotropic(tex: &TestTexture, rt: &Texture, inp: &[AnisoInput], reps: usize) -> Vec<Row> {
     let target = exact_aniso(rt, inp, 16);
     let p = Pyramid::new(tex.geometry, &tex.texels).unwrap_or_else(|e| panic!("{e}"));
     let f32s = SamplerF32::new(tex.geometry, &tex.texels, AddressMode::Wrap)
@@ -411,7 +420,7 @@ fn anisotropic(tex: &TestTexture, rt: &RefTexture, inp: &[AnisoInput], reps: usi
 pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
     let tex = TestTexture::random(s.texture_size, 0x5EED_7E57);
     let rt = tex.reference();
-    let r = RefSampler {
+    let r = reference::Sampler {
         tex: &rt,
         state: ref_state(),
     };

@@ -5,10 +5,10 @@
 
 use std::path::Path;
 
-use crate::cli::output::{max_diff, psnr};
+use crate::output::metrics::{max_diff, psnr};
 use crate::render::texunit::Filter;
 use crate::render::{
-    Counters, FrameFilter, Image, Method, Options, Precision, Prepared, render_filtered,
+    Arithmetic, Counters, FrameFilter, Image, Method, Options, Prepared, render_filtered,
     render_truth,
 };
 use crate::scene::{Scene, SceneError, load_scene, load_scene_dir};
@@ -171,7 +171,7 @@ fn frames(
 
 /// Every frame row of one scene.
 fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, TradeoffError> {
-    let name = crate::cli::scene_label(spec);
+    let name = crate::scene::scene_label(spec);
     let prep = prepare(spec, s.size)?;
     let base = Options {
         size: Some(s.size),
@@ -187,12 +187,12 @@ fn scene_rows(spec: &str, s: &Settings, tick: &dyn Fn()) -> Result<Vec<Row>, Tra
     };
     let mut out = Vec::new();
     for method in METHODS {
-        let o = |precision| Options {
+        let o = |arithmetic| Options {
             method,
-            precision,
+            arithmetic,
             ..base.clone()
         };
-        let (fixed, float) = (o(Precision::Fixed), o(Precision::Float));
+        let (fixed, float) = (o(Arithmetic::Fixed), o(Arithmetic::Float));
         let mut float_imgs = Vec::new();
         for f in filters(method)
             .into_iter()

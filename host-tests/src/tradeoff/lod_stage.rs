@@ -12,7 +12,8 @@ use raymip::units::{Accurate, Delta, Fast, Footprint, Lod, Log2Pb, PathLength, T
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
-use crate::reference::Rng;
+use raymip_reference::Rng;
+use raymip_reference::lod as reference;
 
 /// One hit's inputs, exactly representable in the firmware's formats.
 #[derive(Clone, Copy, Debug)]
@@ -80,9 +81,9 @@ impl Formula {
 
     fn exact(self, h: &Hit) -> f64 {
         match self {
-            Self::Table => h.pl.log2() - h.log2_pb,
-            Self::Cone => h.delta + h.width.log2(),
-            Self::ConeNormal => h.delta + h.width.log2() - h.cos.log2(),
+            Self::Table => reference::table(h.pl, h.log2_pb),
+            Self::Cone => reference::cone(h.delta, h.width, None),
+            Self::ConeNormal => reference::cone(h.delta, h.width, Some(h.cos)),
         }
     }
 
@@ -261,10 +262,8 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         out.push(row(f.name(), "f64", float64(f, &hits, reps), &exact));
         tick();
     }
-    let raydiff = |h: Hit| {
-        let len = |a: [f64; 2]| (a[0] * a[0] + a[1] * a[1]).sqrt();
-        len(h.axes[0]).max(len(h.axes[1])).max(1e-300).log2()
-    };
+    // The axes are in texels already.
+    let raydiff = |h: Hit| reference::footprint(h.axes, (1.0, 1.0));
     let exact: Vec<f64> = hits.iter().map(|&h| raydiff(h)).collect();
     // The firmware lod of the same footprints (`RayDiffTriangle::lod`, the
     // per-hit step after the footprint's dot products) on a triangle of the

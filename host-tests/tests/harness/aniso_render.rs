@@ -3,8 +3,8 @@
 //! same ray-differential footprint, in fixed point and in f64, and the
 //! fixed-point render must stay close to the f64 one.
 
-use raymip_host::cli::output::psnr;
-use raymip_host::render::{Method, Options, Precision, Prepared, render, render_truth};
+use raymip_host::output::metrics::psnr;
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render, render_truth};
 use raymip_host::scene::load_scene;
 
 #[test]
@@ -18,28 +18,28 @@ fn aniso_beats_trilinear_on_the_hall() {
         ..Options::default()
     };
     let truth = render_truth(&prep, &base).to_rgb8();
-    let img = |precision, aniso| {
+    let img = |arithmetic, aniso| {
         render(
             &prep,
             &Options {
-                precision,
+                arithmetic,
                 aniso,
                 ..base.clone()
             },
         )
         .to_rgb8()
     };
-    for precision in [Precision::Fixed, Precision::Float] {
-        let tri = psnr(&img(precision, None), &truth);
-        let an = psnr(&img(precision, Some(16)), &truth);
-        eprintln!("{precision:?}: trilinear {tri:.2} dB, aniso 16x {an:.2} dB");
+    for arithmetic in [Arithmetic::Fixed, Arithmetic::Float] {
+        let tri = psnr(&img(arithmetic, None), &truth);
+        let an = psnr(&img(arithmetic, Some(16)), &truth);
+        eprintln!("{arithmetic:?}: trilinear {tri:.2} dB, aniso 16x {an:.2} dB");
         assert!(
             an > tri + 0.1,
-            "{precision:?}: aniso {an} vs trilinear {tri}"
+            "{arithmetic:?}: aniso {an} vs trilinear {tri}"
         );
     }
-    let fixed = img(Precision::Fixed, Some(16));
-    let float = img(Precision::Float, Some(16));
+    let fixed = img(Arithmetic::Fixed, Some(16));
+    let float = img(Arithmetic::Float, Some(16));
     assert!(
         psnr(&fixed, &float) > 45.0,
         "fixed vs float {}",

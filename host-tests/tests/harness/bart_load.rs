@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use raymip_host::output::report::markdown_cells;
 use raymip_host::scene::V3;
 use raymip_host::scene::aff::{self, DEFAULT_TIME, Scene};
 
@@ -162,13 +163,7 @@ fn assert_camera_at_key(s: &Scene, from: V3, axis: V3, deg: f64) {
 /// transcribed. The UV tolerance is half the last published digit.
 fn published(dir: &Path, scene: &str) -> Expect {
     let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
-    let cells = |line: &str| -> Vec<String> {
-        line.trim()
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect()
-    };
+    let cells = markdown_cells;
     let header = readme
         .lines()
         .find(|l| l.starts_with("| | kitchen"))

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::aff;
 use raymip_host::scene::aff_adapter;
 
@@ -33,7 +33,7 @@ fn check(name: &str, triangles: usize, textured: usize) {
     for method in [Method::Table, Method::Cone] {
         let opts = Options {
             method,
-            precision: Precision::Fixed,
+            arithmetic: Arithmetic::Fixed,
             size: Some((160, 96)),
             bounces: 10,
             spp: 1,

@@ -1,7 +1,7 @@
 //! BC1–BC4: the firmware decoder (`raymip::texture::storage::bc`) against an independent
 //! decoder from crates.io (`texture2ddecoder`, test-only dependency), bit
 //! for bit, over random blocks and every mode edge; and the harness encoder
-//! (`raymip_host::reference::texformat`) round trip.
+//! (`raymip_host::accuracy::texformat`) round trip.
 //!
 //! `texture2ddecoder` returns BGRA words and decodes the colour block of
 //! BC2/BC3 with BC1's mode switch, where D3D specifies the four-colour
@@ -13,8 +13,8 @@
 use raymip::texture::storage::bc::{decode_block, decode_texel};
 use raymip::texture::storage::format::TexelFormat;
 use raymip::texture::storage::mip::Texel;
-use raymip_host::reference::Rng;
-use raymip_host::reference::texformat::encode_block;
+use raymip_host::accuracy::texformat::encode_block;
+use raymip_reference::Rng;
 
 /// BGRA word (texture2ddecoder) to our RGBA8 texel.
 fn from_bgra(w: u32) -> Texel {

@@ -7,11 +7,12 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use raymip_host::render::CameraFrame;
+use raymip_host::render::instances::InstanceScene;
 use raymip_host::render::instances::{
     Config, FrameStats, GeomLodMode, MaskPolicy, Prepared, accumulate, blend, lod_param_f64, mean,
     rms,
 };
-use raymip_host::scene::instances::{InstanceScene, View};
+use raymip_host::scene::instances::View;
 
 fn scene() -> &'static InstanceScene {
     static S: OnceLock<InstanceScene> = OnceLock::new();

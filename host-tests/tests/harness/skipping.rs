@@ -4,13 +4,13 @@
 //! clear line when `../shared/scenes/bart` is absent); small sizes.
 
 use raymip_host::render::skip::{bit_identical, plan, render_trimmed};
-use raymip_host::render::{Method, Options, Precision, Prepared, render};
+use raymip_host::render::{Arithmetic, Method, Options, Prepared, render};
 use raymip_host::scene::{builtin, default_bart_dir, load_scene_dir};
 
 fn opts(method: Method, size: (u32, u32)) -> Options {
     Options {
         method,
-        precision: Precision::Fixed,
+        arithmetic: Arithmetic::Fixed,
         size: Some(size),
         bounces: 10,
         spp: 2,

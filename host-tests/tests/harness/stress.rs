@@ -5,7 +5,8 @@
 use std::path::Path;
 use std::process::Command;
 
-use raymip_host::cli::stress::{self, FLOAT_CLASSES, Totals};
+use raymip_host::cli::stress::cmd_stress_quiet;
+use raymip_host::stress::{self, FLOAT_CLASSES, Totals};
 
 #[test]
 fn stress_command_exits_zero_with_clean_totals() {
@@ -96,7 +97,7 @@ fn readme_block_is_current() {
     std::fs::create_dir_all(&dir).unwrap();
     let copy = dir.join("reliability.md");
     std::fs::write(&copy, &now).unwrap();
-    stress::cmd_stress_quiet(&copy).unwrap();
+    cmd_stress_quiet(&copy).unwrap();
     let fresh = std::fs::read_to_string(&copy).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(

@@ -3,10 +3,10 @@
 //! exact), and the same texel for nearest modes except where f32 rounding
 //! of `u·w` crosses a texel boundary (rare; counted).
 
+use raymip::baseline_f32::SamplerF32;
 use raymip::texture::storage::mip::{Geometry, Pyramid, full_levels, generate};
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Lod, TexCoord};
-use raymip_host::reference::texf32::SamplerF32;
 
 #[test]
 fn f32_matches_fixed() {
@@ -61,16 +61,17 @@ fn f32_matches_fixed() {
 }
 
 /// `SamplerF32::sample_aniso` against the exact f64 anisotropic filter
-/// (`RefSampler::sample_aniso`: the same probe rule in f64): within ½ LSB
+/// (`raymip_reference::sampler::Sampler::sample_aniso`: the same probe
+/// rule in f64): within ½ LSB
 /// of final rounding plus 1/64 LSB for f32 arithmetic (positions, weights,
 /// `log2f`), over random footprints of every eccentricity and every cap;
 /// footprints whose probe count or major axis is a rounding tie are left
 /// out (counted: few).
 #[test]
 fn f32_aniso_matches_f64_reference() {
-    use raymip_host::reference::Rng;
-    use raymip_host::reference::sampler_ref::RefSampler;
     use raymip_host::tradeoff::filter_stage::{TestTexture, ref_state};
+    use raymip_reference::Rng;
+    use raymip_reference::sampler::{Mode as RefMode, Sampler as RefSampler};
 
     let tex = TestTexture::random(32, 0xA2150);
     let rt = tex.reference();
@@ -101,7 +102,7 @@ fn f32_aniso_matches_f64_reference() {
             continue;
         }
         let got = float.sample_aniso(u, v, axes32, max, Mode::Trilinear);
-        let want = exact.sample_aniso(f64::from(u), f64::from(v), axes, Mode::Trilinear);
+        let want = exact.sample_aniso(f64::from(u), f64::from(v), axes, RefMode::Trilinear);
         for (g, w) in got.to_le_bytes().iter().zip(want) {
             let e = (f64::from(*g) - w).abs();
             assert!(

@@ -1,12 +1,12 @@
 //! The sampler (`raymip::texture::Sampler`, every key of its run-time
 //! form, both precision tiers) against the f64
-//! reference (`raymip_host::reference::sampler_ref`) for every texel format, sRGB
+//! reference (`raymip_reference::sampler`, through `raymip_host::accuracy`) for every texel format, sRGB
 //! (re-encoded and linear), address mode (random per axis, with border
 //! colours), lod bias/clamp and filter, including anisotropic filtering;
 //! every row must stay within its documented bound.
 
 use raymip::units::Precision;
-use raymip_host::reference::sampler_ref::measure;
+use raymip_host::accuracy::measure;
 
 #[test]
 fn every_format_and_filter_within_bound() {
@@ -44,7 +44,7 @@ fn every_format_and_filter_within_bound() {
 /// within its bound, and the cases are not all ties.
 #[test]
 fn fuzz_cases_within_bound() {
-    use raymip_host::reference::sampler_ref::fuzz_case;
+    use raymip_host::accuracy::fuzz_case;
     let mut compared = 0;
     for i in 0u32..300 {
         let k = i.wrapping_mul(0x9E37_79B9);

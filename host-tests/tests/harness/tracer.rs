@@ -1,17 +1,17 @@
 //! Renderer tests on the built-in scenes (reduced sizes to keep CI fast).
 
-use raymip_host::cli::output::psnr;
-use raymip_host::render::{Image, Method, Options, Precision, Prepared, RenderError, render};
+use raymip_host::output::metrics::psnr;
+use raymip_host::render::{Arithmetic, Image, Method, Options, Prepared, RenderError, render};
 use raymip_host::scene::builtin::{
     self, NAMES, fronto_quad, mirror_quad, one_texel_per_pixel_distance,
 };
 
 const SIZE: (u32, u32) = (200, 120);
 
-fn opts(method: Method, precision: Precision) -> Options {
+fn opts(method: Method, arithmetic: Arithmetic) -> Options {
     Options {
         method,
-        precision,
+        arithmetic,
         size: Some(SIZE),
         bounces: 10,
         spp: 64,
@@ -32,8 +32,8 @@ fn fixed_vs_float_psnr_at_least_50_db() {
     for name in NAMES {
         let p = prep(name);
         for m in [Method::Table, Method::Cone] {
-            let a = render(&p, &opts(m, Precision::Fixed));
-            let b = render(&p, &opts(m, Precision::Float));
+            let a = render(&p, &opts(m, Arithmetic::Fixed));
+            let b = render(&p, &opts(m, Arithmetic::Float));
             // Issue 11, defect 4: at 10 bounces no branch is dropped (a
             // 10-entry stack drops some on `glass`).
             for (img, pr) in [(&a, "fixed"), (&b, "float")] {
@@ -54,7 +54,7 @@ fn fixed_vs_float_psnr_at_least_50_db() {
 
 /// Lod of the centre pixel of a fronto-parallel quad at `k` times the
 /// one-texel-per-pixel distance.
-fn centre_lod(k: f64, m: Method, p: Precision) -> f64 {
+fn centre_lod(k: f64, m: Method, p: Arithmetic) -> f64 {
     let (fov, tex, side) = (45.0, 256, 2.0);
     let d = one_texel_per_pixel_distance(side, tex, fov, SIZE.1);
     let scene = fronto_quad(side, tex, k * d, fov, SIZE.0, SIZE.1);
@@ -79,8 +79,8 @@ fn fronto_parallel_quad_lod_zero_then_one() {
         Method::Raydiff,
         Method::Gbuffer,
     ] {
-        for p in [Precision::Fixed, Precision::Float] {
-            let tol = if m.has_footprint() && p == Precision::Fixed {
+        for p in [Arithmetic::Fixed, Arithmetic::Float] {
+            let tol = if m.has_footprint() && p == Arithmetic::Fixed {
                 rd_tol
             } else {
                 tol
@@ -135,7 +135,7 @@ fn every_filter_samples_at_the_methods_lod() {
         Filter::Stochastic(StochasticMode::Bilinear),
         Filter::Stochastic(StochasticMode::TrilinearBilinear),
     ];
-    for pr in [Precision::Fixed, Precision::Float] {
+    for pr in [Arithmetic::Fixed, Arithmetic::Float] {
         let mut sums = Vec::new();
         let methods = [
             Method::Table,
@@ -202,12 +202,12 @@ fn every_filter_samples_at_the_methods_lod() {
 #[test]
 fn sampling_uses_the_chosen_methods_lod_in_every_filter_mode() {
     let p = prep("hall");
-    let fixed = render(&p, &opts(Method::Raydiff, Precision::Fixed));
-    let float = render(&p, &opts(Method::Raydiff, Precision::Float));
+    let fixed = render(&p, &opts(Method::Raydiff, Arithmetic::Fixed));
+    let float = render(&p, &opts(Method::Raydiff, Arithmetic::Float));
     let q = psnr(&fixed.to_rgb8(), &float.to_rgb8());
     println!("hall raydiff: fixed (firmware differentials) vs float {q:.2} dB");
     assert!(q >= 40.0, "raydiff fixed vs float: {q:.2} dB");
-    for pr in [Precision::Fixed, Precision::Float] {
+    for pr in [Arithmetic::Fixed, Arithmetic::Float] {
         let tri = render(&p, &opts(Method::Raydiff, pr));
         let one = render(
             &p,
@@ -233,7 +233,7 @@ fn sampling_uses_the_chosen_methods_lod_in_every_filter_mode() {
     for m in [Method::Table, Method::Cone, Method::Mip0] {
         let o = Options {
             aniso: Some(8),
-            ..opts(m, Precision::Fixed)
+            ..opts(m, Arithmetic::Fixed)
         };
         assert!(
             matches!(
@@ -243,20 +243,20 @@ fn sampling_uses_the_chosen_methods_lod_in_every_filter_mode() {
             "{}",
             m.name()
         );
-        assert!(opts(m, Precision::Fixed).validate().is_ok());
+        assert!(opts(m, Arithmetic::Fixed).validate().is_ok());
     }
 }
 
 #[test]
 fn hall_mip_mapped_closer_to_truth_than_mip0() {
     let p = prep("hall");
-    let truth = render(&p, &opts(Method::Truth, Precision::Float)).to_rgb8();
+    let truth = render(&p, &opts(Method::Truth, Arithmetic::Float)).to_rgb8();
     let mip0 = psnr(
-        &render(&p, &opts(Method::Mip0, Precision::Fixed)).to_rgb8(),
+        &render(&p, &opts(Method::Mip0, Arithmetic::Fixed)).to_rgb8(),
         &truth,
     );
     for m in [Method::Table, Method::Cone] {
-        for pr in [Precision::Fixed, Precision::Float] {
+        for pr in [Arithmetic::Fixed, Arithmetic::Float] {
             let q = psnr(&render(&p, &opts(m, pr)).to_rgb8(), &truth);
             println!(
                 "hall {} {}: {q:.2} dB vs truth (mip0 {mip0:.2} dB)",
@@ -275,13 +275,13 @@ fn hall_mip_mapped_closer_to_truth_than_mip0() {
 
 #[test]
 fn mirror_room_has_deep_paths_and_glass_refracts() {
-    let img = render(&prep("mirrors"), &opts(Method::Table, Precision::Fixed));
+    let img = render(&prep("mirrors"), &opts(Method::Table, Arithmetic::Fixed));
     let c = &img.counters;
     println!("mirrors: hits per depth {:?}", c.depth_hist);
     assert!(c.max_depth() >= 8, "deepest path {} bounces", c.max_depth());
     assert!(c.depth_hist[8] > 0 && c.depth_hist[10] > 0);
     assert_eq!(c.saturations, 0);
-    let g = render(&prep("glass"), &opts(Method::Cone, Precision::Fixed));
+    let g = render(&prep("glass"), &opts(Method::Cone, Arithmetic::Fixed));
     assert!(g.counters.bounces > 0 && g.counters.textured_hits > 0);
     // Every textured hit lands in one histogram bin.
     let sum: u64 = g.counters.level_hist.iter().sum();
@@ -313,21 +313,21 @@ fn mirror_bounce_carries_path_length_into_the_lod() {
         let scene = mirror_quad(side, tex, 0.3 * k * pb, 0.7 * k * pb, fov, SIZE.0, SIZE.1);
         let prep = Prepared::new(scene, None).unwrap();
         for (m, p) in [
-            (Method::Table, Precision::Fixed),
-            (Method::Table, Precision::Float),
-            (Method::Cone, Precision::Fixed),
-            (Method::Cone, Precision::Float),
-            (Method::Raydiff, Precision::Float),
-            (Method::Raydiff, Precision::Fixed),
-            (Method::Gbuffer, Precision::Float),
-            (Method::Gbuffer, Precision::Fixed),
+            (Method::Table, Arithmetic::Fixed),
+            (Method::Table, Arithmetic::Float),
+            (Method::Cone, Arithmetic::Fixed),
+            (Method::Cone, Arithmetic::Float),
+            (Method::Raydiff, Arithmetic::Float),
+            (Method::Raydiff, Arithmetic::Fixed),
+            (Method::Gbuffer, Arithmetic::Float),
+            (Method::Gbuffer, Arithmetic::Fixed),
         ] {
             let img = render(&prep, &opts(m, p));
             let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
             let l = f64::from(img.lod[i]);
             println!("{} {} k={k}: lod {l:.5}", m.name(), p.name());
             // The firmware ray differentials: within their stated bound.
-            let tol = if (m, p) == (Method::Raydiff, Precision::Fixed) {
+            let tol = if (m, p) == (Method::Raydiff, Arithmetic::Fixed) {
                 raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR
             } else {
                 tol
@@ -382,9 +382,9 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
     scene.triangles = triangles;
     let prep = Prepared::new(scene, None).unwrap();
     let i = (SIZE.1 / 2 * SIZE.0 + SIZE.0 / 2) as usize;
-    let lod = |m: Method, p: Precision| f64::from(render(&prep, &opts(m, p)).lod[i]);
+    let lod = |m: Method, p: Arithmetic| f64::from(render(&prep, &opts(m, p)).lod[i]);
     let (want_cone, want_table) = ((76.0 / pb).log2(), (12.0 / pb).log2());
-    for p in [Precision::Fixed, Precision::Float] {
+    for p in [Arithmetic::Fixed, Arithmetic::Float] {
         let t = lod(Method::Table, p);
         let c = lod(Method::Cone, p);
         println!(
@@ -394,7 +394,7 @@ fn convex_mirror_spreads_the_cone_like_paraxial_optics() {
         assert!((t - want_table).abs() < 0.01, "table {t} vs {want_table}");
         assert!((c - want_cone).abs() < 0.1, "cone {c} vs {want_cone}");
     }
-    let r = lod(Method::Raydiff, Precision::Float);
+    let r = lod(Method::Raydiff, Arithmetic::Float);
     println!("raydiff {r:.4}");
     assert!((r - want_cone).abs() < 0.1, "raydiff {r} vs {want_cone}");
 }
@@ -446,7 +446,7 @@ fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
     };
     let prep = Prepared::new(scene, None).unwrap();
     for m in [Method::Table, Method::Cone] {
-        let c = render(&prep, &opts(m, Precision::Fixed)).counters;
+        let c = render(&prep, &opts(m, Arithmetic::Fixed)).counters;
         println!(
             "corridor {}: stack peak {} entries, {} dropped, hits per depth {:?}",
             m.name(),
@@ -469,8 +469,8 @@ fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
 fn envmap_misses_are_filtered_at_the_methods_lod() {
     let p = prep("envmap");
     assert!(p.env.is_some());
-    let truth = render(&p, &opts(Method::Truth, Precision::Float)).to_rgb8();
-    for pr in [Precision::Fixed, Precision::Float] {
+    let truth = render(&p, &opts(Method::Truth, Arithmetic::Float)).to_rgb8();
+    for pr in [Arithmetic::Fixed, Arithmetic::Float] {
         let q = |m| psnr(&render(&p, &opts(m, pr)).to_rgb8(), &truth);
         let (mip0, cone, rd) = (q(Method::Mip0), q(Method::Cone), q(Method::Raydiff));
         println!(
@@ -484,8 +484,8 @@ fn envmap_misses_are_filtered_at_the_methods_lod() {
         );
     }
     for m in [Method::Mip0, Method::Cone, Method::Raydiff] {
-        let a = render(&p, &opts(m, Precision::Fixed)).to_rgb8();
-        let b = render(&p, &opts(m, Precision::Float)).to_rgb8();
+        let a = render(&p, &opts(m, Arithmetic::Fixed)).to_rgb8();
+        let b = render(&p, &opts(m, Arithmetic::Float)).to_rgb8();
         let q = psnr(&a, &b);
         assert!(q >= 45.0, "envmap {}: fixed vs float {q:.2} dB", m.name());
     }

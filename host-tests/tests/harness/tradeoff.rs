@@ -11,7 +11,7 @@ use std::process::Command;
 use raymip::lod::LOD_MAX_ERROR;
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
-use raymip_host::reference::sampler_ref::ANISO_LOD_ERROR_LSB;
+use raymip_host::accuracy::ANISO_LOD_ERROR_LSB;
 use serde_json::Value;
 
 fn run(out: &Path) -> Vec<Value> {

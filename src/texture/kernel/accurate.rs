@@ -82,6 +82,15 @@ pub const BLEND_BITS: u32 = 8;
 /// exact f64 filter, in 8-bit LSB per channel: 0.5625.
 pub const BILERP_MAX_ERROR_LSB: f64 = 0.5625;
 
+/// The rounding term of one level's 8.16 value, `2⁷` (`(X + 2⁷) >> 8`).
+pub const ROUND_WIDE: u32 = 1 << 7;
+/// The rounding term of a bilinear texel, `2⁷ + 2²³`
+/// (`(X + 2⁷ + 2²³) >> 24`).
+pub const ROUND_TEXEL: u32 = (1 << 7) + (1 << 23);
+/// The rounding term of the level blend, `2²³`
+/// (`(a·(256 − t) + b·t + 2²³) >> 24`).
+pub const ROUND_BLEND: u32 = 1 << 23;
+
 /// Four channels (r, g, b, a) in 8.16 unsigned fixed point, each in
 /// `[0, 255·2¹⁶]`.
 pub type Wide = [u32; 4];
@@ -106,14 +115,15 @@ impl Lanes for Texel {
     }
 }
 
-/// Four 16-bit linear channels (65535 = 1.0), two per word:
-/// `[r | g << 16, b | a << 16]` (decoded sRGB texels, [`super::srgb`]).
-pub type Lin16 = [u32; 2];
+/// Four 16-bit linear channels (65535 = 1.0), one per word: `[r, g, b,
+/// a]` (decoded sRGB texels, [`super::srgb`]), so that the filter reads a
+/// channel without an extract.
+pub type Lin16 = [u32; 4];
 
 impl Lanes for Lin16 {
     #[inline(always)]
     fn ch(self, c: usize) -> u32 {
-        (self[(c >> 1) & 1] >> (16 * (c & 1))) & 0xFFFF
+        self[c & 3]
     }
 }
 
@@ -133,31 +143,35 @@ pub(crate) fn corner_weights16(fx: u32, fy: u32) -> [u32; 4] {
 }
 
 /// One level's bilinear value of lanes `t` with the corner weights `w`
-/// of [`corner_weights`] (8-bit lanes) or [`corner_weights16`] (16-bit): `(X + 2⁷) >> 8` per channel (8.16 for 8-bit
-/// lanes, 16.8 for 16-bit lanes; `X < 2³²`).
+/// of [`corner_weights`] (8-bit lanes) or [`corner_weights16`] (16-bit):
+/// `(X + 2⁷) >> 8` per channel (8.16 for 8-bit lanes, 16.8 for 16-bit
+/// lanes; `X < 2³²`), with `r =` [`ROUND_WIDE`] (the sampler's
+/// [`Rounding`](super::Rounding)).
 #[inline(always)]
-pub(crate) fn bilerp_lanes<L: Lanes>(t: [L; 4], w: [u32; 4]) -> Wide {
+pub(crate) fn bilerp_lanes<L: Lanes>(t: [L; 4], w: [u32; 4], r: u32) -> Wide {
+    debug_assert_eq!(r, ROUND_WIDE);
     let mut out = [0u32; 4];
     for (c, o) in out.iter_mut().enumerate() {
-        *o = corner_sum(t, w, c, 1 << 7) >> 8;
+        *o = corner_sum(t, w, c, r) >> 8;
     }
     out
 }
 
 /// The level blend of two [`bilerp_lanes`] values kept at their
-/// precision: `(a·(256 − t) + b·t + 2⁷) >> 8` per channel (`a, b < 2²⁴`,
+/// precision: `(a·(256 − t) + b·t + 2⁷) >> 8` per channel (`r =`
+/// [`ROUND_WIDE`]) (`a, b < 2²⁴`,
 /// `t ≤ 256`: the sum is below 2³²). For 8-bit lanes its
 /// `(x + 2¹⁵) >> 16` is [`blend_wide_in_range`] bit for bit (a floor of
 /// an integer plus an integer composes).
 #[inline(always)]
-pub(crate) fn blend_keep(a: Wide, b: Wide, t: u32) -> Wide {
+pub(crate) fn blend_keep(a: Wide, b: Wide, t: u32, r: u32) -> Wide {
+    debug_assert_eq!(r, ROUND_WIDE);
     let s = (1u32 << BLEND_BITS).wrapping_sub(t);
     let mut out = [0u32; 4];
     for (c, o) in out.iter_mut().enumerate() {
-        *o = a[c]
-            .wrapping_mul(s)
+        *o = r
+            .wrapping_add(a[c].wrapping_mul(s))
             .wrapping_add(b[c].wrapping_mul(t))
-            .wrapping_add(1 << 7)
             >> 8;
     }
     out
@@ -169,15 +183,20 @@ pub(crate) fn blend_keep(a: Wide, b: Wide, t: u32) -> Wide {
 #[inline]
 #[must_use]
 pub fn bilerp(t00: Texel, t10: Texel, t01: Texel, t11: Texel, fx: u32, fy: u32) -> Wide {
-    bilerp_in_range([t00, t10, t01, t11], fx.min(WEIGHT_ONE), fy.min(WEIGHT_ONE))
+    bilerp_in_range(
+        [t00, t10, t01, t11],
+        fx.min(WEIGHT_ONE),
+        fy.min(WEIGHT_ONE),
+        ROUND_WIDE,
+    )
 }
 
 /// [`bilerp`] for `fx, fy ≤ 4096` (the sampler's weights are masked to 12
 /// bits): `(X + 2⁷) >> 8` per channel with `X` the corner sum of
 /// [`corner_sum`] (`≤ 255·2²⁴`, so nothing overflows).
 #[inline(always)]
-pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32) -> Wide {
-    bilerp_lanes(t, corner_weights(fx, fy))
+pub(crate) fn bilerp_in_range(t: [Texel; 4], fx: u32, fy: u32, r: u32) -> Wide {
+    bilerp_lanes(t, corner_weights(fx, fy), r)
 }
 
 /// The four corner weights `[(4096 − fx)(4096 − fy), fx(4096 − fy),
@@ -215,15 +234,17 @@ fn corner_sum<L: Lanes>(t: [L; 4], w: [u32; 4], c: usize, r: u32) -> u32 {
 /// `X = top·(4096 − fy) + bot·fy ≤ 255·2²⁴`,
 /// `floor((floor((X + 2⁷)/2⁸) + 2¹⁵)/2¹⁶) = floor((X + 2⁷ + 2²³)/2²⁴)`
 /// (a floor of an integer plus an integer composes), and
-/// `X + 2⁷ + 2²³ < 2²⁴·256`, so each channel's result is at most 255.
+/// `X + 2⁷ + 2²³ < 2²⁴·256`, so each channel's result is at most 255
+/// (`r =` [`ROUND_TEXEL`]).
 /// (With feature `pcpi` on riscv32 the co-processor's `tex.bb` replaces it.)
 #[cfg_attr(all(feature = "pcpi", target_arch = "riscv32"), allow(dead_code))]
 #[inline(always)]
-pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32) -> Texel {
+pub(crate) fn bilerp_rounded(t: [Texel; 4], fx: u32, fy: u32, r: u32) -> Texel {
+    debug_assert_eq!(r, ROUND_TEXEL);
     let w = corner_weights(fx, fy);
     let mut out = 0u32;
     for c in 0..4 {
-        out |= (corner_sum(t, w, c, (1 << 7) + (1 << 23)) >> 24) << (8 * c);
+        out |= (corner_sum(t, w, c, r) >> 24) << (8 * c);
     }
     out
 }
@@ -268,21 +289,24 @@ pub fn blend_wide(a: Wide, b: Wide, t: u32) -> Texel {
         a.map(|v| v.min(255 << 16)),
         b.map(|v| v.min(255 << 16)),
         t.min(1 << BLEND_BITS),
+        ROUND_BLEND,
     )
 }
 
 /// [`blend_wide`] for channels `≤ 255·2¹⁶` and `t ≤ 256`:
-/// `a·(256 − t) + b·t + 2²³ ≤ 255·2²⁴ + 2²³ < 2³²`, result `≤ 255`.
+/// `a·(256 − t) + b·t + 2²³ ≤ 255·2²⁴ + 2²³ < 2³²`, result `≤ 255`
+/// (`r =` [`ROUND_BLEND`]).
 #[inline(always)]
-pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32) -> Texel {
+pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32, r: u32) -> Texel {
+    debug_assert_eq!(r, ROUND_BLEND);
     let s = (1u32 << BLEND_BITS).wrapping_sub(t);
     let mut out = 0u32;
     for c in 0..4 {
-        let r = (1u32 << 23)
+        let v = r
             .wrapping_add(a[c].wrapping_mul(s))
             .wrapping_add(b[c].wrapping_mul(t))
             >> 24;
-        out |= r << (8 * c);
+        out |= v << (8 * c);
     }
     out
 }
@@ -422,14 +446,18 @@ mod tests {
                         (x as u32).rotate_left(7),
                     ],
                 };
-                let w = bilerp_in_range(t, fx, fy);
+                let w = bilerp_in_range(t, fx, fy, ROUND_WIDE);
                 let mut rounded = 0;
                 for (c, &wc) in w.iter().enumerate() {
                     let exact = nested(t, fx, fy, c);
                     assert_eq!(wc, (exact + (1 << 7)) >> 8, "{t:x?} {fx} {fy} {c}");
                     rounded |= ((exact + (1 << 7) + (1 << 23)) >> 24) << (8 * c);
                 }
-                assert_eq!(bilerp_rounded(t, fx, fy), rounded, "{t:x?} {fx} {fy}");
+                assert_eq!(
+                    bilerp_rounded(t, fx, fy, ROUND_TEXEL),
+                    rounded,
+                    "{t:x?} {fx} {fy}"
+                );
             }
         }
     }
@@ -454,7 +482,11 @@ mod tests {
                 for c in 0..4 {
                     want |= ((a[c] * (256 - t) + b[c] * t + (1 << 23)) >> 24) << (8 * c);
                 }
-                assert_eq!(blend_wide_in_range(a, b, t), want, "{a:x?} {b:x?} {t}");
+                assert_eq!(
+                    blend_wide_in_range(a, b, t, ROUND_BLEND),
+                    want,
+                    "{a:x?} {b:x?} {t}"
+                );
             }
         }
     }
@@ -476,8 +508,8 @@ mod tests {
             let (fx, fy) = ((x >> 48) as u32 & 0xFFF, (n * 37) % 4097);
             let t = if n % 7 == 0 { [u32::MAX; 4] } else { t };
             assert_eq!(
-                bilerp_rounded(t, fx, fy),
-                round_wide_in_range(bilerp_in_range(t, fx, fy)),
+                bilerp_rounded(t, fx, fy, ROUND_TEXEL),
+                round_wide_in_range(bilerp_in_range(t, fx, fy, ROUND_WIDE)),
                 "{t:x?} {fx} {fy}"
             );
         }

@@ -113,7 +113,7 @@ const PAIR: u32 = 0xFF00_00FF;
 /// Rounding constants of a pair sum for a rounded bilinear texel: `2²³`
 /// in the low word (`c_lo` in 8.24), `2¹⁵` in the high word (`c_hi` in
 /// 8.16).
-const ROUND_PAIR: u64 = (1 << 23) | (1 << (32 + 15));
+pub const ROUND_PAIR: u64 = (1 << 23) | (1 << (32 + 15));
 
 /// The scaled corner weights `2⁸·[W₀₀, W₁₀, W₀₁, W₁₁]` of the 8-bit
 /// position weights `x, y ≤ 255` (module docs: exact products, sum 2²⁴,
@@ -186,8 +186,9 @@ fn bilinear_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32) -> Wide {
 
 /// [`bilinear_texel`] in a sum form (both give the same texel; tested).
 #[inline(always)]
-fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32) -> Texel {
-    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), ROUND_PAIR);
+fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, r: u64) -> Texel {
+    debug_assert_eq!(r, ROUND_PAIR);
+    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), r);
     // Rounded results: the low lane in bits 24..32 of the low word, the
     // high lane in bits 16..24 of the high word (which is below 2²⁴).
     let (a_lo, a_hi) = (a as u32, (a >> 32) as u32);
@@ -211,7 +212,15 @@ pub fn bilinear(t: [Texel; 4], x: u32, y: u32) -> Wide {
 #[inline(always)]
 #[must_use]
 pub fn bilinear_texel(t: [Texel; 4], x: u32, y: u32) -> Texel {
-    bilinear_texel_with::<WIDE>(t, x, y)
+    bilinear_texel_with::<WIDE>(t, x, y, ROUND_PAIR)
+}
+
+/// [`bilinear_texel`] with the rounding constants `r =` [`ROUND_PAIR`]
+/// given (the sampler's [`Rounding`](super::Rounding): the sums then start
+/// from registers).
+#[inline(always)]
+pub(crate) fn bilinear_texel_rounded(t: [Texel; 4], x: u32, y: u32, r: u64) -> Texel {
+    bilinear_texel_with::<WIDE>(t, x, y, r)
 }
 
 #[cfg(test)]
@@ -319,8 +328,8 @@ mod tests {
                 bilinear_with::<false>(t, x, y)
             );
             assert_eq!(
-                bilinear_texel_with::<true>(t, x, y),
-                bilinear_texel_with::<false>(t, x, y)
+                bilinear_texel_with::<true>(t, x, y, ROUND_PAIR),
+                bilinear_texel_with::<false>(t, x, y, ROUND_PAIR)
             );
             let e = exact_weights(u64::from(x), u64::from(y));
             let wide = bilinear(t, x, y);
@@ -338,8 +347,14 @@ mod tests {
                     "{t:x?} {x} {y} {c}"
                 );
             }
-            assert_eq!(wide, accurate::bilerp_in_range(t, x << 4, y << 4));
-            assert_eq!(texel, accurate::bilerp_rounded(t, x << 4, y << 4));
+            assert_eq!(
+                wide,
+                accurate::bilerp_in_range(t, x << 4, y << 4, accurate::ROUND_WIDE)
+            );
+            assert_eq!(
+                texel,
+                accurate::bilerp_rounded(t, x << 4, y << 4, accurate::ROUND_TEXEL)
+            );
         }
     }
 

@@ -51,6 +51,41 @@ mod sealed {
     impl<C, P> Sealed for (C, P) {}
 }
 
+/// The rounding terms of the filter arithmetic, made once per sampler
+/// ([`Rounding::new`]) and handed to every kernel call: each
+/// multiply-accumulate chain then starts from a register holding its
+/// rounding term, instead of a separate add after the chain (which is what
+/// a compiler emits for a constant it can see). The values are fixed
+/// ([`accurate::ROUND_WIDE`], [`accurate::ROUND_TEXEL`],
+/// [`accurate::ROUND_BLEND`], [`fast::ROUND_PAIR`]); only where they come
+/// from differs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rounding {
+    wide: u32,
+    texel: u32,
+    blend: u32,
+    pair: u64,
+}
+
+impl Rounding {
+    /// The rounding terms.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            wide: accurate::ROUND_WIDE,
+            texel: accurate::ROUND_TEXEL,
+            blend: accurate::ROUND_BLEND,
+            pair: fast::ROUND_PAIR,
+        }
+    }
+}
+
+impl Default for Rounding {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// A filter kernel: the arithmetic of one colour space and precision
 /// tier on texel footprints (implemented for the pairs `(C, P)` of the
 /// table above; sealed).
@@ -107,10 +142,11 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// The border colour as a nearest-texel result.
     fn border_nearest(t: Texel) -> Texel;
     /// One level's bilinear value of the footprint `l` (`t00, t10, t01,
-    /// t11`) with position weights `fx, fy < 2^WEIGHT_BITS`.
-    fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide;
+    /// t11`) with position weights `fx, fy < 2^WEIGHT_BITS` (`k`: the
+    /// sampler's [`Rounding`], as for every filter below).
+    fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide;
     /// [`bilinear`](Self::bilinear) rounded to a result texel.
-    fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Texel;
+    fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Texel;
     /// A level value rounded to a result texel.
     fn round(w: Self::Wide) -> Texel;
     /// One level of a trilinear sample: the footprint's filtered value as
@@ -121,16 +157,16 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// rounded texel).
     type Level: Copy;
     /// The [`Level`](Self::Level) of the footprint `l` with weights `fx, fy`.
-    fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Level;
+    fn level(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Level;
     /// A level alone rounded to a result texel (the
     /// [`round`](Self::round) of its value).
     fn round_level(a: Self::Level) -> Texel;
     /// The [`blend`](Self::blend) of the levels `a` and then `b` (the last
     /// two [`level`](Self::level) calls, in that order) with `t ∈ [1, 255]`.
-    fn blend_levels(a: Self::Level, b: Self::Level, t: u32) -> Texel;
+    fn blend_levels(a: Self::Level, b: Self::Level, t: u32, k: Rounding) -> Texel;
     /// The blend of two levels' values with the 8-bit lod fraction
     /// `t ∈ [1, 255]`, rounded to a result texel.
-    fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel;
+    fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel;
     /// The blend of two nearest texels' lanes, rounded.
     fn blend_nearest(a: Self::Lanes, b: Self::Lanes, t: u32) -> Texel;
     /// A level value as a probe value that sums over 16 probes: four
@@ -138,7 +174,7 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// linear for sRGB data).
     fn probe(w: Self::Wide) -> [u32; 4];
     /// [`blend`](Self::blend) as a probe value.
-    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4];
+    fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> [u32; 4];
     /// The mean of `n ∈ [1, 16]` probe values (their channel sums),
     /// rounded to a result texel.
     fn probe_mean(sum: [u32; 4], n: u32) -> Texel;
@@ -151,16 +187,16 @@ macro_rules! software_levels {
     () => {
         type Level = Self::Wide;
         #[inline(always)]
-        fn level(l: [Self::Lanes; 4], fx: u32, fy: u32) -> Self::Wide {
-            Self::bilinear(l, fx, fy)
+        fn level(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+            Self::bilinear(l, fx, fy, k)
         }
         #[inline(always)]
         fn round_level(a: Self::Wide) -> Texel {
             Self::round(a)
         }
         #[inline(always)]
-        fn blend_levels(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-            Self::blend(a, b, t)
+        fn blend_levels(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+            Self::blend(a, b, t, k)
         }
     };
 }
@@ -198,8 +234,8 @@ macro_rules! wide_probes {
             w
         }
         #[inline(always)]
-        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32) -> [u32; 4] {
-            accurate::blend_keep(a, b, t)
+        fn probe_blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> [u32; 4] {
+            accurate::blend_keep(a, b, t, k.wide)
         }
     };
 }
@@ -214,8 +250,8 @@ macro_rules! linear_8_16 {
             accurate::round_wide_in_range(w)
         }
         #[inline(always)]
-        fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-            accurate::blend_wide_in_range(a, b, t)
+        fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+            accurate::blend_wide_in_range(a, b, t, k.blend)
         }
         #[inline(always)]
         fn blend_nearest(a: Texel, b: Texel, t: u32) -> Texel {
@@ -244,19 +280,19 @@ impl Kernel for (Linear, Accurate) {
 
     rgba8_texels!();
     #[inline(always)]
-    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
-        accurate::bilerp_in_range(l, fx, fy)
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+        accurate::bilerp_in_range(l, fx, fy, k.wide)
     }
     #[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        accurate::bilerp_rounded(l, fx, fy)
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        accurate::bilerp_rounded(l, fx, fy, k.texel)
     }
     // Feature `pcpi` on riscv32: the co-processor's corner sum, the same
     // bits as `bilerp_rounded` (`fx, fy < 4096`).
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::bw(fx, fy);
         crate::coproc::pcpi::bt(l[0], l[1]);
         crate::coproc::pcpi::bb(l[2], l[3])
@@ -271,8 +307,8 @@ impl Kernel for (Linear, Accurate) {
     type Level = Texel;
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn level(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        Self::bilinear_texel(l, fx, fy)
+    fn level(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        Self::bilinear_texel(l, fx, fy, k)
     }
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
@@ -281,7 +317,7 @@ impl Kernel for (Linear, Accurate) {
     }
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
     #[inline(always)]
-    fn blend_levels(_: Texel, _: Texel, t: u32) -> Texel {
+    fn blend_levels(_: Texel, _: Texel, t: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::blend(t)
     }
     linear_8_16!();
@@ -296,12 +332,12 @@ impl Kernel for (Linear, Fast) {
 
     rgba8_texels!();
     #[inline(always)]
-    fn bilinear(l: [Texel; 4], fx: u32, fy: u32) -> Self::Wide {
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Self::Wide {
         fast::bilinear(l, fx, fy)
     }
     #[inline(always)]
-    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32) -> Texel {
-        fast::bilinear_texel(l, fx, fy)
+    fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        fast::bilinear_texel_rounded(l, fx, fy, k.pair)
     }
     // A FAST level value is an exact 8.16 value: rounding, level blend and
     // probes are the ACCURATE kernel's (module docs of `fast`).
@@ -337,24 +373,29 @@ macro_rules! srgb_kernel {
                 $border(t)
             }
             #[inline(always)]
-            fn bilinear(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Self::Wide {
-                accurate::bilerp_lanes(l, accurate::corner_weights16(fx, fy))
+            fn bilinear(l: [accurate::Lin16; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+                accurate::bilerp_lanes(l, accurate::corner_weights16(fx, fy), k.wide)
             }
             #[inline(always)]
-            fn bilinear_texel(l: [accurate::Lin16; 4], fx: u32, fy: u32) -> Texel {
-                $out(Self::bilinear(l, fx, fy))
+            fn bilinear_texel(l: [accurate::Lin16; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+                $out(Self::bilinear(l, fx, fy, k))
             }
             #[inline(always)]
             fn round(w: Self::Wide) -> Texel {
                 $out(w)
             }
             #[inline(always)]
-            fn blend(a: Self::Wide, b: Self::Wide, t: u32) -> Texel {
-                $out(accurate::blend_keep(a, b, t))
+            fn blend(a: Self::Wide, b: Self::Wide, t: u32, k: Rounding) -> Texel {
+                $out(accurate::blend_keep(a, b, t, k.wide))
             }
             #[inline(always)]
             fn blend_nearest(a: accurate::Lin16, b: accurate::Lin16, t: u32) -> Texel {
-                $out(accurate::blend_keep(srgb::widen(a), srgb::widen(b), t))
+                $out(accurate::blend_keep(
+                    srgb::widen(a),
+                    srgb::widen(b),
+                    t,
+                    accurate::ROUND_WIDE,
+                ))
             }
             wide_probes!();
             #[inline(always)]

@@ -41,17 +41,18 @@ pub const SRGB_LINEAR_MAX_ERROR_LSB: f64 = 0.5101;
 pub fn load(t: Texel) -> Lin16 {
     let [r, g, b, a] = t.to_le_bytes();
     [
-        u32::from(srgb::decode(r)) | (u32::from(srgb::decode(g)) << 16),
-        u32::from(srgb::decode(b)) | ((u32::from(a) * 257) << 16),
+        u32::from(srgb::decode(r)),
+        u32::from(srgb::decode(g)),
+        u32::from(srgb::decode(b)),
+        u32::from(a) * 257,
     ]
 }
 
 /// A linear RGBA8 texel (the border colour) as 16-bit lanes: `c·257`.
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn load_linear(t: Texel) -> Lin16 {
-    let [r, g, b, a] = t.to_le_bytes().map(|c| u32::from(c) * 257);
-    [r | (g << 16), b | (a << 16)]
+    t.to_le_bytes().map(|c| u32::from(c) * 257)
 }
 
 /// A 16.8 linear value (`≤ 65535·256`, larger values saturate) rounded to
@@ -83,12 +84,7 @@ pub fn linear_output(v: [u32; 4]) -> Texel {
 #[inline(always)]
 #[must_use]
 pub fn widen(l: Lin16) -> [u32; 4] {
-    [
-        (l[0] & 0xFFFF) << 8,
-        (l[0] >> 16) << 8,
-        (l[1] & 0xFFFF) << 8,
-        (l[1] >> 16) << 8,
-    ]
+    l.map(|c| (c & 0xFFFF) << 8)
 }
 
 #[cfg(test)]

@@ -32,6 +32,7 @@ use fixed::types::I16F16;
 
 use super::{Key, Sampler};
 use crate::lod::log2::log2_bits;
+use crate::texture::Stats;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};
 use crate::units::{Footprint, Lod, TexCoord};
@@ -175,13 +176,13 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let (mut pu, mut pv) = (u.saturating_add(p.first[0]), v.saturating_add(p.first[1]));
         for _ in 0..n {
             let (ta, fxa, fya) = self.footprint(pu, pv, lower);
-            let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya);
+            let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya, self.rounding);
             let value = if t == 0 {
                 <K::Kernel as Kernel>::probe(a)
             } else {
                 let (tb, fxb, fyb) = self.footprint(pu, pv, lower + 1);
-                let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb);
-                <K::Kernel as Kernel>::probe_blend(a, b, t)
+                let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb, self.rounding);
+                <K::Kernel as Kernel>::probe_blend(a, b, t, self.rounding)
             };
             for (s, x) in sum.iter_mut().zip(value) {
                 *s = s.wrapping_add(x);
@@ -190,9 +191,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             pv = pv.saturating_add(p.step[1]);
         }
         let per_probe = if t == 0 { 4 } else { 8 };
-        self.stats.fetched += u64::from(n * per_probe);
-        self.stats.skipped +=
-            u64::from(n * (8 - per_probe)) * u64::from(cfg!(feature = "trilinear"));
+        self.stats.count(
+            u64::from(n * per_probe),
+            u64::from(n * (8 - per_probe)) * u64::from(cfg!(feature = "trilinear")),
+        );
         <K::Kernel as Kernel>::probe_mean(sum, n)
     }
 }

@@ -37,11 +37,11 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crate::texture::address::{AddressMode, AnyAxis, Axis, AxisTaps, ClampToEdge, Wrap};
-use crate::texture::address::{pow2_wrap_taps, wrap_constant};
-use crate::texture::kernel::{Kernel, Linear};
+use crate::texture::address::wrap_constant;
+use crate::texture::address::{AddressMode, AnyAxis, Axis, ClampToEdge, Wrap};
+use crate::texture::kernel::{Kernel, Linear, Rounding};
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
-use crate::texture::{FetchStats, FilterError, Mode, tex_coord_from_f64};
+use crate::texture::{FetchStats, FilterError, Mode, Stats, tex_coord_from_f64};
 use crate::units::{Accurate, Lod, Precision, TexCoord};
 
 pub mod aniso;
@@ -59,6 +59,8 @@ pub trait Key: 'static {
     type V: Axis;
     /// The filter kernel (colour space and precision tier).
     type Kernel: Kernel;
+    /// The fetch statistics ([`FetchStats`] or [`NoStats`](crate::texture::NoStats)).
+    type Stats: Stats;
 }
 
 /// A sampler key: address mode of `u` ([`Wrap`],
@@ -69,8 +71,9 @@ pub trait Key: 'static {
 /// [`AnyAxis`]), of `v` (default: as `u`), colour space `C`
 /// ([`Linear`], [`Srgb`](crate::texture::kernel::Srgb),
 /// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
-/// tier `P` ([`Accurate`], [`Fast`](crate::units::Fast)).
-/// `Cfg` alone is wrap, linear, ACCURATE.
+/// tier `P` ([`Accurate`], [`Fast`](crate::units::Fast)) and
+/// what it counts, `N` ([`FetchStats`], the default, or [`NoStats`](crate::texture::NoStats)).
+/// `Cfg` alone is wrap, linear, ACCURATE, counted.
 ///
 /// # Example
 /// ```
@@ -91,25 +94,28 @@ pub trait Key: 'static {
 /// assert_eq!(clamp.sample(u, v, Lod::ZERO, Mode::Nearest), 9);
 /// # Ok::<(), raymip::MipError>(())
 /// ```
-pub struct Cfg<U = Wrap, V = U, C = Linear, P = Accurate>(PhantomData<KeyParts<U, V, C, P>>);
+pub struct Cfg<U = Wrap, V = U, C = Linear, P = Accurate, N = FetchStats>(
+    PhantomData<KeyParts<U, V, C, P, N>>,
+);
 
 /// The parts of a [`Cfg`] (a `fn` pointer type: no auto-trait or drop
 /// obligations on them).
-type KeyParts<U, V, C, P> = fn() -> (U, V, C, P);
+type KeyParts<U, V, C, P, N> = fn() -> (U, V, C, P, N);
 
-impl<U, V, C, P> fmt::Debug for Cfg<U, V, C, P> {
+impl<U, V, C, P, N> fmt::Debug for Cfg<U, V, C, P, N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("Cfg")
     }
 }
 
-impl<U: Axis, V: Axis, C: 'static, P: 'static> Key for Cfg<U, V, C, P>
+impl<U: Axis, V: Axis, C: 'static, P: 'static, N: Stats> Key for Cfg<U, V, C, P, N>
 where
     (C, P): Kernel,
 {
     type U = U;
     type V = V;
     type Kernel = (C, P);
+    type Stats = N;
 }
 
 /// The kernel of key `K`.
@@ -157,97 +163,19 @@ impl fmt::Display for SamplerError {
 
 impl core::error::Error for SamplerError {}
 
-/// Addressing of one level: offset in texels, width and height, the
-/// per-axis constants of [`pow2_wrap_taps`] and `log2(w·h)` when both
-/// sides are powers of two and the source is in memory (set up once),
-/// else [`Level::OFF`]'s offset.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Level {
-    /// Offset of the level in the texel slice (`< 2³¹`); `u32::MAX` when
-    /// the level is not read through the slice path.
-    offset: u32,
-    w: u32,
-    h: u32,
-    cx: u32,
-    cy: u32,
-    /// `log2(w·h) ≤ 30`: the level holds `1 << log2_len` texels.
-    log2_len: u32,
-}
-
-impl Level {
-    /// No slice path: the offset `u32::MAX`, read as the level start
-    /// `usize::MAX` (sign-extended, [`Level::start`]), never lies in a
-    /// slice (the range end wraps below its start), so [`Level::slice`]
-    /// returns `None` and the sampler takes the generic path. A table of
-    /// these costs the per-sample path no test of its own.
-    const OFF: Self = Self {
-        offset: u32::MAX,
-        w: 0,
-        h: 0,
-        cx: 0,
-        cy: 0,
-        log2_len: 0,
-    };
-
-    /// The table for `g` and `bits` weight bits when both sides are
-    /// powers of two (then every level's are; levels past the top repeat
-    /// the top level), else [`Level::OFF`] throughout.
-    fn table(g: &Geometry, bits: u32) -> [Self; MAX_LEVELS as usize + 1] {
-        let mut t = [Self::OFF; MAX_LEVELS as usize + 1];
-        if g.width().is_power_of_two() && g.height().is_power_of_two() {
-            for (k, e) in (0u8..).zip(t.iter_mut()) {
-                let (w, h) = g.level_size(k);
-                let (kx, ky) = (w.trailing_zeros(), h.trailing_zeros());
-                let Ok(offset) = u32::try_from(g.level_offset(k)) else {
-                    return [Self::OFF; MAX_LEVELS as usize + 1];
-                };
-                *e = Self {
-                    offset,
-                    w,
-                    h,
-                    cx: wrap_constant(kx, bits),
-                    cy: wrap_constant(ky, bits),
-                    log2_len: kx + ky,
-                };
-            }
+/// The wrap constants [`wrap_constant`]`(k, bits)` of both axes of every
+/// level index `0 ..= 16` for a power-of-two geometry (levels past the top
+/// repeat it, as [`Geometry::level_size`] clamps them), zeros otherwise
+/// (then no direct views exist and nothing reads them).
+fn wrap_table(g: &Geometry, bits: u32) -> [[u32; 2]; MAX_LEVELS as usize + 1] {
+    let mut t = [[0; 2]; MAX_LEVELS as usize + 1];
+    if g.width().is_power_of_two() && g.height().is_power_of_two() {
+        for (k, e) in (0u8..).zip(t.iter_mut()) {
+            let (w, h) = g.level_size(k);
+            *e = [w, h].map(|n| wrap_constant(n.trailing_zeros(), bits));
         }
-        t
     }
-
-    /// The level's first texel index: `offset` sign-extended, so that
-    /// [`Level::OFF`]'s `u32::MAX` becomes `usize::MAX` on every target
-    /// and real offsets (`< 2³¹`, the [`Geometry`] bound) are unchanged (no
-    /// instruction on a 32-bit target).
-    #[inline(always)]
-    fn start(&self) -> usize {
-        self.offset as i32 as isize as usize
-    }
-
-    /// The level's texels in `texels`, `None` for [`Level::OFF`] or a
-    /// slice shorter than the level (a [`Pyramid`](crate::texture::Pyramid)
-    /// rules that out): one bounds check.
-    #[inline(always)]
-    fn slice<'t>(&self, texels: &'t [Texel]) -> Option<&'t [Texel]> {
-        let n = 1usize << (self.log2_len & 31);
-        let start = self.start();
-        texels.get(start..start.wrapping_add(n))
-    }
-}
-
-/// Taps of one axis on a power-of-two level: the one-multiply form for a
-/// wrapped axis, else the mode's general taps.
-#[inline(always)]
-fn level_taps(mode: AddressMode, coord: TexCoord, size: u32, c: u32, bits: u32) -> AxisTaps {
-    if mode == AddressMode::Wrap {
-        let (i0, i1, f) = pow2_wrap_taps(coord, size, c, bits);
-        AxisTaps {
-            i: [i0, i1],
-            f,
-            border: [false; 2],
-        }
-    } else {
-        mode.taps(coord, size, bits)
-    }
+    t
 }
 
 /// The lod window of a [`SamplerState`] on `levels` stored levels, in I8F8
@@ -314,10 +242,13 @@ pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     /// The border colour as the kernel's lanes and as a nearest result.
     border: Lanes<K>,
     border_nearest: Texel,
-    stats: FetchStats,
-    /// Per-level addressing; entry 16 repeats the top level so that
-    /// `lower + 1` needs no check.
-    levels: [Level; MAX_LEVELS as usize + 1],
+    stats: K::Stats,
+    /// The kernel's rounding terms (a field, so that each filter chain
+    /// starts from a register: [`Rounding`]).
+    rounding: Rounding,
+    /// [`wrap_table`] for the kernel's weight bits; entry 16 repeats the
+    /// top level so that `lower + 1` needs no check.
+    wrap: [[u32; 2]; MAX_LEVELS as usize + 1],
 }
 
 impl<S: TexelSource + fmt::Debug, K: Key> fmt::Debug for Sampler<S, K> {
@@ -394,12 +325,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
     fn build(source: S, state: SamplerState, axes: (K::U, K::V)) -> Self {
         let geometry = source.geometry();
-        let levels = if source.texel_slice().is_some() {
-            Level::table(&geometry, Kern::<K>::WEIGHT_BITS)
-        } else {
-            [Level::OFF; MAX_LEVELS as usize + 1]
-        };
         Self {
+            wrap: wrap_table(&geometry, Kern::<K>::WEIGHT_BITS),
             lod: LodWindow::new(&state, &geometry),
             border: Kern::<K>::load_border(state.border()),
             border_nearest: Kern::<K>::border_nearest(state.border()),
@@ -407,8 +334,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             geometry,
             state,
             axes,
-            stats: FetchStats::default(),
-            levels,
+            stats: K::Stats::default(),
+            rounding: Rounding::new(),
         }
     }
 
@@ -446,10 +373,9 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         self.trilinear_counted(u, v, lod, |s, one_level| {
             if one_level {
-                s.fetched += 4;
-                s.skipped += 4;
+                s.count(4, 4);
             } else {
-                s.fetched += 8;
+                s.count(8, 0);
             }
         })
     }
@@ -466,7 +392,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         u: TexCoord,
         v: TexCoord,
         lod: Lod,
-        mut count: impl FnMut(&mut FetchStats, bool),
+        mut count: impl FnMut(&mut K::Stats, bool),
     ) -> Texel {
         let bits = self.lod.apply(lod);
         // `bits ≤ 3840`: the mask changes nothing and tells the compiler
@@ -475,22 +401,23 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
         let (ta, fxa, fya) = self.footprint(u, v, lower);
-        let a = Kern::<K>::level(ta, fxa, fya);
+        let k = self.rounding;
+        let a = Kern::<K>::level(ta, fxa, fya, k);
         if t == 0 {
             count(&mut self.stats, true);
             Kern::<K>::round_level(a)
         } else {
             let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
-            let b = Kern::<K>::level(tb, fxb, fyb);
+            let b = Kern::<K>::level(tb, fxb, fyb, k);
             count(&mut self.stats, false);
-            Kern::<K>::blend_levels(a, b, t)
+            Kern::<K>::blend_levels(a, b, t, k)
         }
     }
 
     /// [`Mode::BilinearNearestLevel`]: bilinear in level `floor(lod + ½)`.
     #[inline(always)]
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-        self.stats.fetched += 4;
+        self.stats.count(4, 0);
         self.bilinear_uncounted(u, v, lod)
     }
 
@@ -499,7 +426,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         let level = Self::nearest_level(self.lod.apply(lod));
         let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
-        Kern::<K>::bilinear_texel(t, fx, fy)
+        Kern::<K>::bilinear_texel(t, fx, fy, self.rounding)
     }
 
     /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
@@ -525,7 +452,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let t = bits & 0xFF;
         let (a, a_border) = self.nearest(u, v, lower);
         if t == 0 {
-            self.stats.skipped += 1;
+            self.stats.count(0, 1);
             if a_border {
                 self.border_nearest
             } else {
@@ -584,14 +511,13 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                     });
                 }
                 let skipped = one_level as u64 * 4;
-                self.stats.fetched += 2 * texels - skipped;
-                self.stats.skipped += skipped;
+                self.stats.count(2 * texels - skipped, skipped);
             }
             Mode::BilinearNearestLevel => {
                 for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
                     *o = self.bilinear_uncounted(u, v, lod);
                 }
-                self.stats.fetched += texels;
+                self.stats.count(texels, 0);
             }
             Mode::Nearest => each!(sample_nearest),
             #[cfg(feature = "trilinear")]
@@ -626,39 +552,28 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
     /// The 2×2 footprint at `level` as the kernel's lanes (border taps
     /// replaced by the border colour) and its weights `(fx, fy)` (counted
-    /// by the caller). Power-of-two textures in memory are read with one
-    /// address computation and one bounds check per footprint; every other
-    /// case (and a texel slice shorter than the level) goes through the
-    /// source's [`TexelSource::footprint`]. Both give the same texels.
-    /// `level ≤ 16` (the callers mask it; the table has an entry for 16,
-    /// a copy of 15, so that `level + 1` needs no check either).
+    /// by the caller). A source with direct level views
+    /// ([`TexelSource::levels`]: a power-of-two pyramid in memory) is read
+    /// with two row pointers and no check; every other source through its
+    /// [`TexelSource::footprint`]. Both give the same texels. `level ≤ 16`
+    /// (the callers mask it; the tables have an entry for 16, a copy of
+    /// 15, so that `level + 1` needs no check either).
     #[inline(always)]
     fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Lanes<K>; 4], u32, u32) {
         let bits = Kern::<K>::WEIGHT_BITS;
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
-        let l = self.levels[level];
-        let (xt, yt, t) = if let Some(texels) = self.source.texel_slice()
-            && let Some(lv) = l.slice(texels)
-        {
-            let xt = level_taps(mu, u, l.w, l.cx, bits);
-            let yt = level_taps(mv, v, l.h, l.cy, bits);
-            let m = lv.len().wrapping_sub(1);
-            let w = l.w as usize;
-            let row0 = (yt.i[0] as usize).wrapping_mul(w);
-            let i00 = row0.wrapping_add(xt.i[0] as usize) & m;
-            let i10 = row0.wrapping_add(xt.i[1] as usize) & m;
-            // A wrapped row `j₁ = (j₀ + 1) mod h` is `j₀·w + w` masked;
-            // other modes compute their row.
-            let (i01, i11) = if mv == AddressMode::Wrap {
-                (i00.wrapping_add(w) & m, i10.wrapping_add(w) & m)
-            } else {
-                let row1 = (yt.i[1] as usize).wrapping_mul(w);
-                (
-                    row1.wrapping_add(xt.i[0] as usize) & m,
-                    row1.wrapping_add(xt.i[1] as usize) & m,
-                )
-            };
-            (xt, yt, [lv[i00], lv[i10], lv[i01], lv[i11]])
+        let (xt, yt, t) = if let Some(levels) = self.source.levels() {
+            let l = levels.level(level);
+            if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
+                // Wrapped on both axes: every tap is a texel (no border),
+                // addressed by the view without a mask.
+                let (t, fx, fy) = l.wrap_footprint(u, v, self.wrap[level], bits);
+                return (t.map(Kern::<K>::load), fx, fy);
+            }
+            let [cx, cy] = self.wrap[level];
+            let xt = mu.pow2_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
+            let yt = mv.pow2_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
+            (xt, yt, l.footprint(xt.i, yt.i))
         } else {
             let level = level as u8;
             let (w, h) = self.geometry.level_size(level);
@@ -668,7 +583,9 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             (xt, yt, t)
         };
         let mut lanes = t.map(Kern::<K>::load);
-        if K::U::MAY_BORDER || K::V::MAY_BORDER {
+        if (K::U::MAY_BORDER || K::V::MAY_BORDER)
+            && (xt.border != [false; 2] || yt.border != [false; 2])
+        {
             let out = [
                 xt.border[0] | yt.border[0],
                 xt.border[1] | yt.border[0],
@@ -690,7 +607,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let (w, h) = self.geometry.level_size(level);
         let (x, bx) = self.axes.0.mode().nearest_tap(u, w);
         let (y, by) = self.axes.1.mode().nearest_tap(v, h);
-        self.stats.fetched += 1;
+        self.stats.count(1, 0);
         (self.source.texel(level, x, y), bx | by)
     }
 
@@ -735,18 +652,6 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         self.geometry
     }
 
-    /// Fetch counters since construction or the last
-    /// [`reset_stats`](Self::reset_stats).
-    #[must_use]
-    pub fn stats(&self) -> FetchStats {
-        self.stats
-    }
-
-    /// Zeroes the fetch counters.
-    pub fn reset_stats(&mut self) {
-        self.stats = FetchStats::default();
-    }
-
     /// The texel source.
     #[must_use]
     pub fn source(&self) -> &S {
@@ -763,6 +668,20 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[must_use]
     pub fn into_source(self) -> S {
         self.source
+    }
+}
+
+impl<S: TexelSource, K: Key<Stats = FetchStats>> Sampler<S, K> {
+    /// Fetch counters since construction or the last
+    /// [`reset_stats`](Self::reset_stats).
+    #[must_use]
+    pub fn stats(&self) -> FetchStats {
+        self.stats
+    }
+
+    /// Zeroes the fetch counters.
+    pub fn reset_stats(&mut self) {
+        self.stats = FetchStats::default();
     }
 }
 
@@ -901,37 +820,6 @@ mod tests {
         assert_eq!(tex_coord_from_f64(-0.25), Ok(c(-0.25)));
     }
 
-    #[test]
-    fn pow2_wrap_taps_equal_general_taps() {
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        for k in 0..=15u32 {
-            let size = 1u32 << k;
-            for n in 0..if cfg!(miri) { 20 } else { 4000u64 } {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                // Random bits, and the seam/edge values of this size.
-                let edge = (n % (2 * u64::from(size) + 1)) << (31 - k);
-                for bits in [
-                    x as i64,
-                    edge as i64,
-                    -(edge as i64),
-                    (x as i64) >> (n % 40),
-                ] {
-                    let c = TexCoord::from_bits(bits);
-                    for b in [8, 12, 16] {
-                        let t = AddressMode::Wrap.taps(c, size, b);
-                        assert_eq!(
-                            pow2_wrap_taps(c, size, wrap_constant(k, b), b),
-                            (t.i[0], t.i[1], t.f),
-                            "k {k} bits {bits:#x} weight bits {b}"
-                        );
-                    }
-                }
-            }
-        }
-    }
-
     /// `sample_batch` gives the results and the fetch counters of single
     /// calls for every mode (lods with and without a fraction, so both
     /// trilinear branches and their counting), writes `min(hits, out)`
@@ -988,65 +876,41 @@ mod tests {
         }
     }
 
-    /// A source whose texel slice is shorter than a level (which a
-    /// `Pyramid` rules out) falls back to the generic path for that level
-    /// and gives the same results as reading through `footprint`.
+    /// The direct path (a power-of-two pyramid's level views: wrap
+    /// without masks, mirror by XOR, clamp and border decided once per
+    /// axis) and the generic path (`TexelSource::footprint` of the same
+    /// pyramid, and of a texel cache) give the same results and counters
+    /// for every filter mode, key kind (static axes, run-time axes, mixed),
+    /// tier and colour space, on square, long and one-texel-wide
+    /// pyramids (full and trimmed).
     #[test]
-    fn short_texel_slice_falls_back_to_generic_path() {
-        struct Short<'a>(Pyramid<'a>, usize);
-        impl TexelSource for Short<'_> {
-            fn geometry(&self) -> Geometry {
-                self.0.geometry()
-            }
-            fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-                self.0.texel(level, x, y)
-            }
-            fn texel_slice(&self) -> Option<&[Texel]> {
-                self.0.texel_slice().map(|t| &t[..self.1])
-            }
-        }
-        let g = Geometry::new(8, 4, 3).unwrap();
-        let buf = hashed_pyramid(&g, 0);
-        let p = Pyramid::new(g, &buf).unwrap();
-        let mut reference = Sampler::wrap(p);
-        // Level 0 whole, level 1 cut short, level 2 missing.
-        for len in [0, 20, 33, g.len()] {
-            let mut short = Sampler::wrap(Short(p, len));
-            for i in 0..if cfg!(miri) { 40 } else { 200u32 } {
-                let u = TexCoord::from_bits(i64::from(i.wrapping_mul(0x2F6B_1E3D)));
-                let v = TexCoord::from_bits(i64::from(i.wrapping_mul(0x61C8_8647)) << 2);
-                let lod = Lod::from_bits((i * 7 % 700) as i16);
-                for mode in [Mode::Trilinear, Mode::BilinearNearestLevel] {
-                    assert_eq!(
-                        short.sample(u, v, lod, mode),
-                        reference.sample(u, v, lod, mode)
-                    );
-                }
-            }
-        }
-    }
-
-    /// The power-of-two wrap path (addresses computed by the sampler) and
-    /// the generic path through a cache (`TexelSource::footprint`, no
-    /// texel slice) give the same texels for every mode.
-    #[test]
-    fn pow2_wrap_path_equals_generic_path() {
+    fn direct_path_equals_generic_path() {
+        use crate::texture::address::{ClampToBorder, Mirror, MirrorOnce};
+        use crate::texture::kernel::{Srgb, SrgbToLinear};
         use crate::texture::storage::cache::TexelCache;
-        for (w, h, levels) in [
-            (32u32, 32u32, 6u8),
-            (64, 4, 7),
-            (1, 16, 5),
-            (8, 1, 2),
-            (1, 1, 1),
-        ] {
-            let g = Geometry::new(w, h, levels).unwrap();
-            let buf = hashed_pyramid(&g, 0x5A5A_1234);
-            let p = Pyramid::new(g, &buf).unwrap();
-            let mut fast = Sampler::wrap(p);
-            assert_ne!(fast.levels[0], Level::OFF);
-            let mut generic = Sampler::wrap(TexelCache::<_, 4, 2>::new(p));
-            let mut x = 12345u64;
-            for _ in 0..if cfg!(miri) { 20 } else { 3000 } {
+        use crate::texture::storage::pow2::Pow2Pyramid;
+        use crate::units::Fast;
+
+        /// Samples `n` pseudo-random inputs of every mode through the
+        /// direct, generic and cached samplers of key `K`.
+        fn check<K: Key<Stats = FetchStats>>(p: Pyramid<'_>, state: SamplerState, n: u32) {
+            let d = Pow2Pyramid::new(p).unwrap();
+            let mut direct = Sampler::<_, K>::with_state(d, state).unwrap();
+            let mut generic = Sampler::<_, K>::with_state(p, state).unwrap();
+            let mut cached =
+                Sampler::<_, K>::with_state(TexelCache::<_, 4, 2>::new(p), state).unwrap();
+            // An image of the same texels (untrimmed pyramids only: an
+            // image stores every level).
+            let bytes: Vec<u8> = p.texels().iter().flat_map(|t| t.to_le_bytes()).collect();
+            let g = p.geometry();
+            let mut image = g.is_full().then(|| {
+                use crate::texture::storage::format::{Format, TexelFormat};
+                use crate::texture::storage::image::Image;
+                let i = Image::new(g, Format::linear(TexelFormat::Rgba8), &bytes).unwrap();
+                Sampler::<_, K>::with_state(i, state).unwrap()
+            });
+            let mut x = 12345u64 ^ u64::from(n);
+            for _ in 0..n {
                 x ^= x << 13;
                 x ^= x >> 7;
                 x ^= x << 17;
@@ -1059,29 +923,77 @@ mod tests {
                     Mode::Nearest,
                     Mode::NearestTexelLinearLevel,
                 ] {
-                    assert_eq!(
-                        fast.sample(u, v, lod, mode),
-                        generic.sample(u, v, lod, mode),
-                        "{w}x{h} {mode:?} {u} {v} {lod}"
-                    );
+                    let want = generic.sample(u, v, lod, mode);
+                    let g = p.geometry();
+                    let what = (g.width(), g.height(), state.address(), mode, u, v, lod);
+                    assert_eq!(direct.sample(u, v, lod, mode), want, "{what:?}");
+                    assert_eq!(cached.sample(u, v, lod, mode), want, "{what:?}");
+                    if let Some(image) = image.as_mut() {
+                        assert_eq!(image.sample(u, v, lod, mode), want, "{what:?}");
+                    }
                 }
             }
-            assert_eq!(fast.stats(), generic.stats());
+            assert_eq!(direct.stats(), generic.stats());
+            assert_eq!(cached.stats(), generic.stats());
         }
-        // Non-power-of-two sides, or a source not in memory: no table.
+
+        let n = if cfg!(miri) { 8 } else { 600 };
+        for (w, h, levels, trim) in [
+            (32u32, 32u32, 6u8, None),
+            (64, 4, 7, None),
+            (1, 16, 5, None),
+            (8, 1, 2, None),
+            (1, 1, 1, None),
+            (16, 8, 5, Some((1u8, 3u8))),
+        ] {
+            let g = Geometry::new(w, h, levels).unwrap();
+            let buf = hashed_pyramid(&g, 0x5A5A_1234);
+            let mut p = Pyramid::new(g, &buf).unwrap();
+            if let Some((first, last)) = trim {
+                p = p.trim(first, last).unwrap();
+            }
+            for (i, mu) in AddressMode::ALL.into_iter().enumerate() {
+                let mv = AddressMode::ALL[(i + 2) % 5];
+                let state = SamplerState::new(SamplerDesc {
+                    address_u: mu,
+                    address_v: mv,
+                    border: 0x8040_2010,
+                    lod_bias: Lod::from_bits(40),
+                    ..SamplerDesc::default()
+                })
+                .unwrap();
+                check::<Cfg<AnyAxis>>(p, state, n);
+                check::<Cfg<AnyAxis, AnyAxis, Linear, Fast>>(p, state, n);
+                check::<Cfg<AnyAxis, AnyAxis, Srgb>>(p, state, n / 4);
+                check::<Cfg<AnyAxis, AnyAxis, SrgbToLinear>>(p, state, n / 4);
+                let same = SamplerState::new(SamplerDesc {
+                    address_v: mu,
+                    ..*state.desc()
+                })
+                .unwrap();
+                check::<Cfg<AnyAxis>>(p, same, n / 2);
+            }
+            let state = |u, v| {
+                SamplerState::new(SamplerDesc {
+                    address_u: u,
+                    address_v: v,
+                    border: 0x1234_5678,
+                    ..SamplerDesc::default()
+                })
+                .unwrap()
+            };
+            use AddressMode as A;
+            check::<Cfg<Wrap>>(p, state(A::Wrap, A::Wrap), n);
+            check::<Cfg<Wrap, Wrap, Linear, Fast>>(p, state(A::Wrap, A::Wrap), n);
+            check::<Cfg<Mirror, ClampToBorder>>(p, state(A::Mirror, A::ClampToBorder), n);
+            let mb = state(A::Mirror, A::ClampToBorder);
+            check::<Cfg<Mirror, ClampToBorder, Linear, Fast>>(p, mb, n);
+            check::<Cfg<ClampToEdge, MirrorOnce>>(p, state(A::ClampToEdge, A::MirrorOnce), n);
+            check::<Cfg<Wrap, Mirror>>(p, state(A::Wrap, A::Mirror), n);
+        }
+        // Sides that are not powers of two have no direct views.
         let g = Geometry::new(6, 4, 2).unwrap();
         let buf = vec![0; g.len()];
-        assert_eq!(
-            Sampler::wrap(Pyramid::new(g, &buf).unwrap()).levels,
-            [Level::OFF; 17]
-        );
-        let g = Geometry::new(8, 4, 2).unwrap();
-        let buf = vec![0; g.len()];
-        let p = Pyramid::new(g, &buf).unwrap();
-        assert_ne!(Sampler::clamp(p).levels[0], Level::OFF);
-        assert_eq!(
-            Sampler::clamp(TexelCache::<_, 4, 2>::new(p)).levels,
-            [Level::OFF; 17]
-        );
+        assert!(Pow2Pyramid::new(Pyramid::new(g, &buf).unwrap()).is_err());
     }
 }

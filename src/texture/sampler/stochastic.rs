@@ -54,6 +54,7 @@
 //! and bit-identical on every target: integer compares and shifts only.
 
 use super::{Key, Sampler};
+use crate::texture::Stats;
 use crate::texture::address::Axis;
 use crate::texture::kernel::Kernel;
 use crate::texture::kernel::accurate as bilerp;
@@ -145,9 +146,9 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let level = lower.wrapping_add(pick(bits & LEVEL_MASK, t) as u8);
         match mode {
             StochasticMode::Trilinear => {
-                self.stats.fetched += 4;
+                self.stats.count(4, 0);
                 let (l, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
-                <K::Kernel as Kernel>::bilinear_texel(l, fx, fy)
+                <K::Kernel as Kernel>::bilinear_texel(l, fx, fy, self.rounding)
             }
             StochasticMode::Bilinear => self.one_texel(u, v, nearest, bits),
             StochasticMode::TrilinearBilinear => self.one_texel(u, v, level, bits),
@@ -164,7 +165,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let yt = self.axes.1.mode().taps(v, h, bilerp::WEIGHT_BITS);
         let cx = pick((bits >> COLUMN_SHIFT) & TAP_MASK, xt.f) as usize;
         let cy = pick((bits >> ROW_SHIFT) & TAP_MASK, yt.f) as usize;
-        self.stats.fetched += 1;
+        self.stats.count(1, 0);
         let t = self.source.texel(level, xt.i[cx & 1], yt.i[cy & 1]);
         if xt.border[cx & 1] | yt.border[cy & 1] {
             self.border_nearest

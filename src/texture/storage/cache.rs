@@ -253,7 +253,18 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
     /// allocates the least recently used way. Returns `(hit, set, way)`.
     #[inline]
     fn lookup(&mut self, block_address: u32) -> (bool, usize, usize) {
-        self.clock = self.clock.saturating_add(1);
+        self.lookup_n(block_address, 1)
+    }
+
+    /// `n ≥ 1` consecutive accesses of `block_address` as one lookup: the
+    /// same tags, stamps and counters as `n` calls of
+    /// [`lookup`](Self::lookup) (the first hits or misses, the others hit
+    /// the block it found or loaded; the clock advances by `n` and the
+    /// stamp is the last access's). Returns `(first hit, set, way)`.
+    #[inline]
+    fn lookup_n(&mut self, block_address: u32, n: u32) -> (bool, usize, usize) {
+        let n = u64::from(n.max(1));
+        self.clock = self.clock.saturating_add(n);
         let set = block_address as usize % SETS;
         let (Some(tags), Some(stamps)) = (self.tags.get_mut(set), self.stamps.get_mut(set)) else {
             return (false, 0, 0);
@@ -263,7 +274,7 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
         for (way, (tag, stamp)) in tags.iter().zip(stamps.iter_mut()).enumerate() {
             if *stamp != 0 && *tag == block_address {
                 *stamp = self.clock;
-                self.stats.hits += 1;
+                self.stats.hits += n;
                 return (true, set, way);
             }
             if *stamp < oldest {
@@ -276,6 +287,7 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
             *s = self.clock;
         }
         self.stats.misses += 1;
+        self.stats.hits += n - 1;
         (false, set, victim)
     }
 
@@ -409,17 +421,93 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
         let (w, h) = self.layout.geometry.level_size(level);
         let level = level.min(self.layout.geometry.top_level());
         let (x, y) = (x.min(w - 1), y.min(h - 1));
-        let (bx, by) = (x >> BLOCK_SHIFT, y >> BLOCK_SHIFT);
+        let block = self.block(level, x >> BLOCK_SHIFT, y >> BLOCK_SHIFT, 1);
+        block[in_block(x, y)]
+    }
+
+    /// The footprint with one lookup per block it touches (one in 9 of 16
+    /// positions, at most four), in the order of the texel reads, each
+    /// counted as that many accesses: the same texels, counters and LRU
+    /// stamps as four [`texel`](Self::texel) calls. (Only where one read
+    /// of a block would evict another block of the same footprint in
+    /// between, a one-way set shared by two side-by-side blocks, are the
+    /// reads made one by one.)
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let (w, h) = self.layout.geometry.level_size(level);
+        let level = level.min(self.layout.geometry.top_level());
+        let x = [x[0].min(w - 1), x[1].min(w - 1)];
+        let y = [y[0].min(h - 1), y[1].min(h - 1)];
+        let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
+        let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
+        let at = |i: usize, j: usize| in_block(x[i], y[j]);
+        if bx[0] == bx[1] && by[0] == by[1] {
+            let b = self.block(level, bx[0], by[0], 4);
+            return [b[at(0, 0)], b[at(1, 0)], b[at(0, 1)], b[at(1, 1)]];
+        }
+        if bx[0] == bx[1] {
+            // Reads t00, t10 (top block), t01, t11 (bottom block).
+            let top = self.block(level, bx[0], by[0], 2);
+            let (t00, t10) = (top[at(0, 0)], top[at(1, 0)]);
+            let bottom = self.block(level, bx[0], by[1], 2);
+            return [t00, t10, bottom[at(0, 1)], bottom[at(1, 1)]];
+        }
+        let a = self.layout.index_of_block(level, bx[0], by[0]);
+        let b = self.layout.index_of_block(level, bx[1], by[0]);
+        if by[0] == by[1] && (WAYS > 1 || a as usize % SETS != b as usize % SETS) {
+            // Reads alternate left, right, left, right: two lookups of two
+            // accesses each keep every tag, stamp order and counter, since
+            // neither block can evict the other in between.
+            let left = self.block_at(level, bx[0], by[0], a, 2);
+            let (t00, t01) = (left[at(0, 0)], left[at(0, 1)]);
+            let right = self.block_at(level, bx[1], by[0], b, 2);
+            return [t00, right[at(1, 0)], t01, right[at(1, 1)]];
+        }
+        [
+            self.texel(level, x[0], y[0]),
+            self.texel(level, x[1], y[0]),
+            self.texel(level, x[0], y[1]),
+            self.texel(level, x[1], y[1]),
+        ]
+    }
+}
+
+/// Index of texel `(x, y)` in its 4×4 block.
+#[inline(always)]
+fn in_block(x: u32, y: u32) -> usize {
+    (((y & (BLOCK - 1)) << BLOCK_SHIFT) | (x & (BLOCK - 1))) as usize
+}
+
+impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, WAYS> {
+    /// The data of block `(bx, by)` of `level` (`level` at most the top
+    /// level, `bx`, `by` inside its block grid) after `n` accesses to it:
+    /// looked up once ([`BlockCache`]'s `lookup_n`), filled from memory on
+    /// a miss.
+    #[inline]
+    fn block(&mut self, level: u8, bx: u32, by: u32, n: u32) -> &[Texel; BLOCK_TEXELS] {
         let address = self.layout.index_of_block(level, bx, by);
-        let (hit, set, way) = self.tags.lookup(address);
+        self.block_at(level, bx, by, address, n)
+    }
+
+    /// [`block`](Self::block) with its block number `address` given.
+    #[inline]
+    fn block_at(
+        &mut self,
+        level: u8,
+        bx: u32,
+        by: u32,
+        address: u32,
+        n: u32,
+    ) -> &[Texel; BLOCK_TEXELS] {
+        const EMPTY: [Texel; BLOCK_TEXELS] = [0; BLOCK_TEXELS];
+        let (hit, set, way) = self.tags.lookup_n(address, n);
         let Some(block) = self.data.get_mut(set).and_then(|s| s.get_mut(way)) else {
-            return 0;
+            return &EMPTY;
         };
         if !hit {
             self.memory.read_block(level, bx, by, block);
         }
-        let i = ((y & (BLOCK - 1)) * BLOCK + (x & (BLOCK - 1))) as usize;
-        block.get(i).copied().unwrap_or(0)
+        block
     }
 }
 
@@ -500,6 +588,48 @@ mod tests {
         assert_eq!(c.stats().hit_rate(), 0.0);
         c.invalidate();
         assert!(!c.access(7));
+    }
+
+    /// A footprint read with one lookup per block gives the texels, hit
+    /// and miss counts and later behaviour of four single reads, for every
+    /// block pattern (one block, two side by side, two above each other,
+    /// four; wrapped taps), and caches of one and two ways.
+    #[test]
+    fn footprint_equals_four_texel_reads() {
+        fn run<const S: usize, const W: usize>(p: Pyramid<'_>, g: Geometry) {
+            let mut a: TexelCache<Pyramid<'_>, S, W> = TexelCache::new(p);
+            let mut b: TexelCache<Pyramid<'_>, S, W> = TexelCache::new(p);
+            let mut x = 0x2545_F491u32;
+            for _ in 0..if cfg!(miri) { 60 } else { 3000 } {
+                x ^= x << 13;
+                x ^= x >> 17;
+                x ^= x << 5;
+                let level = (x % 4) as u8;
+                let (w, h) = g.level_size(level);
+                let (x0, y0) = ((x >> 8) % (w + 1), (x >> 20) % (h + 1));
+                // The second tap: the next texel, wrapped, or the same.
+                let x1 = [x0 + 1, 0, x0][(x >> 4) as usize % 3];
+                let y1 = [y0 + 1, 0, y0][(x >> 6) as usize % 3];
+                let want = [
+                    b.texel(level, x0, y0),
+                    b.texel(level, x1, y0),
+                    b.texel(level, x0, y1),
+                    b.texel(level, x1, y1),
+                ];
+                assert_eq!(a.footprint(level, [x0, x1], [y0, y1]), want);
+                assert_eq!(a.stats(), b.stats(), "{level} {x0} {x1} {y0} {y1}");
+            }
+        }
+        let g = Geometry::new(32, 16, 4).unwrap();
+        let buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(2_654_435_761))
+            .collect();
+        let p = Pyramid::new(g, &buf).unwrap();
+        run::<1, 1>(p, g);
+        run::<2, 1>(p, g);
+        run::<4, 1>(p, g);
+        run::<2, 2>(p, g);
+        run::<8, 2>(p, g);
     }
 
     #[test]

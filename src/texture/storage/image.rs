@@ -252,11 +252,21 @@ impl<'a, F: PixelFormat> Image<'a, F> {
         } else {
             let unit = f.unit_bytes() as usize;
             let at = self.level_offset(level) + (y as usize * w as usize + x as usize) * unit;
-            let mut raw = [0u8; 4];
-            for (i, r) in raw.iter_mut().take(unit).enumerate() {
-                *r = self.bytes.get(at + i).copied().unwrap_or(0);
-            }
-            f.decode(u32::from_le_bytes(raw))
+            f.decode(self.raw(at, unit))
+        }
+    }
+
+    /// The `unit ≤ 4` bytes at `at` as a little-endian word (0 past the
+    /// data: one check for all of them).
+    #[inline(always)]
+    fn raw(&self, at: usize, unit: usize) -> u32 {
+        match self.bytes.get(at..at.wrapping_add(unit)) {
+            Some(b) => b
+                .iter()
+                .take(4)
+                .rev()
+                .fold(0, |v, &x| (v << 8) | u32::from(x)),
+            None => 0,
         }
     }
 }
@@ -270,6 +280,35 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
     #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
         self.get(level, x, y)
+    }
+
+    /// Uncompressed formats: the level's size and offset and the two row
+    /// starts once per footprint, then per texel one read of its bytes and
+    /// the format's expansion (BC formats read texel by texel).
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let f = self.kind.texel();
+        if f.is_block_compressed() {
+            return [
+                self.get(level, x[0], y[0]),
+                self.get(level, x[1], y[0]),
+                self.get(level, x[0], y[1]),
+                self.get(level, x[1], y[1]),
+            ];
+        }
+        let (w, h) = self.geometry.level_size(level);
+        let unit = f.unit_bytes() as usize;
+        let pitch = w as usize * unit;
+        let base = self.level_offset(level);
+        let rows = [y[0], y[1]].map(|y| base + y.min(h - 1) as usize * pitch);
+        let cols = [x[0], x[1]].map(|x| x.min(w - 1) as usize * unit);
+        let texel = |at: usize| f.decode(self.raw(at, unit));
+        [
+            texel(rows[0] + cols[0]),
+            texel(rows[0] + cols[1]),
+            texel(rows[1] + cols[0]),
+            texel(rows[1] + cols[1]),
+        ]
     }
 }
 

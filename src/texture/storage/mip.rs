@@ -40,6 +40,8 @@
 
 use core::fmt;
 
+use crate::texture::storage::pow2::Pow2Levels;
+
 /// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
 ///
 /// # Example
@@ -112,6 +114,9 @@ pub enum MipError {
     TooLarge,
     /// `levels` is 0 or more than [`full_levels`] of the size.
     BadLevels,
+    /// A side is not a power of two where one is needed
+    /// ([`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid)).
+    NotPowerOfTwo,
     /// The texel slice is shorter than [`Geometry::len`].
     BufferTooShort {
         /// Texels needed.
@@ -127,6 +132,7 @@ impl fmt::Display for MipError {
             Self::ZeroSize => f.write_str("texture width or height is 0"),
             Self::TooLarge => write!(f, "texture side exceeds {MAX_SIZE} texels"),
             Self::BadLevels => f.write_str("levels must be in 1..=full_levels(width, height)"),
+            Self::NotPowerOfTwo => f.write_str("texture sides must be powers of two"),
             Self::BufferTooShort { needed, got } => {
                 write!(f, "texel buffer holds {got} texels, pyramid needs {needed}")
             }
@@ -503,12 +509,14 @@ pub trait TexelSource {
             self.texel(level, x[1], y[1]),
         ]
     }
-    /// The whole pyramid in memory (layout of the module docs), when the
-    /// source reads memory directly: lets a [`Sampler`](crate::texture::Sampler)
-    /// compute texel addresses itself (one address per 2×2 footprint).
-    /// Sources that must see every read (a cache) return `None`, the default.
-    #[inline]
-    fn texel_slice(&self) -> Option<&[Texel]> {
+    /// The level views of a power-of-two pyramid in memory
+    /// ([`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid)): lets a
+    /// [`Sampler`](crate::texture::Sampler) compute texel addresses itself
+    /// (two row pointers per 2×2 footprint, no check per sample). Every
+    /// other source returns `None`, the default, and is read through
+    /// [`footprint`](Self::footprint).
+    #[inline(always)]
+    fn levels(&self) -> Option<&Pow2Levels<'_>> {
         None
     }
 }
@@ -602,11 +610,6 @@ impl TexelSource for Pyramid<'_> {
     }
 
     #[inline]
-    fn texel_slice(&self) -> Option<&[Texel]> {
-        Some(self.texels)
-    }
-
-    #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
         self.get(level, x, y)
     }
@@ -645,9 +648,9 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
         (**self).footprint(level, x, y)
     }
 
-    #[inline]
-    fn texel_slice(&self) -> Option<&[Texel]> {
-        (**self).texel_slice()
+    #[inline(always)]
+    fn levels(&self) -> Option<&Pow2Levels<'_>> {
+        (**self).levels()
     }
 }
 

@@ -4,6 +4,7 @@
 //! |---|---|
 //! | [`mip`] | [`Geometry`](mip::Geometry), RGBA8 [`Pyramid`](mip::Pyramid)s, in-place generation, the [`TexelSource`](mip::TexelSource) trait |
 //! | [`format`] | texel formats as types ([`format::PixelFormat`]) and as values ([`format::TexelFormat`]), colour spaces |
+//! | [`pow2`] | power-of-two pyramids with validated per-level views ([`pow2::Pow2Pyramid`]): the sampler's direct source |
 //! | [`image`] | a texture in any format in caller memory ([`image::Image`]) |
 //! | [`bc`] | BC1–BC4 block decoding (the cache's fill path) |
 //! | [`cache`] | the texel cache (4×4 blocks, Morton order, LRU) |
@@ -17,4 +18,5 @@ pub mod format;
 #[cfg(feature = "cache")]
 pub mod image;
 pub mod mip;
+pub mod pow2;
 pub mod srgb;

@@ -62,6 +62,7 @@ use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
 use raymip::texture::storage::mip::{Pyramid, Texel};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};
 use raymip_demo_firmware::inputs::{self, Draws, N};
@@ -526,13 +527,16 @@ raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         process::exit(1)
     };
-    let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
+    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
+        .ok()
+        .and_then(|p| Pow2Pyramid::new(p).ok())
+    else {
         process::exit(1)
     };
     let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, AddressMode::Wrap) else {
         process::exit(1)
     };
-    let mut tex = Sampler::wrap(p);
+    let mut tex: Tex = Sampler::new(p);
     let images = Images::new();
     let Some(mut par) = Subjects::new(g, p, &images) else {
         process::exit(1)

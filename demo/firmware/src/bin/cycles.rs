@@ -34,13 +34,14 @@ use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
 use raymip::texture::storage::mip::{Pyramid, Texel};
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
 use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, measured_calls, println};
 
-type Tex = Sampler<Pyramid<'static>>;
+use raymip_demo_firmware::probes::Tex;
 
 #[inline(never)]
 fn empty(x: u32) -> u32 {
@@ -119,10 +120,13 @@ raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         exit(1)
     };
-    let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
+    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
+        .ok()
+        .and_then(|p| Pow2Pyramid::new(p).ok())
+    else {
         exit(1)
     };
-    let mut tex = Sampler::wrap(p);
+    let mut tex: Tex = Sampler::new(p);
 
     let mut rng = Rng(inputs::SEED);
     let empty_in = draw(&mut rng, Rng::next);

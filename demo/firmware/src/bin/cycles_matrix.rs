@@ -17,6 +17,7 @@
 #![forbid(unsafe_code)]
 
 use raymip::texture::storage::mip::Pyramid;
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip_demo_firmware::counters::CycleMeter;
 use raymip_demo_firmware::exit;
 use raymip_demo_firmware::inputs::Draws;
@@ -26,7 +27,10 @@ raymip_demo_entry::main! {
     let Some(g) = raymip_demo_scene::tex_geometry() else {
         exit(1)
     };
-    let Ok(p) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
+    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
+        .ok()
+        .and_then(|p| Pow2Pyramid::new(p).ok())
+    else {
         exit(1)
     };
     let images = Images::new();

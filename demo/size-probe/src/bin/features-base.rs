@@ -9,5 +9,6 @@ use core::hint::black_box as bb;
 
 raymip_demo_entry::main! {
     bb(&raymip_size_probe::TEX);
+    raymip_size_probe::keep_type_sizes();
     semihosting::process::exit(bb(0))
 }

@@ -82,5 +82,6 @@ raymip_demo_entry::main! {
     #[cfg(feature = "cache")]
     let acc = acc ^ cached.sample(u, v, lod, mode);
     bb(acc);
+    raymip_size_probe::keep_type_sizes();
     exit(0)
 }

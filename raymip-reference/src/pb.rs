@@ -1,7 +1,6 @@
 //! f64 `log2 Pb` of a textured triangle (Park et al. 2011 with the
-//! derivation in the firmware's `table` module), written without the
-//! firmware. Dependency-free: the firmware's unit tests (`src/lib.rs`) and
-//! integration tests (`tests/firmware/common/mod.rs`) include this same file.
+//! derivation in the firmware's `setup::table` module), written without the
+//! firmware.
 
 /// f64 `log2 Pb = ½·log2(A/N) − log2 γ` of the triangle with world
 /// positions `p` and UVs `uv` (texture repeats) on a `w × h` texture, for a

@@ -1,7 +1,6 @@
 //! f64 environment-map lod and latitude-longitude mapping (Ray Tracing Gems
-//! ch. 21, with the formulas of the firmware's `envmap` module docs),
-//! written without the firmware. Dependency-free: the firmware's unit tests
-//! (`src/lib.rs`) include this same file.
+//! ch. 21, with the formulas of the firmware's `lod::envmap` module docs),
+//! written without the firmware.
 
 use core::f64::consts::PI;
 

@@ -1,17 +1,19 @@
-//! f64 reference of the sampler (`raymip::texture::Sampler`, measured
-//! through its run-time form `DynSampler` so that every key is reached):
-//! every option — address modes, border colour, lod bias and clamps,
-//! texel formats, sRGB, BC1–BC4, anisotropic filtering — written here
-//! from the definitions (Vulkan "wrapping operation", D3D11 lod order,
-//! bit replication, sRGB EOTF/OETF, pbrt-style anisotropy), in f64 with
-//! exact sample positions, weights and lods.
+//! The sampler's accuracy against the f64 reference
+//! (`raymip_reference::sampler`): the firmware sampler
+//! (`raymip::texture::Sampler`, measured through its run-time form
+//! `DynSampler` so that every key is reached) and the reference sample the
+//! same random textures, states and positions in every texel format,
+//! colour space, filter and tier; each row has its documented bound.
 //!
-//! Formats are decoded independently of the firmware: replication as
-//! `floor(x·33/4)` (5 bits), `floor(x·65/16)` (6 bits), `17x` (4 bits),
-//! BC blocks by the `texture2ddecoder` crate is not available outside
-//! tests, so BC images are given to the reference already decoded
-//! ([`RefTexture::from_rgba8`]); `tests/bc_decode.rs` checks the firmware
-//! decoder bit for bit.
+//! The reference reads the stored bytes of uncompressed formats with the
+//! decoder written here (bit replication as exact floors:
+//! `floor(x·33/4)` for 5 bits, `floor(x·65/16)` for 6 bits, `17x` for 4
+//! bits); BC images are given to it already decoded by the firmware
+//! (`raymip::texture::storage::bc`), which `tests/harness/bc_decode.rs`
+//! checks bit for bit against an independent decoder. Test textures in
+//! every format come from [`texformat`].
+
+pub mod texformat;
 
 use raymip::texture::Mode;
 use raymip::texture::address::AddressMode;
@@ -25,28 +27,8 @@ use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::Image;
 use raymip::texture::storage::mip::{Geometry, Texel};
 use raymip::units::{Lod, Precision, TexCoord};
-
-use super::Rng;
-
-/// sRGB EOTF (code fraction → linear).
-#[must_use]
-pub fn srgb_to_linear(s: f64) -> f64 {
-    if s <= 0.04045 {
-        s / 12.92
-    } else {
-        ((s + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// sRGB OETF (linear → code fraction).
-#[must_use]
-pub fn linear_to_srgb(l: f64) -> f64 {
-    if l <= 0.003_130_8 {
-        l * 12.92
-    } else {
-        1.055 * l.powf(1.0 / 2.4) - 0.055
-    }
-}
+use raymip_reference::Rng;
+use raymip_reference::sampler::{self as reference, Address, State, Texture};
 
 /// One stored uncompressed texel (little-endian word) to RGBA 0..=255
 /// channel values, by bit replication written as exact floors.
@@ -79,257 +61,49 @@ pub fn decode_texel(format: TexelFormat, raw: u32) -> [f64; 4] {
     }
 }
 
-/// A texture for the reference: every level as RGBA channel values
-/// 0..=255 (as stored, before any sRGB decode).
-#[derive(Clone, Debug)]
-pub struct RefTexture {
-    /// `(width, height)` of each level.
-    pub sizes: Vec<(u32, u32)>,
-    /// Texels of each level, row-major.
-    pub levels: Vec<Vec<[f64; 4]>>,
-}
-
-impl RefTexture {
-    /// From RGBA8 texels in the `raymip::texture::storage::mip` pyramid layout.
-    #[must_use]
-    pub fn from_rgba8(geometry: &Geometry, texels: &[Texel]) -> Self {
-        Self::from_fn(geometry, |level, x, y| {
-            texels[geometry.texel_index(level, x, y)]
-                .to_le_bytes()
-                .map(f64::from)
-        })
-    }
-
-    /// From uncompressed `bytes` in the `raymip::texture::storage::image` layout of `format`.
-    #[must_use]
-    pub fn from_bytes(geometry: &Geometry, format: TexelFormat, bytes: &[u8]) -> Self {
-        let unit = format.unit_bytes() as usize;
-        let mut offset = 0usize;
-        let mut offsets = Vec::new();
-        for k in 0..geometry.levels() {
-            offsets.push(offset);
-            let (w, h) = geometry.level_size(k);
-            offset += (w * h) as usize * unit;
-        }
-        Self::from_fn(geometry, |level, x, y| {
-            let (w, _) = geometry.level_size(level);
-            let at = offsets[level as usize] + (y * w + x) as usize * unit;
-            let mut raw = [0u8; 4];
-            raw[..unit].copy_from_slice(&bytes[at..at + unit]);
-            decode_texel(format, u32::from_le_bytes(raw))
-        })
-    }
-
-    fn from_fn(geometry: &Geometry, f: impl Fn(u8, u32, u32) -> [f64; 4]) -> Self {
-        let mut sizes = Vec::new();
-        let mut levels = Vec::new();
-        for k in 0..geometry.levels() {
-            let (w, h) = geometry.level_size(k);
-            sizes.push((w, h));
-            levels.push(
-                (0..h)
-                    .flat_map(|y| (0..w).map(move |x| (x, y)))
-                    .map(|(x, y)| f(k, x, y))
-                    .collect(),
-            );
-        }
-        Self { sizes, levels }
-    }
-}
-
-/// Sampler options of the reference (all in f64).
-#[derive(Clone, Copy, Debug)]
-pub struct RefState {
-    /// AddressMode modes of u and v.
-    pub address: [AddressMode; 2],
-    /// Border colour, channel values 0..=255 (linear).
-    pub border: [f64; 4],
-    /// Lod bias, min and max.
-    pub bias: f64,
-    /// Lower lod clamp.
-    pub min_lod: f64,
-    /// Upper lod clamp.
-    pub max_lod: f64,
-    /// Maximum anisotropy (1..=16).
-    pub max_aniso: u32,
-    /// Texels are sRGB-encoded (RGB).
-    pub srgb: bool,
-    /// Return sRGB results re-encoded (else linear).
-    pub encode_srgb: bool,
-}
-
-/// The Vulkan wrapping operation on an integer texel index (`None` =
-/// border).
+/// The reference's address mode of a firmware one (same numbering).
 #[must_use]
-pub fn wrap_index(mode: AddressMode, i: i64, n: i64) -> Option<i64> {
-    let mirror = |a: i64| if a >= 0 { a } else { -(1 + a) };
-    match mode {
-        AddressMode::Wrap => Some(i.rem_euclid(n)),
-        AddressMode::Mirror => Some((n - 1) - mirror(i.rem_euclid(2 * n) - n)),
-        AddressMode::ClampToEdge => Some(i.clamp(0, n - 1)),
-        AddressMode::MirrorOnce => Some(mirror(i).clamp(0, n - 1)),
-        AddressMode::ClampToBorder => (0..n).contains(&i).then_some(i),
-    }
+pub fn address(mode: AddressMode) -> Address {
+    Address::from_index(mode as u8).expect("the reference numbers every firmware address mode")
 }
 
-/// The reference sampler.
-#[derive(Clone, Debug)]
-pub struct RefSampler<'a> {
-    /// The texture.
-    pub tex: &'a RefTexture,
-    /// The options.
-    pub state: RefState,
-}
-
-impl RefSampler<'_> {
-    /// Texel `(i, j)` of `level` in linear 0..1 (border, sRGB decode).
-    fn texel(&self, level: usize, i: i64, j: i64) -> [f64; 4] {
-        let (w, h) = self.tex.sizes[level];
-        let x = wrap_index(self.state.address[0], i, i64::from(w));
-        let y = wrap_index(self.state.address[1], j, i64::from(h));
-        let t = match (x, y) {
-            (Some(x), Some(y)) => {
-                let t = self.tex.levels[level][(y * i64::from(w) + x) as usize];
-                if self.state.srgb {
-                    [
-                        srgb_to_linear(t[0] / 255.0) * 255.0,
-                        srgb_to_linear(t[1] / 255.0) * 255.0,
-                        srgb_to_linear(t[2] / 255.0) * 255.0,
-                        t[3],
-                    ]
-                } else {
-                    t
-                }
-            }
-            _ => self.state.border,
-        };
-        t.map(|c| c / 255.0)
-    }
-
-    fn bilinear(&self, u: f64, v: f64, level: usize) -> [f64; 4] {
-        let (w, h) = self.tex.sizes[level];
-        let x = u * f64::from(w) - 0.5;
-        let y = v * f64::from(h) - 0.5;
-        let (i, j) = (x.floor(), y.floor());
-        let (fx, fy) = (x - i, y - j);
-        let (i, j) = (i as i64, j as i64);
-        let t = [
-            self.texel(level, i, j),
-            self.texel(level, i + 1, j),
-            self.texel(level, i, j + 1),
-            self.texel(level, i + 1, j + 1),
-        ];
-        std::array::from_fn(|c| {
-            (t[0][c] * (1.0 - fx) + t[1][c] * fx) * (1.0 - fy)
-                + (t[2][c] * (1.0 - fx) + t[3][c] * fx) * fy
-        })
-    }
-
-    fn nearest(&self, u: f64, v: f64, level: usize) -> [f64; 4] {
-        let (w, h) = self.tex.sizes[level];
-        self.texel(
-            level,
-            (u * f64::from(w)).floor() as i64,
-            (v * f64::from(h)).floor() as i64,
-        )
-    }
-
-    /// The lod a sample uses: bias, `[min, max]`, stored levels.
-    #[must_use]
-    pub fn lod(&self, lod: f64) -> f64 {
-        let top = (self.tex.levels.len() - 1) as f64;
-        (lod + self.state.bias)
-            .clamp(self.state.min_lod, self.state.max_lod)
-            .clamp(0.0, top)
-    }
-
-    /// Linear 0..1 filter value at an already processed lod.
-    fn filter(&self, u: f64, v: f64, lod: f64, mode: Mode) -> [f64; 4] {
-        let top = self.tex.levels.len() - 1;
-        let lower = lod.floor() as usize;
-        let t = lod - lod.floor();
-        let upper = (lower + 1).min(top);
-        let nearest = ((lod + 0.5).floor() as usize).min(top);
-        let mix = |a: [f64; 4], b: [f64; 4]| std::array::from_fn(|c| a[c] * (1.0 - t) + b[c] * t);
-        match mode {
-            Mode::Trilinear => mix(self.bilinear(u, v, lower), self.bilinear(u, v, upper)),
-            Mode::BilinearNearestLevel => self.bilinear(u, v, nearest),
-            Mode::Nearest => self.nearest(u, v, nearest),
-            Mode::NearestTexelLinearLevel => {
-                mix(self.nearest(u, v, lower), self.nearest(u, v, upper))
-            }
-        }
-    }
-
-    /// Output channel values 0..=255 (unrounded) of a linear 0..1 result.
-    fn output(&self, lin: [f64; 4]) -> [f64; 4] {
-        std::array::from_fn(|c| {
-            if self.state.srgb && self.state.encode_srgb && c < 3 {
-                linear_to_srgb(lin[c]) * 255.0
-            } else {
-                lin[c] * 255.0
-            }
-        })
-    }
-
-    /// Exact sample at `(u, v)` and `lod` with filter `mode`, channel
-    /// values 0..=255 (unrounded).
-    #[must_use]
-    pub fn sample(&self, u: f64, v: f64, lod: f64, mode: Mode) -> [f64; 4] {
-        self.output(self.filter(u, v, self.lod(lod), mode))
-    }
-
-    /// Exact anisotropic sample (mean of the probes' `mode` samples,
-    /// [`aniso_probes`]), channel values 0..=255 (unrounded).
-    #[must_use]
-    pub fn sample_aniso(&self, u: f64, v: f64, axes: [[f64; 2]; 2], mode: Mode) -> [f64; 4] {
-        let (w, h) = self.tex.sizes[0];
-        let (n, lod, probes) = aniso_probes((w, h), self.state.max_aniso, u, v, axes);
-        let lod = self.lod(lod);
-        let mut acc = [0.0; 4];
-        for p in &probes {
-            let s = self.filter(p[0], p[1], lod, mode);
-            for c in 0..4 {
-                acc[c] += s[c] / f64::from(n);
-            }
-        }
-        self.output(acc)
-    }
-}
-
-/// Probe count, lod (before bias/clamps) and exact probe positions of the
-/// anisotropic footprint `axes = [(du/dx, dv/dx), (du/dy, dv/dy)]` at
-/// `(u, v)` on a level 0 of `size` texels with at most `max` probes
-/// (pbrt-style: minor axis clamped to major/max, `N = ceil(major/minor')`,
-/// lod `log2 minor'`, probes at `t_i = (2i + 1 − N)/(2N)` along the major
-/// axis).
+/// The reference's filter mode of a firmware one (same numbering).
 #[must_use]
-pub fn aniso_probes(
-    size: (u32, u32),
-    max: u32,
-    u: f64,
-    v: f64,
-    axes: [[f64; 2]; 2],
-) -> (u32, f64, Vec<[f64; 2]>) {
-    let (w, h) = size;
-    let len = |a: [f64; 2]| (a[0] * f64::from(w)).hypot(a[1] * f64::from(h));
-    let (major, minor) = if len(axes[0]) >= len(axes[1]) {
-        (axes[0], len(axes[1]))
-    } else {
-        (axes[1], len(axes[0]))
-    };
-    let lmaj = len(major);
-    let max = max.max(1);
-    let minor = minor.max(lmaj / f64::from(max)).max(f64::MIN_POSITIVE);
-    let n = ((lmaj / minor).ceil() as u32).clamp(1, max);
-    let nf = f64::from(n);
-    let probes = (0..n)
-        .map(|i| {
-            let t = (2.0 * f64::from(i) + 1.0 - nf) / (2.0 * nf);
-            [u + major[0] * t, v + major[1] * t]
-        })
-        .collect();
-    (n, minor.log2(), probes)
+pub fn mode(mode: Mode) -> reference::Mode {
+    reference::Mode::from_index(mode as u8).expect("the reference numbers every firmware mode")
+}
+
+/// The reference's texture of an RGBA8 pyramid of `geometry` (level
+/// sizes and layout by the definition, not the firmware's indexing).
+#[must_use]
+pub fn texture_rgba8(geometry: &Geometry, texels: &[Texel]) -> Texture {
+    Texture::from_rgba8_levels(
+        geometry.width(),
+        geometry.height(),
+        geometry.levels(),
+        texels,
+    )
+}
+
+/// The reference's texture of uncompressed `bytes` in the
+/// `raymip::texture::storage::image` layout of `format` (levels one after
+/// the other, rows of `unit_bytes` texels), decoded by [`decode_texel`].
+#[must_use]
+pub fn texture_bytes(geometry: &Geometry, format: TexelFormat, bytes: &[u8]) -> Texture {
+    let sizes = reference::level_sizes(geometry.width(), geometry.height(), geometry.levels());
+    let unit = format.unit_bytes() as usize;
+    let mut offsets = Vec::new();
+    let mut offset = 0usize;
+    for &(w, h) in &sizes {
+        offsets.push(offset);
+        offset += (w * h) as usize * unit;
+    }
+    Texture::from_fn(&sizes, |level, x, y| {
+        let at = offsets[level] + (y * sizes[level].0 + x) as usize * unit;
+        let mut raw = [0u8; 4];
+        raw[..unit].copy_from_slice(&bytes[at..at + unit]);
+        decode_texel(format, u32::from_le_bytes(raw))
+    })
 }
 
 /// One row of the accuracy table: a format/colour space and a filter.
@@ -361,11 +135,11 @@ pub const FILTERS: [&str; 5] = [
     "anisotropic 16x (trilinear probes)",
 ];
 
-/// Measures the firmware sampler of tier `precision` against [`RefSampler`] for every
+/// Measures the firmware sampler of tier `precision` against the reference sampler for every
 /// format (linear, and sRGB re-encoded and linear where it exists) and
 /// filter, over `samples` random samples each: random 24×20 RGBA8 level 0
 /// (pyramid by `mip::generate`, or `srgb::generate` for sRGB), converted
-/// by [`crate::reference::texformat::encode_pyramid`]; random address modes per axis,
+/// by [`texformat::encode_pyramid`]; random address modes per axis,
 /// border colour, bias in [−16, 16), lod clamps, coordinates in
 /// [−3, 3], lods in [−2, 8], anisotropic footprints with axes up to ±0.5
 /// (up to 12 texels), through the texel cache. The reference reads the
@@ -445,11 +219,11 @@ fn random_image_bytes(
     } else {
         raymip::texture::storage::mip::generate(geometry, &mut texels).expect("pyramid");
     }
-    crate::reference::texformat::encode_pyramid(geometry, &texels, format)
+    texformat::encode_pyramid(geometry, &texels, format)
 }
 
 /// One case of the `sampler_ref` fuzz target: the run-time-configured
-/// sampler ([`DynSampler`] through a texel cache) against [`RefSampler`].
+/// sampler ([`DynSampler`] through a texel cache) against the reference sampler.
 /// The first four bytes of `bytes` choose the format, the colour space
 /// (linear, sRGB re-encoded, sRGB linear), the tier and the filter; the
 /// next eight seed the texels, the sampler state (address modes per axis,
@@ -504,7 +278,7 @@ fn reference_texture(
     format: TexelFormat,
     image: &Image<'_>,
     bytes: &[u8],
-) -> RefTexture {
+) -> Texture {
     if format.is_block_compressed() {
         let decoded: Vec<Texel> = (0..geometry.levels())
             .flat_map(|k| {
@@ -513,9 +287,9 @@ fn reference_texture(
             })
             .map(|(k, x, y)| image.get(k, x, y))
             .collect();
-        RefTexture::from_rgba8(geometry, &decoded)
+        texture_rgba8(geometry, &decoded)
     } else {
-        RefTexture::from_bytes(geometry, format, bytes)
+        texture_bytes(geometry, format, bytes)
     }
 }
 
@@ -573,16 +347,16 @@ fn sample_pair(
     rng: &mut Rng,
     fi: usize,
     image: Image<'_>,
-    reference: &RefTexture,
+    reference: &Texture,
     (space, out, precision): (ColorSpace, SrgbOutput, Precision),
 ) -> Option<(Texel, [f64; 4])> {
     let (desc, address) = random_state(rng, out);
     let state = SamplerState::new(desc).expect("state");
     let mut fw = DynSampler::new(TexelCache::<_, 8, 2>::new(image), state, space, precision);
-    let rs = RefSampler {
+    let rs = reference::Sampler {
         tex: reference,
-        state: RefState {
-            address,
+        state: State {
+            address: address.map(self::address),
             border: desc.border.to_le_bytes().map(f64::from),
             bias: desc.lod_bias.to_num(),
             min_lod: desc.min_lod.to_num(),
@@ -605,7 +379,7 @@ fn sample_pair(
         let lod = Lod::from_bits(((rng.unit() * 2560.0) as i32 - 512) as i16);
         return Some((
             fw.sample(u, v, lod, mode),
-            rs.sample(uf, vf, lod.to_num(), mode),
+            rs.sample(uf, vf, lod.to_num(), self::mode(mode)),
         ));
     }
     let axis = |x: f64| TexCoord::from_num(x);
@@ -630,7 +404,7 @@ fn sample_pair(
     let fp = raymip::units::Footprint { x: ax, y: ay };
     Some((
         fw.sample_aniso(u, v, &fp),
-        rs.sample_aniso(uf, vf, axes, Mode::Trilinear),
+        rs.sample_aniso(uf, vf, axes, reference::Mode::Trilinear),
     ))
 }
 

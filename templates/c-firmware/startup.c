@@ -1,7 +1,11 @@
-/* Minimal Cortex-M4 start-up for running tests/c/test_raymip.c under QEMU
- * (mps2-an386) with newlib's semihosting library (rdimon): a vector table at
- * address 0 whose reset handler enables the FPU and enters newlib's _start
- * (which zeroes .bss, sets up the heap and calls main, then exit). */
+/* Minimal Cortex-M4 start-up of the C firmware template (and of the C ABI
+ * test, tests/c/test_raymip.c) under QEMU mps2-an386 with newlib's
+ * semihosting library (rdimon: console and exit code through the
+ * debugger interface): a vector table at address 0 whose reset handler
+ * enables the FPU and enters newlib's _start (which zeroes .bss, sets up
+ * the heap and calls main, then exit with main's return value). For a
+ * board: your part's vector table and clock set-up, and a console of
+ * your own instead of semihosting. */
 #include <stdint.h>
 
 extern void _start(void);

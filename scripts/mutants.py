@@ -1,0 +1,650 @@
+#!/usr/bin/env python3
+"""Mutation testing of the firmware crate: selection, runs, records, report.
+
+Called by scripts/mutants (which installs cargo-mutants and sets the
+environment); `scripts/mutants --help` documents the options.
+
+Every mutant cargo-mutants lists for `raymip` (all CI feature sets but
+`pcpi`, see FEATURES) gets a key that survives edits elsewhere: the hash of
+its function (name, return type, text without comments and spacing), the
+mutation (genre, replacement, original text) and its rank among identical
+mutations of that function. A run writes one record file to
+mutation/runs/ (one line per mutant tested: key, outcome, build and test
+seconds, name); the report merges every record file, takes each key's
+latest outcome, and writes the block of docs/reliability.md between
+BEGIN and END: per module the mutants listed today, caught, missed,
+unviable, timeouts, skipped as equivalent (mutation/equivalent.txt, one
+line each with its reason) and the ones without a record (new or changed
+code, to be run).
+"""
+import argparse
+import hashlib
+import json
+import os
+import platform
+import re
+import resource
+import signal
+import statistics
+import subprocess
+import sys
+import time
+from collections import Counter, defaultdict
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+RUNS = os.path.join(ROOT, "mutation", "runs")
+EQUIVALENT = os.path.join(ROOT, "mutation", "equivalent.txt")
+DOC = os.path.join(ROOT, "docs", "reliability.md")
+BEGIN, END = "<!-- mutants:begin -->", "<!-- mutants:end -->"
+PACKAGE = "raymip"
+# Every CI feature set at once (the defaults come with `ffi`); `pcpi` builds
+# only for riscv32 (src/coproc is excluded in .cargo/mutants.toml).
+FEATURES = "ffi,f32,raydiff,envmap"
+OUTCOMES = {"CaughtMutant": "caught", "MissedMutant": "missed", "Unviable": "unviable",
+            "Timeout": "timeout"}
+
+
+def cargo_mutants(args, **kw):
+    return subprocess.run(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + args,
+                          cwd=ROOT, **kw)
+
+
+def list_mutants():
+    """The mutants cargo-mutants lists today, each with its key and module."""
+    out = cargo_mutants(["--list", "--json"], check=True, capture_output=True, text=True).stdout
+    mutants = json.loads(out)
+    files, unbuilt = {}, {}
+    rank = Counter()
+    features = set(FEATURES.split(",")) | {"cone", "trilinear", "cache", "mipgen"}
+    for m in mutants:
+        path = m["file"]
+        if path not in files:
+            with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+                files[path] = f.read().split("\n")
+        lines = files[path]
+        fn = m.get("function") or {}
+        fspan = fn.get("span")
+        body = span_text(lines, fspan) if fspan else ""
+        body = re.sub(r"//[^\n]*", "", body)
+        body = " ".join(body.split())
+        original = span_text(lines, m["span"])
+        ident = "\x1f".join([fn.get("function_name", ""), fn.get("return_type", ""),
+                             hashlib.sha1(body.encode()).hexdigest(), m["genre"],
+                             m.get("replacement", ""), original])
+        rank[ident] += 1
+        m["key"] = hashlib.sha1(f"{ident}\x1f{rank[ident]}".encode()).hexdigest()[:16]
+        m["module"] = module_of(path)
+        if path not in unbuilt:
+            unbuilt[path] = unbuilt_lines(lines, features)
+        m["unbuilt"] = unbuilt[path].get(m["span"]["start"]["line"])
+    mutants = [m for m in mutants if m["unbuilt"] != "test"]
+    # Two identical functions in different files: tell them apart by path.
+    seen = Counter(m["key"] for m in mutants)
+    for m in mutants:
+        if seen[m["key"]] > 1:
+            m["key"] = hashlib.sha1(f"{m['key']}\x1f{m['file']}".encode()).hexdigest()[:16]
+    return mutants
+
+
+def span_text(lines, span):
+    """Source text of a cargo-mutants span (1-based lines and columns, end exclusive)."""
+    s, e = span["start"], span["end"]
+    if s["line"] == e["line"]:
+        return lines[s["line"] - 1][s["column"] - 1:e["column"] - 1]
+    parts = [lines[s["line"] - 1][s["column"] - 1:]]
+    parts += lines[s["line"]:e["line"] - 1]
+    parts.append(lines[e["line"] - 1][:e["column"] - 1])
+    return "\n".join(parts)
+
+
+# The host build that tests the mutants: cfg predicates and their values.
+HOST_CFG = {"target_arch": "x86_64", "target_pointer_width": "64", "target_os": "linux"}
+
+
+def cfg_value(expr, features):
+    """Value of a `#[cfg(...)]` predicate in the host test build (`test` false:
+    `#[cfg(test)]` code holds no mutants)."""
+    expr = expr.strip()
+    m = re.match(r"^(all|any|not)\((.*)\)$", expr, re.S)
+    if m:
+        args, depth, cur = [], 0, ""
+        for ch in m.group(2):
+            if ch == "," and depth == 0:
+                args.append(cur)
+                cur = ""
+                continue
+            depth += (ch == "(") - (ch == ")")
+            cur += ch
+        if cur.strip():
+            args.append(cur)
+        vals = [cfg_value(a, features) for a in args]
+        return {"all": all, "any": any}[m.group(1)](vals) if m.group(1) != "not" else not vals[0]
+    m = re.match(r'^(\w+)\s*=\s*"([^"]*)"$', expr)
+    if m:
+        key, val = m.groups()
+        if key == "feature":
+            return val in features
+        if key == "target_feature":
+            return False
+        return HOST_CFG.get(key) == val
+    return False
+
+
+def unbuilt_lines(lines, features):
+    """{line (1-based): "test" or "unbuilt"} of the items, statements and
+    blocks under a `#[cfg(...)]` that is false in the host test build:
+    test code (the predicate names `test`; cargo-mutants skips only a plain
+    `#[cfg(test)]`), or firmware the host build leaves out."""
+    out = {}
+    for i, line in enumerate(lines):
+        m = re.match(r"^\s*#\[cfg\((.*)\)\]\s*$", line)
+        if not m or cfg_value(m.group(1), features):
+            continue
+        kind = "test" if re.search(r"\btest\b", m.group(1)) else "unbuilt"
+        # The attribute applies to what follows: up to the `;` or the
+        # closing brace at nesting depth 0 (further attributes skipped).
+        depth, j, done = 0, i + 1, False
+        while j < len(lines) and not done:
+            text = re.sub(r"//.*", "", lines[j])
+            if depth == 0 and text.strip().startswith("#["):
+                out.setdefault(j + 1, kind)
+                j += 1
+                continue
+            out.setdefault(j + 1, kind)
+            for ch in text:
+                if ch in "({[":
+                    depth += 1
+                elif ch in ")}]":
+                    depth -= 1
+                    if depth == 0 and ch == "}":
+                        done = True
+                        break
+                elif ch in ";," and depth == 0:
+                    done = True
+                    break
+            j += 1
+    return out
+
+
+def module_of(path):
+    """`src/texture/storage/mip.rs` -> `texture::storage::mip` (`mod.rs`: its folder)."""
+    p = path[len("src/"):] if path.startswith("src/") else path
+    p = p[:-3] if p.endswith(".rs") else p
+    parts = [x for x in p.split("/") if x]
+    if parts and parts[-1] == "mod":
+        parts.pop()
+    return "::".join(parts) or "lib"
+
+
+def plain_name(m):
+    """Mutant name without line and column: `src/x.rs: replace ...`."""
+    return re.sub(r"^([^:]+):\d+:\d+: ", r"\1: ", m["name"])
+
+
+def load_equivalent(mutants):
+    """mutation/equivalent.txt -> {key: reason}; every entry must match exactly one mutant.
+
+    Line form: `NAME-WITHOUT-LINE-COLUMN [#K] -- REASON` (`#K`: the K-th
+    such mutant of the function, from 1, when the name is not unique).
+    """
+    by_plain = defaultdict(list)
+    for m in mutants:
+        by_plain[plain_name(m)].append(m)
+    eq, errors = {}, []
+    if not os.path.exists(EQUIVALENT):
+        return eq, errors
+    with open(EQUIVALENT, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            if " -- " not in line:
+                errors.append(f"mutation/equivalent.txt:{n}: no ' -- REASON'")
+                continue
+            name, reason = (x.strip() for x in line.split(" -- ", 1))
+            k = None
+            mk = re.match(r"^(.*) #(\d+)$", name)
+            if mk:
+                name, k = mk.group(1), int(mk.group(2))
+            cands = by_plain.get(name, [])
+            if k is not None:
+                cands = cands[k - 1:k]
+            if len(cands) != 1 or not reason:
+                errors.append(f"mutation/equivalent.txt:{n}: matches {len(cands)} mutants "
+                              f"(needs exactly one, and a reason): {name}")
+                continue
+            eq[cands[0]["key"]] = reason
+    return eq, errors
+
+
+def load_runs():
+    """Every record file, oldest first: [(header dict, [(key, outcome, build, test, name)])]."""
+    runs = []
+    if not os.path.isdir(RUNS):
+        return runs
+    for fn in sorted(os.listdir(RUNS)):
+        if not fn.endswith(".tsv"):
+            continue
+        header, rows = {}, []
+        with open(os.path.join(RUNS, fn), encoding="utf-8") as f:
+            for line in f:
+                line = line.rstrip("\n")
+                if line.startswith("# "):
+                    k, _, v = line[2:].partition(": ")
+                    header[k] = v
+                elif line and not line.startswith("key\t"):
+                    key, outcome, build, test, name = line.split("\t", 4)
+                    rows.append((key, outcome, float(build), float(test), name))
+        header["file"] = fn
+        runs.append((header, rows))
+    runs.sort(key=lambda r: r[0].get("started", r[0]["file"]))
+    return runs
+
+
+def latest(runs):
+    """{key: (outcome, build s, test s, run header)} from the newest record of each key."""
+    out = {}
+    for header, rows in runs:
+        for key, outcome, build, test, _ in rows:
+            out[key] = (outcome, build, test, header)
+    return out
+
+
+def machine():
+    model = ""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return f"{platform.machine()} {platform.system().lower()}, {os.cpu_count()} CPUs" + (
+        f" ({model})" if model else "")
+
+
+def escape_name(name):
+    return "^" + re.escape(name) + "$"
+
+
+def run(args):
+    mutants = list_mutants()
+    eq, errors = load_equivalent(mutants)
+    if errors:
+        sys.exit("\n".join(errors))
+    recorded = latest(load_runs())
+    todo = [m for m in mutants if m["key"] not in eq and not m["unbuilt"]]
+    label = "all"
+    if args.file:
+        todo = [m for m in todo if any(m["file"] == f or m["file"].startswith(f.rstrip("/") + "/")
+                                       for f in args.file)]
+        label = "+".join(module_of(f.rstrip("/")).replace("::", ".") for f in args.file)
+    if args.in_diff is not None:
+        base = args.in_diff or last_doc_commit()
+        changed = changed_lines(base)
+        todo = [m for m in todo if overlaps(m, changed)]
+        label = f"diff-{base[:10]}"
+    if args.unrecorded:
+        todo = [m for m in todo if m["key"] not in recorded]
+        label += "-unrecorded"
+    if args.caught:
+        todo = [m for m in todo if recorded.get(m["key"], ("",))[0] == "caught"]
+        label += "-caught"
+    if args.missed:
+        todo = [m for m in todo if recorded.get(m["key"], ("",))[0] in ("missed", "timeout")]
+        label += "-missed"
+    if args.shard:
+        k, n = (int(x) for x in args.shard.split("/"))
+        if not 0 <= k < n:
+            sys.exit(f"--shard {args.shard}: need 0 <= k < n")
+        # Slices of the listing in source order (neighbouring mutants share
+        # incremental builds), the same split as cargo-mutants' --shard.
+        todo = todo[len(todo) * k // n:len(todo) * (k + 1) // n]
+        label += f"-shard-{k}-of-{n}"
+    if args.window and len(todo) > args.window:
+        # A window of consecutive mutants that moves on by its length with
+        # every commit: successive CI runs cover the whole selection.
+        count = int(subprocess.run(["git", "rev-list", "--count", "HEAD"], cwd=ROOT,
+                                   capture_output=True, text=True).stdout.strip() or 0)
+        start = count * args.window % len(todo)
+        todo = (todo + todo)[start:start + args.window]
+        label += f"-window-{start}"
+    if args.limit is not None:
+        todo = todo[:args.limit]
+    print(f"mutants: {len(todo)} of {len(mutants)} to test ({label}; "
+          f"{len(eq)} skipped as equivalent)", flush=True)
+    if args.list:
+        for m in todo:
+            print(m["name"])
+        return 0
+    if not todo:
+        return report(args, quiet=True)
+    out_dir = args.out
+    os.makedirs(out_dir, exist_ok=True)
+    with open(os.path.join(out_dir, "examine.txt"), "w", encoding="utf-8") as f:
+        for m in todo:
+            f.write(escape_name(m["name"]) + "\n")
+    cmd = ["--no-shuffle", "-o", out_dir, "--colors", "never"]
+    if len(todo) < len(mutants) - len(eq) - sum(1 for m in mutants if m["unbuilt"]):
+        # cargo-mutants 27.1 applies name filters to every genre but
+        # StructField: the file filter keeps those to the selected files
+        # (and their outcomes are recorded too).
+        for f in sorted({m["file"] for m in todo}):
+            cmd += ["-f", f]
+        for m in todo:
+            cmd += ["-F", escape_name(m["name"])]
+    else:
+        for m in mutants:
+            if m["key"] in eq or m["unbuilt"]:
+                cmd += ["-E", escape_name(m["name"])]
+    started = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    rec = Record(started, label, len(todo), {m["name"]: m for m in mutants if m["key"] not in eq},
+                 os.path.join(out_dir, "mutants.out", "outcomes.json"))
+    proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
+                            cwd=ROOT, start_new_session=True)
+    deadline = None
+    timed_out = False
+    while proc.poll() is None:
+        # The record is rewritten as outcomes arrive: an interrupted run
+        # keeps what it finished.
+        rec.update(proc.pid)
+        if args.time_box and deadline is None and rec.baseline_done:
+            # The time box counts from the end of the baseline (the build of
+            # the copied tree and one run of the tests): mutants only.
+            deadline = time.monotonic() + args.time_box
+        if deadline and time.monotonic() > deadline:
+            # cargo-mutants stops on SIGINT, kills its cargo and removes
+            # its build directory; what it finished is in outcomes.json.
+            timed_out = True
+            os.killpg(proc.pid, signal.SIGINT)
+            try:
+                proc.wait(timeout=60)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+            break
+        time.sleep(5)
+    rec.update(None, timed_out=timed_out)
+    if not rec.baseline_ok:
+        sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
+    rows = rec.rows
+    counts = Counter(r[1] for r in rows)
+    print(f"mutants: recorded {len(rows)} in {os.path.relpath(rec.path, ROOT)}: "
+          + ", ".join(f"{counts[o]} {o}" for o in OUTCOMES.values())
+          + (f"; time box of {args.time_box:.0f} s reached, {len(todo) - len(rows)} not run"
+             if timed_out else ""))
+    bad = [r for r in rows if r[1] in ("missed", "timeout")]
+    for r in bad:
+        print(f"  {r[1].upper()}: {r[4]}")
+    if not args.no_report:
+        report(args, quiet=True)
+    return 1 if bad else 0
+
+
+class Record:
+    """One run's record file in mutation/runs/, rewritten from outcomes.json."""
+
+    def __init__(self, started, label, selected, by_name, outcomes_file):
+        self.started, self.label, self.selected = started, label, selected
+        self.by_name, self.outcomes_file = by_name, outcomes_file
+        self.path = os.path.join(RUNS, f"{started.replace(':', '').replace('-', '')}-{label}.tsv")
+        self.load0 = os.getloadavg()[0]
+        self.t0 = time.monotonic()
+        self.ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        self.cpu_live = 0.0
+        self.rows, self.baseline_ok, self.baseline_done, self.version = [], True, False, "?"
+        self.commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
+                                     capture_output=True, text=True).stdout.strip()
+        self.dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"],
+                                    cwd=ROOT, capture_output=True, text=True).stdout.strip()
+
+    def update(self, pid, timed_out=False):
+        if pid is not None:
+            self.cpu_live = process_cpu(pid)
+            cpu = self.cpu_live
+        else:
+            ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = (ru1.ru_utime - self.ru0.ru_utime) + (ru1.ru_stime - self.ru0.ru_stime)
+        try:
+            with open(self.outcomes_file, encoding="utf-8") as f:
+                outcomes = json.load(f)
+        except (OSError, ValueError):
+            return
+        self.version = outcomes.get("cargo_mutants_version", "?")
+        rows = []
+        for o in outcomes["outcomes"]:
+            sc = o["scenario"]
+            if sc == "Baseline":
+                self.baseline_ok = o["summary"] == "Success"
+                self.baseline_done = True
+                continue
+            name = sc["Mutant"]["name"]
+            m = self.by_name.get(name)
+            if m is None or o["summary"] not in OUTCOMES:
+                continue
+            d = {p["phase"]: p["duration"] for p in o["phase_results"]}
+            rows.append((m["key"], OUTCOMES[o["summary"]], d.get("Build", 0.0),
+                         d.get("Test", 0.0), name))
+        self.rows = rows
+        if not rows or not self.baseline_ok:
+            return
+        os.makedirs(RUNS, exist_ok=True)
+        tmp = self.path + ".tmp"
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(f"# started: {self.started}\n")
+            f.write(f"# selection: {self.label}\n")
+            f.write(f"# commit: {self.commit}{' + uncommitted changes' if self.dirty else ''}\n")
+            f.write(f"# cargo-mutants: {self.version}\n")
+            f.write(f"# features: {FEATURES}\n")
+            f.write(f"# machine: {machine()}\n")
+            f.write(f"# load average: {self.load0:.1f} at start, {os.getloadavg()[0]:.1f} "
+                    "at end\n")
+            f.write(f"# nice: {os.nice(0)}\n")
+            f.write(f"# wall seconds: {time.monotonic() - self.t0:.0f}\n")
+            f.write(f"# cpu seconds: {cpu:.0f}\n")
+            f.write(f"# mutants tested: {len(rows)} of {self.selected} selected"
+                    f"{' (time box reached)' if timed_out else ''}"
+                    f"{' (running)' if pid is not None else ''}\n")
+            f.write("key\toutcome\tbuild_s\ttest_s\tname\n")
+            for r in rows:
+                f.write(f"{r[0]}\t{r[1]}\t{r[2]:.1f}\t{r[3]:.1f}\t{r[4]}\n")
+        os.replace(tmp, self.path)
+
+
+def process_cpu(pid):
+    """CPU seconds of a running process and its waited-for descendants (/proc)."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="utf-8") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return sum(int(x) for x in fields[11:15]) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return 0.0
+
+
+def last_doc_commit():
+    out = subprocess.run(["git", "log", "-1", "--format=%H", "--", "docs/reliability.md"],
+                         cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+    if not out:
+        print("mutants: no commit touched docs/reliability.md (shallow clone?): no diff")
+        return "HEAD"
+    return out
+
+
+def changed_lines(base):
+    """{path: set of changed line numbers in the work tree} since BASE."""
+    diff = subprocess.run(["git", "diff", "-U0", base, "--", "src"], cwd=ROOT,
+                          capture_output=True, text=True, check=True).stdout
+    changed, path = defaultdict(set), None
+    for line in diff.split("\n"):
+        if line.startswith("+++ "):
+            path = line[6:] if line.startswith("+++ b/") else None
+        elif line.startswith("@@") and path:
+            mh = re.match(r"@@ -\S+ \+(\d+)(?:,(\d+))? @@", line)
+            start, count = int(mh.group(1)), int(mh.group(2) or 1)
+            changed[path].update(range(start, start + max(count, 1)))
+    return changed
+
+
+def overlaps(m, changed):
+    lines = changed.get(m["file"])
+    if not lines:
+        return False
+    fn = (m.get("function") or {}).get("span") or m["span"]
+    return any(fn["start"]["line"] <= n <= fn["end"]["line"] for n in lines)
+
+
+def report(args, quiet=False):
+    mutants = list_mutants()
+    eq, errors = load_equivalent(mutants)
+    if errors:
+        sys.exit("\n".join(errors))
+    runs = load_runs()
+    rec = latest(runs)
+    cols = ["caught", "missed", "timeout", "unviable", "equivalent", "not built", "unrecorded"]
+    per = defaultdict(Counter)
+    used_runs, times, missed, unbuilt = {}, [], [], []
+    for m in mutants:
+        c = per[m["module"]]
+        c["mutants"] += 1
+        if m["key"] in eq:
+            c["equivalent"] += 1
+        elif m["unbuilt"]:
+            c["not built"] += 1
+            unbuilt.append(m["name"])
+        elif m["key"] in rec:
+            outcome, build, test, header = rec[m["key"]]
+            c[outcome] += 1
+            used_runs[header["file"]] = header
+            if outcome != "unviable":
+                times.append((build, test))
+            if outcome in ("missed", "timeout"):
+                missed.append((outcome, m["name"]))
+        else:
+            c["unrecorded"] += 1
+    total = Counter()
+    for c in per.values():
+        total.update(c)
+    lines = [BEGIN]
+    if used_runs:
+        starts = sorted(h.get("started", "?")[:10] for h in used_runs.values())
+        machines = sorted({h.get("machine", "?") for h in used_runs.values()})
+        versions = sorted({h.get("cargo-mutants", "?") for h in used_runs.values()})
+        cpu = sum(float(h.get("cpu seconds", 0)) for h in used_runs.values())
+        wall = sum(float(h.get("wall seconds", 0)) for h in used_runs.values())
+        n_tested = sum(int(h.get("mutants tested", "0").split()[0]) for h in used_runs.values())
+        loads = [float(x.split()[0]) for h in used_runs.values()
+                 for x in h.get("load average", "").split(",")[:1] if x.strip()]
+    lines.append(
+        f"Written by `scripts/mutants` from {len(used_runs)} recorded runs in `mutation/runs/`"
+        + (f" ({starts[0]} to {starts[-1]}; cargo-mutants {', '.join(versions)}; "
+           f"{'; '.join(machines)})" if used_runs else "")
+        + f", against the {total['mutants']} mutants cargo-mutants lists today for the "
+        f"firmware crate with features `{FEATURES}` (every CI feature set but `pcpi`: the "
+        "co-processor module `src/coproc` is not mutated; test code is not either). Each "
+        "mutant's newest record counts; a mutant whose function changed since its record "
+        "is *unrecorded* until it is run again. Timeouts count as missed.")
+    lines.append("")
+    lines.append("| module | mutants | " + " | ".join(cols) + " |")
+    lines.append("|---|" + "---:|" * (len(cols) + 1))
+    for mod in sorted(per):
+        c = per[mod]
+        lines.append(f"| `{mod}` | {c['mutants']} | " + " | ".join(str(c[k]) for k in cols) + " |")
+    lines.append(f"| **total** | **{total['mutants']}** | "
+                 + " | ".join(f"**{total[k]}**" for k in cols) + " |")
+    lines.append("")
+    if times:
+        b = statistics.median(t[0] for t in times)
+        t = statistics.median(t[1] for t in times)
+        mean = statistics.mean(x[0] + x[1] for x in times)
+        lines.append(
+            f"Time per mutant (build + test, wall, `nice`d on a shared machine, load average "
+            f"{min(loads):.1f} to {max(loads):.1f} at the runs' starts): median {b:.1f} s + "
+            f"{t:.1f} s, mean {mean:.1f} s; {cpu / max(n_tested, 1):.1f} CPU-seconds per mutant "
+            f"over the runs ({wall / 3600:.1f} h wall, {cpu / 3600:.1f} CPU-hours, baselines "
+            "included).")
+        lines.append("")
+    if missed:
+        lines.append("Missed (a test must kill each):")
+        lines.append("")
+        for outcome, name in sorted(missed, key=lambda x: x[1]):
+            lines.append(f"- {outcome}: `{name}`")
+        lines.append("")
+    if unbuilt:
+        lines.append(
+            f"Not built on the host ({len(unbuilt)}): code under a `#[cfg]` that the host "
+            "test build leaves out: the PicoRV32 co-processor paths (`pcpi` on riscv32, "
+            "checked bit for bit by the soft-core testbench), and code for a feature set "
+            "without `cone` or `trilinear` (built by `scripts/features`, not tested on the "
+            "host). Each is listed here:")
+        lines.append("")
+        for name in unbuilt:
+            lines.append(f"- `{name}`")
+        lines.append("")
+    if eq:
+        lines.append(f"Skipped as equivalent ({len(eq)}, "
+                     f"{100 * len(eq) / max(total['mutants'], 1):.2f} %; "
+                     "`mutation/equivalent.txt`):")
+        lines.append("")
+        by_key = {m["key"]: m for m in mutants}
+        for key, reason in sorted(eq.items(), key=lambda kv: by_key[kv[0]]["name"]):
+            lines.append(f"- `{plain_name(by_key[key])}`: {reason}")
+        lines.append("")
+    if lines[-1] == "":
+        lines.pop()
+    lines.append(END)
+    block = "\n".join(lines)
+    with open(DOC, encoding="utf-8") as f:
+        doc = f.read()
+    if BEGIN in doc:
+        new = doc[:doc.index(BEGIN)] + block + doc[doc.index(END) + len(END):]
+    else:
+        sys.exit(f"docs/reliability.md has no {BEGIN} ... {END} block")
+    if new != doc:
+        with open(DOC, "w", encoding="utf-8") as f:
+            f.write(new)
+    if not quiet:
+        print(block)
+    print(f"mutants: docs/reliability.md block: {total['caught']} caught, {total['missed']} "
+          f"missed, {total['timeout']} timeout, {total['unviable']} unviable, "
+          f"{total['equivalent']} equivalent, {total['not built']} not built, "
+          f"{total['unrecorded']} unrecorded "
+          f"of {total['mutants']}")
+    return 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--shard", metavar="K/N", help="the K-th of N slices of the selection (0-based)")
+    ap.add_argument("--in-diff", nargs="?", const="", metavar="BASE",
+                    help="mutants in functions changed since BASE (default: the last commit "
+                         "that touched docs/reliability.md)")
+    ap.add_argument("--unrecorded", action="store_true",
+                    help="only mutants without a record (new or changed code)")
+    ap.add_argument("--caught", action="store_true",
+                    help="only mutants whose newest record is caught (re-verification)")
+    ap.add_argument("--missed", action="store_true",
+                    help="only mutants whose newest record is missed or timeout")
+    ap.add_argument("--file", action="append", help="only mutants in this file or folder")
+    ap.add_argument("--limit", type=int, help="at most this many mutants")
+    ap.add_argument("--window", type=int, metavar="N",
+                    help="N consecutive mutants of the selection, starting N further on with "
+                         "each commit (git rev-list --count HEAD)")
+    ap.add_argument("--time-box", type=float, metavar="S",
+                    help="stop cargo-mutants S seconds after its baseline (the unmutated "
+                         "build and tests); what finished is recorded")
+    ap.add_argument("--list", action="store_true", help="print the selection, run nothing")
+    ap.add_argument("--report", action="store_true",
+                    help="only rewrite the docs/reliability.md block from the records")
+    ap.add_argument("--no-report", action="store_true", help="record, but leave the block")
+    ap.add_argument("--out", default=None, help="cargo-mutants output directory")
+    args = ap.parse_args()
+    if args.report:
+        return report(args)
+    if args.out is None and not args.list:
+        sys.exit("--out DIR is required (scripts/mutants gives a temporary one)")
+    return run(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
