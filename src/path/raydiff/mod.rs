@@ -168,11 +168,10 @@ impl RayDiff {
         right: [DirDiff; 3],
         up: [DirDiff; 3],
     ) -> (Self, bool) {
-        let (d, forward) = (d.to_array(), forward.to_array());
         let mut sat = false;
-        let df = dot30(d, forward);
+        let df = dot30(d.0, forward.0);
         let mut axis = |r: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dr = dot30(d, r);
+            let dr = dot30(d.0, r);
             core::array::from_fn(|k| {
                 let t = i128::from(r[k].to_bits()) - shr_round(dr * i128::from(d[k].to_bits()), 30);
                 DirDiff::from_bits(sat32(shr_round(df * t, 30), &mut sat))
@@ -197,10 +196,9 @@ impl RayDiff {
     /// `|D·n|` is clamped to [`MIN_COS`]. Saturating (flag).
     #[must_use]
     pub fn transfer(self, d: UnitVec, t: PathLength, n: UnitVec) -> (Self, bool) {
-        let (d, n) = (d.to_array(), n.to_array());
         let mut sat = false;
         // |D·n| ∈ [2⁻¹⁶, 12] after the clamp: 2⁻³⁰ bits fit i64.
-        let dn = clamp_cos(dot30(d, n)) as i64;
+        let dn = clamp_cos(dot30(d.0, n.0)) as i64;
         // 1/(D·n) in 2⁻³⁰ units, |inv| ≤ 2⁴⁶ (dn ≠ 0: the fallback is never taken).
         let inv = i128::from((1i64 << 60).checked_div(dn).unwrap_or(0));
         let t = i128::from(t.to_bits());
@@ -239,11 +237,10 @@ impl RayDiff {
         dndx: [DirDiff; 3],
         dndy: [DirDiff; 3],
     ) -> (Self, bool) {
-        let (d, n) = (d.to_array(), n.to_array());
         let mut sat = false;
-        let dn = dot30(d, n);
+        let dn = dot30(d.0, n.0);
         let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let ddn = shr_round(dot60(dd, n) + dot60(d, dnv), 30);
+            let ddn = shr_round(dot60(dd, n.0) + dot60(d.0, dnv), 30);
             core::array::from_fn(|k| {
                 let s = dn * i128::from(dnv[k].to_bits()) + ddn * i128::from(n[k].to_bits());
                 DirDiff::from_bits(sat32(
@@ -275,10 +272,9 @@ impl RayDiff {
         eta: Eta,
         cos_t: I2F30,
     ) -> (Self, bool) {
-        let (d, n) = (d.to_array(), n.to_array());
         let mut sat = false;
         let eta = i128::from(eta.to_bits()); // 2⁻²⁸
-        let cosi = -dot30(d, n); // 2⁻³⁰
+        let cosi = -dot30(d.0, n.0); // 2⁻³⁰
         let cos_t = i128::from(cos_t.to_bits()).max(i128::from(MIN_COS.to_bits()));
         // μ in 2⁻³⁰ units.
         let mu = shr_round(eta * cosi, 28) - cos_t;
@@ -287,7 +283,7 @@ impl RayDiff {
         let ratio = shr_round((eta * eta * cosi).checked_div(cos_t).unwrap_or(0), 26);
         let coef = (eta << 2) - ratio; // 2⁻³⁰, |coef| < 2⁵⁵
         let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dcos = -shr_round(dot60(dd, n) + dot60(d, dnv), 30);
+            let dcos = -shr_round(dot60(dd, n.0) + dot60(d.0, dnv), 30);
             let dmu = shr_round(coef * dcos, 30);
             core::array::from_fn(|k| {
                 let v = shr_round(eta * i128::from(dd[k].to_bits()), 28)
