@@ -153,34 +153,34 @@ MATRIX_SHARED = {"rm_bench_bilinear": 64, "rm_bench_trilinear": 64, "rm_bench_tr
 # MATRIX_MISSED and the per-class breakdown). Fixed numbers, so a slower
 # build fails.
 MATRIX_CEILINGS = {
-    "tw_bil": {"m4": 110, "rv": 137, "rvzbb": 135},
-    "tw_bil_f": {"m4": 112, "rv": 149, "rvzbb": 132},
-    "tw_tri": {"m4": 241, "rv": 290, "rvzbb": 288},
-    "tw_tri_f": {"m4": 220, "rv": 276, "rvzbb": 252},
-    "tw_tri_n": {"m4": 262, "rv": 298, "rvzbb": 296},
+    "tw_bil": {"m4": 111, "rv": 139, "rvzbb": 137},
+    "tw_bil_f": {"m4": 113, "rv": 146, "rvzbb": 135},
+    "tw_tri": {"m4": 244, "rv": 292, "rvzbb": 290},
+    "tw_tri_f": {"m4": 220, "rv": 278, "rvzbb": 255},
+    "tw_tri_n": {"m4": 264, "rv": 301, "rvzbb": 298},
     "ts_bil": {"m4": 146, "rv": 199, "rvzbb": 189},
     "ts_bil_f": {"m4": 152, "rv": 197, "rvzbb": 183},
     "ts_tri": {"m4": 328, "rv": 403, "rvzbb": 392},
     "ts_tri_f": {"m4": 284, "rv": 385, "rvzbb": 355},
-    "ts_srgb": {"m4": 573, "rv": 707, "rvzbb": 697},
-    "ts_565": {"m4": 675, "rv": 773, "rvzbb": 720},
-    "ts_565_f": {"m4": 627, "rv": 755, "rvzbb": 687},
-    "ts_bc1_hit": {"m4": 995, "rv": 1069, "rvzbb": 1042},
-    "ts_bc1_hit_f": {"m4": 952, "rv": 1050, "rvzbb": 1008},
-    "ts_bc1_fill": {"m4": 3443, "rv": 3610, "rvzbb": 3541},
-    "ts_bc1_fill_f": {"m4": 3400, "rv": 3591, "rvzbb": 3507},
-    "an2": {"m4": 906, "rv": 1126, "rvzbb": 1085},
-    "an4": {"m4": 1355, "rv": 1700, "rvzbb": 1656},
-    "an16": {"m4": 4051, "rv": 5156, "rvzbb": 5085},
-    "an2_f": {"m4": 901, "rv": 1084, "rvzbb": 1008},
-    "an4_f": {"m4": 1344, "rv": 1615, "rvzbb": 1502},
-    "an16_f": {"m4": 4003, "rv": 4804, "rvzbb": 4464},
+    "ts_srgb": {"m4": 573, "rv": 707, "rvzbb": 696},
+    "ts_565": {"m4": 638, "rv": 762, "rvzbb": 727},
+    "ts_565_f": {"m4": 593, "rv": 743, "rvzbb": 690},
+    "ts_bc1_hit": {"m4": 990, "rv": 1095, "rvzbb": 1068},
+    "ts_bc1_hit_f": {"m4": 948, "rv": 1077, "rvzbb": 1033},
+    "ts_bc1_fill": {"m4": 3438, "rv": 3636, "rvzbb": 3567},
+    "ts_bc1_fill_f": {"m4": 3396, "rv": 3618, "rvzbb": 3532},
+    "an2": {"m4": 888, "rv": 1101, "rvzbb": 1079},
+    "an4": {"m4": 1322, "rv": 1641, "rvzbb": 1621},
+    "an16": {"m4": 3812, "rv": 4881, "rvzbb": 4871},
+    "an2_f": {"m4": 829, "rv": 1063, "rvzbb": 1010},
+    "an4_f": {"m4": 1205, "rv": 1563, "rvzbb": 1480},
+    "an16_f": {"m4": 3444, "rv": 4564, "rvzbb": 4302},
 }
 MATRIX_BATCH_CEILINGS = {
-    "matrix:rm_batch_bilinear": {"m4": 116, "rv": 134, "rvzbb": 130},
-    "rm_batch_bilinear_fast": {"m4": 121, "rv": 127, "rvzbb": 119},
-    "matrix:rm_batch_trilinear": {"m4": 215, "rv": 247, "rvzbb": 242},
-    "rm_batch_trilinear_fast": {"m4": 197, "rv": 217, "rvzbb": 199},
+    "matrix:rm_batch_bilinear": {"m4": 115, "rv": 137, "rvzbb": 132},
+    "rm_batch_bilinear_fast": {"m4": 120, "rv": 134, "rvzbb": 121},
+    "matrix:rm_batch_trilinear": {"m4": 224, "rv": 249, "rvzbb": 244},
+    "rm_batch_trilinear_fast": {"m4": 196, "rv": 230, "rvzbb": 201},
 }
 MATRIX_MISSED = {
     "Wrap rows (RGBA8, `Pow2Pyramid`)": (
@@ -213,9 +213,10 @@ MATRIX_MISSED = {
         "one channel per 32-bit multiply-accumulate with 16-bit weights and re-encodes three "
         "channels by table. RGB565 is read through `Image`'s footprint (the level's size, offset and "
         "row starts once per footprint, then per texel its two bytes and the bit replication); the "
-        "sampler's generic path still computes the level's size per level and the taps with the "
-        "general (any-size) addressing. The goals need the expansion once per cached block and the "
-        "direct path's addressing for power-of-two images."),
+        "sampler addresses a power-of-two image as the direct "
+        "path does (the level's constants from its table) but cannot read it without the image's "
+        "own clamps. The goals need the expansion once per cached block (an RGBA8 block read as the "
+        "direct path reads a level)."),
     "BC1 on cache hits": (
         "`TexelCache::footprint` looks the footprint's block up once (one lookup counted as the "
         "accesses it stands for: the same counters and LRU order as per texel), two lookups when the "
@@ -223,9 +224,13 @@ MATRIX_MISSED = {
         "block number (Morton order), the set's tag compare and the stamp update. The largest calls "
         "are those with four blocks in a level, and the generic path's size and tap computation."),
     "Anisotropic N×": (
-        "The probe set-up (`aniso::probes`: the four axis components scaled and squared in 64-bit "
-        "words, two logarithms, the probe count) is paid once per sample and is above the 100 the goal "
-        "leaves for it; each probe costs about one trilinear sample."),
+        "The probe set-up (`aniso::probes`, once per sample): the four axis components scaled to "
+        "texels (one 32×32-bit multiply for a component below one normalized unit), two squared "
+        "lengths, two logarithms, the probe count from a 65-entry table of the ratio's top bits (no "
+        "search), the step by a reciprocal. The probe loop has no saturating adds when no step can "
+        "saturate (a start within ±2⁶²). Each probe is a trilinear sample that keeps both levels' "
+        "8.16 values for the mean, about a trilinear call; the set-up and the mean exceed the 100 "
+        "the goal leaves for them, so the goal holds only for 16 probes."),
     "Batches (steady ≤ 0.9 × single call)": (
         "The batch loop keeps the sampler's fields in registers and has no frame per hit, but the "
         "per-hit work is the single call's (lod window, level view, addressing, filter)."),

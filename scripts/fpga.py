@@ -2,7 +2,10 @@
 """Formats the FPGA measurement of scripts/fpga into BUDGETS.md (the block
 between <!-- fpga:begin --> and <!-- fpga:end -->, which carries the figures
 as a `<!-- fpga-data: {...} -->` comment for scripts/softcore.py) and
-docs/softcore.md (<!-- fpga-docs:begin --> … <!-- fpga-docs:end -->). Every
+docs/softcore.md (<!-- fpga-docs:begin --> … <!-- fpga-docs:end -->), and the
+ECP5 figures of the LiteX SoC into their own blocks
+(<!-- fpga-ecp5:begin --> … and <!-- fpga-ecp5-docs:begin --> …, data as an
+`ecp5-data` comment) from ecp5-stat-vex/cfu.txt and ecp5-pnr-*.log. Every
 number comes from the files in --work: stat-0/1.txt (Yosys `stat` of the
 SoC without / with the co-processor) and, with --pnr, pnr-0/1.log
 (nextpnr-ice40: logic cells, maximum frequency) and pnr-*.seconds.
@@ -20,6 +23,13 @@ import re
 import sys
 
 B_BEGIN, B_END = "<!-- fpga:begin -->", "<!-- fpga:end -->"
+E_BEGIN, E_END = "<!-- fpga-ecp5:begin -->", "<!-- fpga-ecp5:end -->"
+ED_BEGIN, ED_END = "<!-- fpga-ecp5-docs:begin -->", "<!-- fpga-ecp5-docs:end -->"
+ECP5_DATA_RE = re.compile(r"<!-- ecp5-data: (\{.*?\}) -->")
+ECP5_CELL_RE = re.compile(r"^\s+(LUT4|TRELLIS_FF|CCU2C|MULT18X18D|DP16KD|TRELLIS_DPR16X4|PFUMX|L6MUX21)\s+(\d+)\s*$")
+ECP5_COMB_RE = re.compile(r"TRELLIS_COMB:\s+(\d+)/\s*(\d+)")
+ECP5_VARIANTS = (("vex", "VexRiscv `full`"), ("cfu", "VexRiscv `full+cfu` + co-processor (`cfu_tex.v`)"))
+ECP5_SYNTH_KEYS = ("lut", "ff", "carry", "dsp", "bram", "dram")
 D_BEGIN, D_END = "<!-- fpga-docs:begin -->", "<!-- fpga-docs:end -->"
 DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
 CELL_RE = re.compile(r"^\s+(SB_\w+)\s+(\d+)\s*$")
@@ -42,6 +52,95 @@ def parse_stat(text):
             "carry": cells.get("SB_CARRY", 0),
             "dsp": cells.get("SB_MAC16", 0),
             "bram": cells.get("SB_RAM40_4K", 0)}
+
+
+def parse_ecp5_stat(text):
+    """Yosys `stat` of an ECP5 netlist: LUT4s, flip-flops (TRELLIS_FF),
+    carry cells (CCU2C), DSPs (MULT18X18D), block RAMs (DP16KD),
+    distributed RAM (TRELLIS_DPR16X4)."""
+    cells = {}
+    for line in text.splitlines():
+        m = ECP5_CELL_RE.match(line)
+        if m:
+            cells[m.group(1)] = cells.get(m.group(1), 0) + int(m.group(2))
+    return {"lut": cells.get("LUT4", 0), "ff": cells.get("TRELLIS_FF", 0), "carry": cells.get("CCU2C", 0),
+            "dsp": cells.get("MULT18X18D", 0), "bram": cells.get("DP16KD", 0),
+            "dram": cells.get("TRELLIS_DPR16X4", 0)}
+
+
+def parse_ecp5_pnr(text):
+    """(logic cells TRELLIS_COMB used, of total, max MHz), the last report."""
+    comb = ECP5_COMB_RE.findall(text)
+    mhz = MHZ_RE.findall(text)
+    if not comb or not mhz:
+        return None
+    return int(comb[-1][0]), int(comb[-1][1]), float(mhz[-1])
+
+
+def ecp5_table(data):
+    L = ["| SoC | LUT4 | flip-flops | carry (CCU2C) | DSPs (MULT18X18D) | block RAMs (DP16KD) | distributed RAM (DPR16X4) | "
+         "logic cells (TRELLIS_COMB) | max clock |",
+         "|---|---|---|---|---|---|---|---|---|"]
+    for key, name in ECP5_VARIANTS:
+        v = data["variants"][key]
+        lc = f"{v['lc']} / {data['lc_total']} ({100 * v['lc'] / data['lc_total']:.0f} %)" if v.get("lc") else "not placed"
+        mhz = f"{v['mhz']:.2f} MHz" if v.get("mhz") else "—"
+        L.append(f"| {name} | {v['lut']} | {v['ff']} | {v['carry']} | {v['dsp']} | {v['bram']} | {v['dram']} | {lc} | {mhz} |")
+    p, q = data["variants"]["vex"], data["variants"]["cfu"]
+    L.append(f"\nThe co-processor on the CFU port: +{q['lut'] - p['lut']} LUT4, +{q['ff'] - p['ff']} flip-flops, "
+             f"+{q['carry'] - p['carry']} carry cells, +{q['dsp'] - p['dsp']} DSPs, +{q['bram'] - p['bram']} block RAMs"
+             + (f", +{q['lc'] - p['lc']} logic cells." if p.get("lc") and q.get("lc") else "."))
+    return L
+
+
+def ecp5_blocks(a, data):
+    intro = (f"ECP5 {data['device']}, the LiteX SoC of `demo/softcore/litex_soc.py` with a {data['ram_bytes'] // 1024} KiB "
+             f"main RAM in block RAM (the simulated 256 KiB exceeds the part), {a.yosys} `synth_ecp5`; "
+             f"{data.get('nextpnr') or 'nextpnr-ecp5 (not run)'}, `--45k --package CABGA381 --speed 6 "
+             f"--seed {data['seed']}` (yowasp, WebAssembly).")
+    B = [E_BEGIN, "## The LiteX SoC on an ECP5 (Yosys + nextpnr-ecp5)\n",
+         "Written by `scripts/fpga` (synthesis run by `scripts/test-all`; place and route with `--full`); do not edit.",
+         intro + "\n"]
+    B += ecp5_table(data)
+    secs = [data["variants"][k].get("pnr_s") for k, _ in ECP5_VARIANTS]
+    if all(secs):
+        B.append(f"Place and route took {secs[0]} s and {secs[1]} s on this machine (not run in CI).")
+    B.append(f"<!-- ecp5-data: {json.dumps(data, sort_keys=True)} -->")
+    B.append(E_END)
+    D = [ED_BEGIN, "Written by `scripts/fpga` (figures also in BUDGETS.md); do not edit.\n", intro + "\n"]
+    D += ecp5_table(data)
+    D.append(ED_END)
+    return "\n".join(B), "\n".join(D)
+
+
+def ecp5_data(a, old_text):
+    """The ECP5 figures of this run (place and route kept from BUDGETS.md,
+    as for the iCE40, when not run and the synthesis is unchanged)."""
+    m = ECP5_DATA_RE.search(old_text)
+    old = json.loads(m.group(1)) if m else None
+    data = {"device": "LFE5U-45F (CABGA381, speed 6)", "seed": 1, "lc_total": 43848, "ram_bytes": a.ecp5_ram,
+            "variants": {}}
+    for key, _ in ECP5_VARIANTS:
+        v = parse_ecp5_stat(open(os.path.join(a.work, f"ecp5-stat-{key}.txt")).read())
+        if v["lut"] == 0:
+            sys.exit(f"fpga.py: ecp5-stat-{key}.txt has no LUT4 count")
+        if a.pnr and os.path.exists(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")):
+            p = parse_ecp5_pnr(open(os.path.join(a.work, f"ecp5-pnr-{key}.log")).read())
+            if p is None:
+                sys.exit(f"fpga.py: ecp5-pnr-{key}.log has no utilisation / frequency")
+            v["lc"], data["lc_total"], v["mhz"] = p
+            v["pnr_s"] = int(open(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")).read())
+            data["nextpnr"] = a.ecp5_nextpnr
+        elif old and key in old["variants"] and all(old["variants"][key].get(k) == v[k] for k in ECP5_SYNTH_KEYS):
+            data["nextpnr"] = old.get("nextpnr")
+            for k in ("lc", "mhz", "pnr_s"):
+                if old["variants"][key].get(k) is not None:
+                    v[k] = old["variants"][key][k]
+            data["lc_total"] = old.get("lc_total", data["lc_total"])
+        else:
+            print(f"fpga.py: ECP5 {key}: synthesis figures changed: run scripts/fpga --full for its clock")
+        data["variants"][key] = v
+    return data
 
 
 def parse_pnr(text):
@@ -114,14 +213,21 @@ def self_test():
     t = f"a\n{B_BEGIN}\nx\n{B_END}\nb"
     assert replace_block(t, B_BEGIN, B_END, "Y") == "a\nY\nb"
     assert replace_block("a\nEND\nb", B_BEGIN, B_END, "Y", "END") == "a\nEND\n\nY\nb"
+    e = parse_ecp5_stat("     CCU2C  279\n     DP16KD  26\n     LUT4 3849\n     MULT18X18D 4\n"
+                        "     TRELLIS_DPR16X4 2\n     TRELLIS_FF 2225\n")
+    assert e == {"lut": 3849, "ff": 2225, "carry": 279, "dsp": 4, "bram": 26, "dram": 2}, e
+    q = parse_ecp5_pnr("Info: \t    TRELLIS_COMB:  5000/43848    11%\n"
+                       "Info: Max frequency for clock '$glbnet$sys_clk': 61.20 MHz (PASS at 50.00 MHz)\n")
+    assert q == (5000, 43848, 61.2), q
     print("fpga.py: self-test passed")
 
 
 def main():
     ap = argparse.ArgumentParser()
-    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs"):
+    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs", "ecp5-nextpnr"):
         ap.add_argument(f"--{k}")
     ap.add_argument("--ram", type=int)
+    ap.add_argument("--ecp5-ram", type=int)
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--pnr", action="store_true")
     ap.add_argument("--self-test", action="store_true")
@@ -150,9 +256,13 @@ def main():
         else:
             print(f"fpga.py: {key}: synthesis figures changed: run scripts/fpga --pnr for its clock")
         data["variants"][key] = v
+    e_data = ecp5_data(a, old_text)
+    e_budgets, e_docs = ecp5_blocks(a, e_data)
     changed = []
     for path, begin, end, block, after in [(a.budgets, B_BEGIN, B_END, budgets_block(a, data), "<!-- softcore:end -->"),
-                                           (a.docs, D_BEGIN, D_END, docs_block(data), None)]:
+                                           (a.budgets, E_BEGIN, E_END, e_budgets, B_END),
+                                           (a.docs, D_BEGIN, D_END, docs_block(data), None),
+                                           (a.docs, ED_BEGIN, ED_END, e_docs, D_END)]:
         text = open(path).read()
         new = replace_block(text, begin, end, block, after)
         if new == text:
@@ -166,6 +276,7 @@ def main():
             open(path, "w").write(new)
             print(f"fpga.py: wrote {os.path.basename(path)}")
     print(budgets_block(a, data))
+    print(e_budgets)
     if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":
         return 1
     return 0

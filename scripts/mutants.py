@@ -37,8 +37,9 @@ EQUIVALENT = os.path.join(ROOT, "mutation", "equivalent.txt")
 DOC = os.path.join(ROOT, "docs", "reliability.md")
 BEGIN, END = "<!-- mutants:begin -->", "<!-- mutants:end -->"
 PACKAGE = "raymip"
-# Every CI feature set at once (the defaults come with `ffi`); `pcpi` builds
-# only for riscv32 (src/coproc is excluded in .cargo/mutants.toml).
+# Every CI feature set at once (the defaults come with `ffi`); the
+# co-processor features `pcpi` and `cfu` build only for riscv32 (src/coproc
+# is excluded in .cargo/mutants.toml).
 FEATURES = "ffi,f32,raydiff,envmap"
 OUTCOMES = {"CaughtMutant": "caught", "MissedMutant": "missed", "Unviable": "unviable",
             "Timeout": "timeout"}
@@ -540,8 +541,9 @@ def report(args, quiet=False):
         + (f" ({starts[0]} to {starts[-1]}; cargo-mutants {', '.join(versions)}; "
            f"{'; '.join(machines)})" if used_runs else "")
         + f", against the {total['mutants']} mutants cargo-mutants lists today for the "
-        f"firmware crate with features `{FEATURES}` (every CI feature set but `pcpi`: the "
-        "co-processor module `src/coproc` is not mutated; test code is not either). Each "
+        f"firmware crate with features `{FEATURES}` (every CI feature set but the riscv32 "
+        "co-processors' `pcpi` and `cfu`: their modules in `src/coproc` are not mutated; test "
+        "code is not either). Each "
         "mutant's newest record counts; a mutant whose function changed since its record "
         "is *unrecorded* until it is run again. Timeouts count as missed.")
     lines.append("")
@@ -573,8 +575,8 @@ def report(args, quiet=False):
     if unbuilt:
         lines.append(
             f"Not built on the host ({len(unbuilt)}): code under a `#[cfg]` that the host "
-            "test build leaves out: the PicoRV32 co-processor paths (`pcpi` on riscv32, "
-            "checked bit for bit by the soft-core testbench), and code for a feature set "
+            "test build leaves out: the co-processor paths (`pcpi`, `cfu` on riscv32, "
+            "checked bit for bit by the soft-core testbenches), and code for a feature set "
             "without `cone` or `trilinear` (built by `scripts/features`, not tested on the "
             "host). Each is listed here:")
         lines.append("")

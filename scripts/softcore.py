@@ -39,6 +39,7 @@ B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
 D_BEGIN, D_END = "<!-- softcore-paper:begin -->", "<!-- softcore-paper:end -->"
 FPGA_DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
+ECP5_DATA_RE = re.compile(r"<!-- ecp5-data: (\{.*?\}) -->")
 FILTER_TB_RE = re.compile(r"filter (\d+) tex.bw, (\d+) tex.bt, (\d+) tex.bb, (\d+) tex.blend, latency (\d+) (\d+) (\d+) (\d+) cycles")
 TB_RE = re.compile(r"tb-pcpi-tex: (\d+) vectors \((\d+) tex.log2pl, (\d+) tex.lod\), (\d+) mismatches, latency (\d+) cycles")
 
@@ -69,13 +70,30 @@ SOFTCORE_CEILINGS = {
     "rd_refract": 36757, "rd_footprint": 5465, "rd_lod": 2996, "rd_gbuffer": 8054,
 }
 SOFTCORE_BATCH_CEILINGS = {"tw_bil": 775, "tw_bil_f": 700, "tw_tri": 1436, "tw_tri_f": 1324}
+# The same on VexRiscv in the LiteX SoC: max cycles per call
+# (batches: steady cycles per hit), achieved + 10 %.
+VEX_CEILINGS = {
+    "tw_bil": 229, "tw_bil_f": 233, "tw_tri": 442, "tw_tri_f": 645, "tw_tri_n": 711, "ts_bil": 284,
+    "ts_bil_f": 307, "ts_tri": 767, "ts_tri_f": 776, "ts_srgb": 1103, "ts_565": 1275, "ts_565_f": 2431,
+    "ts_bc1_hit": 3255, "ts_bc1_hit_f": 2714, "ts_bc1_fill": 9951, "ts_bc1_fill_f": 10313, "an2": 3972,
+    "an4": 4719, "an16": 10095, "an2_f": 2285, "an4_f": 2928, "an16_f": 7563, "rd_primary": 7220,
+    "rd_transfer": 10567, "rd_reflect": 10199, "rd_refract": 19717, "rd_footprint": 2059, "rd_lod": 1039,
+    "rd_gbuffer": 3154,
+}
+VEX_BATCH_CEILINGS = {"tw_bil": 165, "tw_bil_f": 156, "tw_tri": 283, "tw_tri_f": 275}
+# The goals on VexRiscv: LOD + trilinear per textured hit (table lod +
+# trilinear sample, RGBA8, wrap), the max of the 64 inputs, cycles; alone
+# and with the co-processor on the CFU port.
+VEX_GOAL = 350
+CFU_GOAL = 60
+CFU_TB_RE = re.compile(r"tb-cfu-tex: (\d+) vectors \((.*?)\), (\d+) mismatches, latency ([\d ]+) cycles")
 
 CALL_RE = re.compile(r"^call (\w+): n (\d+) cycles min (\d+) sum (\d+) max (\d+) "
                      r"instret min (\d+) sum (\d+) max (\d+)$")
 BATCH_RE = re.compile(r"^batch (\w+): n32 cycles (\d+) instret (\d+) n64 cycles (\d+) instret (\d+)$")
 BASE_RE = re.compile(r"^baseline: cycles min (\d+) max (\d+) instret min (\d+) max (\d+)$")
 RENDER_RE = re.compile(r"^\s*render: (\d+) cycles, (\d+) instructions")
-SIM_RE = re.compile(r"soc-sim: exit code (\d+) after (\d+) cycles \(RAM (\d+) KiB\)")
+SIM_RE = re.compile(r"(?:soc|litex)-sim: exit code (\d+) after (\d+) cycles \(RAM (\d+) KiB\)")
 
 
 def parse_batches(text):
@@ -119,6 +137,19 @@ def parse_demo(text):
         if m:
             ram = int(m.group(3))
     return counters, render, ram
+
+
+def parse_variant(rd, name):
+    """The demo and `cycles` outputs of SoC variant `name` (files
+    NAME-cycles.out, NAME-demo.out) as a dict: calls, batches, base,
+    counters, render, ram. Exits when a call or line is missing."""
+    calls, base = parse_cycles(rd(f"{name}-cycles.out"))
+    batches = parse_batches(rd(f"{name}-cycles.out"))
+    counters, render, ram = parse_demo(rd(f"{name}-demo.out"))
+    missing = [k for k, _ in CALLS if k not in calls or calls[k]["n"] != 64 or k not in batches]
+    if missing or base is None or render is None or ram is None:
+        sys.exit(f"softcore.py: {name}-cycles.out / {name}-demo.out lack {missing or 'a line'}")
+    return {"calls": calls, "batches": batches, "base": base, "counters": counters, "render": render, "ram": ram}
 
 
 def loaded_bytes(size_text):
@@ -165,11 +196,25 @@ def ceiling_cell(key, value, table, bad, what):
     return str(ceil) if ceil is not None else "—"
 
 
-def matrix_lines(calls, batches, mx, bad):
+def matrix_lines(calls, batches, mx, bad, vx=None):
     """The soft-core block's sampler-matrix and ray-differential sections
     (lines); ceiling failures appended to `bad`. `mx`: (matrix calls,
-    matrix baseline, matrix batches, raydiff calls, raydiff baseline)."""
+    matrix baseline, matrix batches, raydiff calls, raydiff baseline);
+    `vx`: the same measured on VexRiscv (the LiteX SoC), its columns after
+    PicoRV32's, or None."""
     mcalls, mbase, mbatches, rcalls, rbase = mx
+    vhead = " VexRiscv cycles | VexRiscv ceiling |" if vx else ""
+    vsep = "---|---|" if vx else ""
+
+    def vcells(key, table, ceilings, what, steady=False):
+        if not vx:
+            return ""
+        if steady:
+            c32, _, c64, _ = table[key]
+            v = (c64 - c32) / 32
+            return f" {v:.1f} | {ceiling_cell(key, v, ceilings, bad, what)} |"
+        c = table[key]
+        return f" {fmt3(c['cycles'])} | {ceiling_cell(key, c['cycles'][2], ceilings, bad, what)} |"
     cpi = lambda c: c["cycles"][1] / c["instret"][1]
     L = ["\n### Sampler matrix (issue 20)\n"]
     L.append("The rows of the \"Sampler matrix\" section above: the same wrappers, subjects, inputs and")
@@ -178,32 +223,39 @@ def matrix_lines(calls, batches, mx, bad):
     L.append(f"{mbase[0]} cycles, {mbase[2]} instruction). A BC1 row counts the first call of each pair (cache")
     L.append("emptied, blocks decoded) or the second (hits). min / mean / max over the 64 inputs; the CI")
     L.append("ceiling applies to the max cycles (achieved + 10 %, `SOFTCORE_CEILINGS` in `scripts/softcore.py`).\n")
-    L.append("| call | tier | cycles | instructions | CPI | ceiling (max cycles) |")
-    L.append("|---|---|---|---|---|---|")
+    if vx:
+        L.append("VexRiscv columns: the same binary built for the LiteX SoC (below), warm caches, its own")
+        L.append("ceilings (`VEX_CEILINGS`).\n")
+    L.append("| call | tier | cycles | instructions | CPI | ceiling (max cycles) |" + vhead)
+    L.append("|---|---|---|---|---|---|" + vsep)
     for key, label, tier, *_ in MATRIX_ROWS:
         c = mcalls[key]
         ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "matrix")
-        L.append(f"| {label} | {tier} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+        L.append(f"| {label} | {tier} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |" +
+                 vcells(key, vx and vx[0], VEX_CEILINGS, "VexRiscv matrix"))
     L.append("\nBatches of the wrap rows (`Sampler::sample_batch`, 32 then 64 hits per call): steady per hit =")
     L.append("(count for 64 − count for 32) / 32, amortised = count for 64 / 64.\n")
-    L.append("| batch | tier | cycles steady | cycles amortised | instructions steady | CPI steady | ceiling (steady cycles) |")
-    L.append("|---|---|---|---|---|---|---|")
+    L.append("| batch | tier | cycles steady | cycles amortised | instructions steady | CPI steady | ceiling (steady cycles) |" +
+             vhead.replace("cycles", "cycles steady"))
+    L.append("|---|---|---|---|---|---|---|" + vsep)
     for label, tier, _, key in MATRIX_BATCHES:
         c32, i32, c64, i64 = mbatches[key]
         cs, is_ = (c64 - c32) / 32, (i64 - i32) / 32
         ceil = ceiling_cell(key, cs, SOFTCORE_BATCH_CEILINGS, bad, "matrix batch")
-        L.append(f"| {label} | {tier} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {cs / is_:.2f} | {ceil} |")
+        L.append(f"| {label} | {tier} | {cs:.1f} | {c64 / 64:.1f} | {is_:.1f} | {cs / is_:.2f} | {ceil} |" +
+                 vcells(key, vx and vx[1], VEX_BATCH_CEILINGS, "VexRiscv matrix batch", steady=True))
     L.append("\n### Ray differentials (issue 21)\n")
     L.append("The rows of the \"Ray differentials\" section above (`probes::raydiff_rows`, the same inputs), by")
     L.append("`demo/firmware/src/bin/cycles_raydiff.rs` (feature `raydiff`; a binary of its own, as the matrix and")
     L.append(f"the ray differentials together exceed the RAM), minus the counter reads ({rbase[0]} cycles, {rbase[2]}")
     L.append("instruction). min / mean / max; ceiling on the max cycles as above.\n")
-    L.append("| call | cycles | instructions | CPI | ceiling (max cycles) |")
-    L.append("|---|---|---|---|---|")
+    L.append("| call | cycles | instructions | CPI | ceiling (max cycles) |" + vhead)
+    L.append("|---|---|---|---|---|" + vsep)
     for key, label in RD_ROWS:
         c = rcalls[key]
         ceil = ceiling_cell(key, c["cycles"][2], SOFTCORE_CEILINGS, bad, "raydiff")
-        L.append(f"| {label} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |")
+        L.append(f"| {label} | {fmt3(c['cycles'])} | {fmt3(c['instret'])} | {cpi(c):.2f} | {ceil} |" +
+                 vcells(key, vx and vx[2], VEX_CEILINGS, "VexRiscv raydiff"))
     mean = lambda d, k: d[k]["cycles"][1]
     c32, _, c64, _ = batches["lod_fast"]
     per = {
@@ -224,8 +276,69 @@ def matrix_lines(calls, batches, mx, bad):
     return L
 
 
+def vex_lines(a, calls, vex):
+    """The soft-core block's VexRiscv section (lines): the per-call and batch
+    tables beside PicoRV32's, the demo tile. `vex`: dict with the parsed
+    `calls`, `batches`, `base`, `counters`, `render`, `ram` of the LiteX SoC,
+    and `cfu`: the same with the co-processor (or None) and `cfu_tb`: the
+    CFU testbench's summary match (or None)."""
+    vc, vb = vex["calls"], vex["batches"]
+    cfu = vex.get("cfu")
+    L = ["\n### VexRiscv in a LiteX SoC (issue 34)\n"]
+    L.append(f"The same binaries built for `riscv32im-unknown-none-elf` with feature `litex`, on the SoC of")
+    L.append(f"`demo/softcore/litex_soc.py` generated by LiteX's SoC builder for its simulation platform ({a.litex}):")
+    L.append(f"VexRiscv `full` (`{a.vex_file}` sha256 {a.vex_sha}… from the installed pythondata-cpu-vexriscv:")
+    L.append("RV32IM, 5-stage pipeline, 4 KiB direct-mapped instruction and data caches with 32-byte lines, static")
+    L.append("branch prediction, barrel shifter, pipelined multiplier (`MulPlugin`), iterative divider")
+    L.append("(`MulDivIterativePlugin`, one bit a cycle), machine-mode CSRs with the 64-bit counters),")
+    L.append(f"{vex['ram']} KiB integrated main RAM (code and data) on LiteX's Wishbone bus, LiteX's UART; simulated cycle by")
+    L.append(f"cycle by {a.verilator} with the driver `demo/softcore/litex_sim.cpp`. With caches, each series runs")
+    L.append("once untimed before the timed pass (`WARM_UP` in `demo/firmware/src/counters.rs`): warm caches, as in")
+    L.append("a per-hit loop; the direct-mapped caches make every count depend on the image's layout (a change")
+    L.append(f"elsewhere in the code can move a row by tens of cycles). Empty measurement {vex['base'][0]} cycles.\n")
+    if cfu:
+        L.append("With the co-processor: VexRiscv `full+cfu` (`VexRiscv_FullCfu.v`) with `demo/softcore/cfu_tex.v` on its")
+        L.append("CFU port, the firmware with feature `cfu` (the instructions of the PCPI unit plus the addressing")
+        L.append("instructions; `src/coproc/`).")
+        tb = vex.get("cfu_tb")
+        if tb:
+            L.append(f"The CFU alone (`tb_cfu_tex.cpp`): {tb.group(1)} reference vectors from the software paths")
+            L.append(f"({tb.group(2)}), {tb.group(3)} mismatching bits; answers {tb.group(4)} cycles after the command")
+            L.append("(in that order).")
+        L.append("")
+    ch = " VexRiscv + CFU cycles | VexRiscv + CFU instructions | VexRiscv + CFU batch steady |" if cfu else ""
+    L.append("| call | PicoRV32 cycles (mean) | VexRiscv cycles | VexRiscv instructions | VexRiscv CPI | VexRiscv batch steady |" + ch)
+    L.append("|---|---|---|---|---|---|" + ("---|---|---|" if cfu else ""))
+    steady = lambda b, k: (b[k][2] - b[k][0]) / 32
+    for k, name in CALLS:
+        c, v = calls[k], vc[k]
+        row = (f"| {name} | {c['cycles'][1]:.1f} | {fmt3(v['cycles'])} | {fmt3(v['instret'])} | "
+               f"{v['cycles'][1] / v['instret'][1]:.2f} | {steady(vb, k):.1f} |")
+        if cfu:
+            q = cfu["calls"][k]
+            row += f" {fmt3(q['cycles'])} | {fmt3(q['instret'])} | {steady(cfu['batches'], k):.1f} |"
+        L.append(row)
+    for label, d, goal in (("VexRiscv", vex, VEX_GOAL), ("VexRiscv + CFU", cfu, CFU_GOAL)):
+        if not d:
+            continue
+        c = d["calls"]
+        lt = [c["lod"]["cycles"][i] + c["trilinear"]["cycles"][i] for i in (0, 1, 2)]
+        ok = "met" if lt[2] <= goal else "missed"
+        L.append(f"\n{label}, LOD + trilinear per textured hit (table lod + trilinear sample, RGBA8, wrap): "
+                 f"{lt[0]} / {lt[1]:.1f} / {lt[2]} cycles (min / mean / sum of the maxima); issue 34's goal "
+                 f"≤ {goal} cycles at the max: {ok}.")
+    for label, d in (("VexRiscv", vex), ("VexRiscv + CFU", cfu)):
+        if not d:
+            continue
+        cyc, ins = d["render"]
+        px = d["counters"].get("pixels", 1)
+        L.append(f"Whole demo tile on {label} (checksum and counters equal to the host's): {cyc} cycles, "
+                 f"{ins} instructions, CPI {cyc / ins:.2f}; {cyc / px:.0f} cycles per pixel.")
+    return L
+
+
 def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc=None,
-                  mx=None, bad=None):
+                  mx=None, bad=None, vex=None):
     L = [B_BEGIN, "## Cycles on the PicoRV32 soft core (RTL under Verilator)\n"]
     L.append("Written by `scripts/softcore` (run by `scripts/test-all`); do not edit. Machine: the")
     src = f"YosysHQ PicoRV32 RTL (commit {commit[:12]}, " if commit else "PicoRV32 RTL ("
@@ -303,8 +416,10 @@ def budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, 
             s0 = sum(steady(batches, k) for k in ks)
             s1 = sum(steady(pbatches, k) for k in ks)
             L.append(f"| {label} | {c0:.1f} | {c1:.1f} | {s0:.1f} | {s1:.1f} |")
+    if vex is not None:
+        L += vex_lines(a, calls, vex)
     if mx is not None:
-        L += matrix_lines(calls, batches, mx, bad)
+        L += matrix_lines(calls, batches, mx, bad, vex and vex["mx"])
     L.append(B_END)
     return "\n".join(L)
 
@@ -345,10 +460,13 @@ def readme_block(calls, counters, render, rows):
     return "\n".join(L)
 
 
-def paper_block(calls, pcalls, rows, fpga):
+def paper_block(calls, pcalls, rows, fpga, vex=None, ecp5=None):
     """docs/softcore.md: the hardware paper's comparison redone at the clock
-    and with the logic that scripts/fpga measured (fpga: the `fpga-data`
-    dict of BUDGETS.md, or None)."""
+    and with the logic that scripts/fpga measured, for every SoC side by
+    side: PicoRV32 without and with the PCPI co-processor on the iCE40 UP5K
+    (fpga: the `fpga-data` dict of BUDGETS.md, or None), VexRiscv without
+    and with the CFU co-processor on the ECP5 (`vex`: the VexRiscv
+    measurement as in vex_lines, `ecp5`: the `ecp5-data` dict, or None)."""
     L = [D_BEGIN]
     L.append("Written by `scripts/softcore` from its cycle counts and the FPGA figures of `scripts/fpga`")
     L.append("(BUDGETS.md); do not edit.\n")
@@ -356,19 +474,25 @@ def paper_block(calls, pcalls, rows, fpga):
         L.append("(No FPGA figures in BUDGETS.md yet: run `scripts/fpga`.)")
         L.append(D_END)
         return "\n".join(L)
-    work = {"without co-processor": calls, "with co-processor": pcalls}
-    L.append(f"Clock: the maximum frequency nextpnr-ice40 reports for the SoC on the {fpga['device']} "
-             f"(seed {fpga['seed']}); the paper's prototype ran at {PAPER_MHZ} MHz on a Virtex-5 LX330.\n")
-    L.append("| SoC | MHz | logic cells | LUT4 | flip-flops | DSPs | cycles, LOD + trilinear | "
+    socs = [("PicoRV32", calls, fpga, "plain"), ("PicoRV32 + PCPI co-processor", pcalls, fpga, "pcpi")]
+    if vex and ecp5:
+        socs.append(("VexRiscv", vex["calls"], ecp5, "vex"))
+        if vex.get("cfu"):
+            socs.append(("VexRiscv + CFU co-processor", vex["cfu"]["calls"], ecp5, "cfu"))
+    L.append(f"Clock: the maximum frequency nextpnr reports for each SoC on its FPGA (PicoRV32: {fpga['device']}, "
+             f"seed {fpga['seed']}" + (f"; VexRiscv in LiteX: ECP5 {ecp5['device']}, seed {ecp5['seed']}" if ecp5 else "") +
+             f"); the paper's prototype ran at {PAPER_MHZ} MHz on a Virtex-5 LX330. Cycles: LOD + trilinear per")
+    L.append("textured hit (table lod + trilinear sample, RGBA8, wrap; mean of the 64 inputs, BUDGETS.md's soft-core block).\n")
+    L.append("| SoC | FPGA | MHz | LUT4 | flip-flops | DSPs | cycles, LOD + trilinear | "
              "textured hits/s per core | at the paper's 84 MHz |")
     L.append("|---|---|---|---|---|---|---|---|---|")
-    per = {}
-    for (name, c), key in zip(work.items(), ("plain", "pcpi")):
-        v = fpga["variants"][key]
+    per = []
+    for name, c, f, key in socs:
+        v = f["variants"][key]
         cyc = c["lod"]["cycles"][1] + c["trilinear"]["cycles"][1]
         hz = v["mhz"] * 1e6 if v.get("mhz") else None
-        per[key] = (cyc, hz, v)
-        L.append(f"| {name} | {v['mhz'] if v.get('mhz') else '—'} | {v.get('lc', 'not placed')} / {fpga['lc_total']} | {v['lut']} | "
+        per.append((name, cyc, hz, v))
+        L.append(f"| {name} | {f['device'].split(' (')[0]} | {v['mhz'] if v.get('mhz') else 'not placed'} | {v['lut']} | "
                  f"{v['ff']} | {v['dsp']} | {cyc:.1f} | {si(hz / cyc) if hz else '—'} | {si(PAPER_MHZ * 1e6 / cyc)} |")
     if rows:
         lo, hi = PAPER_FPS
@@ -380,17 +504,25 @@ def paper_block(calls, pcalls, rows, fpga):
         budget = PAPER_LOGIC_PCT / 100 * LX330_LUT6
         for r in rows:
             h = r["textured_hits"]
-            for key, label in (("plain", "without"), ("pcpi", "with co-processor")):
-                cyc, hz, v = per[key]
+            for name, cyc, hz, v in per:
                 if not hz:
                     continue
                 fps = hz / (cyc * h)
                 n = (math.ceil(lo / fps), math.ceil(hi / fps))
                 luts = (n[0] * v["lut"], n[1] * v["lut"])
-                L.append(f"| {r['scene']} | {h} | {label} | {n[0]}–{n[1]} | {luts[0]}–{luts[1]} | "
+                L.append(f"| {r['scene']} | {h} | {name} | {n[0]}–{n[1]} | {luts[0]}–{luts[1]} | "
                          f"{100 * luts[0] / budget:.0f}–{100 * luts[1] / budget:.0f} % |")
-        L.append("\nA Virtex-5 LUT6 holds more logic than an iCE40 LUT4, so the last column understates")
+        L.append("\nA Virtex-5 LUT6 holds more logic than an iCE40 or ECP5 LUT4, so the last column understates")
         L.append("the soft cores' share; it counts only the LOD and filter work the paper's logic does.")
+        kitchen = [r for r in rows if r["scene"] == "kitchen"]
+        if kitchen and len(per) == 4 and per[3][2]:
+            name, cyc, hz, _ = per[3]
+            need = PAPER_FPS[0] * kitchen[0]["textured_hits"] * cyc / 1e6
+            n = math.ceil(PAPER_FPS[0] * kitchen[0]["textured_hits"] * cyc / hz)
+            L.append(f"\nIssue 34's goal, one {name} for the kitchen at {PAPER_FPS[0]} frames/s: {n} cores at "
+                     f"{hz / 1e6:.1f} MHz ({'met' if n <= 1 else 'missed'}); one core would need {need:.0f} MHz at "
+                     f"{cyc:.1f} cycles per hit, or {hz / (PAPER_FPS[0] * kitchen[0]['textured_hits']):.1f} cycles "
+                     f"per hit at {hz / 1e6:.1f} MHz.")
     else:
         L.append("\n(BART scenes not found when this was written: no per-scene rows.)")
     L.append(D_END)
@@ -430,6 +562,10 @@ def self_test():
     assert ceiling_cell("y", 1, {}, bad, "m") == "—" and len(bad) == 2
     assert all(k in SOFTCORE_CEILINGS for k, *_ in MATRIX_ROWS + RD_ROWS)
     assert all(k in SOFTCORE_BATCH_CEILINGS for *_, k in MATRIX_BATCHES)
+    assert all(k in VEX_CEILINGS for k, *_ in MATRIX_ROWS + RD_ROWS)
+    assert all(k in VEX_BATCH_CEILINGS for *_, k in MATRIX_BATCHES)
+    assert CFU_TB_RE.search("tb-cfu-tex: 9 vectors (1 tex.log2pl, 8 tex.lod), 0 mismatches, latency 3 1 cycles"
+                            ).groups() == ("9", "1 tex.log2pl, 8 tex.lod", "0", "3 1")
     tb = ("tb-pcpi-tex: 9 vectors (2 tex.log2pl, 3 tex.lod), 0 mismatches, latency 4 cycles after valid; "
           "filter 1 tex.bw, 1 tex.bt, 1 tex.bb, 1 tex.blend, latency 2 5 9 5 cycles")
     assert TB_RE.search(tb).groups() == ("9", "2", "3", "0", "4")
@@ -447,6 +583,8 @@ def main():
     ap.add_argument("--budgets")
     ap.add_argument("--readme")
     ap.add_argument("--docs")
+    ap.add_argument("--litex", help="LiteX and pythondata-cpu-vexriscv versions (the VexRiscv runs)")
+    ap.add_argument("--vex-rtl", help="the VexRiscv Verilog file the LiteX SoC used")
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     if a.self_test:
@@ -498,15 +636,35 @@ def main():
     missing += [k for k, _ in RD_ROWS if k not in rcalls or rcalls[k]["n"] != 64]
     if missing or mbase is None or rbase is None:
         sys.exit(f"softcore.py: matrix.out / raydiff.out lack {missing or 'the baseline'}")
+    vex = None
+    if os.path.exists(os.path.join(a.work, "vex-cycles.out")):
+        vex = parse_variant(rd, "vex")
+        vm, _ = parse_cycles(rd("vex-matrix.out"))
+        vmb = parse_batches(rd("vex-matrix.out"))
+        vr, _ = parse_cycles(rd("vex-raydiff.out"))
+        missing = [k for k, *_ in MATRIX_ROWS if k not in vm] + [k for *_, k in MATRIX_BATCHES if k not in vmb]
+        missing += [k for k, _ in RD_ROWS if k not in vr]
+        if missing:
+            sys.exit(f"softcore.py: vex-matrix.out / vex-raydiff.out lack {missing}")
+        vex["mx"] = (vm, vmb, vr)
+        if os.path.exists(os.path.join(a.work, "cfu-cycles.out")):
+            vex["cfu"] = parse_variant(rd, "cfu")
+        if os.path.exists(os.path.join(a.work, "tb-cfu.out")):
+            vex["cfu_tb"] = CFU_TB_RE.search(rd("tb-cfu.out"))
+        a.vex_file = os.path.basename(a.vex_rtl)
+        a.vex_sha = hashlib.sha256(open(a.vex_rtl, "rb").read()).hexdigest()[:16]
     bad = []
     bb = budgets_block(a, calls, base, counters, render, ram, image, stack, rtl_sha, commit, batches, pc,
-                       (mcalls, mbase, mbatches, rcalls, rbase), bad)
+                       (mcalls, mbase, mbatches, rcalls, rbase), bad, vex)
     rb = readme_block(calls, counters, render, rows)
     targets = [(a.budgets, B_BEGIN, B_END, bb, "## Code size"), (a.readme, R_BEGIN, R_END, rb, None)]
     if a.docs and pc is not None:
-        m = FPGA_DATA_RE.search(open(a.budgets).read())
+        btext = open(a.budgets).read()
+        m = FPGA_DATA_RE.search(btext)
         fpga = json.loads(m.group(1)) if m else None
-        db = paper_block(calls, pc[0], rows, fpga)
+        m = ECP5_DATA_RE.search(btext)
+        ecp5 = json.loads(m.group(1)) if m else None
+        db = paper_block(calls, pc[0], rows, fpga, vex, ecp5)
         targets.append((a.docs, D_BEGIN, D_END, db, None))
     changed = []
     for path, begin, end, block, anchor in targets:
@@ -537,6 +695,11 @@ def main():
           {k: plus10(d[k]["cycles"][2]) for d, rows in ((mcalls, MATRIX_ROWS), (rcalls, RD_ROWS))
            for k, *_ in rows},
           {k: plus10((mbatches[k][2] - mbatches[k][0]) / 32) for *_, k in MATRIX_BATCHES})
+    if vex:
+        vm, vmb, vr = vex["mx"]
+        print("softcore.py: VexRiscv + 10 % (VEX_CEILINGS, VEX_BATCH_CEILINGS):",
+              {k: plus10(d[k]["cycles"][2]) for d, rows in ((vm, MATRIX_ROWS), (vr, RD_ROWS)) for k, *_ in rows},
+              {k: plus10((vmb[k][2] - vmb[k][0]) / 32) for *_, k in MATRIX_BATCHES})
     if bad:
         print("softcore.py: FAIL (above the ceiling)\n  " + "\n  ".join(bad))
         return 1

@@ -31,7 +31,7 @@
 //! | texture | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
 //! | geometric LOD | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
 //! | – | per-pixel, per-frame random numbers | [`rng`] | Weyl step + 32-bit hash |
-//! | co-processor | custom instructions of a soft core's texture unit (feature `pcpi`) | [`coproc`] | the same bits in hardware |
+//! | co-processor | custom instructions of a soft core's texture unit (features `pcpi`, `cfu`) | [`coproc`] | the same bits in hardware |
 //! | f32 baseline | the per-hit stages in `f32` (feature `f32`) | `baseline_f32` | – (comparison only) |
 //! | C ABI | `extern "C"` functions and `#[repr(C)]` types (feature `ffi`) | `ffi` | – |
 //!
@@ -64,6 +64,7 @@
 //! | `ffi` | no | C ABI (`src/ffi/`; static library in `ffi/`, header `include/raymip.h`). The header is fixed, so it needs every stage. Implies `cone`, `trilinear`, `cache`, `mipgen`. | Rust callers only. | per configuration of C calls: docs/bare-metal.md, "C ABI" |
 //! | `f32` | no | f32 versions of the per-hit stages (`src/baseline_f32.rs`, libm): the float baseline of BUDGETS.md and the host benches. Adds no dependency and no code unless called; uses floats (soft float on FPU-less cores). Implies `trilinear`. | no float code. | not in a measured set |
 //! | `pcpi` | no | Custom instructions of the PicoRV32 texture co-processor (`demo/softcore/pcpi_tex.v`, `src/coproc/pcpi.rs`): the ACCURATE table lod, the cone lod's logarithms and the ACCURATE linear bilinear/trilinear filter in hardware, same bits. Only for firmware of that SoC built with the co-processor (the instructions trap elsewhere); no effect on targets other than riscv32. Cost: no code or data (the log2 table, its normalisation and the filter arithmetic leave those paths); FPGA logic in BUDGETS.md ("Soft core on an FPGA", written by scripts/fpga). | the table lod's log2 and the filter in software. | not in a measured set |
+//! | `cfu` | no | The texture co-processor on VexRiscv's CFU port (`demo/softcore/cfu_tex.v`, `src/coproc/cfu.rs`; LiteX's `full+cfu` variant): the same instruction words as `pcpi` (so it turns `pcpi` on) plus the addressing instructions, which give the sampler's in-memory power-of-two path of the ACCURATE linear kernel its texel addresses and weights. Only for firmware of a VexRiscv with that CFU (call `coproc::cfu::enable` first); no effect on targets other than riscv32. Cost: FPGA logic in BUDGETS.md ("The LiteX SoC on an ECP5", written by scripts/fpga). Implies `pcpi`. | the lod's log2, the filter and the addressing in software. | not in a measured set |
 //! <!-- feature-table:end -->
 //!
 //! The sampler is one type, [`texture::Sampler<S, K>`](texture::Sampler),
@@ -145,8 +146,9 @@
 // docs.rs (`--cfg docsrs`, Cargo.toml): a badge on every feature-gated item.
 #![cfg_attr(docsrs, feature(doc_cfg))]
 // Safe Rust but for three modules, each with its safety argument: the C
-// ABI (`ffi`, caller pointers), the co-processor (`coproc::pcpi` on riscv32,
-// its one-instruction `asm!` wrappers) and the direct texel reads of
+// ABI (`ffi`, caller pointers), the co-processors (`coproc::pcpi` and
+// `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers and the
+// CFU's texel reads) and the direct texel reads of
 // `texture::storage::pow2` (indices reduced to validated level views).
 #![deny(unsafe_code)]
 #![deny(

@@ -1,7 +1,8 @@
 //! Linker set-up for the demo binaries: the layout is the firmware
 //! template's `templates/firmware/memory.x` (one file for both QEMU targets,
-//! see its comments), or
-//! `demo/softcore/memory.x` with the feature `softcore` (the PicoRV32 SoC). The `-T`
+//! see its comments), or `demo/softcore/memory.x` with the feature
+//! `softcore` (the PicoRV32 SoC), or `demo/softcore/litex/memory.x` with the
+//! feature `litex` (the LiteX SoC). The `-T`
 //! arguments are given here rather than as `rustflags`, because a
 //! `RUSTFLAGS` variable would replace the config's `rustflags`.
 
@@ -17,6 +18,8 @@ fn main() {
         .expect("repository root exists");
     let dir = if env::var_os("CARGO_FEATURE_SOFTCORE").is_some() {
         root.join("demo/softcore")
+    } else if env::var_os("CARGO_FEATURE_LITEX").is_some() {
+        root.join("demo/softcore/litex")
     } else {
         root.join("templates/firmware")
     };

@@ -11,59 +11,18 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <vector>
 
 #include "Vsoc.h"
 #include "Vsoc___024root.h"
 #include "Vsoc_soc.h"
+#include "elf_load.h"
 #include "verilated.h"
 
 namespace {
 
 constexpr uint32_t kRamBytes = sizeof(Vsoc_soc::ram);
-
-uint32_t rd32(const std::vector<uint8_t>& f, size_t o) {
-    return uint32_t(f[o]) | uint32_t(f[o + 1]) << 8 | uint32_t(f[o + 2]) << 16 |
-           uint32_t(f[o + 3]) << 24;
-}
-uint16_t rd16(const std::vector<uint8_t>& f, size_t o) {
-    return uint16_t(f[o] | f[o + 1] << 8);
-}
-
-// Copies the PT_LOAD segments of a little-endian ELF32 RISC-V image into
-// `ram` (bytes, zero-filled beyond the file size). Returns false with a
-// message on anything unexpected.
-bool load_elf(const char* path, std::vector<uint8_t>& ram) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<uint8_t> f((std::istreambuf_iterator<char>(in)), {});
-    if (f.size() < 52 || std::memcmp(f.data(), "\x7f" "ELF", 4) != 0 || f[4] != 1 || f[5] != 1 ||
-        rd16(f, 18) != 243) {
-        std::fprintf(stderr, "soc-sim: %s is not a little-endian ELF32 RISC-V image\n", path);
-        return false;
-    }
-    uint32_t phoff = rd32(f, 28);
-    uint16_t phentsize = rd16(f, 42), phnum = rd16(f, 44);
-    for (uint16_t i = 0; i < phnum; ++i) {
-        size_t ph = phoff + size_t(i) * phentsize;
-        if (ph + 32 > f.size()) return false;
-        if (rd32(f, ph) != 1) continue;  // PT_LOAD only
-        uint32_t off = rd32(f, ph + 4), paddr = rd32(f, ph + 12);
-        uint32_t filesz = rd32(f, ph + 16), memsz = rd32(f, ph + 20);
-        if (memsz == 0) continue;
-        if (uint64_t(paddr) + memsz > ram.size() || uint64_t(off) + filesz > f.size()) {
-            std::fprintf(stderr,
-                         "soc-sim: segment at %#x, %u bytes, does not fit the %zu-byte RAM\n",
-                         paddr, memsz, ram.size());
-            return false;
-        }
-        std::memcpy(&ram[paddr], &f[off], filesz);
-    }
-    return true;
-}
 
 }  // namespace
 
@@ -77,9 +36,9 @@ int main(int argc, char** argv) {
     auto top = std::make_unique<Vsoc>(ctx.get());
 
     std::vector<uint8_t> image(kRamBytes, 0);
-    if (!load_elf(argv[1], image)) return 2;
+    if (!elf::load(argv[1], image, 0)) return 2;
     auto& ram = top->rootp->soc->ram;
-    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = rd32(image, size_t(w) * 4);
+    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = elf::rd32(image, size_t(w) * 4);
 
     top->clk = 0;
     top->resetn = 0;

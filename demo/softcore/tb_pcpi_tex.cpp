@@ -5,7 +5,9 @@
 //
 // Usage: tb-pcpi-tex VECTORS
 // Each vector `OP RS1 RS2 RD` (hex), in file order (the filter
-// instructions, OP 2…5, keep state from one to the next): the instruction
+// instructions, OP 2…5, keep state from one to the next) up to the first
+// with OP ≥ 8 (the CFU unit's addressing section, which this unit does not
+// implement, comes last): the instruction
 // tex.* with funct3 OP is presented with pcpi_valid held high (pcpi_insn, pcpi_rs1, pcpi_rs2
 // stable) until pcpi_ready; then pcpi_wr must be 1 and pcpi_rd equal RD in
 // all 32 bits, pcpi_ready must have come within 16 cycles (PicoRV32's PCPI
@@ -67,6 +69,7 @@ int main(int argc, char** argv) {
     int lat_op[6] = {0, 0, 0, 0, 0, 0};  // the longest latency of each instruction
     int ops[6] = {0, 0, 0, 0, 0, 0};
     while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
+        if (op >= 8) break;
         ++n;
         if (op < 6) ++ops[op];
         t.pcpi_insn = insn(op, 0, 0x0b);

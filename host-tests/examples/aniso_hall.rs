@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut table = String::new();
     writeln!(
         table,
-        "`builtin:hall`, {}×{}, ground truth {spp} jittered samples per pixel (bilinear in level 0); footprint and lod from ray differentials; fixed = firmware `TextureSampler`, float = the f64 unit of the harness; time = render only, 2 threads, one run on the project's machine (2 vCPU, shared) (`cargo run --release -p raymip-host --example aniso_hall -- {}x{} {spp} --write docs/texture-sampling.md`):\n",
+        "`builtin:hall`, {}×{}, ground truth {spp} jittered samples per pixel (bilinear in level 0); footprint and lod from ray differentials; fixed = the firmware `Sampler`, float = the f64 reference sampler of the harness; time = render only, 2 threads, one run on the project's machine (2 vCPU, shared) (`cargo run --release -p raymip-host --example aniso_hall -- {}x{} {spp} --write docs/texture-sampling.md`):\n",
         size.0, size.1, size.0, size.1
     )?;
     writeln!(

@@ -1,4 +1,4 @@
-//! Writes the worked example of docs/integration.md (issue 22): the memory
+//! Writes the worked example of docs/integration.md: the memory
 //! a controller needs for the BART kitchen and what one frame's texture work
 //! costs it, every figure measured or computed here, none typed.
 //!

@@ -1,4 +1,4 @@
-//! The LOD methods of the talk in fixed point (issue 21: table, ray cones,
+//! The LOD methods of the talk in fixed point (table, ray cones,
 //! ray differentials ray-traced and from a G-buffer): their cost per
 //! textured hit on the targets (read from BUDGETS.md, which
 //! `scripts/budgets` and `scripts/softcore` write) and their PSNR against

@@ -1,4 +1,4 @@
-//! Writes the docs/skipping.md table of what each scene doesn't need (issue 13): per
+//! Writes the docs/skipping.md table of what each scene doesn't need: per
 //! scene, the pyramid bytes the set-up analysis lets a table-method render
 //! leave out, the per-hit skips, and the render time with full and with
 //! trimmed pyramids (best of `REPEATS` each), checked bit-identical.

@@ -14,11 +14,13 @@
 //! | [`rng`] | the test inputs' generator (xorshift64) |
 //! | [`pb`] | `log2 Pb` of a textured triangle (table method set-up) |
 //! | [`lod`] | the lod of each method: table, ray cone, ray-differential footprint |
+//! | [`geomlod`] | the geometric-LOD parameter of an instance from its depth |
 //! | [`envmap`] | environment-map lods and the direction → (u, v) mapping |
 //! | [`sampler`] | the texture sampler: address modes, border, lod bias and clamps, every filter mode, sRGB, anisotropic probes |
 #![warn(missing_docs)]
 
 pub mod envmap;
+pub mod geomlod;
 pub mod lod;
 pub mod pb;
 pub mod rng;

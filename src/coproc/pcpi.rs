@@ -4,7 +4,8 @@
 //!
 //! The co-processor sits on PicoRV32's co-processor port (PCPI) and claims
 //! six R-type instructions of the `custom-0` opcode (`0001011`,
-//! `funct7 = 0`); the RTL's header comment is their specification:
+//! `funct7 = 0`; the encoding shared with the CFU unit is in [`super`]);
+//! the RTL's header comment is their specification:
 //!
 //! | instruction | funct3 | rs1 | rs2 | rd |
 //! |---|---|---|---|---|
@@ -31,8 +32,10 @@
 //! # Where the feature applies
 //!
 //! Only firmware for a PicoRV32 built with the co-processor
-//! (`demo/softcore/soc.v` with `ENABLE_TEX = 1`) may enable it: on any other
-//! RISC-V core the instructions are illegal and trap. On targets other than
+//! (`demo/softcore/soc.v` with `ENABLE_TEX = 1`) or for a VexRiscv with the
+//! CFU unit (feature `cfu`, which turns this one on: the same instruction
+//! words) may enable it: on any other RISC-V core the instructions are
+//! illegal and trap. On targets other than
 //! `riscv32` the feature has no effect (this module is not compiled and
 //! every path is the software one), so `cargo check --all-features` on the
 //! host and the Cortex-M4 stays meaningful.
@@ -79,7 +82,9 @@ pub fn log2pl(pl: u64) -> i32 {
     // module docs): no memory, stack or other state is touched.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 0, 0, {rd}, {lo}, {hi}",
+            ".insn r {op}, {f3}, 0, {rd}, {lo}, {hi}",
+            op = const super::CUSTOM0,
+            f3 = const super::LOG2PL,
             rd = lateout(reg) r,
             lo = in(reg) pl as u32,
             hi = in(reg) (pl >> 32) as u32,
@@ -99,7 +104,9 @@ pub fn lod(l: i32, pb: i32) -> i32 {
     // SAFETY: as for `log2pl`.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 1, 0, {rd}, {l}, {pb}",
+            ".insn r {op}, {f3}, 0, {rd}, {l}, {pb}",
+            op = const super::CUSTOM0,
+            f3 = const super::LOD,
             rd = lateout(reg) r,
             l = in(reg) l,
             pb = in(reg) pb,
@@ -118,7 +125,9 @@ pub fn bw(fx: u32, fy: u32) {
     // state, so the block is not `pure` and stays in program order.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 2, 0, x0, {fx}, {fy}",
+            ".insn r {op}, {f3}, 0, x0, {fx}, {fy}",
+            op = const super::CUSTOM0,
+            f3 = const super::BW,
             fx = in(reg) fx,
             fy = in(reg) fy,
             options(nomem, nostack, preserves_flags),
@@ -133,7 +142,9 @@ pub fn bt(t00: u32, t10: u32) {
     // SAFETY: as for `bw`.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 3, 0, x0, {a}, {b}",
+            ".insn r {op}, {f3}, 0, x0, {a}, {b}",
+            op = const super::CUSTOM0,
+            f3 = const super::BT,
             a = in(reg) t00,
             b = in(reg) t10,
             options(nomem, nostack, preserves_flags),
@@ -156,7 +167,9 @@ pub fn bb(t01: u32, t11: u32) -> u32 {
     // `pure`: kept, in program order, even when `r` is unused.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 4, 0, {rd}, {c}, {d}",
+            ".insn r {op}, {f3}, 0, {rd}, {c}, {d}",
+            op = const super::CUSTOM0,
+            f3 = const super::BB,
             rd = lateout(reg) r,
             c = in(reg) t01,
             d = in(reg) t11,
@@ -179,7 +192,9 @@ pub fn blend(t: u32) -> u32 {
     // it stays after the `bb` it blends.
     unsafe {
         core::arch::asm!(
-            ".insn r 0x0b, 5, 0, {rd}, {t}, x0",
+            ".insn r {op}, {f3}, 0, {rd}, {t}, x0",
+            op = const super::CUSTOM0,
+            f3 = const super::BLEND,
             rd = lateout(reg) r,
             t = in(reg) t,
             options(nomem, nostack, preserves_flags),

@@ -933,7 +933,8 @@ mod tests {
             prop_assert!((l.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", l, acc);
         }
 
-        /// The FAST table batch equals the per-hit calls bit for bit over
+        /// The table batches (FAST, and ACCURATE against `table_lod`) equal
+        /// the per-hit calls bit for bit over
         /// the whole input range: keys of every path length (octaves drawn
         /// uniformly, zero and the largest included), every table entry
         /// (the three markers, the finite extremes and any raw word),
@@ -973,6 +974,13 @@ mod tests {
                 prop_assert_eq!(o.get(), table_lod_norm(k[i].0, pb));
             }
             prop_assert!(out[n..].iter().all(|o| o.to_bits() == UNTOUCHED));
+            // The ACCURATE batch over the same hits and lengths.
+            let mut acc = std::vec![Some(Lod::MIN); len];
+            prop_assert_eq!(table_lod_batch::<Accurate>(&t, &mut acc), n);
+            for (o, &(pl, pb)) in acc.iter().zip(&t) {
+                prop_assert_eq!(*o, table_lod::<Accurate>(pl, pb));
+            }
+            prop_assert!(acc[n..].iter().all(|&o| o == Some(Lod::MIN)));
         }
 
         /// Keys from any raw word (clamped by `NormPl::from_bits`) stay
@@ -1007,7 +1015,8 @@ mod tests {
             }
         }
 
-        /// The cone batch equals the per-hit calls, also with unequal lengths.
+        /// The cone batches (FAST and ACCURATE) equal the per-hit calls, also
+        /// with unequal lengths.
         #[test]
         #[cfg(feature = "cone")]
         fn fast_cone_lod_batch_equals_per_hit_calls(hits in proptest::collection::vec((any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
@@ -1018,6 +1027,16 @@ mod tests {
                 prop_assert_eq!(*o, cone_lod::<Fast>(w, d, n));
             }
             prop_assert!(out[c.len()..].iter().all(|&o| o == Lod::MAX));
+            // The ACCURATE batch, with an output shorter than the hits too.
+            let short = c.len().saturating_sub(extra);
+            for len in [c.len() + extra, short] {
+                let mut acc = std::vec![Lod::MIN; len];
+                prop_assert_eq!(cone_lod_batch::<Accurate>(&c, &mut acc), c.len().min(len));
+                for (o, &(w, d, n)) in acc.iter().zip(&c) {
+                    prop_assert_eq!(*o, cone_lod::<Accurate>(w, d, n));
+                }
+                prop_assert!(acc[c.len().min(len)..].iter().all(|&o| o == Lod::MIN));
+            }
         }
 
         #[test]

@@ -103,6 +103,11 @@ mod tests {
             PixelSpread::from_fov_y(4.0, 600),
             Err(CameraError::BadAngle)
         );
+        // The open interval's ends: π itself is out (tan(π/2) is finite in
+        // f64, so only the check stops it), the largest f64 below π is in.
+        let pi = core::f64::consts::PI;
+        assert_eq!(PixelSpread::from_fov_y(pi, 600), Err(CameraError::BadAngle));
+        assert!(PixelSpread::from_fov_y(f64::from_bits(pi.to_bits() - 1), 600).is_ok());
         assert_eq!(
             PixelSpread::from_fov_y(f64::NAN, 600),
             Err(CameraError::NonFinite)

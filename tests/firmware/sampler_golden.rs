@@ -1,12 +1,12 @@
 //! RGBA8 wrap / clamp-to-edge results of the ACCURATE paths, bit for bit,
 //! against hashes recorded from the `filter::Sampler` of commit b4ea951
 //! (the static keys `Sampler::wrap` / `Sampler::clamp`, and the run-time
-//! form `Sampler::with_address`)
-//! (before the texture half became one sampler, issue 20): every filter
-//! mode, the batch entry point, stochastic filtering, direct pyramid reads
-//! and reads through a texel cache, on power-of-two and other sizes,
-//! tiny, one-wide and partial chains. The inputs are the random and edge
-//! samples of `texture_accuracy.rs` (same generator, own seeds).
+//! form `Sampler::with_address`): every filter mode, the batch entry
+//! point, stochastic filtering, direct pyramid reads and reads through a
+//! texel cache, on power-of-two and other sizes, tiny, one-wide and
+//! partial chains. The inputs are `common::samples_for` over the full
+//! coordinate and lod range (the generator of `texture_accuracy.rs`, own
+//! seeds).
 //!
 //! The recorded values come from the old implementation, not from the code
 //! under test: a change of any result (or fetch counter) of these

@@ -1,15 +1,21 @@
 //! Console output and exit of the demo binaries, on every machine they run
 //! on: semihosting under QEMU (feature `qemu`, the default), the console and
 //! exit registers of the PicoRV32 SoC in `demo/softcore/soc.v` (feature
-//! `softcore`). The binaries use [`println!`](crate::println) and [`exit`]
-//! from here, never a machine's own API.
+//! `softcore`), LiteX's UART and the exit register of the LiteX SoC in
+//! `demo/softcore/litex_soc.py` (feature `litex`). The binaries use
+//! [`println!`](crate::println) and [`exit`] from here, never a machine's
+//! own API.
 
-#[cfg(all(feature = "qemu", feature = "softcore"))]
+#[cfg(any(
+    all(feature = "qemu", feature = "softcore"),
+    all(feature = "qemu", feature = "litex"),
+    all(feature = "softcore", feature = "litex")
+))]
 compile_error!(
-    "features `qemu` and `softcore` are exclusive: build the soft core with --no-default-features --features softcore"
+    "features `qemu`, `softcore` and `litex` are exclusive: build a soft core with --no-default-features --features softcore (or litex)"
 );
-#[cfg(not(any(feature = "qemu", feature = "softcore")))]
-compile_error!("enable feature `qemu` (the default) or `softcore`");
+#[cfg(not(any(feature = "qemu", feature = "softcore", feature = "litex")))]
+compile_error!("enable feature `qemu` (the default), `softcore` or `litex`");
 
 /// Prints a formatted line on the console (semihosting under QEMU, the
 /// console register on the soft core).
@@ -20,8 +26,8 @@ macro_rules! println {
 }
 
 /// Prints a formatted line on the console (semihosting under QEMU, the
-/// console register on the soft core).
-#[cfg(feature = "softcore")]
+/// console register or UART on the soft core).
+#[cfg(any(feature = "softcore", feature = "litex"))]
 #[macro_export]
 macro_rules! println {
     ($($arg:tt)*) => {{
@@ -42,6 +48,8 @@ pub fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
 
+#[cfg(feature = "litex")]
+pub use litex::{Console, exit};
 #[cfg(feature = "softcore")]
 pub use softcore::{Console, exit};
 
@@ -95,4 +103,79 @@ mod softcore {
     /// to set up.
     #[riscv_rt::setup_interrupts]
     fn setup_interrupts() {}
+}
+
+/// The LiteX SoC's UART and exit register (`demo/softcore/litex_soc.py`,
+/// which checks these addresses against the CSR map it generates), and the
+/// trap handler.
+#[cfg(feature = "litex")]
+#[allow(unsafe_code)]
+mod litex {
+    /// LiteX UART `rxtx`: a byte written here is sent.
+    const UART_RXTX: usize = 0xf000_1000;
+    /// LiteX UART `txfull`: non-zero while the transmit FIFO is full.
+    const UART_TXFULL: usize = 0xf000_1004;
+    /// The SoC's `sim_exit_code` register: a write ends the simulation with
+    /// that exit code.
+    const SIM_EXIT: usize = 0xf000_1800;
+
+    /// The console as a [`core::fmt::Write`] sink.
+    #[derive(Clone, Copy, Debug)]
+    pub struct Console;
+
+    impl core::fmt::Write for Console {
+        fn write_str(&mut self, s: &str) -> core::fmt::Result {
+            for b in s.bytes() {
+                // SAFETY: UART_TXFULL and UART_RXTX are LiteX UART CSRs
+                // (one 32-bit register each, nothing else at those
+                // addresses): reading `txfull` has no side effect, a write
+                // of `rxtx` queues one byte.
+                unsafe {
+                    while core::ptr::read_volatile(UART_TXFULL as *const u32) != 0 {}
+                    core::ptr::write_volatile(UART_RXTX as *mut u32, u32::from(b));
+                }
+            }
+            Ok(())
+        }
+    }
+
+    /// Ends the program with exit code `code` (0 = success).
+    pub fn exit(code: i32) -> ! {
+        // SAFETY: SIM_EXIT is the SoC's exit register; the write stops the
+        // simulation.
+        unsafe { core::ptr::write_volatile(SIM_EXIT as *mut u32, code as u32) };
+        // The simulator stops at the write; a SoC without the register (a
+        // board) would go on: stay here.
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+
+    /// Panics print their message and exit with code 101.
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+        crate::println!("panic: {info}");
+        exit(101)
+    }
+
+    /// With feature `cfu`: VexRiscv's CFU plugin takes custom instructions
+    /// only once enabled; before `main` (riscv-rt's post-init hook).
+    #[cfg(feature = "cfu")]
+    #[riscv_rt::post_init]
+    fn enable_cfu() {
+        raymip::coproc::cfu::enable();
+    }
+
+    /// Every exception (illegal instruction, e.g. a co-processor
+    /// instruction on a core without it, or a bus error) prints its cause
+    /// and address and exits with code 3, the PicoRV32 driver's status for
+    /// a trap.
+    #[unsafe(export_name = "ExceptionHandler")]
+    fn exception_handler(_frame: &riscv_rt::TrapFrame) -> ! {
+        let cause = riscv::register::mcause::read().bits();
+        let pc = riscv::register::mepc::read();
+        let tval = riscv::register::mtval::read();
+        crate::println!("trap: mcause {cause:#x} mepc {pc:#010x} mtval {tval:#010x}");
+        exit(3)
+    }
 }

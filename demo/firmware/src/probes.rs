@@ -1,4 +1,4 @@
-//! The sampler-matrix (issue 20) and ray-differential (issue 21) probes in
+//! The sampler-matrix and ray-differential probes in
 //! one place for every counter that times them: the QEMU instruction traces
 //! of `src/bin/budget.rs` (`scripts/budgets`) and the PicoRV32 cycle
 //! counters of `src/bin/cycles_matrix.rs` (`scripts/softcore`).
@@ -219,7 +219,7 @@ impl Default for Images {
     }
 }
 
-/// The samplers of the `TextureSampler` and matrix rows (built by
+/// The samplers of the state-key (`Ts`) and matrix rows (built by
 /// [`Subjects::new`]).
 pub struct Subjects<'a> {
     /// RGBA8, [`inputs::sampler_state`], linear.
@@ -301,7 +301,7 @@ pub trait Meter {
     fn batch(&mut self, key: &str, call: impl FnMut(usize) -> usize);
 }
 
-/// The sampler rows of `s`, in this order: the `TextureSampler` rows
+/// The sampler rows of `s`, in this order: the state-key rows
 /// (mirror u / border v, ACCURATE: RGBA8 bilinear and trilinear, sRGB,
 /// RGB565, BC1 fill/hit pairs, anisotropic 2×, 4×, 16×), then the rest of
 /// the matrix: the wrap rows (single calls, then batches of 32 and 64

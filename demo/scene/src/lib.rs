@@ -447,6 +447,15 @@ pub fn tex_geometry() -> Option<Geometry> {
     Geometry::new(TEX_SIZE, TEX_SIZE, TEX_LEVELS).ok()
 }
 
+/// The first demo texture ([`TEX0`]) as a power-of-two pyramid (direct
+/// level views), with its geometry: the texture the budget and cycle
+/// binaries sample.
+#[must_use]
+pub fn tex0_pow2() -> Option<(Geometry, Pow2Pyramid<'static>)> {
+    let g = tex_geometry()?;
+    Some((g, Pow2Pyramid::new(Pyramid::new(g, &TEX0).ok()?).ok()?))
+}
+
 /// Pyramid texels that differ between `stored` and a pyramid regenerated
 /// from its level 0 with [`raymip::texture::storage::mip::generate`] (run at start-up on
 /// each target: MIP generation must be bit-identical too).

@@ -1,5 +1,4 @@
-//! Reference vectors of the texture co-processor (`demo/softcore/pcpi_tex.v`,
-//! issue 23), written by the firmware's software paths: `raymip-demo
+//! Reference vectors of the texture co-processor (`demo/softcore/pcpi_tex.v`), written by the firmware's software paths: `raymip-demo
 //! pcpi-vectors FILE` writes them and the Verilator testbench
 //! `demo/softcore/tb_pcpi_tex.cpp` checks every output bit of the RTL
 //! against them (`scripts/softcore`).
@@ -29,15 +28,33 @@
 //! the per-channel extremes and random texels, with weights at 0, 1, 2048,
 //! 4095 and 4096 on each axis and random; fractions 0, 1, 128, 255, 256 and
 //! random.
+//!
+//! Then, for the CFU unit only (`demo/softcore/cfu_tex.v`; the PCPI unit
+//! does not implement them and its testbench stops at the first), the
+//! addressing instructions with OP = the function id `{funct7, funct3}`:
+//! * `8` `tex.lvl` (`RS1` = the level's byte address, `RS2` =
+//!   [`raymip::coproc::level_config`]; `RD = 0`),
+//! * `9` `tex.addr` (`RS1`, `RS2` = [`raymip::coproc::coord_i4f28`] of `u`,
+//!   `v` in each axis's mode; `RD` = the address of `t00`) and `a` … `c`
+//!   `tex.tap` (`t10`, `t01`, `t11`), the addresses from
+//!   [`raymip::texture::address::AddressMode::linear`] (the software taps),
+//! * then `tex.bt`, `tex.bb` of random texels with the weights `tex.addr`
+//!   latched (`RD` of `tex.bb` with the software weights).
+//!
+//! Levels of every shape `2^kx × 2^ky` up to the largest side, every mode
+//! pair but the border colour, coordinates at and around the texel centres
+//! and edges, the seams, far outside `[0, 1)` and random.
 
 use std::fmt::Write as _;
 
 use fixed::types::U32F32;
+use raymip::coproc::{coord_i4f28, level_config};
 use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
 use raymip::rng::Rng;
+use raymip::texture::address::AddressMode;
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
-use raymip::units::{Accurate, Log2Pb, PathLength};
+use raymip::units::{Accurate, Log2Pb, PathLength, TexCoord};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
 /// rounding offset `0x80`.
@@ -195,6 +212,102 @@ fn filter_vectors(out: &mut String) {
     }
 }
 
+/// The address modes the CFU's addressing instructions implement.
+pub const ADDRESS_MODES: [AddressMode; 4] = [
+    AddressMode::Wrap,
+    AddressMode::Mirror,
+    AddressMode::ClampToEdge,
+    AddressMode::MirrorOnce,
+];
+
+/// Coordinates (I32F32 bits) for a level side of `2^k` texels: the
+/// texel centres and edges near 0, ½ and 1 with their neighbours, far
+/// outside `[0, 1)` and `n` random ones.
+#[must_use]
+pub fn coords(k: u32, r: &mut Rng, n: usize) -> Vec<i64> {
+    let one = 1i64 << 32;
+    let texel = one >> k;
+    let mut v = vec![
+        i64::MIN,
+        i64::MAX,
+        -one * 5,
+        one * 4 + 7,
+        -one,
+        2 * one,
+        -1,
+        0,
+        1,
+    ];
+    for base in [0, one / 2, one, -one / 2, 3 * one / 2] {
+        for d in [-texel, -texel / 2, 0, texel / 2, texel] {
+            for e in [-1, 0, 1, 1 << 3, 1 << 4] {
+                v.push(base + d + e);
+            }
+        }
+    }
+    for _ in 0..n {
+        let hi = i64::from(r.next_u32() as i32 >> (r.next_u32() % 32));
+        v.push((hi << 32) | i64::from(r.next_u32()));
+    }
+    v
+}
+
+/// The addressing vectors (OP 8…12, then 3 and 4; module docs).
+fn address_vectors(out: &mut String) {
+    let mut r = Rng::new(0x0add_2e55);
+    let tap = |mode: AddressMode, c: i64, k: u32| {
+        let ([i0, i1], f) = mode.linear(TexCoord::from_bits(c), 1 << k);
+        (i0.unwrap_or(0), i1.unwrap_or(0), f)
+    };
+    for kx in 0..=15u32 {
+        for ky in 0..=15u32 {
+            let (mu, mv) = (
+                ADDRESS_MODES[(kx % 4) as usize],
+                ADDRESS_MODES[((kx + ky) % 4) as usize],
+            );
+            let modes = [(mu, mv)].into_iter().chain(if kx == ky {
+                ADDRESS_MODES
+                    .iter()
+                    .flat_map(|&a| ADDRESS_MODES.iter().map(move |&b| (a, b)))
+                    .collect()
+            } else {
+                Vec::new()
+            });
+            for (mu, mv) in modes {
+                let base = r.next_u32() & !3;
+                let _ = writeln!(
+                    out,
+                    "8 {base:08x} {:08x} 00000000",
+                    level_config(kx, ky, mu, mv)
+                );
+                let (us, vs) = (coords(kx, &mut r, 24), coords(ky, &mut r, 24));
+                for (j, &u) in us.iter().enumerate() {
+                    let v = vs[(j * 7 + 3) % vs.len()];
+                    let (x0, x1, fx) = tap(mu, u, kx);
+                    let (y0, y1, fy) = tap(mv, v, ky);
+                    let addr = |x: u32, y: u32| base.wrapping_add(((y << kx) | x) << 2);
+                    let _ = writeln!(
+                        out,
+                        "9 {:08x} {:08x} {:08x}",
+                        coord_i4f28(mu, TexCoord::from_bits(u)),
+                        coord_i4f28(mv, TexCoord::from_bits(v)),
+                        addr(x0, y0)
+                    );
+                    let _ = writeln!(out, "a 00000000 00000000 {:08x}", addr(x1, y0));
+                    let _ = writeln!(out, "b 00000000 00000000 {:08x}", addr(x0, y1));
+                    let _ = writeln!(out, "c 00000000 00000000 {:08x}", addr(x1, y1));
+                    if j % 4 == 0 {
+                        let t: [u32; 4] = core::array::from_fn(|_| r.next_u32());
+                        let rounded = round_wide(level((t, fx, fy)));
+                        let _ = writeln!(out, "3 {:08x} {:08x} 00000000", t[0], t[1]);
+                        let _ = writeln!(out, "4 {:08x} {:08x} {rounded:08x}", t[2], t[3]);
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The whole vector file.
 #[must_use]
 pub fn vectors() -> String {
@@ -229,6 +342,7 @@ pub fn vectors() -> String {
         }
     }
     filter_vectors(&mut out);
+    address_vectors(&mut out);
     out
 }
 
@@ -302,10 +416,11 @@ mod tests {
         assert!(n0 > 20_000 && n1 > n0, "{n0} {n1}");
         let count = |op: &str| v.lines().filter(|l| l.starts_with(op)).count();
         let pairs = footprints().len();
-        assert_eq!(
-            [count("2 "), count("3 "), count("4 "), count("5 ")],
-            [2 * pairs, 2 * pairs, 2 * pairs, 6 * pairs]
-        );
+        let addr = count("9 ");
+        assert_eq!([count("2 "), count("5 ")], [2 * pairs, 6 * pairs]);
+        assert!(count("3 ") > 2 * pairs && count("4 ") == count("3 "));
+        assert!(count("8 ") >= 256 && addr > 20_000, "{addr}");
+        assert_eq!([count("a "), count("b "), count("c ")], [addr; 3]);
         // All-255 footprints round to all-255 (no carry into a neighbour).
         assert!(v.contains("4 ffffffff ffffffff ffffffff"));
         assert!(

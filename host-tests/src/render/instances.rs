@@ -638,10 +638,3 @@ pub fn accumulate(
         snapshots,
     }
 }
-
-/// Used by tests: the LOD parameter in f64 of an instance at depth `z`.
-#[must_use]
-pub fn lod_param_f64(z: f64, bias: f64) -> f64 {
-    (f64::from(LEVELS) * ((z - Z_NEAR) / (Z_FAR - Z_NEAR)).clamp(0.0, 1.0) + bias)
-        .clamp(0.0, f64::from(LEVELS - 1))
-}

@@ -1,4 +1,4 @@
-//! What a scene doesn't need (issue 13), on the host: path-length bounds per
+//! What a scene doesn't need, on the host: path-length bounds per
 //! texture from the scene's geometry, the firmware's set-up analysis
 //! (`raymip::setup::analysis`) over the Pb table, pyramids trimmed to the levels
 //! any hit can select, and a render with them.

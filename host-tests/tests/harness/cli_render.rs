@@ -176,9 +176,8 @@ fn bad_inputs_are_clear_errors() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("not found"));
 }
 
-/// Regression (issue 11, defect 5): a requested scene that cannot be loaded
-/// made `table1` print a message and exit 0. It is an error naming the
-/// scene and the reason, unless the user asked to skip.
+/// `table1` with a requested scene that cannot be loaded is an error naming
+/// the scene and the reason, unless the user asked to skip.
 #[test]
 fn table1_fails_on_a_scene_that_does_not_load() {
     let dir = tmp("table1-broken");

@@ -7,12 +7,12 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use raymip_host::render::CameraFrame;
-use raymip_host::render::instances::InstanceScene;
 use raymip_host::render::instances::{
-    Config, FrameStats, GeomLodMode, MaskPolicy, Prepared, accumulate, blend, lod_param_f64, mean,
+    Config, FrameStats, GeomLodMode, InstanceScene, MaskPolicy, Prepared, accumulate, blend, mean,
     rms,
 };
-use raymip_host::scene::instances::View;
+use raymip_host::scene::instances::{LEVELS, View, Z_FAR, Z_NEAR};
+use raymip_reference::geomlod;
 
 fn scene() -> &'static InstanceScene {
     static S: OnceLock<InstanceScene> = OnceLock::new();
@@ -169,7 +169,7 @@ fn selection_matches_f64() {
         let mut checked = 0;
         for r in &p.records {
             let z = (s.placements[r.id as usize].translation - cam.eye).dot(cam.fwd);
-            let l = lod_param_f64(z, 0.0);
+            let l = geomlod::lod_param(z, Z_NEAR, Z_FAR, LEVELS, 0.0);
             if (l.fract() - 0.5).abs() < 1e-4 {
                 continue;
             }

@@ -1,4 +1,4 @@
-//! `raymip-host stress` (issue 11): the command exits 0, its totals add up
+//! `raymip-host stress`: the command exits 0, its totals add up
 //! with nothing panicked or misbehaved, every class of the issue is
 //! present, and the docs/reliability.md block is what `--write-readme` writes now.
 

@@ -460,7 +460,7 @@ fn beam_splitter_corridor_reaches_the_stack_bound_without_dropping() {
 }
 
 /// Rays that leave `builtin:envmap` sample its environment map at the
-/// method's lod (issue 21): the cone and ray-differential lods beat mip 0
+/// method's lod: the cone and ray-differential lods beat mip 0
 /// against the supersampled truth in both precisions (the pattern aliases
 /// at level 0), ray differentials beat cones (the glass sphere: refracted
 /// cones keep their spread), and the fixed-point lookups (firmware lod,

@@ -161,6 +161,19 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// A level alone rounded to a result texel (the
     /// [`round`](Self::round) of its value).
     fn round_level(a: Self::Level) -> Texel;
+    /// Whether the sampler may take this kernel's footprints from the
+    /// co-processor's addressing instructions (feature `cfu` on riscv32:
+    /// the ACCURATE linear kernel, whose weights the co-processor then
+    /// keeps) and filter them with [`coproc_level`](Self::coproc_level).
+    const COPROC_FOOTPRINT: bool = false;
+    /// The [`Level`](Self::Level) of the footprint `t` (`t00, t10, t01,
+    /// t11` as stored) with the weights the co-processor latched (only
+    /// called when [`COPROC_FOOTPRINT`](Self::COPROC_FOOTPRINT); otherwise
+    /// the level with zero weights).
+    #[inline(always)]
+    fn coproc_level(t: [Texel; 4], k: Rounding) -> Self::Level {
+        Self::level(t.map(Self::load), 0, 0, k)
+    }
     /// The [`blend`](Self::blend) of the levels `a` and then `b` (the last
     /// two [`level`](Self::level) calls, in that order) with `t ∈ [1, 255]`.
     fn blend_levels(a: Self::Level, b: Self::Level, t: u32, k: Rounding) -> Texel;
@@ -319,6 +332,16 @@ impl Kernel for (Linear, Accurate) {
     #[inline(always)]
     fn blend_levels(_: Texel, _: Texel, t: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::blend(t)
+    }
+    // Feature `cfu` on riscv32: the footprint's weights are the ones
+    // `tex.addr` latched, so a level is `tex.bt` and `tex.bb` alone.
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    const COPROC_FOOTPRINT: bool = true;
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn coproc_level(t: [Texel; 4], _: Rounding) -> Texel {
+        crate::coproc::pcpi::bt(t[0], t[1]);
+        crate::coproc::pcpi::bb(t[2], t[3])
     }
     linear_8_16!();
 }

@@ -59,6 +59,44 @@ const LOG2_K: [i32; 16] = [
     242512, 249519, 256042, 262144,
 ];
 
+/// `BELOW[b] = (c, e)` for the ratio bucket `b = ratio >> 12`: `c` the
+/// number of [`LOG2_K`] entries below the bucket, `e` the entry inside it
+/// (at most one: neighbouring entries are more than 2¹² apart, tested) or
+/// `i32::MAX`. The entries below a ratio `r` of bucket `b` are then
+/// `c + (r > e)`: [`LOG2_K`]`.partition_point(|&l| l < r)` without a
+/// search. Ratios are in `[0, 2¹⁸]` (at most `log2 16`): 65 buckets.
+const BELOW: [(u8, i32); 65] = {
+    let mut t = [(0u8, i32::MAX); 65];
+    let mut b = 0;
+    while b < 65 {
+        let lo = (b as i32) << 12;
+        let mut c = 0;
+        let mut k = 0;
+        while k < 16 {
+            if LOG2_K[k] < lo {
+                c += 1;
+            } else if LOG2_K[k] < lo + (1 << 12) {
+                t[b].1 = LOG2_K[k];
+            }
+            k += 1;
+        }
+        t[b].0 = c;
+        b += 1;
+    }
+    t
+};
+
+/// `LOG2_K.partition_point(|&l| l < ratio)` for `ratio ∈ [0, 2¹⁸]` by
+/// [`BELOW`] (tested equal over the whole range).
+#[inline(always)]
+fn entries_below(ratio: i32) -> u8 {
+    let (c, e) = BELOW
+        .get((ratio >> 12) as usize)
+        .copied()
+        .unwrap_or((16, i32::MAX));
+    c + u8::from(ratio > e)
+}
+
 /// Largest axis component [`probes`] takes, `2¹⁵` in normalized units
 /// (I32F32 bits `2⁴⁷`): larger components are clamped to it (a footprint
 /// that long covers every texel of any texture thousands of times).
@@ -102,6 +140,13 @@ fn div_small(c: i64, n: u8) -> i64 {
 fn texels(c: i64, size: u32) -> i64 {
     const LIMIT: i64 = (1 << 31) - 1;
     let size = size.min(crate::texture::storage::mip::MAX_SIZE);
+    // A component below one normalized unit (`|c| < 2³¹` bits, every
+    // footprint of a texel or a few): one 32×32→64-bit multiply, and the
+    // result (`|c·size| < 2⁴⁶`, shifted: `< 2³⁰`) needs no clamp. The
+    // same value as the general form below.
+    if let Ok(c) = i32::try_from(c) {
+        return (i64::from(c) * i64::from(size)) >> 16;
+    }
     ((c * i64::from(size)) >> 16).clamp(-LIMIT, LIMIT)
 }
 
@@ -119,6 +164,7 @@ fn len2(x: i64, y: i64) -> u64 {
 /// `1 ..= 16`). Axis components beyond `±2¹⁵` normalized units are clamped
 /// to it.
 /// Never panics.
+#[inline]
 #[must_use]
 pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes {
     let max = max_aniso.clamp(1, 16);
@@ -135,7 +181,7 @@ pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes 
     let ratio = log_major - log_minor;
     // The first k with ratio ≤ log2 k: one more than the number of table
     // entries below the ratio (a binary search), at most `max`.
-    let below = LOG2_K.partition_point(|&l| l < ratio) as u8;
+    let below = entries_below(ratio);
     let count = below.saturating_add(1).min(max);
     // I16F16 → I8F8, rounded, saturating.
     let lod = Lod::saturating_from_num(I16F16::from_bits(log_minor));
@@ -162,8 +208,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
         let p = probes(
             fp,
-            self.geometry.width(),
-            self.geometry.height(),
+            self.source.geometry().width(),
+            self.source.geometry().height(),
             self.state.max_anisotropy(),
         );
         let bits = self.lod.apply(p.lod);
@@ -172,30 +218,64 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         #[cfg(not(feature = "trilinear"))]
         let (lower, t) = (((bits + 0x80) >> 8) as usize & 15, 0);
         let n = u32::from(p.count.max(1));
-        let mut sum = [0u32; 4];
-        let (mut pu, mut pv) = (u.saturating_add(p.first[0]), v.saturating_add(p.first[1]));
-        for _ in 0..n {
-            let (ta, fxa, fya) = self.footprint(pu, pv, lower);
-            let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya, self.rounding);
-            let value = if t == 0 {
-                <K::Kernel as Kernel>::probe(a)
-            } else {
-                let (tb, fxb, fyb) = self.footprint(pu, pv, lower + 1);
-                let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb, self.rounding);
-                <K::Kernel as Kernel>::probe_blend(a, b, t, self.rounding)
-            };
-            for (s, x) in sum.iter_mut().zip(value) {
-                *s = s.wrapping_add(x);
-            }
-            pu = pu.saturating_add(p.step[0]);
-            pv = pv.saturating_add(p.step[1]);
-        }
+        let start = [u.saturating_add(p.first[0]), v.saturating_add(p.first[1])];
+        // From a start within ±2⁶² (the top two bits equal) no step can
+        // saturate: `|step| ≤ 2⁴⁷` (the clamped axis over the count), at
+        // most 15 steps. Plain adds then, the same coordinates.
+        let near = |c: TexCoord| (c.to_bits() >> 62) == (c.to_bits() >> 63);
+        let sum = if near(start[0]) && near(start[1]) {
+            self.probe_sum::<false>(start, p.step, n, lower, t)
+        } else {
+            self.probe_sum::<true>(start, p.step, n, lower, t)
+        };
         let per_probe = if t == 0 { 4 } else { 8 };
         self.stats.count(
             u64::from(n * per_probe),
             u64::from(n * (8 - per_probe)) * u64::from(cfg!(feature = "trilinear")),
         );
         <K::Kernel as Kernel>::probe_mean(sum, n)
+    }
+
+    /// The channel sums of `n` probes from `start` by `step` (saturating
+    /// adds when `SAT`, else wrapping ones, which give the same
+    /// coordinates when nothing saturates) in level `lower` and, when
+    /// the blend weight `t ≠ 0`, `lower + 1`.
+    #[inline(always)]
+    fn probe_sum<const SAT: bool>(
+        &mut self,
+        start: [TexCoord; 2],
+        step: [TexCoord; 2],
+        n: u32,
+        lower: usize,
+        t: u32,
+    ) -> [u32; 4] {
+        let add = |a: TexCoord, b: TexCoord| {
+            if SAT {
+                a.saturating_add(b)
+            } else {
+                a.wrapping_add(b)
+            }
+        };
+        let mut sum = [0u32; 4];
+        let [mut pu, mut pv] = start;
+        let k = self.rounding;
+        for _ in 0..n {
+            let (ta, fxa, fya) = self.footprint(pu, pv, lower);
+            let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya, k);
+            let value = if t == 0 {
+                <K::Kernel as Kernel>::probe(a)
+            } else {
+                let (tb, fxb, fyb) = self.footprint(pu, pv, lower + 1);
+                let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb, k);
+                <K::Kernel as Kernel>::probe_blend(a, b, t, k)
+            };
+            for (s, x) in sum.iter_mut().zip(value) {
+                *s = s.wrapping_add(x);
+            }
+            pu = add(pu, step[0]);
+            pv = add(pv, step[1]);
+        }
+        sum
     }
 }
 
@@ -205,6 +285,49 @@ mod tests {
     extern crate std;
     use super::*;
     use proptest::prelude::*;
+
+    /// The bucket table gives the binary search's count for every ratio
+    /// the probe rule produces (and the entries are far enough apart for
+    /// one per bucket).
+    #[test]
+    fn entries_below_equals_the_search() {
+        for w in LOG2_K.windows(2) {
+            assert!(w[1] - w[0] > 1 << 12);
+        }
+        for ratio in 0..=(1 << 18) {
+            let want = LOG2_K.partition_point(|&l| l < ratio) as u8;
+            assert_eq!(entries_below(ratio), want, "{ratio}");
+        }
+    }
+
+    /// The 32-bit form of `texels` equals the 64-bit one for components
+    /// around and beyond one normalized unit.
+    #[test]
+    fn texels_fast_path_equals_general() {
+        let general = |c: i64, size: u32| {
+            ((c * i64::from(size.min(1 << 15))) >> 16).clamp(-((1 << 31) - 1), (1 << 31) - 1)
+        };
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for n in 0..if cfg!(miri) { 100 } else { 200_000u32 } {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let c = ((x as i64) >> (n % 40)).clamp(-AXIS_LIMIT, AXIS_LIMIT);
+            for size in [1, 2, 3, 32, 1000, 1 << 15, u32::MAX] {
+                assert_eq!(texels(c, size), general(c, size), "{c} {size}");
+            }
+        }
+        for c in [
+            i64::from(i32::MIN),
+            i64::from(i32::MAX),
+            -1,
+            0,
+            1 << 31,
+            -(1 << 31) - 1,
+        ] {
+            assert_eq!(texels(c, 1 << 15), general(c, 1 << 15));
+        }
+    }
 
     #[test]
     fn log2_table() {

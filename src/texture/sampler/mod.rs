@@ -163,19 +163,42 @@ impl fmt::Display for SamplerError {
 
 impl core::error::Error for SamplerError {}
 
-/// The wrap constants [`wrap_constant`]`(k, bits)` of both axes of every
-/// level index `0 ..= 16` for a power-of-two geometry (levels past the top
-/// repeat it, as [`Geometry::level_size`] clamps them), zeros otherwise
-/// (then no direct views exist and nothing reads them).
-fn wrap_table(g: &Geometry, bits: u32) -> [[u32; 2]; MAX_LEVELS as usize + 1] {
-    let mut t = [[0; 2]; MAX_LEVELS as usize + 1];
-    if g.width().is_power_of_two() && g.height().is_power_of_two() {
-        for (k, e) in (0u8..).zip(t.iter_mut()) {
-            let (w, h) = g.level_size(k);
-            *e = [w, h].map(|n| wrap_constant(n.trailing_zeros(), bits));
-        }
+/// The addressing constants of one level of a power-of-two geometry, per
+/// axis `[u, v]`: the wrap constant [`wrap_constant`]`(k, bits)` for the
+/// kernel's weight width and the shift `s = 31 − k` of the side
+/// `n = 2^k ≤ 2¹⁵` (the mask is `n − 1 = (2³¹ − 1) >> s`), in 12 bytes:
+/// the arguments of `AddressMode::pow2_taps`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct LevelAddr {
+    c: [u32; 2],
+    s: [u8; 2],
+}
+
+impl LevelAddr {
+    /// The masks `n − 1` of both axes.
+    #[inline(always)]
+    fn masks(&self) -> [u32; 2] {
+        self.s.map(|s| i32::MAX as u32 >> (s & 31))
     }
-    t
+}
+
+/// The [`LevelAddr`] of every level index `0 ..= 16` of `g` (levels past
+/// the top repeat it, as [`Geometry::level_size`] clamps them) when both
+/// sides are powers of two (then every level's are), else `None`.
+fn level_table(g: &Geometry, bits: u32) -> Option<[LevelAddr; MAX_LEVELS as usize + 1]> {
+    if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
+        return None;
+    }
+    let mut t = [LevelAddr::default(); MAX_LEVELS as usize + 1];
+    for (k, e) in (0u8..).zip(t.iter_mut()) {
+        let (w, h) = g.level_size(k);
+        let n = [w, h];
+        *e = LevelAddr {
+            c: n.map(|n| wrap_constant(n.trailing_zeros(), bits)),
+            s: n.map(|n| n.leading_zeros() as u8),
+        };
+    }
+    Some(t)
 }
 
 /// The lod window of a [`SamplerState`] on `levels` stored levels, in I8F8
@@ -235,7 +258,6 @@ impl LodWindow {
 /// ```
 pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     source: S,
-    geometry: Geometry,
     state: SamplerState,
     axes: (K::U, K::V),
     lod: LodWindow,
@@ -246,9 +268,11 @@ pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     /// The kernel's rounding terms (a field, so that each filter chain
     /// starts from a register: [`Rounding`]).
     rounding: Rounding,
-    /// [`wrap_table`] for the kernel's weight bits; entry 16 repeats the
-    /// top level so that `lower + 1` needs no check.
-    wrap: [[u32; 2]; MAX_LEVELS as usize + 1],
+    /// [`level_table`] for the kernel's weight bits (entry 16 repeats the
+    /// top level so that `lower + 1` needs no check); all zero, and
+    /// `pow2` false, for other geometries.
+    levels: [LevelAddr; MAX_LEVELS as usize + 1],
+    pow2: bool,
 }
 
 impl<S: TexelSource + fmt::Debug, K: Key> fmt::Debug for Sampler<S, K> {
@@ -326,12 +350,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     fn build(source: S, state: SamplerState, axes: (K::U, K::V)) -> Self {
         let geometry = source.geometry();
         Self {
-            wrap: wrap_table(&geometry, Kern::<K>::WEIGHT_BITS),
+            levels: level_table(&geometry, Kern::<K>::WEIGHT_BITS).unwrap_or_default(),
+            pow2: level_table(&geometry, Kern::<K>::WEIGHT_BITS).is_some(),
             lod: LodWindow::new(&state, &geometry),
             border: Kern::<K>::load_border(state.border()),
             border_nearest: Kern::<K>::border_nearest(state.border()),
             source,
-            geometry,
             state,
             axes,
             stats: K::Stats::default(),
@@ -400,15 +424,13 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // next to `lower`'s entry (one address for both levels).
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
-        let (ta, fxa, fya) = self.footprint(u, v, lower);
         let k = self.rounding;
-        let a = Kern::<K>::level(ta, fxa, fya, k);
+        let a = self.level_value(u, v, lower);
         if t == 0 {
             count(&mut self.stats, true);
             Kern::<K>::round_level(a)
         } else {
-            let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
-            let b = Kern::<K>::level(tb, fxb, fyb, k);
+            let b = self.level_value(u, v, lower + 1);
             count(&mut self.stats, false);
             Kern::<K>::blend_levels(a, b, t, k)
         }
@@ -424,8 +446,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
     #[inline(always)]
     fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-        let level = Self::nearest_level(self.lod.apply(lod));
-        let (t, fx, fy) = self.footprint(u, v, usize::from(level) & 15);
+        let level = usize::from(Self::nearest_level(self.lod.apply(lod))) & 15;
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(a) = self.coproc_level(u, v, level) {
+            return Kern::<K>::round_level(a);
+        }
+        let (t, fx, fy) = self.footprint(u, v, level);
         Kern::<K>::bilinear_texel(t, fx, fy, self.rounding)
     }
 
@@ -550,6 +576,52 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         Ok(self.sample(u, v, lod, mode))
     }
 
+    /// The kernel's level value of the footprint at `level` (`≤ 16`):
+    /// through the co-processor's addressing where it applies
+    /// ([`coproc_level`](Self::coproc_level)), else [`footprint`](Self::footprint)
+    /// and the kernel.
+    #[cfg(feature = "trilinear")]
+    #[inline(always)]
+    fn level_value(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> <Kern<K> as Kernel>::Level {
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(a) = self.coproc_level(u, v, level) {
+            return a;
+        }
+        let (t, fx, fy) = self.footprint(u, v, level);
+        Kern::<K>::level(t, fx, fy, self.rounding)
+    }
+
+    /// Feature `cfu` on riscv32: the level value at `level` (`≤ 16`) with
+    /// the footprint and its weights from the co-processor's addressing
+    /// instructions (`coproc::cfu::footprint`: the same taps and weights as
+    /// [`footprint`](Self::footprint)'s direct path, tested bit for bit),
+    /// for a kernel that keeps its weights there, addressable axes (no
+    /// border colour) and a source with direct level views; `None`
+    /// otherwise (decided at compile time but for the source).
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn coproc_level(
+        &self,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> Option<<Kern<K> as Kernel>::Level> {
+        use crate::coproc::{addressable, cfu, coord_i4f28, level_config};
+        let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
+        if !Kern::<K>::COPROC_FOOTPRINT || !addressable(mu) || !addressable(mv) {
+            return None;
+        }
+        let l = self.source.levels()?.level(level);
+        let modes = level_config(0, 0, mu, mv);
+        let t = cfu::footprint(l, modes, coord_i4f28(mu, u), coord_i4f28(mv, v));
+        Some(Kern::<K>::coproc_level(t, self.rounding))
+    }
+
     /// The 2×2 footprint at `level` as the kernel's lanes (border taps
     /// replaced by the border colour) and its weights `(fx, fy)` (counted
     /// by the caller). A source with direct level views
@@ -567,19 +639,30 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
                 // Wrapped on both axes: every tap is a texel (no border),
                 // addressed by the view without a mask.
-                let (t, fx, fy) = l.wrap_footprint(u, v, self.wrap[level], bits);
+                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
-            let [cx, cy] = self.wrap[level];
+            let [cx, cy] = self.levels[level].c;
             let xt = mu.pow2_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
             let yt = mv.pow2_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
             (xt, yt, l.footprint(xt.i, yt.i))
         } else {
-            let level = level as u8;
-            let (w, h) = self.geometry.level_size(level);
-            let xt = mu.taps(u, w, bits);
-            let yt = mv.taps(v, h, bits);
-            let t = self.source.footprint(level, xt.i, yt.i);
+            // Power-of-two geometries address as the direct path does (the
+            // level's constants from the table); other sizes by the
+            // general taps.
+            let (xt, yt) = if self.pow2 {
+                let a = &self.levels[level];
+                let [mx, my] = a.masks();
+                let [sx, sy] = a.s.map(u32::from);
+                (
+                    mu.pow2_taps(u, mx + 1, mx, sx, a.c[0], bits),
+                    mv.pow2_taps(v, my + 1, my, sy, a.c[1], bits),
+                )
+            } else {
+                let (w, h) = self.source.geometry().level_size(level as u8);
+                (mu.taps(u, w, bits), mv.taps(v, h, bits))
+            };
+            let t = self.source.footprint(level as u8, xt.i, yt.i);
             (xt, yt, t)
         };
         let mut lanes = t.map(Kern::<K>::load);
@@ -604,7 +687,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// Nearest texel at `level` (counted) and whether it is the border.
     #[inline(always)]
     fn nearest(&mut self, u: TexCoord, v: TexCoord, level: u8) -> (Texel, bool) {
-        let (w, h) = self.geometry.level_size(level);
+        let (w, h) = self.source.geometry().level_size(level);
         let (x, bx) = self.axes.0.mode().nearest_tap(u, w);
         let (y, by) = self.axes.1.mode().nearest_tap(v, h);
         self.stats.count(1, 0);
@@ -646,10 +729,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         &self.state
     }
 
-    /// The source's geometry (read once at construction).
+    /// The source's geometry.
     #[must_use]
     pub fn geometry(&self) -> Geometry {
-        self.geometry
+        self.source.geometry()
     }
 
     /// The texel source.

@@ -160,7 +160,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// chosen by the column and row fields of `bits`.
     #[inline(always)]
     fn one_texel(&mut self, u: TexCoord, v: TexCoord, level: u8, bits: u32) -> Texel {
-        let (w, h) = self.geometry.level_size(level);
+        let (w, h) = self.source.geometry().level_size(level);
         let xt = self.axes.0.mode().taps(u, w, bilerp::WEIGHT_BITS);
         let yt = self.axes.1.mode().taps(v, h, bilerp::WEIGHT_BITS);
         let cx = pick((bits >> COLUMN_SHIFT) & TAP_MASK, xt.f) as usize;

@@ -61,8 +61,7 @@ use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::texture::storage::mip::{Pyramid, Texel};
-use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::storage::mip::Texel;
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};
 use raymip_demo_firmware::inputs::{self, Draws, N};
@@ -524,13 +523,7 @@ fn rm_budget_driver(
 }
 
 raymip_demo_entry::main! {
-    let Some(g) = raymip_demo_scene::tex_geometry() else {
-        process::exit(1)
-    };
-    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
-        .ok()
-        .and_then(|p| Pow2Pyramid::new(p).ok())
-    else {
+    let Some((g, p)) = raymip_demo_scene::tex0_pow2() else {
         process::exit(1)
     };
     let Some(texf) = SamplerF32::new(g, &raymip_demo_scene::TEX0, AddressMode::Wrap) else {

@@ -1,6 +1,7 @@
-//! Cycles of single per-hit calls on the PicoRV32 soft core (feature
-//! `softcore`; `scripts/softcore` runs it on the Verilator model of
-//! `demo/softcore/soc.v` and writes BUDGETS.md's soft-core block).
+//! Cycles of single per-hit calls on a soft core (feature `softcore`:
+//! PicoRV32, or `litex`: VexRiscv; `scripts/softcore` runs it on the
+//! Verilator models of `demo/softcore/soc.v` and of the LiteX SoC and
+//! writes BUDGETS.md's soft-core block).
 //!
 //! The calls and their inputs are those of the QEMU budgets
 //! (`src/bin/budget.rs`): the same [`inputs`] draws, from the same seed, in
@@ -9,8 +10,9 @@
 //! cone lod inputs). Around every call the core's `cycle`
 //! and `instret` counters are read (`rdcycle`/`rdinstret`); each count is
 //! call-inclusive (argument moves, the call, the return) minus the same
-//! count around an empty call (the counter reads themselves). PicoRV32 is
-//! deterministic: a second run prints the same numbers.
+//! count around an empty call (the counter reads themselves). On a cached
+//! core every series first runs once untimed ([`WARM_UP`]). The
+//! simulated cores are deterministic: a second run prints the same numbers.
 //!
 //! Then the batch entry points (`table_lod_batch`, `cone_lod_batch`, their
 //! FAST twins, `Sampler::sample_batch` bilinear and trilinear), each called once on the
@@ -33,11 +35,10 @@ use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::texture::storage::mip::{Pyramid, Texel};
-use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::texture::storage::mip::Texel;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
-use raymip_demo_firmware::counters::{Stat, cycles32, instret32};
+use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, measured_calls, println};
 
@@ -98,9 +99,15 @@ fn draw<T>(rng: &mut Rng, mut f: impl FnMut(&mut Rng) -> T) -> [T; N] {
     core::array::from_fn(|_| f(rng))
 }
 
-/// Counts cycles and instructions around each call of `call` on `xs`.
+/// Counts cycles and instructions around each call of `call` on `xs`
+/// (after an untimed pass on a cached core: [`WARM_UP`]).
 #[inline(always)]
 fn measure<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> (Stat, Stat) {
+    if WARM_UP {
+        for &x in xs {
+            bb(call(bb(x)));
+        }
+    }
     let (mut cy, mut ir) = (Stat::EMPTY, Stat::EMPTY);
     for &x in xs {
         let x = bb(x);
@@ -117,13 +124,7 @@ fn measure<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> (Stat, Stat
 }
 
 raymip_demo_entry::main! {
-    let Some(g) = raymip_demo_scene::tex_geometry() else {
-        exit(1)
-    };
-    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
-        .ok()
-        .and_then(|p| Pow2Pyramid::new(p).ok())
-    else {
+    let Some((_, p)) = raymip_demo_scene::tex0_pow2() else {
         exit(1)
     };
     let mut tex: Tex = Sampler::new(p);
@@ -175,6 +176,9 @@ raymip_demo_entry::main! {
     let mut cone_out = [Lod::ZERO; N];
     let mut tex_out = [Texel::default(); N];
     let batch = |name: &str, f: &mut dyn FnMut(usize) -> (u32, u32)| {
+        if WARM_UP {
+            bb(f(N));
+        }
         let (c32, i32_) = f(32);
         let (c64, i64_) = f(N);
         let (bc, bi) = (base_cy.min, base_ir.min);

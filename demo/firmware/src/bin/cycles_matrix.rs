@@ -1,4 +1,4 @@
-//! Cycles of the sampler-matrix calls (issue 20) on the PicoRV32 soft core
+//! Cycles of the sampler-matrix calls on the PicoRV32 soft core
 //! (feature `softcore`; `scripts/softcore` runs it on the Verilator model
 //! of `demo/softcore/soc.v` beside `cycles` and writes the matrix table of
 //! BUDGETS.md's soft-core block). The ray differentials are a second
@@ -16,21 +16,13 @@
 #![no_main]
 #![forbid(unsafe_code)]
 
-use raymip::texture::storage::mip::Pyramid;
-use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip_demo_firmware::counters::CycleMeter;
 use raymip_demo_firmware::exit;
 use raymip_demo_firmware::inputs::Draws;
 use raymip_demo_firmware::probes::{self, Images, Subjects};
 
 raymip_demo_entry::main! {
-    let Some(g) = raymip_demo_scene::tex_geometry() else {
-        exit(1)
-    };
-    let Some(p) = Pyramid::new(g, &raymip_demo_scene::TEX0)
-        .ok()
-        .and_then(|p| Pow2Pyramid::new(p).ok())
-    else {
+    let Some((g, p)) = raymip_demo_scene::tex0_pow2() else {
         exit(1)
     };
     let images = Images::new();

@@ -1,4 +1,4 @@
-//! Cycles of the ray-differential calls (issue 21) on the PicoRV32 soft
+//! Cycles of the ray-differential calls on the PicoRV32 soft
 //! core (features `softcore` and `raydiff`; `scripts/softcore` runs it on
 //! the Verilator model of `demo/softcore/soc.v` beside `cycles` and writes
 //! the ray-differential table of BUDGETS.md's soft-core block).

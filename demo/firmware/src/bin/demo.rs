@@ -7,8 +7,9 @@
 //! Run from `demo/`: `cargo run --release --target thumbv7em-none-eabihf`
 //! (QEMU mps2-an386, Cortex-M4) or `--target riscv32imac-unknown-none-elf`
 //! (QEMU virt); `scripts/softcore` runs it on the PicoRV32 soft core
-//! (feature `softcore`, `riscv32imc-unknown-none-elf`), where it also prints
-//! the render's cycles and instructions.
+//! (feature `softcore`, `riscv32imc-unknown-none-elf`) and on VexRiscv in a
+//! LiteX SoC (feature `litex`, `riscv32im-unknown-none-elf`), where it also
+//! prints the render's cycles and instructions.
 #![no_std]
 #![no_main]
 #![forbid(unsafe_code)]
@@ -36,6 +37,8 @@ fn run() -> i32 {
         "thumbv7em-none-eabihf (Cortex-M4)"
     } else if cfg!(feature = "softcore") {
         "riscv32imc-unknown-none-elf (PicoRV32 soft core)"
+    } else if cfg!(feature = "litex") {
+        "riscv32im-unknown-none-elf (VexRiscv in a LiteX SoC)"
     } else {
         "riscv32imac-unknown-none-elf"
     };
@@ -60,7 +63,7 @@ fn run() -> i32 {
     );
     println!("counters: {}", r.counters);
     println!("stack: {used} bytes used by the render (painted {PAINT_BYTES})");
-    if cfg!(feature = "softcore") {
+    if cfg!(feature = "counters") {
         let (cycles, instret) = (c1.cycles - c0.cycles, c1.instret - c0.instret);
         println!("render: {cycles} cycles, {instret} instructions (rdcycle/rdinstret)");
     }

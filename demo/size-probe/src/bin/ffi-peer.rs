@@ -16,8 +16,7 @@ use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::Accurate;
-use raymip::units::{Lod, Log2Pb, PathLength, Spread, TexCoord};
+use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 static TEXELS: [u32; 85] = [0; 85];
 
@@ -35,12 +34,12 @@ raymip_demo_entry::main! {
             table_lod::<Accurate>(s.pl, bb(Log2Pb::from_bits(0))).unwrap_or(Lod::ZERO),
             levels,
         );
-        if let Ok(g) = Geometry::new(8, 8, levels) {
-            if let Ok(p) = Pyramid::new(g, bb(&TEXELS[..])) {
-                let mut sampler = Sampler::wrap(p);
-                let mode = Mode::from_index(bb(0)).unwrap_or(Mode::Trilinear);
-                acc = sampler.sample(bb(TexCoord::ZERO), bb(TexCoord::ZERO), lod, mode);
-            }
+        if let Ok(g) = Geometry::new(8, 8, levels)
+            && let Ok(p) = Pyramid::new(g, bb(&TEXELS[..]))
+        {
+            let mut sampler = Sampler::wrap(p);
+            let mode = Mode::from_index(bb(0)).unwrap_or(Mode::Trilinear);
+            acc = sampler.sample(bb(TexCoord::ZERO), bb(TexCoord::ZERO), lod, mode);
         }
     }
     bb(acc);

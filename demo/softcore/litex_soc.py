@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""The raymip LiteX SoC: VexRiscv (the `full` variant of pythondata-cpu-vexriscv,
+or `full+cfu` with the texture co-processor demo/softcore/cfu_tex.v on its
+CFU port), one integrated main RAM holding code and data, LiteX's UART and
+a simulation exit register, for LiteX's simulation platform.
+
+--cfu names cfu_tex.v; its tex_log2pl.v beside it is added too.
+
+Generates the SoC's Verilog with LiteX's SoC builder (SoCCore, SimPlatform)
+into --out: `sim.v` (top module `sim`), the CPU's and the CFU's Verilog
+files listed in `sources.txt` (the installed packages' paths: nothing is
+copied), `public.vlt` (the Verilator configuration that lets the driver
+demo/softcore/litex_sim.cpp load an ELF image into the main RAM) and
+`csr.csv`. scripts/softcore then builds the Verilator model itself: one
+model per variant serves every firmware image.
+
+The memory map is LiteX's, with the firmware's fixed addresses
+(demo/softcore/litex/memory.x and demo/firmware/src/console.rs), which this
+script checks against the generated CSR map:
+  0x4000_0000  main RAM (--ram-bytes, default 256 KiB): code, data, stack;
+               the CPU's reset address.
+  0xf000_0000  CSRs: `uart` (rxtx, txfull, ...) and `sim_exit` (a write of
+               the exit code ends the simulation), each at a fixed page.
+
+Usage: litex_soc.py --out DIR [--cfu] [--ram-bytes N]
+"""
+import argparse
+import csv
+import os
+import re
+import sys
+
+from migen import Module, Signal, If
+
+from litex.build.generic_platform import Pins, Subsignal
+from litex.build.sim import SimPlatform
+from litex.build.io import CRG
+from litex.soc.integration import export
+from litex.soc.integration.soc_core import SoCCore
+from litex.soc.interconnect.csr import AutoCSR, CSRStorage
+
+MAIN_RAM = 0x4000_0000
+CSR_BASE = 0xF000_0000
+# CSR pages (0x800 bytes each) of the two peripherals the firmware uses; the
+# firmware's constants (demo/firmware/src/console.rs) must match.
+CSR_LOCATIONS = {"uart": 2, "sim_exit": 3}
+
+_io = [
+    ("sys_clk", 0, Pins(1)),
+    ("sys_rst", 0, Pins(1)),
+    # LiteX's simulation UART: a byte stream each way.
+    ("serial", 0,
+        Subsignal("source_valid", Pins(1)),
+        Subsignal("source_ready", Pins(1)),
+        Subsignal("source_data", Pins(8)),
+        Subsignal("sink_valid", Pins(1)),
+        Subsignal("sink_ready", Pins(1)),
+        Subsignal("sink_data", Pins(8)),
+    ),
+    # The exit register, seen by the driver.
+    ("sim_exit", 0,
+        Subsignal("valid", Pins(1)),
+        Subsignal("code", Pins(32)),
+    ),
+]
+
+
+class SimExit(Module, AutoCSR):
+    """A CSR whose write ends the simulation: `valid` pulses for one cycle
+    with the written value on `code`."""
+
+    def __init__(self, pads):
+        self.code = CSRStorage(32, description="Exit code; a write ends the simulation.")
+        self.sync += pads.valid.eq(self.code.re)
+        self.comb += pads.code.eq(self.code.storage)
+
+
+class RaymipSoC(SoCCore):
+    """VexRiscv + main RAM + UART + exit register on LiteX's simulation
+    platform; `cfu` the path of the CFU's Verilog, or None."""
+
+    def __init__(self, cfu=None, ram_bytes=256 * 1024):
+        platform = SimPlatform("SIM", _io)
+        self.crg = CRG(platform.request("sys_clk"), platform.request("sys_rst"))
+        SoCCore.__init__(
+            self, platform, clk_freq=int(1e6),
+            ident="raymip LiteX SoC",
+            cpu_type="vexriscv",
+            cpu_variant="full+cfu" if cfu else "full",
+            cpu_cfu=cfu,
+            cpu_reset_address=MAIN_RAM,
+            integrated_rom_size=0,
+            integrated_sram_size=0,
+            integrated_main_ram_size=ram_bytes,
+            uart_name="sim",
+            with_timer=False,
+        )
+        if cfu:
+            # The CFU's logarithm pipeline, shared with the PicoRV32 unit.
+            platform.add_source(os.path.join(os.path.dirname(cfu), "tex_log2pl.v"))
+        self.sim_exit = SimExit(platform.request("sim_exit"))
+        # An interrupt-free firmware and a UART without the host's side:
+        # the sink (host → SoC) stays idle.
+        serial = self.platform.lookup_request("serial")
+        self.comb += [serial.sink_valid.eq(0), serial.sink_data.eq(0)]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", required=True, help="output directory")
+    ap.add_argument("--cfu", help="Verilog of the CFU (module Cfu); without: the plain `full` variant")
+    ap.add_argument("--ram-bytes", type=int, default=256 * 1024)
+    a = ap.parse_args()
+    out = os.path.abspath(a.out)
+    cfu = os.path.abspath(a.cfu) if a.cfu else None
+    soc = RaymipSoC(cfu=cfu, ram_bytes=a.ram_bytes)
+    for name, page in CSR_LOCATIONS.items():
+        soc.csr.locs[name] = page
+    # LiteX's Builder would also generate the BIOS's software tree and
+    # LiteX's own simulator files; only the Verilog and the CSR map are
+    # needed here.
+    os.makedirs(out, exist_ok=True)
+    soc.platform.output_dir = out
+    soc.finalize()
+    with open(os.path.join(out, "csr.csv"), "w") as f:
+        f.write(export.get_csr_csv(csr_regions=soc.csr_regions, constants=soc.constants,
+                                   mem_regions=soc.mem_regions))
+    # The memories' initial contents go to `$readmemh` files, which the
+    # Verilog names relative to the working directory: write them into
+    # --out and name them by absolute path, so that the model runs from any
+    # directory.
+    v = soc.platform.get_verilog(soc, name="sim")
+    for name, content in v.data_files.items():
+        with open(os.path.join(out, name), "w") as f:
+            f.write(content)
+    text = re.sub(r'\$readmemh\("([^"/]+)"', lambda m: f'$readmemh("{os.path.join(out, m.group(1))}"',
+                  v.main_source)
+    with open(os.path.join(out, "sim.v"), "w") as f:
+        f.write(text)
+    sources = [os.path.join(out, "sim.v")]
+    sources += [os.path.abspath(f) for f, *_ in soc.platform.sources if f.endswith(".v")]
+    with open(os.path.join(out, "sources.txt"), "w") as f:
+        f.write("\n".join(sources) + "\n")
+    # The main RAM's memory array, writable from the driver.
+    with open(os.path.join(out, "public.vlt"), "w") as f:
+        f.write("`verilator_config\npublic_flat_rw -module \"sim\" -var \"main_ram\"\n")
+    # The firmware's constants against the generated map.
+    regions = {}
+    with open(os.path.join(out, "csr.csv")) as f:
+        for row in csv.reader(f):
+            if row and row[0] in ("csr_base", "memory_region"):
+                regions[row[1]] = int(row[2], 0)
+    want = {name: CSR_BASE + 0x800 * page for name, page in CSR_LOCATIONS.items()}
+    want["main_ram"] = MAIN_RAM
+    bad = {k: (hex(v), hex(regions.get(k, -1))) for k, v in want.items() if regions.get(k) != v}
+    if bad:
+        sys.exit(f"litex_soc.py: the generated map differs from the firmware's (want, got): {bad}")
+    print(f"litex_soc.py: {sources[0]} + {', '.join(sources[1:])}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,148 @@
+//! The texture co-processor on VexRiscv's CFU port (feature `cfu`,
+//! `riscv32` only): `demo/softcore/cfu_tex.v`, whose header specifies the
+//! instructions.
+//!
+//! The CFU runs the same instruction words as the PicoRV32 unit (the
+//! encoding in [`super`]): with feature `cfu` (which turns on `pcpi`) the
+//! table and cone lod and the ACCURATE linear filter use the wrappers of
+//! [`super::pcpi`] exactly as on PicoRV32. This module adds what only the
+//! CFU unit has:
+//!
+//! * [`enable`]: VexRiscv's CFU plugin treats custom instructions as
+//!   illegal until bit 31 of CSR `0xBC0` is set; call it once before the
+//!   first raymip call (the demo firmware does in riscv-rt's pre-init).
+//! * the addressing instructions `tex.lvl`, `tex.addr`, `tex.tap`
+//!   (`funct7 = 1`): the taps and weights of a power-of-two level in
+//!   memory from `(u, v)`, the level's size and the address modes (wrap,
+//!   mirror, clamp to edge, mirror once), as texel addresses. The sampler's
+//!   in-memory path of the ACCURATE linear kernel takes its footprint from
+//!   [`footprint`]: the firmware only loads the four texels, and the
+//!   weights stay in the co-processor for `tex.bt`/`tex.bb`.
+//!
+//! # Safety
+//!
+//! The instruction wrappers are as in [`super::pcpi`]: one `asm!` block,
+//! one `.insn`, registers only (`nomem, nostack`); the addressing
+//! instructions keep state in the co-processor (the level, the taps, the
+//! weights), so none is `pure`: the compiler keeps each, in program order.
+//! [`enable`] writes one CSR of the CFU plugin and nothing else.
+//!
+//! [`footprint`] reads memory at the four addresses `tex.addr`/`tex.tap`
+//! return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
+//! by construction of the RTL (every mode's index map ends in a mask or a
+//! clamp to the level; the Verilator testbench checks every address bit
+//! of the reference vectors, `scripts/softcore`), where `base`, `2^kx` and
+//! `2^ky` are a [`LevelView`]'s first texel and sides: the view guarantees
+//! `2^(kx + ky)` initialised texels there for as long as it lives (its
+//! construction checks them against a borrowed slice,
+//! `texture::storage::pow2`). So each address is that of one of those
+//! texels, aligned, read while the view is borrowed. On a core without the
+//! co-processor the first instruction traps (illegal instruction) before
+//! any read.
+#![allow(unsafe_code)]
+
+use super::{TAP01, TAP10, TAP11};
+use crate::texture::storage::mip::Texel;
+use crate::texture::storage::pow2::LevelView;
+
+/// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the
+/// custom instructions are illegal. Idempotent.
+#[inline]
+pub fn enable() {
+    // SAFETY: sets one bit of the CFU plugin's CSR `0xBC0` (`csrs`); no
+    // memory, stack or other register is touched.
+    unsafe {
+        core::arch::asm!(
+            "csrs 0xbc0, {m}",
+            m = in(reg) 1u32 << 31,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+}
+
+/// `tex.lvl`: the level `tex.addr` addresses next: its texel (0, 0) at byte
+/// address `base`, its shape and address modes in `config`
+/// ([`super::level_config`]).
+#[inline(always)]
+pub fn level(base: u32, config: u32) {
+    // SAFETY: one custom-0 R-type instruction on registers only (module
+    // docs), writing no register; its effect is co-processor state, so the
+    // block is not `pure` and stays in program order.
+    unsafe {
+        core::arch::asm!(
+            ".insn r {op}, {f3}, {f7}, x0, {a}, {b}",
+            op = const super::CUSTOM0,
+            f3 = const super::LVL,
+            f7 = const super::ADDRESSING,
+            a = in(reg) base,
+            b = in(reg) config,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+}
+
+/// `tex.addr`: the bilinear taps of `(u, v)` ([`super::coord_i4f28`]
+/// operands) on the level of the last [`level`]: returns the byte address
+/// of `t00` and latches the weights (as `tex.bw`) and the other three
+/// addresses ([`tap`]).
+#[inline(always)]
+#[must_use]
+pub fn addr(u: u32, v: u32) -> u32 {
+    let r: u32;
+    // SAFETY: as for `level`; it writes `r`.
+    unsafe {
+        core::arch::asm!(
+            ".insn r {op}, {f3}, {f7}, {rd}, {a}, {b}",
+            op = const super::CUSTOM0,
+            f3 = const super::ADDR,
+            f7 = const super::ADDRESSING,
+            rd = lateout(reg) r,
+            a = in(reg) u,
+            b = in(reg) v,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+    r
+}
+
+/// `tex.tap`: the byte address of tap `F3` ([`TAP10`], [`TAP01`],
+/// [`TAP11`]) of the last [`addr`].
+#[inline(always)]
+#[must_use]
+pub fn tap<const F3: u32>() -> u32 {
+    let r: u32;
+    // SAFETY: as for `level`; it reads co-processor state and writes `r`.
+    unsafe {
+        core::arch::asm!(
+            ".insn r {op}, {f3}, {f7}, {rd}, x0, x0",
+            op = const super::CUSTOM0,
+            f3 = const F3,
+            f7 = const super::ADDRESSING,
+            rd = lateout(reg) r,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+    r
+}
+
+/// The bilinear footprint `[t00, t10, t01, t11]` of the coordinates
+/// `(u, v)` ([`super::coord_i4f28`] operands) on the level `l`, addressed
+/// in the modes of `modes` (`level_config(0, 0, mu, mv)`); the weights
+/// stay latched in the co-processor for `tex.bt`/`tex.bb`. The texels are
+/// those the software taps select (same bits, `scripts/softcore`).
+#[inline(always)]
+#[must_use]
+pub fn footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4] {
+    // `shift = 31 − log2(side)`, sides ≤ 2¹⁵ (`LevelView::new`).
+    let (kx, ky) = (31 - l.shift_x(), 31 - l.shift_y());
+    let base = l.base().as_ptr().expose_provenance() as u32;
+    level(base, kx | ky << 4 | modes);
+    let a = [addr(u, v), tap::<TAP10>(), tap::<TAP01>(), tap::<TAP11>()];
+    // SAFETY: each address is that of one of the `2^(kx + ky)` texels at
+    // `base` (module docs: `base + 4·j`, `j < 2^(kx + ky)`, aligned), which
+    // the view keeps initialised and unwritten while it lives (its
+    // invariant, `LevelView::base`); `expose_provenance` exposed the
+    // provenance of that memory above, and `Texel` (u32) has no invalid
+    // values.
+    a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() })
+}
