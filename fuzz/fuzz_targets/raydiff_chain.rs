@@ -12,13 +12,14 @@
 //! lods inside the `Lod` range.
 #![no_main]
 
-use fixed::types::{I2F30, I4F28, I32F32, U32F32};
+use fixed::types::{I2F30, I4F28};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use raymip::lod::raydiff::RayDiffTriangle;
 use raymip::path::raydiff::gbuffer::{GSample, first_hit};
 use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
 use raymip::setup::table::TexTriangle;
+use raymip::units::{Coord, PathLength, TexCoord, UnitVec};
 use raymip_host::raydiff_chains::{CLASSES, Class, Raymip, run};
 use raymip_reference::Rng;
 
@@ -39,8 +40,10 @@ fn chain(u: &mut Unstructured) -> Result<()> {
     Ok(())
 }
 
-fn unit(u: &mut Unstructured) -> Result<[I2F30; 3]> {
-    Ok([(); 3].map(|()| I2F30::from_bits(u.arbitrary().unwrap_or(0))))
+fn unit(u: &mut Unstructured) -> Result<UnitVec> {
+    Ok(UnitVec(
+        [(); 3].map(|()| I2F30::from_bits(u.arbitrary().unwrap_or(0))),
+    ))
 }
 
 fn diff(u: &mut Unstructured) -> Result<(([i32; 3], i32), ([i32; 3], i32))> {
@@ -66,7 +69,7 @@ fn api(u: &mut Unstructured) -> Result<()> {
     for _ in 0..u.int_in_range(0..=12)? {
         let (dir, n) = (unit(u)?, unit(u)?);
         match u.int_in_range(0..=3)? {
-            0 => s.transfer(dir, U32F32::from_bits(u.arbitrary()?), n),
+            0 => s.transfer(dir, PathLength::from_bits(u.arbitrary()?), n),
             1 => s.reflect(dir, n, dn),
             2 => s.refract(
                 dir,
@@ -86,17 +89,14 @@ fn api(u: &mut Unstructured) -> Result<()> {
             assert!((-(1 << 14)..1 << 14).contains(&v.1), "{s:?}");
         }
     }
-    let mut coord = || -> Result<I32F32> { Ok(I32F32::from_bits(u.arbitrary()?)) };
+    let mut coord = || -> Result<Coord> { Ok(Coord::from_bits(u.arbitrary()?)) };
     let p = [
         [coord()?, coord()?, coord()?],
         [coord()?, coord()?, coord()?],
         [coord()?, coord()?, coord()?],
     ];
-    let uv = [
-        [coord()?, coord()?],
-        [coord()?, coord()?],
-        [coord()?, coord()?],
-    ];
+    let mut tc = || -> Result<TexCoord> { Ok(TexCoord::from_bits(u.arbitrary()?)) };
+    let uv = [[tc()?, tc()?], [tc()?, tc()?], [tc()?, tc()?]];
     if let Ok(t) = TexTriangle::new(p, uv, u.arbitrary::<u32>()? | 1, u.arbitrary::<u32>()? | 1) {
         let tri = RayDiffTriangle::new(&t);
         let fp = tri.footprint(&s);

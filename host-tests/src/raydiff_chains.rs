@@ -22,7 +22,7 @@
 //! footprint's larger axis, bounds the relative footprint error; its value
 //! with every `c_op = 1` is the chain's amplification [`Outcome::amp`].
 
-use raymip::lod::Lod;
+use raymip::units::Lod;
 
 use raymip_reference::Rng;
 use raymip_reference::raydiff::{
@@ -552,17 +552,18 @@ fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle 
 pub struct Raymip;
 
 mod adapter {
-    use fixed::types::{I2F30, I4F28, I32F32, U32F32};
+    use fixed::types::{I2F30, I4F28, U32F32};
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
-    use raymip::setup::table::{Coord, TexTriangle};
+    use raymip::setup::table::TexTriangle;
+    use raymip::units::{Coord, PathLength, TexCoord, UnitVec};
 
     use super::{Diff, Firmware, Local, Raymip, Triangle, V};
 
-    fn u(v: V) -> [I2F30; 3] {
-        v.map(I2F30::saturating_from_num)
+    fn u(v: V) -> UnitVec {
+        UnitVec(v.map(I2F30::saturating_from_num))
     }
-    fn f(v: [I2F30; 3]) -> V {
+    fn f(v: UnitVec) -> V {
         v.map(|x| x.to_num())
     }
     fn eta(e: f64) -> Eta {
@@ -594,7 +595,7 @@ mod adapter {
         }
         fn transfer(&self, s: &RayDiff, d: V, t: f64, n: V) -> RayDiff {
             let mut s = *s;
-            s.transfer(u(d), U32F32::saturating_from_num(t), u(n));
+            s.transfer(u(d), PathLength::saturating_from_num(t), u(n));
             s
         }
         fn reflect(&self, s: &RayDiff, d: V, n: V, dn: [V; 2]) -> RayDiff {
@@ -622,10 +623,9 @@ mod adapter {
             }
         }
         fn lod(&self, tri: &Triangle, s: &RayDiff) -> f64 {
-            let c = |x: f64| I32F32::saturating_from_num(x);
             let Ok(t) = TexTriangle::new(
-                tri.p.map(|v| v.map(c)),
-                tri.uv.map(|v| v.map(c)),
+                tri.p.map(|v| v.map(Coord::saturating_from_num)),
+                tri.uv.map(|v| v.map(TexCoord::saturating_from_num)),
                 tri.w,
                 tri.h,
             ) else {

@@ -1,6 +1,6 @@
 //! The texture co-processor of the PicoRV32 soft core (feature `pcpi`,
 //! `riscv32` only): one wrapper per custom instruction of
-//! `demo/softcore/pcpi_tex.v` (issue 23).
+//! `demo/softcore/pcpi_tex.v`.
 //!
 //! The co-processor sits on PicoRV32's co-processor port (PCPI) and claims
 //! six R-type instructions of the `custom-0` opcode (`0001011`,
@@ -66,7 +66,7 @@
 //! the feature only for that SoC.
 #![allow(unsafe_code)]
 
-/// The `tex.lod` result for the untextured marker ([`crate::setup::table::Log2Pb::UNTEXTURED`]):
+/// The `tex.lod` result for the untextured marker ([`crate::units::Log2Pb::UNTEXTURED`]):
 /// `0x8000_0000`, below every sign-extended I8F8 value (`table_lod` returns `None`).
 pub const UNTEXTURED: i32 = i32::MIN;
 

@@ -92,12 +92,12 @@
 //! of the ordinary, sliver, lopsided-UV and slow-UV chains. The measured
 //! errors per class (all below 2⁻⁷) are in `docs/lod-methods.md`.
 
-use crate::lod::Lod;
 use crate::lod::log2::{mantissa_log2, normalise64};
 use crate::path::raydiff::{EXP_MIN, PosDiff, RayDiff, mulhi, shr};
-use crate::setup::table::{Coord, TexTriangle};
-use crate::texture::TexCoord;
-use crate::texture::sampler::aniso::Footprint;
+use crate::setup::table::TexTriangle;
+use crate::units::Footprint;
+use crate::units::Lod;
+use crate::units::{Coord, TexCoord};
 
 /// Documented error bound of [`RayDiffFootprint::lod`] against f64 ray
 /// differentials, in levels, where the chain's amplification allows it:
@@ -302,8 +302,9 @@ impl RayDiffTriangle {
         let d = |a: Coord, b: Coord| i128::from(b.to_bits()) - i128::from(a.to_bits());
         let e1: [i128; 3] = core::array::from_fn(|k| d(p[0][k], p[1][k]));
         let e2: [i128; 3] = core::array::from_fn(|k| d(p[0][k], p[2][k]));
-        let du = [d(uv[0][0], uv[1][0]), d(uv[0][0], uv[2][0])];
-        let dv = [d(uv[0][1], uv[1][1]), d(uv[0][1], uv[2][1])];
+        let dt = |a: TexCoord, b: TexCoord| i128::from(b.to_bits()) - i128::from(a.to_bits());
+        let du = [dt(uv[0][0], uv[1][0]), dt(uv[0][0], uv[2][0])];
+        let dv = [dt(uv[0][1], uv[1][1]), dt(uv[0][1], uv[2][1])];
         let inv = [w, h].map(|s| {
             // 1/s = (2⁶²/s)·2⁻⁶², normalised to 31 bits (s ≥ 1).
             let q = Wide::from_mag(false, (1u128 << 62) / u128::from(s.max(1)), -62);
@@ -472,7 +473,7 @@ mod tests {
 
     fn tex(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> (TexTriangle, rf::Triangle) {
         let pq = p.map(|v| v.map(Coord::saturating_from_num));
-        let uq = uv.map(|v| v.map(Coord::saturating_from_num));
+        let uq = uv.map(|v| v.map(TexCoord::saturating_from_num));
         let t = TexTriangle::new(pq, uq, w, h).unwrap();
         let r = rf::Triangle {
             p: pq.map(|v| v.map(|x| x.to_num())),
@@ -535,7 +536,7 @@ mod tests {
             let p0 = [c(a), c(b), c(a ^ b)];
             let p1 = [c(b / 2), c(a / 2), c(3)];
             let p2: [Coord; 3] = core::array::from_fn(|k| c(2 * p1[k].to_bits() - p0[k].to_bits()));
-            let uvq = uv.map(|v| v.map(Coord::from_num));
+            let uvq = uv.map(|v| v.map(TexCoord::from_num));
             let t = RayDiffTriangle::new(&TexTriangle::new([p0, p1, p2], uvq, 8, 8).unwrap());
             assert!(t.is_degenerate(), "{a} {b}");
             assert_eq!(t.footprint(&any).lod(), Lod::MAX);

@@ -13,6 +13,7 @@ use raymip::path::raydiff::gbuffer::GSample;
 use raymip::path::raydiff::{DirDiff, RayDiff};
 
 use crate::scene::V3;
+use raymip::units::UnitVec;
 
 /// One pixel's first hit in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,7 +37,7 @@ impl GHit {
         let k = (-f64::from(scale)).exp2();
         GSample {
             p: self.p.to_array().map(|x| (q(x) * k).round() as i32),
-            n: self.n.to_array().map(|x| I2F30::saturating_from_num(q(x))),
+            n: UnitVec(self.n.to_array().map(|x| I2F30::saturating_from_num(q(x)))),
             t: (q(self.t) * k).round() as u32,
         }
     }

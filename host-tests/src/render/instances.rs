@@ -22,12 +22,11 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use raymip::geomlod::{
-    Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, ray_mask, visible,
-};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::geomlod::{DepthToLod, InstanceLod, LodMode, Selector, ray_mask, visible};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::Rng;
 use raymip::setup::camera::PixelSpread;
+use raymip::units::{Depth, LodBias, PathLength, Spread, Transition};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -177,7 +176,7 @@ impl InstanceScene {
                 .collect());
         }
         cfg.check()?;
-        let range = LodRange::new(
+        let range = DepthToLod::new(
             Depth::from_num(Z_NEAR),
             Depth::from_num(Z_FAR),
             LEVELS,

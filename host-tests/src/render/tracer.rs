@@ -1,8 +1,9 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
 use fixed::types::{I2F30, U32F32};
-use raymip::path::raydiff::{DirDiff, Eta, RayDiff, UnitVec};
-use raymip::path::raystack::{PathState, RayStack, Spread, stack_bound};
+use raymip::path::raydiff::{DirDiff, Eta, RayDiff};
+use raymip::path::raystack::{PathState, RayStack, stack_bound};
+use raymip::units::{PathLength, Spread, UnitVec};
 
 use super::bvh::Hit;
 use super::envmap::{FloatMiss, MissRay};
@@ -222,7 +223,7 @@ impl Ctx<'_> {
             *c += 1;
         }
         let t_fixed = U32F32::saturating_from_num(hit.t);
-        let mut state = state.advance(t_fixed);
+        let mut state = state.advance(PathLength::from_fixed(t_fixed));
         let tri = &scene.triangles[hit.tri as usize];
         let mat = &scene.materials[tri.material as usize];
         // A path's first hit takes its differentials from the G-buffer
@@ -240,7 +241,9 @@ impl Ctx<'_> {
             }
             (Some(FirstHit::Float(dp, _)), _) => (dp[0], dp[1]),
             (None, None) => {
-                state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
+                state
+                    .diff
+                    .transfer(unit_q(ray.d), PathLength::from_fixed(t_fixed), unit_q(ng));
                 (v3_of(state.diff.dox()), v3_of(state.diff.doy()))
             }
             (None, Some(p)) => {
@@ -684,6 +687,12 @@ fn surface_spread(f: &HitFrame, width: f64) -> f64 {
 /// An f64 vector as the firmware's I2F30 components (saturating; a
 /// non-finite component reads as 0).
 fn unit_q(v: V3) -> UnitVec {
+    UnitVec::new(dir_q(v))
+}
+
+/// An f64 direction differential as the firmware's I2F30 components
+/// (saturating; a non-finite component reads as 0).
+fn dir_q(v: V3) -> [I2F30; 3] {
     v.to_array().map(|x| {
         if x.is_finite() {
             I2F30::saturating_from_num(x)

@@ -95,7 +95,7 @@ use fixed::types::{I2F30, I4F28};
 
 use crate::lod::MIN_COS;
 use crate::lod::log2::normalise64;
-use crate::path::raystack::PathLength;
+use crate::units::PathLength;
 
 mod bfp;
 pub mod gbuffer;
@@ -105,7 +105,7 @@ pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, recip, shr};
 
 /// A unit vector (ray direction, surface normal), I2F30 components
 /// (one home: [`crate::path::raystack::UnitVec`]). Example: [`RayDiff`].
-pub use crate::path::raystack::UnitVec;
+use crate::units::UnitVec;
 
 /// Documented bound of [`RayDiff::primary`]: the largest component of the
 /// error of `∂D/∂x` is at most this times `(|D·f| + 1)·|r|` (and `∂D/∂y`
@@ -629,7 +629,7 @@ pub(crate) mod tests {
     /// `v/|v|` as I2F30 components.
     pub(crate) fn unit_q(v: V) -> UnitVec {
         let l = norm(v);
-        v.map(|c| I2F30::saturating_from_num(c / l))
+        UnitVec(v.map(|c| I2F30::saturating_from_num(c / l)))
     }
     pub(crate) fn state(s: &RayDiff) -> rf::Diff {
         rf::Diff {
@@ -663,7 +663,7 @@ pub(crate) mod tests {
     fn head_on_cases_are_exact() {
         let (z, o) = (I2F30::ZERO, I2F30::ONE);
         let s = I2F30::from_num(1.0 / 512.0);
-        let f = [z, z, o];
+        let f = UnitVec([z, z, o]);
         let r = RayDiff::primary(
             f,
             f,
@@ -674,7 +674,7 @@ pub(crate) mod tests {
         assert_eq!(r.ddy().to_f64(), [0.0, -1.0 / 512.0, 0.0]);
         assert_eq!(r.dox(), PosDiff::ZERO);
         let mut t = r;
-        t.transfer(f, PathLength::from_num(3), [z, z, -o]);
+        t.transfer(f, PathLength::from_num(3), UnitVec([z, z, -o]));
         assert_eq!(t.dox().to_f64(), [3.0 / 512.0, 0.0, 0.0]);
         assert_eq!(t.ddx(), r.ddx());
     }
@@ -682,8 +682,8 @@ pub(crate) mod tests {
     #[test]
     fn grazing_zero_and_extreme_inputs() {
         let (z, o) = (I2F30::ZERO, I2F30::ONE);
-        let d = [o, z, z];
-        let n = [z, z, o]; // D·n = 0: clamped to +2⁻¹⁶
+        let d = UnitVec([o, z, z]);
+        let n = UnitVec([z, z, o]); // D·n = 0: clamped to +2⁻¹⁶
         let base = RayDiff::new(
             PosDiff::ZERO,
             PosDiff::ZERO,
@@ -706,7 +706,7 @@ pub(crate) mod tests {
             DirDiff::new([1, 2, 3], 4),
             DirDiff::ZERO,
         );
-        k.transfer([z, z, o], PathLength::ZERO, [z, z, -o]);
+        k.transfer(UnitVec([z, z, o]), PathLength::ZERO, UnitVec([z, z, -o]));
         assert_eq!(k.dox().to_f64(), [5.0 / 8.0, 0.0, 0.0]);
         let zero = RayDiff::ZERO;
         let mut zz = zero;
@@ -719,7 +719,12 @@ pub(crate) mod tests {
         let pbig = |e: i32| PosDiff::new([i32::MAX, i32::MIN, 1], e);
         for e in [EXP_MIN, -100, 0, 100, EXP_MAX] {
             let st = RayDiff::new(pbig(e), pbig(-e), big(e), big(-e));
-            for v in [[I2F30::MAX; 3], [I2F30::MIN; 3], [z; 3], d] {
+            for v in [
+                UnitVec([I2F30::MAX; 3]),
+                UnitVec([I2F30::MIN; 3]),
+                UnitVec([z; 3]),
+                d,
+            ] {
                 let mut s = st;
                 s.transfer(v, PathLength::MAX, v);
                 s.reflect(v, v, [big(e), big(EXP_MAX)]);
