@@ -133,6 +133,7 @@ enum Kind {
 /// # Example
 /// ```
 /// use fixed::types::I2F30;
+/// use raymip::units::UnitVec;
 /// use raymip::{Lod, PathLength, TexTriangle};
 /// use raymip::lod::raydiff::{RAYDIFF_LOD_MAX_ERROR, RayDiffTriangle};
 /// use raymip::path::raydiff::{DirDiff, RayDiff};
@@ -144,9 +145,9 @@ enum Kind {
 /// // A camera ray head-on with a 2⁻¹⁰ pixel spread, transferred to the
 /// // wall at t = 100: ∂P = 100·2⁻¹⁰ scene units per pixel.
 /// let (z, o, s) = (I2F30::ZERO, I2F30::ONE, I2F30::from_num(1.0 / 1024.0));
-/// let fwd = [z, z, -o];
+/// let fwd = UnitVec([z, z, -o]);
 /// let mut ray = RayDiff::primary(fwd, fwd, DirDiff::from_i2f30([s, z, z]), DirDiff::from_i2f30([z, s, z]));
-/// ray.transfer(fwd, PathLength::from_num(100), [z, z, o]);
+/// ray.transfer(fwd, PathLength::from_num(100), UnitVec([z, z, o]));
 /// let fp = tri.footprint(&ray);
 /// // u = x: ∂u/∂x = 100/1024 normalised units = 25 texels.
 /// let lod = fp.lod().to_num::<f64>();

@@ -27,7 +27,7 @@ use super::{Bfp3, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
 /// // A buffer at 2⁻²⁰ scene units: positions are x·2²⁰.
 /// let scale = -20;
 /// let q = |x: f64, y: f64| [(x * 1048576.0) as i32, (y * 1048576.0) as i32, -100 << 20];
-/// let n = [I2F30::ZERO, I2F30::ZERO, I2F30::ONE];
+/// let n = raymip::units::UnitVec([I2F30::ZERO, I2F30::ZERO, I2F30::ONE]);
 /// let t = 100 << 20;
 /// // The centre pixel's first hit and its neighbours' on the same wall,
 /// // one eighth of a scene unit apart; the pixel above has no hit.

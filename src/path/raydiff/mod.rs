@@ -13,7 +13,7 @@
 //! one exponent (block floating point, [`PosDiff`], [`DirDiff`]): the
 //! largest component has 31 significant bits whatever the vector's size,
 //! so a differential keeps its relative precision from `2⁻¹⁶³⁸⁴` to
-//! `2¹⁶³⁸⁴` (a footprint beyond the [`Lod`](crate::lod::Lod) range
+//! `2¹⁶³⁸⁴` (a footprint beyond the [`Lod`](crate::units::Lod) range
 //! saturates the lod, not the state). [`RayDiff`] stores the twelve
 //! mantissas and four 16-bit exponents: 56 bytes.
 //!
@@ -103,8 +103,6 @@ pub mod gbuffer;
 use crate::lod::log2::clz32;
 pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, recip, shr};
 
-/// A unit vector (ray direction, surface normal), I2F30 components
-/// (one home: [`crate::path::raystack::UnitVec`]). Example: [`RayDiff`].
 use crate::units::UnitVec;
 
 /// Documented bound of [`RayDiff::primary`]: the largest component of the
@@ -137,7 +135,7 @@ const MIN_COS_I2F30: i32 = (MIN_COS.to_bits() >> 1) as i32;
 /// let p = PosDiff::new([3, 0, -4], -3);
 /// let (m, e) = p.parts();
 /// assert_eq!(m.map(|x| f64::from(x) * f64::from(e).exp2()), [0.375, 0.0, -0.5]);
-/// assert_eq!(m[2], -(1 << 30)); // normalised: the largest has 31 bits
+/// assert_eq!((m[2], e), (i32::MIN, -32)); // normalised: no redundant sign bit
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(transparent)]
@@ -311,20 +309,21 @@ impl Eta {
 /// ```
 /// use fixed::types::{I2F30, I4F28};
 /// use raymip::PathLength;
-/// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+/// use raymip::units::UnitVec;
+/// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
 /// let (one, zero) = (I2F30::ONE, I2F30::ZERO);
 /// let v = |p: DirDiff| -> [f64; 3] { let (m, e) = p.parts(); m.map(|x| f64::from(x) * f64::from(e).exp2()) };
 /// // A camera looking down −z; one pixel step turns the unnormalised
 /// // direction by s = 2⁻¹⁰ along x (right) or y (up).
 /// let s = I2F30::from_num(1.0 / 1024.0);
 /// let (right, up) = (DirDiff::from_i2f30([s, zero, zero]), DirDiff::from_i2f30([zero, s, zero]));
-/// let forward: UnitVec = [zero, zero, -one];
+/// let forward = UnitVec([zero, zero, -one]);
 /// let mut ray = RayDiff::primary(forward, forward, right, up);
 /// // The centre ray: D·f = 1, D·r = 0, so ∂D/∂x = r and ∂D/∂y = u.
 /// assert_eq!((v(ray.ddx()), v(ray.ddy())), ([1.0 / 1024.0, 0.0, 0.0], [0.0, 1.0 / 1024.0, 0.0]));
 /// // Transfer to a wall facing the camera (n = +z) at t = 100: ∂D·t
 /// // lies in the wall, so ∂O = 100·2⁻¹⁰ scene units per pixel along x.
-/// let wall: UnitVec = [zero, zero, one];
+/// let wall = UnitVec([zero, zero, one]);
 /// ray.transfer(forward, PathLength::from_num(100), wall);
 /// let (m, e) = ray.dox().parts();
 /// assert_eq!(m.map(|x| f64::from(x) * f64::from(e).exp2()), [100.0 / 1024.0, 0.0, 0.0]);
