@@ -11,7 +11,7 @@ demo-T.out (demo output), static-T.txt (scripts/stack-sizes).
 Counts every call of each `rm_bench_*` / `rm_batch_*` wrapper from its entry
 to the return into `rm_budget_driver`, checks the ceilings below (exit 1 and
 FAIL lines when one is exceeded) and writes ROOT/BUDGETS.md and the
-sampler-budgets block of ROOT/docs/texture-sampling.md (TextureSampler instructions beside
+sampler-budgets block of ROOT/docs/texture-sampling.md (sampler-state instructions beside
 the errors of docs/texture-sampling.md's sampler-accuracy block), or with --check
 compares both with the checked-in files (exit 1 when stale; the block
 between the softcore markers belongs to another script and is kept verbatim
@@ -79,7 +79,7 @@ ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
             ("env_uv", "direction → (u, v), two 32-bit vectorings (3 CORDIC steps + series)")]
 CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
-# TextureSampler rows: (key, label, wrapper, its calls of this row, the
+# Sampler-state (ts_*) rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
 # of the calls is the one of demo/firmware/src/bin/budget.rs.
 SAMPLER_ROWS = [
@@ -377,7 +377,7 @@ MISSED.update({
         "constant, no bit-field extract) and the `Option` test remain."
     ),
 })
-# Ceilings of the TextureSampler and geometric-LOD rows (max instructions
+# Ceilings of the sampler-state and geometric-LOD rows (max instructions
 # per call; geomlod: per instance, steady state): the first measurement's
 # maximum + 10 %, rounded up.
 GEOMLOD_CEILINGS = {
@@ -1075,7 +1075,7 @@ def breakdown_section(st, every, work, w):
 
 
 def sampler_stats(res):
-    """{isa: {row key: (min, mean, max)}} of the TextureSampler rows."""
+    """{isa: {row key: (min, mean, max)}} of the sampler-state rows."""
     return {k: {key: stat(res[k][sym][sl]) for key, _, sym, sl, _ in SAMPLER_ROWS} for k, _ in ISAS}
 
 
@@ -1114,7 +1114,7 @@ def accuracy_cells(readme):
 
 
 def readme_block(res, readme):
-    """The README block (markers included): the TextureSampler rows' mean
+    """The README block (markers included): the sampler-state rows' mean
     instructions per target and their measured error."""
     ts = sampler_stats(res)
     acc = accuracy_cells(readme)

@@ -233,7 +233,7 @@ pub mod inputs {
         (u, v, lod)
     }
 
-    /// The sampler state of the `TextureSampler` rows that are not
+    /// The sampler state of the sampler-state (`ts_*`) rows that are not
     /// anisotropic: mirror on `u`, clamp-to-border on `v` (border
     /// `0x80402010`), lod bias +¼, lod clamp `[½, 4]`, sRGB results
     /// re-encoded. `None` cannot happen (the fields are in range).

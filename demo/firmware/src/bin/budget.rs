@@ -22,8 +22,9 @@
 //!   results out, caller memory), called once with the first 32 and once
 //!   with all 64 inputs: the difference over 32 is the steady-state cost
 //!   per hit.
-//! * `rm_bench_ts_*`: the GPU-style `TextureSampler` (sampler state,
-//!   formats, sRGB, BC1 through the texel cache, anisotropic filtering) on
+//! * `rm_bench_ts_*`: the GPU-style `Sampler` with a `SamplerState`
+//!   (address modes, formats, sRGB, BC1 through the texel cache,
+//!   anisotropic filtering) on
 //!   the demo texture's 32×32 geometry, states from
 //!   [`raymip_demo_firmware::inputs::sampler_state`] and
 //!   [`raymip_demo_firmware::inputs::aniso_state`]. A wrapper serving
@@ -456,7 +457,7 @@ fn rm_budget_driver(
     }
     bb((&lod_out, &lod_words, &cone_out, &tex_out));
 
-    // The TextureSampler rows and the rest of the sampler matrix
+    // The sampler-state (`ts_*`) rows and the rest of the sampler matrix
     // (`probes::sampler_rows`): the bilinear/trilinear inputs above, BC1 in
     // pairs (cache emptied outside the counted call; then the same sample).
     probes::sampler_rows(&mut Traced, par, &bil_in, &tri_in, &aniso_in);
