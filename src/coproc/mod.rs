@@ -36,8 +36,8 @@
 //! (the UP5K it was sized for has no room for the addressing); on it the
 //! addressing instructions trap as illegal.
 
-use crate::texture::TexCoord;
 use crate::texture::address::AddressMode;
+use crate::units::TexCoord;
 
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
 pub mod cfu;
