@@ -535,7 +535,7 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     /// positions, at most four), in the order of the texel reads, each
     /// counted as that many accesses: the same texels, counters and LRU
     /// stamps as four [`texel`](Self::texel) calls. The block numbers come
-    /// from one [`LevelGrid`] part per block column and row of the
+    /// from one `LevelGrid` part per block column and row of the
     /// footprint. (Where one read of a block could evict another block of
     /// the same footprint in between, a one-way set shared by two
     /// side-by-side blocks, the four reads are made one by one.)
