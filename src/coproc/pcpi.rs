@@ -42,8 +42,9 @@
 //!
 //! # Safety
 //!
-//! With the C ABI (`ffi`) and the texel reads of the level views
-//! (`texture::storage::pow2`), this is the only code with `unsafe`: each
+//! The crate's other `unsafe` code is the C ABI (`ffi`), the texel reads
+//! of the level views (`texture::storage::pow2`) and the CFU wrappers
+//! (`coproc::cfu`; the list is at the top of `lib.rs`). Here each
 //! wrapper is one `asm!` block holding exactly one `.insn` instruction that
 //! reads general-purpose registers and writes at most one. No instruction
 //! reads or writes memory or changes any other register, CSR or the
