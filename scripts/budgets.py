@@ -185,10 +185,10 @@ MATRIX_CEILINGS = {
     "ts_srgb": {"m4": 502, "rv": 612, "rvzbb": 596},
     "ts_565": {"m4": 638, "rv": 762, "rvzbb": 727},
     "ts_565_f": {"m4": 593, "rv": 743, "rvzbb": 690},
-    "ts_bc1_hit": {"m4": 990, "rv": 1095, "rvzbb": 1068},
-    "ts_bc1_hit_f": {"m4": 948, "rv": 1077, "rvzbb": 1033},
-    "ts_bc1_fill": {"m4": 3438, "rv": 3636, "rvzbb": 3567},
-    "ts_bc1_fill_f": {"m4": 3396, "rv": 3618, "rvzbb": 3532},
+    "ts_bc1_hit": {"m4": 754, "rv": 875, "rvzbb": 840},
+    "ts_bc1_hit_f": {"m4": 708, "rv": 857, "rvzbb": 805},
+    "ts_bc1_fill": {"m4": 3333, "rv": 3535, "rvzbb": 3445},
+    "ts_bc1_fill_f": {"m4": 3287, "rv": 3517, "rvzbb": 3410},
     "an2": {"m4": 888, "rv": 1101, "rvzbb": 1079},
     "an4": {"m4": 1322, "rv": 1641, "rvzbb": 1621},
     "an16": {"m4": 3812, "rv": 4881, "rvzbb": 4871},
@@ -239,11 +239,16 @@ MATRIX_MISSED = {
         "own clamps. The goals need the expansion once per cached block (an RGBA8 block read as the "
         "direct path reads a level)."),
     "BC1 on cache hits": (
-        "`TexelCache::footprint` looks the footprint's block up once (one lookup counted as the "
-        "accesses it stands for: the same counters and LRU order as per texel), two lookups when the "
-        "footprint straddles two blocks and per texel only when it straddles four; each lookup is the "
-        "block number (Morton order), the set's tag compare and the stamp update. The largest calls "
-        "are those with four blocks in a level, and the generic path's size and tap computation."),
+        "`TexelCache::footprint` reads the level's record once (texel clamp, block offset, padded "
+        "grid: `LevelGrid`), computes each block column's and row's part of the Morton number once "
+        "(two reads of a 256-entry table each) and looks each block the footprint touches up once, "
+        "in the order of the texel reads (one lookup counted as the accesses it stands for: the same "
+        "counters and LRU order as per texel): one lookup in 9 of 16 positions, two or four when the "
+        "footprint straddles block edges. The lookup is inlined (the 64-bit clock, the set's tag "
+        "compare, the stamp and hit counter), the fill on a miss is not. The largest calls straddle "
+        "block edges in both levels; on the Cortex-M4 the footprint function (called once per level) "
+        "and the generic path spill. The goal needs the block read as the direct path reads a level "
+        "(a cached block as a level view, no tag lookup per block)."),
     "Anisotropic N×": (
         "The probe set-up (`aniso::probes`, once per sample): the four axis components scaled to "
         "texels (one 32×32-bit multiply for a component below one normalized unit), two squared "

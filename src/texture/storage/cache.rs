@@ -53,10 +53,31 @@ const fn part1by1(x: u32) -> u32 {
     (x | (x << 1)) & 0x5555_5555
 }
 
+/// `part1by1` of every byte (the even bit positions of 16 bits).
+const SPREAD: [u16; 256] = {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = part1by1(i as u32) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `part1by1(x)` for `x < 2¹⁶` by two reads of [`SPREAD`] (a block
+/// coordinate's part of its Morton number).
+#[inline(always)]
+fn spread(x: u32) -> u32 {
+    let lo = SPREAD[(x & 0xFF) as usize];
+    let hi = SPREAD[((x >> 8) & 0xFF) as usize];
+    u32::from(lo) | (u32::from(hi) << 16)
+}
+
 /// Morton (Z-order) code of `(x, y)` for `x, y < 2¹⁶`: bit `i` of `x` goes
 /// to bit `2i`, bit `i` of `y` to bit `2i + 1`.
 #[inline]
 #[must_use]
+#[cfg(test)]
 pub(crate) const fn morton2(x: u32, y: u32) -> u32 {
     part1by1(x) | (part1by1(y) << 1)
 }
@@ -75,10 +96,12 @@ pub(crate) const fn morton2(x: u32, y: u32) -> u32 {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BlockLayout {
     geometry: Geometry,
-    /// Block offset of each level; entry `levels` and above hold the total.
-    offsets: [u32; MAX_LEVELS as usize + 1],
-    /// `log2` of the padded block columns and rows of each level.
-    log2_dims: [(u8, u8); MAX_LEVELS as usize],
+    /// `geometry.top_level()`.
+    top: u8,
+    /// The numbering of each level `0 ..= top` (entries above unused).
+    grids: [LevelGrid; MAX_LEVELS as usize],
+    /// Block numbers used by all levels.
+    total: u32,
 }
 
 /// `ceil(n / BLOCK)` rounded up to a power of two, as its `log2`.
@@ -91,29 +114,38 @@ impl BlockLayout {
     /// The block layout of `geometry`.
     #[must_use]
     pub const fn new(geometry: &Geometry) -> Self {
-        let mut offsets = [0u32; MAX_LEVELS as usize + 1];
-        let mut log2_dims = [(0u8, 0u8); MAX_LEVELS as usize];
+        let mut grids = [LevelGrid {
+            offset: 0,
+            last: [0; 2],
+            log2: [0; 2],
+        }; MAX_LEVELS as usize];
         let mut total = 0u32;
         let mut k = 0u8;
         while k < MAX_LEVELS {
-            offsets[k as usize] = total;
             if k < geometry.levels() {
                 let kk = k as u32;
                 let w = geometry.width() >> kk;
                 let h = geometry.height() >> kk;
                 let lx = padded_log2(if w == 0 { 1 } else { w });
                 let ly = padded_log2(if h == 0 { 1 } else { h });
-                log2_dims[k as usize] = (lx, ly);
+                // The texel clamp of `TexelSource::texel` (stored levels;
+                // sides ≤ 2¹⁵, so `side − 1` fits 16 bits).
+                let (sw, sh) = geometry.level_size(k);
+                grids[k as usize] = LevelGrid {
+                    offset: total,
+                    last: [(sw - 1) as u16, (sh - 1) as u16],
+                    log2: [lx, ly],
+                };
                 // Sides ≤ 2¹⁵ texels: ≤ 2²⁶ blocks in level 0, sum < 2²⁸.
                 total += 1 << (lx as u32 + ly as u32);
             }
             k += 1;
         }
-        offsets[MAX_LEVELS as usize] = total;
         Self {
             geometry: *geometry,
-            offsets,
-            log2_dims,
+            top: geometry.top_level(),
+            grids,
+            total,
         }
     }
 
@@ -123,7 +155,15 @@ impl BlockLayout {
     #[must_use]
     #[allow(clippy::len_without_is_empty)] // a pyramid has at least one block
     pub const fn len(&self) -> u32 {
-        self.offsets[MAX_LEVELS as usize]
+        self.total
+    }
+
+    /// `level` clamped to the top level, and its numbering ([`LevelGrid`]).
+    #[inline(always)]
+    fn grid(&self, level: u8) -> (u8, LevelGrid) {
+        let level = level.min(self.top);
+        // `top < MAX_LEVELS`: the mask changes nothing and spares a check.
+        (level, self.grids[usize::from(level) % MAX_LEVELS as usize])
     }
 
     /// Block number of block `(bx, by)` of `level` (level clamped to the
@@ -131,16 +171,8 @@ impl BlockLayout {
     #[inline]
     #[must_use]
     pub(crate) fn index_of_block(&self, level: u8, bx: u32, by: u32) -> u32 {
-        let k = usize::from(level.min(self.geometry.top_level()));
-        let (lx, ly) = self.log2_dims.get(k).copied().unwrap_or((0, 0));
-        let (lx, ly) = (u32::from(lx), u32::from(ly));
-        let bx = bx.min((1 << lx) - 1);
-        let by = by.min((1 << ly) - 1);
-        let low = lx.min(ly);
-        let mask = (1u32 << low) - 1;
-        let high = (bx >> low) | (by >> low);
-        let local = morton2(bx & mask, by & mask) | (high << (2 * low));
-        self.offsets.get(k).copied().unwrap_or(0) + local
+        let (_, g) = self.grid(level);
+        g.index(g.col_clamped(bx), g.row_clamped(by))
     }
 
     /// Block number of the block holding texel `(x, y)` of `level`
@@ -154,6 +186,73 @@ impl BlockLayout {
             x.min(w - 1) >> BLOCK_SHIFT,
             y.min(h - 1) >> BLOCK_SHIFT,
         )
+    }
+}
+
+/// The block numbering of one level of a [`BlockLayout`], split by axis:
+/// the number of block `(bx, by)` (inside the padded grid, `bx ≤ max[0]`,
+/// `by ≤ max[1]`) is `offset + (col(bx) | row(by))`. The interleaved low
+/// `low` bits of both coordinates are `part1by1(bx) | part1by1(by) << 1`,
+/// and the high bits of the longer side (the other side has none) sit
+/// above them; both terms are an OR of one part per axis. A footprint
+/// computes each axis's parts once for the (up to four) blocks it touches.
+/// Also the level's last texel column and row (the texel clamp), so that
+/// a footprint reads one record per level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct LevelGrid {
+    /// Block number of the level's first block.
+    offset: u32,
+    /// The last texel column and row of the level (`side − 1`).
+    last: [u16; 2],
+    /// `log2` of the padded block columns and rows (each ≤ 13).
+    log2: [u8; 2],
+}
+
+impl LevelGrid {
+    /// `min(log2 columns, log2 rows)`: the interleaved bits per axis.
+    #[inline(always)]
+    fn low(&self) -> u32 {
+        u32::from(self.log2[0].min(self.log2[1]))
+    }
+
+    /// The largest block column and row of the padded grid.
+    #[inline(always)]
+    fn max(&self) -> [u32; 2] {
+        self.log2.map(|l| (1u32 << (l & 15)) - 1)
+    }
+
+    /// The column part of the block number of column `bx ≤ max[0]`.
+    #[inline(always)]
+    fn col(&self, bx: u32) -> u32 {
+        let low = self.low();
+        let mask = (1u32 << low) - 1;
+        spread(bx & mask) | ((bx >> low) << (2 * low))
+    }
+
+    /// The row part of the block number of row `by ≤ max[1]`.
+    #[inline(always)]
+    fn row(&self, by: u32) -> u32 {
+        let low = self.low();
+        let mask = (1u32 << low) - 1;
+        (spread(by & mask) << 1) | ((by >> low) << (2 * low))
+    }
+
+    /// [`col`](Self::col) of `bx` clamped to the grid.
+    #[inline(always)]
+    fn col_clamped(&self, bx: u32) -> u32 {
+        self.col(bx.min(self.max()[0]))
+    }
+
+    /// [`row`](Self::row) of `by` clamped to the grid.
+    #[inline(always)]
+    fn row_clamped(&self, by: u32) -> u32 {
+        self.row(by.min(self.max()[1]))
+    }
+
+    /// The block number of the parts `col` and `row`.
+    #[inline(always)]
+    fn index(&self, col: u32, row: u32) -> u32 {
+        self.offset + (col | row)
     }
 }
 
@@ -269,16 +368,22 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
         let (Some(tags), Some(stamps)) = (self.tags.get_mut(set), self.stamps.get_mut(set)) else {
             return (false, 0, 0);
         };
-        let mut victim = 0;
-        let mut oldest = u64::MAX;
+        // Tags first: a hit in a later way reads no earlier way's stamp
+        // beyond the valid test.
         for (way, (tag, stamp)) in tags.iter().zip(stamps.iter_mut()).enumerate() {
-            if *stamp != 0 && *tag == block_address {
+            if *tag == block_address && *stamp != 0 {
                 *stamp = self.clock;
                 self.stats.hits += n;
                 return (true, set, way);
             }
-            if *stamp < oldest {
-                oldest = *stamp;
+        }
+        // A miss: the first empty way (stamp 0), else the least recently
+        // used (the first smallest stamp).
+        let mut victim = 0;
+        let mut oldest = u64::MAX;
+        for (way, &stamp) in stamps.iter().enumerate() {
+            if stamp < oldest {
+                oldest = stamp;
                 victim = way;
             }
         }
@@ -418,43 +523,64 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
 
     #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-        let (w, h) = self.layout.geometry.level_size(level);
-        let level = level.min(self.layout.geometry.top_level());
-        let (x, y) = (x.min(w - 1), y.min(h - 1));
-        let block = self.block(level, x >> BLOCK_SHIFT, y >> BLOCK_SHIFT, 1);
-        block[in_block(x, y)]
+        let (level, g) = self.layout.grid(level);
+        let [lx, ly] = g.last.map(u32::from);
+        let (x, y) = (x.min(lx), y.min(ly));
+        let (bx, by) = (x >> BLOCK_SHIFT, y >> BLOCK_SHIFT);
+        let address = g.index(g.col_clamped(bx), g.row_clamped(by));
+        self.block_at(level, bx, by, address, 1)[in_block(x, y)]
     }
 
     /// The footprint with one lookup per block it touches (one in 9 of 16
     /// positions, at most four), in the order of the texel reads, each
     /// counted as that many accesses: the same texels, counters and LRU
-    /// stamps as four [`texel`](Self::texel) calls. (Only where one read
-    /// of a block would evict another block of the same footprint in
-    /// between, a one-way set shared by two side-by-side blocks, are the
-    /// reads made one by one.)
+    /// stamps as four [`texel`](Self::texel) calls. The block numbers come
+    /// from one `LevelGrid` part per block column and row of the
+    /// footprint. (Where one read of a block could evict another block of
+    /// the same footprint in between, a one-way set shared by two
+    /// side-by-side blocks, the four reads are made one by one.)
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        let (w, h) = self.layout.geometry.level_size(level);
-        let level = level.min(self.layout.geometry.top_level());
-        let x = [x[0].min(w - 1), x[1].min(w - 1)];
-        let y = [y[0].min(h - 1), y[1].min(h - 1)];
+        // The clamps of `texel`: the texel to the stored level's size, the
+        // block number's coordinates to the padded grid (which only a
+        // trimmed level past the last stored one can exceed).
+        let (level, g) = self.layout.grid(level);
+        let [lx, ly] = g.last.map(u32::from);
+        let x = [x[0].min(lx), x[1].min(lx)];
+        let y = [y[0].min(ly), y[1].min(ly)];
         let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
         let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
         let at = |i: usize, j: usize| in_block(x[i], y[j]);
+        let c0 = g.col_clamped(bx[0]);
+        let r0 = g.row_clamped(by[0]);
+        let a = g.index(c0, r0);
         if bx[0] == bx[1] && by[0] == by[1] {
-            let b = self.block(level, bx[0], by[0], 4);
+            let b = self.block_at(level, bx[0], by[0], a, 4);
             return [b[at(0, 0)], b[at(1, 0)], b[at(0, 1)], b[at(1, 1)]];
         }
         if bx[0] == bx[1] {
             // Reads t00, t10 (top block), t01, t11 (bottom block).
-            let top = self.block(level, bx[0], by[0], 2);
+            let top = self.block_at(level, bx[0], by[0], a, 2);
             let (t00, t10) = (top[at(0, 0)], top[at(1, 0)]);
-            let bottom = self.block(level, bx[0], by[1], 2);
+            let c = g.index(c0, g.row_clamped(by[1]));
+            let bottom = self.block_at(level, bx[0], by[1], c, 2);
             return [t00, t10, bottom[at(0, 1)], bottom[at(1, 1)]];
         }
-        let a = self.layout.index_of_block(level, bx[0], by[0]);
-        let b = self.layout.index_of_block(level, bx[1], by[0]);
-        if by[0] == by[1] && (WAYS > 1 || a as usize % SETS != b as usize % SETS) {
+        let c1 = g.col_clamped(bx[1]);
+        let b = g.index(c1, r0);
+        if by[0] != by[1] {
+            // Four different blocks, each read once: four single
+            // accesses in the order of the texel reads.
+            let r1 = g.row_clamped(by[1]);
+            let t00 = self.block_at(level, bx[0], by[0], a, 1)[at(0, 0)];
+            let t10 = self.block_at(level, bx[1], by[0], b, 1)[at(1, 0)];
+            let c = g.index(c0, r1);
+            let t01 = self.block_at(level, bx[0], by[1], c, 1)[at(0, 1)];
+            let d = g.index(c1, r1);
+            let t11 = self.block_at(level, bx[1], by[1], d, 1)[at(1, 1)];
+            return [t00, t10, t01, t11];
+        }
+        if WAYS > 1 || a as usize % SETS != b as usize % SETS {
             // Reads alternate left, right, left, right: two lookups of two
             // accesses each keep every tag, stamp order and counter, since
             // neither block can evict the other in between.
@@ -464,10 +590,10 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
             return [t00, right[at(1, 0)], t01, right[at(1, 1)]];
         }
         [
-            self.texel(level, x[0], y[0]),
-            self.texel(level, x[1], y[0]),
-            self.texel(level, x[0], y[1]),
-            self.texel(level, x[1], y[1]),
+            self.block_at(level, bx[0], by[0], a, 1)[at(0, 0)],
+            self.block_at(level, bx[1], by[0], b, 1)[at(1, 0)],
+            self.block_at(level, bx[0], by[0], a, 1)[at(0, 1)],
+            self.block_at(level, bx[1], by[0], b, 1)[at(1, 1)],
         ]
     }
 }
@@ -480,17 +606,11 @@ fn in_block(x: u32, y: u32) -> usize {
 
 impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, WAYS> {
     /// The data of block `(bx, by)` of `level` (`level` at most the top
-    /// level, `bx`, `by` inside its block grid) after `n` accesses to it:
-    /// looked up once ([`BlockCache`]'s `lookup_n`), filled from memory on
-    /// a miss.
-    #[inline]
-    fn block(&mut self, level: u8, bx: u32, by: u32, n: u32) -> &[Texel; BLOCK_TEXELS] {
-        let address = self.layout.index_of_block(level, bx, by);
-        self.block_at(level, bx, by, address, n)
-    }
-
-    /// [`block`](Self::block) with its block number `address` given.
-    #[inline]
+    /// level, `bx`, `by` inside its block grid), whose block number is
+    /// `address`, after `n` accesses to it: looked up once ([`BlockCache`]'s
+    /// `lookup_n`, inlined), filled from memory on a miss ([`fill`](Self::fill),
+    /// out of line).
+    #[inline(always)]
     fn block_at(
         &mut self,
         level: u8,
@@ -501,13 +621,23 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, W
     ) -> &[Texel; BLOCK_TEXELS] {
         const EMPTY: [Texel; BLOCK_TEXELS] = [0; BLOCK_TEXELS];
         let (hit, set, way) = self.tags.lookup_n(address, n);
-        let Some(block) = self.data.get_mut(set).and_then(|s| s.get_mut(way)) else {
-            return &EMPTY;
-        };
         if !hit {
+            self.fill(level, bx, by, set, way);
+        }
+        self.data
+            .get(set)
+            .and_then(|s| s.get(way))
+            .unwrap_or(&EMPTY)
+    }
+
+    /// Reads block `(bx, by)` of `level` from memory into way `way` of set
+    /// `set` (a miss: out of line, so that the hits stay short).
+    #[cold]
+    #[inline(never)]
+    fn fill(&mut self, level: u8, bx: u32, by: u32, set: usize, way: usize) {
+        if let Some(block) = self.data.get_mut(set).and_then(|s| s.get_mut(way)) {
             self.memory.read_block(level, bx, by, block);
         }
-        block
     }
 }
 
@@ -571,6 +701,55 @@ mod tests {
         }
         let g = Geometry::new(64, 64, 1).unwrap();
         assert_eq!(BlockLayout::new(&g).len(), 256);
+    }
+
+    /// The per-axis parts of [`LevelGrid`] give the block numbers of the
+    /// interleaved definition (the low bits of column and row interleaved,
+    /// the high bits of the longer side above them, plus the level's
+    /// offset) for every block of square, long, tall and odd-sized levels,
+    /// unclamped as a footprint computes them.
+    #[test]
+    fn grid_parts_equal_interleaved_numbers() {
+        for (w, h, l) in [
+            (64, 64, 7),
+            (16, 256, 9),
+            (261, 13, 9),
+            (1, 1, 1),
+            (37, 5, 6),
+        ] {
+            let g = Geometry::new(w, h, l).unwrap();
+            let layout = BlockLayout::new(&g);
+            // Block columns and rows of each level, padded to powers of two.
+            let padded = |k: u8| {
+                let (lw, lh) = g.level_size(k);
+                let n = |s: u32| s.div_ceil(BLOCK).next_power_of_two();
+                (n(lw), n(lh))
+            };
+            let mut offset = 0;
+            for k in 0..l {
+                let (pw, ph) = padded(k);
+                let low = pw.min(ph).trailing_zeros();
+                let (_, grid) = layout.grid(k);
+                let (lw, lh) = g.level_size(k);
+                assert_eq!(grid.last, [(lw - 1) as u16, (lh - 1) as u16]);
+                assert_eq!(grid.max(), [pw - 1, ph - 1]);
+                for by in 0..lh.div_ceil(BLOCK) {
+                    for bx in 0..lw.div_ceil(BLOCK) {
+                        let m = (1 << low) - 1;
+                        let high = (bx >> low) | (by >> low);
+                        let want = offset + (morton2(bx & m, by & m) | (high << (2 * low)));
+                        assert_eq!(
+                            grid.index(grid.col(bx), grid.row(by)),
+                            want,
+                            "{k} {bx} {by}"
+                        );
+                        assert_eq!(layout.index_of_block(k, bx, by), want);
+                    }
+                }
+                offset += pw * ph;
+            }
+            assert_eq!(layout.len(), offset);
+        }
     }
 
     #[test]
