@@ -53,8 +53,116 @@ unset _lib_p
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
-# step TEXT...: a heading in the log, with the UTC time (the log shows where CI spends its time).
-step() { printf '\n==> %s  [%s]\n' "$*" "$(date -u +%T)"; }
+# step TEXT...: a heading in the log, with the UTC time (the log shows where
+# CI spends its time). After steps_begin it also closes the previous step's
+# row of the step table (see below).
+step() {
+    _lib_step_close
+    printf '\n==> %s  [%s]\n' "$*" "$(date -u +%T)"
+    _lib_step_open "$*"
+}
+
+# The step table (scripts/test-all): wall seconds and CPU-seconds (user +
+# system, summed over every process that ended within the step) per step.
+# CPU-seconds do not depend on what else the machine is doing, wall seconds
+# do. A background job (bg_start ... bg_wait) gets a row of its own, and its
+# CPU-seconds are not counted again in the step that waits for it.
+#   steps_begin          turn the table on (steps before it are not timed)
+#   bg_start VAR NAME LOG COMMAND...
+#                        COMMAND (a command or a function) in the background,
+#                        its output to LOG, its pid in VAR
+#   bg_wait VAR WHAT     wait for it, print LOG, and fail the script with
+#                        "FAIL: WHAT" when it failed
+#   steps_end            close the last step; print the table, and write it
+#                        as tab-separated rows (kind: step or background,
+#                        start, wall and CPU in centiseconds, the start since
+#                        the epoch; name) to $RAYMIP_STEP_TIMES when set
+_lib_steps=0
+_lib_rows=()
+_lib_bg_cpu=0
+# _lib_cpu PID: CPU centiseconds of process PID and its waited-for children
+# (utime + stime + cutime + cstime of /proc/PID/stat).
+_lib_cpu() {
+    local s f
+    read -r s <"/proc/$1/stat"
+    read -r -a f <<<"${s##*) }"
+    echo $(((f[11] + f[12] + f[13] + f[14]) * 100 / _lib_hz))
+}
+# _lib_now: centiseconds since the epoch.
+_lib_now() {
+    local t=${EPOCHREALTIME/[.,]/}
+    echo $((10#${t:0:-4}))
+}
+_lib_cs() { printf '%d.%02d' $(($1 / 100)) $(($1 % 100)); }
+steps_begin() {
+    _lib_steps=1
+    _lib_hz=$(getconf CLK_TCK)
+    _lib_t00=$(_lib_now)
+    tmpdir _lib_acct
+}
+_lib_step_open() {
+    [ "$_lib_steps" = 1 ] || return 0
+    _lib_step_name=$1
+    _lib_step_t0=$(_lib_now)
+    _lib_step_cpu0=$(_lib_cpu $$)
+    _lib_bg_cpu=0
+}
+_lib_step_close() {
+    [ "$_lib_steps" = 1 ] && [ -n "${_lib_step_name:-}" ] || return 0
+    local now cpu
+    now=$(_lib_now)
+    cpu=$(($(_lib_cpu $$) - _lib_step_cpu0 - _lib_bg_cpu))
+    _lib_rows+=("step"$'\t'"$_lib_step_t0"$'\t'"$((now - _lib_step_t0))"$'\t'"$cpu"$'\t'"$_lib_step_name")
+    _lib_step_name=""
+}
+bg_start() {
+    local var=$1 name=$2 log=$3 t0
+    shift 3
+    t0=$(_lib_now)
+    (
+        rc=0 me=$BASHPID
+        "$@" || rc=$?
+        if [ "$_lib_steps" = 1 ]; then
+            printf '%s\t%s\t%s\n' "$t0" "$(_lib_now)" "$(_lib_cpu "$me")" >"$_lib_acct/$name"
+        fi
+        exit $rc
+    ) >"$log" 2>&1 &
+    printf -v "$var" '%s' "$!"
+    printf -v "_lib_bg_log_$!" '%s' "$log"
+    printf -v "_lib_bg_name_$!" '%s' "$name"
+}
+bg_wait() {
+    local pid=${!1} what=$2 rc=0 log name t0 t1 cpu
+    log=_lib_bg_log_$pid
+    log=${!log}
+    name=_lib_bg_name_$pid
+    name=${!name}
+    wait "$pid" || rc=$?
+    cat "$log"
+    if [ "$_lib_steps" = 1 ] && [ -f "$_lib_acct/$name" ]; then
+        read -r t0 t1 cpu <"$_lib_acct/$name"
+        _lib_bg_cpu=$((_lib_bg_cpu + cpu))
+        _lib_rows+=("background"$'\t'"$t0"$'\t'"$((t1 - t0))"$'\t'"$cpu"$'\t'"$name")
+    fi
+    [ "$rc" = 0 ] || die "FAIL: $what (exit $rc), its log above"
+}
+steps_end() {
+    [ "$_lib_steps" = 1 ] || return 0
+    _lib_step_close
+    local row kind start wall cpu name total_cpu=0
+    printf '\n==> step table: wall and CPU seconds per step (%s CPUs)\n' "$(nproc)"
+    printf '%10s %8s %8s  %s\n' "start s" "wall s" "CPU s" "step"
+    for row in "${_lib_rows[@]}"; do
+        IFS=$'\t' read -r kind start wall cpu name <<<"$row"
+        total_cpu=$((total_cpu + cpu))
+        [ "$kind" = step ] || name="[background] $name"
+        printf '%10s %8s %8s  %s\n' "$(_lib_cs $((start - _lib_t00)))" "$(_lib_cs "$wall")" "$(_lib_cs "$cpu")" "${name:0:100}"
+    done
+    printf '%10s %8s %8s  %s\n' "" "$(_lib_cs $(($(_lib_now) - _lib_t00)))" "$(_lib_cs "$total_cpu")" "total"
+    if [ -n "${RAYMIP_STEP_TIMES:-}" ]; then
+        printf '%s\n' "${_lib_rows[@]}" >"$RAYMIP_STEP_TIMES"
+    fi
+}
 
 # die TEXT...: message to stderr, exit 1.
 die() {
