@@ -43,7 +43,7 @@
 //   power-of-two pyramid with the ACCURATE linear kernel (RGBA8).
 //   funct7 2, funct3 0  tex.ram rd
 //             rd = RAM_BASE | log2(RAM bytes): the RAM the unit reads (its
-//             base is aligned to its size).
+//             base is aligned to its size); 0 without a RAM (HAS_RAM = 0).
 //   funct7 2, funct3 1  tex.sel rd, rs1, rs2
 //             rs1 = the byte address of a sampler's descriptor block (19
 //             words, src/coproc/mod.rs writes them):
@@ -56,7 +56,7 @@
 //                       ky[31:28];
 //             rs2 = a lod (I8F8 bits, sign-extended). rd = 1 when the
 //             block lies in the RAM (word-aligned), else 0 (and nothing
-//             else happens). Then, in the background, the unit reads the
+//             else happens; always 0 with HAS_RAM = 0). Then, in the background, the unit reads the
 //             window, computes bits = min(max(lod + bias, lo), hi), and
 //             reads the descriptors of levels bits >> 8 and bits >> 8 + 1.
 //   funct7 2, funct3 2  tex.tri rd, rs1, rs2
@@ -106,6 +106,10 @@
 
 /* verilator lint_off DECLFILENAME */  // LiteX instantiates the CFU as `Cfu`
 module Cfu #(
+    // 1: the mem_* ports are connected to the RAM at RAM_BASE; 0 (a CFU
+    // instantiated without them): the texture unit has no RAM, tex.ram
+    // answers 0 and tex.sel 0 (the firmware then samples without it).
+    parameter integer HAS_RAM = 0,
     parameter [31:0] RAM_BASE = 32'h4000_0000,
     // Words per bank 2^RAM_AW: the RAM is 2^(RAM_AW + 3) bytes.
     parameter integer RAM_AW = 15
@@ -284,7 +288,7 @@ module Cfu #(
     /* verilator lint_off UNUSEDSIGNAL */
     wire [31:0] off = a - RAM_BASE;
     /* verilator lint_on UNUSEDSIGNAL */
-    wire blk_ok = a[1:0] == 2'd0 && off <= (32'd1 << RAM_LOG2) - BLOCK_BYTES;
+    wire blk_ok = HAS_RAM != 0 && a[1:0] == 2'd0 && off <= (32'd1 << RAM_LOG2) - BLOCK_BYTES;
     // The window: bits = min(max(lod + bias, lo), hi), 18-bit signed sum.
     /* verilator lint_off UNUSEDSIGNAL */  // the bias and lod are I8F8 bits: 18 bits hold their sum
     wire [17:0] wsum = slod + swin0;
@@ -557,7 +561,7 @@ module Cfu #(
                 endcase
             end else if (op2) begin
                 case (funct3)
-                    3'd0: rsp_payload_outputs_0 <= RAM_BASE | RAM_LOG2;
+                    3'd0: rsp_payload_outputs_0 <= HAS_RAM != 0 ? RAM_BASE | RAM_LOG2 : 32'd0;
                     3'd1: begin
                         rsp_payload_outputs_0 <= {31'd0, blk_ok};
                         if (blk_ok) begin

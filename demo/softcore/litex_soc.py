@@ -4,7 +4,8 @@ or `full+cfu` with the texture co-processor demo/softcore/cfu_tex.v on its
 CFU port), one integrated main RAM holding code and data, LiteX's UART and
 a simulation exit register, for LiteX's simulation platform.
 
---cfu names cfu_tex.v; its tex_log2pl.v beside it is added too.
+--cfu names cfu_tex.v; its tex_log2pl.v beside it is added too, and the
+CFU's texture unit gets its read port on the main RAM (add_cfu_ram_port).
 
 Generates the SoC's Verilog with LiteX's SoC builder (SoCCore, SimPlatform)
 into --out: `sim.v` (top module `sim`), the CPU's and the CFU's Verilog
@@ -126,6 +127,7 @@ class RaymipSoC(SoCCore):
         hold = Signal(name="cfu_mem_hold")
         self.comb += hold.eq(dbus.cyc & dbus.we)
         self.cpu.cfu_params.update(
+            p_HAS_RAM=1,
             p_RAM_BASE=MAIN_RAM,
             p_RAM_AW=aw,
             o_mem_adr_0=adr[0],

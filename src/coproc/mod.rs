@@ -175,7 +175,7 @@ pub fn descriptor_block(
     (ram_base, ram_bytes): (usize, usize),
 ) -> Option<[u32; BLOCK_WORDS]> {
     let max = 15 << 8;
-    if !addressable(mu) || !addressable(mv) || !(0 <= lo && lo <= hi && hi <= max) {
+    if !(addressable(mu) && addressable(mv) && 0 <= lo && lo <= hi && hi <= max) {
         return None;
     }
     // The unit adds the bias to an I8F8 lod in 18 bits.
