@@ -162,7 +162,7 @@ MATRIX_CEILINGS = {
     "ts_bil_f": {"m4": 152, "rv": 197, "rvzbb": 183},
     "ts_tri": {"m4": 328, "rv": 403, "rvzbb": 392},
     "ts_tri_f": {"m4": 284, "rv": 385, "rvzbb": 355},
-    "ts_srgb": {"m4": 573, "rv": 707, "rvzbb": 696},
+    "ts_srgb": {"m4": 502, "rv": 612, "rvzbb": 596},
     "ts_565": {"m4": 638, "rv": 762, "rvzbb": 727},
     "ts_565_f": {"m4": 593, "rv": 743, "rvzbb": 690},
     "ts_bc1_hit": {"m4": 990, "rv": 1095, "rvzbb": 1068},
@@ -211,7 +211,8 @@ MATRIX_MISSED = {
         "sRGB decodes each texel by table into four 16-bit lanes, one channel per word, so the "
         "filter reads them without an extract (three table loads and alpha `·257` per texel), filters "
         "one channel per 32-bit multiply-accumulate with 16-bit weights and re-encodes three "
-        "channels by table. RGB565 is read through `Image`'s footprint (the level's size, offset and "
+        "channels, each by a 736-byte table of threshold counts and two compares (no search): its "
+        "goal is met. RGB565 is read through `Image`'s footprint (the level's size, offset and "
         "row starts once per footprint, then per texel its two bytes and the bit replication); the "
         "sampler addresses a power-of-two image as the direct "
         "path does (the level's constants from its table) but cannot read it without the image's "

@@ -8,9 +8,10 @@
 //!   A 256-entry table: exact to half an L16 step.
 //! * **Encode** (after filtering, [`encode`]): a linear value in L16 with 8
 //!   more fractional bits (16.8, as the filters produce it) becomes the
-//!   8-bit code `round(255·OETF(x))`, found by binary search over the 255
-//!   decision thresholds [`ENCODE_THRESHOLDS`]`[k] = ceil(EOTF((k + ½)/255)·65535·256)`
-//!   (8 compares). Exact for the 16.8 input: the result equals the f64
+//!   8-bit code `round(255·OETF(x))`: the number of the 255 decision
+//!   thresholds [`ENCODE_THRESHOLDS`]`[k] = ceil(EOTF((k + ½)/255)·65535·256)`
+//!   at or below `x`, read from a 736-byte bucket table of counts and two
+//!   compares (no search). Exact for the 16.8 input: the result equals the f64
 //!   rounding of `255·OETF(x)` except where `x` lies within one 16.8 step
 //!   of a threshold.
 //! * **Pyramids** of sRGB textures are generated in linear space
@@ -87,19 +88,58 @@ pub const ENCODE_THRESHOLDS: [u32; 256] = [
 /// `crate::texture::kernel::srgb`).
 pub const SRGB_ENCODE_MAX_ERROR_LSB: f64 = 0.55;
 
+/// Tier boundary of [`ENCODE_BUCKETS`]: values below `2²⁰` fall into
+/// buckets of 2¹² (the thresholds there are at least 5092 apart: at most
+/// one per bucket), values above into buckets of 2¹⁵ (thresholds at least
+/// 29 000 apart there: at most two per bucket). Tested.
+const ENCODE_TIER: u32 = 1 << 20;
+
+/// `ENCODE_BUCKETS[b]`: the number of [`ENCODE_THRESHOLDS`] entries at or
+/// below the start of bucket `b` (`x >> 12` below [`ENCODE_TIER`], then
+/// `224 + (x >> 15)`, up to `x < 2²⁴`; larger values are clamped to the
+/// last bucket, whose count is 255).
+const ENCODE_BUCKETS: [u8; 736] = {
+    let mut t = [0u8; 736];
+    let mut b = 0;
+    while b < 736 {
+        let start: u32 = if b < 256 {
+            (b as u32) << 12
+        } else {
+            ((b as u32) - 224) << 15
+        };
+        let mut c = 0;
+        while c < 255 && ENCODE_THRESHOLDS[c] <= start {
+            c += 1;
+        }
+        t[b] = c as u8;
+        b += 1;
+    }
+    t
+};
+
 /// 8-bit sRGB code of a linear 16.8 value `x` (65535·256 = 1.0; larger
-/// values give 255): `round(255·OETF(x))` by binary search. Never panics.
+/// values give 255): `round(255·OETF(x))`, the number of
+/// [`ENCODE_THRESHOLDS`] entries at or below `x`: the count below the
+/// bucket of `x` ([`ENCODE_BUCKETS`]) plus the (at most two) thresholds
+/// inside it that `x` reaches. Never panics.
 #[inline]
 #[must_use]
 pub fn encode(x: u32) -> u8 {
-    let mut code = 0usize;
-    for step in [128, 64, 32, 16, 8, 4, 2, 1] {
-        // code + step − 1 ≤ 254: the mask only spares a bounds check.
-        if x >= ENCODE_THRESHOLDS[(code + step - 1) & 0xFF] {
-            code += step;
-        }
-    }
-    code as u8
+    let x = x.min((1 << 24) - 1);
+    let b = if x < ENCODE_TIER {
+        x >> 12
+    } else {
+        224 + (x >> 15)
+    };
+    let c = ENCODE_BUCKETS.get(b as usize).copied().unwrap_or(255);
+    // Entry 255 is the sentinel `u32::MAX`: `c + 1 ≤ 255` reads it at most.
+    let at = |k: u8| {
+        ENCODE_THRESHOLDS
+            .get(usize::from(k))
+            .copied()
+            .unwrap_or(u32::MAX)
+    };
+    c + u8::from(x >= at(c)) + u8::from(x >= at(c.saturating_add(1)))
 }
 
 /// The linear L16 value of sRGB code `c`.
@@ -183,6 +223,34 @@ mod tests {
             assert_eq!(f64::from(t), want, "threshold {k}");
         }
         assert_eq!(ENCODE_THRESHOLDS[255], u32::MAX);
+    }
+
+    /// The bucketed encode equals the binary search over every input of
+    /// the 16.8 range and beyond, and the buckets hold at most one (below
+    /// 2²⁰) or two thresholds.
+    #[test]
+    fn encode_equals_the_search() {
+        let search = |x: u32| {
+            let mut code = 0usize;
+            for step in [128, 64, 32, 16, 8, 4, 2, 1] {
+                if x >= ENCODE_THRESHOLDS[(code + step - 1) & 0xFF] {
+                    code += step;
+                }
+            }
+            code as u8
+        };
+        let step = if cfg!(miri) { 9973 } else { 1 };
+        for x in (0..(1u32 << 24) + 4096).step_by(step) {
+            assert_eq!(encode(x), search(x), "{x}");
+        }
+        for x in [u32::MAX, u32::MAX - 1, 1 << 31] {
+            assert_eq!(encode(x), search(x), "{x}");
+        }
+        for w in ENCODE_THRESHOLDS[..255].windows(2) {
+            let gap = w[1] - w[0];
+            assert!(gap > 1 << 12, "{w:?}");
+            assert!(w[0] < ENCODE_TIER || gap > 1 << 14, "{w:?}");
+        }
     }
 
     #[test]
