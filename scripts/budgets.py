@@ -309,7 +309,7 @@ MISSED = {
         "`lui`/`addi`/`add`/`lbu` for the table) replace one instruction, and RISC-V has no "
         "bit-field extract or shifted operand (index and weight cost two instructions each, "
         "every shifted add one more). Below 20 needs the interpolation gone: a larger table read "
-        "without it (the FAST path `table_lod_fast`, not bit-identical: its row above)."
+        "without it (the FAST tier `table_lod::<Fast>`, not bit-identical: its row above)."
     ),
     "cone_lod": (
         "Two accurate logarithms (the 64-bit width as in table lod, the 32-bit `n·d` after its "
@@ -627,7 +627,7 @@ def render(work, old_text, readme):
     w("the caller's call instruction excluded), 64 calls with the pseudo-random inputs of")
     w("`demo/firmware/src/lib.rs` (`inputs`), called from `demo/firmware/src/bin/budget.rs`.")
     w("min / mean / max; the goal and the CI ceiling apply to the max. ACCURATE paths (bit-identical")
-    w("on every target) beside the FAST paths `table_lod_fast` / `cone_lod_fast` (1024-entry log2")
+    w("on every target) beside the FAST paths `table_lod::<Fast>` / `cone_lod::<Fast>` (1024-entry log2")
     w("table without interpolation: log2 error ≤ 2⁻¹⁰, lod error ≤ 2⁻⁸ level as for the accurate")
     w("paths) and the FAST tier's trilinear sample (`Cfg<Wrap, Wrap, Linear, Fast>`: D3D11's 8-bit")
     w("positions, exact corner weights, two channels per multiply-accumulate, bound 1.5 LSB against")
@@ -677,8 +677,8 @@ def render(work, old_text, readme):
         w("| " + " | ".join(row) + " |")
 
     w("\n## Batch entry points\n")
-    w("`table_lod_batch`, `cone_lod_batch`, their FAST forms `table_lod_fast_batch`,")
-    w("`cone_lod_fast_batch`, `Sampler::sample_batch` (slice of hits in, slice of")
+    w("`table_lod_batch`, `cone_lod_batch`, their FAST forms `table_lod_norm_batch`,")
+    w("`cone_lod_batch::<Fast>`, `Sampler::sample_batch` (slice of hits in, slice of")
     w("results out, caller memory), each called once with the first 32 and once with all 64 inputs")
     w("above. Steady state per hit = (count for 64 − count for 32) / 32; amortised = count for")
     w("64 / 64 (call and loop set-up included).\n")

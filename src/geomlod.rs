@@ -47,20 +47,7 @@
 
 use core::fmt;
 
-use fixed::types::{I16F16, I32F32, U16F16};
-
-/// Camera-space depth of an instance (its reference point): I32F32 scene
-/// units. Example: [`Selector`].
-pub type Depth = I32F32;
-/// Geometric LOD parameter `l`: U16F16 levels, in `[0, L − 1]`. Example:
-/// [`Selector`].
-pub type GeomLod = U16F16;
-/// LOD bias: I16F16 levels (added before clamping). Example: [`Selector`].
-pub type LodBias = I16F16;
-/// Transition interval `t`: U16F16 in `[0, 1]` (0 = discrete step, 1 = the
-/// whole interval between two LODs is a cross-dissolve). Example:
-/// [`Selector`].
-pub type Transition = U16F16;
+use crate::units::{Depth, GeomLod, LodBias, Transition};
 
 /// Most LODs a mesh may have: 8, one per instance-mask bit.
 pub const MAX_LEVELS: u8 = 8;
@@ -73,7 +60,8 @@ pub const LOD_PARAM_MAX_ERROR: f64 = 1.0 / 32768.0;
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{ConfigError, Depth, LodBias, LodMode, LodRange, Selector, Transition};
+/// use raymip::geomlod::{ConfigError, LodMode, LodRange, Selector};
+/// use raymip::units::{Depth, LodBias, Transition};
 /// let (near, far) = (Depth::from_num(1), Depth::from_num(33));
 /// let err = LodRange::new(near, far, 0, LodBias::ZERO).unwrap_err();
 /// assert_eq!(err, ConfigError::Levels(0));
@@ -117,7 +105,8 @@ impl fmt::Display for ConfigError {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{Depth, GeomLod, LodBias, LodRange};
+/// use raymip::geomlod::LodRange;
+/// use raymip::units::{Depth, GeomLod, LodBias};
 /// // 4 LODs over depths 0..32: l = 4·z/32 = z/8.
 /// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// assert_eq!(range.levels(), 4);
@@ -299,8 +288,8 @@ pub struct InstanceLod {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{Depth, InstanceLod, LodBias, LodMode, LodRange, RecordsFull, Selector};
-/// use raymip::geomlod::Transition;
+/// use raymip::geomlod::{InstanceLod, LodMode, LodRange, RecordsFull, Selector};
+/// use raymip::units::{Depth, LodBias, Transition};
 /// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// let selector = Selector::new(range, LodMode::Stochastic(Transition::ONE))?;
 /// // Depth 12 is l = 1.5, mid-transition: two records (LODs 1 and 2).
@@ -336,8 +325,9 @@ impl fmt::Display for RecordsFull {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{Choice, Depth, InstanceLod, LodBias, LodMode, LodRange, Selector};
-/// use raymip::geomlod::{Transition, visible};
+/// use raymip::geomlod::{Choice, InstanceLod, LodMode, LodRange, Selector};
+/// use raymip::units::{Depth, LodBias, Transition};
+/// use raymip::geomlod::visible;
 /// // 4 LODs over depths 0..32: l = z/8.
 /// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// // Discrete: round(l), ties up; depth 12 is l = 1.5 → LOD 2 for every ray.

@@ -74,11 +74,11 @@
 //! [`texture`] for the tiers and their bounds.
 //!
 //! ```
-//! use fixed::types::U32F32;
-//! use raymip::lod::{table_lod, Lod};
-//! use raymip::path::raystack::{PathState, RayStack, Spread};
+//! use raymip::lod::table_lod;
+//! use raymip::path::raystack::{PathState, RayStack};
 //! use raymip::setup::camera::PixelSpread;
-//! use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
+//! use raymip::setup::table::{PbTable, TexTriangle};
+//! use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread};
 //!
 //! // Set-up: camera with 60° vertical field of view, 480 rows.
 //! let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
@@ -94,26 +94,26 @@
 //! // Per hit: the primary ray hits triangle 0 at t = 1.2 scene units, a
 //! // mirror bounce adds 0.8 more.
 //! let mut stack: RayStack = RayStack::new();
-//! let hit = PathState::primary(&spread, 0xFF).advance(U32F32::from_num(1.2));
+//! let hit = PathState::primary(&spread, 0xFF).advance(PathLength::from_num(1.2));
 //! stack.push(hit.bounce(Spread::ZERO))?;
-//! let lod0 = table_lod(hit.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
-//! let next = stack.pop().ok_or("empty")?.advance(U32F32::from_num(0.8));
-//! let lod1 = table_lod(next.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
+//! let lod0 = table_lod::<Accurate>(hit.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
+//! let next = stack.pop().ok_or("empty")?.advance(PathLength::from_num(0.8));
+//! let lod1 = table_lod::<Accurate>(next.pl, table.get(0).ok_or("index")?).ok_or("untextured")?;
 //! // Pl went from 1.2 to 2.0: log2(2.0/1.2) ≈ 0.74 levels coarser.
 //! assert!((lod1 - lod0 - Lod::from_num(0.737)).abs() < Lod::from_num(0.01));
 //! // Untextured triangles skip the texture path.
-//! assert_eq!(table_lod(next.pl, table.get(2).ok_or("index")?), None);
+//! assert_eq!(table_lod::<Accurate>(next.pl, table.get(2).ok_or("index")?), None);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
 //! The texture half: a pyramid in a caller-provided buffer sized at compile
 //! time by [`texture::storage::mip::pyramid_len`], generated in place, then
-//! sampled per hit with a fixed-point [`lod::Lod`]:
+//! sampled per hit with a fixed-point [`Lod`]:
 //!
 //! ```
-//! use raymip::lod::Lod;
+//! use raymip::units::{Lod, TexCoord};
 //! use raymip::texture::storage::mip::{generate, pyramid_len, Geometry, Pyramid, Texel};
-//! use raymip::texture::{Mode, Sampler, TexCoord};
+//! use raymip::texture::{Mode, Sampler};
 //!
 //! const W: u32 = 8;
 //! const H: u32 = 8;
@@ -173,6 +173,7 @@ pub mod path;
 pub mod rng;
 pub mod setup;
 pub mod texture;
+pub mod units;
 
 // The README's Rust example runs as a doctest (`cargo test --doc`), so the
 // front page cannot drift from the API.
@@ -181,11 +182,11 @@ pub mod texture;
 struct ReadmeExample;
 
 // The everyday types, re-exported at the crate root.
-pub use lod::Lod;
-pub use path::raystack::{PathLength, PathState, RayStack, Spread, StackFull, Width};
+pub use path::raystack::{PathState, RayStack, StackFull};
 pub use setup::camera::{CameraError, PixelSpread};
-pub use setup::table::{Delta, Log2Pb, PbTable, TableError, TexTriangle};
+pub use setup::table::{PbTable, TableError, TexTriangle};
 #[cfg(feature = "cache")]
 pub use texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
 pub use texture::storage::mip::{Geometry, MipError, Pyramid, Texel};
-pub use texture::{AddressMode, Cfg, Mode, Sampler, SamplerState, TexCoord};
+pub use texture::{AddressMode, Cfg, Mode, Sampler, SamplerState};
+pub use units::{Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};

@@ -10,16 +10,17 @@
 
 mod common;
 
-use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
+use fixed::types::U1F31;
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use raymip::ffi::*;
 use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
 use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 fuzz_target!(|data: &[u8]| {
     let mut u = Unstructured::new(data);
@@ -115,7 +116,7 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
             }
             // Valid buffers of the stated lengths.
             let s = update(entries.as_mut_ptr(), tris.as_ptr());
-            let Ok(sp) = PixelSpread::from_angle(I2F30::from_bits(spread)) else {
+            let Ok(sp) = PixelSpread::from_angle(Spread::from_bits(spread)) else {
                 assert_eq!(s, RmStatus::BadAngle);
                 assert!(entries.iter().all(|&e| e == 0x5A5A_5A5A));
                 return Ok(());
@@ -158,7 +159,7 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
             let mut out = 0x7777i16;
             // SAFETY: valid local.
             let s = unsafe { rm_table_lod(pl, e, &mut out) };
-            match table_lod(U32F32::from_bits(pl), Log2Pb::from_bits(e)) {
+            match table_lod::<Accurate>(PathLength::from_bits(pl), Log2Pb::from_bits(e)) {
                 Some(l) => assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
                 None => assert_eq!((s, out), (RmStatus::Untextured, 0x7777)),
             }
@@ -168,15 +169,15 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                 RmStatus::Misaligned
             );
             assert!(raw.untouched());
-            let want = cone_lod(
-                I32F32::from_bits(w),
-                I16F16::from_bits(d),
+            let want = cone_lod::<Accurate>(
+                Width::from_bits(w),
+                Delta::from_bits(d),
                 Some(U1F31::from_bits(c)),
             );
             assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
             assert_eq!(
                 rm_clamp_lod(lod, levels),
-                clamp_lod(I8F8::from_bits(lod), levels).to_bits()
+                clamp_lod(Lod::from_bits(lod), levels).to_bits()
             );
         }
         2 => {
@@ -202,7 +203,8 @@ fn step(u: &mut Unstructured, stack: &mut RmRayStack, model: &mut Vec<RmPathStat
                         }
                         assert_eq!(
                             PathState::from(st),
-                            r.advance(U32F32::from_bits(t)).bounce(I2F30::from_bits(b))
+                            r.advance(PathLength::from_bits(t))
+                                .bounce(Spread::from_bits(b))
                         );
                     }
                     // SAFETY: valid locals.
@@ -375,9 +377,9 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
             Some(m) => {
                 // A Rust sampler built afresh for every sample.
                 let want = Sampler::with_address(p.1, p.0).sample(
-                    I32F32::from_bits(uu),
-                    I32F32::from_bits(vv),
-                    I8F8::from_bits(lod),
+                    TexCoord::from_bits(uu),
+                    TexCoord::from_bits(vv),
+                    Lod::from_bits(lod),
                     m,
                 );
                 assert_eq!((s, out), (RmStatus::Ok, want));

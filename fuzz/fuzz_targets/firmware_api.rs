@@ -13,13 +13,14 @@ mod common;
 use fixed::types::{I16F16, I32F32, U1F31};
 use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::lod::{clamp_lod, cone_lod, table_lod};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::setup::table::{PbTable, TableError, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, generate, pyramid_len};
 use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 const TABLE: usize = 8;
 const STACK: usize = 4;
@@ -49,16 +50,16 @@ fn triangle(u: &mut Unstructured) -> Result<Option<core::result::Result<TexTrian
     if u.ratio(1, 5)? {
         return Ok(None);
     }
-    let mut p = [[I32F32::ZERO; 3]; 3];
-    let mut uv = [[I32F32::ZERO; 2]; 3];
+    let mut p = [[Coord::ZERO; 3]; 3];
+    let mut uv = [[TexCoord::ZERO; 2]; 3];
     for v in &mut p {
         for c in v.iter_mut() {
-            *c = coord(u)?;
+            *c = Coord::from_fixed(coord(u)?);
         }
     }
     for v in &mut uv {
         for c in v.iter_mut() {
-            *c = coord(u)?;
+            *c = TexCoord::from_fixed(coord(u)?);
         }
     }
     let w = u.arbitrary::<u32>()?;
@@ -69,10 +70,8 @@ fn triangle(u: &mut Unstructured) -> Result<Option<core::result::Result<TexTrian
 }
 
 fn path_state(u: &mut Unstructured) -> Result<PathState> {
-    let spread = PixelSpread::from_angle(fixed::types::I2F30::from_bits(
-        u.int_in_range(1..=i32::MAX)?,
-    ))
-    .expect("positive angle");
+    let spread = PixelSpread::from_angle(Spread::from_bits(u.int_in_range(1..=i32::MAX)?))
+        .expect("positive angle");
     let mut s = PathState::primary(&spread, u.arbitrary()?);
     for _ in 0..u.int_in_range(0..=12)? {
         let before = s;
@@ -98,7 +97,7 @@ fn step(
             let start = u.int_in_range(0..=TABLE + 2)?;
             let n = u.int_in_range(0..=TABLE)?;
             let angle = fixed::types::I2F30::from_bits(u.arbitrary()?);
-            let Ok(spread) = PixelSpread::from_angle(angle) else {
+            let Ok(spread) = PixelSpread::from_angle(Spread::from_fixed(angle)) else {
                 assert!(angle <= fixed::types::I2F30::ZERO);
                 return Ok(());
             };
@@ -169,11 +168,14 @@ fn step(
             let pl = PathLength::from_bits(u.arbitrary()?);
             let e = Log2Pb::from_bits(u.arbitrary()?);
             let levels = u.arbitrary::<u8>()?;
-            match table_lod(pl, e) {
+            match table_lod::<Accurate>(pl, e) {
                 None => assert!(e.is_untextured()),
                 Some(l) => {
-                    let l2 = table_lod(PathLength::from_bits(pl.to_bits().saturating_add(1)), e)
-                        .unwrap();
+                    let l2 = table_lod::<Accurate>(
+                        PathLength::from_bits(pl.to_bits().saturating_add(1)),
+                        e,
+                    )
+                    .unwrap();
                     assert!(l <= l2, "table lod monotonic in Pl");
                     check_clamped(l, levels);
                 }
@@ -181,10 +183,13 @@ fn step(
             let w = Width::from_bits(u.arbitrary()?);
             let d = I16F16::from_bits(u.arbitrary()?);
             let c = U1F31::from_bits(u.arbitrary()?);
-            let l = cone_lod(w, d, Some(c));
-            let none = cone_lod(w, d, None);
+            let l = cone_lod::<Accurate>(w, Delta::from_fixed(d), Some(c));
+            let none = cone_lod::<Accurate>(w, Delta::from_fixed(d), None);
             assert!(l >= none, "the normal term never makes the lod finer");
-            assert_eq!(none, cone_lod(w, d, Some(U1F31::from_bits(1 << 31))));
+            assert_eq!(
+                none,
+                cone_lod::<Accurate>(w, Delta::from_fixed(d), Some(U1F31::from_bits(1 << 31)))
+            );
             check_clamped(l, levels);
         }
         _ => pyramid(u)?,
@@ -252,8 +257,18 @@ fn pyramid(u: &mut Unstructured) -> Result<()> {
         let Some(mode) = Mode::from_index(u.int_in_range(0..=4)?) else {
             continue;
         };
-        let a = direct.sample(uu, vv, lod, mode);
-        let b = cached.sample(uu, vv, lod, mode);
+        let a = direct.sample(
+            TexCoord::from_fixed(uu),
+            TexCoord::from_fixed(vv),
+            lod,
+            mode,
+        );
+        let b = cached.sample(
+            TexCoord::from_fixed(uu),
+            TexCoord::from_fixed(vv),
+            lod,
+            mode,
+        );
         assert_eq!(
             a, b,
             "cache changed a sample ({w}x{h}, {levels} levels, {mode:?})"

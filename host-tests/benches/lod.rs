@@ -8,7 +8,7 @@ use std::hint::black_box;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::lod::{cone_lod, table_lod};
-use raymip::setup::table::Log2Pb;
+use raymip::units::{Accurate, Delta, Log2Pb, PathLength, Width};
 use raymip_reference::Rng;
 
 const N: usize = 1024;
@@ -48,7 +48,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("table/fixed", |b| {
         b.iter(|| {
             for &(pl, pb, ..) in black_box(&fixed_in) {
-                black_box(table_lod(pl, pb));
+                black_box(table_lod::<Accurate>(PathLength::from_fixed(pl), pb));
             }
         })
     });
@@ -62,7 +62,11 @@ fn bench(c: &mut Criterion) {
     g.bench_function("cone/fixed", |b| {
         b.iter(|| {
             for &(_, _, w, d, cos) in black_box(&fixed_in) {
-                black_box(cone_lod(w, d, Some(cos)));
+                black_box(cone_lod::<Accurate>(
+                    Width::from_fixed(w),
+                    Delta::from_fixed(d),
+                    Some(cos),
+                ));
             }
         })
     });

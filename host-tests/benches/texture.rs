@@ -9,10 +9,10 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group};
 use raymip::baseline_f32::SamplerF32;
-use raymip::lod::Lod;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 use raymip_host::workload::{random_inputs, random_pyramid, to_fixed};
 
 const N: usize = 1024;

@@ -11,7 +11,7 @@
 
 use std::fmt::Write as _;
 
-use raymip::texture::kernel::Precision;
+use raymip::units::Precision;
 use raymip_host::accuracy::{FILTERS, measure};
 use raymip_host::cli::MeasureArgs;
 use raymip_host::output::report::publish;

@@ -2,9 +2,8 @@
 //! `examples/texture_icount.rs`: a random pyramid and random sample
 //! positions, so both measure the same thing.
 
-use raymip::lod::Lod;
-use raymip::texture::TexCoord;
 use raymip::texture::storage::mip::{Geometry, MipError, Texel, full_levels, generate};
+use raymip::units::{Lod, TexCoord};
 
 use raymip_reference::Rng;
 

@@ -68,9 +68,9 @@
 #![allow(unsafe_code)]
 
 use super::{BIL, BLOCK_WORDS, RAM, SEL, TAP01, TAP10, TAP11, TEXTURE_UNIT, TRI};
-use crate::lod::Lod;
 use crate::texture::storage::mip::Texel;
 use crate::texture::storage::pow2::LevelView;
+use crate::units::Lod;
 
 /// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the
 /// custom instructions are illegal. Idempotent.

@@ -50,9 +50,9 @@
 //! window and the address modes ([`window_word`]), words `2 + l` the
 //! levels `l = 0 … 16` ([`level_word`]).
 
-use crate::texture::TexCoord;
 use crate::texture::address::AddressMode;
 use crate::texture::storage::pow2::Pow2Levels;
+use crate::units::TexCoord;
 
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
 pub mod cfu;

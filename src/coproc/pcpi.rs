@@ -66,7 +66,7 @@
 //! the feature only for that SoC.
 #![allow(unsafe_code)]
 
-/// The `tex.lod` result for the untextured marker ([`crate::setup::table::Log2Pb::UNTEXTURED`]):
+/// The `tex.lod` result for the untextured marker ([`crate::units::Log2Pb::UNTEXTURED`]):
 /// `0x8000_0000`, below every sign-extended I8F8 value (`table_lod` returns `None`).
 pub const UNTEXTURED: i32 = i32::MIN;
 

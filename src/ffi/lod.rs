@@ -1,10 +1,10 @@
 //! Level of detail through C: table and ray-cone lods, and the clamp to a
 //! texture's stored levels.
 
-use fixed::types::{I8F8, I16F16, I32F32, U1F31, U32F32};
+use fixed::types::U1F31;
 
 use crate::lod::{clamp_lod, cone_lod, table_lod};
-use crate::setup::table::Log2Pb;
+use crate::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Width};
 
 use super::*;
 
@@ -21,7 +21,7 @@ pub unsafe extern "C" fn rm_table_lod(pl: u64, entry_bits: i32, out: *mut i16) -
     if let Err(e) = check_ptr(out.cast_const(), false) {
         return e;
     }
-    match table_lod(U32F32::from_bits(pl), Log2Pb::from_bits(entry_bits)) {
+    match table_lod::<Accurate>(PathLength::from_bits(pl), Log2Pb::from_bits(entry_bits)) {
         Some(l) => {
             // SAFETY: non-null, writable (caller).
             unsafe { *out = l.to_bits() };
@@ -44,12 +44,12 @@ pub const RM_COS_ONE: u32 = 0x8000_0000;
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_cone_lod(width: i64, delta: i32, n_dot_d: u32) -> i16 {
     let c = U1F31::from_bits(n_dot_d);
-    cone_lod(I32F32::from_bits(width), I16F16::from_bits(delta), Some(c)).to_bits()
+    cone_lod::<Accurate>(Width::from_bits(width), Delta::from_bits(delta), Some(c)).to_bits()
 }
 
 /// `lod` (I8F8 bits) clamped to the stored levels `[0, levels − 1]` (to 0
 /// for `levels` 0 or 1); no status (it cannot fail).
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_clamp_lod(lod: i16, levels: u8) -> i16 {
-    clamp_lod(I8F8::from_bits(lod), levels).to_bits()
+    clamp_lod(Lod::from_bits(lod), levels).to_bits()
 }

@@ -2,11 +2,10 @@
 //! plain integers in caller memory, and the primary, advance and bounce
 //! steps of a path state.
 
-use fixed::types::{I2F30, I32F32, U32F32};
-
 use crate::path::raystack::{PathState, RayCone, stack_bound};
 
 use super::*;
+use crate::units::{PathLength, Spread, Width};
 
 /// Bounces per path that an [`RmRayStack`] holds with two continuations
 /// (a reflection and a refraction) pushed per hit: the hardware paper's 10.
@@ -70,13 +69,13 @@ impl From<PathState> for RmPathState {
 
 impl From<RmPathState> for PathState {
     fn from(s: RmPathState) -> Self {
-        let pl = U32F32::from_bits(s.pl);
+        let pl = PathLength::from_bits(s.pl);
         Self {
             pl,
             pl_norm: crate::lod::log2_fast::NormPl::new(pl),
             cone: RayCone {
-                width: I32F32::from_bits(s.cone_width),
-                spread: I2F30::from_bits(s.cone_spread),
+                width: Width::from_bits(s.cone_width),
+                spread: Spread::from_bits(s.cone_spread),
             },
             // The C ABI carries no ray differentials.
             #[cfg(feature = "raydiff")]
@@ -209,7 +208,7 @@ pub unsafe extern "C" fn rm_path_primary(spread: i32, mask: u8, out: *mut RmPath
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmStatus {
     // SAFETY: same contract.
-    unsafe { update_state(state, |s| s.advance(U32F32::from_bits(t))) }
+    unsafe { update_state(state, |s| s.advance(PathLength::from_bits(t))) }
 }
 
 /// A reflection/refraction continuation: spread `+= beta` (I2F30 bits,
@@ -223,7 +222,7 @@ pub unsafe extern "C" fn rm_path_advance(state: *mut RmPathState, t: u64) -> RmS
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rm_path_bounce(state: *mut RmPathState, beta: i32) -> RmStatus {
     // SAFETY: same contract.
-    unsafe { update_state(state, |s| s.bounce(I2F30::from_bits(beta))) }
+    unsafe { update_state(state, |s| s.bounce(Spread::from_bits(beta))) }
 }
 
 /// Replaces `*state` by `f(*state)` through `PathState`.

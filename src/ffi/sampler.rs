@@ -3,16 +3,14 @@
 
 use fixed::types::{I8F8, I32F32};
 
-use crate::lod::Lod;
-use crate::texture::kernel::Precision;
-use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
 use crate::texture::storage::format::{AnyFormat, ColorSpace, Format, TexelFormat};
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, Texel};
-use crate::texture::{AddressMode, Sampler, TexCoord};
+use crate::texture::{AddressMode, Sampler};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
+use crate::units::{Footprint, Lod, Precision, TexCoord};
 
 use super::*;
 
@@ -210,9 +208,9 @@ impl RmSamplerDesc {
             address_u,
             address_v,
             border: self.border,
-            lod_bias: I8F8::from_bits(self.lod_bias),
-            min_lod: I8F8::from_bits(self.min_lod),
-            max_lod: I8F8::from_bits(self.max_lod),
+            lod_bias: Lod::from_bits(self.lod_bias),
+            min_lod: Lod::from_bits(self.min_lod),
+            max_lod: Lod::from_bits(self.max_lod),
             max_anisotropy: self.max_anisotropy,
             srgb_output,
         })
@@ -542,7 +540,13 @@ pub unsafe extern "C" fn rm_sample(
         I32F32::from_bits(v),
         I8F8::from_bits(lod),
     );
-    let texel = (ops.sample)(slot, u, v, lod, mode);
+    let texel = (ops.sample)(
+        slot,
+        TexCoord::from_fixed(u),
+        TexCoord::from_fixed(v),
+        Lod::from_fixed(lod),
+        mode,
+    );
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended (an `out` inside it would corrupt it).
     unsafe { *out = texel };
@@ -597,13 +601,13 @@ pub unsafe extern "C" fn rm_sample_batch(
             core::slice::from_raw_parts_mut(out, n),
         )
     };
-    let mut buf = [(I32F32::ZERO, I32F32::ZERO, I8F8::ZERO); BATCH_CHUNK];
+    let mut buf = [(TexCoord::ZERO, TexCoord::ZERO, Lod::ZERO); BATCH_CHUNK];
     for (h, o) in hits.chunks(BATCH_CHUNK).zip(out.chunks_mut(BATCH_CHUNK)) {
         for (b, x) in buf.iter_mut().zip(h) {
             *b = (
-                I32F32::from_bits(x.u),
-                I32F32::from_bits(x.v),
-                I8F8::from_bits(x.lod),
+                TexCoord::from_bits(x.u),
+                TexCoord::from_bits(x.v),
+                Lod::from_bits(x.lod),
             );
         }
         let k = h.len().min(BATCH_CHUNK);
@@ -647,14 +651,18 @@ pub unsafe extern "C" fn rm_sample_aniso(
         Err(e) => return e,
     };
     let fp = Footprint {
-        x: [I32F32::from_bits(f.dudx), I32F32::from_bits(f.dvdx)],
-        y: [I32F32::from_bits(f.dudy), I32F32::from_bits(f.dvdy)],
+        x: [TexCoord::from_bits(f.dudx), TexCoord::from_bits(f.dvdx)],
+        y: [TexCoord::from_bits(f.dudy), TexCoord::from_bits(f.dvdy)],
     };
     let (u, v) = (I32F32::from_bits(u), I32F32::from_bits(v));
     // Every key's anisotropic code: linked only when this is called.
     let texel: Texel = match slot {
-        SlotSampler::Pyramid(s) => s.sample_aniso(u, v, &fp),
-        SlotSampler::Image(s) => s.sample_aniso(u, v, &fp),
+        SlotSampler::Pyramid(s) => {
+            s.sample_aniso(TexCoord::from_fixed(u), TexCoord::from_fixed(v), &fp)
+        }
+        SlotSampler::Image(s) => {
+            s.sample_aniso(TexCoord::from_fixed(u), TexCoord::from_fixed(v), &fp)
+        }
     };
     // SAFETY: non-null, aligned (checked), writable (caller); the borrow
     // of the sampler has ended.

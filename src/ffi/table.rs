@@ -1,10 +1,9 @@
 //! The Pb table through C: build and update from triangles, and the
 //! ray-cone constant `Δ` of an entry.
 
-use fixed::types::{I2F30, I32F32};
-
 use crate::setup::camera::PixelSpread;
-use crate::setup::table::{BuildStats, Log2Pb, PbTable, TableError, TexTriangle};
+use crate::setup::table::{BuildStats, PbTable, TableError, TexTriangle};
+use crate::units::{Coord, Log2Pb, Spread, TexCoord};
 
 use super::*;
 
@@ -38,8 +37,8 @@ impl RmTriangle {
             return Ok(None);
         }
         TexTriangle::new(
-            self.positions.map(|p| p.map(I32F32::from_bits)),
-            self.uvs.map(|p| p.map(I32F32::from_bits)),
+            self.positions.map(|p| p.map(Coord::from_bits)),
+            self.uvs.map(|p| p.map(TexCoord::from_bits)),
             self.tex_width,
             self.tex_height,
         )
@@ -83,7 +82,7 @@ pub(super) fn table_status(e: TableError) -> RmStatus {
 /// The camera's pixel spread from its I2F30 `bits`; `BadAngle` unless
 /// `0 < γ < 2` radians.
 pub(super) fn spread_from_bits(bits: i32) -> Result<PixelSpread, RmStatus> {
-    PixelSpread::from_angle(I2F30::from_bits(bits)).map_err(|_| RmStatus::BadAngle)
+    PixelSpread::from_angle(Spread::from_bits(bits)).map_err(|_| RmStatus::BadAngle)
 }
 
 /// Computes table entries `start .. start + count` of `entries` (length

@@ -3,20 +3,20 @@
 //! pointers, corrupt lengths).
 
 extern crate std;
-use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U32F32};
+use fixed::types::{I2F30, I16F16, I32F32, U1F31};
 
 use crate::lod::{clamp_lod, cone_lod, table_lod};
 use crate::path::raystack::PathState;
 use crate::setup::camera::PixelSpread;
-use crate::setup::table::Log2Pb;
-use crate::texture::kernel::Precision;
-use crate::texture::sampler::aniso::Footprint;
 use crate::texture::sampler::dynamic::DynSampler;
 use crate::texture::sampler::state::SrgbOutput;
 use crate::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use crate::texture::storage::image::Image;
 use crate::texture::storage::mip::{Geometry, Pyramid, pyramid_len};
 use crate::texture::{Mode, SamplerDesc, SamplerState};
+use crate::units::{
+    Accurate, Delta, Footprint, Lod, Log2Pb, PathLength, Precision, Spread, TexCoord, Width,
+};
 
 use super::*;
 use proptest::prelude::*;
@@ -192,14 +192,18 @@ fn partial_update_counts_what_it_wrote() {
 #[test]
 fn grazing_cone_lod_agrees_with_rust() {
     let w = I32F32::ONE;
-    let grazing = cone_lod(w, I16F16::ZERO, Some(U1F31::ZERO));
-    assert_eq!(grazing, I8F8::from_num(16));
+    let grazing = cone_lod::<Accurate>(Width::from_fixed(w), Delta::ZERO, Some(U1F31::ZERO));
+    assert_eq!(grazing, Lod::from_num(16));
     assert_eq!(rm_cone_lod(w.to_bits(), 0, 0), grazing.to_bits());
     assert_eq!(rm_cone_lod(w.to_bits(), 0, 1), grazing.to_bits());
     assert_eq!(rm_cone_lod(w.to_bits(), 0, 1 << 31), 0);
     assert_eq!(
-        cone_lod(w, I16F16::ZERO, None),
-        cone_lod(w, I16F16::ZERO, Some(U1F31::from_bits(1 << 31)))
+        cone_lod::<Accurate>(Width::from_fixed(w), Delta::ZERO, None),
+        cone_lod::<Accurate>(
+            Width::from_fixed(w),
+            Delta::ZERO,
+            Some(U1F31::from_bits(1 << 31))
+        )
     );
 }
 
@@ -388,13 +392,13 @@ proptest! {
     #[test]
     fn c_lod_equals_rust_lod(pl in any::<u64>(), e in any::<i32>(), w in any::<i64>(), d in any::<i32>(), c in any::<u32>(), lod in any::<i16>(), levels in any::<u8>()) {
         let (s, out) = ok_lod(pl, e);
-        match table_lod(U32F32::from_bits(pl), Log2Pb::from_bits(e)) {
+        match table_lod::<Accurate>(PathLength::from_bits(pl), Log2Pb::from_bits(e)) {
             Some(l) => prop_assert_eq!((s, out), (RmStatus::Ok, l.to_bits())),
             None => prop_assert_eq!((s, e), (RmStatus::Untextured, RM_UNTEXTURED)),
         }
-        let want = cone_lod(I32F32::from_bits(w), I16F16::from_bits(d), Some(U1F31::from_bits(c)));
+        let want = cone_lod::<Accurate>(Width::from_bits(w), Delta::from_bits(d), Some(U1F31::from_bits(c)));
         prop_assert_eq!(rm_cone_lod(w, d, c), want.to_bits());
-        prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(I8F8::from_bits(lod), levels).to_bits());
+        prop_assert_eq!(rm_clamp_lod(lod, levels), clamp_lod(Lod::from_bits(lod), levels).to_bits());
     }
 
     /// A sampler set up once gives, sample after sample, the texel of
@@ -426,7 +430,7 @@ proptest! {
             match Mode::from_index(mode) {
                 Some(m) => {
                     let fresh = crate::texture::Sampler::with_address(Pyramid::new(g, &texels).unwrap(), addr)
-                        .sample(I32F32::from_bits(u), I32F32::from_bits(v), I8F8::from_bits(lod), m);
+                        .sample(TexCoord::from_bits(u), TexCoord::from_bits(v), Lod::from_bits(lod), m);
                     prop_assert_eq!((s, out), (RmStatus::Ok, fresh));
                 }
                 None => prop_assert_eq!(s, RmStatus::OutOfRange),
@@ -465,9 +469,9 @@ proptest! {
                 address_u: RmAddress::mode(au)?,
                 address_v: RmAddress::mode(av)?,
                 border,
-                lod_bias: I8F8::from_bits(bias),
-                min_lod: I8F8::from_bits(lo),
-                max_lod: I8F8::from_bits(hi),
+                lod_bias: Lod::from_bits(bias),
+                min_lod: Lod::from_bits(lo),
+                max_lod: Lod::from_bits(hi),
                 max_anisotropy: aniso,
                 srgb_output: [SrgbOutput::Encoded, SrgbOutput::Linear].get(usize::from(srgb_output)).copied()?,
             }).ok()?;
@@ -490,7 +494,7 @@ proptest! {
         prop_assert_eq!(sb, RmStatus::Ok);
         for (i, &(u, v, lod, d)) in samples.iter().enumerate() {
             let (fu, fv) = (I32F32::from_bits(u), I32F32::from_bits(v));
-            let want = rust.sample(fu, fv, I8F8::from_bits(lod), m);
+            let want = rust.sample(TexCoord::from_fixed(fu), TexCoord::from_fixed(fv), Lod::from_bits(lod), m);
             let mut out = 0u32;
             // SAFETY: `sm` set up above, `out` a valid local.
             let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
@@ -498,9 +502,9 @@ proptest! {
             // Footprints up to ±8 texture widths per pixel.
             let [a, b, c, e] = d.map(|x| i64::from(x) << 3);
             let fp = RmFootprint { dudx: a, dvdx: b, dudy: c, dvdy: e };
-            let want = rust.sample_aniso(fu, fv, &Footprint {
-                x: [I32F32::from_bits(a), I32F32::from_bits(b)],
-                y: [I32F32::from_bits(c), I32F32::from_bits(e)],
+            let want = rust.sample_aniso(TexCoord::from_fixed(fu), TexCoord::from_fixed(fv), &Footprint {
+                x: [TexCoord::from_bits(a), TexCoord::from_bits(b)],
+                y: [TexCoord::from_bits(c), TexCoord::from_bits(e)],
             });
             // SAFETY: as above; `fp` a valid local.
             let s = unsafe { rm_sample_aniso(&mut sm, u, v, &fp, &mut out) };
@@ -544,7 +548,7 @@ proptest! {
         let mut rust = DynSampler::new(Image::new(g, fmt, &bytes).unwrap(), state, fmt.space(), prec);
         for (u, v, lod, mode) in samples {
             let m = Mode::from_index(mode).unwrap();
-            let want = rust.sample(I32F32::from_bits(u), I32F32::from_bits(v), I8F8::from_bits(lod), m);
+            let want = rust.sample(TexCoord::from_bits(u), TexCoord::from_bits(v), Lod::from_bits(lod), m);
             let mut out = 0u32;
             // SAFETY: `sm` set up above, `out` a valid local.
             let s = unsafe { rm_sample(&mut sm, u, v, lod, RmModeBits(mode), &mut out) };
@@ -558,7 +562,7 @@ proptest! {
         let mut c = RmPathState::default();
         // SAFETY: valid local.
         prop_assert_eq!(unsafe { rm_path_primary(g, 7, &mut c) }, RmStatus::Ok);
-        let spread = PixelSpread::from_angle(I2F30::from_bits(g)).unwrap();
+        let spread = PixelSpread::from_angle(Spread::from_bits(g)).unwrap();
         let mut r = PathState::primary(&spread, 7);
         for &t in &ts {
             // SAFETY: valid local.
@@ -566,7 +570,7 @@ proptest! {
                 rm_path_advance(&mut c, t);
                 rm_path_bounce(&mut c, beta);
             }
-            r = r.advance(U32F32::from_bits(t)).bounce(I2F30::from_bits(beta));
+            r = r.advance(PathLength::from_bits(t)).bounce(Spread::from_bits(beta));
             prop_assert_eq!(PathState::from(c), r);
         }
     }

@@ -131,10 +131,8 @@ use core::fmt;
 
 use fixed::types::I2F30;
 
-use crate::lod::Lod;
 use crate::lod::log2::{clz32, log2_bits, log2_u32};
-use crate::path::raystack::{Spread, UnitVec};
-use crate::texture::TexCoord;
+use crate::units::{Lod, Spread, TexCoord, UnitVec};
 
 /// Documented error bound of [`EnvMap::cone_lod`] and
 /// [`EnvMap::raydiff_lod`] against f64, in levels: 2⁻⁸ (derivation in the
@@ -186,6 +184,7 @@ impl core::error::Error for EnvMapError {}
 /// # Example
 /// ```
 /// use raymip::lod::envmap::{ENVMAP_LOD_MAX_ERROR, EnvMap};
+/// use raymip::units::UnitVec;
 /// use raymip::{Lod, Spread};
 /// use fixed::types::I2F30;
 /// // A 2048×1024 map: one texel is 2π/2048 ≈ 3.07 mrad both ways.
@@ -197,11 +196,11 @@ impl core::error::Error for EnvMapError {}
 /// // The same ray leaving at 60° latitude: a circle of latitude of half
 /// // the equator's length, one level more.
 /// let (c, s) = (I2F30::from_num(0.5), I2F30::from_num(0.75f64.sqrt()));
-/// let d = [I2F30::ZERO, s, -c];
+/// let d = UnitVec::new([I2F30::ZERO, s, -c]);
 /// let lod = map.cone_lod(g, Some(d)).to_num::<f64>();
 /// assert!((lod - 3.0).abs() <= ENVMAP_LOD_MAX_ERROR);
 /// // At the pole the longitude term is clamped to 16 levels.
-/// let up = [I2F30::ZERO, I2F30::ONE, I2F30::ZERO];
+/// let up = UnitVec::new([I2F30::ZERO, I2F30::ONE, I2F30::ZERO]);
 /// assert!((map.cone_lod(g, Some(up)).to_num::<f64>() - 18.0).abs() <= ENVMAP_LOD_MAX_ERROR);
 /// # Ok::<(), raymip::lod::envmap::EnvMapError>(())
 /// ```
@@ -405,21 +404,22 @@ fn quadrant_atan<const E: i32>(a: u32, b: u32) -> (u32, u32) {
 /// ```
 /// use raymip::lod::envmap::{ENVMAP_UV_MAX_ERROR, direction_uv};
 /// use fixed::types::I2F30;
+/// use raymip::units::UnitVec;
 /// let (o, z) = (I2F30::ONE, I2F30::ZERO);
 /// let near = |a: raymip::TexCoord, b: f64| (a.to_num::<f64>() - b).abs() <= ENVMAP_UV_MAX_ERROR;
 /// // Forward (−z): the centre of the map.
-/// let (u, v) = direction_uv([z, z, -o]);
+/// let (u, v) = direction_uv(UnitVec::new([z, z, -o]));
 /// assert!(near(u, 0.5) && near(v, 0.5));
 /// // +x is a quarter turn further along u; up (+y) is the top row.
-/// let (u, _) = direction_uv([o, z, z]);
+/// let (u, _) = direction_uv(UnitVec::new([o, z, z]));
 /// assert!(near(u, 0.75));
-/// let (_, v) = direction_uv([z, o, z]);
+/// let (_, v) = direction_uv(UnitVec::new([z, o, z]));
 /// assert!(near(v, 0.0));
 /// ```
 #[must_use]
 pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
     let half = 1i64 << 31;
-    let [x, y, z] = d.map(I2F30::to_bits);
+    let [x, y, z] = d.to_array().map(I2F30::to_bits);
     // Longitude atan2(x, −z): magnitudes (≤ 2³¹) normalised to
     // max ∈ [2³⁰, 2³¹) (raw·2^(s−1); only s = 0, a component of −2³¹
     // raw, drops a bit).
@@ -465,7 +465,7 @@ mod tests {
     use raymip_reference::envmap as reference;
 
     fn q(v: [f64; 3]) -> UnitVec {
-        v.map(I2F30::saturating_from_num)
+        UnitVec(v.map(I2F30::saturating_from_num))
     }
     fn f(v: UnitVec) -> [f64; 3] {
         v.map(|c| c.to_num())
@@ -524,10 +524,13 @@ mod tests {
         let g = Spread::from_num(2.0 * core::f64::consts::PI / 2048.0);
         // One texel of spread at the equator: level 0.
         assert!(m.cone_lod(g, None).abs() <= Lod::from_bits(1));
-        assert_eq!(m.cone_lod(g, Some([z, z, -o])), m.cone_lod(g, None));
+        assert_eq!(
+            m.cone_lod(g, Some(UnitVec([z, z, -o]))),
+            m.cone_lod(g, None)
+        );
         // Poles, and the zero direction: the pole term saturates at 16.
         for d in [[z, o, z], [z, -o, z], [z, z, z]] {
-            let l = m.cone_lod(g, Some(d)).to_num::<f64>();
+            let l = m.cone_lod(g, Some(UnitVec(d))).to_num::<f64>();
             assert!((l - 16.0).abs() <= ENVMAP_LOD_MAX_ERROR, "{l}");
         }
         // Zero spread: 2⁻³⁰ rad, far below level 0; negative spread: |γ|.
@@ -536,13 +539,17 @@ mod tests {
         assert_eq!(m.cone_lod(-g, None), m.cone_lod(g, None));
         // Extremes never panic and stay inside ±64 levels.
         for s in [Spread::MIN, Spread::MAX, Spread::DELTA] {
-            for d in [None, Some([I2F30::MAX; 3]), Some([I2F30::MIN; 3])] {
+            for d in [
+                None,
+                Some(UnitVec([I2F30::MAX; 3])),
+                Some(UnitVec([I2F30::MIN; 3])),
+            ] {
                 assert!(m.cone_lod(s, d).abs() < Lod::from_num(64));
             }
         }
         // A non-unit direction with x² + z² > 1: the pole term clamps at 0.
         assert_eq!(
-            m.cone_lod(g, Some([I2F30::MAX, z, I2F30::MAX])),
+            m.cone_lod(g, Some(UnitVec([I2F30::MAX, z, I2F30::MAX]))),
             m.cone_lod(g, None)
         );
     }
@@ -560,7 +567,7 @@ mod tests {
         assert_eq!(m.raydiff_lod(z, a, None), m.raydiff_lod(a, z, None));
         assert_eq!(m.raydiff_lod(z, z, None), m.cone_lod(Spread::ZERO, None));
         for v in [[DirDiff::MIN; 3], [DirDiff::MAX; 3]] {
-            assert!(m.raydiff_lod(v, v, Some([I2F30::ZERO; 3])).abs() < Lod::from_num(64));
+            assert!(m.raydiff_lod(v, v, Some(UnitVec([I2F30::ZERO; 3]))).abs() < Lod::from_num(64));
         }
     }
 
@@ -602,9 +609,9 @@ mod tests {
             for &b in &vals {
                 for &c in &vals {
                     let d = [a, b, c].map(I2F30::from_bits);
-                    let (u, v) = direction_uv(d);
+                    let (u, v) = direction_uv(UnitVec(d));
                     let (u, v) = (u.to_num::<f64>(), v.to_num::<f64>());
-                    let (wu, wv) = reference::direction_uv_f64(f(d));
+                    let (wu, wv) = reference::direction_uv_f64(f(UnitVec(d)));
                     let du = (u - wu).abs();
                     assert!(
                         du.min(1.0 - du) <= ENVMAP_UV_MAX_ERROR,
@@ -653,7 +660,7 @@ mod tests {
                 for g in [1i32 << k, (1 << k) + 1, (1 << k) - 1, 3 << k.min(29)] {
                     let g = Spread::from_bits(g.max(1));
                     for dir in dirs {
-                        let dir = dir.map(|d: [f64; 3]| d.map(I2F30::from_num));
+                        let dir = dir.map(|d: [f64; 3]| UnitVec(d.map(I2F30::from_num)));
                         let want = reference::cone_lod_f64(w, h, g.to_num(), dir.map(f));
                         let got = m.cone_lod(g, dir).to_num::<f64>();
                         assert!(
@@ -685,7 +692,7 @@ mod tests {
             ([z, z, z], (0.5, 0.5)),
         ];
         for (d, (u, v)) in cases {
-            let (gu, gv) = direction_uv(d);
+            let (gu, gv) = direction_uv(UnitVec(d));
             assert!(
                 (gu.to_num::<f64>() - u).abs() <= ENVMAP_UV_MAX_ERROR,
                 "{d:?}: u {gu}"
@@ -696,7 +703,7 @@ mod tests {
             );
         }
         // Just below the seam (z > 0, x < 0): u near 0, not 1.
-        let (u, _) = direction_uv([-I2F30::DELTA, z, o]);
+        let (u, _) = direction_uv(UnitVec([-I2F30::DELTA, z, o]));
         assert!(u.to_num::<f64>() < 1e-6);
         // Extremes never panic and stay in [0, 1].
         for d in [
@@ -704,7 +711,7 @@ mod tests {
             [I2F30::MIN; 3],
             [I2F30::MIN, I2F30::MAX, I2F30::DELTA],
         ] {
-            let (u, v) = direction_uv(d);
+            let (u, v) = direction_uv(UnitVec(d));
             assert!(
                 (0.0..=1.0).contains(&u.to_num::<f64>())
                     && (0.0..=1.0).contains(&v.to_num::<f64>())
@@ -726,8 +733,8 @@ mod tests {
                 0 => None,
                 1 => Some(q(d)),
                 // Near a pole: x, z of a few raw units.
-                2 => Some([I2F30::from_bits(raw[0] >> 20), I2F30::ONE, I2F30::from_bits(raw[2] >> 20)]),
-                _ => Some(raw.map(I2F30::from_bits)),
+                2 => Some(UnitVec([I2F30::from_bits(raw[0] >> 20), I2F30::ONE, I2F30::from_bits(raw[2] >> 20)])),
+                _ => Some(UnitVec(raw.map(I2F30::from_bits))),
             };
             let want = reference::cone_lod_f64(w, h, g.to_num(), dir.map(f));
             check_lod(m.cone_lod(g, dir), want)?;
@@ -778,8 +785,8 @@ mod tests {
         fn uv_matches_f64(d in unit(), raw in any::<[i32; 3]>(), s in 0u32..31, pick in 0u8..3) {
             let dir = match pick {
                 0 => q(d),
-                1 => [I2F30::from_bits(raw[0] >> s), I2F30::from_bits(raw[1]), I2F30::from_bits(raw[2] >> s)],
-                _ => raw.map(|c| I2F30::from_bits(c >> s)),
+                1 => UnitVec([I2F30::from_bits(raw[0] >> s), I2F30::from_bits(raw[1]), I2F30::from_bits(raw[2] >> s)]),
+                _ => UnitVec(raw.map(|c| I2F30::from_bits(c >> s))),
             };
             let (u, v) = direction_uv(dir);
             let (wu, wv) = reference::direction_uv_f64(f(dir));

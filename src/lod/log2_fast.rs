@@ -1,5 +1,5 @@
 //! FAST fixed-point base-2 logarithm for the per-hit fast paths
-//! ([`crate::lod::table_lod_fast`], [`crate::lod::cone_lod_fast`]):
+//! ([`table_lod::<Fast>`](crate::lod::table_lod), [`cone_lod::<Fast>`](crate::lod::cone_lod)):
 //! leading-zero count + one read of a 1024-entry mantissa table, no
 //! interpolation.
 //!
@@ -32,10 +32,11 @@
 use fixed::types::{I16F16, U32F32};
 
 use crate::lod::log2::{LOD_BIAS, normalise64};
+use crate::units::PathLength;
 
 /// Documented maximum absolute error of [`log2_u32f32_fast`] (and of the
-/// fast log2 inside [`crate::lod::table_lod_fast`] and
-/// [`crate::lod::cone_lod_fast`]) against f64, in log2 units: `2⁻¹⁰`.
+/// fast log2 inside [`table_lod::<Fast>`](crate::lod::table_lod) and
+/// [`cone_lod::<Fast>`](crate::lod::cone_lod)) against f64, in log2 units: `2⁻¹⁰`.
 pub const FAST_LOG2_MAX_ERROR: f64 = 1.0 / 1024.0;
 
 /// Mantissa bits used as the table index.
@@ -138,7 +139,7 @@ const NORM_TABLE: [i32; 1 << INDEX_BITS] = {
 /// Made once per segment by [`NormPl::new`] (the leading-zero count) and
 /// kept beside `Pl` in every ray-stack entry
 /// ([`crate::path::raystack::PathState::pl_norm`]), so a lod from it
-/// ([`crate::lod::table_lod_norm`], [`crate::lod::table_lod_fast_batch`])
+/// ([`crate::lod::table_lod_norm`], [`crate::lod::table_lod_norm_batch`])
 /// is one table read and two additions. `Pl = 0` is read as 2⁻³² (as
 /// [`log2_u32f32_fast`]). Every key is one [`NormPl::new`] can make or lies
 /// between two such keys: [`NormPl::from_bits`] clamps the exponent to
@@ -178,7 +179,7 @@ impl NormPl {
     /// Normalises a U32F32 path length (one leading-zero count). Never panics.
     #[inline]
     #[must_use]
-    pub fn new(pl: U32F32) -> Self {
+    pub fn new(pl: PathLength) -> Self {
         let (m, lz) = normalise64(pl.to_bits());
         // lz ∈ 0..=63: exponent 31 − lz ∈ [−32, 31].
         let e = 31 - lz as i32;
@@ -337,11 +338,15 @@ mod tests {
                 let b = base.saturating_add(((u128::from(base) * u128::from(i)) / 1024) as u64);
                 for x in [b.saturating_sub(1), b] {
                     let pl = U32F32::from_bits(x);
-                    assert_eq!(NormPl::new(pl).log2(), log2_u32f32_fast(pl), "{x:#x}");
+                    assert_eq!(
+                        NormPl::new(PathLength::from_fixed(pl)).log2(),
+                        log2_u32f32_fast(pl),
+                        "{x:#x}"
+                    );
                 }
             }
         }
-        assert_eq!(NormPl::new(U32F32::ZERO), NormPl::ZERO);
+        assert_eq!(NormPl::new(PathLength::ZERO), NormPl::ZERO);
         assert_eq!(NormPl::from_bits(i32::MIN), NormPl::ZERO);
         assert_eq!(NormPl::from_bits(i32::MAX).to_bits(), (31 << 16) | 1023);
         assert_eq!(
@@ -386,7 +391,7 @@ mod tests {
             prop_assert_eq!(NormPl::from_bits(raw.to_bits()), raw);
             prop_assert!((-32.0..=32.0).contains(&raw.log2().to_num::<f64>()));
             let x = (1u64 << n) | (m & ((1u64 << n) - 1));
-            let k = NormPl::new(U32F32::from_bits(x));
+            let k = NormPl::new(PathLength::from_bits(x));
             prop_assert_eq!(NormPl::from_bits(k.to_bits()), k);
             let got = k.log2().to_num::<f64>();
             prop_assert!((got - reference(x)).abs() <= FAST_LOG2_MAX_ERROR, "{:#x}: {} vs {}", x, got, reference(x));

@@ -18,14 +18,17 @@
 //! accumulated bounces (log2 error ≤ 2⁻¹³, entry error ≤ 2⁻¹⁰, output
 //! rounding ≤ 2⁻⁹). It is monotonic non-decreasing in `Pl`.
 //!
-//! # ACCURATE and FAST paths
+//! # Precision tiers
 //!
-//! | path | calls | log2 | error bound |
+//! Every method takes its tier as a type parameter ([`Tier`]):
+//! `table_lod::<Accurate>(pl, pb)`, `cone_lod::<Fast>(w, Δ, n·d)`.
+//!
+//! | tier | calls | log2 | error bound |
 //! |---|---|---|---|
-//! | ACCURATE (bit-identical on every target and to earlier releases) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
-//! | FAST (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | [`table_lod_fast`], [`cone_lod_fast`], [`table_lod_norm`], [`table_lod_fast_batch`] (from the ray stack's normalised `Pl`, no leading-zero count, one [`LodWord`] per hit), [`cone_lod_fast_batch`] | 1024-entry table, no interpolation ([`crate::lod::log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//! | [`Accurate`] (bit-identical on every target) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
+//! | [`Fast`] (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | the same calls, and from the ray stack's normalised `Pl` [`table_lod_norm`], [`table_lod_norm_batch`] (no leading-zero count, one [`LodWord`] per hit) | 1024-entry table, no interpolation ([`log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
 //!
-//! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST path
+//! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST tier
 //! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
 //! Instruction counts per target are in `BUDGETS.md`.
 //!
@@ -51,9 +54,8 @@ pub mod log2_fast;
 #[cfg(feature = "raydiff")]
 pub mod raydiff;
 
-use fixed::types::I8F8;
 #[cfg(feature = "cone")]
-use fixed::types::{I16F16, U1F31};
+use fixed::types::U1F31;
 
 #[cfg(feature = "cone")]
 use crate::lod::log2::LOD_BIAS;
@@ -63,31 +65,13 @@ use crate::lod::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::lod::log2_fast::log2_u1f31_fast_biased;
 use crate::lod::log2_fast::{NormPl, log2_u32f32_fast_parts};
-use crate::path::raystack::PathLength;
 #[cfg(feature = "cone")]
-use crate::path::raystack::Width;
+use crate::units::Delta;
 #[cfg(feature = "cone")]
-use crate::setup::table::Delta;
-use crate::setup::table::Log2Pb;
-
-/// A MIP level of detail in levels: signed, 8 fractional bits
-/// (range `[−128, 128)`, step 1/256 level).
-///
-/// # Example
-/// ```
-/// use fixed::types::I16F16;
-/// use raymip::lod::table_lod;
-/// use raymip::{Lod, Log2Pb, PathLength};
-/// // Level 2.5 is 2.5 · 256 = 640 in bits; the step is 1/256 level.
-/// assert_eq!(Lod::from_num(2.5).to_bits(), 640);
-/// assert_eq!(Lod::DELTA, Lod::from_num(1.0 / 256.0));
-/// // The table method gives lod = log2 Pl − log2 Pb: Pl = 8, log2 Pb = 1 → 3 − 1 = 2.
-/// let pb = Log2Pb::from_log2(I16F16::from_num(1));
-/// let lod = table_lod(PathLength::from_num(8), pb).ok_or("untextured")?;
-/// assert!((lod.to_num::<f64>() - 2.0).abs() <= raymip::lod::LOD_MAX_ERROR);
-/// # Ok::<(), &str>(())
-/// ```
-pub type Lod = I8F8;
+use crate::units::Width;
+#[cfg(doc)]
+use crate::units::{Accurate, Fast};
+use crate::units::{Lod, Log2Pb, PathLength, Precision, Tier};
 
 /// Documented error bound of [`table_lod`] and [`cone_lod`] against f64, in
 /// levels: 2⁻⁸.
@@ -99,14 +83,31 @@ pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
-/// `pl` (scene units) and the hit triangle's table entry. `None` for an
-/// untextured triangle (nothing to fetch). `Pl = 0` is read as 2⁻³².
+/// `pl` (scene units) and the hit triangle's table entry, in tier `T`.
+/// `None` for an untextured triangle (nothing to fetch). `Pl = 0` is read
+/// as 2⁻³².
 ///
-/// No saturation is needed: `log2 Pl ∈ [−32, 32)` and every entry lies in
-/// `[−95, 95]`, so the difference lies in `(−127, 127)`, inside [`Lod`].
+/// | tier | log2 | error against f64 |
+/// |---|---|---|
+/// | [`Accurate`] | 64-entry table, interpolated ([`log2`]) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
+/// | [`Fast`] | 1024-entry table, no interpolation ([`log2_fast`]) | ≤ [`LOD_MAX_ERROR`] (log2 ≤ 2⁻¹⁰, entry ≤ 2⁻¹⁰, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step (1/256 level) |
+///
+/// Both are monotonic non-decreasing in `Pl` and identical on every
+/// target. No saturation is needed: `log2 Pl ∈ [−32, 32)` and every entry
+/// lies in `[−95, 95]`, so the difference lies in `(−127, 127)`, inside
+/// [`Lod`].
 #[inline]
 #[must_use]
-pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+pub fn table_lod<T: Tier>(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+    match T::PRECISION {
+        Precision::Accurate => accurate_table_lod(pl, pb),
+        Precision::Fast => fast_table_lod(pl, pb),
+    }
+}
+
+/// [`table_lod`] in [`Accurate`].
+#[inline(always)]
+fn accurate_table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     // Feature `pcpi` on riscv32: `tex.log2pl` and `tex.lod`, the same bits
     // (the untextured marker comes back as `pcpi::UNTEXTURED`).
     #[cfg(all(feature = "pcpi", target_arch = "riscv32"))]
@@ -123,8 +124,8 @@ pub fn table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     table_lod_soft(pl, pb)
 }
 
-/// The software [`table_lod`] (every target; without feature `pcpi` the
-/// only one).
+/// The software [`table_lod`] in [`Accurate`] (every target; without
+/// feature `pcpi` the only one).
 #[cfg_attr(all(feature = "pcpi", target_arch = "riscv32"), allow(dead_code))]
 #[inline(always)]
 fn table_lod_soft(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
@@ -141,12 +142,27 @@ fn table_lod_soft(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 /// Ray-cone method: `λ = Δ + log2|w| − log2|n·d|` for cone width `width`
 /// (scene units), triangle constant `delta` (`Δ`, from
 /// `Log2Pb::delta`) and, optionally, `|n·d|` (clamped to
-/// `[MIN_COS, 1]`). `w = 0` is read as 2⁻³². Saturates at the [`Lod`] range.
-/// Feature `cone`.
+/// `[MIN_COS, 1]`), in tier `T`. `w = 0` is read as 2⁻³². Saturates at the
+/// [`Lod`] range. Feature `cone`.
+///
+/// | tier | log2 | error against f64 of the same inputs |
+/// |---|---|---|
+/// | [`Accurate`] | 64-entry table, interpolated ([`log2`]) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
+/// | [`Fast`] | both logarithms from the 1024-entry table, no interpolation ([`log2_fast`]) | ≤ [`LOD_MAX_ERROR`] (two log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step |
 #[cfg(feature = "cone")]
 #[inline]
 #[must_use]
-pub fn cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+pub fn cone_lod<T: Tier>(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    match T::PRECISION {
+        Precision::Accurate => accurate_cone_lod(width, delta, n_dot_d),
+        Precision::Fast => fast_cone_lod(width, delta, n_dot_d),
+    }
+}
+
+/// [`cone_lod`] in [`Accurate`].
+#[cfg(feature = "cone")]
+#[inline(always)]
+fn accurate_cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
     // Every term in I16F16 bits: log2|w| ∈ [−32, 32) levels, the normal
     // term ∈ [0, 16]. With Δ clamped to ±2^30 bits (±16384 levels) nothing
     // overflows i32, and the result equals the saturating sum: once |Δ|
@@ -194,34 +210,29 @@ fn batch<I: Copy, O>(hits: &[I], out: &mut [O], f: impl Fn(I) -> O) -> usize {
     n
 }
 
-/// Batch of [`table_lod`]: `out[i] = table_lod(hits[i].0, hits[i].1)` for
-/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`
-/// (results past `n` are left untouched). Same results as the per-hit call,
-/// bit for bit; never panics.
+/// Batch of [`table_lod`] in tier `T`: `out[i] = table_lod::<T>(hits[i].0,
+/// hits[i].1)` for `i < n = min(hits.len(), out.len())`, in caller memory;
+/// returns `n` (results past `n` are left untouched). Same results as the
+/// per-hit call, bit for bit; never panics. The FAST batch from the ray
+/// stack's normalised path lengths is [`table_lod_norm_batch`].
 #[inline]
-pub fn table_lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
-    batch(hits, out, |(pl, pb)| table_lod(pl, pb))
+pub fn table_lod_batch<T: Tier>(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize {
+    batch(hits, out, |(pl, pb)| table_lod::<T>(pl, pb))
 }
 
-/// Batch of [`cone_lod`]: `out[i] = cone_lod(w, Δ, n·d)` of `hits[i]` for
-/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
-/// Same results as the per-hit call, bit for bit; never panics. Feature
-/// `cone`.
+/// Batch of [`cone_lod`] in tier `T`: `out[i] = cone_lod::<T>(w, Δ, n·d)`
+/// of `hits[i]` for `i < n = min(hits.len(), out.len())`, in caller
+/// memory; returns `n`. Same results as the per-hit call, bit for bit;
+/// never panics. Feature `cone`.
 #[cfg(feature = "cone")]
 #[inline]
-pub fn cone_lod_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    batch(hits, out, |(w, d, c)| cone_lod(w, d, c))
+pub fn cone_lod_batch<T: Tier>(hits: &[(Width, Delta, Option<U1F31>)], out: &mut [Lod]) -> usize {
+    batch(hits, out, |(w, d, c)| cone_lod::<T>(w, d, c))
 }
 
-/// FAST table method: [`table_lod`] with the 1024-entry log2 table read
-/// without interpolation ([`crate::lod::log2_fast`]). Error ≤ [`LOD_MAX_ERROR`]
-/// `= 2⁻⁸` level (as the ACCURATE [`table_lod`]: log2 ≤ 2⁻¹⁰, entry ≤
-/// 2⁻¹⁰, output rounding ≤ 2⁻⁹), monotonic non-decreasing in `Pl`; results
-/// may differ from [`table_lod`] by one step (1/256 level), identical on
-/// every target. `None` for an untextured triangle; `Pl = 0` reads as 2⁻³².
-#[inline]
-#[must_use]
-pub fn table_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+/// [`table_lod`] in [`Fast`].
+#[inline(always)]
+fn fast_table_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     if pb.is_untextured() {
         return None;
     }
@@ -232,16 +243,11 @@ pub fn table_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
     Some(Lod::from_bits(d as i16))
 }
 
-/// FAST ray-cone method: [`cone_lod`] with both logarithms from the
-/// 1024-entry table without interpolation ([`crate::lod::log2_fast`]). Error ≤
-/// [`LOD_MAX_ERROR`] `= 2⁻⁸` level against f64 of the same inputs (two
-/// log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`cone_lod`]
-/// by one step. Same clamps and saturation as [`cone_lod`]. Feature `cone`.
+/// [`cone_lod`] in [`Fast`].
 #[cfg(feature = "cone")]
-#[inline]
-#[must_use]
-pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
-    // Overflow-free for the reasons given in `cone_lod`; the upper end
+#[inline(always)]
+fn fast_cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    // Overflow-free for the reasons given in `accurate_cone_lod`; the upper end
     // `2³⁰ − 1` (a power-of-two range) is one `ssat` on the Cortex-M4.
     let delta = delta.to_bits().clamp(-(1 << 30), (1 << 30) - 1);
     let (lz, biased) = log2_u32f32_fast_parts(width.to_bits().unsigned_abs());
@@ -254,7 +260,7 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
 }
 
 /// A FAST table lod or "untextured" in one 32-bit word, the element
-/// [`table_lod_fast_batch`] writes: a textured hit's [`Lod`] bits
+/// [`table_lod_norm_batch`] writes: a textured hit's [`Lod`] bits
 /// sign-extended (a word in `[−2¹⁵, 2¹⁵)`; the batch's lie in
 /// `[−32512, 32512]`, ±127 levels), an untextured hit any word outside
 /// `[−2¹⁵, 2¹⁵)`, the niche that takes the place of `Option`'s tag, so a
@@ -271,13 +277,13 @@ pub fn cone_lod_fast(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod 
 ///
 /// # Example
 /// ```
-/// use raymip::lod::{LodWord, table_lod_fast_batch, table_lod_norm};
+/// use raymip::lod::{LodWord, table_lod_norm_batch, table_lod_norm};
 /// use raymip::lod::log2_fast::NormPl;
 /// use raymip::{Lod, Log2Pb, PathLength};
 /// let key = NormPl::new(PathLength::from_num(12));
 /// let hits = [(key, Log2Pb::from_bits(0)), (key, Log2Pb::UNTEXTURED)];
 /// let mut out = [LodWord::UNTEXTURED; 2];
-/// assert_eq!(table_lod_fast_batch(&hits, &mut out), 2);
+/// assert_eq!(table_lod_norm_batch(&hits, &mut out), 2);
 /// assert_eq!(out[0].get(), table_lod_norm(key, Log2Pb::from_bits(0)));
 /// assert!(out[0].get().is_some_and(|l| l > Lod::from_num(3.5)));
 /// assert_eq!(out[1].get(), None);
@@ -354,7 +360,7 @@ impl From<LodWord> for Option<Lod> {
 
 /// The FAST table lod from a normalised path length as a [`LodWord`],
 /// branch-free (the one home of the arithmetic of [`table_lod_norm`] and
-/// [`table_lod_fast_batch`]): `(log2 Pl + 2⁻⁹ − log2 Pb) >> 8` in I16F16
+/// [`table_lod_norm_batch`]): `(log2 Pl + 2⁻⁹ − log2 Pb) >> 8` in I16F16
 /// bits, wrapping, so the untextured marker lands in the niche (see
 /// [`LodWord`]).
 #[inline(always)]
@@ -365,7 +371,7 @@ fn table_lod_norm_word(pl: NormPl, pb: Log2Pb) -> LodWord {
 /// FAST table method from a normalised path length ([`NormPl`], kept in
 /// every ray-stack entry as [`crate::path::raystack::PathState::pl_norm`]): no
 /// leading-zero count, one table read and two additions. Bit-identical to
-/// [`table_lod_fast`] of the path length the key was made from (tested for
+/// [`table_lod::<Fast>`](table_lod) of the path length the key was made from (tested for
 /// every table index and octave), so within [`LOD_MAX_ERROR`] `= 2⁻⁸`
 /// level of f64 and monotonic in `Pl`. `None` for an untextured triangle.
 /// Never panics (every key is valid, see [`NormPl`]).
@@ -378,7 +384,7 @@ pub fn table_lod_norm(pl: NormPl, pb: Log2Pb) -> Option<Lod> {
 /// Batch of the FAST table method (error ≤ [`LOD_MAX_ERROR`]) from
 /// normalised path lengths, one word per hit: `out[i]` is
 /// `table_lod_norm(hits[i].0, hits[i].1)` as a [`LodWord`] (read it with
-/// [`LodWord::get`]; equal to [`table_lod_fast`] of the path lengths the
+/// [`LodWord::get`]; equal to [`table_lod::<Fast>`](table_lod) of the path lengths the
 /// keys were made from) for `i < n = min(hits.len(), out.len())`, in
 /// caller memory; returns `n` (words past `n` are left untouched). Same
 /// results as the per-hit call, bit for bit; branch-free per hit (an
@@ -386,19 +392,8 @@ pub fn table_lod_norm(pl: NormPl, pb: Log2Pb) -> Option<Lod> {
 /// from the ray stack ([`crate::path::raystack::PathState::pl_norm`]) or
 /// [`NormPl::new`].
 #[inline]
-pub fn table_lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize {
+pub fn table_lod_norm_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize {
     batch(hits, out, |(pl, pb)| table_lod_norm_word(pl, pb))
-}
-
-/// Batch of [`cone_lod_fast`] (FAST, error ≤ [`LOD_MAX_ERROR`]):
-/// `out[i] = cone_lod_fast(w, Δ, n·d)` of `hits[i]` for
-/// `i < n = min(hits.len(), out.len())`, in caller memory; returns `n`.
-/// Same results as the per-hit call, bit for bit; never panics. Feature
-/// `cone`.
-#[cfg(feature = "cone")]
-#[inline]
-pub fn cone_lod_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize {
-    batch(hits, out, |(w, d, c)| cone_lod_fast(w, d, c))
 }
 
 /// Clamps `lod` to the stored levels `[0, levels − 1]` of a texture
@@ -412,21 +407,23 @@ pub fn clamp_lod(lod: Lod, levels: u8) -> Lod {
     lod.max(Lod::ZERO).min(top)
 }
 
-/// Convenience: a table lod clamped to a texture's stored levels.
+/// Convenience: a table lod in tier `T` clamped to a texture's stored
+/// levels.
 #[inline]
 #[must_use]
-pub fn table_lod_clamped(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> {
-    table_lod(pl, pb).map(|l| clamp_lod(l, levels))
+pub fn table_lod_clamped<T: Tier>(pl: PathLength, pb: Log2Pb, levels: u8) -> Option<Lod> {
+    table_lod::<T>(pl, pb).map(|l| clamp_lod(l, levels))
 }
 
 #[cfg(test)]
 mod tests {
+    use crate::units::{Accurate, Coord, Fast, Spread, TexCoord};
     extern crate std;
     use super::*;
-    use crate::path::raystack::{PathState, Spread};
+    use crate::path::raystack::PathState;
     use crate::setup::camera::PixelSpread;
-    use crate::setup::table::{Coord, TexTriangle};
-    use fixed::types::I2F30;
+    use crate::setup::table::TexTriangle;
+
     use fixed::types::I16F16;
     #[cfg(feature = "cone")]
     use fixed::types::U1F31;
@@ -439,7 +436,7 @@ mod tests {
     fn make(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
         TexTriangle::new(
             p.map(|v| v.map(Coord::from_num)),
-            uv.map(|v| v.map(Coord::from_num)),
+            uv.map(|v| v.map(TexCoord::from_num)),
             w,
             h,
         )
@@ -470,7 +467,7 @@ mod tests {
             // texel is s/w wide: they are equal at
             let d = (s / f64::from(w)) * f64::from(hgt) / (2.0 * (fov / 2.0).tan());
             for (mult, want) in [(1.0, 0.0), (2.0, 1.0), (4.0, 2.0), (0.5, -1.0)] {
-                let lod = table_lod(PathLength::from_num(d * mult), pb).unwrap();
+                let lod = table_lod::<Accurate>(PathLength::from_num(d * mult), pb).unwrap();
                 let err = (lod.to_num::<f64>() - want).abs();
                 assert!(
                     err <= LOD_MAX_ERROR,
@@ -481,7 +478,7 @@ mod tests {
                 let st = PathState::primary(&spread, 0).advance(PathLength::from_num(d * mult));
                 #[cfg(feature = "cone")]
                 {
-                    let c = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                    let c = cone_lod::<Accurate>(st.cone.width, pb.delta(&spread).unwrap(), None);
                     assert!(
                         (c.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR,
                         "cone {c} want {want}"
@@ -493,9 +490,15 @@ mod tests {
 
     #[test]
     fn untextured_zero_and_degenerate() {
-        assert_eq!(table_lod(PathLength::from_num(3), Log2Pb::UNTEXTURED), None);
+        assert_eq!(
+            table_lod::<Accurate>(PathLength::from_num(3), Log2Pb::UNTEXTURED),
+            None
+        );
         let pb = Log2Pb::from_log2(I16F16::from_num(2));
-        assert_eq!(table_lod(PathLength::ZERO, pb), Some(Lod::from_num(-34)));
+        assert_eq!(
+            table_lod::<Accurate>(PathLength::ZERO, pb),
+            Some(Lod::from_num(-34))
+        );
         // Degenerate markers: every Pl gives lod ≥ 63 (coarsest) or ≤ −63 (level 0).
         for pl in [
             PathLength::ZERO,
@@ -503,12 +506,17 @@ mod tests {
             PathLength::from_num(1),
             PathLength::MAX,
         ] {
-            assert!(table_lod(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
-            assert!(table_lod(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
+            assert!(
+                table_lod::<Accurate>(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap()
+                    >= Lod::from_num(63)
+            );
+            assert!(
+                table_lod::<Accurate>(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63)
+            );
         }
         #[cfg(feature = "cone")]
         assert_eq!(
-            cone_lod(Width::ZERO, I16F16::from_num(3), None),
+            cone_lod::<Accurate>(Width::ZERO, Delta::from_num(3), None),
             Lod::from_num(-29)
         );
         assert_eq!(clamp_lod(Lod::MIN, 5), Lod::ZERO);
@@ -521,11 +529,11 @@ mod tests {
         assert_eq!(clamp_lod(Lod::from_num(3.25), 255), Lod::from_num(3.25));
         assert_eq!(clamp_lod(Lod::MIN, 255), Lod::ZERO);
         assert_eq!(
-            table_lod_clamped(PathLength::MAX, Log2Pb::DEGENERATE_GEOMETRY, 11),
+            table_lod_clamped::<Accurate>(PathLength::MAX, Log2Pb::DEGENERATE_GEOMETRY, 11),
             Some(Lod::from_num(10))
         );
         assert_eq!(
-            table_lod_clamped(PathLength::ZERO, Log2Pb::DEGENERATE_UV, 11),
+            table_lod_clamped::<Accurate>(PathLength::ZERO, Log2Pb::DEGENERATE_UV, 11),
             Some(Lod::ZERO)
         );
     }
@@ -536,19 +544,25 @@ mod tests {
     fn fast_paths_at_the_extremes() {
         let pb = Log2Pb::from_log2(I16F16::from_num(2));
         assert_eq!(
-            table_lod_fast(PathLength::from_num(3), Log2Pb::UNTEXTURED),
+            table_lod::<Fast>(PathLength::from_num(3), Log2Pb::UNTEXTURED),
             None
         );
         assert_eq!(
-            table_lod_fast(PathLength::ZERO, pb),
+            table_lod::<Fast>(PathLength::ZERO, pb),
             Some(Lod::from_num(-34))
         );
         assert_eq!(
-            table_lod_fast(PathLength::DELTA, pb),
+            table_lod::<Fast>(PathLength::DELTA, pb),
             Some(Lod::from_num(-34))
         );
-        assert_eq!(table_lod_fast(PathLength::MAX, pb), Some(Lod::from_num(30)));
-        assert_eq!(table_lod_fast(PathLength::from_num(4), pb), Some(Lod::ZERO));
+        assert_eq!(
+            table_lod::<Fast>(PathLength::MAX, pb),
+            Some(Lod::from_num(30))
+        );
+        assert_eq!(
+            table_lod::<Fast>(PathLength::from_num(4), pb),
+            Some(Lod::ZERO)
+        );
         assert_eq!(
             table_lod_norm(NormPl::new(PathLength::from_num(3)), Log2Pb::UNTEXTURED),
             None
@@ -571,37 +585,39 @@ mod tests {
                 Log2Pb::MAX,
                 pb,
             ] {
-                assert_eq!(table_lod_norm(NormPl::new(pl), m), table_lod_fast(pl, m));
+                assert_eq!(table_lod_norm(NormPl::new(pl), m), table_lod::<Fast>(pl, m));
             }
-            assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63));
-            assert!(table_lod_fast(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
-            assert!(table_lod_fast(pl, Log2Pb::MIN).is_some());
+            assert!(
+                table_lod::<Fast>(pl, Log2Pb::DEGENERATE_GEOMETRY).unwrap() >= Lod::from_num(63)
+            );
+            assert!(table_lod::<Fast>(pl, Log2Pb::DEGENERATE_UV).unwrap() <= Lod::from_num(-63));
+            assert!(table_lod::<Fast>(pl, Log2Pb::MIN).is_some());
         }
         #[cfg(feature = "cone")]
         {
-            let (w, d) = (Width::from_num(1), I16F16::ZERO);
-            assert_eq!(cone_lod_fast(w, d, Some(U1F31::from_num(1))), Lod::ZERO);
+            let (w, d) = (Width::from_num(1), Delta::ZERO);
+            assert_eq!(cone_lod::<Fast>(w, d, Some(U1F31::from_num(1))), Lod::ZERO);
             assert_eq!(
-                cone_lod_fast(w, d, Some(U1F31::from_num(0.5))),
+                cone_lod::<Fast>(w, d, Some(U1F31::from_num(0.5))),
                 Lod::from_num(1)
             );
-            assert_eq!(cone_lod_fast(w, d, Some(U1F31::ZERO)), Lod::from_num(16));
-            assert_eq!(cone_lod_fast(w, d, Some(U1F31::MAX)), Lod::ZERO);
+            assert_eq!(cone_lod::<Fast>(w, d, Some(U1F31::ZERO)), Lod::from_num(16));
+            assert_eq!(cone_lod::<Fast>(w, d, Some(U1F31::MAX)), Lod::ZERO);
             assert_eq!(
-                cone_lod_fast(-Width::from_num(4), d, None),
+                cone_lod::<Fast>(-Width::from_num(4), d, None),
                 Lod::from_num(2)
             );
             assert_eq!(
-                cone_lod_fast(Width::ZERO, I16F16::from_num(3), None),
+                cone_lod::<Fast>(Width::ZERO, Delta::from_num(3), None),
                 Lod::from_num(-29)
             );
-            assert_eq!(cone_lod_fast(Width::MAX, I16F16::MAX, None), Lod::MAX);
+            assert_eq!(cone_lod::<Fast>(Width::MAX, Delta::MAX, None), Lod::MAX);
             assert_eq!(
-                cone_lod_fast(Width::MIN, I16F16::MIN, Some(U1F31::MAX)),
+                cone_lod::<Fast>(Width::MIN, Delta::MIN, Some(U1F31::MAX)),
                 Lod::MIN
             );
             assert_eq!(
-                cone_lod_fast(Width::ZERO, I16F16::MIN, Some(U1F31::ZERO)),
+                cone_lod::<Fast>(Width::ZERO, Delta::MIN, Some(U1F31::ZERO)),
                 Lod::MIN
             );
         }
@@ -633,13 +649,13 @@ mod tests {
         assert_eq!(NormPl::from_bits(i32::MAX), max_key);
         for key in [NormPl::ZERO, NormPl::new(PathLength::ONE), max_key] {
             let mut w = [LodWord::from_bits(0); 2];
-            table_lod_fast_batch(&[(key, Log2Pb::UNTEXTURED), (key, Log2Pb::MAX)], &mut w);
+            table_lod_norm_batch(&[(key, Log2Pb::UNTEXTURED), (key, Log2Pb::MAX)], &mut w);
             assert_eq!(w[0].get(), None, "{key:?}: {:#x}", w[0].to_bits());
             assert!(w[1].get().is_some());
         }
         // The ends of the textured range: ±127 levels (±32512 bits).
         let mut w = [LodWord::UNTEXTURED; 2];
-        table_lod_fast_batch(
+        table_lod_norm_batch(
             &[
                 (max_key, Log2Pb::DEGENERATE_GEOMETRY),
                 (NormPl::ZERO, Log2Pb::DEGENERATE_UV),
@@ -653,17 +669,32 @@ mod tests {
     #[cfg(feature = "cone")]
     fn normal_term_and_grazing_clamp() {
         let w = Width::from_num(1);
-        let d = I16F16::ZERO;
-        assert_eq!(cone_lod(w, d, Some(U1F31::from_num(1))), Lod::ZERO);
-        let half = cone_lod(w, d, Some(U1F31::from_num(0.5)));
+        let d = Delta::ZERO;
+        assert_eq!(
+            cone_lod::<Accurate>(w, d, Some(U1F31::from_num(1))),
+            Lod::ZERO
+        );
+        let half = cone_lod::<Accurate>(w, d, Some(U1F31::from_num(0.5)));
         assert_eq!(half, Lod::from_num(1));
         // Grazing: n·d = 0 and tiny values clamp to 16 levels.
-        assert_eq!(cone_lod(w, d, Some(U1F31::ZERO)), Lod::from_num(16));
-        assert_eq!(cone_lod(w, d, Some(U1F31::DELTA)), Lod::from_num(16));
+        assert_eq!(
+            cone_lod::<Accurate>(w, d, Some(U1F31::ZERO)),
+            Lod::from_num(16)
+        );
+        assert_eq!(
+            cone_lod::<Accurate>(w, d, Some(U1F31::DELTA)),
+            Lod::from_num(16)
+        );
         // |n·d| > 1 (not physical) clamps to 1.
-        assert_eq!(cone_lod(w, d, Some(U1F31::from_num(1.9))), Lod::ZERO);
+        assert_eq!(
+            cone_lod::<Accurate>(w, d, Some(U1F31::from_num(1.9))),
+            Lod::ZERO
+        );
         // Negative width uses |w|.
-        assert_eq!(cone_lod(-Width::from_num(4), d, None), Lod::from_num(2));
+        assert_eq!(
+            cone_lod::<Accurate>(-Width::from_num(4), d, None),
+            Lod::from_num(2)
+        );
     }
 
     fn coord() -> impl Strategy<Value = f64> {
@@ -694,18 +725,18 @@ mod tests {
         if pb.is_untextured() {
             return None;
         }
-        let d = crate::lod::log2::log2_u32f32(pl).to_bits() - pb.to_i16f16().to_bits();
+        let d = crate::lod::log2::log2_u32f32(pl.to_fixed()).to_bits() - pb.to_i16f16().to_bits();
         Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
     }
 
     #[cfg(feature = "cone")]
-    fn cone_lod_formula(width: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
+    fn cone_lod_formula(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
         use crate::lod::log2::log2_bits;
         let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
-        let mut l = delta.saturating_add(lw);
+        let mut l = delta.saturating_add(Delta::from_fixed(lw));
         if let Some(c) = n_dot_d {
             let c = c.to_bits().clamp(MIN_COS.to_bits(), 1 << 31);
-            l = l.saturating_sub(log2_bits(u64::from(c), 31));
+            l = l.saturating_sub(Delta::from_fixed(log2_bits(u64::from(c), 31)));
         }
         let r = l.to_bits().saturating_add(0x80) >> 8;
         Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
@@ -737,12 +768,12 @@ mod tests {
             for &b in &pbs {
                 let (pl, pb) = (PathLength::from_bits(p), Log2Pb::from_bits(b));
                 assert_eq!(
-                    table_lod(pl, pb),
+                    table_lod::<Accurate>(pl, pb),
                     table_lod_formula(pl, pb),
                     "{p:#x} {b:#x}"
                 );
                 #[cfg(feature = "cone")]
-                let d = I16F16::from_bits(b);
+                let d = Delta::from_bits(b);
                 #[cfg(feature = "cone")]
                 for c in [
                     None,
@@ -754,7 +785,7 @@ mod tests {
                 ] {
                     let (w, c) = (Width::from_bits(p as i64), c.map(U1F31::from_bits));
                     assert_eq!(
-                        cone_lod(w, d, c),
+                        cone_lod::<Accurate>(w, d, c),
                         cone_lod_formula(w, d, c),
                         "{p:#x} {b:#x} {c:?}"
                     );
@@ -776,7 +807,7 @@ mod tests {
         ) {
             let p = p.map(|v| v.map(q));
             let uv = uv.map(|v| v.map(q));
-            let gq = I2F30::from_num(g);
+            let gq = Spread::from_num(g);
             let spread = PixelSpread::from_angle(gq).unwrap();
             let pb = Log2Pb::compute(&make(p, uv, w, h), &spread);
             let want_pb = raymip_reference::pb::log2_pb_f64(&p, &uv, f64::from(w), f64::from(h), gq.to_num());
@@ -793,16 +824,16 @@ mod tests {
             prop_assume!((2f64.powi(-16)..=2f64.powi(16)).contains(&pl));
             let want = pl.log2() - want_pb;
             prop_assume!(want.abs() < 120.0);
-            let got = table_lod(st.pl, pb).unwrap().to_num::<f64>();
+            let got = table_lod::<Accurate>(st.pl, pb).unwrap().to_num::<f64>();
             prop_assert!((got - want).abs() <= LOD_MAX_ERROR,
                 "table lod {} vs f64 {} (Pl {}, log2 Pb {})", got, want, pl, want_pb);
             // The FAST path within the same bound (entry error included).
-            let fast = table_lod_fast(st.pl, pb).unwrap().to_num::<f64>();
+            let fast = table_lod::<Fast>(st.pl, pb).unwrap().to_num::<f64>();
             prop_assert!((fast - want).abs() <= LOD_MAX_ERROR,
                 "fast table lod {} vs f64 {} (Pl {}, log2 Pb {})", fast, want, pl, want_pb);
             // The FAST batch from the ray stack's normalised Pl.
             let mut w = [LodWord::UNTEXTURED];
-            table_lod_fast_batch(&[(st.pl_norm, pb)], &mut w);
+            table_lod_norm_batch(&[(st.pl_norm, pb)], &mut w);
             let batch = w[0].get().unwrap().to_num::<f64>();
             prop_assert!((batch - want).abs() <= LOD_MAX_ERROR,
                 "fast table batch {} vs f64 {} (Pl {}, log2 Pb {})", batch, want, pl, want_pb);
@@ -812,7 +843,7 @@ mod tests {
             #[cfg(feature = "cone")]
             {
                 prop_assume!(st.cone.width >= Width::from_num(2f64.powi(-20)));
-                let cone = cone_lod(st.cone.width, pb.delta(&spread).unwrap(), None);
+                let cone = cone_lod::<Accurate>(st.cone.width, pb.delta(&spread).unwrap(), None);
                 prop_assert!((cone.to_num::<f64>() - got).abs() <= LOD_MAX_ERROR,
                     "cone {} vs table {}", cone, got);
             }
@@ -822,11 +853,11 @@ mod tests {
         fn per_hit_code_equals_formula(p in any::<u64>(), s in 0u32..64, b in any::<i32>(), w in any::<i64>(), c in proptest::option::of(any::<u32>())) {
             let pl = PathLength::from_bits(p >> s);
             let pb = Log2Pb::from_bits(b);
-            prop_assert_eq!(table_lod(pl, pb), table_lod_formula(pl, pb));
+            prop_assert_eq!(table_lod::<Accurate>(pl, pb), table_lod_formula(pl, pb));
             #[cfg(feature = "cone")]
             {
-                let (w, d, c) = (Width::from_bits(w >> s), I16F16::from_bits(b), c.map(U1F31::from_bits));
-                prop_assert_eq!(cone_lod(w, d, c), cone_lod_formula(w, d, c));
+                let (w, d, c) = (Width::from_bits(w >> s), Delta::from_bits(b), c.map(U1F31::from_bits));
+                prop_assert_eq!(cone_lod::<Accurate>(w, d, c), cone_lod_formula(w, d, c));
             }
             #[cfg(not(feature = "cone"))]
             let _ = (w, c);
@@ -836,18 +867,18 @@ mod tests {
         fn table_lod_is_monotonic_in_pl(a in any::<u64>(), b in any::<u64>(), e in any::<i32>()) {
             let pb = Log2Pb::from_log2(I16F16::from_bits(e));
             let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
-            let l0 = table_lod(PathLength::from_bits(lo), pb);
-            let l1 = table_lod(PathLength::from_bits(hi), pb);
+            let l0 = table_lod::<Accurate>(PathLength::from_bits(lo), pb);
+            let l1 = table_lod::<Accurate>(PathLength::from_bits(hi), pb);
             prop_assert!(l0 <= l1);
             // Neighbours too (the interesting case for table interpolation).
-            let l2 = table_lod(PathLength::from_bits(lo.saturating_add(1)), pb);
+            let l2 = table_lod::<Accurate>(PathLength::from_bits(lo.saturating_add(1)), pb);
             prop_assert!(l0 <= l2);
         }
 
         #[test]
         #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
-            let l = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            let l = cone_lod::<Accurate>(Width::from_bits(w), Delta::from_bits(d), c.map(U1F31::from_bits));
             // f64 reference over the whole input range (issue 11, defect 6:
             // this used to assert `Lod::MIN <= l <= Lod::MAX`, true of every
             // Lod): `w = 0` read as 2⁻³², |n·d| clamped to [2⁻¹⁶, 1], the sum
@@ -866,23 +897,23 @@ mod tests {
         /// the table can hold (incl. the degenerate markers); within one
         /// step of the ACCURATE path, and monotonic in `Pl`.
         #[test]
-        fn table_lod_fast_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), e in (i32::MIN + 1)..) {
+        fn fast_table_lod_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), e in (i32::MIN + 1)..) {
             let p = (1u64 << n) | (m & ((1u64 << n) - 1));
             let (pl, pb) = (PathLength::from_bits(p), Log2Pb::from_bits(e));
-            let got = table_lod_fast(pl, pb).unwrap();
+            let got = table_lod::<Fast>(pl, pb).unwrap();
             let want = (p as f64).log2() - 32.0 - pb.to_i16f16().to_num::<f64>();
             prop_assert!((got.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "fast {} vs f64 {}", got, want);
-            let acc = table_lod(pl, pb).unwrap();
+            let acc = table_lod::<Accurate>(pl, pb).unwrap();
             prop_assert!((got.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", got, acc);
             prop_assert_eq!(table_lod_norm(NormPl::new(pl), pb), Some(got));
             // The batch's word, against f64 too.
             let mut w = [LodWord::UNTEXTURED];
-            prop_assert_eq!(table_lod_fast_batch(&[(NormPl::new(pl), pb)], &mut w), 1);
+            prop_assert_eq!(table_lod_norm_batch(&[(NormPl::new(pl), pb)], &mut w), 1);
             let word = w[0].get().unwrap();
             prop_assert!((word.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "batch {} vs f64 {}", word, want);
             prop_assert_eq!(word, got);
             if p < u64::MAX {
-                prop_assert!(table_lod_fast(PathLength::from_bits(p + 1), pb).unwrap() >= got);
+                prop_assert!(table_lod::<Fast>(PathLength::from_bits(p + 1), pb).unwrap() >= got);
             }
         }
 
@@ -890,15 +921,15 @@ mod tests {
         /// `cone_lod_never_panics_and_is_bounded` for the ACCURATE path).
         #[test]
         #[cfg(feature = "cone")]
-        fn cone_lod_fast_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), neg in any::<bool>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
+        fn fast_cone_lod_matches_f64_over_the_whole_range(n in 0u32..64, m in any::<u64>(), neg in any::<bool>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let bits = ((1u64 << n) | (m & ((1u64 << n) - 1))) >> 1;
             let w = if neg { -(bits as i64) } else { bits as i64 };
-            let l = cone_lod_fast(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            let l = cone_lod::<Fast>(Width::from_bits(w), Delta::from_bits(d), c.map(U1F31::from_bits));
             let lw = (w.unsigned_abs().max(1) as f64).log2() - 32.0;
             let lc = c.map_or(0.0, |c| (f64::from(c.clamp(1 << 15, 1 << 31)) / 2f64.powi(31)).log2());
             let want = (f64::from(d) / 65536.0 + lw - lc).clamp(Lod::MIN.to_num(), Lod::MAX.to_num());
-            prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod_fast = {} vs f64 {}", l, want);
-            let acc = cone_lod(Width::from_bits(w), I16F16::from_bits(d), c.map(U1F31::from_bits));
+            prop_assert!((l.to_num::<f64>() - want).abs() <= LOD_MAX_ERROR, "cone_lod::<Fast> = {} vs f64 {}", l, want);
+            let acc = cone_lod::<Accurate>(Width::from_bits(w), Delta::from_bits(d), c.map(U1F31::from_bits));
             prop_assert!((l.to_bits() - acc.to_bits()).abs() <= 1, "fast {} vs accurate {}", l, acc);
         }
 
@@ -908,10 +939,10 @@ mod tests {
         /// uniformly, zero and the largest included), every table entry
         /// (the three markers, the finite extremes and any raw word),
         /// unequal lengths (words past `n` untouched). Against
-        /// `table_lod_fast`, whose arithmetic is separate (leading-zero
+        /// `table_lod::<Fast>`, whose arithmetic is separate (leading-zero
         /// count, the unshifted table).
         #[test]
-        fn table_lod_fast_batch_equals_per_hit_calls(
+        fn table_lod_norm_batch_equals_per_hit_calls(
             hits in proptest::collection::vec((0u32..66, any::<u64>(), 0u8..8, any::<i32>()), 0..40),
             extra in 0usize..3,
             longer in any::<bool>(),
@@ -936,18 +967,18 @@ mod tests {
             const UNTOUCHED: i32 = 0x1234_5678;
             let len = if longer { t.len() + extra } else { t.len().saturating_sub(extra) };
             let mut out = std::vec![LodWord::from_bits(UNTOUCHED); len];
-            let n = table_lod_fast_batch(&k, &mut out);
+            let n = table_lod_norm_batch(&k, &mut out);
             prop_assert_eq!(n, t.len().min(len));
             for (i, (o, &(pl, pb))) in out.iter().zip(&t).enumerate() {
-                prop_assert_eq!(o.get(), table_lod_fast(pl, pb), "hit {}: word {:#x}", i, o.to_bits());
+                prop_assert_eq!(o.get(), table_lod::<Fast>(pl, pb), "hit {}: word {:#x}", i, o.to_bits());
                 prop_assert_eq!(o.get(), table_lod_norm(k[i].0, pb));
             }
             prop_assert!(out[n..].iter().all(|o| o.to_bits() == UNTOUCHED));
             // The ACCURATE batch over the same hits and lengths.
             let mut acc = std::vec![Some(Lod::MIN); len];
-            prop_assert_eq!(table_lod_batch(&t, &mut acc), n);
+            prop_assert_eq!(table_lod_batch::<Accurate>(&t, &mut acc), n);
             for (o, &(pl, pb)) in acc.iter().zip(&t) {
-                prop_assert_eq!(*o, table_lod(pl, pb));
+                prop_assert_eq!(*o, table_lod::<Accurate>(pl, pb));
             }
             prop_assert!(acc[n..].iter().all(|&o| o == Some(Lod::MIN)));
         }
@@ -958,7 +989,7 @@ mod tests {
         /// `2^e · (1 + i/1024)` (the table's midpoint is within the FAST
         /// log2 bound of it).
         #[test]
-        fn table_lod_fast_batch_any_key_word(bits in any::<i32>(), sel in 0u8..6, b in any::<i32>()) {
+        fn table_lod_norm_batch_any_key_word(bits in any::<i32>(), sel in 0u8..6, b in any::<i32>()) {
             let key = NormPl::from_bits(bits);
             let (e, i) = (key.to_bits() >> 16, key.to_bits() & 1023);
             prop_assert!((-32..=31).contains(&e));
@@ -970,7 +1001,7 @@ mod tests {
                 _ => Log2Pb::from_bits(b),
             };
             let mut w = [LodWord::from_bits(0)];
-            table_lod_fast_batch(&[(key, pb)], &mut w);
+            table_lod_norm_batch(&[(key, pb)], &mut w);
             prop_assert_eq!(w[0].get(), table_lod_norm(key, pb));
             if pb.is_untextured() {
                 prop_assert_eq!(w[0].get(), None);
@@ -988,21 +1019,21 @@ mod tests {
         /// with unequal lengths.
         #[test]
         #[cfg(feature = "cone")]
-        fn cone_lod_fast_batch_equals_per_hit_calls(hits in proptest::collection::vec((any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
-            let c: std::vec::Vec<_> = hits.iter().map(|&(b, w, c)| (Width::from_bits(w), I16F16::from_bits(b), c.map(U1F31::from_bits))).collect();
+        fn fast_cone_lod_batch_equals_per_hit_calls(hits in proptest::collection::vec((any::<i32>(), any::<i64>(), proptest::option::of(any::<u32>())), 0..40), extra in 0usize..3) {
+            let c: std::vec::Vec<_> = hits.iter().map(|&(b, w, c)| (Width::from_bits(w), Delta::from_bits(b), c.map(U1F31::from_bits))).collect();
             let mut out = std::vec![Lod::MAX; c.len() + extra];
-            prop_assert_eq!(cone_lod_fast_batch(&c, &mut out), c.len());
+            prop_assert_eq!(cone_lod_batch::<Fast>(&c, &mut out), c.len());
             for (o, &(w, d, n)) in out.iter().zip(&c) {
-                prop_assert_eq!(*o, cone_lod_fast(w, d, n));
+                prop_assert_eq!(*o, cone_lod::<Fast>(w, d, n));
             }
             prop_assert!(out[c.len()..].iter().all(|&o| o == Lod::MAX));
             // The ACCURATE batch, with an output shorter than the hits too.
             let short = c.len().saturating_sub(extra);
             for len in [c.len() + extra, short] {
                 let mut acc = std::vec![Lod::MIN; len];
-                prop_assert_eq!(cone_lod_batch(&c, &mut acc), c.len().min(len));
+                prop_assert_eq!(cone_lod_batch::<Accurate>(&c, &mut acc), c.len().min(len));
                 for (o, &(w, d, n)) in acc.iter().zip(&c) {
-                    prop_assert_eq!(*o, cone_lod(w, d, n));
+                    prop_assert_eq!(*o, cone_lod::<Accurate>(w, d, n));
                 }
                 prop_assert!(acc[c.len().min(len)..].iter().all(|&o| o == Lod::MIN));
             }

@@ -37,12 +37,10 @@
 
 use fixed::types::I32F32;
 
-use crate::lod::Lod;
 use crate::lod::log2::log2_bits_u128;
 use crate::path::raydiff::PosDiff;
 use crate::setup::table::TexTriangle;
-use crate::texture::TexCoord;
-use crate::texture::sampler::aniso::Footprint;
+use crate::units::{Coord, Footprint, Lod, TexCoord};
 
 /// Documented error bound of [`RayDiffTriangle::lod`] against f64 ray
 /// differentials, in levels: 2⁻⁷ (conditions in the [module docs](self)).
@@ -133,7 +131,7 @@ impl RayDiffTriangle {
     #[must_use]
     pub fn new(tri: &TexTriangle) -> Self {
         let (p, uv, width, height) = tri.parts();
-        let sub = |a: [I32F32; 3], b: [I32F32; 3]| -> [i128; 3] {
+        let sub = |a: [Coord; 3], b: [Coord; 3]| -> [i128; 3] {
             core::array::from_fn(|k| i128::from(a[k].to_bits()) - i128::from(b[k].to_bits()))
         };
         let (e, se) = normalise_top::<6>({
@@ -240,14 +238,13 @@ mod tests {
     use super::*;
     use crate::path::raydiff::RayDiff;
     use crate::path::raydiff::tests::{V, add, dot, norm, transfer_f64, uq};
-    use crate::path::raystack::PathLength;
-    use crate::setup::table::Coord;
+    use crate::units::{PathLength, UnitVec};
     use proptest::prelude::*;
 
     fn tri(p: [V; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
         TexTriangle::new(
             p.map(|v| v.map(Coord::from_num)),
-            uv.map(|v| v.map(Coord::from_num)),
+            uv.map(|v| v.map(TexCoord::from_num)),
             w,
             h,
         )
@@ -378,10 +375,10 @@ mod tests {
             let u = crossf(dq, r);
             let rq = uq(r.map(|x| x * gamma)).map(|x| x.to_num::<f64>());
             let uqv = uq(u.map(|x| x * gamma)).map(|x| x.to_num::<f64>());
-            let (s, sat0) = RayDiff::primary(uq(dq), uq(dq), uq(rq), uq(uqv));
+            let (s, sat0) = RayDiff::primary(UnitVec(uq(dq)), UnitVec(uq(dq)), uq(rq), uq(uqv));
             let tq = PathLength::from_num(back);
             let nq = uq(n).map(|x| x.to_num::<f64>());
-            let (s, sat1) = s.transfer(uq(dq), tq, uq(nq));
+            let (s, sat1) = s.transfer(UnitVec(uq(dq)), tq, UnitVec(uq(nq)));
             prop_assume!(!sat0 && !sat1);
             let fp = t.footprint(s.dodx, s.dody);
             // f64: the same set-up and transfer.

@@ -49,50 +49,11 @@
 
 use core::fmt;
 
-use fixed::types::{I2F30, I32F32, U32F32};
-
 use crate::lod::log2_fast::NormPl;
 use crate::setup::camera::PixelSpread;
-
-/// Accumulated path length `Pl` or one hit distance `t`: U32F32 scene units
-/// (range `[0, 2³²)`, step 2⁻³²). Example: [`PathState`].
-///
-/// # Example
-/// ```
-/// use raymip::PathLength;
-/// // 100.5 scene units: integer part in the high 32 bits, 0.5 = 2³¹ in the low.
-/// assert_eq!(PathLength::from_num(100.5).to_bits(), (100 << 32) | (1 << 31));
-/// // Lengths add saturating: past 2³² − 2⁻³² the sum sticks at the top.
-/// assert_eq!(PathLength::MAX.saturating_add(PathLength::ONE), PathLength::MAX);
-/// ```
-pub type PathLength = U32F32;
-/// Ray-cone width: I32F32 scene units (range `[−2³¹, 2³¹)`, step 2⁻³²).
-/// Example: [`RayCone`].
-///
-/// # Example
-/// ```
-/// use raymip::Width;
-/// // A cone 0.25 scene units wide: 0.25 · 2³² in bits.
-/// assert_eq!(Width::from_num(0.25).to_bits(), 1 << 30);
-/// ```
-pub type Width = I32F32;
-/// Ray-cone spread angle: I2F30 radians (range `[−2, 2)`, step 2⁻³⁰).
-/// Example: [`RayCone`].
-///
-/// # Example
-/// ```
-/// use raymip::Spread;
-/// // A flat mirror adds no spread (β = 0); 2⁻¹⁰ rad is 2²⁰ in bits.
-/// assert_eq!(Spread::ZERO.to_bits(), 0);
-/// assert_eq!(Spread::from_num(1.0 / 1024.0).to_bits(), 1 << 20);
-/// // Angles of 2 rad or more do not fit.
-/// assert!(Spread::checked_from_num(2.0).is_none());
-/// ```
-pub type Spread = I2F30;
-/// A unit vector (ray direction, surface normal), I2F30 components (range
-/// `±2` per component, step `2⁻³⁰`). Used by `envmap` and
-/// `raydiff`.
-pub type UnitVec = [I2F30; 3];
+#[cfg(feature = "cone")]
+use crate::units::Width;
+use crate::units::{PathLength, Spread};
 
 /// Default stack capacity: 10 entries, as in the hardware paper: enough for
 /// `stack_bound(9, 2)` (9 bounces with a reflection and a refraction per
@@ -232,7 +193,7 @@ pub struct PathState {
     /// by [`PathState::primary`] and [`PathState::advance`] (the one
     /// leading-zero count of a segment is made there, so
     /// [`crate::lod::table_lod_norm`] and
-    /// [`crate::lod::table_lod_fast_batch`] need none per hit). A caller
+    /// [`crate::lod::table_lod_norm_batch`] need none per hit). A caller
     /// that writes `pl` directly sets this to `NormPl::new(pl)` too. Lies
     /// in the padding of the entry: [`PATH_STATE_BYTES`] is unchanged.
     pub pl_norm: NormPl,
@@ -476,7 +437,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn spread(g: f64) -> PixelSpread {
-        PixelSpread::from_angle(I2F30::from_num(g)).unwrap()
+        PixelSpread::from_angle(Spread::from_num(g)).unwrap()
     }
 
     /// The normalised `Pl` in every entry is the one of its `Pl`, after
@@ -655,7 +616,7 @@ mod tests {
             let mut st = PathState::primary(&spread(g), 1);
             let mut pl = 0.0f64;
             let mut w = 0.0f64;
-            let mut gam = I2F30::from_num(g).to_num::<f64>();
+            let mut gam = Spread::from_num(g).to_num::<f64>();
             for &(t, beta) in &segs {
                 let tq = PathLength::from_num(t);
                 let bq = Spread::from_num(beta);

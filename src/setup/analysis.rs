@@ -10,8 +10,8 @@
 //! per segment gives an upper bound), every hit's lod lies in
 //!
 //! ```text
-//! [ min over the texture's triangles of table_lod(nearest, Pb),
-//!   max over the texture's triangles of table_lod(farthest, Pb) ]
+//! [ min over the texture's triangles of table_lod::<Accurate>(nearest, Pb),
+//!   max over the texture's triangles of table_lod::<Accurate>(farthest, Pb) ]
 //! ```
 //!
 //! computed here with the very function the per-hit path uses, so the range
@@ -51,10 +51,9 @@
 
 use core::fmt;
 
-use crate::lod::{Lod, clamp_lod, table_lod};
-use crate::path::raystack::PathLength;
-use crate::setup::table::Log2Pb;
+use crate::lod::{clamp_lod, table_lod};
 use crate::texture::Mode;
+use crate::units::{Accurate, Lod, Log2Pb, PathLength};
 
 /// The nearest and farthest accumulated path length `Pl` (scene units)
 /// any hit on a texture can have. `nearest ≤ farthest` is not required
@@ -168,7 +167,7 @@ impl core::error::Error for AnalysisError {}
 
 /// Lod ranges per texture: for every table entry `i` (textured ones only)
 /// with texture `texture_of[i]`, widens `out[texture]` by
-/// `table_lod(nearest, Pb)` and `table_lod(farthest, Pb)` of that texture's
+/// `table_lod::<Accurate>(nearest, Pb)` and `table_lod::<Accurate>(farthest, Pb)` of that texture's
 /// `bounds` (`None`: no hit can reach the texture; its triangles count but
 /// give no range). `out` is overwritten.
 ///
@@ -243,7 +242,10 @@ pub fn analyse(
         let Some(b) = b else { continue };
         let (near, far) = (b.nearest.min(b.farthest), b.nearest.max(b.farthest));
         // `table_lod` is `Some` for every textured entry.
-        let (Some(lo), Some(hi)) = (table_lod(near, pb), table_lod(far, pb)) else {
+        let (Some(lo), Some(hi)) = (
+            table_lod::<Accurate>(near, pb),
+            table_lod::<Accurate>(far, pb),
+        ) else {
             continue;
         };
         slot.lod = Some(match slot.lod {
@@ -326,6 +328,7 @@ pub fn mark_skipped(entries: &mut [Log2Pb], texture_of: &[u16], usage: &[Texture
 
 #[cfg(test)]
 mod tests {
+    use crate::units::Accurate;
     extern crate std;
     use super::*;
     use crate::texture::Sampler;
@@ -499,7 +502,7 @@ mod tests {
                         .chain([near.to_bits(), far.to_bits()]);
                     for bits in pls {
                         let bits = bits.clamp(near.to_bits(), far.to_bits());
-                        let lod = table_lod(PathLength::from_bits(bits), e).unwrap();
+                        let lod = table_lod::<Accurate>(PathLength::from_bits(bits), e).unwrap();
                         let (l0, l1) = read_levels(lod, mode, levels);
                         // The sampler's own level split agrees.
                         let g = Geometry::new(1 << (levels - 1), 1, levels).unwrap();

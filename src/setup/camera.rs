@@ -3,9 +3,10 @@
 //! (`log2 Pb = −Δ − log2 γ`, see [`table`](crate::setup::table)) and of the primary
 //! ray cone. Set up once per camera and image height.
 
-use fixed::types::{I2F30, I16F16};
+use fixed::types::I16F16;
 
 use crate::lod::log2::log2_bits;
+use crate::units::Spread;
 
 unit_error! {
     /// Errors of the camera set-up.
@@ -36,14 +37,14 @@ unit_error! {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelSpread {
-    angle: I2F30,
+    angle: Spread,
     log2: I16F16,
 }
 
 impl PixelSpread {
     /// From the angle itself (radians, `0 < γ < 2`); float-free.
-    pub fn from_angle(angle: I2F30) -> Result<Self, CameraError> {
-        if angle <= I2F30::ZERO {
+    pub fn from_angle(angle: Spread) -> Result<Self, CameraError> {
+        if angle <= Spread::ZERO {
             return Err(CameraError::BadAngle);
         }
         Ok(Self {
@@ -66,13 +67,13 @@ impl PixelSpread {
             return Err(CameraError::ZeroImageHeight);
         }
         let g = libm::atan(2.0 * libm::tan(fov_y / 2.0) / f64::from(image_height));
-        let a = I2F30::checked_from_num(g).ok_or(CameraError::BadAngle)?;
+        let a = Spread::checked_from_num(g).ok_or(CameraError::BadAngle)?;
         Self::from_angle(a)
     }
 
     /// `γ` in radians (I2F30).
     #[must_use]
-    pub const fn angle(&self) -> I2F30 {
+    pub const fn angle(&self) -> Spread {
         self.angle
     }
 
@@ -116,11 +117,11 @@ mod tests {
             Err(CameraError::ZeroImageHeight)
         );
         assert_eq!(
-            PixelSpread::from_angle(I2F30::ZERO),
+            PixelSpread::from_angle(Spread::ZERO),
             Err(CameraError::BadAngle)
         );
         assert_eq!(
-            PixelSpread::from_angle(I2F30::from_num(-0.1)),
+            PixelSpread::from_angle(Spread::from_num(-0.1)),
             Err(CameraError::BadAngle)
         );
     }

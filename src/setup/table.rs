@@ -31,7 +31,7 @@
 //!
 //! # Fixed-point evaluation
 //!
-//! Positions and UVs are [`Coord`] = I32F32. Edge vectors are formed exactly
+//! Positions are [`Coord`], UVs [`TexCoord`], both I32F32. Edge vectors are formed exactly
 //! in 128-bit integers; if an edge exceeds 2⁶² raw units (|edge| > 2³⁰ scene
 //! units) all edges of that triangle are shifted right together so the cross
 //! products cannot overflow. Then
@@ -54,29 +54,9 @@ use fixed::types::{I16F16, I32F32};
 
 use crate::lod::log2::{log2_bits_u128, log2_u32};
 use crate::setup::camera::PixelSpread;
-
-/// World-space position or texture coordinate: I32F32 (range ±2³¹ scene
-/// units or texture repeats, step 2⁻³²). Example: [`BuildStats`].
-pub type Coord = I32F32;
-
-/// The ray-cone triangle constant `Δ = ½·log2(N/A)` (levels, I16F16; see
-/// [`Log2Pb::delta`]), the cone method's per-triangle input.
-///
-/// # Example
-/// ```
-/// use raymip::{Delta, Log2Pb, PixelSpread, TexTriangle};
-/// use raymip::setup::table::TABLE_MAX_ERROR;
-/// let spread = PixelSpread::from_fov_y(60f64.to_radians(), 480)?;
-/// // World area A = ½·2·2 = 2; UV area ½ on a 64×64 texture: N = 2048
-/// // texels; Δ = ½·log2(N/A) = ½·log2 1024 = 5 levels (no camera term).
-/// let p = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
-/// let tri = TexTriangle::from_f32(p, [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], 64, 64)?;
-/// let delta: Delta = Log2Pb::compute(&tri, &spread).delta(&spread).ok_or("textured")?;
-/// assert!((delta - Delta::from_num(5)).abs().to_num::<f64>() <= TABLE_MAX_ERROR);
-/// assert_eq!(Log2Pb::UNTEXTURED.delta(&spread), None);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub type Delta = I16F16;
+#[cfg(feature = "cone")]
+use crate::units::Delta;
+use crate::units::{Coord, Log2Pb, TexCoord};
 
 /// Documented maximum absolute error of a table entry against exact
 /// arithmetic, in levels: 2⁻¹⁰.
@@ -114,7 +94,7 @@ unit_error! {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TexTriangle {
     p: [[Coord; 3]; 3],
-    uv: [[Coord; 2]; 3],
+    uv: [[TexCoord; 2]; 3],
     width: u32,
     height: u32,
 }
@@ -124,7 +104,7 @@ impl TexTriangle {
     /// texture size in texels (each ≥ 1).
     pub fn new(
         p: [[Coord; 3]; 3],
-        uv: [[Coord; 2]; 3],
+        uv: [[TexCoord; 2]; 3],
         width: u32,
         height: u32,
     ) -> Result<Self, TableError> {
@@ -147,22 +127,22 @@ impl TexTriangle {
         width: u32,
         height: u32,
     ) -> Result<Self, TableError> {
-        let conv = |x: f32| -> Result<Coord, TableError> {
+        let conv = |x: f32| -> Result<I32F32, TableError> {
             if !x.is_finite() {
                 return Err(TableError::NonFinite);
             }
-            Coord::checked_from_num(x).ok_or(TableError::OutOfRange)
+            I32F32::checked_from_num(x).ok_or(TableError::OutOfRange)
         };
         let mut fp = [[Coord::ZERO; 3]; 3];
-        let mut fuv = [[Coord::ZERO; 2]; 3];
+        let mut fuv = [[TexCoord::ZERO; 2]; 3];
         for (dst, src) in fp.iter_mut().zip(p.iter()) {
             for (d, &s) in dst.iter_mut().zip(src.iter()) {
-                *d = conv(s)?;
+                *d = Coord::from_fixed(conv(s)?);
             }
         }
         for (dst, src) in fuv.iter_mut().zip(uv.iter()) {
             for (d, &s) in dst.iter_mut().zip(src.iter()) {
-                *d = conv(s)?;
+                *d = TexCoord::from_fixed(conv(s)?);
             }
         }
         Self::new(fp, fuv, width, height)
@@ -171,7 +151,7 @@ impl TexTriangle {
     /// `log2` of twice the world area (`log2 |e₁×e₂|`), or `None` for zero area.
     /// Positions, UVs and texture size (ray-differential set-up).
     #[cfg(feature = "raydiff")]
-    pub(crate) fn parts(&self) -> ([[Coord; 3]; 3], [[Coord; 2]; 3], u32, u32) {
+    pub(crate) fn parts(&self) -> ([[Coord; 3]; 3], [[TexCoord; 2]; 3], u32, u32) {
         (self.p, self.uv, self.width, self.height)
     }
 
@@ -215,7 +195,7 @@ impl TexTriangle {
     /// `log2` of twice the UV area in texels (`log2(|uv₁×uv₂|·w·h)`), or
     /// `None` for zero UV area.
     fn log2_twice_texels(&self) -> Option<I16F16> {
-        let d = |a: Coord, b: Coord| i128::from(b.to_bits()) - i128::from(a.to_bits());
+        let d = |a: TexCoord, b: TexCoord| i128::from(b.to_bits()) - i128::from(a.to_bits());
         let [q0, q1, q2] = self.uv;
         let mut e = [
             d(q0[0], q1[0]),
@@ -254,41 +234,10 @@ fn half(x: I16F16) -> I16F16 {
     I16F16::from_bits(x.to_bits() >> 1)
 }
 
-/// One table entry: `log2 Pb` in I16F16 (log2 of scene units), limited to
-/// `[−64, 64]` (Pb from 5·10⁻²⁰ to 1.8·10¹⁹ scene units), or one of three
-/// markers. The limit keeps `log2 Pl − log2 Pb` inside the [`Lod`](crate::lod::Lod)
-/// range without saturating arithmetic on the per-hit path.
-///
-/// # Example
-/// ```
-/// use raymip::lod::table_lod;
-/// use raymip::{Log2Pb, PathLength};
-/// // Entries round-trip through their raw bits (C tables, flash images).
-/// let e = Log2Pb::from_bits(-3 << 16); // log2 Pb = −3: Pb = 1/8 scene unit
-/// assert_eq!(Log2Pb::from_bits(e.to_bits()), e);
-/// // lod = log2 Pl − log2 Pb: at Pl = 1, three levels.
-/// assert_eq!(table_lod(PathLength::ONE, e).map(|l| l.to_num::<f64>()), Some(3.0));
-/// // An untextured triangle has no lod.
-/// assert_eq!(table_lod(PathLength::ONE, Log2Pb::UNTEXTURED), None);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-#[repr(transparent)]
-pub struct Log2Pb(I16F16);
-
+/// The set-up of a [`Log2Pb`] (the type is a quantity of [`crate::units`]):
+/// computing an entry from a triangle and a camera, and the ray-cone
+/// constant `Δ` of an entry.
 impl Log2Pb {
-    /// Marker for an untextured triangle.
-    pub const UNTEXTURED: Self = Self(I16F16::MIN);
-    /// Zero world area: `Pb = 0`, stored as `log2 Pb = −95`: every lod is
-    /// ≥ 63, so the coarsest stored level is used.
-    pub const DEGENERATE_GEOMETRY: Self = Self(I16F16::from_bits(-95 << 16));
-    /// Zero UV area: `Pb = ∞`, stored as `log2 Pb = +95`: every lod is
-    /// ≤ −63, so level 0 is used.
-    pub const DEGENERATE_UV: Self = Self(I16F16::from_bits(95 << 16));
-    /// Smallest finite entry: −64.
-    pub const MIN: Self = Self(I16F16::from_bits(-64 << 16));
-    /// Largest finite entry: +64.
-    pub const MAX: Self = Self(I16F16::from_bits(64 << 16));
-
     /// Computes the entry of one textured triangle (see the module docs).
     #[must_use]
     pub fn compute(tri: &TexTriangle, spread: &PixelSpread) -> Self {
@@ -303,55 +252,6 @@ impl Log2Pb {
         Self::from_log2(v)
     }
 
-    /// An entry from a given `log2 Pb`, clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`].
-    #[must_use]
-    pub fn from_log2(v: I16F16) -> Self {
-        Self(v.clamp(Self::MIN.0, Self::MAX.0))
-    }
-
-    /// An entry from raw I16F16 bits as stored by [`Log2Pb::to_bits`]
-    /// (C tables, `static` data): the three markers are kept, any other
-    /// value is clamped to [`Log2Pb::MIN`]`..=`[`Log2Pb::MAX`]. Never panics.
-    #[must_use]
-    pub const fn from_bits(bits: i32) -> Self {
-        let markers = [
-            Self::UNTEXTURED.0.to_bits(),
-            Self::DEGENERATE_GEOMETRY.0.to_bits(),
-            Self::DEGENERATE_UV.0.to_bits(),
-        ];
-        if bits == markers[0] || bits == markers[1] || bits == markers[2] {
-            return Self(I16F16::from_bits(bits));
-        }
-        let (lo, hi) = (Self::MIN.0.to_bits(), Self::MAX.0.to_bits());
-        let v = if bits < lo {
-            lo
-        } else if bits > hi {
-            hi
-        } else {
-            bits
-        };
-        Self(I16F16::from_bits(v))
-    }
-
-    /// The raw value (markers included).
-    #[must_use]
-    pub const fn to_i16f16(self) -> I16F16 {
-        self.0
-    }
-
-    /// The raw I16F16 bits (markers included): the inverse of
-    /// [`Log2Pb::from_bits`] for every entry this type holds.
-    #[must_use]
-    pub const fn to_bits(self) -> i32 {
-        self.0.to_bits()
-    }
-
-    /// True for [`Log2Pb::UNTEXTURED`].
-    #[must_use]
-    pub const fn is_untextured(self) -> bool {
-        self.0.to_bits() == i32::MIN
-    }
-
     /// The ray-cone triangle constant `Δ = ½·log2(N/A) = −log2 Pb − log2 γ`
     /// (I16F16, saturating; `None` when untextured). Feature `cone`.
     #[cfg(feature = "cone")]
@@ -360,7 +260,11 @@ impl Log2Pb {
         if self.is_untextured() {
             return None;
         }
-        Some(self.0.saturating_neg().saturating_sub(spread.log2()))
+        Some(Delta::from_fixed(
+            self.to_i16f16()
+                .saturating_neg()
+                .saturating_sub(spread.log2()),
+        ))
     }
 }
 
@@ -368,18 +272,20 @@ impl Log2Pb {
 ///
 /// # Example
 /// ```
-/// use raymip::setup::table::{BuildStats, Coord};
+/// use raymip::setup::table::BuildStats;
+/// use raymip::units::{Coord, TexCoord};
 /// use raymip::{Log2Pb, PbTable, PixelSpread, TexTriangle};
 /// let spread = PixelSpread::from_fov_y(1.0, 240)?;
 /// let c = |x: i32| Coord::from_num(x);
-/// let uv = [[c(0), c(0)], [c(1), c(0)], [c(0), c(1)]];
+/// let t = |x: i32| TexCoord::from_num(x);
+/// let uv = [[t(0), t(0)], [t(1), t(0)], [t(0), t(1)]];
 /// let p = [[c(0), c(0), c(0)], [c(1), c(0), c(0)], [c(0), c(1), c(0)]];
 /// let good = TexTriangle::new(p, uv, 16, 16)?;
 /// // Three collinear vertices: zero world area.
 /// let line = [[c(0), c(0), c(0)], [c(1), c(0), c(0)], [c(2), c(0), c(0)]];
 /// let flat = TexTriangle::new(line, uv, 16, 16)?;
 /// // All three UVs equal: zero UV area.
-/// let no_uv = TexTriangle::new(p, [[c(0), c(0)]; 3], 16, 16)?;
+/// let no_uv = TexTriangle::new(p, [[t(0), t(0)]; 3], 16, 16)?;
 /// let mut entries = [Log2Pb::UNTEXTURED; 4];
 /// let stats = PbTable::new(&mut entries).build([Some(good), Some(flat), Some(no_uv), None], &spread)?;
 /// assert_eq!(stats, BuildStats { textured: 1, untextured: 1, degenerate_geometry: 1, degenerate_uv: 1 });
@@ -488,6 +394,7 @@ impl<'a> PbTable<'a> {
 
 #[cfg(test)]
 mod tests {
+    use crate::units::{Log2Pb, Spread};
     extern crate std;
     use super::*;
     use fixed::types::I2F30;
@@ -500,11 +407,17 @@ mod tests {
 
     fn tri(p: [[f64; 3]; 3], uv: [[f64; 2]; 3], w: u32, h: u32) -> TexTriangle {
         let c = |x: f64| Coord::from_num(x);
-        TexTriangle::new(p.map(|v| v.map(c)), uv.map(|v| v.map(c)), w, h).unwrap()
+        TexTriangle::new(
+            p.map(|v| v.map(c)),
+            uv.map(|v| v.map(TexCoord::from_num)),
+            w,
+            h,
+        )
+        .unwrap()
     }
 
     fn spread(g: f64) -> PixelSpread {
-        PixelSpread::from_angle(I2F30::from_num(g)).unwrap()
+        PixelSpread::from_angle(Spread::from_num(g)).unwrap()
     }
 
     #[test]
@@ -515,7 +428,7 @@ mod tests {
         let e = Log2Pb::compute(&t, &spread(1.0 / 1024.0));
         assert_eq!(e.to_i16f16(), I16F16::from_num(2));
         #[cfg(feature = "cone")]
-        assert_eq!(e.delta(&spread(1.0 / 1024.0)), Some(I16F16::from_num(8)));
+        assert_eq!(e.delta(&spread(1.0 / 1024.0)), Some(Delta::from_num(8)));
     }
 
     /// The unit right triangle in xy and its UVs.
@@ -669,7 +582,7 @@ mod tests {
             let uv = uv.map(|v| v.map(q));
             let gq = I2F30::from_num(g);
             let want = reference(p, uv, f64::from(w), f64::from(h), gq.to_num());
-            let e = Log2Pb::compute(&tri(p, uv, w, h), &PixelSpread::from_angle(gq).unwrap());
+            let e = Log2Pb::compute(&tri(p, uv, w, h), &PixelSpread::from_angle(Spread::from_fixed(gq)).unwrap());
             if want.is_finite() && want.abs() < 63.9 {
                 let got = e.to_i16f16().to_num::<f64>();
                 prop_assert!((got - want).abs() <= TABLE_MAX_ERROR,

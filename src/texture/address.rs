@@ -22,8 +22,8 @@
 //! indices lie in `(−2¹⁷, 2¹⁷)`; the mapping handles any `i32` (a final
 //! clamp keeps results in range), so no input panics.
 
-use crate::texture::TexCoord;
 use crate::texture::kernel::accurate::WEIGHT_BITS;
+use crate::units::TexCoord;
 
 indexed_enum! {
     /// What a sampler does with coordinates outside `[0, 1)`, per axis.

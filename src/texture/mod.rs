@@ -40,38 +40,16 @@
 
 use core::fmt;
 
-use fixed::types::I32F32;
-
 pub mod address;
 pub mod kernel;
 pub mod sampler;
 pub mod storage;
 
+use crate::units::TexCoord;
 pub use address::AddressMode;
 pub use sampler::state::{SamplerDesc, SamplerState};
 pub use sampler::{Cfg, Sampler};
 pub use storage::mip::{Geometry, Pyramid, Texel, TexelSource};
-
-/// A normalized texture coordinate (I32F32: range `[−2³¹, 2³¹)`, step
-/// 2⁻³²). `u = 0` is the left edge, `u = 1` the right edge of every
-/// level; texel `i` of a level `w` wide has its centre at `(i + ½)/w`.
-///
-/// # Example
-/// ```
-/// use raymip::{Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
-/// // A 4×1 texture whose texels are 0, 1, 2, 3.
-/// let texels = [0u32, 1, 2, 3];
-/// let mut sampler = Sampler::wrap(Pyramid::new(Geometry::new(4, 1, 1)?, &texels)?);
-/// let v = TexCoord::from_num(0.5);
-/// // Texel 2's centre is (2 + ½)/4 = 0.625; nearest returns texel 2.
-/// let u = TexCoord::from_num(0.625);
-/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::Nearest), 2);
-/// // Wrap: u = 1.625 addresses the same texel.
-/// let u = TexCoord::from_num(1.625);
-/// assert_eq!(sampler.sample(u, v, Lod::ZERO, Mode::Nearest), 2);
-/// # Ok::<(), raymip::MipError>(())
-/// ```
-pub type TexCoord = I32F32;
 
 /// Filter mode, numbered as in the `sample` command. The linear-level
 /// modes (0 and 3) need the `trilinear` feature.
@@ -188,7 +166,8 @@ impl Stats for FetchStats {
 /// ```
 /// use raymip::texture::NoStats;
 /// use raymip::texture::address::Wrap;
-/// use raymip::texture::kernel::{Accurate, Linear};
+/// use raymip::texture::kernel::Linear;
+/// use raymip::units::Accurate;
 /// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
 /// let texels = [0xFF80_8080u32; 1];
 /// let pyramid = Pyramid::new(Geometry::new(1, 1, 1)?, &texels)?;

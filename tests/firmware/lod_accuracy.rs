@@ -5,9 +5,10 @@
 use fixed::types::{I32F32, U1F31};
 use raymip::lod::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::lod::{LOD_MAX_ERROR, cone_lod, table_lod};
-use raymip::path::raystack::{PathLength, PathState, Spread};
+use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, TABLE_MAX_ERROR, TexTriangle};
+use raymip::setup::table::{TABLE_MAX_ERROR, TexTriangle};
+use raymip::units::{Accurate, Coord, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 use crate::common;
 use common::{Rng, log2_pb_f64};
@@ -41,8 +42,8 @@ fn measured_error_of_every_lod_stage() {
         let spread = PixelSpread::from_fov_y(fov, height).unwrap();
         let g = spread.angle().to_num::<f64>();
         let tri = TexTriangle::new(
-            p.map(|v| v.map(I32F32::from_num)),
-            uv.map(|v| v.map(I32F32::from_num)),
+            p.map(|v| v.map(Coord::from_num)),
+            uv.map(|v| v.map(TexCoord::from_num)),
             w,
             h,
         )
@@ -68,13 +69,13 @@ fn measured_error_of_every_lod_stage() {
             continue;
         }
         n_lod += 1;
-        e_lod = e_lod.max((table_lod(st.pl, pb).unwrap().to_num::<f64>() - want).abs());
+        e_lod = e_lod.max((table_lod::<Accurate>(st.pl, pb).unwrap().to_num::<f64>() - want).abs());
         let delta = pb.delta(&spread).unwrap();
-        if st.cone.width >= I32F32::from_num(2f64.powi(-20)) {
-            let c = cone_lod(st.cone.width, delta, None).to_num::<f64>();
+        if st.cone.width >= Width::from_num(2f64.powi(-20)) {
+            let c = cone_lod::<Accurate>(st.cone.width, delta, None).to_num::<f64>();
             e_cone = e_cone.max((c - want).abs());
             let cq = U1F31::from_num(rng.range(0.01, 1.0));
-            let cn = cone_lod(st.cone.width, delta, Some(cq)).to_num::<f64>();
+            let cn = cone_lod::<Accurate>(st.cone.width, delta, Some(cq)).to_num::<f64>();
             e_normal = e_normal.max((cn - (want - cq.to_num::<f64>().log2())).abs());
         }
     }

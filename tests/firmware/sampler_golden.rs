@@ -13,13 +13,13 @@
 //! configurations changes a hash. To find the first differing sample,
 //! check out b4ea951 and print the outputs of the same loop.
 
-use raymip::lod::Lod;
 use raymip::texture::sampler::Key;
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Pyramid, TexelSource, full_levels};
 use raymip::texture::storage::pow2::Pow2Pyramid;
-use raymip::texture::{AddressMode, FetchStats, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, FetchStats, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 
 use crate::common;
 use common::{random_texture, samples_for};

@@ -12,16 +12,14 @@
 //! same bits.
 
 use proptest::prelude::*;
-use raymip::lod::Lod;
 use raymip::texture::address::{AnyAxis, ClampToBorder, ClampToEdge, Wrap};
+use raymip::texture::kernel::Linear;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip::texture::kernel::fast::FAST_MAX_ERROR_LSB;
-use raymip::texture::kernel::{Fast, Linear};
 use raymip::texture::sampler::Key;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
-use raymip::texture::{
-    AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc, SamplerState, TexCoord,
-};
+use raymip::texture::{AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc, SamplerState};
+use raymip::units::{Fast, Lod, TexCoord};
 
 use crate::common;
 use common::{Rng, random_texture, samples_for};

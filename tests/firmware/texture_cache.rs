@@ -6,10 +6,10 @@
 use std::collections::HashSet;
 
 use proptest::prelude::*;
-use raymip::lod::Lod;
 use raymip::texture::storage::cache::{BLOCK, BlockCache, BlockLayout, TexelCache};
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource, full_levels};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 
 use crate::common;
 use common::{Rng, random_texture};

@@ -104,23 +104,21 @@ pub mod stack {
 /// BC1 row, the geometric-LOD selector).
 pub mod inputs {
     use fixed::types::{I16F16, U1F31};
-    use raymip::geomlod::{Depth, LodBias, LodMode, LodRange, Selector, Transition};
-    use raymip::lod::Lod;
-    use raymip::path::raystack::{PathLength, Width};
-    use raymip::setup::table::Log2Pb;
-    use raymip::texture::TexCoord;
+    use raymip::geomlod::{LodMode, LodRange, Selector};
     use raymip::texture::address::AddressMode;
-    use raymip::texture::sampler::aniso::Footprint;
     use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
+    use raymip::units::{
+        Delta, Depth, Footprint, Lod, LodBias, Log2Pb, PathLength, TexCoord, Transition, Width,
+    };
 
     /// One ray-differential input: state, direction, hit distance, normal
     /// and its differential (feature `raydiff`).
     #[cfg(feature = "raydiff")]
     pub type RayDiffIn = (
         raymip::path::raydiff::RayDiff,
-        raymip::path::raydiff::UnitVec,
+        raymip::units::UnitVec,
         PathLength,
-        raymip::path::raydiff::UnitVec,
+        raymip::units::UnitVec,
         [raymip::path::raydiff::DirDiff; 3],
     );
 
@@ -157,7 +155,7 @@ pub mod inputs {
         /// [`table_lod`] inputs.
         pub lod: [(PathLength, Log2Pb); N],
         /// [`cone_lod`] inputs.
-        pub cone: [(Width, I16F16, Option<U1F31>); N],
+        pub cone: [(Width, Delta, Option<U1F31>); N],
         /// [`bilinear`] inputs.
         pub bilinear: [(TexCoord, TexCoord, Lod); N],
         /// [`trilinear`] inputs.
@@ -211,9 +209,9 @@ pub mod inputs {
     }
 
     /// Cone lod: width up to 2⁸ scene units, Δ over [−64, 64), `|n·d|` ≥ 2⁻¹¹.
-    pub fn cone_lod(r: &mut Rng) -> (Width, I16F16, Option<U1F31>) {
+    pub fn cone_lod(r: &mut Rng) -> (Width, Delta, Option<U1F31>) {
         let w = Width::from_bits(i64::from(r.next()) << (r.next() % 24));
-        let d = I16F16::from_bits((r.next() as i32) >> 10);
+        let d = Delta::from_bits((r.next() as i32) >> 10);
         let c = Some(U1F31::from_bits(r.next() | (1 << 20)));
         (w, d, c)
     }
@@ -343,18 +341,18 @@ pub mod inputs {
     pub fn envmap(
         r: &mut Rng,
     ) -> (
-        raymip::path::raystack::Spread,
-        raymip::path::raystack::UnitVec,
+        raymip::units::Spread,
+        raymip::units::UnitVec,
         [fixed::types::I2F30; 3],
         [fixed::types::I2F30; 3],
     ) {
         use fixed::types::I2F30;
-        let g = I2F30::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
+        let g = raymip::units::Spread::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
         let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
         let d = [f(1), f(1), f(2)];
         let dx = [f(9), f(9), f(9)];
         let dy = [f(9), f(9), f(9)];
-        (g, d, dx, dy)
+        (g, raymip::units::UnitVec::new(d), dx, dy)
     }
 
     /// Ray differentials (feature `raydiff`): one ray of a primary-like
@@ -378,6 +376,12 @@ pub mod inputs {
             dddx: dd[0],
             dddy: dd[1],
         };
-        (s, d, t, n, dn)
+        (
+            s,
+            raymip::units::UnitVec::new(d),
+            t,
+            raymip::units::UnitVec::new(n),
+            dn,
+        )
     }
 }

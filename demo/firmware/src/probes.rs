@@ -18,16 +18,15 @@
 
 use core::hint::black_box as bb;
 
-use raymip::lod::Lod;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
-use raymip::texture::kernel::{Accurate, Fast, Linear, Srgb};
-use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::kernel::{Linear, Srgb};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
 use raymip::texture::storage::mip::{Geometry, Texel};
 use raymip::texture::storage::pow2::Pow2Pyramid;
-use raymip::texture::{Cfg, Mode, NoStats, Sampler, TexCoord};
+use raymip::texture::{Cfg, Mode, NoStats, Sampler};
+use raymip::units::{Accurate, Fast, Footprint, Lod, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
 use crate::inputs::{self, N, Rng};
@@ -394,12 +393,13 @@ pub fn sampler_rows<M: Meter>(
 #[cfg(feature = "raydiff")]
 pub mod rd {
     use fixed::types::I2F30;
-    use raymip::lod::Lod;
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::{GSample, first_hit};
-    use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
-    use raymip::path::raystack::PathLength;
-    use raymip::texture::sampler::aniso::Footprint;
+    use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+    use raymip::units::Footprint;
+    use raymip::units::Lod;
+    use raymip::units::PathLength;
+    use raymip::units::UnitVec;
 
     probe! {
         /// Primary-ray set-up from the camera axes.
@@ -479,14 +479,15 @@ pub mod rd {
 pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::GSample;
-    use raymip::path::raystack::PathLength;
-    use raymip::setup::table::{Coord, TexTriangle};
+    use raymip::setup::table::TexTriangle;
+    use raymip::units::{Coord, PathLength};
     let mut rng = Rng(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
     let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
+    let t = |x: i32| TexCoord::from_bits(i64::from(x) << 32);
     let tri = TexTriangle::new(
         [[c(0), c(0), c(0)], [c(4), c(0), c(1)], [c(0), c(3), c(0)]],
-        [[c(0), c(0)], [c(2), c(0)], [c(0), c(1)]],
+        [[t(0), t(0)], [t(2), t(0)], [t(0), t(1)]],
         TEX_SIZE,
         TEX_SIZE,
     )

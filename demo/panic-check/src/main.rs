@@ -26,25 +26,23 @@ use raymip::ffi::{
     rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::geomlod::{
-    Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, choose, ray_mask,
-    transition_step, visible,
+    InstanceLod, LodMode, LodRange, Selector, choose, ray_mask, transition_step, visible,
 };
 use raymip::lod::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::lod::log2_fast::{NormPl, log2_u32f32_fast};
 use raymip::lod::{
-    Lod, LodWord, clamp_lod, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch,
-    table_lod, table_lod_batch, table_lod_clamped, table_lod_fast, table_lod_fast_batch,
-    table_lod_norm,
+    LodWord, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
+    table_lod_norm, table_lod_norm_batch,
 };
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::{Rng, mix32};
 use raymip::setup::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
-use raymip::texture::kernel::{Fast, Linear, Precision, SrgbToLinear};
-use raymip::texture::sampler::aniso::{Footprint, probes};
+use raymip::texture::kernel::{Linear, SrgbToLinear};
+use raymip::texture::sampler::aniso::probes;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::texture::sampler::stochastic::StochasticMode;
@@ -54,7 +52,12 @@ use raymip::texture::storage::format::{ColorSpace, Format, Rgb565, TexelFormat};
 use raymip::texture::storage::image::Image;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource};
 use raymip::texture::storage::srgb;
-use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
+use raymip::texture::{Cfg, Mode, Sampler};
+use raymip::units::{
+    Accurate, Delta, Depth, Fast, Lod, LodBias, PathLength, Precision, Spread, TexCoord,
+    Transition, UnitVec, Width,
+};
+use raymip::units::{Footprint, Log2Pb};
 
 static TEXELS: [Texel; 1365] = [0x8040_2010; 1365];
 static BYTES: [u8; 4096] = [0x5A; 4096];
@@ -177,7 +180,7 @@ fn main() -> ! {
     let mut stack: RayStack = RayStack::new();
     let mut entries = [Log2Pb::UNTEXTURED; 4];
     let table = PbTable::new(&mut entries);
-    let Ok(spread) = PixelSpread::from_angle(bb(fixed::types::I2F30::from_bits(1 << 20))) else {
+    let Ok(spread) = PixelSpread::from_angle(bb(Spread::from_bits(1 << 20))) else {
         loop {}
     };
     let Ok(geometry) = Geometry::new(bb(32), bb(32), bb(6)) else {
@@ -263,26 +266,26 @@ fn main() -> ! {
         // log2
         bb(clz32(bb(0x1234)));
         bb(log2_bits(bb(12345), bb(32)));
-        bb(log2_u32f32(bb(PathLength::from_bits(99))));
+        bb(log2_u32f32(bb(fixed::types::U32F32::from_bits(99))));
         bb(log2_u16f16(bb(fixed::types::U16F16::from_bits(99))));
         bb(log2_u32(bb(99)));
-        bb(log2_u32f32_fast(bb(PathLength::from_bits(99))));
+        bb(log2_u32f32_fast(bb(fixed::types::U32F32::from_bits(99))));
         // Pb table lookup and lod
         let pb = table.get(bb(3)).unwrap_or(Log2Pb::UNTEXTURED);
         let pl = bb(PathLength::from_bits(0x1_2345_6789));
-        bb(table_lod(pl, pb));
-        bb(table_lod_clamped(pl, pb, bb(7)));
-        bb(table_lod_fast(pl, pb));
+        bb(table_lod::<Accurate>(pl, pb));
+        bb(table_lod_clamped::<Accurate>(pl, pb, bb(7)));
+        bb(table_lod::<Fast>(pl, pb));
         bb(clamp_lod(bb(Lod::from_bits(1000)), bb(200)));
         bb(pb.delta(&spread));
-        bb(cone_lod(
+        bb(cone_lod::<Accurate>(
             bb(Width::from_bits(77)),
-            bb(fixed::types::I16F16::from_bits(5)),
+            bb(Delta::from_bits(5)),
             bb(Some(fixed::types::U1F31::from_bits(3))),
         ));
-        bb(cone_lod_fast(
+        bb(cone_lod::<Fast>(
             bb(Width::from_bits(-77)),
-            bb(fixed::types::I16F16::from_bits(5)),
+            bb(Delta::from_bits(5)),
             bb(Some(fixed::types::U1F31::from_bits(3))),
         ));
         // ray stack and path state
@@ -312,20 +315,20 @@ fn main() -> ! {
         // batch entry points (slices of opaque length)
         let hits = bb([(pl, pb); 4]);
         let mut lods = [None; 3];
-        bb(table_lod_batch(
+        bb(table_lod_batch::<Accurate>(
             hits.get(..bb(4)).unwrap_or_default(),
             lods.get_mut(..bb(3)).unwrap_or_default(),
         ));
         let cones = bb([(
             Width::from_bits(77),
-            fixed::types::I16F16::from_bits(5),
+            Delta::from_bits(5),
             Some(fixed::types::U1F31::from_bits(3)),
         ); 4]);
         let norm_hits = bb([(NormPl::from_bits(bb(-7)), pb); 4]);
         bb(table_lod_norm(NormPl::new(pl), pb));
         bb(NormPl::from_bits(bb(i32::MAX)).to_bits());
         let mut words = [LodWord::default(); 3];
-        bb(table_lod_fast_batch(
+        bb(table_lod_norm_batch(
             norm_hits.get(..bb(4)).unwrap_or_default(),
             words.get_mut(..bb(3)).unwrap_or_default(),
         ));
@@ -334,11 +337,11 @@ fn main() -> ! {
         bb(LodWord::from(bb(Some(Lod::ONE))) == LodWord::UNTEXTURED);
         bb(Option::<Lod>::from(bb(LodWord::UNTEXTURED)));
         let mut cone_out = [Lod::ZERO; 4];
-        bb(cone_lod_batch(
+        bb(cone_lod_batch::<Accurate>(
             cones.get(..bb(2)).unwrap_or_default(),
             cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));
-        bb(cone_lod_fast_batch(
+        bb(cone_lod_batch::<Fast>(
             cones.get(..bb(2)).unwrap_or_default(),
             cone_out.get_mut(..bb(4)).unwrap_or_default(),
         ));
@@ -355,25 +358,26 @@ fn main() -> ! {
                 dddy: [DirDiff::from_bits(bb(-5)); 3],
             });
             let (d, n, dn) = (v3(1 << 29), v3(-(1 << 29)), v3(bb(11)));
-            let s = bb(s.transfer(d, pl, n).0);
-            bb(s.reflect(d, n, dn, dn));
+            let s = bb(s.transfer(UnitVec::new(d), pl, UnitVec::new(n)).0);
+            bb(s.reflect(UnitVec::new(d), UnitVec::new(n), dn, dn));
             bb(s.refract(
-                d,
-                n,
+                UnitVec::new(d),
+                UnitVec::new(n),
                 dn,
                 dn,
                 Eta::from_bits(bb(1 << 28)),
                 fixed::types::I2F30::from_bits(bb(0)),
             ));
-            bb(RayDiff::primary(d, n, dn, dn));
-            let c = |x: i64| raymip::setup::table::Coord::from_bits(bb(x));
+            bb(RayDiff::primary(UnitVec::new(d), UnitVec::new(n), dn, dn));
+            let c = |x: i64| raymip::units::Coord::from_bits(bb(x));
+            let t = |x: i64| TexCoord::from_bits(bb(x));
             if let Ok(t) = raymip::setup::table::TexTriangle::new(
                 [
                     [c(0), c(1), c(2)],
                     [c(3 << 32), c(0), c(5)],
                     [c(0), c(7 << 30), c(0)],
                 ],
-                [[c(0), c(0)], [c(1 << 32), c(0)], [c(0), c(1 << 32)]],
+                [[t(0), t(0)], [t(1 << 32), t(0)], [t(0), t(1 << 32)]],
                 bb(64),
                 bb(32),
             ) {
@@ -383,7 +387,7 @@ fn main() -> ! {
             }
             let g = bb(GSample {
                 p: s.dodx,
-                n,
+                n: UnitVec::new(n),
                 t: pl,
             });
             bb(axis(&g, Some(&g), None));
@@ -398,12 +402,12 @@ fn main() -> ! {
             if let Ok(map) = EnvMap::new(bb(2048), bb(1024)) {
                 let map = bb(map);
                 let (d, dd) = (v3(bb(1 << 29)), [DirDiff::from_bits(bb(-3)); 3]);
-                let g = raymip::path::raystack::Spread::from_bits(bb(1 << 20));
+                let g = raymip::units::Spread::from_bits(bb(1 << 20));
                 bb(map.cone_lod(g, None));
-                bb(map.cone_lod(g, Some(d)));
-                bb(map.raydiff_lod(dd, bb(dd), bb(Some(d))));
+                bb(map.cone_lod(g, Some(UnitVec::new(d))));
+                bb(map.raydiff_lod(dd, bb(dd), bb(Some(UnitVec::new(d)))));
             }
-            bb(direction_uv(v3(bb(-7))));
+            bb(direction_uv(UnitVec::new(v3(bb(-7)))));
         }
         let samples = bb([(u, v, lod); 4]);
         let mut texels = [0; 4];

@@ -39,15 +39,15 @@ use core::fmt;
 
 pub mod parity;
 
-use fixed::types::I2F30;
-use raymip::lod::{Lod, clamp_lod, table_lod};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::lod::{clamp_lod, table_lod};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, generate};
 use raymip::texture::storage::pow2::Pow2Pyramid;
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Accurate, Coord, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 mod data;
 pub use data::{PB_TABLE, PIXEL_SIZE_Q16, PIXEL_SPREAD_BITS, TEX0, TEX1};
@@ -226,8 +226,8 @@ pub fn triangles() -> [Option<TexTriangle>; TRIANGLES] {
             p[ib] = Coord::from_bits(i64::from(b) << 16);
             let uv = [
                 // Q16.16 · Q16.16 = Q32.32 = the I32F32 bits.
-                Coord::from_bits(i64::from(a) * i64::from(scale)),
-                Coord::from_bits(i64::from(b) * i64::from(scale)),
+                TexCoord::from_bits(i64::from(a) * i64::from(scale)),
+                TexCoord::from_bits(i64::from(b) * i64::from(scale)),
             ];
             (p, uv)
         };
@@ -252,7 +252,7 @@ pub fn triangles() -> [Option<TexTriangle>; TRIANGLES] {
 /// The camera's pixel spread angle from the generated data.
 #[must_use]
 pub fn pixel_spread() -> Option<PixelSpread> {
-    PixelSpread::from_angle(I2F30::from_bits(PIXEL_SPREAD_BITS)).ok()
+    PixelSpread::from_angle(Spread::from_bits(PIXEL_SPREAD_BITS)).ok()
 }
 
 /// The generated Pb table (static data).
@@ -580,7 +580,7 @@ impl Renderer {
                             tex,
                             scale,
                             reflect,
-                        } => match table_lod(st.pl, pb) {
+                        } => match table_lod::<Accurate>(st.pl, pb) {
                             Some(lod) => {
                                 c.lod_evals += 1;
                                 let lod = clamp_lod(lod, TEX_LEVELS);

@@ -11,17 +11,15 @@
 //! byte pattern is a valid texel in every format, BC blocks included), read
 //! directly and through a texel cache (BC: block decode on fill).
 
-use raymip::lod::Lod;
+use raymip::texture::Mode;
 use raymip::texture::address::AddressMode;
-use raymip::texture::kernel::Precision;
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::{Image, image_len};
 use raymip::texture::storage::mip::{Geometry, TexelSource};
-use raymip::texture::{Mode, TexCoord};
+use raymip::units::{Footprint, Lod, Precision, TexCoord};
 
 use crate::Fnv1a;
 

@@ -15,9 +15,8 @@
 
 pub mod texformat;
 
-use raymip::lod::Lod;
+use raymip::texture::Mode;
 use raymip::texture::address::AddressMode;
-use raymip::texture::kernel::Precision;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
 use raymip::texture::kernel::fast::FAST_MAX_ERROR_LSB;
 use raymip::texture::kernel::srgb::{SRGB_LINEAR_MAX_ERROR_LSB, SRGB_MAX_ERROR_LSB};
@@ -27,7 +26,7 @@ use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::Image;
 use raymip::texture::storage::mip::{Geometry, Texel};
-use raymip::texture::{Mode, TexCoord};
+use raymip::units::{Lod, Precision, TexCoord};
 use raymip_reference::Rng;
 use raymip_reference::sampler::{self as reference, Address, State, Texture};
 
@@ -402,7 +401,7 @@ fn sample_pair(
     if tie {
         return None;
     }
-    let fp = raymip::texture::sampler::aniso::Footprint { x: ax, y: ay };
+    let fp = raymip::units::Footprint { x: ax, y: ay };
     Some((
         fw.sample_aniso(u, v, &fp),
         rs.sample_aniso(uf, vf, axes, reference::Mode::Trilinear),

@@ -64,7 +64,7 @@ impl std::error::Error for DataError {}
 pub fn generate_data() -> Result<Vec<DataFile>, DataError> {
     let fov = FOV_Y_DEGREES.to_radians();
     let spread = PixelSpread::from_fov_y(fov, HEIGHT).map_err(DataError::Camera)?;
-    let mut entries = [raymip::setup::table::Log2Pb::UNTEXTURED; TRIANGLES];
+    let mut entries = [raymip::units::Log2Pb::UNTEXTURED; TRIANGLES];
     PbTable::new(&mut entries)
         .build(triangles(), &spread)
         .map_err(DataError::Table)?;

@@ -21,7 +21,6 @@ use std::mem::size_of;
 use std::path::{Path, PathBuf};
 
 use raymip::Log2Pb;
-use raymip::lod::Lod;
 use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
 use raymip::setup::analysis::LodRange;
 use raymip::texture::Mode;
@@ -29,6 +28,7 @@ use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::TexelFormat;
 use raymip::texture::storage::image::image_len;
 use raymip::texture::storage::mip::{Pyramid, full_levels};
+use raymip::units::Lod;
 
 use super::parse_size;
 use super::sample::FormatArg;

@@ -9,7 +9,7 @@
 //!   `RD = log2_u32f32(Pl).to_bits() + 0x80` (the value the firmware's
 //!   `table_lod` and `cone_lod` subtract from; see `raymip::coproc::pcpi`);
 //! * `1` `tex.lod`: `RS1` the `tex.log2pl` value of `Pl` (as above), `RS2`
-//!   the bits of a `Log2Pb` entry, `RD = table_lod(Pl, Pb)` sign-extended,
+//!   the bits of a `Log2Pb` entry, `RD = table_lod::<Accurate>(Pl, Pb)` sign-extended,
 //!   `0x8000_0000` for `None` (untextured);
 //! * `2`…`5` the ACCURATE filter's `tex.bw` (`RS1 = fx`, `RS2 = fy`),
 //!   `tex.bt` (`t00`, `t10`), `tex.bb` (`t01`, `t11`; `RD` = the footprint
@@ -69,15 +69,13 @@ use fixed::types::U32F32;
 use raymip::coproc::{BLOCK_WORDS, coord_i4f28, level_config};
 use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
-use raymip::path::raystack::PathLength;
 use raymip::rng::Rng;
-use raymip::setup::table::Log2Pb;
-use raymip::texture::TexCoord;
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::AnyAxis;
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
 use raymip::texture::sampler::state::SamplerDesc;
 use raymip::texture::storage::pow2::Pow2Pyramid;
+use raymip::units::{Accurate, Log2Pb, PathLength, TexCoord};
 use raymip::{Cfg, Geometry, Lod, Pyramid, Sampler, SamplerState};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
@@ -91,7 +89,7 @@ pub fn log2pl(pl: u64) -> u32 {
 /// `0x8000_0000` for `None`.
 #[must_use]
 pub fn lod(pl: u64, pb: Log2Pb) -> u32 {
-    match table_lod(PathLength::from_bits(pl), pb) {
+    match table_lod::<Accurate>(PathLength::from_bits(pl), pb) {
         Some(l) => i32::from(l.to_bits()) as u32,
         None => 0x8000_0000,
     }

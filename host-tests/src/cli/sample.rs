@@ -27,10 +27,7 @@ use std::io::{self, BufRead, Write};
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use raymip::lod::Lod;
 use raymip::texture::address::AddressMode;
-use raymip::texture::kernel::Precision;
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::SamplerStateError;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
@@ -41,7 +38,8 @@ use raymip::texture::storage::image::Image;
 use raymip::texture::storage::image::ImageTooShort;
 use raymip::texture::storage::mip::TexelSource;
 use raymip::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, full_levels, generate};
-use raymip::texture::{FilterError, Mode, TexCoord, tex_coord_from_f64};
+use raymip::texture::{FilterError, Mode, tex_coord_from_f64};
+use raymip::units::{Footprint, Lod, Precision, TexCoord};
 
 use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 

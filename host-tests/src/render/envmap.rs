@@ -15,9 +15,9 @@
 //! Addressing wraps on both axes (the units' one mode): the seam in `u` is
 //! seamless, the poles blend with the opposite row at coarse levels.
 
-use raymip::lod::Lod;
 use raymip::lod::envmap::{EnvMap, direction_uv};
-use raymip::path::raystack::{PathState, Spread, UnitVec};
+use raymip::path::raystack::PathState;
+use raymip::units::{Lod, Spread, UnitVec};
 
 use super::RenderError;
 use super::options::{Method, Options};

@@ -13,6 +13,7 @@ use raymip::path::raydiff::gbuffer::GSample;
 use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
 
 use crate::scene::V3;
+use raymip::units::UnitVec;
 
 /// One pixel's first hit in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,10 +38,11 @@ impl GHit {
                 .p
                 .to_array()
                 .map(|x| PosDiff::saturating_from_num(q(x))),
-            n: self
-                .n
-                .to_array()
-                .map(|x| DirDiff::saturating_from_num(q(x))),
+            n: UnitVec::new(
+                self.n
+                    .to_array()
+                    .map(|x| DirDiff::saturating_from_num(q(x))),
+            ),
             t: PathLength::saturating_from_num(q(self.t)),
         }
     }

@@ -22,12 +22,11 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use raymip::geomlod::{
-    Depth, InstanceLod, LodBias, LodMode, LodRange, Selector, Transition, ray_mask, visible,
-};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::geomlod::{InstanceLod, LodMode, LodRange, Selector, ray_mask, visible};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::Rng;
 use raymip::setup::camera::PixelSpread;
+use raymip::units::{Depth, LodBias, PathLength, Spread, Transition};
 use rayon::prelude::*;
 use serde::Serialize;
 

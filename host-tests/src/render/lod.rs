@@ -5,10 +5,10 @@
 //! way: the tracer uses this module, this module the texture units.
 
 use fixed::types::U1F31;
-use raymip::lod::{Lod, clamp_lod, cone_lod, table_lod};
+use raymip::lod::{clamp_lod, cone_lod, table_lod};
 use raymip::path::raystack::PathState;
 use raymip::rng::Rng;
-use raymip::texture::sampler::aniso::Footprint;
+use raymip::units::{Accurate, Footprint, Lod};
 use raymip_reference::lod as reference;
 
 use super::options::Method;
@@ -142,10 +142,13 @@ fn fixed_lod(prep: &Prepared, method: Method, q: &LodQuery) -> Option<(Lod, Opti
     let pbx = prep.pb_fixed[q.tri];
     match method {
         Method::Mip0 | Method::Truth => Some((Lod::ZERO, None)),
-        Method::Table => table_lod(q.state.pl, pbx).map(|l| (l, None)),
+        Method::Table => table_lod::<Accurate>(q.state.pl, pbx).map(|l| (l, None)),
         Method::Cone => pbx.delta(&prep.spread).map(|delta| {
             let nd = U1F31::saturating_from_num(q.n_dot_d);
-            (cone_lod(q.state.cone.width, delta, Some(nd)), None)
+            (
+                cone_lod::<Accurate>(q.state.cone.width, delta, Some(nd)),
+                None,
+            )
         }),
         Method::Raydiff | Method::Gbuffer => {
             let t = prep.rd_tris[q.tri]?;

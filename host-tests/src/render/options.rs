@@ -53,7 +53,7 @@ impl Method {
 }
 
 /// Arithmetic of the LOD and the texture unit of a render (not the
-/// firmware's precision tier, `raymip::texture::kernel::Precision`).
+/// firmware's precision tier, `raymip::units::Precision`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Arithmetic {

@@ -5,7 +5,8 @@ use std::time::Instant;
 
 use raymip::lod::raydiff::RayDiffTriangle;
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable, TexTriangle};
+use raymip::setup::table::{PbTable, TexTriangle};
+use raymip::units::Log2Pb;
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -21,13 +21,12 @@
 //! truth) are trimmed; cone, ray-differential and float renders keep full
 //! pyramids (see `raymip::setup::analysis` on cones).
 
-use raymip::lod::Lod;
-use raymip::path::raystack::PathLength;
 use raymip::setup::analysis::{
     LevelRange, LodRange, PathBounds, TextureUse, analyse, mark_skipped,
 };
 use raymip::texture::Mode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource};
+use raymip::units::{Lod, PathLength};
 use serde::Serialize;
 
 use super::texunit::MipTexture;

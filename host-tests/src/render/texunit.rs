@@ -13,13 +13,12 @@
 //! (`Sampler::sample_aniso`), the float unit takes the reference's
 //! anisotropic sample (trilinear probes of `aniso_probes`).
 
-use raymip::lod::Lod;
-use raymip::texture::sampler::aniso::Footprint;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::cache::BlockLayout;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, TexelSource, full_levels, generate};
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Footprint, Lod, TexCoord};
 
 use super::RenderError;
 use super::options::Method;

@@ -1,8 +1,9 @@
 //! The Whitted tracer of one pixel: camera paths, ray segments, shadows.
 
 use fixed::types::{I2F30, U32F32};
-use raymip::path::raydiff::{RayDiff, UnitVec};
-use raymip::path::raystack::{PathState, RayStack, Spread, stack_bound};
+use raymip::path::raydiff::RayDiff;
+use raymip::path::raystack::{PathState, RayStack, stack_bound};
+use raymip::units::{PathLength, Spread, UnitVec};
 
 use super::bvh::Hit;
 use super::envmap::{FloatMiss, MissRay};
@@ -184,12 +185,8 @@ impl Ctx<'_> {
         if fixed {
             // Firmware set-up: unit direction, forward axis and the change of
             // the unnormalised direction per pixel (its forward part is 1).
-            let (d, sat) = RayDiff::primary(
-                unit_q(ray.d),
-                unit_q(prep.cam.fwd),
-                unit_q(dxv),
-                unit_q(dyv),
-            );
+            let (d, sat) =
+                RayDiff::primary(unit_q(ray.d), unit_q(prep.cam.fwd), dir_q(dxv), dir_q(dyv));
             state.diff = d;
             self.counters.saturations += u64::from(sat);
         }
@@ -224,7 +221,7 @@ impl Ctx<'_> {
             *c += 1;
         }
         let t_fixed = U32F32::saturating_from_num(hit.t);
-        let mut state = state.advance(t_fixed);
+        let mut state = state.advance(PathLength::from_fixed(t_fixed));
         let tri = &scene.triangles[hit.tri as usize];
         let mat = &scene.materials[tri.material as usize];
         // A path's first hit takes its differentials from the G-buffer
@@ -243,7 +240,10 @@ impl Ctx<'_> {
             }
             (Some(FirstHit::Float(dp, _)), _) => (dp[0], dp[1]),
             (None, None) => {
-                let (d, sat) = state.diff.transfer(unit_q(ray.d), t_fixed, unit_q(ng));
+                let (d, sat) =
+                    state
+                        .diff
+                        .transfer(unit_q(ray.d), PathLength::from_fixed(t_fixed), unit_q(ng));
                 state.diff = d;
                 state.saturated |= sat;
                 (v3_of(d.dodx), v3_of(d.dody))
@@ -453,7 +453,7 @@ impl Ctx<'_> {
     ) -> (Option<Continuation>, Option<Continuation>) {
         let fw = self.fixed();
         let (dq, nq) = (unit_q(ray.d), unit_q(f.ns));
-        let [dnxq, dnyq] = f.dn_fixed.unwrap_or([unit_q(f.dnx), unit_q(f.dny)]);
+        let [dnxq, dnyq] = f.dn_fixed.unwrap_or([dir_q(f.dnx), dir_q(f.dny)]);
         let eps = self.eps();
         let ns = f.ns;
         let face_ng = f.face_ng;
@@ -579,7 +579,7 @@ struct HitFrame {
     /// The firmware's shading-normal differentials when they come from
     /// the firmware (the G-buffer's, fixed precision): passed on as they
     /// are instead of `dnx`, `dny`.
-    dn_fixed: Option<[UnitVec; 2]>,
+    dn_fixed: Option<[[I2F30; 3]; 2]>,
     /// Position differentials on the hit plane per pixel in x and y.
     dpx: V3,
     dpy: V3,
@@ -683,6 +683,12 @@ fn surface_spread(f: &HitFrame, width: f64) -> f64 {
 /// An f64 vector as the firmware's I2F30 components (saturating; a
 /// non-finite component reads as 0).
 fn unit_q(v: V3) -> UnitVec {
+    UnitVec::new(dir_q(v))
+}
+
+/// An f64 direction differential as the firmware's I2F30 components
+/// (saturating; a non-finite component reads as 0).
+fn dir_q(v: V3) -> [I2F30; 3] {
     v.to_array().map(|x| {
         if x.is_finite() {
             I2F30::saturating_from_num(x)

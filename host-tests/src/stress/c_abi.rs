@@ -1,13 +1,13 @@
 //! C ABI edges: bad pointers, sizes, modes and stack lengths.
 
-use fixed::types::{I8F8, I16F16, U1F31};
+use fixed::types::{I8F8, U1F31};
 use raymip::ffi::{
     self, RM_UNTEXTURED, RmAddressBits, RmModeBits, RmPathState, RmRayStack, RmSampler, RmStatus,
     RmTexture,
 };
 use raymip::lod::cone_lod;
-use raymip::path::raystack::Width;
 use raymip::texture::storage::mip::{Geometry, generate};
+use raymip::units::{Accurate, Delta, Width};
 
 use super::setup::spread;
 use super::texture::{in_range, texels_for};
@@ -64,9 +64,9 @@ pub(super) fn c_abi_lod(r: &mut Runner) {
                 for d in [i32::MIN, 0, i32::MAX] {
                     for c in [0u32, 1, 1 << 15, u32::MAX] {
                         let got = ffi::rm_cone_lod(w, d, c);
-                        let rust = cone_lod(
+                        let rust = cone_lod::<Accurate>(
                             Width::from_bits(w),
-                            I16F16::from_bits(d),
+                            Delta::from_bits(d),
                             Some(U1F31::from_bits(c)),
                         );
                         if got != rust.to_bits() {

@@ -2,9 +2,8 @@
 
 use fixed::types::{I16F16, U1F31};
 use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
-use raymip::lod::{Lod, MIN_COS, clamp_lod, cone_lod, table_lod};
-use raymip::path::raystack::{PathLength, Width};
-use raymip::setup::table::Log2Pb;
+use raymip::lod::{MIN_COS, clamp_lod, cone_lod, table_lod};
+use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Width};
 
 use super::{FLOAT_CLASSES, Runner, bad, clamp, near, value};
 
@@ -30,7 +29,7 @@ pub(super) fn lods(r: &mut Runner) {
     for (pn, pl) in pls {
         for (bn, pb) in pbs {
             r.case(format!("{pn}, entry {bn}"), "lod: table_lod", move || {
-                match table_lod(pl, pb) {
+                match table_lod::<Accurate>(pl, pb) {
                     None if pb.is_untextured() => clamp("None (untextured)"),
                     Some(l) if !pb.is_untextured() => {
                         // Pl = 0 reads as its smallest step, 2^-32.
@@ -91,7 +90,7 @@ pub(super) fn cone_lods(r: &mut Runner) {
         for (dn, d) in deltas {
             for (cn, c) in cosines {
                 r.case(format!("{wn}, {dn}, {cn}"), "lod: cone_lod", move || {
-                    let got = cone_lod(w, d, c).to_num::<f64>();
+                    let got = cone_lod::<Accurate>(w, Delta::from_fixed(d), c).to_num::<f64>();
                     let lw = w.to_num::<f64>().abs().max(2f64.powi(-32)).log2();
                     let ln = c.map_or(0.0, |c| {
                         c.to_num::<f64>().clamp(MIN_COS.to_num(), 1.0).log2()
@@ -117,7 +116,7 @@ pub(super) fn lods_float(r: &mut Runner) {
         || {
             let w = Width::from_num(0.01);
             let d = I16F16::from_num(3);
-            let at = |c: U1F31| cone_lod(w, d, Some(c));
+            let at = |c: U1F31| cone_lod::<Accurate>(w, Delta::from_fixed(d), Some(c));
             let (a, b, m) = (at(U1F31::ZERO), at(U1F31::from_bits(1 << 14)), at(MIN_COS));
             if a == m && b == m && at(U1F31::from_bits(1 << 16)) < m {
                 clamp(format!("{m} levels (normal term 16)"))

@@ -2,8 +2,8 @@
 //! grazing incidence, ray-stack overflow.
 
 use raymip::lod::table_lod;
-use raymip::path::raystack::{DEFAULT_CAPACITY, PathLength, PathState, RayStack, Spread, Width};
-use raymip::setup::table::Log2Pb;
+use raymip::path::raystack::{DEFAULT_CAPACITY, PathState, RayStack};
+use raymip::units::{Accurate, Log2Pb, PathLength, Spread, Width};
 
 use super::lod::lod_ref;
 use super::setup::spread;
@@ -18,7 +18,7 @@ pub(super) fn path(r: &mut Runner) {
             for _ in 0..12 {
                 s = s.advance(PathLength::MAX).bounce(Spread::from_num(0.5));
             }
-            let l = table_lod(s.pl, Log2Pb::MIN).ok_or("untextured")?;
+            let l = table_lod::<Accurate>(s.pl, Log2Pb::MIN).ok_or("untextured")?;
             let want = lod_ref(32.0 + 64.0);
             let ok = s.pl == PathLength::MAX
                 && s.saturated

@@ -1,9 +1,10 @@
 //! Set-up edges: the camera pixel spread and the Pb table (triangles,
 //! degenerate geometry, limits).
 
-use fixed::types::{I2F30, I32F32};
+use fixed::types::I2F30;
 use raymip::setup::camera::{CameraError, PixelSpread};
-use raymip::setup::table::{Log2Pb, PbTable, TableError, TexTriangle};
+use raymip::setup::table::{PbTable, TableError, TexTriangle};
+use raymip::units::{Coord, Log2Pb, Spread, TexCoord};
 
 use super::Misbehaviour;
 use super::{FLOAT_CLASSES, Outcome, Runner, bad, clamp, err, near, value};
@@ -54,7 +55,10 @@ pub(super) fn camera(r: &mut Runner) {
         ("I2F30 MAX", I2F30::MAX),
     ] {
         r.case(name, "camera: PixelSpread::from_angle", || {
-            match (PixelSpread::from_angle(a), a > I2F30::ZERO) {
+            match (
+                PixelSpread::from_angle(Spread::from_fixed(a)),
+                a > I2F30::ZERO,
+            ) {
                 (Err(CameraError::BadAngle), false) => err("BadAngle"),
                 (Ok(s), true) => {
                     let want = a.to_num::<f64>().log2();
@@ -185,8 +189,8 @@ pub(super) fn table_geometry(r: &mut Runner) {
         "table: PbTable::update",
         || {
             let h = 2f64.powi(-32);
-            let p = [[0i64; 3], [1 << 32, 0, 0], [0, 1, 0]].map(|v| v.map(I32F32::from_bits));
-            let uv = TRI_UV.map(|v| v.map(I32F32::from_num));
+            let p = [[0i64; 3], [1 << 32, 0, 0], [0, 1, 0]].map(|v| v.map(Coord::from_bits));
+            let uv = TRI_UV.map(|v| v.map(TexCoord::from_num));
             let t = TexTriangle::new(p, uv, 256, 256).map_err(|e| e.to_string())?;
             let (e, _) = entry_of(t)?;
             // Pb = sqrt(A_world/A_tex)/γ with A_world = h/2, A_tex = 256²/2.
@@ -203,10 +207,10 @@ pub(super) fn table_limits(r: &mut Runner) {
         "largest coordinates (±(2^31 − 2^-32))",
         "table: PbTable::update",
         || {
-            let m = I32F32::MAX;
-            let n = I32F32::MIN;
+            let m = Coord::MAX;
+            let n = Coord::MIN;
             let p = [[n, n, n], [m, n, n], [n, m, n]];
-            let uv = TRI_UV.map(|v| v.map(I32F32::from_num));
+            let uv = TRI_UV.map(|v| v.map(TexCoord::from_num));
             let t = TexTriangle::new(p, uv, 1, 1).map_err(|e| e.to_string())?;
             let (e, _) = entry_of(t)?;
             // Edges 2^32: A_world = 2^63, A_tex = 1/2: Pb = 2^32/γ.

@@ -1,11 +1,11 @@
 //! Texture edges: the sampler, pyramid sizes and storage limits.
 
 use raymip::baseline_f32::SamplerF32;
-use raymip::lod::Lod;
 use raymip::texture::storage::mip::{
     self, Geometry, MAX_SIZE, MipError, Pyramid, Texel, generate, pyramid_len,
 };
-use raymip::texture::{AddressMode, FilterError, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, FilterError, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 
 use super::{FLOAT_CLASSES, Runner, bad, clamp, err, value};
 

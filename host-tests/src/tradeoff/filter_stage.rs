@@ -21,16 +21,15 @@
 //! row's own cap.
 
 use raymip::baseline_f32::SamplerF32;
-use raymip::lod::Lod;
 use raymip::rng::Rng as FrameRng;
 use raymip::texture::address::{AddressMode, Wrap};
-use raymip::texture::kernel::{Fast, Linear};
-use raymip::texture::sampler::aniso::Footprint;
+use raymip::texture::kernel::Linear;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState};
 use raymip::texture::sampler::stochastic::StochasticMode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, Texel, full_levels, generate};
 use raymip::texture::storage::pow2::Pow2Pyramid;
-use raymip::texture::{Cfg, Mode, Sampler, TexCoord};
+use raymip::texture::{Cfg, Mode, Sampler};
+use raymip::units::{Fast, Footprint, Lod, TexCoord};
 
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};

@@ -5,10 +5,9 @@
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
 use raymip::lod::raydiff::RayDiffTriangle;
-use raymip::lod::{Lod, cone_lod, cone_lod_fast, table_lod, table_lod_fast};
-use raymip::setup::table::{Log2Pb, TexTriangle};
-use raymip::texture::TexCoord;
-use raymip::texture::sampler::aniso::Footprint;
+use raymip::lod::{cone_lod, table_lod};
+use raymip::setup::table::TexTriangle;
+use raymip::units::{Accurate, Delta, Fast, Footprint, Lod, Log2Pb, PathLength, TexCoord, Width};
 
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
@@ -101,28 +100,28 @@ impl Formula {
     }
 }
 
-type FixedHit = (U32F32, Log2Pb, I32F32, I16F16, U1F31);
+type FixedHit = (PathLength, Log2Pb, Width, Delta, U1F31);
 
 fn fixed_hit(h: &Hit) -> FixedHit {
     (
-        U32F32::from_num(h.pl),
+        PathLength::from_num(h.pl),
         Log2Pb::from_log2(I16F16::from_num(h.log2_pb)),
-        I32F32::from_num(h.width),
-        I16F16::from_num(h.delta),
+        Width::from_num(h.width),
+        Delta::from_num(h.delta),
         U1F31::from_num(h.cos),
     )
 }
 
 /// `(ns per call, lods)` of one firmware path: its `table` and `cone`
-/// functions (`table_lod`/`cone_lod`, or the FAST pair with the 1024-entry
-/// log2 table without interpolation), passed as function items so each is
+/// functions (`table_lod`/`cone_lod` in one tier: ACCURATE, or FAST with
+/// the 1024-entry log2 table without interpolation), passed as function items so each is
 /// timed with its calls inlined as the firmware compiles them.
 fn firmware(
     f: Formula,
     inp: &[FixedHit],
     reps: usize,
-    table: impl Fn(U32F32, Log2Pb) -> Option<Lod>,
-    cone: impl Fn(I32F32, I16F16, Option<U1F31>) -> Lod,
+    table: impl Fn(PathLength, Log2Pb) -> Option<Lod>,
+    cone: impl Fn(Width, Delta, Option<U1F31>) -> Lod,
 ) -> (f64, Vec<f64>) {
     let l = |x: Lod| x.to_num::<f64>();
     match f {
@@ -234,9 +233,9 @@ pub fn rows(s: &Settings, tick: &dyn Fn()) -> Vec<Row> {
         let exact: Vec<f64> = hits.iter().map(|h| f.exact(h)).collect();
         for (fast, precision) in [(false, "fixed accurate"), (true, "fixed fast")] {
             let lods = if fast {
-                firmware(f, &fx, reps, table_lod_fast, cone_lod_fast)
+                firmware(f, &fx, reps, table_lod::<Fast>, cone_lod::<Fast>)
             } else {
-                firmware(f, &fx, reps, table_lod, cone_lod)
+                firmware(f, &fx, reps, table_lod::<Accurate>, cone_lod::<Accurate>)
             };
             out.push(Row {
                 budget_call: f.budget_call(fast).map(|c| (c.to_string(), false)),

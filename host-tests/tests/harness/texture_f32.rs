@@ -4,9 +4,9 @@
 //! of `u·w` crosses a texel boundary (rare; counted).
 
 use raymip::baseline_f32::SamplerF32;
-use raymip::lod::Lod;
 use raymip::texture::storage::mip::{Geometry, Pyramid, full_levels, generate};
-use raymip::texture::{AddressMode, Mode, Sampler, TexCoord};
+use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Lod, TexCoord};
 
 #[test]
 fn f32_matches_fixed() {

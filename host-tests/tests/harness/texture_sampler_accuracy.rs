@@ -5,7 +5,7 @@
 //! colours), lod bias/clamp and filter, including anisotropic filtering;
 //! every row must stay within its documented bound.
 
-use raymip::texture::kernel::Precision;
+use raymip::units::Precision;
 use raymip_host::accuracy::measure;
 
 #[test]

@@ -9,8 +9,8 @@
 
 use fixed::types::I2F30;
 
-use super::{DirDiff, PosDiff, RayDiff, UnitVec, sat32, sat64};
-use crate::path::raystack::PathLength;
+use super::{DirDiff, PosDiff, RayDiff, sat32, sat64};
+use crate::units::{PathLength, UnitVec};
 
 /// One pixel's first hit in the G-buffer: position (scene units, I32F32
 /// as [`PosDiff`]), unit shading normal and hit distance.
@@ -20,8 +20,9 @@ use crate::path::raystack::PathLength;
 /// use raymip::PathLength;
 /// use raymip::path::raydiff::gbuffer::{GSample, first_hit};
 /// use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
+/// use raymip::units::UnitVec;
 /// let q = |x: f64, y: f64| [PosDiff::from_num(x), PosDiff::from_num(y), PosDiff::from_num(-100)];
-/// let n = [DirDiff::ZERO, DirDiff::ZERO, DirDiff::ONE];
+/// let n = UnitVec::new([DirDiff::ZERO, DirDiff::ZERO, DirDiff::ONE]);
 /// let t = PathLength::from_num(100);
 /// // The centre pixel's first hit and its neighbours' on the same wall,
 /// // one eighth of a scene unit apart; the pixel above has no hit.
@@ -111,7 +112,7 @@ mod tests {
     fn s(x: f64, t: f64) -> GSample {
         GSample {
             p: [x, 0.0, 0.0].map(PosDiff::from_num),
-            n: [0.0, x / 8.0, 1.0 - x / 8.0].map(I2F30::from_num),
+            n: UnitVec([0.0, x / 8.0, 1.0 - x / 8.0].map(I2F30::from_num)),
             t: PathLength::from_num(t),
         }
     }

@@ -40,7 +40,7 @@
 
 use fixed::types::{I2F30, I4F28, I32F32};
 
-use crate::path::raystack::PathLength;
+use crate::units::{PathLength, UnitVec};
 
 pub mod gbuffer;
 
@@ -50,9 +50,6 @@ pub type PosDiff = I32F32;
 /// A direction differential component: per pixel, I2F30. Example:
 /// [`RayDiff`].
 pub type DirDiff = I2F30;
-/// A unit vector (ray direction, surface normal), I2F30 components
-/// (one home: [`crate::path::raystack::UnitVec`]). Example: [`RayDiff`].
-pub use crate::path::raystack::UnitVec;
 /// Relative index of refraction `η = n₁/n₂` (incident over transmitted
 /// medium), I4F28. Example: [`RayDiff`].
 pub type Eta = I4F28;
@@ -68,18 +65,19 @@ pub const MIN_COS: I2F30 = I2F30::from_bits(1 << 14);
 /// # Example
 /// ```
 /// use raymip::PathLength;
-/// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff, UnitVec};
+/// use raymip::path::raydiff::{DirDiff, Eta, PosDiff, RayDiff};
+/// use raymip::units::UnitVec;
 /// let (one, zero) = (DirDiff::ONE, DirDiff::ZERO);
 /// // A camera looking down −z; one pixel step turns the unnormalised
 /// // direction by s = 2⁻¹⁰ along x (right) or y (up).
 /// let s = DirDiff::from_num(1.0 / 1024.0);
-/// let forward: UnitVec = [zero, zero, -one];
+/// let forward = UnitVec::new([zero, zero, -one]);
 /// let (primary, _) = RayDiff::primary(forward, forward, [s, zero, zero], [zero, s, zero]);
 /// // The centre ray: D·f = 1, D·r = 0, so ∂D/∂x = r and ∂D/∂y = u.
 /// assert_eq!((primary.dddx, primary.dddy), ([s, zero, zero], [zero, s, zero]));
 /// // Transfer to a wall facing the camera (n = +z) at t = 100: ∂D·t
 /// // lies in the wall, so ∂O = 100·2⁻¹⁰ scene units per pixel along x.
-/// let up: UnitVec = [zero, zero, one];
+/// let up = UnitVec::new([zero, zero, one]);
 /// let (hit, saturated) = primary.transfer(forward, PathLength::from_num(100), up);
 /// assert!(!saturated);
 /// assert_eq!(hit.dodx, [PosDiff::from_num(100.0 / 1024.0), PosDiff::ZERO, PosDiff::ZERO]);
@@ -171,9 +169,9 @@ impl RayDiff {
         up: [DirDiff; 3],
     ) -> (Self, bool) {
         let mut sat = false;
-        let df = dot30(d, forward);
+        let df = dot30(d.0, forward.0);
         let mut axis = |r: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dr = dot30(d, r);
+            let dr = dot30(d.0, r);
             core::array::from_fn(|k| {
                 let t = i128::from(r[k].to_bits()) - shr_round(dr * i128::from(d[k].to_bits()), 30);
                 DirDiff::from_bits(sat32(shr_round(df * t, 30), &mut sat))
@@ -200,7 +198,7 @@ impl RayDiff {
     pub fn transfer(self, d: UnitVec, t: PathLength, n: UnitVec) -> (Self, bool) {
         let mut sat = false;
         // |D·n| ∈ [2⁻¹⁶, 12] after the clamp: 2⁻³⁰ bits fit i64.
-        let dn = clamp_cos(dot30(d, n)) as i64;
+        let dn = clamp_cos(dot30(d.0, n.0)) as i64;
         // 1/(D·n) in 2⁻³⁰ units, |inv| ≤ 2⁴⁶ (dn ≠ 0: the fallback is never taken).
         let inv = i128::from((1i64 << 60).checked_div(dn).unwrap_or(0));
         let t = i128::from(t.to_bits());
@@ -240,9 +238,9 @@ impl RayDiff {
         dndy: [DirDiff; 3],
     ) -> (Self, bool) {
         let mut sat = false;
-        let dn = dot30(d, n);
+        let dn = dot30(d.0, n.0);
         let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let ddn = shr_round(dot60(dd, n) + dot60(d, dnv), 30);
+            let ddn = shr_round(dot60(dd, n.0) + dot60(d.0, dnv), 30);
             core::array::from_fn(|k| {
                 let s = dn * i128::from(dnv[k].to_bits()) + ddn * i128::from(n[k].to_bits());
                 DirDiff::from_bits(sat32(
@@ -276,7 +274,7 @@ impl RayDiff {
     ) -> (Self, bool) {
         let mut sat = false;
         let eta = i128::from(eta.to_bits()); // 2⁻²⁸
-        let cosi = -dot30(d, n); // 2⁻³⁰
+        let cosi = -dot30(d.0, n.0); // 2⁻³⁰
         let cos_t = i128::from(cos_t.to_bits()).max(i128::from(MIN_COS.to_bits()));
         // μ in 2⁻³⁰ units.
         let mu = shr_round(eta * cosi, 28) - cos_t;
@@ -285,7 +283,7 @@ impl RayDiff {
         let ratio = shr_round((eta * eta * cosi).checked_div(cos_t).unwrap_or(0), 26);
         let coef = (eta << 2) - ratio; // 2⁻³⁰, |coef| < 2⁵⁵
         let mut axis = |dd: [DirDiff; 3], dnv: [DirDiff; 3]| -> [DirDiff; 3] {
-            let dcos = -shr_round(dot60(dd, n) + dot60(d, dnv), 30);
+            let dcos = -shr_round(dot60(dd, n.0) + dot60(d.0, dnv), 30);
             let dmu = shr_round(coef * dcos, 30);
             core::array::from_fn(|k| {
                 let v = shr_round(eta * i128::from(dd[k].to_bits()), 28)
@@ -318,7 +316,7 @@ pub(crate) mod tests {
         let l = dot(a, a).sqrt();
         [a[0] / l, a[1] / l, a[2] / l]
     }
-    pub(crate) fn uq(a: V) -> UnitVec {
+    pub(crate) fn uq(a: V) -> [I2F30; 3] {
         a.map(I2F30::from_num)
     }
     pub(crate) fn pf(a: [PosDiff; 3]) -> V {
@@ -356,7 +354,12 @@ pub(crate) mod tests {
     fn primary_of_a_head_on_ray_is_the_pixel_step() {
         let g = 1.0 / 512.0;
         let f = [0.0, 0.0, 1.0];
-        let (r, sat) = RayDiff::primary(uq(f), uq(f), uq([g, 0.0, 0.0]), uq([0.0, -g, 0.0]));
+        let (r, sat) = RayDiff::primary(
+            UnitVec(uq(f)),
+            UnitVec(uq(f)),
+            uq([g, 0.0, 0.0]),
+            uq([0.0, -g, 0.0]),
+        );
         assert!(!sat);
         assert_eq!(df(r.dddx), [g, 0.0, 0.0]);
         assert_eq!(df(r.dddy), [0.0, -g, 0.0]);
@@ -371,7 +374,7 @@ pub(crate) mod tests {
             dddx: uq([0.0, 0.0, 1.0 / 1024.0]),
             ..RayDiff::ZERO
         };
-        let (r, sat) = base.transfer(d, PathLength::from_num(10), n);
+        let (r, sat) = base.transfer(UnitVec(d), PathLength::from_num(10), UnitVec(n));
         // q = (0, 0, 10/1024); ∂t = −q·n / 2⁻¹⁶; ∂O' = q + ∂t·D.
         let want = -(10.0 / 1024.0) * 65536.0;
         assert!(!sat);
@@ -382,11 +385,20 @@ pub(crate) mod tests {
         );
         // Zero state stays zero through every operation.
         let z = RayDiff::ZERO;
-        assert_eq!(z.transfer(d, PathLength::MAX, n).0, z);
-        assert_eq!(z.reflect(d, n, [DirDiff::ZERO; 3], [DirDiff::ZERO; 3]).0, z);
+        assert_eq!(z.transfer(UnitVec(d), PathLength::MAX, UnitVec(n)).0, z);
+        assert_eq!(
+            z.reflect(
+                UnitVec(d),
+                UnitVec(n),
+                [DirDiff::ZERO; 3],
+                [DirDiff::ZERO; 3]
+            )
+            .0,
+            z
+        );
         let (rr, _) = z.refract(
-            d,
-            n,
+            UnitVec(d),
+            UnitVec(n),
             [DirDiff::ZERO; 3],
             [DirDiff::ZERO; 3],
             Eta::from_num(1),
@@ -401,27 +413,30 @@ pub(crate) mod tests {
             dddy: [DirDiff::MIN; 3],
         };
         let zero = [I2F30::ZERO; 3];
-        assert!(big.transfer(zero, PathLength::MAX, zero).1);
+        assert!(
+            big.transfer(UnitVec(zero), PathLength::MAX, UnitVec(zero))
+                .1
+        );
         for v in [[I2F30::MAX; 3], [I2F30::MIN; 3], zero] {
-            let _ = big.transfer(v, PathLength::MAX, v);
-            let _ = big.reflect(v, v, [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
+            let _ = big.transfer(UnitVec(v), PathLength::MAX, UnitVec(v));
+            let _ = big.reflect(UnitVec(v), UnitVec(v), [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
             let _ = big.refract(
-                v,
-                v,
+                UnitVec(v),
+                UnitVec(v),
                 [DirDiff::MAX; 3],
                 [DirDiff::MIN; 3],
                 Eta::MAX,
                 I2F30::MIN,
             );
             let _ = big.refract(
-                v,
-                v,
+                UnitVec(v),
+                UnitVec(v),
                 [DirDiff::MIN; 3],
                 [DirDiff::MAX; 3],
                 Eta::MIN,
                 I2F30::MAX,
             );
-            let _ = RayDiff::primary(v, v, [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
+            let _ = RayDiff::primary(UnitVec(v), UnitVec(v), [DirDiff::MAX; 3], [DirDiff::MIN; 3]);
         }
     }
 
@@ -459,7 +474,7 @@ pub(crate) mod tests {
             // Transfer.
             let cos = dot(dq, nq).abs();
             prop_assume!(cos > 1e-3);
-            let (r, sat) = s.transfer(uq(dq), tq, uq(nq));
+            let (r, sat) = s.transfer(UnitVec(uq(dq)), tq, UnitVec(uq(nq)));
             let want = transfer_f64(o, dd, dq, tq.to_num(), nq);
             let mag = want.iter().chain(&o).fold(0.0f64, |m, x| m.max(x.abs())) + sd * t / cos;
             prop_assert!(!sat);
@@ -470,7 +485,7 @@ pub(crate) mod tests {
             prop_assert!(close(pf(r.dodx), want, mag * rel + abs),
                 "transfer {:?} vs {:?}", pf(r.dodx), want);
             // Reflection (Igehy eq. 14–15).
-            let (r, _) = s.reflect(uq(dq), uq(nq), uq(dn), [DirDiff::ZERO; 3]);
+            let (r, _) = s.reflect(UnitVec(uq(dq)), UnitVec(uq(nq)), uq(dn), [DirDiff::ZERO; 3]);
             let dnd = dot(dq, nq);
             let ddn = dot(dd, nq) + dot(dq, dn);
             let want: V = core::array::from_fn(|k| dd[k] - 2.0 * (dnd * dn[k] + ddn * nq[k]));
@@ -486,7 +501,7 @@ pub(crate) mod tests {
             if k > 1e-2 {
                 let ct = I2F30::from_num(k.sqrt());
                 let ctf = ct.to_num::<f64>();
-                let (r, sat) = s.refract(uq(dq), uq(nf), uq(dnf), [DirDiff::ZERO; 3], Eta::from_num(eta), ct);
+                let (r, sat) = s.refract(UnitVec(uq(dq)), UnitVec(uq(nf)), uq(dnf), [DirDiff::ZERO; 3], Eta::from_num(eta), ct);
                 let mu = etaq * cosi - ctf;
                 let dcos = -(dot(dd, nf) + dot(dq, dnf));
                 let dmu = (etaq - etaq * etaq * cosi / ctf) * dcos;
@@ -499,7 +514,7 @@ pub(crate) mod tests {
             // Primary set-up.
             let g = sd;
             let rq = df(uq([g, 0.0, 0.0]));
-            let (p, _) = RayDiff::primary(uq(dq), uq(f), uq(rq), uq(rq));
+            let (p, _) = RayDiff::primary(UnitVec(uq(dq)), UnitVec(uq(f)), uq(rq), uq(rq));
             let dr = dot(dq, rq);
             let want: V = core::array::from_fn(|k| dot(dq, f) * (rq[k] - dr * dq[k]));
             prop_assert!(close(df(p.dddx), want, 4.0 * 2f64.powi(-30)), "primary {:?} vs {:?}", df(p.dddx), want);

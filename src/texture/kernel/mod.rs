@@ -18,6 +18,9 @@
 use core::fmt::Debug;
 
 use crate::texture::storage::mip::Texel;
+// The tiers are the crate's one pair of tier types; the kernels below name
+// them as `super::Accurate`, `super::Fast`.
+pub(crate) use crate::units::{Accurate, Fast, Precision};
 
 pub mod accurate;
 pub mod fast;
@@ -42,33 +45,6 @@ pub struct Srgb;
 /// Example: [`Kernel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SrgbToLinear;
-
-/// Precision tier ACCURATE (the default): 12-bit position weights, the
-/// bounds of [`accurate`], bit-identical on every target.
-///
-/// Example: [`Kernel`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Accurate;
-
-/// Precision tier FAST: GPU precision (D3D11's 8 sub-texel and 8 lod
-/// fraction bits), two channels per register, bound
-/// [`fast::FAST_MAX_ERROR_LSB`]; bit-identical on every target too.
-///
-/// Example: [`Kernel`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Fast;
-
-/// The precision tier of a kernel, as a value (tables, the C ABI).
-///
-/// Example: [`Kernel`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Precision {
-    /// [`Accurate`].
-    #[default]
-    Accurate = 0,
-    /// [`Fast`].
-    Fast = 1,
-}
 
 mod sealed {
     pub trait Sealed {}
@@ -117,7 +93,8 @@ impl Default for Rounding {
 /// # Example
 /// ```
 /// use raymip::texture::address::ClampToEdge;
-/// use raymip::texture::kernel::{Accurate, Fast, Kernel, Linear, Precision, Srgb, SrgbToLinear};
+/// use raymip::texture::kernel::{Kernel, Linear, Srgb, SrgbToLinear};
+/// use raymip::units::{Accurate, Fast, Precision};
 /// use raymip::{Cfg, Geometry, Lod, Mode, Pyramid, Sampler, TexCoord};
 /// // A 2×1 texture, opaque black then white; u = ½ lies midway between
 /// // the texel centres ¼ and ¾: bilinear weight ½ each.

@@ -31,49 +31,11 @@
 use fixed::types::I16F16;
 
 use super::{Key, Sampler};
-use crate::lod::Lod;
 use crate::lod::log2::log2_bits;
 use crate::texture::Stats;
-use crate::texture::TexCoord;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};
-
-/// A pixel's footprint: the two axis vectors in normalized texture
-/// coordinates (change of `(u, v)` per pixel step in x and in y). Any
-/// values are accepted (huge ones saturate).
-///
-/// # Example
-/// ```
-/// use raymip::texture::sampler::aniso::{Footprint, Probes, probes};
-/// use raymip::texture::storage::mip::pyramid_len;
-/// use raymip::texture::SamplerDesc;
-/// use raymip::{Geometry, Lod, Pyramid, Sampler, SamplerState, TexCoord};
-/// let t = |texels: f64| TexCoord::from_num(texels / 256.0); // on a 256×256 texture
-/// // A pixel 16 texels long along u and 2 wide along v: ratio 8.
-/// let fp = Footprint { x: [t(16.0), t(0.0)], y: [t(0.0), t(2.0)] };
-/// // 8 probes, lod log2 2 = 1, spaced 16/8 = 2 texels, the first at
-/// // t₀·a = (1 − 8)/16 · 16 = −7 texels from the sample point.
-/// let expected = Probes { count: 8, lod: Lod::ONE, first: [t(-7.0), t(0.0)], step: [t(2.0), t(0.0)] };
-/// assert_eq!(probes(&fp, 256, 256, 16), expected);
-/// // At most 4 probes: the minor axis widens to 16/4 = 4 texels, lod 2.
-/// let capped = probes(&fp, 256, 256, 4);
-/// assert_eq!((capped.count, capped.lod), (4, Lod::from_num(2)));
-/// // Sampling: the mean of the probes of a uniform texture is its colour.
-/// let texels = [0xFF20_4080u32; pyramid_len(4, 4, 3)];
-/// let state = SamplerState::new(SamplerDesc { max_anisotropy: 4, ..SamplerDesc::default() })?;
-/// let pyramid = Pyramid::new(Geometry::new(4, 4, 3)?, &texels)?;
-/// let mut sampler: Sampler<_> = Sampler::with_state(pyramid, state)?; // wrap, linear, ACCURATE
-/// let half = TexCoord::from_num(0.5);
-/// assert_eq!(sampler.sample_aniso(half, half, &fp), 0xFF20_4080);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Footprint {
-    /// `(du/dx, dv/dx)`.
-    pub x: [TexCoord; 2],
-    /// `(du/dy, dv/dy)`.
-    pub y: [TexCoord; 2],
-}
+use crate::units::{Footprint, Lod, TexCoord};
 
 /// What [`probes`] computes for one anisotropic sample. Example:
 /// [`Footprint`].
@@ -319,6 +281,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
 #[cfg(test)]
 mod tests {
+    use crate::units::Footprint;
     extern crate std;
     use super::*;
     use proptest::prelude::*;

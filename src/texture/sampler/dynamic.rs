@@ -16,15 +16,14 @@
 //! bit (tested). A firmware that knows its textures names the static
 //! [`Sampler`] type instead and links one key's code.
 
-use super::aniso::Footprint;
 use super::stochastic::StochasticMode;
 use super::{Cfg, Sampler, SamplerState, SrgbOutput};
-use crate::lod::Lod;
 use crate::texture::address::{AddressMode, AnyAxis, ClampToEdge, Wrap};
-use crate::texture::kernel::{Fast, Linear, Precision, Srgb, SrgbToLinear};
+use crate::texture::kernel::{Linear, Srgb, SrgbToLinear};
 use crate::texture::storage::format::ColorSpace;
 use crate::texture::storage::mip::{Geometry, Texel, TexelSource};
-use crate::texture::{FetchStats, Mode, TexCoord};
+use crate::texture::{FetchStats, Mode};
+use crate::units::{Fast, Footprint, Lod, Precision, TexCoord};
 
 /// Which entry of the key table a [`DynSampler`] runs (module docs).
 /// Example: [`DynSampler`].
@@ -76,7 +75,7 @@ impl DynKey {
 ///
 /// # Example
 /// ```
-/// use raymip::texture::kernel::Precision;
+/// use raymip::units::Precision;
 /// use raymip::texture::sampler::SrgbOutput;
 /// use raymip::texture::sampler::dynamic::{DynKey, DynSampler};
 /// use raymip::texture::storage::format::ColorSpace;

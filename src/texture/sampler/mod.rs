@@ -37,12 +37,12 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crate::lod::Lod;
 use crate::texture::address::wrap_constant;
 use crate::texture::address::{AddressMode, AnyAxis, Axis, ClampToEdge, Wrap};
-use crate::texture::kernel::{Accurate, Kernel, Linear, Precision, Rounding};
+use crate::texture::kernel::{Kernel, Linear, Rounding};
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
-use crate::texture::{FetchStats, FilterError, Mode, Stats, TexCoord, tex_coord_from_f64};
+use crate::texture::{FetchStats, FilterError, Mode, Stats, tex_coord_from_f64};
+use crate::units::{Accurate, Lod, Precision, TexCoord};
 
 pub mod aniso;
 pub mod dynamic;
@@ -71,7 +71,7 @@ pub trait Key: 'static {
 /// [`AnyAxis`]), of `v` (default: as `u`), colour space `C`
 /// ([`Linear`], [`Srgb`](crate::texture::kernel::Srgb),
 /// [`SrgbToLinear`](crate::texture::kernel::SrgbToLinear)) and precision
-/// tier `P` ([`Accurate`], [`Fast`](crate::texture::kernel::Fast)) and
+/// tier `P` ([`Accurate`], [`Fast`](crate::units::Fast)) and
 /// what it counts, `N` ([`FetchStats`], the default, or [`NoStats`](crate::texture::NoStats)).
 /// `Cfg` alone is wrap, linear, ACCURATE, counted.
 ///
@@ -861,7 +861,8 @@ mod tests {
     use super::*;
     use crate::texture::address::AddressMode;
     use crate::texture::storage::mip::{Pyramid, generate};
-    use crate::texture::{FetchStats, FilterError, Mode, TexCoord, tex_coord_from_f64};
+    use crate::texture::{FetchStats, FilterError, Mode, tex_coord_from_f64};
+    use crate::units::TexCoord;
     use std::vec;
     use std::vec::Vec;
 
@@ -1044,9 +1045,10 @@ mod tests {
     #[test]
     fn direct_path_equals_generic_path() {
         use crate::texture::address::{ClampToBorder, Mirror, MirrorOnce};
-        use crate::texture::kernel::{Fast, Srgb, SrgbToLinear};
+        use crate::texture::kernel::{Srgb, SrgbToLinear};
         use crate::texture::storage::cache::TexelCache;
         use crate::texture::storage::pow2::Pow2Pyramid;
+        use crate::units::Fast;
 
         /// Samples `n` pseudo-random inputs of every mode through the
         /// direct, generic and cached samplers of key `K`.

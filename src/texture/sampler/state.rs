@@ -19,9 +19,10 @@
 //! * For sRGB textures: whether filtered results come back re-encoded to
 //!   sRGB or as linear values ([`SrgbOutput`]).
 
-use crate::lod::{Lod, clamp_lod};
+use crate::lod::clamp_lod;
 use crate::texture::address::AddressMode;
 use crate::texture::storage::mip::Texel;
+use crate::units::Lod;
 
 /// Largest supported maximum anisotropy (16×, as D3D11 and Vulkan).
 pub const MAX_ANISOTROPY: u8 = 16;

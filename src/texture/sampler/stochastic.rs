@@ -54,12 +54,12 @@
 //! and bit-identical on every target: integer compares and shifts only.
 
 use super::{Key, Sampler};
-use crate::lod::Lod;
+use crate::texture::Stats;
 use crate::texture::address::Axis;
 use crate::texture::kernel::Kernel;
 use crate::texture::kernel::accurate as bilerp;
 use crate::texture::storage::mip::{Texel, TexelSource};
-use crate::texture::{Stats, TexCoord};
+use crate::units::{Lod, TexCoord};
 
 /// Bias of the mean of the one-read modes against the exact filter, in
 /// 8-bit LSB per channel: the 1/4096-texel position rounding on two axes,

@@ -48,11 +48,11 @@ use core::fmt;
 use core::marker::PhantomData;
 use core::ptr::NonNull;
 
-use crate::texture::TexCoord;
 use crate::texture::address::pow2_wrap_taps;
 use crate::texture::storage::mip::{
     Geometry, MAX_LEVELS, MAX_SIZE, MipError, Pyramid, Texel, TexelSource,
 };
+use crate::units::TexCoord;
 
 /// One power-of-two level in memory, validated ([module docs](self)):
 /// every read is in bounds by construction.

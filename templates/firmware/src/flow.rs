@@ -2,10 +2,10 @@
 // `trilinear` (table lod, trilinear filter): set-up once, then per hit
 // path state -> lod -> sample, with the continuations of every hit on a
 // ray stack. Integer arithmetic only: no float, no allocator, no panic.
-use fixed::types::{I2F30, I32F32};
 use raymip::lod::table_lod;
 use raymip::path::raystack::stack_bound;
 use raymip::texture::storage::mip::pyramid_len;
+use raymip::units::{Accurate, Coord};
 use raymip::{Geometry, Log2Pb, Mode, PathLength, PathState, PbTable, PixelSpread};
 use raymip::{Pyramid, RayStack, Sampler, Spread, TexCoord, TexTriangle, Texel};
 
@@ -13,10 +13,10 @@ use raymip::{Pyramid, RayStack, Sampler, Spread, TexCoord, TexTriangle, Texel};
 pub const BOUNCES: u8 = 10;
 /// Ray-stack entries such paths need: `stack_bound(10, 2)` = 11.
 pub const STACK: usize = stack_bound(BOUNCES, 2);
-/// Pixel spread `γ = atan(2·tan(fov/2)/rows)` in radians (I2F30): 60° over
+/// Pixel spread `γ = atan(2·tan(fov/2)/rows)` in radians: 60° over
 /// 480 rows, worked out once on the host (`PixelSpread::from_fov_y` would
 /// bring double-precision soft float and libm into the image).
-pub const SPREAD: I2F30 = I2F30::lit("0.0024056");
+pub const SPREAD: Spread = Spread::lit("0.0024056");
 /// Hit distances in scene units: the primary ray's, and every later segment's.
 pub const FIRST_T: u32 = 20;
 pub const NEXT_T: u32 = 30;
@@ -72,11 +72,12 @@ pub fn run() -> Result<Report, &'static str> {
     // --- set-up (once per camera, scene and texture) ---
     let spread = PixelSpread::from_angle(SPREAD).map_err(|_| "pixel spread")?;
     // A unit square (two triangles) mapped once onto the texture; fixed-point
-    // positions and UVs (I32F32).
-    let (o, l) = (I32F32::ZERO, I32F32::ONE);
+    // positions (scene units) and UVs (texture repeats).
+    let (o, l) = (Coord::ZERO, Coord::ONE);
+    let (uo, ul) = (TexCoord::ZERO, TexCoord::ONE);
     let tri = TexTriangle::new(
         [[o, o, o], [l, o, o], [o, l, o]],
-        [[o, o], [l, o], [o, l]],
+        [[uo, uo], [ul, uo], [uo, ul]],
         SIZE,
         SIZE,
     )
@@ -103,7 +104,8 @@ pub fn run() -> Result<Report, &'static str> {
         // The accelerator traces the segment; here every ray hits triangle 1.
         let t = if path.depth == 0 { FIRST_T } else { NEXT_T };
         let hit = path.advance(PathLength::from_num(t));
-        let Some(lod) = table_lod(hit.pl, table.get(1).unwrap_or(Log2Pb::UNTEXTURED)) else {
+        let Some(lod) = table_lod::<Accurate>(hit.pl, table.get(1).unwrap_or(Log2Pb::UNTEXTURED))
+        else {
             continue; // untextured: no texture work
         };
         let (u, v) = (TexCoord::from_bits(3 << 30), TexCoord::from_bits(1 << 30)); // (0.75, 0.25)

@@ -6,9 +6,8 @@
 pub use raymip_reference::Rng;
 pub use raymip_reference::pb::log2_pb_f64;
 
-use raymip::lod::Lod;
-use raymip::texture::TexCoord;
 use raymip::texture::storage::mip::{Geometry, MipError, Texel, generate};
+use raymip::units::{Lod, TexCoord};
 
 /// A `width × height` pyramid of `levels` levels whose level-0 texels are
 /// random words from [`Rng`] seeded with `seed | 1`, the levels above

@@ -56,16 +56,14 @@ use core::hint::black_box as bb;
 
 use fixed::types::{I16F16, U1F31};
 use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
-use raymip::geomlod::{Depth, InstanceLod, LodMode, RecordsFull, Selector};
+use raymip::geomlod::{InstanceLod, LodMode, RecordsFull, Selector};
 use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
-    Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
-    table_lod_batch, table_lod_fast, table_lod_fast_batch,
+    LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::path::raystack::{PathLength, Width};
-use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::Texel;
 use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};
 use raymip_demo_firmware::inputs::{self, Draws, N};
 use raymip_demo_firmware::probes::{
     self, Images, Meter, SampleIn, Subjects, Tex, TexFast, rm_batch_bilinear, rm_batch_trilinear,
@@ -79,7 +77,7 @@ const PAINT: usize = 2048;
 
 type LodIn = (PathLength, Log2Pb);
 type LodNormIn = (NormPl, Log2Pb);
-type ConeIn = (Width, I16F16, Option<U1F31>);
+type ConeIn = (Width, Delta, Option<U1F31>);
 type Instances = [(u32, Depth)];
 
 /// One table LOD.
@@ -87,15 +85,15 @@ type Instances = [(u32, Depth)];
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod(pl, pb)
+    table_lod::<Accurate>(pl, pb)
 }
 
 /// One ray-cone LOD with the normal term.
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_cone_lod(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod(w, delta, n_dot_d)
+pub fn rm_bench_cone_lod(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    cone_lod::<Accurate>(w, delta, n_dot_d)
 }
 
 /// One FAST table LOD (1024-entry log2 table, no interpolation).
@@ -103,15 +101,15 @@ pub fn rm_bench_cone_lod(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_bench_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod_fast(pl, pb)
+    table_lod::<Fast>(pl, pb)
 }
 
 /// One FAST ray-cone LOD with the normal term.
 #[allow(unsafe_code)]
 #[unsafe(no_mangle)]
 #[inline(never)]
-pub fn rm_bench_cone_lod_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod_fast(w, delta, n_dot_d)
+pub fn rm_bench_cone_lod_fast(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+    cone_lod::<Fast>(w, delta, n_dot_d)
 }
 
 /// One table LOD in f32.
@@ -151,7 +149,7 @@ pub fn rm_bench_f32_trilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> T
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
-    table_lod_batch(hits, out)
+    table_lod_batch::<Accurate>(hits, out)
 }
 
 /// A batch of ray-cone LODs.
@@ -159,7 +157,7 @@ pub fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
-    cone_lod_batch(hits, out)
+    cone_lod_batch::<Accurate>(hits, out)
 }
 
 /// A batch of FAST table LODs (one `LodWord` per hit).
@@ -167,7 +165,7 @@ pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [LodWord]) -> usize {
-    table_lod_fast_batch(hits, out)
+    table_lod_norm_batch(hits, out)
 }
 
 /// A batch of FAST ray-cone LODs.
@@ -175,7 +173,7 @@ pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [LodWord]) -> usize {
 #[unsafe(no_mangle)]
 #[inline(never)]
 pub fn rm_batch_cone_lod_fast(hits: &[ConeIn], out: &mut [Lod]) -> usize {
-    cone_lod_fast_batch(hits, out)
+    cone_lod_batch::<Fast>(hits, out)
 }
 
 /// The instance records of one instance: called 64 times with the
@@ -306,10 +304,8 @@ impl Meter for Traced {
 /// direction → `(u, v)` mapping, each its own wrapper.
 #[cfg(feature = "envmap")]
 mod env {
-    use raymip::lod::Lod;
     use raymip::lod::envmap::{EnvMap, direction_uv};
-    use raymip::path::raystack::{Spread, UnitVec};
-    use raymip::texture::TexCoord;
+    use raymip::units::{Lod, Spread, TexCoord, UnitVec};
 
     /// Cone lod, equator texel (no direction).
     #[allow(unsafe_code)]
@@ -425,7 +421,7 @@ fn rm_budget_driver(
         rm_bench_f32_lod(pl.to_num(), f(pb.to_i16f16())).to_bits()
     });
     measure(&cone_in, |(w, d, c)| {
-        rm_bench_f32_cone_lod(w.to_num(), f(d), c.map(|c| c.to_num())).to_bits()
+        rm_bench_f32_cone_lod(w.to_num(), d.to_num(), c.map(|c| c.to_num())).to_bits()
     });
     let sf = |(u, v, lod): SampleIn| (u.to_num::<f32>(), v.to_num::<f32>(), lod.to_num::<f32>());
     measure(&bil_in, |x| {

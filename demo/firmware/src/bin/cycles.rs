@@ -30,16 +30,14 @@
 
 use core::hint::black_box as bb;
 
-use fixed::types::{I16F16, U1F31};
+use fixed::types::U1F31;
 use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
-    Lod, LodWord, cone_lod, cone_lod_batch, cone_lod_fast, cone_lod_fast_batch, table_lod,
-    table_lod_batch, table_lod_fast, table_lod_fast_batch,
+    LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::path::raystack::{PathLength, Width};
-use raymip::setup::table::Log2Pb;
 use raymip::texture::storage::mip::Texel;
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
 use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, Rng};
 use raymip_demo_firmware::{exit, measured_calls, println};
@@ -52,16 +50,16 @@ fn empty(x: u32) -> u32 {
 }
 
 measured_calls! {
-    fn lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod;
-    fn cone(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod;
-    fn lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod_fast;
-    fn cone_fast(w: Width, delta: I16F16, n_dot_d: Option<U1F31>) -> Lod = cone_lod_fast;
-    fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize = table_lod_batch;
-    fn cone_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize = cone_lod_batch;
+    fn lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod::<Accurate>;
+    fn cone(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod = cone_lod::<Accurate>;
+    fn lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> = table_lod::<Fast>;
+    fn cone_fast(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod = cone_lod::<Fast>;
+    fn lod_batch(hits: &[(PathLength, Log2Pb)], out: &mut [Option<Lod>]) -> usize = table_lod_batch::<Accurate>;
+    fn cone_batch(hits: &[(Width, Delta, Option<U1F31>)], out: &mut [Lod]) -> usize = cone_lod_batch::<Accurate>;
     fn lod_fast_batch(hits: &[(NormPl, Log2Pb)], out: &mut [LodWord]) -> usize =
-        table_lod_fast_batch;
-    fn cone_fast_batch(hits: &[(Width, I16F16, Option<U1F31>)], out: &mut [Lod]) -> usize =
-        cone_lod_fast_batch;
+        table_lod_norm_batch;
+    fn cone_fast_batch(hits: &[(Width, Delta, Option<U1F31>)], out: &mut [Lod]) -> usize =
+        cone_lod_batch::<Fast>;
 }
 
 #[inline(never)]

@@ -13,13 +13,13 @@
 use core::hint::black_box as bb;
 use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 
-use fixed::types::I2F30;
-use raymip::lod::{Lod, table_lod_clamped};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread};
+use raymip::lod::table_lod_clamped;
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -36,7 +36,7 @@ const MODES: &[Mode] = &[
 ];
 
 raymip_demo_entry::main! {
-    let Ok(spread) = PixelSpread::from_angle(bb(I2F30::from_bits(1 << 20))) else {
+    let Ok(spread) = PixelSpread::from_angle(bb(Spread::from_bits(1 << 20))) else {
         exit(1)
     };
     let mut entries = bb([Log2Pb::UNTEXTURED; 4]);
@@ -66,11 +66,11 @@ raymip_demo_entry::main! {
     let _ = bb(stack.push(st));
     let st = stack.pop().unwrap_or(st);
     let pb = table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
-    let lod = table_lod_clamped(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
+    let lod = table_lod_clamped::<Accurate>(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
     #[cfg(feature = "cone")]
-    let lod = bb(lod).saturating_add(raymip::lod::cone_lod(
+    let lod = bb(lod).saturating_add(raymip::lod::cone_lod::<Accurate>(
         st.cone.width,
-        pb.delta(&spread).unwrap_or(fixed::types::I16F16::ZERO),
+        pb.delta(&spread).unwrap_or(Delta::ZERO),
         bb(Some(fixed::types::U1F31::from_bits(1 << 30))),
     ));
     let (u, v) = (

@@ -11,27 +11,29 @@
 use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
-use fixed::types::{I2F30, I16F16, U1F31};
-use raymip::lod::{Lod, cone_lod, table_lod_clamped};
-use raymip::path::raystack::{PathLength, PathState, RayStack, Spread, Width};
+use fixed::types::U1F31;
+use raymip::lod::{cone_lod, table_lod_clamped};
+use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
-use raymip::setup::table::{Coord, Log2Pb, PbTable, TexTriangle};
+use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate};
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
 
 raymip_demo_entry::main! {
-    let Ok(spread) = PixelSpread::from_angle(bb(I2F30::from_bits(1 << 20))) else {
+    let Ok(spread) = PixelSpread::from_angle(bb(Spread::from_bits(1 << 20))) else {
         exit(1)
     };
     let c = |x: i64| Coord::from_bits(bb(x));
+    let t = |x: i64| TexCoord::from_bits(bb(x));
     let Ok(tri) = TexTriangle::new(
         [[c(0), c(1), c(2)], [c(3), c(4), c(5)], [c(6), c(7), c(8)]],
-        [[c(9), c(10)], [c(11), c(12)], [c(13), c(14)]],
+        [[t(9), t(10)], [t(11), t(12)], [t(13), t(14)]],
         bb(32),
         bb(32),
     ) else {
@@ -59,10 +61,10 @@ raymip_demo_entry::main! {
     let _ = bb(stack.push(st));
     let st = stack.pop().unwrap_or(st);
     let pb = table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
-    let l1 = table_lod_clamped(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
-    let l2 = cone_lod(
+    let l1 = table_lod_clamped::<Accurate>(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
+    let l2 = cone_lod::<Accurate>(
         st.cone.width,
-        pb.delta(&spread).unwrap_or(I16F16::ZERO),
+        pb.delta(&spread).unwrap_or(Delta::ZERO),
         bb(Some(U1F31::from_bits(1 << 30))),
     );
     let (u, v) = (

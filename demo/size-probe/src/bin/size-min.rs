@@ -10,10 +10,10 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use raymip::lod::table_lod_clamped;
-use raymip::path::raystack::PathLength;
-use raymip::setup::table::{Log2Pb, PbTable};
+use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
-use raymip::texture::{Mode, Sampler, TexCoord};
+use raymip::texture::{Mode, Sampler};
+use raymip::units::{Accurate, Log2Pb, PathLength, TexCoord};
 
 raymip_demo_entry::main! {
     let mut entries = bb([Log2Pb::UNTEXTURED; 4]);
@@ -26,7 +26,7 @@ raymip_demo_entry::main! {
     };
     let mut s = Sampler::wrap(p);
     let pb = table.get(bb(1)).unwrap_or(Log2Pb::UNTEXTURED);
-    let lod = table_lod_clamped(bb(PathLength::from_bits(1 << 33)), pb, g.levels());
+    let lod = table_lod_clamped::<Accurate>(bb(PathLength::from_bits(1 << 33)), pb, g.levels());
     let t = lod.map_or(0, |l| {
         s.sample(
             bb(TexCoord::from_bits(1 << 30)),
