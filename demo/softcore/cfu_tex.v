@@ -92,7 +92,8 @@
 // three (the two level products, their rounded sum), tex.bb five (the
 // row's corner products, their sum, the level's sum, the rounding); the
 // texture unit fetches a level's two rows in consecutive cycles and
-// answers tex.tri 12 cycles after the command (10 with t = 0), tex.bil 10.
+// answers tex.tri 13 cycles after the command (9 with t = 0), tex.bil 9 (as
+// tb_cfu_tex.cpp counts: the cycle of the transfer is 1).
 // The filter runs the four channels in parallel as the corner sum of
 // src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
 // W = [(4096 − fx)(4096 − fy), fx(4096 − fy), (4096 − fx)fy, fx·fy]
