@@ -8,9 +8,9 @@
 //!
 //! # Per instance (float-free, panic-free, two multiplications, one division)
 //!
-//! 1. LOD parameter ([`LodRange::lod_param`]):
+//! 1. LOD parameter ([`DepthToLod::lod_param`]):
 //!    `l = L·(z − z_near)/(z_far − z_near) + bias`, clamped to `[0, L − 1]`
-//!    (`L` = number of LODs, 1…[`MAX_LEVELS`]). [`GeomLod`] = U16F16.
+//!    (`L` = number of LODs, 1…[`MAX_LODS`]). [`GeomLod`] = U16F16.
 //! 2. Discrete mode: the nearest LOD, `round(l)` (ties up), mask `0xFF`.
 //! 3. Stochastic mode with transition interval `t ∈ [0, 1]`:
 //!    `k_a = ⌊l⌋`, `k_b = min(k_a + 1, L − 1)`, `f = l − ⌊l⌋`,
@@ -50,28 +50,28 @@ use core::fmt;
 use crate::units::{Depth, GeomLod, LodBias, Transition};
 
 /// Most LODs a mesh may have: 8, one per instance-mask bit.
-pub const MAX_LEVELS: u8 = 8;
+pub const MAX_LODS: u8 = 8;
 
-/// Error bound of [`LodRange::lod_param`] against the exact value of its
+/// Error bound of [`DepthToLod::lod_param`] against the exact value of its
 /// inputs, in levels: 2⁻¹⁵.
 pub const LOD_PARAM_MAX_ERROR: f64 = 1.0 / 32768.0;
 
-/// A set-up error of [`LodRange::new`] or [`Selector::new`].
+/// A set-up error of [`DepthToLod::new`] or [`Selector::new`].
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{ConfigError, LodMode, LodRange, Selector};
+/// use raymip::geomlod::{ConfigError, DepthToLod, LodMode, Selector};
 /// use raymip::units::{Depth, LodBias, Transition};
 /// let (near, far) = (Depth::from_num(1), Depth::from_num(33));
-/// let err = LodRange::new(near, far, 0, LodBias::ZERO).unwrap_err();
+/// let err = DepthToLod::new(near, far, 0, LodBias::ZERO).unwrap_err();
 /// assert_eq!(err, ConfigError::Levels(0));
 /// assert_eq!(err.to_string(), "0 LODs: need 1 to 8");
 /// // z_far must lie beyond z_near.
-/// let err = LodRange::new(far, near, 4, LodBias::ZERO).unwrap_err();
+/// let err = DepthToLod::new(far, near, 4, LodBias::ZERO).unwrap_err();
 /// assert_eq!(err, ConfigError::EmptyRange);
 /// assert_eq!(err.to_string(), "LOD depth range empty: z_far must exceed z_near");
 /// // A transition interval of 2 is longer than the interval between two LODs.
-/// let range = LodRange::new(near, far, 4, LodBias::ZERO)?;
+/// let range = DepthToLod::new(near, far, 4, LodBias::ZERO)?;
 /// let err = Selector::new(range, LodMode::Stochastic(Transition::from_num(2))).unwrap_err();
 /// assert_eq!(err, ConfigError::Transition(Transition::from_num(2)));
 /// assert_eq!(err.to_string(), "transition interval 2: must lie in [0, 1]");
@@ -80,7 +80,7 @@ pub const LOD_PARAM_MAX_ERROR: f64 = 1.0 / 32768.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum ConfigError {
-    /// The number of LODs is 0 or above [`MAX_LEVELS`].
+    /// The number of LODs is 0 or above [`MAX_LODS`].
     Levels(u8),
     /// `z_far ≤ z_near`, or the difference overflows I32F32.
     EmptyRange,
@@ -93,7 +93,7 @@ impl core::error::Error for ConfigError {}
 impl fmt::Display for ConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Levels(n) => write!(f, "{n} LODs: need 1 to {MAX_LEVELS}"),
+            Self::Levels(n) => write!(f, "{n} LODs: need 1 to {MAX_LODS}"),
             Self::EmptyRange => f.write_str("LOD depth range empty: z_far must exceed z_near"),
             Self::Transition(t) => write!(f, "transition interval {t}: must lie in [0, 1]"),
         }
@@ -105,22 +105,22 @@ impl fmt::Display for ConfigError {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::LodRange;
+/// use raymip::geomlod::DepthToLod;
 /// use raymip::units::{Depth, GeomLod, LodBias};
 /// // 4 LODs over depths 0..32: l = 4·z/32 = z/8.
-/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// let range = DepthToLod::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// assert_eq!(range.levels(), 4);
 /// assert_eq!(range.lod_param(Depth::from_num(12)), GeomLod::from_num(1.5));
 /// // Behind the near plane: LOD 0; beyond the far plane: clamped to L − 1 = 3.
 /// assert_eq!(range.lod_param(Depth::from_num(-5)), GeomLod::ZERO);
 /// assert_eq!(range.lod_param(Depth::from_num(100)), GeomLod::from_num(3));
 /// // A bias of half a level is added before the clamp: 8/8 + ½.
-/// let biased = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::from_num(0.5))?;
+/// let biased = DepthToLod::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::from_num(0.5))?;
 /// assert_eq!(biased.lod_param(Depth::from_num(8)), GeomLod::from_num(1.5));
 /// # Ok::<(), raymip::geomlod::ConfigError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LodRange {
+pub struct DepthToLod {
     z_near: i64,
     range: u64,
     /// Left shift (negative: right shift) that brings `range` to `[2³¹, 2³²)`.
@@ -131,7 +131,7 @@ pub struct LodRange {
     bias: i32,
 }
 
-impl LodRange {
+impl DepthToLod {
     /// `levels` LODs (1…8) spread from `z_near` (LOD 0) to `z_far`
     /// (parameter `L`, clamped to `L − 1`), plus `bias` levels.
     pub fn new(
@@ -140,7 +140,7 @@ impl LodRange {
         levels: u8,
         bias: LodBias,
     ) -> Result<Self, ConfigError> {
-        if levels == 0 || levels > MAX_LEVELS {
+        if levels == 0 || levels > MAX_LODS {
             return Err(ConfigError::Levels(levels));
         }
         let range = z_far
@@ -244,7 +244,7 @@ pub fn transition_step(f16: u32, t16: u32) -> u32 {
 #[must_use]
 pub fn choose(l: GeomLod, levels: u8, mode: LodMode) -> Choice {
     let bits = l.to_bits();
-    let top = levels.clamp(1, MAX_LEVELS) - 1;
+    let top = levels.clamp(1, MAX_LODS) - 1;
     let lod_a = ((bits >> 16).min(u32::from(top))) as u8;
     let lod_b = (lod_a + 1).min(top);
     let f = if lod_a == top { 0 } else { bits & 0xFFFF };
@@ -288,9 +288,9 @@ pub struct InstanceLod {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{InstanceLod, LodMode, LodRange, RecordsFull, Selector};
+/// use raymip::geomlod::{DepthToLod, InstanceLod, LodMode, RecordsFull, Selector};
 /// use raymip::units::{Depth, LodBias, Transition};
-/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// let range = DepthToLod::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// let selector = Selector::new(range, LodMode::Stochastic(Transition::ONE))?;
 /// // Depth 12 is l = 1.5, mid-transition: two records (LODs 1 and 2).
 /// let mut out = [InstanceLod::default(); 1];
@@ -325,11 +325,11 @@ impl fmt::Display for RecordsFull {
 ///
 /// # Example
 /// ```
-/// use raymip::geomlod::{Choice, InstanceLod, LodMode, LodRange, Selector};
+/// use raymip::geomlod::{Choice, DepthToLod, InstanceLod, LodMode, Selector};
 /// use raymip::units::{Depth, LodBias, Transition};
 /// use raymip::geomlod::visible;
 /// // 4 LODs over depths 0..32: l = z/8.
-/// let range = LodRange::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
+/// let range = DepthToLod::new(Depth::ZERO, Depth::from_num(32), 4, LodBias::ZERO)?;
 /// // Discrete: round(l), ties up; depth 12 is l = 1.5 → LOD 2 for every ray.
 /// let discrete = Selector::new(range, LodMode::Discrete)?;
 /// assert_eq!((discrete.pick(Depth::from_num(12)).lod_a, discrete.pick(Depth::from_num(12)).mask_a), (2, 0xFF));
@@ -351,13 +351,13 @@ impl fmt::Display for RecordsFull {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Selector {
-    range: LodRange,
+    range: DepthToLod,
     mode: LodMode,
 }
 
 impl Selector {
     /// A selector; errors for a transition interval above 1.
-    pub fn new(range: LodRange, mode: LodMode) -> Result<Self, ConfigError> {
+    pub fn new(range: DepthToLod, mode: LodMode) -> Result<Self, ConfigError> {
         if let LodMode::Stochastic(t) = mode
             && t > Transition::ONE
         {
@@ -454,7 +454,7 @@ mod tests {
             for levels in 1u8..=8 {
                 for bias in [-1.5, 0.0, 0.3] {
                     let (zn, zf, b) = (d(near), d(near + span), LodBias::from_num(bias));
-                    let r = LodRange::new(zn, zf, levels, b).unwrap();
+                    let r = DepthToLod::new(zn, zf, levels, b).unwrap();
                     let (znf, zff) = (zn.to_num::<f64>(), zf.to_num::<f64>());
                     for k in 0..=1000 {
                         let z = d(near + span * f64::from(k) / 1000.0);
@@ -476,7 +476,7 @@ mod tests {
 
     #[test]
     fn reference_vectors() {
-        let r = LodRange::new(d(0.0), d(8.0), 8, LodBias::ZERO).unwrap();
+        let r = DepthToLod::new(d(0.0), d(8.0), 8, LodBias::ZERO).unwrap();
         let s = |z: f64, t: f64| {
             let sel = Selector::new(r, LodMode::Stochastic(Transition::from_num(t))).unwrap();
             sel.pick(d(z))
@@ -500,7 +500,7 @@ mod tests {
         // Depth beyond z_far: clamped to L − 1 = 7.
         assert_eq!(r.lod_param(d(100.0)), GeomLod::from_num(7));
         assert_eq!(r.lod_param(d(-5.0)), GeomLod::ZERO);
-        let biased = LodRange::new(d(0.0), d(8.0), 8, LodBias::from_num(-1.5)).unwrap();
+        let biased = DepthToLod::new(d(0.0), d(8.0), 8, LodBias::from_num(-1.5)).unwrap();
         assert_eq!(biased.lod_param(d(4.0)), GeomLod::from_num(2.5));
         assert_eq!(biased.lod_param(d(1.0)), GeomLod::ZERO);
     }
@@ -508,22 +508,22 @@ mod tests {
     #[test]
     fn config_errors_and_display() {
         assert_eq!(
-            LodRange::new(d(1.0), d(2.0), 0, LodBias::ZERO),
+            DepthToLod::new(d(1.0), d(2.0), 0, LodBias::ZERO),
             Err(ConfigError::Levels(0))
         );
         assert_eq!(
-            LodRange::new(d(1.0), d(2.0), 9, LodBias::ZERO),
+            DepthToLod::new(d(1.0), d(2.0), 9, LodBias::ZERO),
             Err(ConfigError::Levels(9))
         );
         assert_eq!(
-            LodRange::new(d(2.0), d(2.0), 8, LodBias::ZERO),
+            DepthToLod::new(d(2.0), d(2.0), 8, LodBias::ZERO),
             Err(ConfigError::EmptyRange)
         );
         assert_eq!(
-            LodRange::new(Depth::MIN, Depth::MAX, 8, LodBias::ZERO),
+            DepthToLod::new(Depth::MIN, Depth::MAX, 8, LodBias::ZERO),
             Err(ConfigError::EmptyRange)
         );
-        let r = LodRange::new(d(1.0), d(2.0), 8, LodBias::ZERO).unwrap();
+        let r = DepthToLod::new(d(1.0), d(2.0), 8, LodBias::ZERO).unwrap();
         let t = Transition::from_num(1.5);
         assert_eq!(
             Selector::new(r, LodMode::Stochastic(t)),
@@ -540,7 +540,7 @@ mod tests {
 
     #[test]
     fn fill_counts_and_too_small_loses_nothing() {
-        let r = LodRange::new(d(0.0), d(8.0), 8, LodBias::ZERO).unwrap();
+        let r = DepthToLod::new(d(0.0), d(8.0), 8, LodBias::ZERO).unwrap();
         let sel = Selector::new(r, LodMode::Stochastic(Transition::ONE)).unwrap();
         // Depths 0.5, 2.5, 7.0 (l = 7 = top: only a) and 3.0 (f = 0: only a).
         let inst: Vec<(u32, Depth)> = [(10, 0.5), (11, 2.5), (12, 7.0), (13, 3.0)]
@@ -683,7 +683,7 @@ mod tests {
         ) {
             let (zn, zf) = (d(near), d(near + span));
             let b = LodBias::from_num(bias);
-            let r = LodRange::new(zn, zf, levels, b).unwrap();
+            let r = DepthToLod::new(zn, zf, levels, b).unwrap();
             let z = d(near + zr * span);
             let (znf, zff, zf64, bf) = (zn.to_num::<f64>(), zf.to_num::<f64>(), z.to_num::<f64>(), b.to_num::<f64>());
             let l = f64::from(levels) * ((zf64 - znf) / (zff - znf)).clamp(0.0, 1.0) + bf;
@@ -695,7 +695,7 @@ mod tests {
         /// Extreme inputs never panic and stay in range.
         #[test]
         fn extremes_stay_in_range(a in any::<i64>(), b in any::<i64>(), z in any::<i64>(), bias in any::<i32>(), levels in 1u8..=8, t in any::<u32>()) {
-            if let Ok(r) = LodRange::new(Depth::from_bits(a), Depth::from_bits(b), levels, LodBias::from_bits(bias)) {
+            if let Ok(r) = DepthToLod::new(Depth::from_bits(a), Depth::from_bits(b), levels, LodBias::from_bits(bias)) {
                 let l = r.lod_param(Depth::from_bits(z));
                 prop_assert!(l <= GeomLod::from_num(levels - 1));
                 let c = choose(l, levels, LodMode::Stochastic(Transition::from_bits(t)));

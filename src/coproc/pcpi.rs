@@ -1,6 +1,6 @@
 //! The texture co-processor of the PicoRV32 soft core (feature `pcpi`,
 //! `riscv32` only): one wrapper per custom instruction of
-//! `demo/softcore/pcpi_tex.v` (issue 23).
+//! `demo/softcore/pcpi_tex.v`.
 //!
 //! The co-processor sits on PicoRV32's co-processor port (PCPI) and claims
 //! six R-type instructions of the `custom-0` opcode (`0001011`,

@@ -186,9 +186,9 @@ fn partial_update_counts_what_it_wrote() {
     }
 }
 
-/// Regression (issue 11, defect 1): a grazing hit (`|n·d| = 0`) through
-/// C clamps like the Rust `cone_lod` (2⁻¹⁶, 16 levels coarser) instead
-/// of dropping the normal term; `|n·d| = 1` is "no normal term".
+/// A grazing hit (`|n·d| = 0`) through C clamps like the Rust `cone_lod`
+/// (2⁻¹⁶, 16 levels coarser) instead of dropping the normal term;
+/// `|n·d| = 1` is "no normal term".
 #[test]
 fn grazing_cone_lod_agrees_with_rust() {
     let w = I32F32::ONE;
@@ -239,7 +239,7 @@ fn delta_matches_f64_and_rejects_bad_input() {
     assert_eq!(d, 7);
 }
 
-/// Regression (issue 11, defect 3): pushing an entry of the same stack
+/// Pushing an entry of the same stack
 /// (`rm_ray_stack_push(&s, &s.entries[i])`) is a natural C idiom; the
 /// state must be read before the stack is borrowed mutably (Miri reports
 /// undefined behaviour otherwise).
@@ -271,7 +271,7 @@ fn push_an_entry_of_the_same_stack() {
     }
 }
 
-/// Regression (issue 11, defect 3): a misaligned caller pointer is an
+/// A misaligned caller pointer is an
 /// error, never dereferenced (`from_raw_parts` and `*p` require
 /// alignment; debug builds panic on it, release builds are UB).
 #[test]

@@ -195,8 +195,8 @@ fn normalise64_words(bits: u64) -> (u32, u32) {
         (m | (lo >> 1).wrapping_shr(31 ^ lz), lz)
     } else {
         // Block layout: the longer high-word branch falls through into the
-        // caller's table read, this one jumps back (measured: one
-        // instruction off the longest path of a table lod).
+        // caller's table read, this one jumps back (the longest path of a
+        // table lod takes no taken branch here).
         unlikely();
         let (m, lz) = normalise32(lo);
         (m, lz + 32)
@@ -560,10 +560,9 @@ mod tests {
         reference(bits.max(1), frac).max(I16F16::MIN.to_num::<f64>())
     }
 
-    /// Regression (issue 11, defect 6): `frac_bits` above 64 is outside the
-    /// formats the crate uses but must still give `log2 x − frac_bits`,
-    /// saturated at `I16F16::MIN`, instead of wrapping (or, in debug,
-    /// panicking on the subtraction).
+    /// `frac_bits` above 64 is outside the formats the crate uses but must
+    /// still give `log2 x − frac_bits`, saturated at `I16F16::MIN`, not
+    /// wrapped (or, in debug, a panic on the subtraction).
     #[test]
     fn frac_bits_beyond_64_saturate() {
         assert_eq!(log2_bits(1 << 63, 100).to_num::<f64>(), -37.0);
@@ -580,7 +579,7 @@ mod tests {
 
     /// Neighbours `(x, x + 1)` at every place where the method changes
     /// branch: each octave boundary and each table-segment boundary of every
-    /// octave (issue 11, defect 6: the old property drew far-apart pairs only).
+    /// octave (a property over random pairs rarely draws adjacent ones).
     #[test]
     fn monotonic_at_every_octave_and_segment_boundary() {
         for frac in [0, 16, 31, 32, 64] {

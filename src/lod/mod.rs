@@ -879,9 +879,9 @@ mod tests {
         #[cfg(feature = "cone")]
         fn cone_lod_never_panics_and_is_bounded(w in any::<i64>(), d in any::<i32>(), c in proptest::option::of(any::<u32>())) {
             let l = cone_lod::<Accurate>(Width::from_bits(w), Delta::from_bits(d), c.map(U1F31::from_bits));
-            // f64 reference over the whole input range (issue 11, defect 6:
-            // this used to assert `Lod::MIN <= l <= Lod::MAX`, true of every
-            // Lod): `w = 0` read as 2⁻³², |n·d| clamped to [2⁻¹⁶, 1], the sum
+            // f64 reference over the whole input range (a range check
+            // `Lod::MIN <= l <= Lod::MAX` holds for every Lod, so it could
+            // not fail): `w = 0` read as 2⁻³², |n·d| clamped to [2⁻¹⁶, 1], the sum
             // saturated to the Lod range. Two log2 errors and the output
             // rounding stay within LOD_MAX_ERROR.
             let lw = (w.unsigned_abs().max(1) as f64).log2() - 32.0;

@@ -31,12 +31,12 @@
 //!
 //! | tier | weights | per channel | bound vs the exact f64 filter |
 //! |---|---|---|---|
-//! | ACCURATE ([`kernel::Accurate`], default) | 12-bit position, 24-bit corner weights, exact 8-bit level weight | one chain of four multiply-accumulates per texel footprint | [`kernel::accurate::BILERP_MAX_ERROR_LSB`] = 0.5625 LSB (linear); sRGB re-encoded [`kernel::srgb::SRGB_MAX_ERROR_LSB`] = 1.4 |
+//! | ACCURATE ([`kernel::Accurate`], default) | 12-bit position, 24-bit corner weights, exact 8-bit level weight | one chain of four multiply-accumulates per texel footprint | [`kernel::accurate::BILERP_MAX_ERROR_LSB`] = 0.5625 LSB (linear); sRGB re-encoded [`kernel::srgb::SRGB_MAX_ERROR_LSB`] = 0.6875 LSB |
 //! | FAST ([`kernel::Fast`]) | 8 sub-texel bits (D3D11's minimum), exact 16-bit corner weights (products), exact 8-bit level weight | two channels per 32×32→64-bit multiply-accumulate | [`kernel::fast::FAST_MAX_ERROR_LSB`] = 1.5 LSB (proof in [`kernel::fast`]) |
 //!
 //! Both tiers give the same bits on every target. ACCURATE RGBA8 results
-//! under wrap and clamp-to-edge are those of the earlier `filter::Sampler`
-//! bit for bit (tested against hashes recorded from it).
+//! under wrap and clamp-to-edge are pinned bit for bit by recorded hashes
+//! (`tests/firmware/sampler_golden.rs`).
 
 use core::fmt;
 

@@ -104,7 +104,7 @@ pub mod stack {
 /// BC1 row, the geometric-LOD selector).
 pub mod inputs {
     use fixed::types::{I16F16, U1F31};
-    use raymip::geomlod::{LodMode, LodRange, Selector};
+    use raymip::geomlod::{DepthToLod, LodMode, Selector};
     use raymip::texture::address::AddressMode;
     use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
     use raymip::units::{
@@ -321,7 +321,7 @@ pub mod inputs {
     /// (`None` cannot happen with these constants).
     #[must_use]
     pub fn selector(mode: LodMode) -> Option<Selector> {
-        let range = LodRange::new(
+        let range = DepthToLod::new(
             Depth::from_num(2),
             Depth::from_num(66),
             8,

@@ -26,7 +26,7 @@ use raymip::ffi::{
     rm_table_build, rm_table_lod, rm_table_update,
 };
 use raymip::geomlod::{
-    InstanceLod, LodMode, LodRange, Selector, choose, ray_mask, transition_step, visible,
+    DepthToLod, InstanceLod, LodMode, Selector, choose, ray_mask, transition_step, visible,
 };
 use raymip::lod::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::lod::log2_fast::{NormPl, log2_u32f32_fast};
@@ -189,7 +189,7 @@ fn main() -> ! {
     let Ok(pyramid) = Pyramid::new(geometry, &TEXELS) else {
         loop {}
     };
-    let Ok(range) = LodRange::new(
+    let Ok(range) = DepthToLod::new(
         bb(Depth::from_bits(1 << 32)),
         bb(Depth::from_bits(256 << 32)),
         bb(8),

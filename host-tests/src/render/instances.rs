@@ -22,7 +22,7 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use raymip::geomlod::{InstanceLod, LodMode, LodRange, Selector, ray_mask, visible};
+use raymip::geomlod::{DepthToLod, InstanceLod, LodMode, Selector, ray_mask, visible};
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::Rng;
 use raymip::setup::camera::PixelSpread;
@@ -176,7 +176,7 @@ impl InstanceScene {
                 .collect());
         }
         cfg.check()?;
-        let range = LodRange::new(
+        let range = DepthToLod::new(
             Depth::from_num(Z_NEAR),
             Depth::from_num(Z_FAR),
             LEVELS,

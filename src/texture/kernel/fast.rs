@@ -85,9 +85,9 @@
 //! [`crate::texture::sampler::aniso`]). No kernel with D3D11's 8-bit
 //! positions can do better than `255·(1 − (511/512)²) + ½ ≈ 1.4951` on
 //! every input, since the quantized position alone loses that much.
-//! (The previous FAST kernel rounded the corner weights to 8 bits, which
-//! costs up to `255/256` more: any kernel with 8-bit corner weights is
-//! `≥ 1.496` off even at exact positions.)
+//! The corner weights stay exact 16-bit products: rounding them to 8 bits
+//! would cost up to `255/256` more (any kernel with 8-bit corner weights is
+//! `≥ 1.496` off even at exact positions).
 
 use crate::texture::kernel::accurate::{self, Wide};
 use crate::texture::storage::mip::Texel;

@@ -17,8 +17,7 @@
 //!   [`SRGB_ENCODE_MAX_ERROR_LSB`](crate::texture::storage::srgb::SRGB_ENCODE_MAX_ERROR_LSB)
 //!   = 0.55 plus the linear error times the steepest slope of the sRGB
 //!   curve, `12.92·255` LSB per unit: `0.55 + 3.9·10⁻⁵·3294.6 < 0.68 ≤`
-//!   [`SRGB_MAX_ERROR_LSB`] `= 0.6875` (the earlier general sampler, with
-//!   12-bit positions, had 1.4);
+//!   [`SRGB_MAX_ERROR_LSB`] `= 0.6875`;
 //! * linear results ([`SrgbToLinear`](super::SrgbToLinear)) and alpha:
 //!   `½ + 3.9·10⁻⁵·255 <` [`SRGB_LINEAR_MAX_ERROR_LSB`] `= 0.5101` (8-bit
 //!   linear LSB).

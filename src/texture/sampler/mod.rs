@@ -294,8 +294,7 @@ impl<S: TexelSource + fmt::Debug, K: Key> fmt::Debug for Sampler<S, K> {
 
 impl<S: TexelSource> Sampler<S, Cfg<Wrap>> {
     /// A wrapping, linear, ACCURATE sampler over `source` with the default
-    /// state (no bias, no clamp): the plain sampler of the earlier
-    /// `filter::Sampler` (`Address::Wrap`), bit for bit.
+    /// state (no bias, no clamp).
     pub fn wrap(source: S) -> Self {
         Self::new(source)
     }
@@ -303,7 +302,7 @@ impl<S: TexelSource> Sampler<S, Cfg<Wrap>> {
 
 impl<S: TexelSource> Sampler<S, Cfg<ClampToEdge>> {
     /// A clamp-to-edge, linear, ACCURATE sampler over `source` with the
-    /// default state (the earlier `filter::Sampler` with `Address::Clamp`).
+    /// default state (no bias, no clamp).
     pub fn clamp(source: S) -> Self {
         Self::new(source)
     }

@@ -367,7 +367,7 @@ mod tests {
         assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
     }
 
-    /// Like `mip::pyramid_len` (issue 11, defect 2): sides near 2³² must
+    /// Like `mip::pyramid_len`: sides near 2³² must
     /// saturate, not overflow the 64-bit byte count.
     #[test]
     fn image_len_saturates_for_huge_sides() {

@@ -686,9 +686,8 @@ mod tests {
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
     }
 
-    /// Regression (issue 11, defect 2): sides near 2³² overflowed the
-    /// 64-bit sum (wrapped in release, panicked in debug) instead of
-    /// saturating as documented.
+    /// Sides near 2³² saturate the 64-bit sum as documented (an overflow
+    /// would wrap in release and panic in debug).
     #[test]
     fn pyramid_len_saturates_for_huge_sides() {
         // Level 0 alone is (2³² − 1)² = 2⁶⁴ − 2³³ + 1 texels; level 1 adds ≈ 2⁶²:

@@ -120,8 +120,8 @@ const ENCODE_BUCKETS: [u8; 736] = {
 /// 8-bit sRGB code of a linear 16.8 value `x` (65535·256 = 1.0; larger
 /// values give 255): `round(255·OETF(x))`, the number of
 /// [`ENCODE_THRESHOLDS`] entries at or below `x`: the count below the
-/// bucket of `x` ([`ENCODE_BUCKETS`]) plus the (at most two) thresholds
-/// inside it that `x` reaches. Never panics.
+/// bucket of `x` (the private table `ENCODE_BUCKETS`) plus the (at most
+/// two) thresholds inside it that `x` reaches. Never panics.
 #[inline]
 #[must_use]
 pub fn encode(x: u32) -> u8 {

@@ -19,7 +19,7 @@ use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord};
+use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -70,7 +70,7 @@ raymip_demo_entry::main! {
     #[cfg(feature = "cone")]
     let lod = bb(lod).saturating_add(raymip::lod::cone_lod::<Accurate>(
         st.cone.width,
-        pb.delta(&spread).unwrap_or(Delta::ZERO),
+        pb.delta(&spread).unwrap_or(raymip::units::Delta::ZERO),
         bb(Some(fixed::types::U1F31::from_bits(1 << 30))),
     ));
     let (u, v) = (
