@@ -1,11 +1,13 @@
 // raymip texture co-processor for VexRiscv's CFU port (the Custom Function
 // Unit interface of CFU-Playground; LiteX's `full+cfu` VexRiscv variant
-// instantiates a module `Cfu` with these ports). Our own RTL.
+// instantiates a module `Cfu` with the CFU ports), with a read port of its
+// own on the SoC's RAM (litex_soc.py connects it). Our own RTL.
 //
 // The CPU sends an R-type instruction of the custom-0 opcode as
 // function_id = {funct7, funct3} with the two source registers; the same
 // instruction words as the PCPI unit (pcpi_tex.v, whose header specifies
-// funct7 = 0), plus the addressing instructions (funct7 = 1):
+// funct7 = 0), plus the addressing instructions (funct7 = 1) and the
+// texture unit (funct7 = 2):
 //
 //   funct7 0: funct3 0 tex.log2pl, 1 tex.lod, 2 tex.bw, 3 tex.bt, 4 tex.bb,
 //             5 tex.blend — bit for bit as pcpi_tex.v.
@@ -36,118 +38,137 @@
 //             rd = the address of t10 = (x1, y0), t01 = (x0, y1),
 //             t11 = (x1, y1) of the last tex.addr.
 //
+//   The texture unit: a trilinear or bilinear sample fetched from the RAM
+//   and filtered here, as the firmware's sampler computes it for a
+//   power-of-two pyramid with the ACCURATE linear kernel (RGBA8).
+//   funct7 2, funct3 0  tex.ram rd
+//             rd = RAM_BASE | log2(RAM bytes): the RAM the unit reads (its
+//             base is aligned to its size); 0 without a RAM (HAS_RAM = 0).
+//   funct7 2, funct3 1  tex.sel rd, rs1, rs2
+//             rs1 = the byte address of a sampler's descriptor block (19
+//             words, src/coproc/mod.rs writes them):
+//               word 0: the lod bias (I8F8 bits, sign-extended),
+//               word 1: lo[11:0] | hi[23:12] | mode_u[25:24] | mode_v[27:26]
+//                       (the lod window, I8F8 bits in [0, 3840]; modes as
+//                       tex.lvl's),
+//               word 2 + l, l = 0 … 16: level l: the word offset of its
+//                       texel (0, 0) from RAM_BASE [23:0] | kx[27:24] |
+//                       ky[31:28];
+//             rs2 = a lod (I8F8 bits, sign-extended). rd = 1 when the
+//             block lies in the RAM (word-aligned), else 0 (and nothing
+//             else happens; always 0 with HAS_RAM = 0). Then, in the background, the unit reads the
+//             window, computes bits = min(max(lod + bias, lo), hi), and
+//             reads the descriptors of levels bits >> 8 and bits >> 8 + 1.
+//   funct7 2, funct3 2  tex.tri rd, rs1, rs2
+//             rs1 = u, rs2 = v as for tex.addr. rd = the trilinear sample:
+//             levels bits >> 8 and bits >> 8 + 1, each addressed as
+//             tex.addr, its four texels read from the RAM and filtered as
+//             tex.bt/tex.bb, blended as tex.blend with t = bits & 255; the
+//             rounded lower level when t = 0 (the same value; the upper
+//             level is not read).
+//   funct7 2, funct3 3  tex.bil rd, rs1, rs2
+//             As tex.tri for the nearest level, (bits + 128) >> 8: the
+//             rounded bilinear sample.
+//
 // Any other function id answers 0 and changes nothing (the CFU port has
 // no way to refuse an instruction).
 //
-// Timing: every instruction is taken in the cycle cmd_valid && cmd_ready
-// and answers one cycle later (rsp_valid registered), except tex.addr, two
-// cycles later (the scaled positions, then the index maps and addresses),
-// and tex.log2pl, three cycles later (the two normalisation steps of
-// tex_log2pl.v).
-// Unlike pcpi_tex.v the filter runs the four channels in parallel and
-// tex.bb in one multiply level, for an FPGA with DSP blocks to spare:
-// X_c = (t11_c − t01_c)·fx·fy + t01_c·fy·2¹² + top_c·(2¹² − fy), the same
-// integer as pcpi_tex.v's (bot − top)·fy + top·2¹² with
-// bot = (t11 − t01)·fx + t01·2¹² (expanded; every product exact); fx·fy
-// is registered the cycle after tex.bw / tex.addr latch the weights.
+// The RAM port: two word banks, bank 0 the even and bank 1 the odd words
+// of the RAM at RAM_BASE (2^(RAM_AW+1) words), one read per bank and cycle
+// (mem_adr_b presented in cycle t, mem_dat_b read in t + 1), so the two
+// texels of a footprint row (x0 and x1 = x0 ± 1 have different parities,
+// or are the same texel) come in one cycle. mem_hold: the CPU has a write
+// on its data bus (the store buffer of VexRiscv's write-through data cache
+// drains after the store retires); tex.sel waits for it to end before its
+// first read, so it reads what the CPU wrote before it. Between tex.sel and
+// its tex.tri/tex.bil the firmware writes neither the block nor texels.
+//
+// Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
+// Pipelined for the clock (one multiply or one add per stage): tex.lod,
+// tex.bt, tex.lvl, tex.tap, tex.ram and tex.sel answer one cycle later
+// (rsp_valid registered; tex.bt and tex.sel go on in the background),
+// tex.bw and tex.addr two (the scaled positions, then the index maps,
+// addresses and corner weights), tex.log2pl three (tex_log2pl.v), tex.blend
+// three (the two level products, their rounded sum), tex.bb five (the
+// row's corner products, their sum, the level's sum, the rounding); the
+// texture unit fetches a level's two rows in consecutive cycles and
+// answers tex.tri 13 cycles after the command (9 with t = 0), tex.bil 9 (as
+// tb_cfu_tex.cpp counts: the cycle of the transfer is 1).
+// The filter runs the four channels in parallel as the corner sum of
+// src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
+// W = [(4096 − fx)(4096 − fy), fx(4096 − fy), (4096 − fx)fy, fx·fy]
+// (the same integer as pcpi_tex.v's nested rows), then (X + 2⁷) >> 8 kept
+// as the level's 8.16 value and (X + 2⁷ + 2²³) >> 24 the rounded texel;
+// the blend w0·(256 − t) + w1·t + 2²³ >> 24.
 // Every output bit is checked against vectors written by the Rust firmware
 // code (tb_cfu_tex.cpp, scripts/softcore).
 `timescale 1 ns / 1 ps
 `default_nettype none
 
 /* verilator lint_off DECLFILENAME */  // LiteX instantiates the CFU as `Cfu`
-module Cfu (
-    input  wire        clk,
-    input  wire        reset,
-    input  wire        cmd_valid,
-    output wire        cmd_ready,
-    input  wire [ 9:0] cmd_payload_function_id,
-    input  wire [31:0] cmd_payload_inputs_0,
-    input  wire [31:0] cmd_payload_inputs_1,
-    output reg         rsp_valid,
-    input  wire        rsp_ready,
-    output reg  [31:0] rsp_payload_outputs_0
+module Cfu #(
+    // 1: the mem_* ports are connected to the RAM at RAM_BASE; 0 (a CFU
+    // instantiated without them): the texture unit has no RAM, tex.ram
+    // answers 0 and tex.sel 0 (the firmware then samples without it).
+    parameter integer HAS_RAM = 0,
+    parameter [31:0] RAM_BASE = 32'h4000_0000,
+    // Words per bank 2^RAM_AW: the RAM is 2^(RAM_AW + 3) bytes.
+    parameter integer RAM_AW = 15
+) (
+    input  wire              clk,
+    input  wire              reset,
+    input  wire              cmd_valid,
+    output wire              cmd_ready,
+    input  wire [       9:0] cmd_payload_function_id,
+    input  wire [      31:0] cmd_payload_inputs_0,
+    input  wire [      31:0] cmd_payload_inputs_1,
+    output reg               rsp_valid,
+    input  wire              rsp_ready,
+    output reg  [      31:0] rsp_payload_outputs_0,
+    output wire [RAM_AW-1:0] mem_adr_0,
+    output wire [RAM_AW-1:0] mem_adr_1,
+    input  wire [      31:0] mem_dat_0,
+    input  wire [      31:0] mem_dat_1,
+    input  wire              mem_hold
 );
     /* verilator lint_on DECLFILENAME */
     localparam [31:0] UNTEXTURED = 32'h8000_0000;
+    localparam integer RAM_LOG2 = RAM_AW + 3;
+    // The descriptor block: 19 words.
+    localparam [31:0] BLOCK_BYTES = 32'd76;
+    // Level tags of a filtered level: answer its rounded texel, keep it
+    // quietly (the lower level of a trilinear sample), or blend it with the
+    // one before (the upper level).
+    localparam [1:0] LT_ROUND = 2'd0, LT_QUIET = 2'd1, LT_BLEND = 2'd2;
+    // Tags of the addressing pipeline.
+    localparam [1:0] AT_ADDR = 2'd0, AT_BW = 2'd1, AT_TMU = 2'd2;
 
     wire [6:0] funct7 = cmd_payload_function_id[9:3];
     wire [2:0] funct3 = cmd_payload_function_id[2:0];
     wire [31:0] a = cmd_payload_inputs_0;
     wire [31:0] b = cmd_payload_inputs_1;
 
-    // tex.log2pl in flight: answers when `lcnt` reaches 2.
+    // An instruction waits while another's answer is due (`pend`), the
+    // texture unit reads a descriptor block (`sq`) or an answer waits.
+    reg        pend;
+    reg  [2:0] sq;
+    assign cmd_ready = !pend && sq == 3'd0 && (!rsp_valid || rsp_ready);
+    wire fire = cmd_valid && cmd_ready;
+    wire op0 = fire && funct7 == 7'd0;
+    wire op1 = fire && funct7 == 7'd1;
+    wire op2 = fire && funct7 == 7'd2;
+
+    // ---- tex.log2pl and tex.lod -----------------------------------------
     reg  [1:0] lcnt;
     reg        lbusy;
-    // A new instruction when no answer waits and no tex.log2pl or
-    // tex.addr runs.
-    wire       abusy_w;
-    assign cmd_ready = !lbusy && !abusy_w && (!rsp_valid || rsp_ready);
-    wire fire = cmd_valid && cmd_ready;
-
     wire [31:0] log2pl;
     tex_log2pl log2 (.clk(clk), .x({b, a}), .log2pl(log2pl));
-
-    // tex.lod: as pcpi_tex.v.
     /* verilator lint_off UNUSEDSIGNAL */  // outside the I8F8 lod
     wire [31:0] diff = a - b;
     /* verilator lint_on UNUSEDSIGNAL */
     wire [31:0] lod = b == UNTEXTURED ? UNTEXTURED : {{16{diff[23]}}, diff[23:8]};
 
-    // ---- The filter: four channels in parallel ------------------------
-    reg  [12:0] fx, fy;
-    reg  [25:0] fxy;        // fx·fy ≤ 2²⁴, registered after the weights
-    reg  [79:0] top;        // tex.bt's rows, 20 bits a channel
-    reg  [95:0] w0, w1;     // the last two levels' 8.16 values, 24 bits a channel
-    wire [12:0] fyc = 13'd4096 - fy;
-
-    wire [79:0] top_n;      // tex.bt of (a, b)
-    wire [95:0] wide_n;     // tex.bb's 8.16 values of (a, b)
-    wire [31:0] round_n;    // tex.bb's rounded texel
-    wire [31:0] blend_n;    // tex.blend of w0, w1 with t = a[8:0]
-    genvar c;
-    generate
-        for (c = 0; c < 4; c = c + 1) begin : ch
-            wire [7:0] t00 = a[8*c+7:8*c], t10 = b[8*c+7:8*c];
-            // tex.bt: (t10 − t00)·fx + t00·2¹² ∈ [0, 255·2¹²].
-            wire signed [9:0] dx = $signed({2'd0, t10}) - $signed({2'd0, t00});
-            wire signed [23:0] ph = dx * $signed({1'b0, fx});
-            /* verilator lint_off UNUSEDSIGNAL */  // th < 2²⁰
-            wire [23:0] th = ph + {4'd0, t00, 12'd0};
-            /* verilator lint_on UNUSEDSIGNAL */
-            assign top_n[20*c+19:20*c] = th[19:0];
-            // tex.bb: a = t01, b = t11.
-            wire [7:0] t01 = a[8*c+7:8*c], t11 = b[8*c+7:8*c];
-            wire signed [9:0] dy = $signed({2'd0, t11}) - $signed({2'd0, t01});
-            wire signed [35:0] p1 = dy * $signed({1'b0, fxy});
-            /* verilator lint_off UNUSEDSIGNAL */  // p2 < 2²⁰
-            wire [35:0] p2 = {28'd0, t01} * {23'd0, fy};
-            /* verilator lint_on UNUSEDSIGNAL */
-            wire [35:0] p3 = {16'd0, top[20*c+19:20*c]} * {23'd0, fyc};
-            /* verilator lint_off UNUSEDSIGNAL */  // X < 2³², the sums' top bits are zero
-            wire [35:0] x = p1 + {p2[23:0], 12'd0} + p3;
-            wire [31:0] ws = x[31:0] + 32'd128;
-            wire [23:0] wr = ws[31:8] + 24'h8000;
-            /* verilator lint_on UNUSEDSIGNAL */
-            assign wide_n[24*c+23:24*c] = ws[31:8];
-            assign round_n[8*c+7:8*c] = wr[23:16];
-            // tex.blend: ((w1 − w0)·t + w0·2⁸ + 2²³) >> 24.
-            wire [23:0] v0 = w0[24*c+23:24*c], v1 = w1[24*c+23:24*c];
-            wire signed [24:0] dw = $signed({1'b0, v1}) - $signed({1'b0, v0});
-            wire signed [35:0] pb = dw * $signed({1'b0, a[8:0]});
-            /* verilator lint_off UNUSEDSIGNAL */
-            wire [35:0] bs = pb + {4'd0, v0, 8'd0} + 36'h80_0000;
-            /* verilator lint_on UNUSEDSIGNAL */
-            assign blend_n[8*c+7:8*c] = bs[31:24];
-        end
-    endgenerate
-
-    // ---- Addressing ---------------------------------------------------
-    reg [31:0] base;
-    reg  [3:0] kx, ky;
-    reg  [1:0] mu, mv;
-    reg [31:0] a10, a01, a11;
-
+    // ---- Addressing -------------------------------------------------------
     // Texel index `i` of an axis of 2^k texels in `mode` (see the header).
     function [15:0] mapi(input [31:0] i, input [3:0] k, input [1:0] mode);
         reg [31:0] mx, m, r;
@@ -168,8 +189,8 @@ module Cfu (
         end
     endfunction
 
-    // One axis of tex.addr: the first tap's scaled position `i` (32-bit
-    // two's complement) and the weight `f` of coordinate `q` (I4F28).
+    // One axis: the first tap's scaled position `i` (32-bit two's
+    // complement) and the weight `f` of coordinate `q` (I4F28).
     function [43:0] scaled(input [31:0] q, input [3:0] k, input [1:0] mode);
         /* verilator lint_off UNUSEDSIGNAL */  // p[19:0]: below the weight
         reg [63:0] p;
@@ -182,92 +203,403 @@ module Cfu (
         end
     endfunction
 
-    // tex.addr in two registered steps: the scaled positions and weights
-    // of the operands, then the index maps and the addresses.
-    wire [43:0] sx = scaled(a, kx, mu), sy = scaled(b, ky, mv);
-    reg  [31:0] ix, iy;
-    reg  [11:0] wx, wy;
-    reg         abusy;
-    assign abusy_w = abusy;
-    wire [15:0] x0 = mapi(ix, kx, mu), x1 = mapi(ix + 32'd1, kx, mu);
-    wire [15:0] y0 = mapi(iy, ky, mv), y1 = mapi(iy + 32'd1, ky, mv);
     // base + 4·(y·2^kx + x): the index has at most 30 bits (kx + ky ≤ 30).
-    function [31:0] texel(input [15:0] x, input [15:0] y);
-        texel = base + ({16'd0, y} << (kx + 5'd2)) + {14'd0, x, 2'd0};
+    function [31:0] texel(input [31:0] base, input [3:0] k, input [15:0] x, input [15:0] y);
+        texel = base + ({16'd0, y} << ({1'b0, k} + 5'd2)) + {14'd0, x, 2'd0};
     endfunction
 
-    // ---- The answers --------------------------------------------------
-    always @(posedge clk) begin
-        fxy <= fx * fy;
-        if (rsp_valid && rsp_ready) rsp_valid <= 1'b0;
-        if (abusy) begin
-            abusy                 <= 1'b0;
-            fx                    <= {1'b0, wx};
-            fy                    <= {1'b0, wy};
-            a10                   <= texel(x1, y0);
-            a01                   <= texel(x0, y1);
-            a11                   <= texel(x1, y1);
-            rsp_valid             <= 1'b1;
-            rsp_payload_outputs_0 <= texel(x0, y0);
+    // The level tex.addr addresses (tex.lvl).
+    reg [31:0] lbase;
+    reg  [3:0] lkx, lky;
+    reg  [1:0] lmu, lmv;
+    // The texture unit's state after tex.sel: the block's address, the
+    // windowed lod, the modes and the two levels (texel (0, 0) and sides).
+    reg [31:0] sp;
+    reg [17:0] slod;
+    reg [17:0] swin0;
+    reg [27:0] swin1;
+    reg  [7:0] tt;
+    reg  [3:0] tlow;
+    reg  [1:0] tmu, tmv;
+    reg [31:0] tb0, tb1;
+    reg  [3:0] tkx0, tky0, tkx1, tky1;
+    // tex.tri's coordinates, for its upper level.
+    reg [31:0] tu, tv;
+    // The upper level enters the addressing two cycles after the lower.
+    reg  [1:0] l1cnt;
+
+    // Stage A: the scaled positions and weights. Sources: tex.addr (the
+    // tex.lvl level), tex.bw (the weights alone), tex.tri/tex.bil (the
+    // lower or nearest level), the upper level of tex.tri.
+    wire inj_addr = op1 && funct3 == 3'd1;
+    wire inj_bw = op0 && funct3 == 3'd2;
+    wire inj_tri = op2 && funct3 == 3'd2;
+    wire inj_bil = op2 && funct3 == 3'd3;
+    wire inj_up = l1cnt == 2'd1;
+    wire near_up = tt[7];  // tex.bil: the nearest level is the upper one
+    wire [31:0] in_u = inj_up ? tu : a, in_v = inj_up ? tv : b;
+    wire [31:0] in_base = inj_addr ? lbase : (inj_up || (inj_bil && near_up)) ? tb1 : tb0;
+    wire [3:0] in_kx = inj_addr ? lkx : (inj_up || (inj_bil && near_up)) ? tkx1 : tkx0;
+    wire [3:0] in_ky = inj_addr ? lky : (inj_up || (inj_bil && near_up)) ? tky1 : tky0;
+    wire [1:0] in_mu = inj_addr ? lmu : tmu, in_mv = inj_addr ? lmv : tmv;
+    wire [43:0] sx = scaled(in_u, in_kx, in_mu), sy = scaled(in_v, in_ky, in_mv);
+    reg        a_v;
+    reg  [1:0] a_tag, a_lt;
+    reg [31:0] a_ix, a_iy, a_base;
+    reg [12:0] a_wx, a_wy;
+    reg  [3:0] a_kx, a_ky;
+    reg  [1:0] a_mu, a_mv;
+
+    // Stage B: index maps, the four texel addresses, the corner weights.
+    wire [15:0] x0 = mapi(a_ix, a_kx, a_mu), x1 = mapi(a_ix + 32'd1, a_kx, a_mu);
+    wire [15:0] y0 = mapi(a_iy, a_ky, a_mv), y1 = mapi(a_iy + 32'd1, a_ky, a_mv);
+    wire [12:0] fxc = 13'd4096 - a_wx, fyc = 13'd4096 - a_wy;
+    /* verilator lint_off UNUSEDSIGNAL */  // every weight ≤ 2²⁴
+    wire [25:0] w00 = fxc * fyc, w10 = a_wx * fyc, w01 = fxc * a_wy, w11 = a_wx * a_wy;
+    /* verilator lint_on UNUSEDSIGNAL */
+    // tex.addr's other taps, the weights of tex.bw / tex.addr.
+    reg [31:0] a10, a01, a11;
+    reg [24:0] lw00, lw10, lw01, lw11;
+    // A level of the texture unit: its four texel addresses and weights,
+    // its two rows presented to the RAM in consecutive cycles (`lrow`).
+    reg        lv_v, lrow;
+    reg  [1:0] lv_lt;
+    reg [31:0] lp00, lp10, lp01, lp11;
+    reg [24:0] lv00, lv10, lv01, lv11;
+
+    // ---- The RAM port -----------------------------------------------------
+    // Two words a cycle, at byte addresses `wa` and `wb` (different
+    // parities, or equal): each bank reads the one of its parity.
+    /* verilator lint_off UNUSEDSIGNAL */  // outside the RAM's offset bits
+    wire [31:0] blk_w = sq == 3'd4 ? sp + 32'd8 + {26'd0, tlow, 2'd0} : sp;
+    wire [31:0] wa = sq != 3'd0 ? blk_w : lrow ? lp01 : lp00;
+    wire [31:0] wb = sq != 3'd0 ? blk_w + 32'd4 : lrow ? lp11 : lp10;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign mem_adr_0 = wa[2] ? wb[RAM_AW+2:3] : wa[RAM_AW+2:3];
+    assign mem_adr_1 = wa[2] ? wa[RAM_AW+2:3] : wb[RAM_AW+2:3];
+    // The banks of the words in the data cycle, and what the data is.
+    reg        da, db;
+    reg        md_v, md_row;
+    reg  [1:0] md_lt;
+    reg [24:0] md_wa, md_wb;
+    wire [31:0] dat_a = da ? mem_dat_1 : mem_dat_0, dat_b = db ? mem_dat_1 : mem_dat_0;
+    wire sq_go = sq == 3'd1 && !mem_hold;
+
+    // tex.sel: is the block in the RAM.
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [31:0] off = a - RAM_BASE;
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire blk_ok = HAS_RAM != 0 && a[1:0] == 2'd0 && off <= (32'd1 << RAM_LOG2) - BLOCK_BYTES;
+    // The window: bits = min(max(lod + bias, lo), hi), 18-bit signed sum.
+    /* verilator lint_off UNUSEDSIGNAL */  // the bias and lod are I8F8 bits: 18 bits hold their sum
+    wire [17:0] wsum = slod + swin0;
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [11:0] wlo = swin1[11:0], whi = swin1[23:12];
+    wire [17:0] wmax = $signed(wsum) < $signed({6'd0, wlo}) ? {6'd0, wlo} : wsum;
+    /* verilator lint_off UNUSEDSIGNAL */  // wmax ≥ lo ≥ 0: the top bits only compare
+    wire [17:0] wbits = wmax > {6'd0, whi} ? {6'd0, whi} : wmax;
+    /* verilator lint_on UNUSEDSIGNAL */
+
+    // ---- The filter: four channels in parallel ----------------------------
+    // F0: a footprint row (two texels and their weights); F1: the corner
+    // products; F2: the row's sum (the first row's kept in `sum0`); F3: the
+    // level's sum X; F4: X's 8.16 value (w1, the one before moves to w0)
+    // and the rounded texel.
+    reg        f0_v, f0_row;
+    reg  [1:0] f0_lt;
+    reg [31:0] f0_ta, f0_tb;
+    reg [24:0] f0_wa, f0_wb;
+    reg        f1_v, f1_row;
+    reg  [1:0] f1_lt;
+    reg [127:0] f1_pa, f1_pb;
+    reg [127:0] sum0;
+    reg        f2_v;
+    reg  [1:0] f2_lt;
+    reg [127:0] f2_r;
+    reg        f3_v;
+    reg  [1:0] f3_lt;
+    reg [127:0] f3_x;
+    reg [95:0] w0, w1;
+    // The blend: B1 the two products per channel, B2 their rounded sum.
+    reg        bl_v, b2_v;
+    reg  [8:0] bl_t;
+    reg [127:0] b2_q0, b2_q1;
+
+    wire [127:0] pa_n, pb_n, r_n, x_n, q0_n, q1_n;
+    wire [95:0] wide_n;
+    wire [31:0] round_n, blend_n;
+    wire [8:0] bl_tc = 9'd256 - bl_t;
+    genvar c;
+    generate
+        for (c = 0; c < 4; c = c + 1) begin : ch
+            /* verilator lint_off UNUSEDSIGNAL */  // every product < 2³², the sums too
+            wire [32:0] pa = {25'd0, f0_ta[8*c+7:8*c]} * {8'd0, f0_wa};
+            wire [32:0] pb = {25'd0, f0_tb[8*c+7:8*c]} * {8'd0, f0_wb};
+            wire [31:0] xw = f3_x[32*c+31:32*c] + 32'd128;
+            wire [31:0] xr = f3_x[32*c+31:32*c] + 32'h0080_0080;
+            wire [32:0] q0 = {9'd0, w0[24*c+23:24*c]} * {24'd0, bl_tc};
+            wire [32:0] q1 = {9'd0, w1[24*c+23:24*c]} * {24'd0, bl_t};
+            wire [31:0] bs = b2_q0[32*c+31:32*c] + b2_q1[32*c+31:32*c] + 32'h0080_0000;
+            /* verilator lint_on UNUSEDSIGNAL */
+            assign pa_n[32*c+31:32*c] = pa[31:0];
+            assign pb_n[32*c+31:32*c] = pb[31:0];
+            assign r_n[32*c+31:32*c] = f1_pa[32*c+31:32*c] + f1_pb[32*c+31:32*c];
+            assign x_n[32*c+31:32*c] = sum0[32*c+31:32*c] + f2_r[32*c+31:32*c];
+            assign wide_n[24*c+23:24*c] = xw[31:8];
+            assign round_n[8*c+7:8*c] = xr[31:24];
+            assign q0_n[32*c+31:32*c] = q0[31:0];
+            assign q1_n[32*c+31:32*c] = q1[31:0];
+            assign blend_n[8*c+7:8*c] = bs[31:24];
         end
+    endgenerate
+
+    // ---- The answers and the pipeline -------------------------------------
+    always @(posedge clk) begin
+        if (rsp_valid && rsp_ready) rsp_valid <= 1'b0;
+
+        // tex.log2pl.
         if (lbusy) begin
             lcnt <= lcnt + 2'd1;
             if (lcnt == 2'd1) begin
                 lbusy                 <= 1'b0;
+                pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
                 rsp_payload_outputs_0 <= log2pl;
             end
         end
+
+        // The upper level of tex.tri.
+        if (l1cnt != 2'd0) l1cnt <= l1cnt - 2'd1;
+
+        // Stage A.
+        a_v <= inj_addr || inj_bw || inj_tri || inj_bil || inj_up;
+        a_tag <= inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
+        a_lt <= inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
+        a_ix <= sx[43:12];
+        a_iy <= sy[43:12];
+        a_wx <= inj_bw ? a[12:0] : {1'b0, sx[11:0]};
+        a_wy <= inj_bw ? b[12:0] : {1'b0, sy[11:0]};
+        a_base <= in_base;
+        a_kx <= in_kx;
+        a_ky <= in_ky;
+        a_mu <= in_mu;
+        a_mv <= in_mv;
+
+        // Stage B.
+        if (a_v) begin
+            if (a_tag == AT_TMU) begin
+                lv_v  <= 1'b1;
+                lv_lt <= a_lt;
+                lp00  <= texel(a_base, a_kx, x0, y0);
+                lp10  <= texel(a_base, a_kx, x1, y0);
+                lp01  <= texel(a_base, a_kx, x0, y1);
+                lp11  <= texel(a_base, a_kx, x1, y1);
+                lv00  <= w00[24:0];
+                lv10  <= w10[24:0];
+                lv01  <= w01[24:0];
+                lv11  <= w11[24:0];
+            end else begin
+                lw00      <= w00[24:0];
+                lw10      <= w10[24:0];
+                lw01      <= w01[24:0];
+                lw11      <= w11[24:0];
+                pend      <= 1'b0;
+                rsp_valid <= 1'b1;
+                if (a_tag == AT_ADDR) begin
+                    a10                   <= texel(a_base, a_kx, x1, y0);
+                    a01                   <= texel(a_base, a_kx, x0, y1);
+                    a11                   <= texel(a_base, a_kx, x1, y1);
+                    rsp_payload_outputs_0 <= texel(a_base, a_kx, x0, y0);
+                end else begin
+                    rsp_payload_outputs_0 <= 32'd0;
+                end
+            end
+        end
+
+        // The RAM: a level's rows, or the descriptor block's words.
+        da   <= wa[2];
+        db   <= wb[2];
+        md_v <= 1'b0;
+        if (sq == 3'd0 && lv_v) begin
+            md_v   <= 1'b1;
+            md_row <= lrow;
+            md_lt  <= lv_lt;
+            md_wa  <= lrow ? lv01 : lv00;
+            md_wb  <= lrow ? lv11 : lv10;
+            lrow   <= !lrow;
+            if (lrow) lv_v <= 1'b0;
+        end
+        if (a_v && a_tag == AT_TMU) lv_v <= 1'b1;
+
+        // tex.sel's reads: 1 the window's words (after the CPU's writes),
+        // 2 their data, 3 the windowed lod, 4 the two levels' words, 5
+        // their data.
+        case (sq)
+            3'd1: if (sq_go) sq <= 3'd2;
+            3'd2: begin
+                swin0 <= dat_a[17:0];
+                swin1 <= dat_b[27:0];
+                sq    <= 3'd3;
+            end
+            3'd3: begin
+                tt   <= wbits[7:0];
+                tlow <= wbits[11:8];
+                tmu  <= swin1[25:24];
+                tmv  <= swin1[27:26];
+                sq   <= 3'd4;
+            end
+            3'd4: sq <= 3'd5;
+            3'd5: begin
+                tb0  <= {RAM_BASE[31:RAM_LOG2], dat_a[RAM_LOG2-3:0], 2'd0};
+                tkx0 <= dat_a[27:24];
+                tky0 <= dat_a[31:28];
+                tb1  <= {RAM_BASE[31:RAM_LOG2], dat_b[RAM_LOG2-3:0], 2'd0};
+                tkx1 <= dat_b[27:24];
+                tky1 <= dat_b[31:28];
+                sq   <= 3'd0;
+            end
+            default: ;
+        endcase
+
+        // F0: a row from the RAM (or from tex.bt / tex.bb below).
+        f0_v <= md_v;
+        if (md_v) begin
+            f0_row <= md_row;
+            f0_lt  <= md_lt;
+            f0_ta  <= dat_a;
+            f0_tb  <= dat_b;
+            f0_wa  <= md_wa;
+            f0_wb  <= md_wb;
+        end
+        // F1 … F4.
+        f1_v   <= f0_v;
+        f1_row <= f0_row;
+        f1_lt  <= f0_lt;
+        f1_pa  <= pa_n;
+        f1_pb  <= pb_n;
+        f2_v   <= f1_v && f1_row;
+        f2_lt  <= f1_lt;
+        f2_r   <= r_n;
+        if (f1_v && !f1_row) sum0 <= r_n;
+        f3_v  <= f2_v;
+        f3_lt <= f2_lt;
+        f3_x  <= x_n;
+        if (f3_v) begin
+            w0 <= w1;
+            w1 <= wide_n;
+            if (f3_lt == LT_ROUND) begin
+                pend                  <= 1'b0;
+                rsp_valid             <= 1'b1;
+                rsp_payload_outputs_0 <= round_n;
+            end
+        end
+        // The blend (after the upper level, or tex.blend below).
+        bl_v <= f3_v && f3_lt == LT_BLEND;
+        if (f3_v && f3_lt == LT_BLEND) bl_t <= {1'b0, tt};
+        b2_v  <= bl_v;
+        b2_q0 <= q0_n;
+        b2_q1 <= q1_n;
+        if (b2_v) begin
+            pend                  <= 1'b0;
+            rsp_valid             <= 1'b1;
+            rsp_payload_outputs_0 <= blend_n;
+        end
+
         if (fire) begin
-            rsp_valid             <= !(funct7 == 7'd0 && funct3 == 3'd0) && !(funct7 == 7'd1 && funct3 == 3'd1);
+            rsp_valid             <= 1'b1;
             rsp_payload_outputs_0 <= 32'd0;
-            if (funct7 == 7'd0) begin
+            if (op0) begin
                 case (funct3)
                     3'd0: begin
-                        lbusy <= 1'b1;
-                        lcnt  <= 2'd0;
+                        rsp_valid <= 1'b0;
+                        pend      <= 1'b1;
+                        lbusy     <= 1'b1;
+                        lcnt      <= 2'd0;
                     end
                     3'd1: rsp_payload_outputs_0 <= lod;
                     3'd2: begin
-                        fx <= a[12:0];
-                        fy <= b[12:0];
+                        rsp_valid <= 1'b0;
+                        pend      <= 1'b1;
                     end
-                    3'd3: top <= top_n;
-                    3'd4: begin
-                        rsp_payload_outputs_0 <= round_n;
-                        w0 <= w1;
-                        w1 <= wide_n;
+                    3'd3, 3'd4: begin
+                        f0_v   <= 1'b1;
+                        f0_row <= funct3 == 3'd4;
+                        f0_lt  <= LT_ROUND;
+                        f0_ta  <= a;
+                        f0_tb  <= b;
+                        f0_wa  <= funct3 == 3'd4 ? lw01 : lw00;
+                        f0_wb  <= funct3 == 3'd4 ? lw11 : lw10;
+                        if (funct3 == 3'd4) begin
+                            rsp_valid <= 1'b0;
+                            pend      <= 1'b1;
+                        end
                     end
-                    3'd5: rsp_payload_outputs_0 <= blend_n;
+                    3'd5: begin
+                        rsp_valid <= 1'b0;
+                        pend      <= 1'b1;
+                        bl_v      <= 1'b1;
+                        bl_t      <= a[8:0] > 9'd256 ? 9'd256 : a[8:0];
+                    end
                     default: ;
                 endcase
-            end else if (funct7 == 7'd1) begin
+            end else if (op1) begin
                 case (funct3)
                     3'd0: begin
-                        base <= a;
-                        kx   <= b[3:0];
-                        ky   <= b[7:4];
-                        mu   <= b[9:8];
-                        mv   <= b[11:10];
+                        lbase <= a;
+                        lkx   <= b[3:0];
+                        lky   <= b[7:4];
+                        lmu   <= b[9:8];
+                        lmv   <= b[11:10];
                     end
                     3'd1: begin
-                        abusy <= 1'b1;
-                        ix    <= sx[43:12];
-                        iy    <= sy[43:12];
-                        wx    <= sx[11:0];
-                        wy    <= sy[11:0];
+                        rsp_valid <= 1'b0;
+                        pend      <= 1'b1;
                     end
                     3'd2: rsp_payload_outputs_0 <= a10;
                     3'd3: rsp_payload_outputs_0 <= a01;
                     3'd4: rsp_payload_outputs_0 <= a11;
                     default: ;
                 endcase
+            end else if (op2) begin
+                case (funct3)
+                    3'd0: rsp_payload_outputs_0 <= HAS_RAM != 0 ? RAM_BASE | RAM_LOG2 : 32'd0;
+                    3'd1: begin
+                        rsp_payload_outputs_0 <= {31'd0, blk_ok};
+                        if (blk_ok) begin
+                            sp   <= a;
+                            slod <= b[17:0];
+                            sq   <= 3'd1;
+                        end
+                    end
+                    3'd2, 3'd3: begin
+                        rsp_valid <= 1'b0;
+                        pend      <= 1'b1;
+                        if (inj_tri && tt != 8'd0) begin
+                            tu    <= a;
+                            tv    <= b;
+                            l1cnt <= 2'd2;
+                        end
+                    end
+                    default: ;
+                endcase
             end
         end
         if (reset) begin
             rsp_valid <= 1'b0;
+            pend      <= 1'b0;
             lbusy     <= 1'b0;
-            abusy     <= 1'b0;
+            sq        <= 3'd0;
+            l1cnt     <= 2'd0;
+            a_v       <= 1'b0;
+            lv_v      <= 1'b0;
+            lrow      <= 1'b0;
+            md_v      <= 1'b0;
+            f0_v      <= 1'b0;
+            f1_v      <= 1'b0;
+            f2_v      <= 1'b0;
+            f3_v      <= 1'b0;
+            bl_v      <= 1'b0;
+            b2_v      <= 1'b0;
         end
     end
 endmodule

@@ -4,7 +4,8 @@ or `full+cfu` with the texture co-processor demo/softcore/cfu_tex.v on its
 CFU port), one integrated main RAM holding code and data, LiteX's UART and
 a simulation exit register, for LiteX's simulation platform.
 
---cfu names cfu_tex.v; its tex_log2pl.v beside it is added too.
+--cfu names cfu_tex.v; its tex_log2pl.v beside it is added too, and the
+CFU's texture unit gets its read port on the main RAM (add_cfu_ram_port).
 
 Generates the SoC's Verilog with LiteX's SoC builder (SoCCore, SimPlatform)
 into --out: `sim.v` (top module `sim`), the CPU's and the CFU's Verilog
@@ -30,7 +31,7 @@ import os
 import re
 import sys
 
-from migen import Module, Signal, If
+from migen import Cat, Constant, Module, Signal, If
 
 from litex.build.generic_platform import Pins, Subsignal
 from litex.build.sim import SimPlatform
@@ -98,11 +99,43 @@ class RaymipSoC(SoCCore):
         if cfu:
             # The CFU's logarithm pipeline, shared with the PicoRV32 unit.
             platform.add_source(os.path.join(os.path.dirname(cfu), "tex_log2pl.v"))
+            self.add_cfu_ram_port(ram_bytes)
         self.sim_exit = SimExit(platform.request("sim_exit"))
         # An interrupt-free firmware and a UART without the host's side:
         # the sink (host → SoC) stays idle.
         serial = self.platform.lookup_request("serial")
         self.comb += [serial.sink_valid.eq(0), serial.sink_data.eq(0)]
+
+
+    def add_cfu_ram_port(self, ram_bytes):
+        """The texture unit's read port on the main RAM (cfu_tex.v's
+        `mem_*` ports): two more read ports of the main RAM's memory, one
+        on its even and one on its odd words (the unit's two banks; in
+        block RAM the memory's bus port and these read ports make
+        dual-port banks), and `mem_hold` while the CPU's data bus has a
+        write in flight (the unit's first read of a tex.sel waits for it)."""
+        words = ram_bytes // 4
+        aw = words.bit_length() - 2  # words per bank 2^aw
+        assert words == 1 << (aw + 1), "the main RAM's size must be a power of two"
+        mem = self.main_ram.mem
+        ports = [mem.get_port(has_re=False) for _ in range(2)]
+        self.specials += ports
+        adr = [Signal(aw, name=f"cfu_mem_adr_{b}") for b in range(2)]
+        for b, (port, a) in enumerate(zip(ports, adr)):
+            self.comb += port.adr.eq(Cat(Constant(b, 1), a))
+        dbus = self.cpu.dbus
+        hold = Signal(name="cfu_mem_hold")
+        self.comb += hold.eq(dbus.cyc & dbus.we)
+        self.cpu.cfu_params.update(
+            p_HAS_RAM=1,
+            p_RAM_BASE=MAIN_RAM,
+            p_RAM_AW=aw,
+            o_mem_adr_0=adr[0],
+            o_mem_adr_1=adr[1],
+            i_mem_dat_0=ports[0].dat_r,
+            i_mem_dat_1=ports[1].dat_r,
+            i_mem_hold=hold,
+        )
 
 
 def main():

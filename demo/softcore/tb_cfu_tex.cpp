@@ -1,16 +1,21 @@
 // Verilator testbench of the texture co-processor cfu_tex.v (module Cfu)
-// alone: drives its CFU port as VexRiscv's CfuPlugin does and checks every
-// output bit against reference vectors written by the firmware's software
-// paths (`raymip-demo pcpi-vectors FILE`, host-tests/src/cli/pcpi_vectors.rs;
-// the same file tb_pcpi_tex.cpp reads).
+// alone: drives its CFU port as VexRiscv's CfuPlugin does, serves its RAM
+// read port from a RAM of its own (the two word banks, one read per bank
+// and cycle, data the cycle after the address, as the LiteX SoC's block
+// RAM) and checks every output bit against reference vectors written by
+// the firmware's software paths (`raymip-demo pcpi-vectors FILE`,
+// host-tests/src/cli/pcpi_vectors.rs; the same file tb_pcpi_tex.cpp reads).
 //
 // Usage: tb-cfu-tex VECTORS
 // Each vector `OP RS1 RS2 RD` (hex), in file order (the filter and
-// addressing instructions keep state from one to the next): OP is the
-// function id {funct7, funct3}. The command is presented with cmd_valid
-// until cmd_ready (the transfer at the rising edge where both are high);
-// the answer must come with rsp_valid within 8 cycles and equal RD in all
-// 32 bits. Every fifth answer is held off with rsp_ready low for a few
+// addressing instructions and the texture unit keep state from one to the
+// next): OP is the function id {funct7, funct3}, or 400: RAM word RS1 :=
+// RS2 (the RAM at the Cfu's default RAM_BASE, 2^(RAM_AW + 1) words). The
+// command is presented with cmd_valid until cmd_ready (the transfer at the
+// rising edge where both are high; within 32 cycles); the answer must come
+// with rsp_valid within 32 cycles and equal RD in all 32 bits. mem_hold
+// (a CPU write on the bus) is high two cycles in every seven: the unit's
+// reads of a tex.sel wait for it to fall. Every fifth answer is held off with rsp_ready low for a few
 // cycles, during which rsp_valid and the data must stay and no command may
 // be taken. After every vector a function id the unit does not define is
 // sent: it must answer 0 and change no state (the next vector would
@@ -20,18 +25,32 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "VCfu.h"
 #include "verilated.h"
 
 namespace {
 
+// Words per RAM bank 2^kRamAw: cfu_tex.v's default RAM_AW.
+constexpr int kRamAw = 15;
+// The pseudo-op of a RAM word.
+constexpr unsigned kRamWord = 0x400;
+
 struct Tb {
     std::unique_ptr<VerilatedContext> ctx = std::make_unique<VerilatedContext>();
     std::unique_ptr<VCfu> top = std::make_unique<VCfu>(ctx.get());
     uint64_t bad = 0;
+    uint64_t cycle = 0;
+    // The RAM: word 2·i + b is word i of bank b.
+    std::vector<uint32_t> ram = std::vector<uint32_t>(size_t(2) << kRamAw);
     void tick() {
+        const uint32_t a0 = top->mem_adr_0, a1 = top->mem_adr_1;
         top->clk = 1;
+        top->eval();
+        top->mem_dat_0 = ram[size_t(a0) << 1];
+        top->mem_dat_1 = ram[(size_t(a1) << 1) | 1];
+        top->mem_hold = ++cycle % 7 < 2;
         top->eval();
         top->clk = 0;
         top->eval();
@@ -52,7 +71,7 @@ struct Tb {
         t.cmd_valid = 1;
         t.eval();
         int wait = 0;
-        while (!t.cmd_ready && wait < 8) {
+        while (!t.cmd_ready && wait < 32) {
             tick();
             ++wait;
         }
@@ -64,7 +83,7 @@ struct Tb {
         t.cmd_valid = 0;
         t.eval();
         int l = 1;
-        while (!t.rsp_valid && l < 8) {
+        while (!t.rsp_valid && l < 32) {
             tick();
             ++l;
         }
@@ -112,17 +131,28 @@ int main(int argc, char** argv) {
     t.reset = 0;
     tb.tick();
 
-    // Function ids: funct7 0: 0…5; funct7 1: 8…12 (tex.lvl, tex.addr, tex.tap ×3).
-    const unsigned ids[] = {0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12};
-    const char* names[] = {"tex.log2pl", "tex.lod", "tex.bw",  "tex.bt",  "tex.bb", "tex.blend",
-                           "tex.lvl",    "tex.addr", "tex.tap10", "tex.tap01", "tex.tap11"};
-    int count[11] = {}, lat_max[11] = {};
+    // Function ids: funct7 0: 0…5; funct7 1: 8…12 (tex.lvl, tex.addr, tex.tap ×3);
+    // funct7 2: 16…19 (tex.ram, tex.sel, tex.tri, tex.bil).
+    constexpr int kOps = 15;
+    const unsigned ids[kOps] = {0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 16, 17, 18, 19};
+    const char* names[kOps] = {"tex.log2pl", "tex.lod",   "tex.bw",    "tex.bt",    "tex.bb",
+                               "tex.blend",  "tex.lvl",   "tex.addr",  "tex.tap10", "tex.tap01",
+                               "tex.tap11",  "tex.ram",   "tex.sel",   "tex.tri",   "tex.bil"};
+    int count[kOps] = {}, lat_max[kOps] = {};
     unsigned op;
     uint32_t rs1, rs2, want;
     uint64_t n = 0;
     while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
+        if (op == kRamWord) {
+            if (rs1 >= tb.ram.size()) {
+                std::fprintf(stderr, "tb-cfu-tex: RAM word %" PRIx32 " outside the RAM\n", rs1);
+                return 2;
+            }
+            tb.ram[rs1] = rs2;
+            continue;
+        }
         int k = -1;
-        for (int i = 0; i < 11; ++i)
+        for (int i = 0; i < kOps; ++i)
             if (ids[i] == op) k = i;
         if (k < 0) {
             std::fprintf(stderr, "tb-cfu-tex: unknown op %x in %s\n", op, argv[1]);
@@ -135,23 +165,23 @@ int main(int argc, char** argv) {
         if (lat < 0 || got != want) tb.fail(names[k], op, rs1, rs2, got, want);
         if (lat > lat_max[k]) lat_max[k] = lat;
         // An undefined function id: answers 0, changes nothing.
-        const unsigned other[] = {6, 7, 13, 14, 15, 16, 0x3ff};
+        const unsigned other[] = {6, 7, 13, 14, 15, 20, 0x3ff};
         unsigned o = other[n % 7];
         got = tb.run(o, 0xffffffffu, 0xffffffffu, false, &lat);
         if (lat != 1 || got != 0) tb.fail("undefined function id", o, ~0u, ~0u, got, 0);
     }
     std::fclose(f);
     t.final();
-    for (int k = 0; k < 11; ++k) {
+    for (int k = 0; k < kOps; ++k) {
         if (count[k] == 0) {
             std::fprintf(stderr, "tb-cfu-tex: %s has no vectors of %s\n", argv[1], names[k]);
             return 1;
         }
     }
     std::printf("tb-cfu-tex: %" PRIu64 " vectors (", n);
-    for (int k = 0; k < 11; ++k) std::printf("%s%d %s", k ? ", " : "", count[k], names[k]);
+    for (int k = 0; k < kOps; ++k) std::printf("%s%d %s", k ? ", " : "", count[k], names[k]);
     std::printf("), %" PRIu64 " mismatches, latency", tb.bad);
-    for (int k = 0; k < 11; ++k) std::printf(" %d", lat_max[k]);
+    for (int k = 0; k < kOps; ++k) std::printf(" %d", lat_max[k]);
     std::printf(" cycles\n");
     return tb.bad == 0 ? 0 : 1;
 }

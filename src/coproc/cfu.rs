@@ -18,6 +18,14 @@
 //!   in-memory path of the ACCURATE linear kernel takes its footprint from
 //!   [`footprint`]: the firmware only loads the four texels, and the
 //!   weights stay in the co-processor for `tex.bt`/`tex.bb`.
+//! * the texture unit `tex.ram`, `tex.sel`, `tex.tri`, `tex.bil`
+//!   (`funct7 = 2`): the co-processor reads the texels itself through a
+//!   read port of its own on the SoC's RAM and filters them. A sampler
+//!   whose pyramid and lod window the unit can take keeps its
+//!   [`TextureUnit`] (the descriptor block the unit reads,
+//!   [`super::descriptor_block`]); a sample is then [`TextureUnit::select`]
+//!   and [`trilinear`] or [`bilinear`], and the in-memory path above is
+//!   what samplers whose texels lie outside that RAM take.
 //!
 //! # Safety
 //!
@@ -39,11 +47,30 @@
 //! texels, aligned, read while the view is borrowed. On a core without the
 //! co-processor the first instruction traps (illegal instruction) before
 //! any read.
+//!
+//! The texture unit's instructions read memory, but not through the CPU:
+//! the co-processor's read port returns words of the RAM to the unit, and
+//! the instructions return plain words (any `u32` is a valid [`Texel`] or
+//! flag); nothing is written. `tex.sel` reads the descriptor block at the
+//! address it is given, a [`TextureUnit`]'s own field, borrowed for the
+//! call; `tex.tri`/`tex.bil` read texels at `base + 4·(y·2^kx + x)` with
+//! `base`, `kx`, `ky` a level's from the block, which
+//! [`super::descriptor_block`] made from a [`LevelView`]'s first texel and
+//! sides (exposing that memory's provenance), and `x < 2^kx`, `y < 2^ky` by
+//! construction of the RTL (as for `tex.addr` above): texels of a view of
+//! the sampler's source, borrowed by the sampler for as long as it lives.
+//! So each block is `readonly` (it reads only memory Rust code may read
+//! then, and the compiler completes every earlier store first) and not
+//! `pure` (it depends on the unit's state: the blocks stay in program
+//! order). The SoC's part of the argument: the unit reads the RAM after
+//! the CPU's pending writes (`cfu_tex.v`, `mem_hold`), so it reads the
+//! values the program stored.
 #![allow(unsafe_code)]
 
-use super::{TAP01, TAP10, TAP11};
+use super::{BIL, BLOCK_WORDS, RAM, SEL, TAP01, TAP10, TAP11, TEXTURE_UNIT, TRI};
 use crate::texture::storage::mip::Texel;
 use crate::texture::storage::pow2::LevelView;
+use crate::units::Lod;
 
 /// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the
 /// custom instructions are illegal. Idempotent.
@@ -145,4 +172,115 @@ pub fn footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4] {
     // provenance of that memory above, and `Texel` (u32) has no invalid
     // values.
     a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() })
+}
+
+/// `tex.ram`: the RAM the texture unit reads, `(base address, bytes)`.
+#[inline]
+#[must_use]
+pub fn ram() -> (usize, usize) {
+    let r: u32;
+    // SAFETY: one custom-0 R-type instruction on registers only (module
+    // docs) that writes `r`; it reads no memory.
+    unsafe {
+        core::arch::asm!(
+            ".insn r {op}, {f3}, {f7}, {rd}, x0, x0",
+            op = const super::CUSTOM0,
+            f3 = const RAM,
+            f7 = const TEXTURE_UNIT,
+            rd = lateout(reg) r,
+            options(nomem, nostack, preserves_flags),
+        );
+    }
+    ((r & !31) as usize, 1usize << (r & 31))
+}
+
+/// A sampler's descriptor block for the texture unit, or none (then
+/// [`select`](Self::select) is always `false` and the sampler samples in
+/// software or through the addressing instructions).
+#[derive(Clone, Copy, Debug)]
+pub struct TextureUnit {
+    block: [u32; BLOCK_WORDS],
+    ok: bool,
+}
+
+impl TextureUnit {
+    /// A unit for `block` ([`super::descriptor_block`] for the RAM of
+    /// [`ram`]), or none.
+    #[must_use]
+    pub const fn new(block: Option<[u32; BLOCK_WORDS]>) -> Self {
+        match block {
+            Some(block) => Self { block, ok: true },
+            None => Self {
+                block: [0; BLOCK_WORDS],
+                ok: false,
+            },
+        }
+    }
+
+    /// `tex.sel`: selects this block and `lod` (I8F8, through the block's
+    /// window) for the next [`trilinear`] or [`bilinear`]; `false` (and
+    /// nothing selected) when there is no block or the unit's RAM does not
+    /// hold this one (the sampler is elsewhere).
+    #[inline(always)]
+    #[must_use]
+    pub fn select(&self, lod: Lod) -> bool {
+        if !self.ok {
+            return false;
+        }
+        let r: u32;
+        // SAFETY: one custom-0 R-type instruction (module docs): the unit
+        // reads the block `self.block` (borrowed for this call) and writes
+        // `r`; `readonly`, not `pure`.
+        unsafe {
+            core::arch::asm!(
+                ".insn r {op}, {f3}, {f7}, {rd}, {a}, {b}",
+                op = const super::CUSTOM0,
+                f3 = const SEL,
+                f7 = const TEXTURE_UNIT,
+                rd = lateout(reg) r,
+                a = in(reg) self.block.as_ptr(),
+                b = in(reg) i32::from(lod.to_bits()),
+                options(readonly, nostack, preserves_flags),
+            );
+        }
+        r != 0
+    }
+}
+
+/// `tex.tri`: the trilinear sample at `(u, v)` ([`super::coord_i4f28`]
+/// operands) of the block and lod of the last successful
+/// [`TextureUnit::select`].
+#[inline(always)]
+#[must_use]
+pub fn trilinear(u: u32, v: u32) -> Texel {
+    sample::<TRI>(u, v)
+}
+
+/// `tex.bil`: the bilinear sample of the nearest level, as [`trilinear`].
+#[inline(always)]
+#[must_use]
+pub fn bilinear(u: u32, v: u32) -> Texel {
+    sample::<BIL>(u, v)
+}
+
+/// `tex.tri` (`F3 = TRI`) or `tex.bil` (`BIL`).
+#[inline(always)]
+fn sample<const F3: u32>(u: u32, v: u32) -> Texel {
+    let r: u32;
+    // SAFETY: one custom-0 R-type instruction (module docs): the unit reads
+    // texels of the selected block's levels (views the sampler borrows)
+    // and writes `r`; `readonly`, not `pure`.
+    unsafe {
+        core::arch::asm!(
+            ".insn r {op}, {f3}, {f7}, {rd}, {a}, {b}",
+            op = const super::CUSTOM0,
+            f3 = const F3,
+            f7 = const TEXTURE_UNIT,
+            rd = lateout(reg) r,
+            a = in(reg) u,
+            b = in(reg) v,
+            options(readonly, nostack, preserves_flags),
+        );
+    }
+    r
 }

@@ -29,14 +29,29 @@
 //! | `tex.lvl` | [`ADDRESSING`] | [`LVL`] | byte address of the level's texel (0, 0) | [`level_config`] | (latches the level) |
 //! | `tex.addr` | [`ADDRESSING`] | [`ADDR`] | [`coord_i4f28`] of `u` | of `v` | address of `t00`; latches the weights and the other taps |
 //! | `tex.tap` | [`ADDRESSING`] | [`TAP10`], [`TAP01`], [`TAP11`] | — | — | address of `t10`, `t01`, `t11` |
+//! | `tex.ram` | [`TEXTURE_UNIT`] | [`RAM`] | — | — | the RAM the texture unit reads: its base address `\|` log2 of its bytes |
+//! | `tex.sel` | [`TEXTURE_UNIT`] | [`SEL`] | address of a [`descriptor_block`] | a lod (I8F8 bits) | 1 when the block is in that RAM, else 0; reads the block's window and levels |
+//! | `tex.tri` | [`TEXTURE_UNIT`] | [`TRI`] | [`coord_i4f28`] of `u` | of `v` | the trilinear sample at the selected lod |
+//! | `tex.bil` | [`TEXTURE_UNIT`] | [`BIL`] | [`coord_i4f28`] of `u` | of `v` | the bilinear sample of the nearest level |
 //!
 //! The RTL headers specify each instruction; the Verilator testbenches
 //! check every output bit of both units against vectors the software paths
 //! write (`scripts/softcore`). The PCPI unit implements `funct7 = 0`
 //! (the UP5K it was sized for has no room for the addressing); on it the
-//! addressing instructions trap as illegal.
+//! addressing and texture-unit instructions trap as illegal.
+//!
+//! # The texture unit's descriptor block
+//!
+//! The CFU unit reads the texels of a power-of-two pyramid itself (a read
+//! port of its own on the SoC's RAM) and filters them: a sampler keeps a
+//! block of [`BLOCK_WORDS`] words ([`descriptor_block`]) in that RAM, and
+//! a sample is `tex.sel` (the block and the lod) then `tex.tri` or
+//! `tex.bil` (the coordinates). Word 0 is the lod bias, word 1 the lod
+//! window and the address modes ([`window_word`]), words `2 + l` the
+//! levels `l = 0 … 16` ([`level_word`]).
 
 use crate::texture::address::AddressMode;
+use crate::texture::storage::pow2::Pow2Levels;
 use crate::units::TexCoord;
 
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
@@ -70,6 +85,19 @@ pub const TAP10: u32 = 2;
 pub const TAP01: u32 = 3;
 /// `funct3` of `tex.tap` for `t11` (`funct7 = ADDRESSING`).
 pub const TAP11: u32 = 4;
+
+/// `funct7` of the texture unit's instructions.
+pub const TEXTURE_UNIT: u32 = 2;
+/// `funct3` of `tex.ram` (`funct7 = TEXTURE_UNIT`).
+pub const RAM: u32 = 0;
+/// `funct3` of `tex.sel` (`funct7 = TEXTURE_UNIT`).
+pub const SEL: u32 = 1;
+/// `funct3` of `tex.tri` (`funct7 = TEXTURE_UNIT`).
+pub const TRI: u32 = 2;
+/// `funct3` of `tex.bil` (`funct7 = TEXTURE_UNIT`).
+pub const BIL: u32 = 3;
+/// Words of a texture-unit descriptor block.
+pub const BLOCK_WORDS: usize = 19;
 
 /// Whether the addressing instructions implement `mode` (all but the
 /// border colour, [`AddressMode::ClampToBorder`]).
@@ -110,6 +138,67 @@ pub fn coord_i4f28(mode: AddressMode, c: TexCoord) -> u32 {
 #[must_use]
 pub const fn level_config(kx: u32, ky: u32, mu: AddressMode, mv: AddressMode) -> u32 {
     (kx & 15) | (ky & 15) << 4 | (mu as u32 & 3) << 8 | (mv as u32 & 3) << 10
+}
+
+/// Word 1 of a descriptor block: the lod window `[lo, hi]` (I8F8 bits,
+/// `≤ 3840`; larger values are cut to 12 bits) and the address modes:
+/// `lo | hi << 12 | mu << 24 | mv << 26`.
+#[inline]
+#[must_use]
+pub const fn window_word(lo: u32, hi: u32, mu: AddressMode, mv: AddressMode) -> u32 {
+    (lo & 0xFFF) | (hi & 0xFFF) << 12 | (mu as u32 & 3) << 24 | (mv as u32 & 3) << 26
+}
+
+/// Word `2 + l` of a descriptor block: a level of `2^kx × 2^ky` texels
+/// (`kx, ky ≤ 15`) whose texel (0, 0) is word `offset < 2²⁴` of the
+/// unit's RAM: `offset | kx << 24 | ky << 28`.
+#[inline]
+#[must_use]
+pub const fn level_word(offset: u32, kx: u32, ky: u32) -> u32 {
+    (offset & 0xFF_FFFF) | (kx & 15) << 24 | (ky & 15) << 28
+}
+
+/// The descriptor block of a sampler over the power-of-two levels
+/// `levels` (every level index `0 ..= 16`) with lod window `bias` and
+/// `[lo, hi]` (the sampler's I8F8 bits: `lod + bias` clamped to
+/// `0 ≤ lo ≤ hi ≤ 3840`) and address modes `mu`, `mv`, for a texture unit
+/// reading the `ram_bytes` bytes at address `ram_base`. `None` when a mode
+/// is not addressable ([`addressable`]), the window is out of its range,
+/// or a level's texels are not all in that RAM (the sampler then samples
+/// in software).
+#[must_use]
+pub fn descriptor_block(
+    levels: &Pow2Levels<'_>,
+    bias: i32,
+    (lo, hi): (i32, i32),
+    (mu, mv): (AddressMode, AddressMode),
+    (ram_base, ram_bytes): (usize, usize),
+) -> Option<[u32; BLOCK_WORDS]> {
+    let max = 15 << 8;
+    if !(addressable(mu) && addressable(mv) && 0 <= lo && lo <= hi && hi <= max) {
+        return None;
+    }
+    // The unit adds the bias to an I8F8 lod in 18 bits.
+    i16::try_from(bias).ok()?;
+    let mut block = [0; BLOCK_WORDS];
+    block[0] = bias as u32;
+    block[1] = window_word(lo as u32, hi as u32, mu, mv);
+    for (l, word) in block[2..].iter_mut().enumerate() {
+        let view = levels.level(l);
+        let (w, h) = (view.width(), view.height());
+        // Exposed: the texture unit reads these texels (`cfu`'s safety).
+        let start = view
+            .base()
+            .as_ptr()
+            .expose_provenance()
+            .checked_sub(ram_base)?;
+        let end = start.checked_add(4 * w as usize * h as usize)?;
+        if start % 4 != 0 || end > ram_bytes || start / 4 >= 1 << 24 {
+            return None;
+        }
+        *word = level_word((start / 4) as u32, w.trailing_zeros(), h.trailing_zeros());
+    }
+    Some(block)
 }
 
 #[cfg(test)]

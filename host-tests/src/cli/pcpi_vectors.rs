@@ -44,17 +44,39 @@
 //! Levels of every shape `2^kx × 2^ky` up to the largest side, every mode
 //! pair but the border colour, coordinates at and around the texel centres
 //! and edges, the seams, far outside `[0, 1)` and random.
+//!
+//! Then the texture unit (`funct7 = 2`), whose instructions read the RAM
+//! behind the unit's read port: `400 OFFSET WORD 0` (not an instruction)
+//! stores `WORD` at word `OFFSET` of that RAM ([`TB_RAM_BASE`], [`TB_RAM_BYTES`]:
+//! the testbench's RAM, as in the LiteX SoC). Pyramids of several shapes
+//! (full and trimmed) with random texels, each with samplers of several
+//! address modes and lod windows: their texels and each sampler's
+//! descriptor block ([`raymip::texture::Sampler::texture_unit_block`]) go
+//! into the RAM, then
+//! * `10` `tex.ram` (`RD` = the RAM's base `|` log2 of its bytes),
+//! * `11` `tex.sel` (`RS1` = the block's address, `RS2` = a lod, I8F8 bits
+//!   sign-extended; `RD = 1`; and blocks outside the RAM: `RD = 0`),
+//! * `12` `tex.tri` / `13` `tex.bil` (`RS1`, `RS2` as for `tex.addr`;
+//!   `RD` = the sampler's `sample_trilinear` / `sample_bilinear`, the
+//!   software path) after each `tex.sel`,
+//!
+//! with lods below, inside and above each window, at and around level
+//! boundaries, fractions 0 and random.
 
 use std::fmt::Write as _;
 
 use fixed::types::U32F32;
-use raymip::coproc::{coord_i4f28, level_config};
+use raymip::coproc::{BLOCK_WORDS, coord_i4f28, level_config};
 use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
 use raymip::rng::Rng;
 use raymip::texture::address::AddressMode;
+use raymip::texture::address::AnyAxis;
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
+use raymip::texture::sampler::state::SamplerDesc;
+use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::units::{Accurate, Log2Pb, PathLength, TexCoord};
+use raymip::{Cfg, Geometry, Lod, Pyramid, Sampler, SamplerState};
 
 /// The software `tex.log2pl`: `log2 Pl` in I16F16 bits plus the I8F8
 /// rounding offset `0x80`.
@@ -308,6 +330,137 @@ fn address_vectors(out: &mut String) {
     }
 }
 
+/// Base address of the RAM the texture unit reads in the testbench (the
+/// LiteX SoC's main RAM).
+pub const TB_RAM_BASE: u32 = 0x4000_0000;
+/// Bytes of that RAM (`2¹⁸`, cfu_tex.v's default `RAM_AW = 15`).
+pub const TB_RAM_BYTES: u32 = 1 << 18;
+
+/// Pyramid shapes `(width, height, levels)` of the texture-unit vectors:
+/// full pyramids, trimmed ones, a single texel.
+const TU_SHAPES: [(u32, u32, u8); 6] = [
+    (64, 64, 7),
+    (128, 8, 8),
+    (16, 256, 5),
+    (1, 1, 1),
+    (32, 32, 3),
+    (4, 64, 7),
+];
+/// Lod windows `(bias, lo, hi)` (I8F8 bits) per pyramid, `top` its top
+/// level: none, a bias, a bias with both clamps, a single level.
+fn tu_windows(top: i32) -> [(i32, i32, i32); 4] {
+    [
+        (0, 0, 16 * 256),
+        (300, 0, 16 * 256),
+        (-700, 256 + 64, top * 256 - 32),
+        (0, top * 256, top * 256),
+    ]
+}
+
+/// The texture-unit vectors (OP 400 and 10…13; module docs); returns how
+/// many samplers they cover (every pyramid with every window, unless one
+/// cannot be made or has no descriptor block).
+fn texture_unit_vectors(out: &mut String) -> usize {
+    let shapes = TU_SHAPES;
+    let mut made = 0;
+    let mut r = Rng::new(0x7e_c5e1);
+    let lens: Vec<usize> = shapes
+        .iter()
+        .map(|&(w, h, l)| Geometry::new(w, h, l).map_or(0, |g| g.len()))
+        .collect();
+    // One arena: every pyramid, then room for a descriptor block; the
+    // arena's first word is word 0 of the RAM.
+    let total: usize = lens.iter().sum();
+    let arena: Vec<u32> = (0..total + BLOCK_WORDS).map(|_| r.next_u32()).collect();
+    let ram = (arena.as_ptr() as usize, TB_RAM_BYTES as usize);
+    let _ = writeln!(
+        out,
+        "10 00000000 00000000 {:08x}",
+        TB_RAM_BASE | TB_RAM_BYTES.trailing_zeros()
+    );
+    for (k, &w) in arena[..total].iter().enumerate() {
+        let _ = writeln!(out, "400 {k:08x} {w:08x} 00000000");
+    }
+    let block_at = total as u32;
+    let block_addr = TB_RAM_BASE + 4 * block_at;
+    let lod = |bits: i32| Lod::from_bits(bits as i16);
+    let mut start = 0;
+    for (&(w, h, l), &len) in shapes.iter().zip(&lens) {
+        let texels = &arena[start..start + len];
+        start += len;
+        let Ok(p) = Geometry::new(w, h, l).and_then(|g| Pyramid::new(g, texels)) else {
+            continue;
+        };
+        let Ok(p) = Pow2Pyramid::new(p) else { continue };
+        let top = i32::from(l) - 1;
+        for (j, &(bias, lo, hi)) in tu_windows(top).iter().enumerate() {
+            let (mu, mv) = (
+                ADDRESS_MODES[(j + usize::from(l)) % 4],
+                ADDRESS_MODES[(j + usize::from(l) * 3 + 1) % 4],
+            );
+            let desc = SamplerDesc {
+                address_u: mu,
+                address_v: mv,
+                lod_bias: lod(bias),
+                min_lod: lod(lo.max(0)),
+                max_lod: lod(hi.max(lo.max(0))),
+                ..SamplerDesc::default()
+            };
+            let Ok(state) = SamplerState::new(desc) else {
+                continue;
+            };
+            let Ok(mut s) = Sampler::<_, Cfg<AnyAxis>>::with_state(p, state) else {
+                continue;
+            };
+            let Some(block) = s.texture_unit_block(ram) else {
+                continue;
+            };
+            made += 1;
+            for (k, b) in block.iter().enumerate() {
+                let _ = writeln!(out, "400 {:08x} {b:08x} 00000000", block_at as usize + k);
+            }
+            let mut lods = vec![i32::from(i16::MIN), i32::from(i16::MAX), -4096, -1];
+            for level in 0..=(top + 1) {
+                lods.extend([
+                    level * 256 - 1,
+                    level * 256,
+                    level * 256 + 1,
+                    level * 256 + 128,
+                ]);
+            }
+            lods.extend((0..12).map(|_| (r.next_u32() % 5000) as i32 - 800));
+            let (us, vs) = (
+                coords(w.trailing_zeros(), &mut r, 6),
+                coords(h.trailing_zeros(), &mut r, 6),
+            );
+            for (i, &lbits) in lods.iter().enumerate() {
+                let lbits = lbits.clamp(i32::from(i16::MIN), i32::from(i16::MAX));
+                let _ = writeln!(out, "11 {block_addr:08x} {:08x} 00000001", lbits as u32);
+                for (j, &u) in us.iter().enumerate().skip(i % 3).step_by(3) {
+                    let v = vs[(j * 7 + i) % vs.len()];
+                    let (tu, tv) = (TexCoord::from_bits(u), TexCoord::from_bits(v));
+                    let (cu, cv) = (coord_i4f28(mu, tu), coord_i4f28(mv, tv));
+                    let tri = s.sample_trilinear(tu, tv, lod(lbits));
+                    let bil = s.sample_bilinear(tu, tv, lod(lbits));
+                    let _ = writeln!(out, "12 {cu:08x} {cv:08x} {tri:08x}");
+                    let _ = writeln!(out, "13 {cu:08x} {cv:08x} {bil:08x}");
+                }
+            }
+        }
+    }
+    // Blocks the unit cannot read: outside the RAM, misaligned, crossing
+    // its end.
+    for a in [
+        0,
+        TB_RAM_BASE - 4,
+        TB_RAM_BASE + 2,
+        TB_RAM_BASE + TB_RAM_BYTES - 72,
+    ] {
+        let _ = writeln!(out, "11 {a:08x} 00000000 00000000");
+    }
+    made
+}
+
 /// The whole vector file.
 #[must_use]
 pub fn vectors() -> String {
@@ -343,6 +496,7 @@ pub fn vectors() -> String {
     }
     filter_vectors(&mut out);
     address_vectors(&mut out);
+    let _ = texture_unit_vectors(&mut out);
     out
 }
 
@@ -406,6 +560,29 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Every pyramid with every window has a descriptor block (none is
+    /// left out of the texture-unit vectors), and the file has every
+    /// texture-unit instruction.
+    #[test]
+    fn texture_unit_vectors_cover_every_sampler() {
+        let mut out = String::new();
+        assert_eq!(
+            texture_unit_vectors(&mut out),
+            TU_SHAPES.len() * tu_windows(0).len()
+        );
+        let count = |op: &str| out.lines().filter(|l| l.starts_with(op)).count();
+        assert_eq!(count("10 "), 1);
+        assert!(count("11 ") > 500 && count("12 ") > 20_000);
+        assert_eq!(count("12 "), count("13 "));
+        assert_eq!(
+            out.lines()
+                .filter(|l| l.starts_with("11 ") && l.ends_with(" 00000000"))
+                .count(),
+            4,
+            "the blocks outside the RAM"
+        );
     }
 
     #[test]

@@ -161,10 +161,11 @@ pub trait Kernel: sealed::Sealed + 'static {
     /// A level alone rounded to a result texel (the
     /// [`round`](Self::round) of its value).
     fn round_level(a: Self::Level) -> Texel;
-    /// Whether the sampler may take this kernel's footprints from the
-    /// co-processor's addressing instructions (feature `cfu` on riscv32:
-    /// the ACCURATE linear kernel, whose weights the co-processor then
-    /// keeps) and filter them with [`coproc_level`](Self::coproc_level).
+    /// Whether the CFU co-processor's filter computes this kernel (the
+    /// ACCURATE linear kernel, RGBA8): the sampler may then sample through
+    /// its texture unit (`coproc::descriptor_block`) or take footprints
+    /// from its addressing instructions and filter them with
+    /// [`coproc_level`](Self::coproc_level) (feature `cfu` on riscv32).
     const COPROC_FOOTPRINT: bool = false;
     /// The [`Level`](Self::Level) of the footprint `t` (`t00, t10, t01,
     /// t11` as stored) with the weights the co-processor latched (only
@@ -333,10 +334,9 @@ impl Kernel for (Linear, Accurate) {
     fn blend_levels(_: Texel, _: Texel, t: u32, _: Rounding) -> Texel {
         crate::coproc::pcpi::blend(t)
     }
+    const COPROC_FOOTPRINT: bool = true;
     // Feature `cfu` on riscv32: the footprint's weights are the ones
     // `tex.addr` latched, so a level is `tex.bt` and `tex.bb` alone.
-    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
-    const COPROC_FOOTPRINT: bool = true;
     #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
     #[inline(always)]
     fn coproc_level(t: [Texel; 4], _: Rounding) -> Texel {

@@ -273,6 +273,11 @@ pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     /// `pow2` false, for other geometries.
     levels: [LevelAddr; MAX_LEVELS as usize + 1],
     pow2: bool,
+    /// Feature `cfu` on riscv32: the co-processor's texture unit with this
+    /// sampler's descriptor block ([`texture_unit_block`](Self::texture_unit_block)
+    /// for the unit's RAM), or none.
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    unit: crate::coproc::cfu::TextureUnit,
 }
 
 impl<S: TexelSource + fmt::Debug, K: Key> fmt::Debug for Sampler<S, K> {
@@ -348,7 +353,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
     fn build(source: S, state: SamplerState, axes: (K::U, K::V)) -> Self {
         let geometry = source.geometry();
-        Self {
+        #[cfg_attr(not(all(feature = "cfu", target_arch = "riscv32")), expect(unused_mut))]
+        let mut s = Self {
             levels: level_table(&geometry, Kern::<K>::WEIGHT_BITS).unwrap_or_default(),
             pow2: level_table(&geometry, Kern::<K>::WEIGHT_BITS).is_some(),
             lod: LodWindow::new(&state, &geometry),
@@ -359,7 +365,61 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             axes,
             stats: K::Stats::default(),
             rounding: Rounding::new(),
+            #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+            unit: crate::coproc::cfu::TextureUnit::new(None),
+        };
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        {
+            s.unit = crate::coproc::cfu::TextureUnit::new(
+                s.texture_unit_block(crate::coproc::cfu::ram()),
+            );
         }
+        s
+    }
+
+    /// The descriptor block of this sampler for the CFU co-processor's
+    /// texture unit reading the `ram.1` bytes at address `ram.0`
+    /// ([`crate::coproc::descriptor_block`] of the source's level views,
+    /// the lod window and the address modes), `None` when the unit cannot
+    /// sample for it: a kernel other than the ACCURATE linear one, a source
+    /// without direct power-of-two level views, the border colour, or
+    /// texels outside that RAM. With feature `cfu` on riscv32 the sampler
+    /// keeps the block for the unit's RAM and its trilinear and bilinear
+    /// samples go through the unit (the same bits).
+    #[must_use]
+    pub fn texture_unit_block(
+        &self,
+        ram: (usize, usize),
+    ) -> Option<[u32; crate::coproc::BLOCK_WORDS]> {
+        if !Kern::<K>::COPROC_FOOTPRINT {
+            return None;
+        }
+        crate::coproc::descriptor_block(
+            self.source.levels()?,
+            self.lod.bias,
+            (self.lod.lo, self.lod.hi),
+            (self.axes.0.mode(), self.axes.1.mode()),
+            ram,
+        )
+    }
+
+    /// Feature `cfu` on riscv32: the trilinear (else bilinear) sample
+    /// through the co-processor's texture unit, `None` when the sampler has
+    /// no descriptor block or the unit's RAM does not hold it.
+    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    #[inline(always)]
+    fn unit_sample(&self, u: TexCoord, v: TexCoord, lod: Lod, trilinear: bool) -> Option<Texel> {
+        use crate::coproc::{cfu, coord_i4f28};
+        if !Kern::<K>::COPROC_FOOTPRINT || !self.unit.select(lod) {
+            return None;
+        }
+        let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
+        let (u, v) = (coord_i4f28(mu, u), coord_i4f28(mv, v));
+        Some(if trilinear {
+            cfu::trilinear(u, v)
+        } else {
+            cfu::bilinear(u, v)
+        })
     }
 
     /// Filtered texel at `(u, v)` and level of detail `lod` (through the
@@ -417,6 +477,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         lod: Lod,
         mut count: impl FnMut(&mut K::Stats, bool),
     ) -> Texel {
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(t) = self.unit_sample(u, v, lod, true) {
+            // The unit reads one level when the fraction is 0.
+            count(&mut self.stats, self.lod.apply(lod) & 0xFF == 0);
+            return t;
+        }
         let bits = self.lod.apply(lod);
         // `bits ≤ 3840`: the mask changes nothing and tells the compiler
         // that `lower + 1 ≤ 16` indexes the level table without a check,
@@ -445,6 +511,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
     #[inline(always)]
     fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        if let Some(t) = self.unit_sample(u, v, lod, false) {
+            return t;
+        }
         let level = usize::from(Self::nearest_level(self.lod.apply(lod))) & 15;
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
         if let Some(a) = self.coproc_level(u, v, level) {
@@ -740,9 +810,15 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         &self.source
     }
 
-    /// The texel source, mutable (e.g. to read cache counters).
+    /// The texel source, mutable (e.g. to read cache counters). With
+    /// feature `cfu` on riscv32 the sampler then drops its texture-unit
+    /// block (the source may change): it samples without the unit.
     #[must_use]
     pub fn source_mut(&mut self) -> &mut S {
+        #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+        {
+            self.unit = crate::coproc::cfu::TextureUnit::new(None);
+        }
         &mut self.source
     }
 

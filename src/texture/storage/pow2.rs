@@ -116,10 +116,10 @@ impl<'a> LevelView<'a> {
     }
 
     /// The level's first texel: the start of `w·h` initialised texels,
-    /// valid and unwritten while the view lives (feature `cfu` on riscv32:
-    /// the co-processor's addressing returns addresses inside them, read
-    /// by `coproc::cfu::footprint`).
-    #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+    /// valid and unwritten while the view lives (the co-processor's
+    /// addressing returns addresses inside them, read by
+    /// `coproc::cfu::footprint`; the texture unit's descriptor block
+    /// locates them, `coproc::descriptor_block`).
     #[inline(always)]
     #[must_use]
     pub(crate) fn base(&self) -> NonNull<Texel> {
