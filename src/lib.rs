@@ -55,7 +55,7 @@
 //!
 //! | feature | default | adds | without it | code it adds alone (measured) |
 //! |---|---|---|---|---|
-//! | `cone` | yes | Ray cones (RTG ch. 20): `lod::cone_lod`, `Log2Pb::delta`, `RayCone`, and the cone state (width, spread) in every `PathState` on the ray stack (its size in the cost column). | table method only. | Cortex-M4 +364 B `.text`, +0 B `.rodata`; RV32IMAC +632 B `.text`, +0 B `.rodata`; ray-stack entry +16 B |
+//! | `cone` | yes | Ray cones (RTG ch. 20): `lod::cone_lod`, `Log2Pb::delta`, `RayCone`, and the cone state (width, spread) in every `PathState` on the ray stack (its size in the cost column). | table method only. | Cortex-M4 +372 B `.text`, +0 B `.rodata`; RV32IMAC +632 B `.text`, +0 B `.rodata`; ray-stack entry +16 B |
 //! | `trilinear` | yes | Linear-between-levels filter modes (`Mode::Trilinear`, `Mode::NearestTexelLinearLevel`): a second level fetch and a blend. | nearest-level modes only (one level per sample). | Cortex-M4 +2164 B `.text`, +0 B `.rodata`; RV32IMAC +2632 B `.text`, +0 B `.rodata` |
 //! | `cache` | yes | Texel cache (`cache`: 4×4 blocks, Morton order, LRU) between the sampler and texture memory. | the sampler reads pyramids in memory directly. | Cortex-M4 +6684 B `.text`, +512 B `.rodata`; RV32IMAC +7024 B `.text`, +512 B `.rodata` |
 //! | `mipgen` | yes | In-place MIP generation (`mip::generate`). | pyramids are built elsewhere (host, flash image) and only sampled. | Cortex-M4 +5360 B `.text`, +336 B `.rodata`; RV32IMAC +5092 B `.text`, +336 B `.rodata` |

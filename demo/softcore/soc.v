@@ -26,10 +26,12 @@
 `default_nettype none
 
 module soc #(
-    // 128 KiB: e.g. the four SPRAM blocks of an iCE40 UP5K, or 29 of the
-    // 36 Kib block RAMs of an Artix-7 35T. memory.x next to this file must
-    // state the same length.
-    parameter integer RAM_BYTES = 128 * 1024,
+    // 256 KiB for the Verilator runs: the demo fits in 128 KiB (the four
+    // SPRAM blocks of an iCE40 UP5K), the measurement binaries with every
+    // sampler of the matrix and their inputs on the stack do not. FPGA
+    // synthesis sets its own size (scripts/fpga). memory.x next to this
+    // file must state the same length.
+    parameter integer RAM_BYTES = 256 * 1024,
     // 1: the texture co-processor pcpi_tex.v on the core's PCPI port
     // (ENABLE_PCPI; custom-0 instructions tex.log2pl and tex.lod, issue
     // 23). 0: the plain core, no PCPI logic.
