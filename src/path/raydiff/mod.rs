@@ -493,8 +493,12 @@ impl RayDiff {
             // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
             let et_ = eqn + ew + 32;
             let er = (eq + 1).max(et_);
-            let r: [i32; 3] =
-                core::array::from_fn(|k| shr(q[k], er - eq) - shr(mulhi(qm, w[k]), er - et_));
+            let r: [i32; 3] = core::array::from_fn(|k| {
+                // Wrapping: only inputs outside every documented range
+                // (non-unit `D`, `n`) reach ±2³¹; the result is then
+                // garbage, but no panic.
+                shr(q[k], er - eq).wrapping_sub(shr(mulhi(qm, w[k]), er - et_))
+            });
             self.set(axis, Bfp3::new(r, er));
         }
     }
@@ -521,7 +525,8 @@ impl RayDiff {
                 // 2·((D·n)·∂n + ∂(D·n)·n) = (c·b + s·n)/2²⁹: exact in 64
                 // bits, one truncation (c and n are 2³⁰ times D·n and n).
                 let t = i64::from(c) * i64::from(b[k]) + i64::from(s) * i64::from(n[k]);
-                a[k] - (t >> 29) as i32
+                // Wrapping: only non-unit `D`, `n` reach ±2³¹ (no panic).
+                a[k].wrapping_sub((t >> 29) as i32)
             });
             self.set(2 + axis, Bfp3::new(r, e));
         }
@@ -567,8 +572,11 @@ impl RayDiff {
             let e3 = nn.e + mu.e + 32;
             let e = e1.max(e2).max(e3) + 1;
             let r: [i32; 3] = core::array::from_fn(|k| {
-                shr(mulhi(dd.m[k], eta_s.m), e - e1) - shr(mulhi(dmu.m, n[k]), e - e2)
-                    + shr(mulhi(nn.m[k], mu.m), e - e3)
+                // Wrapping: only inputs outside every documented range
+                // reach ±2³¹ (no panic).
+                shr(mulhi(dd.m[k], eta_s.m), e - e1)
+                    .wrapping_sub(shr(mulhi(dmu.m, n[k]), e - e2))
+                    .wrapping_add(shr(mulhi(nn.m[k], mu.m), e - e3))
             });
             self.set(2 + axis, Bfp3::new(r, e));
         }
