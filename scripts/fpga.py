@@ -15,23 +15,20 @@ variant whose synthesis figures are unchanged, and dropped otherwise.
 --check writes nothing and reports differences (exit 1 on them only with
 RAYMIP_BUDGETS_STRICT=1). --self-test checks the parsers on fixed text.
 """
-import argparse
-import difflib
-import json
 import os
 import re
 import sys
 
-B_BEGIN, B_END = "<!-- fpga:begin -->", "<!-- fpga:end -->"
-E_BEGIN, E_END = "<!-- fpga-ecp5:begin -->", "<!-- fpga-ecp5:end -->"
-ED_BEGIN, ED_END = "<!-- fpga-ecp5-docs:begin -->", "<!-- fpga-ecp5-docs:end -->"
-ECP5_DATA_RE = re.compile(r"<!-- ecp5-data: (\{.*?\}) -->")
+from mdblock import data_comment, markers, parse_args, read_data, replace_block, update
+
+B_BEGIN, B_END = markers("fpga")
+E_BEGIN, E_END = markers("fpga-ecp5")
+ED_BEGIN, ED_END = markers("fpga-ecp5-docs")
 ECP5_CELL_RE = re.compile(r"^\s+(LUT4|TRELLIS_FF|CCU2C|MULT18X18D|DP16KD|TRELLIS_DPR16X4|PFUMX|L6MUX21)\s+(\d+)\s*$")
 ECP5_COMB_RE = re.compile(r"TRELLIS_COMB:\s+(\d+)/\s*(\d+)")
 ECP5_VARIANTS = (("vex", "VexRiscv `full`"), ("cfu", "VexRiscv `full+cfu` + co-processor (`cfu_tex.v`)"))
 ECP5_SYNTH_KEYS = ("lut", "ff", "carry", "dsp", "bram", "dram")
-D_BEGIN, D_END = "<!-- fpga-docs:begin -->", "<!-- fpga-docs:end -->"
-DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
+D_BEGIN, D_END = markers("fpga-docs")
 CELL_RE = re.compile(r"^\s+(SB_\w+)\s+(\d+)\s*$")
 LC_RE = re.compile(r"ICESTORM_LC:\s+(\d+)/\s*(\d+)")
 MHZ_RE = re.compile(r"Max frequency for clock '[^']*': ([\d.]+) MHz")
@@ -77,20 +74,45 @@ def parse_ecp5_pnr(text):
     return int(comb[-1][0]), int(comb[-1][1]), float(mhz[-1])
 
 
-def ecp5_table(data):
-    L = ["| SoC | LUT4 | flip-flops | carry (CCU2C) | DSPs (MULT18X18D) | block RAMs (DP16KD) | distributed RAM (DPR16X4) | "
-         "logic cells (TRELLIS_COMB) | max clock |",
-         "|---|---|---|---|---|---|---|---|---|"]
-    for key, name in ECP5_VARIANTS:
+def synth_table(data, variants, cells, lc_heading, cost_intro, cost_cells):
+    """The Markdown table of a pair of SoCs, `variants` ((key, name): without,
+    then with the co-processor): the synthesis `cells` ((heading, key)), the
+    placed logic cells (`lc_heading`) and the clock; then the co-processor's
+    cost after `cost_intro`, per synthesis figure in `cost_cells` ((key,
+    unit)) and in logic cells when both are placed."""
+    L = [f"| SoC | {' | '.join(h for h, _ in cells)} | {lc_heading} | max clock |",
+         "|---" * (len(cells) + 3) + "|"]
+    for key, name in variants:
         v = data["variants"][key]
         lc = f"{v['lc']} / {data['lc_total']} ({100 * v['lc'] / data['lc_total']:.0f} %)" if v.get("lc") else "not placed"
         mhz = f"{v['mhz']:.2f} MHz" if v.get("mhz") else "—"
-        L.append(f"| {name} | {v['lut']} | {v['ff']} | {v['carry']} | {v['dsp']} | {v['bram']} | {v['dram']} | {lc} | {mhz} |")
-    p, q = data["variants"]["vex"], data["variants"]["cfu"]
-    L.append(f"\nThe co-processor on the CFU port: +{q['lut'] - p['lut']} LUT4, +{q['ff'] - p['ff']} flip-flops, "
-             f"+{q['carry'] - p['carry']} carry cells, +{q['dsp'] - p['dsp']} DSPs, +{q['bram'] - p['bram']} block RAMs"
+        L.append(f"| {name} | {' | '.join(str(v[k]) for _, k in cells)} | {lc} | {mhz} |")
+    p, q = (data["variants"][key] for key, _ in variants)
+    L.append(f"\n{cost_intro}: {', '.join(f'+{q[k] - p[k]} {unit}' for k, unit in cost_cells)}"
              + (f", +{q['lc'] - p['lc']} logic cells." if p.get("lc") and q.get("lc") else "."))
     return L
+
+
+def keep_pnr(old, key, v, synth_keys):
+    """Copies variant `key`'s place-and-route figures from the previous data
+    `old` into `v` when its synthesis figures `synth_keys` are unchanged;
+    whether it did."""
+    ov = old["variants"].get(key) if old else None
+    if ov is None or any(ov.get(k) != v[k] for k in synth_keys):
+        return False
+    for k in ("lc", "mhz", "pnr_s"):
+        if ov.get(k) is not None:
+            v[k] = ov[k]
+    return True
+
+
+def ecp5_table(data):
+    return synth_table(data, ECP5_VARIANTS,
+                       (("LUT4", "lut"), ("flip-flops", "ff"), ("carry (CCU2C)", "carry"), ("DSPs (MULT18X18D)", "dsp"),
+                        ("block RAMs (DP16KD)", "bram"), ("distributed RAM (DPR16X4)", "dram")),
+                       "logic cells (TRELLIS_COMB)", "The co-processor on the CFU port",
+                       (("lut", "LUT4"), ("ff", "flip-flops"), ("carry", "carry cells"), ("dsp", "DSPs"),
+                        ("bram", "block RAMs")))
 
 
 def ecp5_blocks(a, data):
@@ -105,7 +127,7 @@ def ecp5_blocks(a, data):
     secs = [data["variants"][k].get("pnr_s") for k, _ in ECP5_VARIANTS]
     if all(secs):
         B.append(f"Place and route took {secs[0]} s and {secs[1]} s on this machine (not run in CI).")
-    B.append(f"<!-- ecp5-data: {json.dumps(data, sort_keys=True)} -->")
+    B.append(data_comment("ecp5", data))
     B.append(E_END)
     D = [ED_BEGIN, "Written by `scripts/fpga` (figures also in BUDGETS.md); do not edit.\n", intro + "\n"]
     D += ecp5_table(data)
@@ -116,8 +138,7 @@ def ecp5_blocks(a, data):
 def ecp5_data(a, old_text):
     """The ECP5 figures of this run (place and route kept from BUDGETS.md,
     as for the iCE40, when not run and the synthesis is unchanged)."""
-    m = ECP5_DATA_RE.search(old_text)
-    old = json.loads(m.group(1)) if m else None
+    old = read_data(old_text, "ecp5")
     data = {"device": "LFE5U-45F (CABGA381, speed 6)", "seed": 1, "lc_total": 43848, "ram_bytes": a.ecp5_ram,
             "variants": {}}
     for key, _ in ECP5_VARIANTS:
@@ -131,11 +152,8 @@ def ecp5_data(a, old_text):
             v["lc"], data["lc_total"], v["mhz"] = p
             v["pnr_s"] = int(open(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")).read())
             data["nextpnr"] = a.ecp5_nextpnr
-        elif old and key in old["variants"] and all(old["variants"][key].get(k) == v[k] for k in ECP5_SYNTH_KEYS):
+        elif keep_pnr(old, key, v, ECP5_SYNTH_KEYS):
             data["nextpnr"] = old.get("nextpnr")
-            for k in ("lc", "mhz", "pnr_s"):
-                if old["variants"][key].get(k) is not None:
-                    v[k] = old["variants"][key][k]
             data["lc_total"] = old.get("lc_total", data["lc_total"])
         else:
             print(f"fpga.py: ECP5 {key}: synthesis figures changed: run scripts/fpga --full for its clock")
@@ -152,29 +170,12 @@ def parse_pnr(text):
     return int(lc[-1][0]), int(lc[-1][1]), float(mhz[-1])
 
 
-def replace_block(text, begin, end, block, after=None):
-    i, j = text.find(begin), text.find(end)
-    if i >= 0 and j > i:
-        return text[:i] + block + text[j + len(end):]
-    if after and after in text:
-        k = text.index(after) + len(after)
-        return text[:k] + "\n\n" + block + text[k:]
-    return text.rstrip("\n") + "\n\n" + block + "\n"
-
-
 def table(data):
-    L = ["| SoC | LUT4 | flip-flops | carry | DSPs (SB_MAC16) | block RAMs | logic cells | max clock |",
-         "|---|---|---|---|---|---|---|---|"]
-    for key, _, name in VARIANTS:
-        v = data["variants"][key]
-        lc = f"{v['lc']} / {data['lc_total']} ({100 * v['lc'] / data['lc_total']:.0f} %)" if v.get("lc") else "not placed"
-        mhz = f"{v['mhz']:.2f} MHz" if v.get("mhz") else "—"
-        L.append(f"| {name} | {v['lut']} | {v['ff']} | {v['carry']} | {v['dsp']} | {v['bram']} | {lc} | {mhz} |")
-    p, q = data["variants"]["plain"], data["variants"]["pcpi"]
-    L.append(f"\nThe co-processor: +{q['lut'] - p['lut']} LUT4, +{q['ff'] - p['ff']} flip-flops, "
-             f"+{q['carry'] - p['carry']} carry cells, +{q['dsp'] - p['dsp']} DSP"
-             + (f", +{q['lc'] - p['lc']} logic cells." if p.get("lc") and q.get("lc") else "."))
-    return L
+    return synth_table(data, [(key, name) for key, _, name in VARIANTS],
+                       (("LUT4", "lut"), ("flip-flops", "ff"), ("carry", "carry"), ("DSPs (SB_MAC16)", "dsp"),
+                        ("block RAMs", "bram")),
+                       "logic cells", "The co-processor",
+                       (("lut", "LUT4"), ("ff", "flip-flops"), ("carry", "carry cells"), ("dsp", "DSP")))
 
 
 def budgets_block(a, data):
@@ -188,7 +189,7 @@ def budgets_block(a, data):
     secs = [data["variants"][k].get("pnr_s") for k, _, _ in VARIANTS]
     if all(secs):
         L.append(f"Place and route took {secs[0]} s and {secs[1]} s on this machine (not run in CI).")
-    L.append(f"<!-- fpga-data: {json.dumps(data, sort_keys=True)} -->")
+    L.append(data_comment("fpga", data))
     L.append(B_END)
     return "\n".join(L)
 
@@ -212,7 +213,7 @@ def self_test():
     assert p == (3738, 5280, 22.39), p
     t = f"a\n{B_BEGIN}\nx\n{B_END}\nb"
     assert replace_block(t, B_BEGIN, B_END, "Y") == "a\nY\nb"
-    assert replace_block("a\nEND\nb", B_BEGIN, B_END, "Y", "END") == "a\nEND\n\nY\nb"
+    assert replace_block("a\nEND\nb", B_BEGIN, B_END, "Y", after="END") == "a\nEND\n\nY\nb"
     e = parse_ecp5_stat("     CCU2C  279\n     DP16KD  26\n     LUT4 3849\n     MULT18X18D 4\n"
                         "     TRELLIS_DPR16X4 2\n     TRELLIS_FF 2225\n")
     assert e == {"lut": 3849, "ff": 2225, "carry": 279, "dsp": 4, "bram": 26, "dram": 2}, e
@@ -223,21 +224,10 @@ def self_test():
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    for k in ("work", "rtl", "yosys", "nextpnr", "budgets", "docs", "ecp5-nextpnr"):
-        ap.add_argument(f"--{k}")
-    ap.add_argument("--ram", type=int)
-    ap.add_argument("--ecp5-ram", type=int)
-    ap.add_argument("--check", action="store_true")
-    ap.add_argument("--pnr", action="store_true")
-    ap.add_argument("--self-test", action="store_true")
-    a = ap.parse_args()
-    if a.self_test:
-        self_test()
-        return 0
+    a = parse_args(self_test, ("work", "rtl", "yosys", "nextpnr", "budgets", "docs", "ecp5-nextpnr"),
+                   ("ram", "ecp5-ram"), ("pnr",))
     old_text = open(a.budgets).read()
-    m = DATA_RE.search(old_text)
-    old = json.loads(m.group(1)) if m else None
+    old = read_data(old_text, "fpga")
     data = {"device": "iCE40 UP5K (sg48)", "seed": 1, "lc_total": 5280, "ram_bytes": a.ram, "variants": {}}
     for key, n, _ in VARIANTS:
         v = parse_stat(open(os.path.join(a.work, f"stat-{n}.txt")).read())
@@ -249,32 +239,20 @@ def main():
                 sys.exit(f"fpga.py: pnr-{n}.log has no utilisation / frequency")
             v["lc"], data["lc_total"], v["mhz"] = p
             v["pnr_s"] = int(open(os.path.join(a.work, f"pnr-{n}.seconds")).read())
-        elif old and key in old["variants"] and all(old["variants"][key].get(k) == v[k] for k in SYNTH_KEYS):
-            for k in ("lc", "mhz", "pnr_s"):
-                if old["variants"][key].get(k) is not None:
-                    v[k] = old["variants"][key][k]
-        else:
+        elif not keep_pnr(old, key, v, SYNTH_KEYS):
             print(f"fpga.py: {key}: synthesis figures changed: run scripts/fpga --pnr for its clock")
         data["variants"][key] = v
     e_data = ecp5_data(a, old_text)
     e_budgets, e_docs = ecp5_blocks(a, e_data)
     changed = []
-    for path, begin, end, block, after in [(a.budgets, B_BEGIN, B_END, budgets_block(a, data), "<!-- softcore:end -->"),
+    for path, begin, end, block, after in [(a.budgets, B_BEGIN, B_END, budgets_block(a, data), markers("softcore")[1]),
                                            (a.budgets, E_BEGIN, E_END, e_budgets, B_END),
                                            (a.docs, D_BEGIN, D_END, docs_block(data), None),
                                            (a.docs, ED_BEGIN, ED_END, e_docs, D_END)]:
         text = open(path).read()
-        new = replace_block(text, begin, end, block, after)
-        if new == text:
-            print(f"fpga.py: {os.path.basename(path)} is up to date")
-            continue
-        changed.append(path)
-        if a.check:
-            print(f"fpga.py: {os.path.basename(path)} differs from this measurement (run scripts/fpga --pnr and commit it):")
-            sys.stdout.writelines(difflib.unified_diff(text.splitlines(True), new.splitlines(True), path, path + " (measured)"))
-        else:
-            open(path, "w").write(new)
-            print(f"fpga.py: wrote {os.path.basename(path)}")
+        if update("fpga.py", path, text, replace_block(text, begin, end, block, after=after), a.check,
+                  "run scripts/fpga --pnr"):
+            changed.append(path)
     print(budgets_block(a, data))
     print(e_budgets)
     if a.check and changed and os.environ.get("RAYMIP_BUDGETS_STRICT") == "1":

@@ -24,7 +24,6 @@ RAYMIP_BUDGETS_STRICT=1). A matrix or ray-differential row above its ceiling
 (SOFTCORE_CEILINGS) fails in both modes. --self-test checks the parsers on
 fixed text.
 """
-import argparse
 import hashlib
 import json
 import math
@@ -34,12 +33,11 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from budgets import MATRIX_BATCHES, MATRIX_ROWS, RD_ROWS  # noqa: E402  (row keys and labels: one home)
+from mdblock import markers, parse_args, read_data, replace_block, update  # noqa: E402
 
-B_BEGIN, B_END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
-R_BEGIN, R_END = "<!-- softcore-throughput:begin -->", "<!-- softcore-throughput:end -->"
-D_BEGIN, D_END = "<!-- softcore-paper:begin -->", "<!-- softcore-paper:end -->"
-FPGA_DATA_RE = re.compile(r"<!-- fpga-data: (\{.*?\}) -->")
-ECP5_DATA_RE = re.compile(r"<!-- ecp5-data: (\{.*?\}) -->")
+B_BEGIN, B_END = markers("softcore")
+R_BEGIN, R_END = markers("softcore-throughput")
+D_BEGIN, D_END = markers("softcore-paper")
 FILTER_TB_RE = re.compile(r"filter (\d+) tex.bw, (\d+) tex.bt, (\d+) tex.bb, (\d+) tex.blend, latency (\d+) (\d+) (\d+) (\d+) cycles")
 TB_RE = re.compile(r"tb-pcpi-tex: (\d+) vectors \((\d+) tex.log2pl, (\d+) tex.lod\), (\d+) mismatches, latency (\d+) cycles")
 
@@ -533,16 +531,6 @@ def paper_block(calls, pcalls, rows, fpga, vex=None, ecp5=None):
     return "\n".join(L)
 
 
-def replace_block(text, begin, end, block, anchor=None):
-    i, j = text.find(begin), text.find(end)
-    if i >= 0 and j > i:
-        return text[:i] + block + text[j + len(end):]
-    if anchor and anchor in text:
-        k = text.index(anchor)
-        return text[:k] + block + "\n\n" + text[k:]
-    return text.rstrip("\n") + "\n\n" + block + "\n"
-
-
 def self_test():
     calls, base = parse_cycles("baseline: cycles min 18 max 18 instret min 1 max 1\n"
                                "call lod: n 4 cycles min 10 sum 44 max 12 instret min 2 sum 10 max 3\n")
@@ -558,7 +546,7 @@ def self_test():
                         ".debug_info 7 0\nTotal 121\n") == 15
     t = f"a\n{B_BEGIN}\nold\n{B_END}\nb\n"
     assert replace_block(t, B_BEGIN, B_END, "X") == "a\nXb\n".replace("Xb", "X\nb")
-    assert replace_block("a\n## Code size\n", B_BEGIN, B_END, "X", "## Code size") == "a\nX\n\n## Code size\n"
+    assert replace_block("a\n## Code size\n", B_BEGIN, B_END, "X", before="## Code size") == "a\nX\n\n## Code size\n"
     assert si(322000) == "322 k" and si(3.2e6) == "3.2 M"
     bad = []
     assert ceiling_cell("x", 10, {"x": 11}, bad, "m") == "11" and not bad
@@ -578,22 +566,9 @@ def self_test():
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--self-test", action="store_true")
-    ap.add_argument("--work")
-    ap.add_argument("--rtl")
-    ap.add_argument("--verilator")
-    ap.add_argument("--rustc")
-    ap.add_argument("--budgets")
-    ap.add_argument("--readme")
-    ap.add_argument("--docs")
-    ap.add_argument("--litex", help="LiteX and pythondata-cpu-vexriscv versions (the VexRiscv runs)")
-    ap.add_argument("--vex-rtl", help="the VexRiscv Verilog file the LiteX SoC used")
-    ap.add_argument("--check", action="store_true")
-    a = ap.parse_args()
-    if a.self_test:
-        self_test()
-        return 0
+    # --litex: the LiteX and pythondata-cpu-vexriscv versions (the VexRiscv
+    # runs); --vex-rtl: the VexRiscv Verilog file the LiteX SoC used.
+    a = parse_args(self_test, ("work", "rtl", "verilator", "rustc", "budgets", "readme", "docs", "litex", "vex-rtl"))
     rd = lambda name: open(os.path.join(a.work, name)).read()
     calls, base = parse_cycles(rd("cycles.out"))
     missing = [k for k, _ in CALLS if k not in calls or calls[k]["n"] != 64]
@@ -664,11 +639,7 @@ def main():
     targets = [(a.budgets, B_BEGIN, B_END, bb, "## Code size"), (a.readme, R_BEGIN, R_END, rb, None)]
     if a.docs and pc is not None:
         btext = open(a.budgets).read()
-        m = FPGA_DATA_RE.search(btext)
-        fpga = json.loads(m.group(1)) if m else None
-        m = ECP5_DATA_RE.search(btext)
-        ecp5 = json.loads(m.group(1)) if m else None
-        db = paper_block(calls, pc[0], rows, fpga, vex, ecp5)
+        db = paper_block(calls, pc[0], rows, read_data(btext, "fpga"), vex, read_data(btext, "ecp5"))
         targets.append((a.docs, D_BEGIN, D_END, db, None))
     changed = []
     for path, begin, end, block, anchor in targets:
@@ -676,20 +647,9 @@ def main():
         if begin in (R_BEGIN, D_BEGIN) and not rows and begin in old:
             print(f"softcore.py: no BART rows: {os.path.basename(path)} left as it is")
             continue
-        new = replace_block(old, begin, end, block, anchor)
-        if new == old:
-            print(f"softcore.py: {os.path.basename(path)} is up to date")
-            continue
-        changed.append(path)
-        if a.check:
-            import difflib
-            print(f"softcore.py: {os.path.basename(path)} differs from this measurement "
-                  "(run scripts/softcore and commit it):")
-            sys.stdout.writelines(difflib.unified_diff(old.splitlines(True), new.splitlines(True),
-                                                       path, path + " (measured)"))
-        else:
-            open(path, "w").write(new)
-            print(f"softcore.py: wrote {os.path.basename(path)}")
+        if update("softcore.py", path, old, replace_block(old, begin, end, block, before=anchor), a.check,
+                  "run scripts/softcore"):
+            changed.append(path)
     print(bb)
     print(rb)
     if a.docs and pc is not None:
