@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "VCfu.h"
+#include "tb_vectors.h"
 #include "verilated.h"
 
 namespace {
@@ -112,24 +113,13 @@ struct Tb {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: tb-cfu-tex VECTORS\n");
-        return 2;
-    }
-    FILE* f = std::fopen(argv[1], "r");
-    if (!f) {
-        std::perror(argv[1]);
-        return 2;
-    }
+    FILE* f = tb_shared::open_vectors(argc, argv, "tb-cfu-tex");
+    if (!f) return 2;
     Tb tb;
     auto& t = *tb.top;
-    t.clk = 0;
-    t.reset = 1;
     t.cmd_valid = 0;
     t.rsp_ready = 1;
-    for (int i = 0; i < 4; ++i) tb.tick();
-    t.reset = 0;
-    tb.tick();
+    tb_shared::reset(tb, [&](bool on) { t.reset = on; });
 
     // Function ids: funct7 0: 0…5; funct7 1: 8…12 (tex.lvl, tex.addr, tex.tap ×3);
     // funct7 2: 16…19 (tex.ram, tex.sel, tex.tri, tex.bil).
@@ -139,10 +129,11 @@ int main(int argc, char** argv) {
                                "tex.blend",  "tex.lvl",   "tex.addr",  "tex.tap10", "tex.tap01",
                                "tex.tap11",  "tex.ram",   "tex.sel",   "tex.tri",   "tex.bil"};
     int count[kOps] = {}, lat_max[kOps] = {};
-    unsigned op;
-    uint32_t rs1, rs2, want;
     uint64_t n = 0;
-    while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
+    tb_shared::Vector v;
+    while (tb_shared::read_vector(f, &v)) {
+        const unsigned op = v.op;
+        const uint32_t rs1 = v.rs1, rs2 = v.rs2, want = v.rd;
         if (op == kRamWord) {
             if (rs1 >= tb.ram.size()) {
                 std::fprintf(stderr, "tb-cfu-tex: RAM word %" PRIx32 " outside the RAM\n", rs1);

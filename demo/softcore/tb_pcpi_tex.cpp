@@ -22,6 +22,7 @@
 #include <memory>
 
 #include "Vpcpi_tex.h"
+#include "tb_vectors.h"
 #include "verilated.h"
 
 namespace {
@@ -45,30 +46,20 @@ struct Tb {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: tb-pcpi-tex VECTORS\n");
-        return 2;
-    }
-    FILE* f = std::fopen(argv[1], "r");
-    if (!f) {
-        std::perror(argv[1]);
-        return 2;
-    }
+    FILE* f = tb_shared::open_vectors(argc, argv, "tb-pcpi-tex");
+    if (!f) return 2;
     Tb tb;
     auto& t = *tb.top;
-    t.clk = 0;
-    t.resetn = 0;
     t.pcpi_valid = 0;
-    for (int i = 0; i < 4; ++i) tb.tick();
-    t.resetn = 1;
-    tb.tick();
+    tb_shared::reset(tb, [&](bool on) { t.resetn = !on; });
 
-    unsigned op;
-    uint32_t rs1, rs2, want;
     uint64_t n = 0, bad = 0, max_lat = 0;
     int lat_op[6] = {0, 0, 0, 0, 0, 0};  // the longest latency of each instruction
     int ops[6] = {0, 0, 0, 0, 0, 0};
-    while (std::fscanf(f, "%x %" SCNx32 " %" SCNx32 " %" SCNx32, &op, &rs1, &rs2, &want) == 4) {
+    tb_shared::Vector v;
+    while (tb_shared::read_vector(f, &v)) {
+        const unsigned op = v.op;
+        const uint32_t rs1 = v.rs1, rs2 = v.rs2, want = v.rd;
         if (op >= 8) break;
         ++n;
         if (op < 6) ++ops[op];
