@@ -48,10 +48,43 @@ pub fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
 }
 
+#[cfg(any(feature = "softcore", feature = "litex"))]
+pub use exit_register::exit;
 #[cfg(feature = "litex")]
-pub use litex::{Console, exit};
+pub use litex::Console;
 #[cfg(feature = "softcore")]
-pub use softcore::{Console, exit};
+pub use softcore::Console;
+
+/// Exit and panics on a soft-core SoC: a write to its exit register
+/// (`softcore::EXIT` or `litex::SIM_EXIT`).
+#[cfg(any(feature = "softcore", feature = "litex"))]
+#[allow(unsafe_code)]
+mod exit_register {
+    #[cfg(feature = "litex")]
+    use super::litex::SIM_EXIT as EXIT;
+    #[cfg(feature = "softcore")]
+    use super::softcore::EXIT;
+
+    /// Ends the program with exit code `code` (0 = success).
+    pub fn exit(code: i32) -> ! {
+        // SAFETY: EXIT is the SoC's exit register (a device register that
+        // accepts any word write; nothing else lives at that address); the
+        // write stops the simulation.
+        unsafe { core::ptr::write_volatile(EXIT as *mut u32, code as u32) };
+        // The simulator stops at the write; a SoC without the register (a
+        // board) would go on: stay here.
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+
+    /// Panics print their message and exit with code 101.
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+        crate::println!("panic: {info}");
+        exit(101)
+    }
+}
 
 /// The memory-mapped registers of the soft-core SoC (`demo/softcore/soc.v`).
 #[cfg(feature = "softcore")]
@@ -60,7 +93,7 @@ mod softcore {
     /// Console register: a byte written here is printed.
     const CONSOLE: usize = 0x1000_0000;
     /// Exit register: a write ends the simulation with that exit code.
-    const EXIT: usize = 0x1000_0004;
+    pub(super) const EXIT: usize = 0x1000_0004;
 
     /// The console as a [`core::fmt::Write`] sink.
     #[derive(Clone, Copy, Debug)]
@@ -76,25 +109,6 @@ mod softcore {
             }
             Ok(())
         }
-    }
-
-    /// Ends the program with exit code `code` (0 = success).
-    pub fn exit(code: i32) -> ! {
-        // SAFETY: EXIT is the SoC's exit register (soc.v); the write stops
-        // the simulation.
-        unsafe { core::ptr::write_volatile(EXIT as *mut u32, code as u32) };
-        // The simulator stops at the write; a real SoC without the register
-        // would go on: stay here.
-        loop {
-            core::hint::spin_loop();
-        }
-    }
-
-    /// Panics print their message and exit with code 101.
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
-        crate::println!("panic: {info}");
-        exit(101)
     }
 
     /// riscv-rt's start-up hook for the trap vector: PicoRV32 has no
@@ -117,7 +131,7 @@ mod litex {
     const UART_TXFULL: usize = 0xf000_1004;
     /// The SoC's `sim_exit_code` register: a write ends the simulation with
     /// that exit code.
-    const SIM_EXIT: usize = 0xf000_1800;
+    pub(super) const SIM_EXIT: usize = 0xf000_1800;
 
     /// The console as a [`core::fmt::Write`] sink.
     #[derive(Clone, Copy, Debug)]
@@ -139,25 +153,6 @@ mod litex {
         }
     }
 
-    /// Ends the program with exit code `code` (0 = success).
-    pub fn exit(code: i32) -> ! {
-        // SAFETY: SIM_EXIT is the SoC's exit register; the write stops the
-        // simulation.
-        unsafe { core::ptr::write_volatile(SIM_EXIT as *mut u32, code as u32) };
-        // The simulator stops at the write; a SoC without the register (a
-        // board) would go on: stay here.
-        loop {
-            core::hint::spin_loop();
-        }
-    }
-
-    /// Panics print their message and exit with code 101.
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
-        crate::println!("panic: {info}");
-        exit(101)
-    }
-
     /// With feature `cfu`: VexRiscv's CFU plugin takes custom instructions
     /// only once enabled; before `main` (riscv-rt's post-init hook).
     #[cfg(feature = "cfu")]
@@ -176,6 +171,6 @@ mod litex {
         let pc = riscv::register::mepc::read();
         let tval = riscv::register::mtval::read();
         crate::println!("trap: mcause {cause:#x} mepc {pc:#010x} mtval {tval:#010x}");
-        exit(3)
+        super::exit(3)
     }
 }
