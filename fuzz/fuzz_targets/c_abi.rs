@@ -19,7 +19,7 @@ use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
-use raymip::texture::{AddressMode, Mode, Sampler};
+use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 fuzz_target!(|data: &[u8]| {
@@ -341,15 +341,7 @@ fn pyramid(u: &mut Unstructured, raw: &mut Raw) -> Result<()> {
     };
     // SAFETY: valid texture (outlives `sm`) and sampler storage.
     let init = unsafe { rm_sampler_init(&mut sm, &tex, RmAddressBits(address)) };
-    let a = match address {
-        0 => Some(AddressMode::Wrap),
-        1 => Some(AddressMode::ClampToEdge),
-        2 => Some(AddressMode::Mirror),
-        3 => Some(AddressMode::MirrorOnce),
-        4 => Some(AddressMode::ClampToBorder),
-        _ => None,
-    };
-    let p = match (a, Pyramid::new(g, &buf[..tex.len])) {
+    let p = match (RmAddress::mode(address), Pyramid::new(g, &buf[..tex.len])) {
         (Some(a), Ok(p)) => {
             assert_eq!(init, RmStatus::Ok);
             (a, p)

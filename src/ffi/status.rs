@@ -80,8 +80,11 @@ pub enum RmAddress {
 }
 
 impl RmAddress {
-    /// The address mode numbered `n` (the discriminants above).
-    pub(super) fn mode(n: u8) -> Option<AddressMode> {
+    /// The address mode numbered `n` in C (the discriminants above), `None`
+    /// for a number above 4: the one mapping the C ABI's functions and its
+    /// tests use.
+    #[must_use]
+    pub fn mode(n: u8) -> Option<AddressMode> {
         match n {
             0 => Some(AddressMode::Wrap),
             1 => Some(AddressMode::ClampToEdge),
