@@ -41,6 +41,22 @@ fn ok_lod(pl: u64, e: i32) -> (RmStatus, i16) {
     (s, out)
 }
 
+/// The C numbering (`RmAddress`'s discriminants, the header's
+/// `RM_ADDRESS_*`) names the modes its docs name; any other byte is none.
+#[test]
+fn c_address_numbers_name_their_modes() {
+    use crate::texture::AddressMode::{ClampToBorder, ClampToEdge, Mirror, MirrorOnce, Wrap};
+    use RmAddress as C;
+    let c = [C::Wrap, C::Clamp, C::Mirror, C::MirrorOnce, C::Border];
+    let modes = [Wrap, ClampToEdge, Mirror, MirrorOnce, ClampToBorder];
+    for (c, mode) in c.into_iter().zip(modes) {
+        assert_eq!(RmAddress::mode(c as u8), Some(mode), "{c:?}");
+    }
+    for n in 5..=u8::MAX {
+        assert_eq!(RmAddress::mode(n), None, "{n}");
+    }
+}
+
 #[test]
 fn null_pointers_are_reported() {
     // SAFETY: null pointers are the inputs under test; nothing is dereferenced.
