@@ -16,6 +16,7 @@
 //!
 //! | part | stage | module | per hit |
 //! |---|---|---|---|
+//! | vocabulary | the quantities the API passes as types (path length, cone width, spread, lod, texture coordinate, …) and the precision tiers `Accurate`, `Fast` | [`units`] | – (zero-cost newtypes) |
 //! | set-up | camera pixel spread `γ` | [`setup::camera`] | – |
 //! | set-up | per-triangle `log2 Pb` | [`setup::table`] | one table read |
 //! | set-up | scene analysis: MIP levels a scene can select per texture, skips | [`setup::analysis`] | — (trimmed pyramids, untextured marks) |

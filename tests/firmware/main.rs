@@ -4,6 +4,7 @@
 //! filter, e.g. `cargo test --release -p raymip --test firmware lod_accuracy::`.
 
 mod common;
+mod doc_tables;
 mod lod_accuracy;
 mod sampler_golden;
 mod texture_accuracy;
