@@ -114,12 +114,13 @@ struct Tb {
 
 int main(int argc, char** argv) {
     FILE* f = tb_shared::open_vectors(argc, argv, "tb-cfu-tex");
-    if (!f) return 2;
     Tb tb;
     auto& t = *tb.top;
-    t.cmd_valid = 0;
-    t.rsp_ready = 1;
-    tb_shared::reset(tb, [&](bool on) { t.reset = on; });
+    tb_shared::reset(tb, [&](bool on) {
+        t.reset = on;
+        t.cmd_valid = 0;
+        t.rsp_ready = 1;
+    });
 
     // Function ids: funct7 0: 0…5; funct7 1: 8…12 (tex.lvl, tex.addr, tex.tap ×3);
     // funct7 2: 16…19 (tex.ram, tex.sel, tex.tri, tex.bil).

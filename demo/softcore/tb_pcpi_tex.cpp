@@ -47,11 +47,12 @@ struct Tb {
 
 int main(int argc, char** argv) {
     FILE* f = tb_shared::open_vectors(argc, argv, "tb-pcpi-tex");
-    if (!f) return 2;
     Tb tb;
     auto& t = *tb.top;
-    t.pcpi_valid = 0;
-    tb_shared::reset(tb, [&](bool on) { t.resetn = !on; });
+    tb_shared::reset(tb, [&](bool on) {
+        t.resetn = !on;
+        t.pcpi_valid = 0;
+    });
 
     uint64_t n = 0, bad = 0, max_lat = 0;
     int lat_op[6] = {0, 0, 0, 0, 0, 0};  // the longest latency of each instruction

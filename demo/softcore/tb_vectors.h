@@ -7,6 +7,7 @@
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 
 namespace tb_shared {
 
@@ -17,15 +18,18 @@ struct Vector {
 };
 
 // The vector file named by a testbench's one argument; on any other
-// command line, or a file that does not open, it says why and returns
-// null (the testbench then exits 2). `name`: the testbench's command.
+// command line, or a file that does not open, it says why and exits 2.
+// `name`: the testbench's command.
 inline FILE* open_vectors(int argc, char** argv, const char* name) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s VECTORS\n", name);
-        return nullptr;
+        std::exit(2);
     }
     FILE* f = std::fopen(argv[1], "r");
-    if (!f) std::perror(argv[1]);
+    if (!f) {
+        std::perror(argv[1]);
+        std::exit(2);
+    }
     return f;
 }
 
@@ -36,7 +40,8 @@ inline bool read_vector(FILE* f, Vector* v) {
 
 // Holds the unit of testbench `b` in reset for four clock cycles, then
 // runs one cycle out of it; `set_reset(true)` asserts the unit's reset
-// input (whatever its polarity), `set_reset(false)` releases it.
+// input (whatever its polarity) and sets its other inputs idle,
+// `set_reset(false)` releases the reset.
 template <class Bench, class SetReset>
 void reset(Bench& b, SetReset set_reset) {
     b.top->clk = 0;
