@@ -21,6 +21,8 @@ import os
 import re
 import sys
 
+from mdblock import page_head
+
 ARM, RV = "thumbv7em-none-eabihf", "riscv32imac-unknown-none-elf"
 ISAS = [("m4", "Cortex-M4"), ("rv", "RV32IMAC"), ("rvzbb", "RV32IMAC+Zbb")]
 CALLS = [("lod", "table lod"), ("cone_lod", "cone lod (with n·d)"),
@@ -637,15 +639,13 @@ def render(work, old_text, readme):
             got = len(res[k].get(sym, []))
             if got != want:
                 sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}")
-    L = []
+    L = page_head("raymip firmware budgets", "README.md", [
+        "engineers sizing a controller's firmware: every budget measured on the",
+        "targets (instructions, cycles, code, stack, FPGA logic), each table against its ceiling.",
+        "Written by `scripts/budgets` (`scripts/budgets.py`; checked by `scripts/test-all`, a stale",
+        "file fails); do not edit. Toolchain: see `rustc --version` in CI logs; release profile",
+        "(opt-level 3, codegen-units 1); QEMU 10.0 (`mps2-an386` Cortex-M4, `virt` RV32).\n"])
     w = L.append
-    w("# raymip firmware budgets\n")
-    w("[← README](README.md)\n")
-    w("**Measurement page** for engineers sizing a controller's firmware: every budget measured on the")
-    w("targets (instructions, cycles, code, stack, FPGA logic), each table against its ceiling.")
-    w("Written by `scripts/budgets` (`scripts/budgets.py`; checked by `scripts/test-all`, a stale")
-    w("file fails); do not edit. Toolchain: see `rustc --version` in CI logs; release profile")
-    w("(opt-level 3, codegen-units 1); QEMU 10.0 (`mps2-an386` Cortex-M4, `virt` RV32).\n")
     w("## Instructions per call\n")
     w("Counted from QEMU execution traces (`-accel tcg,one-insn-per-tb=on -d exec,nochain`): every")
     w("instruction from the entry of the `#[inline(never)]` wrapper to its return (callees included,")

@@ -20,6 +20,8 @@ import os
 import sys
 import time
 
+from mdblock import page_head
+
 HZ = os.sysconf("SC_CLK_TCK")
 
 
@@ -140,16 +142,11 @@ def write(args):
     t_end = max(r["start"] + r["wall"] for r in rows)
     cpu_total = sum(r["cpu"] for r in rows)
     proj_total = 0.0
-    L = []
+    L = page_head("CI time budget", "../README.md", [
+        "whoever adds a step to the test command: where `bash scripts/test-all`",
+        "(CI's `.ci/run`) spends its time on a fresh clone, in CPU-seconds and wall seconds per step.",
+        "Written by `scripts/ci-budget` from one run; do not edit.", ""])
     w = L.append
-    w("# CI time budget")
-    w("")
-    w("[← README](../README.md)")
-    w("")
-    w("**Measurement page** for whoever adds a step to the test command: where `bash scripts/test-all`")
-    w("(CI's `.ci/run`) spends its time on a fresh clone, in CPU-seconds and wall seconds per step.")
-    w("Written by `scripts/ci-budget` from one run; do not edit.")
-    w("")
     w(f"Run: a fresh clone of `{meta['commit']}`, {meta['date']}, `nice -n {meta['nice']}`. Machine: {meta['machine']}, "
       f"{ncpu} CPUs, load average {meta['load_start']} at the start and {meta['load_end']} at the end "
       "(other jobs share the machine: the wall seconds below stretch with that load, the CPU-seconds hardly).")

@@ -1,14 +1,24 @@
-"""The generated blocks of the Markdown pages that scripts/fpga.py and
-scripts/softcore.py write: their command line, a block between a begin and
-an end marker replaced by the script's new text, the figures a block
-carries for another script as a data comment, and the page written or,
-with --check, its difference from the new text printed."""
+"""The generated Markdown of the measurement scripts: the head of a
+measurement page (scripts/budgets.py, scripts/ci_budget.py); for the blocks
+that scripts/fpga.py and scripts/softcore.py write into pages, their
+command line, a block between a begin and an end marker replaced by the
+script's new text, the figures a block carries for another script as a
+data comment, and the page written or, with --check, its difference from
+the new text printed."""
 import argparse
 import difflib
 import json
 import os
 import re
 import sys
+
+
+def page_head(title, readme, lede):
+    """The first lines of a measurement page: its title, the link back to
+    the README (`readme`: its path from the page) and the lede, whose first
+    line continues "**Measurement page** for " (whom the page serves, what
+    it measures, which script writes it)."""
+    return [f"# {title}", "", f"[← README]({readme})", "", "**Measurement page** for " + lede[0], *lede[1:]]
 
 
 def markers(name):
