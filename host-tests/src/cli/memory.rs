@@ -784,7 +784,10 @@ mod tests {
         ))
         .unwrap_err()
         .to_string();
-        assert!(t.contains("no measured feature set holds f32+raydiff"), "{t}");
+        assert!(
+            t.contains("no measured feature set holds f32+raydiff"),
+            "{t}"
+        );
         let t = memory_table(&args("--triangles 10 --texture 64x64 --features raydiff")).unwrap();
         assert!(t.contains("not measured (raydiff without cone)"), "{t}");
     }
