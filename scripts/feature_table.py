@@ -68,16 +68,22 @@ def measured(budgets):
 def cost(name, sizes, entry):
     if name == "ffi":
         return "per configuration of C calls: docs/bare-metal.md, \"C ABI\""
-    if name not in sizes:
+    # An opt-in feature is measured beside the default set (scripts/features).
+    default = next((k for k in sizes if k.startswith("default (")), None)
+    beside = default and default[len("default ("):-1] + "+" + name
+    if name in sizes:
+        base_name, own_name, parts = "none", name, []
+    elif beside in sizes:
+        base_name, own_name, parts = default, beside, ["beside the defaults:"]
+    else:
         return "not in a measured set"
-    base, own = sizes["none"], sizes[name]
-    parts = []
+    base, own = sizes[base_name], sizes[own_name]
     for i, (_, label) in enumerate(TARGETS):
         text, rodata = own[2 * i] - base[2 * i], own[2 * i + 1] - base[2 * i + 1]
         parts.append(f"{label} {text:+} B `.text`, {rodata:+} B `.rodata`")
-    if name in entry and "none" in entry and entry[name] != entry["none"]:
-        parts.append(f"ray-stack entry {entry[name] - entry['none']:+} B")
-    return "; ".join(parts)
+    if own_name in entry and base_name in entry and entry[own_name] != entry[base_name]:
+        parts.append(f"ray-stack entry {entry[own_name] - entry[base_name]:+} B")
+    return parts[0] + " " + "; ".join(parts[1:]) if parts[0].endswith(":") else "; ".join(parts)
 
 
 def table():

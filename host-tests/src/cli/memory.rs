@@ -21,7 +21,7 @@ use std::mem::size_of;
 use std::path::{Path, PathBuf};
 
 use raymip::Log2Pb;
-use raymip::path::raystack::{PATH_STATE_BYTES, stack_bound};
+use raymip::path::raystack::stack_bound;
 use raymip::setup::analysis::LodRange;
 use raymip::texture::Mode;
 use raymip::texture::storage::cache::TexelCache;
@@ -41,8 +41,18 @@ use crate::scene::{load_scene, load_scene_dir};
 /// BUDGETS.md as built: the "Feature sets" tables of `scripts/features`.
 const BUDGETS: &str = include_str!("../../../BUDGETS.md");
 
-/// The stages a measured feature set can hold (the others are never in one).
+/// The default stages (`default` and `ffi` expand to them).
 const STAGES: [&str; 4] = ["cone", "trilinear", "cache", "mipgen"];
+
+/// The opt-in stages; `scripts/features` measures each beside the
+/// default stages (and `raydiff` with `envmap`).
+const OPT_IN: [&str; 4] = ["raydiff", "envmap", "f32", "pcpi"];
+
+/// Whether `s` is a stage a measured feature set can hold (`ffi` is not:
+/// its code is the C ABI's, `scripts/c-abi`).
+fn is_stage(s: &str) -> bool {
+    STAGES.contains(&s) || OPT_IN.contains(&s)
+}
 
 /// The targets `scripts/features` measures.
 pub const TARGETS: [&str; 2] = ["thumbv7em-none-eabihf", "riscv32imac-unknown-none-elf"];
@@ -232,7 +242,7 @@ fn measured(budgets: &str, target: &str) -> Result<Vec<Measured>, MemoryError> {
             .trim_end_matches(')');
         inner
             .split('+')
-            .filter(|s| STAGES.contains(s))
+            .filter(|s| is_stage(s))
             .map(str::to_string)
             .collect()
     };
@@ -510,19 +520,13 @@ fn runtime_rows(
 ) -> Result<u64, MemoryError> {
     let entries = stack_bound(a.bounces, a.branches) as u64;
     let cone = features.contains("cone");
-    let path_state = if !features.contains("raydiff") {
-        Some(
-            sets.iter()
-                .find(|m| m.stages.contains("cone") == cone)
-                .map_or(set.path_state, |m| m.path_state),
-        )
-    } else if cone {
-        // The host build has `cone` and `raydiff`; an entry is the same
-        // size on every target (a compile-time check in raymip).
-        Some(PATH_STATE_BYTES as u64)
-    } else {
-        None
-    };
+    // The entry size of a measured set with the same `cone` and `raydiff`
+    // (the only features that change it).
+    let raydiff = features.contains("raydiff");
+    let path_state = sets
+        .iter()
+        .find(|m| m.stages.contains("cone") == cone && m.stages.contains("raydiff") == raydiff)
+        .map(|m| m.path_state);
     rows.push(Row {
         part: format!(
             "ray stack: `stack_bound({}, {})` entries of `PathState` ({})",
@@ -583,18 +587,21 @@ fn runtime_rows(
 pub fn memory_table(a: &MemoryArgs) -> Result<String, MemoryError> {
     let features = parse_features(&a.features)?;
     let sets = measured(BUDGETS, &a.target)?;
-    let stages: BTreeSet<String> = features
-        .iter()
-        .filter(|f| STAGES.contains(&f.as_str()))
-        .cloned()
-        .collect();
+    let stages: BTreeSet<String> = features.iter().filter(|f| is_stage(f)).cloned().collect();
     // The smallest measured set holding the requested stages (the default
     // set holds them all).
     let set = sets
         .iter()
         .filter(|m| m.stages.is_superset(&stages))
         .min_by_key(|m| m.stages.len())
-        .ok_or_else(|| MemoryError::Budgets("no measured set holds the requested stages".into()))?;
+        .ok_or_else(|| {
+            MemoryError::Arg(format!(
+                "--features: no measured feature set holds {}; the measured sets are {} \
+                 (to measure another, add it to MEASURED in scripts/features and run that script)",
+                stages.iter().cloned().collect::<Vec<_>>().join("+"),
+                sets.iter().map(set_name).collect::<Vec<_>>().join(", ")
+            ))
+        })?;
     let scene = match &a.scene {
         Some(spec) => from_scene(spec, a.size, a.bounces)?,
         None => from_numbers(a)?,
@@ -764,8 +771,23 @@ mod tests {
         ))
         .unwrap();
         assert!(t.contains("upper bound"), "{t}");
+        // Each opt-in stage is measured beside the defaults: an upper bound
+        // for the stage alone, named by its measured set.
         let t = memory_table(&args("--triangles 10 --texture 64x64 --features envmap")).unwrap();
-        assert!(t.contains("not measured: envmap"), "{t}");
+        assert!(
+            t.contains("feature set cache+cone+envmap+mipgen+trilinear ("),
+            "{t}"
+        );
+        assert!(!t.contains("not measured:"), "{t}");
+        let t = memory_table(&args(
+            "--triangles 10 --texture 64x64 --features f32,raydiff",
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(
+            t.contains("no measured feature set holds f32+raydiff"),
+            "{t}"
+        );
         let t = memory_table(&args("--triangles 10 --texture 64x64 --features raydiff")).unwrap();
         assert!(t.contains("not measured (raydiff without cone)"), "{t}");
     }

@@ -4,8 +4,15 @@
 //! and `Sampler::sample` from a pyramid in memory with a run-time mode
 //! (every mode the set has). Per feature: `cone` adds `cone_lod` (with
 //! `n·d`), `cache` samples through a `TexelCache`, `mipgen` runs
-//! `mip::generate`, `trilinear` adds the two linear-level modes. Inputs come
-//! through `black_box`; never meant to be run for its output.
+//! `mip::generate`, `trilinear` adds the two linear-level modes; the opt-in
+//! stages: `raydiff` the ray-differential chain (primary and G-buffer
+//! set-up, transfer, reflection, refraction, footprint and its lod; the
+//! differentials ride in every ray-stack entry), `envmap` the
+//! environment-map cone lod and `(u, v)` mapping (and the differential lod
+//! with `raydiff`), `f32` the f32 baseline's table and cone lod and one
+//! f32 sample, `pcpi` the table lod and filter through the PicoRV32
+//! co-processor (RV32 only; on other targets the feature changes nothing).
+//! Inputs come through `black_box`; never meant to be run for its output.
 #![no_std]
 #![no_main]
 #![forbid(unsafe_code)]
@@ -82,6 +89,101 @@ raymip_demo_entry::main! {
     #[cfg(feature = "cache")]
     let acc = acc ^ cached.sample(u, v, lod, mode);
     bb(acc);
+    #[cfg(feature = "raydiff")]
+    raydiff(g, st);
+    #[cfg(feature = "envmap")]
+    envmap(st);
+    #[cfg(feature = "f32")]
+    {
+        let Some(s) = raymip::baseline_f32::SamplerF32::new(
+            g,
+            &texels[..],
+            bb(raymip::texture::AddressMode::Wrap),
+        ) else {
+            exit(1)
+        };
+        let l = raymip::baseline_f32::table_lod_f32(bb(10.0), bb(-3.5))
+            + raymip::baseline_f32::cone_lod_f32(bb(0.01), bb(2.0), bb(Some(0.5)));
+        bb(s.sample(bb(0.25), bb(0.75), l, mode));
+    }
     raymip_size_probe::keep_type_sizes();
     exit(0)
+}
+
+/// The ray-differential chain of one path: set-up (primary, G-buffer),
+/// transfer, reflection, refraction, the footprint on one triangle and its
+/// lod.
+#[cfg(feature = "raydiff")]
+#[inline(never)]
+fn raydiff(g: Geometry, st: PathState) {
+    use fixed::types::{I2F30, I4F28};
+    use raymip::lod::raydiff::RayDiffTriangle;
+    use raymip::path::raydiff::gbuffer::{GSample, first_hit};
+    use raymip::path::raydiff::{DirDiff, Eta, RayDiff};
+    use raymip::setup::table::TexTriangle;
+    use raymip::units::{Coord, UnitVec};
+    let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
+    let t = |x: i32| TexCoord::from_bits(i64::from(x) << 32);
+    let Ok(tri) = TexTriangle::new(
+        bb([[c(0), c(0), c(0)], [c(4), c(0), c(1)], [c(0), c(3), c(0)]]),
+        bb([[t(0), t(0)], [t(2), t(0)], [t(0), t(1)]]),
+        g.width(),
+        g.height(),
+    ) else {
+        exit(1)
+    };
+    let tri = RayDiffTriangle::new(&tri);
+    let z = I2F30::ZERO;
+    let d = bb(UnitVec::new([z, z, I2F30::from_bits(-(1 << 30))]));
+    let n = bb(UnitVec::new([z, z, I2F30::from_bits(1 << 30)]));
+    let dd = bb(DirDiff::from_i2f30([I2F30::from_bits(1 << 20), z, z]));
+    let mut s = RayDiff::primary(d, n, dd, dd);
+    let g = GSample {
+        p: bb([0; 3]),
+        n,
+        t: bb(1 << 20),
+    };
+    let nb = [Some(&g); 4];
+    let [dnx, dny] = first_hit(&mut s, bb(&g), bb(nb), bb(-24));
+    s.transfer(d, st.pl, n);
+    s.reflect(d, n, [dnx, dny]);
+    s.refract(
+        d,
+        n,
+        [dnx, dny],
+        bb(Eta::from_fixed(I4F28::from_bits(0x0AAA_AAAB))),
+        bb(I2F30::from_bits(0x3999_999A)),
+    );
+    let mut entry = st;
+    entry.diff = s;
+    bb(tri.footprint(&bb(entry).diff).lod());
+}
+
+/// The environment-map lod of a ray leaving the scene: the cone lod with
+/// the pole term, the `(u, v)` of its direction and, with `raydiff`, the
+/// differential lod.
+#[cfg(feature = "envmap")]
+#[inline(never)]
+fn envmap(st: PathState) {
+    use fixed::types::I2F30;
+    use raymip::lod::envmap::{EnvMap, direction_uv};
+    use raymip::units::UnitVec;
+    let Ok(map) = EnvMap::new(bb(2048), bb(1024)) else {
+        exit(1)
+    };
+    let z = I2F30::ZERO;
+    let d = bb(UnitVec::new([
+        z,
+        I2F30::from_bits(1 << 29),
+        I2F30::from_bits(-(7 << 27)),
+    ]));
+    #[cfg(feature = "cone")]
+    let spread = st.cone.spread;
+    #[cfg(not(feature = "cone"))]
+    let spread = bb(Spread::from_bits(1 << 20));
+    bb(map.cone_lod(spread, Some(d)));
+    bb(direction_uv(d));
+    #[cfg(feature = "raydiff")]
+    bb(map.raydiff_lod(st.diff.ddx(), st.diff.ddy(), Some(d)));
+    let _ = st;
 }
