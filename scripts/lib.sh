@@ -123,7 +123,8 @@ bg_start() {
         rc=0 me=$BASHPID
         "$@" || rc=$?
         if [ "$_lib_steps" = 1 ]; then
-            printf '%s\t%s\t%s\n' "$t0" "$(_lib_now)" "$(_lib_cpu "$me")" >"$_lib_acct/$name"
+            # Named by the pid (the job's name may hold a `/`).
+            printf '%s\t%s\t%s\n' "$t0" "$(_lib_now)" "$(_lib_cpu "$me")" >"$_lib_acct/$me"
         fi
         exit $rc
     ) >"$log" 2>&1 &
@@ -139,8 +140,8 @@ bg_wait() {
     name=${!name}
     wait "$pid" || rc=$?
     cat "$log"
-    if [ "$_lib_steps" = 1 ] && [ -f "$_lib_acct/$name" ]; then
-        read -r t0 t1 cpu <"$_lib_acct/$name"
+    if [ "$_lib_steps" = 1 ] && [ -f "$_lib_acct/$pid" ]; then
+        read -r t0 t1 cpu <"$_lib_acct/$pid"
         _lib_bg_cpu=$((_lib_bg_cpu + cpu))
         _lib_rows+=("background"$'\t'"$t0"$'\t'"$((t1 - t0))"$'\t'"$cpu"$'\t'"$name")
     fi
