@@ -233,7 +233,7 @@ def main():
         v = parse_stat(open(os.path.join(a.work, f"stat-{n}.txt")).read())
         if v["lut"] == 0:
             sys.exit(f"fpga.py: stat-{n}.txt has no SB_LUT4 count")
-        if a.pnr:
+        if a.pnr and os.path.exists(os.path.join(a.work, f"pnr-{n}.seconds")):
             p = parse_pnr(open(os.path.join(a.work, f"pnr-{n}.log")).read())
             if p is None:
                 sys.exit(f"fpga.py: pnr-{n}.log has no utilisation / frequency")

@@ -66,7 +66,9 @@ step() {
 # system, summed over every process that ended within the step) per step.
 # CPU-seconds do not depend on what else the machine is doing, wall seconds
 # do. A background job (bg_start ... bg_wait) gets a row of its own, and its
-# CPU-seconds are not counted again in the step that waits for it.
+# CPU-seconds are not counted again in the step during which it ended (the
+# shell reaps a finished job at once, and its CPU-seconds join the shell's
+# children's then, not when bg_wait reads them).
 #   steps_begin          turn the table on (steps before it are not timed)
 #   bg_start VAR NAME LOG COMMAND...
 #                        COMMAND (a command or a function) in the background,
@@ -109,8 +111,17 @@ _lib_step_open() {
 }
 _lib_step_close() {
     [ "$_lib_steps" = 1 ] && [ -n "${_lib_step_name:-}" ] || return 0
-    local now cpu
+    local now cpu f t0 t1 c
     now=$(_lib_now)
+    # The background jobs that ended during this step (each times file once).
+    for f in "$_lib_acct"/*; do
+        [ -f "$f" ] && [ "${f%.counted}" = "$f" ] || continue
+        read -r t0 t1 c <"$f"
+        if [ "$t1" -le "$now" ]; then
+            _lib_bg_cpu=$((_lib_bg_cpu + c))
+            mv "$f" "$f.counted"
+        fi
+    done
     cpu=$(($(_lib_cpu $$) - _lib_step_cpu0 - _lib_bg_cpu))
     _lib_rows+=("step"$'\t'"$_lib_step_t0"$'\t'"$((now - _lib_step_t0))"$'\t'"$cpu"$'\t'"$_lib_step_name")
     _lib_step_name=""
@@ -140,9 +151,10 @@ bg_wait() {
     name=${!name}
     wait "$pid" || rc=$?
     cat "$log"
-    if [ "$_lib_steps" = 1 ] && [ -f "$_lib_acct/$pid" ]; then
-        read -r t0 t1 cpu <"$_lib_acct/$pid"
-        _lib_bg_cpu=$((_lib_bg_cpu + cpu))
+    local times=$_lib_acct/$pid
+    [ -f "$times" ] || times=$times.counted
+    if [ "$_lib_steps" = 1 ] && [ -f "$times" ]; then
+        read -r t0 t1 cpu <"$times"
         _lib_rows+=("background"$'\t'"$t0"$'\t'"$((t1 - t0))"$'\t'"$cpu"$'\t'"$name")
     fi
     [ "$rc" = 0 ] || die "FAIL: $what (exit $rc), its log above"
