@@ -104,10 +104,8 @@ pub struct RmImage {
 /// an unknown format (no status: it cannot fail).
 #[unsafe(no_mangle)]
 pub extern "C" fn rm_image_len(width: u32, height: u32, levels: u8, format: u8) -> usize {
-    match TexelFormat::from_index(format) {
-        Some(f) if width > 0 && height > 0 => image_len(width, height, levels, f),
-        _ => 0,
-    }
+    // `image_len` is 0 for a zero side (no level).
+    TexelFormat::from_index(format).map_or(0, |f| image_len(width, height, levels, f))
 }
 
 /// The pyramid of `tex` after its checks.

@@ -57,6 +57,81 @@ fn c_address_numbers_name_their_modes() {
     }
 }
 
+/// The status numbers are the header's `RM_STATUS_*` values, which C
+/// callers compare against: each one as the header documents it.
+#[test]
+fn status_numbers_are_the_headers() {
+    use RmStatus as S;
+    let documented = [
+        (S::Ok, 0),
+        (S::Untextured, 1),
+        (S::NullPointer, -1),
+        (S::OutOfRange, -2),
+        (S::StackFull, -3),
+        (S::StackEmpty, -4),
+        (S::ZeroSize, -5),
+        (S::BadAngle, -6),
+        (S::TableFull, -7),
+        (S::BufferTooShort, -8),
+        (S::Misaligned, -9),
+        (S::Uninitialised, -10),
+    ];
+    for (s, n) in documented {
+        assert_eq!(s as i32, n, "{s:?}");
+    }
+}
+
+/// Each set-up error reaches C as the status its doc names.
+#[test]
+fn set_up_errors_map_to_their_statuses() {
+    use crate::setup::table::TableError;
+    use crate::texture::storage::mip::MipError;
+    assert_eq!(
+        table::table_status(TableError::ZeroTextureSize),
+        RmStatus::ZeroSize
+    );
+    assert_eq!(
+        table::table_status(TableError::TableFull),
+        RmStatus::TableFull
+    );
+    assert_eq!(
+        table::table_status(TableError::NonFinite),
+        RmStatus::OutOfRange
+    );
+    assert_eq!(
+        table::table_status(TableError::OutOfRange),
+        RmStatus::OutOfRange
+    );
+    assert_eq!(mip::mip_status(MipError::ZeroSize), RmStatus::ZeroSize);
+    let short = MipError::BufferTooShort { needed: 2, got: 1 };
+    assert_eq!(mip::mip_status(short), RmStatus::BufferTooShort);
+    assert_eq!(mip::mip_status(MipError::TooLarge), RmStatus::OutOfRange);
+    assert_eq!(mip::mip_status(MipError::BadLevels), RmStatus::OutOfRange);
+}
+
+/// Pyramid and image sizes, counted by hand: 4 × 4 with 3 levels is
+/// 16 + 4 + 1 texels; 8 × 2 with all 4 levels 16 + 4 + 2 + 1; a request
+/// for more levels than the chain has is capped; a zero side has none.
+#[test]
+fn pyramid_and_image_lengths() {
+    assert_eq!(rm_pyramid_len(4, 4, 3), 21);
+    assert_eq!(rm_pyramid_len(8, 2, 4), 23);
+    assert_eq!(rm_pyramid_len(8, 2, 200), 23);
+    assert_eq!(rm_pyramid_len(1, 1, 1), 1);
+    assert_eq!(rm_pyramid_len(0, 4, 3), 0);
+    let rgba8 = RmFormat::Rgba8 as u8;
+    let bc1 = RmFormat::Bc1 as u8;
+    // RGBA8: 4 bytes a texel.
+    assert_eq!(rm_image_len(4, 4, 3, rgba8), 21 * 4);
+    // BC1: 8 bytes per 4 × 4 block, a level below 4 texels is one block.
+    assert_eq!(rm_image_len(8, 8, 4, bc1), (4 + 1 + 1 + 1) * 8);
+    for (w, h) in [(0, 4), (4, 0), (0, 0)] {
+        assert_eq!(rm_image_len(w, h, 3, rgba8), 0, "{w}x{h}");
+        assert_eq!(rm_image_len(w, h, 3, bc1), 0, "{w}x{h}");
+    }
+    assert_eq!(rm_image_len(4, 4, 3, 200), 0);
+}
+
 #[test]
 fn null_pointers_are_reported() {
     // SAFETY: null pointers are the inputs under test; nothing is dereferenced.
