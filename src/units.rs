@@ -798,3 +798,33 @@ pub enum Precision {
     /// [`Fast`].
     Fast = 1,
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// Each of the three markers survives `from_bits` (they lie outside the
+    /// clamp range, so a lost marker would be clamped to `MIN` or `MAX`).
+    #[test]
+    fn from_bits_keeps_each_marker() {
+        for m in [
+            Log2Pb::UNTEXTURED,
+            Log2Pb::DEGENERATE_GEOMETRY,
+            Log2Pb::DEGENERATE_UV,
+        ] {
+            assert_eq!(Log2Pb::from_bits(m.to_bits()), m);
+        }
+    }
+
+    /// A unit vector prints as its component array.
+    #[test]
+    fn unit_vec_debug_is_the_components() {
+        let c = [
+            I2F30::ZERO,
+            I2F30::from_bits(1 << 29),
+            I2F30::from_bits(-1 << 30),
+        ];
+        assert_eq!(std::format!("{:?}", UnitVec::new(c)), std::format!("{c:?}"));
+    }
+}
