@@ -1089,23 +1089,25 @@ CLASS_SLACK_PERCENT = 1
 CLASS_HEADING = "### Executed path by class"
 
 
-def class_rows(text):
-    """{(call, tier): [cells]} of the "Executed path by class" table of a
-    BUDGETS.md text; each cell a list of ints (one per target)."""
+def class_row(line):
+    """((call, tier), cells) of one row of the "Executed path by class"
+    table, each cell a list of ints (one per target); None for any other
+    line."""
+    m = TABLE_ROW.match(line.strip())
+    if not m:
+        return None
+    cells = [c.strip() for c in m.group(1).split("|")]
+    try:
+        return (cells[0], cells[1]), [[int(x) for x in c.split(" / ")] for c in cells[2:]]
+    except (ValueError, IndexError):
+        return None
+
+
+def class_lines(text):
+    """The lines of the "Executed path by class" section of a BUDGETS.md
+    text (empty when it has none)."""
     i = text.find(CLASS_HEADING)
-    if i < 0:
-        return {}
-    out = {}
-    for line in text[i:].split("\n## ")[0].splitlines():
-        m = TABLE_ROW.match(line.strip())
-        if not m:
-            continue
-        cells = [c.strip() for c in m.group(1).split("|")]
-        try:
-            out[(cells[0], cells[1])] = [[int(x) for x in c.split(" / ")] for c in cells[2:]]
-        except ValueError:
-            continue
-    return out
+    return [] if i < 0 else text[i:].split("\n## ")[0].splitlines()
 
 
 def within_class_slack(old_cells, new_cells):
@@ -1124,24 +1126,16 @@ def within_class_slack(old_cells, new_cells):
 def keep_class_cells(old, new):
     """`new` with each class-table row replaced by the checked-in row of
     `old` when the two are within_class_slack (what the check compares)."""
-    rows = class_rows(old)
+    rows = {r[0]: (line, r[1]) for line in class_lines(old) if (r := class_row(line))}
+    kept = {}
+    for line in class_lines(new):
+        r = class_row(line)
+        if r and r[0] in rows and within_class_slack(rows[r[0]][1], r[1]):
+            kept[line] = rows[r[0]][0]
     i = new.find(CLASS_HEADING)
     if i < 0:
         return new
-    lines = new[i:].split("\n")
-    for j, line in enumerate(lines):
-        if line.startswith("## "):
-            break
-        m = TABLE_ROW.match(line.strip())
-        if not m:
-            continue
-        cells = [c.strip() for c in m.group(1).split("|")]
-        key = (cells[0], cells[1]) if len(cells) > 1 else None
-        mine = class_rows(CLASS_HEADING + "\n" + line).get(key)
-        if key in rows and mine is not None and within_class_slack(rows[key], mine):
-            lines[j] = "| " + " | ".join(
-                list(key) + [" / ".join(str(x) for x in c) for c in rows[key]]) + " |"
-    return new[:i] + "\n".join(lines)
+    return new[:i] + "\n".join(kept.get(line, line) for line in new[i:].split("\n"))
 
 
 def sampler_stats(res):
