@@ -24,7 +24,7 @@
 //! The ACCURATE linear kernel's bilinear and trilinear filtering
 //! ([`crate::texture::kernel::Kernel::bilinear_texel`] and the trilinear
 //! levels [`crate::texture::kernel::Kernel::level`] /
-//! [`crate::texture::kernel::Kernel::blend_levels`] of `(Linear, Accurate)`)
+//! [`crate::texture::kernel::Kernel::finish_blend`] of `(Linear, Accurate)`)
 //! is [`bw`], [`bt`], [`bb`] per level and [`blend`];
 //! its wide values (aniso probes) and the FAST, nearest and sRGB kernels
 //! stay software.

@@ -150,6 +150,13 @@ pub(crate) fn corner_weights16(fx: u32, fy: u32) -> [u32; 4] {
 #[inline(always)]
 pub(crate) fn bilerp_lanes<L: Lanes>(t: [L; 4], w: [u32; 4], r: u32) -> Wide {
     debug_assert_eq!(r, ROUND_WIDE);
+    bilerp_lanes_with(t, w, r)
+}
+
+/// `(corner_sum + r) >> 8` per channel for a rounding term `r ≤ 2²³ + 2⁷`
+/// (below `2³²`: [`corner_sum`]).
+#[inline(always)]
+fn bilerp_lanes_with<L: Lanes>(t: [L; 4], w: [u32; 4], r: u32) -> Wide {
     let mut out = [0u32; 4];
     for (c, o) in out.iter_mut().enumerate() {
         *o = corner_sum(t, w, c, r) >> 8;
@@ -307,6 +314,54 @@ pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32, r: u32) -> Texel {
             .wrapping_add(b[c].wrapping_mul(t))
             >> 24;
         out |= v << (8 * c);
+    }
+    out
+}
+
+/// One level of a trilinear sample: the 8.16 value plus ½ LSB,
+/// `(X + 2⁷ + 2²³) >> 8 = bilerp + 2¹⁵` per channel (`r =`
+/// [`ROUND_TEXEL`]: the chains start from the bilinear texel's rounding
+/// term, and the level blend needs no rounding term of its own:
+/// `a·(256 − t) + b·t + 2²³ = (a + 2¹⁵)·(256 − t) + (b + 2¹⁵)·t`).
+/// Each channel `≤ 255·2¹⁶ + 2¹⁵ < 2²⁴`. Also the FAST kernel's level
+/// form (`fast::level_half`).
+#[inline(always)]
+pub(crate) fn bilerp_half(t: [Texel; 4], fx: u32, fy: u32, r: u32) -> Wide {
+    debug_assert_eq!(r, ROUND_TEXEL);
+    bilerp_lanes_with(t, corner_weights(fx, fy), r)
+}
+
+/// The first level's share of the level blend of two [`bilerp_half`]
+/// values: `a·(256 − t)` per channel (`t ≤ 256`; `< 2³²`).
+/// [`blend_finish`] adds the second level's share and rounds; with
+/// `t = 0` [`blend_finish_one`] rounds it alone.
+#[inline(always)]
+pub(crate) fn blend_start(a: Wide, t: u32) -> Wide {
+    let s = (1u32 << BLEND_BITS).wrapping_sub(t);
+    a.map(|a| a.wrapping_mul(s))
+}
+
+/// `(started + b·t) >> 24` per channel for `started =`
+/// [`blend_start`]`(a + 2¹⁵, t)` and `b + 2¹⁵` ([`bilerp_half`] values):
+/// `(a·(256 − t) + b·t + 2²³) >> 24`, which is
+/// [`blend_wide_in_range`]`(a, b, t, 2²³)` (tested), each `≤ 255`.
+#[inline(always)]
+pub(crate) fn blend_finish(started: Wide, b: Wide, t: u32) -> Texel {
+    let mut out = 0u32;
+    for c in 0..4 {
+        out |= (started[c].wrapping_add(b[c].wrapping_mul(t)) >> 24) << (8 * c);
+    }
+    out
+}
+
+/// `started >> 24` per channel for `started =` [`blend_start`]`(a + 2¹⁵, 0)
+/// = 256·(a + 2¹⁵)`: `(a + 2¹⁵) >> 16`, which is
+/// [`round_wide_in_range`]`(a)` (tested).
+#[inline(always)]
+pub(crate) fn blend_finish_one(started: Wide) -> Texel {
+    let mut out = 0u32;
+    for (c, &v) in started.iter().enumerate() {
+        out |= (v >> 24) << (8 * c);
     }
     out
 }
@@ -486,6 +541,61 @@ mod tests {
                     blend_wide_in_range(a, b, t, ROUND_BLEND),
                     want,
                     "{a:x?} {b:x?} {t}"
+                );
+            }
+        }
+    }
+
+    /// The trilinear level form: [`bilerp_half`] is the 8.16 value plus
+    /// 2¹⁵, and the started blend of two of them gives
+    /// [`blend_wide_in_range`] (and, with `t = 0`, [`round_wide_in_range`])
+    /// of the 8.16 values, for every `t` and pseudo-random and extreme
+    /// footprints and weights.
+    #[test]
+    fn started_blend_equals_blend_of_levels() {
+        let mut x = 0x5851_F42D_4C95_7F2D_u64;
+        let draws = if cfg!(miri) { 4 } else { 400 };
+        for n in 0..draws {
+            let mut next = || {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                x
+            };
+            let fp = |x: u64, n: u32| match n % 5 {
+                0 => [u32::MAX; 4],
+                1 => [0, u32::MAX, u32::MAX, 0],
+                _ => [
+                    x as u32,
+                    (x >> 32) as u32,
+                    (x >> 16) as u32,
+                    (x as u32).rotate_left(7),
+                ],
+            };
+            let (ta, tb) = (fp(next(), n), fp(next(), n / 5));
+            let r = next();
+            let w = |k: u32| match (n + k) % 7 {
+                0 => 0,
+                1 => 4096,
+                _ => (r >> (12 * k)) as u32 % 4097,
+            };
+            let (fxa, fya, fxb, fyb) = (w(0), w(1), w(2), w(3));
+            let (a, b) = (
+                bilerp_in_range(ta, fxa, fya, ROUND_WIDE),
+                bilerp_in_range(tb, fxb, fyb, ROUND_WIDE),
+            );
+            let (ha, hb) = (
+                bilerp_half(ta, fxa, fya, ROUND_TEXEL),
+                bilerp_half(tb, fxb, fyb, ROUND_TEXEL),
+            );
+            assert_eq!(ha, a.map(|v| v + (1 << 15)));
+            assert_eq!(hb, b.map(|v| v + (1 << 15)));
+            assert_eq!(blend_finish_one(blend_start(ha, 0)), round_wide_in_range(a));
+            for t in 0..=256u32 {
+                assert_eq!(
+                    blend_finish(blend_start(ha, t), hb, t),
+                    blend_wide_in_range(a, b, t, ROUND_BLEND),
+                    "{ta:x?} {tb:x?} {t}"
                 );
             }
         }

@@ -491,13 +491,16 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         let t = bits & 0xFF;
         let k = self.rounding;
         let a = self.level_value(u, v, lower);
+        // Level `a` enters the blend before the branch: its own values
+        // are dead before the second level's footprint is read.
+        let started = Kern::<K>::start_blend(a, t, k);
         if t == 0 {
             count(&mut self.stats, true);
-            Kern::<K>::round_level(a)
+            Kern::<K>::finish_one(started)
         } else {
             let b = self.level_value(u, v, lower + 1);
             count(&mut self.stats, false);
-            Kern::<K>::blend_levels(a, b, t, k)
+            Kern::<K>::finish_blend(started, b, t, k)
         }
     }
 
@@ -708,7 +711,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
                 // Wrapped on both axes: every tap is a texel (no border),
                 // addressed by the view without a mask.
-                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
+                let c = l.wrap_constants(bits).unwrap_or(self.levels[level].c);
+                let (t, fx, fy) = l.wrap_footprint(u, v, c, bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
             let [cx, cy] = self.levels[level].c;
