@@ -39,10 +39,6 @@ ALL_CALLS = CALLS[:2] + FAST_CALLS[:2] + CALLS[2:] + FAST_CALLS[2:]
 BEGIN, END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 README_BEGIN, README_END = "<!-- sampler-budgets:begin -->", "<!-- sampler-budgets:end -->"
 
-# Wrappers that serve several rows, and how many calls each must show.
-CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 64, "rm_bench_ts_srgb": 64,
-                "rm_bench_ts_rgb565": 64, "rm_bench_ts_bc1": 128, "rm_bench_ts_aniso": 192,
-                "rm_bench_geomlod": 128, "rm_batch_geomlod": 4}
 # Ray differentials (feature `raydiff`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
 RD_ROWS = [("rd_primary", "primary set-up from the camera"),
@@ -52,7 +48,6 @@ RD_ROWS = [("rd_primary", "primary set-up from the camera"),
            ("rd_footprint", "footprint (two texel-space axes)"),
            ("rd_lod", "lod from the footprint (larger axis)"),
            ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
-CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
 # Cortex-M4 goals of the ray differentials (issue 33; max instructions):
 # per call, and per textured hit as sums of rows.
 RD_GOALS = {"rd_primary": 150, "rd_transfer": 150, "rd_reflect": 120, "rd_refract": 300,
@@ -79,7 +74,6 @@ ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
             ("env_cone_lat", "cone lod with the pole term"),
             ("env_raydiff", "ray-differential lod with the pole term"),
             ("env_uv", "direction → (u, v), two 32-bit vectorings (3 CORDIC steps + series)")]
-CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
 # Sampler-state (ts_*) rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
@@ -154,8 +148,6 @@ MATRIX_ROWS = [
     ("an16_f", "anisotropic 16× sample", "FAST", "rm_bench_ts_aniso_fast", slice(128, 192),
      (16, "tw_tri_f", 100)),
 ]
-CALLS_TRACED.update({"rm_bench_ts_aniso_fast": 192, "rm_bench_ts_bc1_fast": 128})
-CALLS_TRACED.update({sym: 64 for _, _, _, sym, sl, _ in MATRIX_ROWS if sym not in CALLS_TRACED})
 # Batches of the wrap rows: (label, tier, batch wrapper, single-call row).
 MATRIX_BATCHES = [
     ("RGBA8 bilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_batch_bilinear", "tw_bil"),
@@ -163,7 +155,6 @@ MATRIX_BATCHES = [
     ("RGBA8 trilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_batch_trilinear", "tw_tri"),
     ("RGBA8 trilinear, wrap, bias/clamps set", "FAST", "rm_batch_trilinear_fast", "tw_tri_f"),
 ]
-CALLS_TRACED.update({sym: 2 for _, _, sym, _ in MATRIX_BATCHES})
 # The wrap rows have the plain rows' types, so they call the plain rows'
 # wrappers a second time (`matrix_rows` runs after the plain rows): the
 # calls after the first `n` of these wrappers are the matrix's, under the
@@ -502,6 +493,17 @@ def load_classes(root):
     return rules
 
 
+def load_rows(root):
+    """The measured wrappers of scripts/budget-rows.txt: {symbol: calls}."""
+    rows = {}
+    with open(os.path.join(root, "scripts", "budget-rows.txt")) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                sym, calls = (x.strip() for x in line.split(";"))
+                rows[sym] = int(calls)
+    return rows
+
+
 HASH = re.compile(r"::h[0-9a-f]{16}$")
 
 
@@ -611,10 +613,20 @@ def without_softcore(text):
     return BLOCK.sub(lambda m: f"<!-- {m.group(1)}:begin --><!-- {m.group(1)}:end -->", text)
 
 
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
 def render(work, old_text, readme):
     firsts = {k: {} for k, _ in ISAS}
     every = {k: {} for k, _ in ISAS}
     res = {k: count(work, k, firsts[k], every[k]) for k, _ in ISAS}
+    rows = load_rows(ROOT)
+    for k, _ in ISAS:
+        for sym in sorted(set(rows) | set(res[k])):
+            got, want = len(res[k].get(sym, [])), rows.get(sym)
+            if got != want:
+                sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}"
+                         + ("" if want else " (not a row of scripts/budget-rows.txt)"))
     for k, _ in ISAS:
         for sym, n in MATRIX_SHARED.items():
             for d in (res[k], every[k]):
@@ -622,23 +634,6 @@ def render(work, old_text, readme):
                 d[sym], d["matrix:" + sym] = calls[:n], calls[n:]
     ops = {k: mnemonics(work, k) for k, _ in ISAS}
     bad = []
-    for k, _ in ISAS:
-        for c, _ in CALLS:
-            for pre in ("rm_bench_", "rm_bench_f32_"):
-                got = len(res[k].get(pre + c, []))
-                if got != 64:
-                    sys.exit(f"budgets: {k} {pre}{c}: {got} calls traced, want 64")
-            got = len(res[k].get("rm_batch_" + c, []))
-            if got != 2:
-                sys.exit(f"budgets: {k} rm_batch_{c}: {got} calls traced, want 2")
-        for c, _ in FAST_CALLS:
-            batches = len(res[k].get("rm_batch_" + c, [])) if c in FAST_BATCHED else 2
-            if len(res[k].get("rm_bench_" + c, [])) != 64 or batches != 2:
-                sys.exit(f"budgets: {k} {c}: want 64 calls and 2 batches traced")
-        for sym, want in CALLS_TRACED.items():
-            got = len(res[k].get(sym, []))
-            if got != want:
-                sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}")
     L = page_head("raymip firmware budgets", "README.md", [
         "engineers sizing a controller's firmware: every budget measured on the",
         "targets (instructions, cycles, code, stack, FPGA logic), each table against its ceiling.",
@@ -1049,7 +1044,7 @@ def breakdown_section(st, every, work, w):
     """Per-class counts of the executed path of every matrix row whose goal
     is missed on some ISA: the call with the most instructions of each ISA,
     classified by scripts/budget-classes.txt."""
-    rules = load_classes(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    rules = load_classes(ROOT)
     missed = [(key, label, tier, sym, sl) for key, label, tier, sym, sl, goal in MATRIX_ROWS
               if goal is not None and any(st[k][key][2] > matrix_goal(goal, st, k) for k, _ in ISAS)]
     if not missed:
