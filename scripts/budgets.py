@@ -163,7 +163,7 @@ MATRIX_SHARED = {"rm_bench_bilinear": 64, "rm_bench_trilinear": 64, "rm_bench_tr
                  "rm_batch_bilinear": 2, "rm_batch_trilinear": 2}
 # CI ceilings of the matrix (max instructions per call; batches: steady per
 # hit): the goal where it is met, else the achieved value + 5 % (reasons in
-# MATRIX_MISSED and the per-class breakdown). Fixed numbers, so a slower
+# docs/budget-analysis.md and the per-class breakdown). Fixed numbers, so a slower
 # build fails.
 MATRIX_CEILINGS = {
     "tw_bil": {"m4": 111, "rv": 139, "rvzbb": 137},
@@ -195,66 +195,6 @@ MATRIX_BATCH_CEILINGS = {
     "matrix:rm_batch_trilinear": {"m4": 224, "rv": 249, "rvzbb": 244},
     "rm_batch_trilinear_fast": {"m4": 196, "rv": 230, "rvzbb": 201},
 }
-MATRIX_MISSED = {
-    "Wrap rows (RGBA8, `Pow2Pyramid`)": (
-        "The state costs nothing per call: bias, lod clamp and the level clamp are one add and the "
-        "clamp pair every call executes. Per level the direct path reads the level's view (first "
-        "texel, sides, masks, row stride) and the kernel's wrap constants, computes per axis one "
-        "32×32→64-bit multiply (index in the high word, weight in the low word) and the wrapped "
-        "neighbour `(i + 1) & (n − 1)`, two row pointers (`base + y·stride`) and four loads, with no "
-        "bounds check (the views are validated when the `Pow2Pyramid` is made). The ACCURATE filter "
-        "is per texel and channel one extract and one multiply-accumulate (24-bit corner weights: two "
-        "channels never share a product), each chain started from the rounding term held in a "
-        "register (`Rounding`). On the Cortex-M4 the remaining excess is the \"frame, stack arguments, "
-        "spills\" column: the footprint's four texels, four corner weights, the accumulator and the "
-        "rounding term (and in trilinear the first level's four values) leave no room in the 13 "
-        "usable registers for the addressing the scheduler of a generic ARMv7E-M build interleaves with "
-        "the channels. FAST pairs two channels per 32×32→64-bit product, but LLVM splits each chain of "
-        "four multiply-accumulates into `umull` pairs joined by `adds`/`adc` instead of one `umull` and "
-        "three `umlal`. RV32IMAC has no multiply-accumulate, no bit-field extract (channels 1 and 2 cost "
-        "two shifts) and no scaled-index load, and its 64-bit product is `mul` + `mulhu`."),
-    "Mirror u / border v": (
-        "Mirror on a power-of-two level is one multiply-accumulate onto a constant (the mirrored "
-        "period's index in the high word) and an XOR per tap (`pow2_mirror_taps`); the border axis is "
-        "decided once per footprint: both taps inside (one unsigned compare) take the wrap-like path, "
-        "only an axis with a tap outside computes the clamped taps and replaces the border texels. "
-        "The largest calls are those on that edge path at the small levels (a 2- or 4-texel axis puts a "
-        "tap outside for a quarter to a half of the coordinates), and on the Cortex-M4 they spill more."),
-    "sRGB, RGB565": (
-        "sRGB decodes each texel by table into four 16-bit lanes, one channel per word, so the "
-        "filter reads them without an extract (three table loads and alpha `·257` per texel), filters "
-        "one channel per 32-bit multiply-accumulate with 16-bit weights and re-encodes three "
-        "channels, each by a 736-byte table of threshold counts and two compares (no search): its "
-        "goal is met. RGB565 is read through `Image`'s footprint (the level's size, offset and "
-        "row starts once per footprint, then per texel its two bytes and the bit replication); the "
-        "sampler addresses a power-of-two image as the direct "
-        "path does (the level's constants from its table) but cannot read it without the image's "
-        "own clamps. The goals need the expansion once per cached block (an RGBA8 block read as the "
-        "direct path reads a level)."),
-    "BC1 on cache hits": (
-        "`TexelCache::footprint` reads the level's record once (texel clamp, block offset, padded "
-        "grid: `LevelGrid`), computes each block column's and row's part of the Morton number once "
-        "(two reads of a 256-entry table each) and looks each block the footprint touches up once, "
-        "in the order of the texel reads (one lookup counted as the accesses it stands for: the same "
-        "counters and LRU order as per texel): one lookup in 9 of 16 positions, two or four when the "
-        "footprint straddles block edges. The lookup is inlined (the 64-bit clock, the set's tag "
-        "compare, the stamp and hit counter), the fill on a miss is not. The largest calls straddle "
-        "block edges in both levels; on the Cortex-M4 the footprint function (called once per level) "
-        "and the generic path spill. The goal needs the block read as the direct path reads a level "
-        "(a cached block as a level view, no tag lookup per block)."),
-    "Anisotropic N×": (
-        "The probe set-up (`aniso::probes`, once per sample): the four axis components scaled to "
-        "texels (one 32×32-bit multiply for a component below one normalized unit), two squared "
-        "lengths, two logarithms, the probe count from a 65-entry table of the ratio's top bits (no "
-        "search), the step by a reciprocal. The probe loop has no saturating adds when no step can "
-        "saturate (a start within ±2⁶²). Each probe is a trilinear sample that keeps both levels' "
-        "8.16 values for the mean, about a trilinear call; the set-up and the mean exceed the 100 "
-        "the goal leaves for them, so the goal holds only for 16 probes."),
-    "Batches (steady ≤ 0.9 × single call)": (
-        "The batch loop keeps the sampler's fields in registers and has no frame per hit, but the "
-        "per-hit work is the single call's (lod window, level view, addressing, filter)."),
-}
-
 # Geometric LOD rows: (key, label, single-instance calls, batch calls
 # (32 then 64 instances)).
 GEOMLOD_ROWS = [
@@ -275,28 +215,6 @@ BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12, "rv": 20}, "trilinear":
 # the FAST table batch reads the ray stack's normalised Pl and writes one
 # word per hit): the goal where it is met, else the achieved value + 10 %.
 BATCH_CEILINGS = {"lod_fast": {"m4": 12, "rv": 20, "rvzbb": 20}}
-# Why a batch meets or misses its goal, per hit. The heading ("goal met" /
-# "goal missed") and the counts {m4}, {rv}, {rvzbb} (steady state per hit)
-# come from the measurement.
-BATCH_ANALYSIS = {
-    "lod_fast": (
-        "Cortex-M4 {m4} per hit against the goal of 12, RV32IMAC {rv} and Zbb {rvzbb} against "
-        "20. The batch writes one `LodWord` per hit: the lod bits in an `i32`, an untextured "
-        "entry outside the `Lod` range (the wrapping difference with the marker `Log2Pb::UNTEXTURED`, "
-        "I16F16 bits −2³¹, flips bit 31, so the word lies near ±2²³ while textured words lie within ±127 levels; "
-        "`LodWord::get` reads it as `Option<Lod>`), so the loop has neither the untextured branch "
-        "nor the `Option` tag and its second store. On the M4 the loop is unrolled four times, "
-        "35 instructions per four hits: the key and `log2 Pb` words (five `ldr`/`ldrd` for eight "
-        "words), the index (`bfc`, twice after a `mov`: `bfc` overwrites its register), the "
-        "table read (`ldr` with the index scaled by 4), `sub` of `log2 Pb`, `add` of the entry, "
-        "`asr #8` to I8F8, the stores (`str`/`strd`: three for four words), two address adds "
-        "and the loop counter (`adds`, `cmp`, `bne`). RV32IMAC (not unrolled): `lw` ×2, the "
-        "index (`andi`, `slli`, `add`: no scaled-index load), `lw` of the entry, `sub`, `add`, "
-        "`srai`, `sw`, two pointer increments and `bne`, 13; Zbb has no scaled add (that is "
-        "Zba), so the same 13. Ceiling = the goal."
-    ),
-}
-
 # Ceilings checked in CI: the goal where it is met, else the achieved
 # maximum + 10 % (the reason is in the "Goals missed" section below).
 CEILINGS = {
@@ -309,72 +227,6 @@ CEILINGS = {
     "trilinear_fast": {"m4": 230, "rv": 336, "rvzbb": 313},
 }
 
-# Why a goal is missed, per call: what the accurate path must execute,
-# instruction by instruction (the counts per class are in the
-# "Executed instruction mix" table).
-MISSED = {
-    "lod": (
-        "The accurate path keeps today's results bit for bit (64-entry table, linear interpolation, "
-        "error 2⁻¹³). Per call on the M4: the untextured test (`cmp`, branch); the 64-bit `Pl` "
-        "normalised word-wise (high word non-zero: `cbz`, `clz`, `lsl`, `lsr`, `eor`, `lsr`, `orr`, "
-        "falling through; zero: `orr`, `clz`, `lsl`, `add` and a branch back); the interval read (`ubfx` index, `movw`/`movt` "
-        "table address, address add, two loads: entry and slope, the I8F8 rounding and the "
-        "integer offset folded into the entry); the interpolation (`ubfx` weight, `mul`, add of "
-        "the rounding constant, add with `lsr #16`); `log2 Pl − (lz << 16) − log2 Pb` (two "
-        "adds/subs), the `lsr #8` to I8F8, the `Option` tag, and a `push`/`mov r7, sp`/`pop` frame "
-        "because the frame pointer is on and seven values are live. RV32IMAC has no `clz`: two "
-        "compare-and-shift steps and a byte-table read (`srli`, `seqz`, `slli`, `sll` per step, "
-        "`lui`/`addi`/`add`/`lbu` for the table) replace one instruction, and RISC-V has no "
-        "bit-field extract or shifted operand (index and weight cost two instructions each, "
-        "every shifted add one more). Below 20 needs the interpolation gone: a larger table read "
-        "without it (the FAST tier `table_lod::<Fast>`, not bit-identical: its row above)."
-    ),
-    "cone_lod": (
-        "Two accurate logarithms (the 64-bit width as in table lod, the 32-bit `n·d` after its "
-        "clamp to [2⁻¹⁶, 1]: `cmp`/`it` pairs), each with its interval read and interpolation "
-        "multiply, Δ clamped to ±2³⁰ (two compares) so the sum cannot overflow, and the final "
-        "clamp to the I8F8 range (`ssat`-like compare pairs). Twice the table-lod work plus the "
-        "clamps; on RV32IMAC twice the soft `clz`."
-    ),
-    "bilinear": (
-        "The same call as the sampler matrix's \"RGBA8 bilinear, wrap\" ACCURATE row (a "
-        "`Pow2Pyramid`, no fetch statistics): its analysis and the per-class count of its executed "
-        "path are in the \"Sampler matrix\" section."
-    ),
-    "trilinear": (
-        "The same call as the sampler matrix's \"RGBA8 trilinear, wrap\" ACCURATE row: its analysis "
-        "and per-class count are in the \"Sampler matrix\" section; the batch (`Sampler::sample_batch`) "
-        "runs the same per-hit work without the frame."
-    ),
-}
-
-MISSED.update({
-    "trilinear_fast": (
-        "The same call as the sampler matrix's \"RGBA8 trilinear, wrap\" FAST row (bound 1.5 LSB): "
-        "its analysis and per-class count are in the \"Sampler matrix\" section."
-    ),
-    "lod_fast": (
-        "The FAST path drops the interpolation (one read of a 1024-entry table, log2 error ≤ 2⁻¹⁰, "
-        "lod error ≤ 2⁻⁸ as documented for both paths). On the M4 it meets the goal: frame "
-        "(`push`, `mov r7, sp`, `pop`: the target keeps frame pointers), untextured test (`cmp`, "
-        "branch), the high-word normalisation (`cbz`, `clz`, `lsl`, `lsr`, `eor`, `lsr`, `orr`), "
-        "`ubfx` index, `movw`/`movt` table address, one `ldr`, `sub` of `log2 Pb`, `lsr #8`, "
-        "`sub` of `lz << 8`, the `Option` tag. RV32IMAC has no `clz`: the soft count (two "
-        "compare-and-shift steps and a byte-table read, 11 instructions on the longest path) "
-        "alone exceeds the gap to 30, and the index costs `srli`/`lui`/`addi`/`and` (no bit-field "
-        "extract; the mask 0xFFC is no 12-bit immediate); Zbb: the same without the soft count, "
-        "plus `lui` for the untextured constant and `lui`/`addi` for the table address, 3 over. "
-        "Below that needs the path length kept normalised in the ray stack (no count per hit)."
-    ),
-    "cone_lod_fast": (
-        "Two FAST logarithms (each one table read) instead of two interpolations, Δ clamped with "
-        "one `ssat` on the M4 (range [−2³⁰, 2³⁰)), `|n·d|` clamped to [2⁻¹⁶, 1] (two compare "
-        "pairs). The M4 meets the goal; on RV32IMAC the two soft leading-zero counts, the 64-bit "
-        "absolute value (no carry flag: `sltu` chains) and compare-and-branch clamps (no `ssat`, "
-        "no `min`/`max` without Zbb) exceed it; with Zbb the table addressing (`lui`/`addi` per "
-        "constant, no bit-field extract) and the `Option` test remain."
-    ),
-})
 # Ceilings of the sampler-state and geometric-LOD rows (max instructions
 # per call; geomlod: per instance, steady state): the first measurement's
 # maximum + 10 %, rounded up.
@@ -491,6 +343,26 @@ def load_classes(root):
             rules.append((name, re.compile(insn) if insn else None,
                           re.compile(stack) if stack else None))
     return rules
+
+
+def load_analysis(root):
+    """The paragraphs of docs/budget-analysis.md: {section: {heading:
+    paragraph}}, the `## ` sections and their `### ` headings in order,
+    each paragraph's lines joined by spaces."""
+    out, section, heading = {}, None, None
+    with open(os.path.join(root, "docs", "budget-analysis.md")) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("### "):
+                heading = line[4:]
+                out[section][heading] = ""
+            elif line.startswith("## "):
+                section, heading = line[3:], None
+                out[section] = {}
+            elif line and heading is not None:
+                text = out[section][heading]
+                out[section][heading] = f"{text} {line}" if text else line
+    return out
 
 
 def load_rows(root):
@@ -614,6 +486,7 @@ def without_softcore(text):
 
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ANALYSIS = load_analysis(ROOT)
 
 
 def render(work, old_text, readme):
@@ -724,11 +597,14 @@ def render(work, old_text, readme):
         ceil = BATCH_CEILINGS.get(c)
         row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
         w("| " + " | ".join(row) + " |")
-    for c, text in BATCH_ANALYSIS.items():
+    for heading, text in ANALYSIS["Batches"].items():
+        c = {label + " batch": c for c, label in ALL_CALLS}[heading]
         steady = {k: (res[k]["rm_batch_" + c][1] - res[k]["rm_batch_" + c][0]) / 32 for k, _ in ISAS}
-        met = all(steady[k] <= g for k, g in BATCH_GOALS[c].items())
-        text = text.format(**{k: f"{v:.1f}" for k, v in steady.items()})
-        w(f"\n**{dict(ALL_CALLS)[c]} batch, goal {'met' if met else 'missed'}.** {text}")
+        g = BATCH_GOALS[c]
+        met = all(steady[k] <= goal for k, goal in g.items())
+        w(f"\n**{heading}, goal {'met' if met else 'missed'}.** Cortex-M4 {steady['m4']:.1f} per hit "
+          f"against the goal of {g['m4']}, RV32IMAC {steady['rv']:.1f} and Zbb {steady['rvzbb']:.1f} "
+          f"against {g['rv']}. {text}")
 
     mi, mz = kv(work, "rv", "minstret"), kv(work, "rvzbb", "minstret")
     w("\nCross-check on RV32 with `minstret` under `-icount shift=0`, read before and after each call:")
@@ -865,13 +741,14 @@ def render(work, old_text, readme):
     missed = [(c, k) for c, _ in ALL_CALLS for k, _ in ISAS if (c, k) not in ok]
     if missed:
         w("\n## Goals missed, and why\n")
-        w("Per path: an accurate path listed here may have its goal met by its FAST path (above).\n")
+        w("Per path: an accurate path listed here may have its goal met by its FAST path (above).")
+        w("The analysis of each call is docs/budget-analysis.md, copied here.\n")
         w("Missed (call, ISA, max instructions / goal): " + "; ".join(
             f"{dict(ALL_CALLS)[c]} {dict(ISAS)[k]} {stat(res[k]['rm_bench_' + c])[2]} / {GOALS[c][k]}"
             for c, k in missed) + ".\n")
-        for c, text in MISSED.items():
-            if any(cc == c for cc, _ in missed):
-                w(f"**{dict(ALL_CALLS)[c]}.** {text}\n")
+        for label, text in ANALYSIS["Per-hit calls"].items():
+            if any(dict(ALL_CALLS)[c] == label for c, _ in missed):
+                w(f"**{label}.** {text}\n")
 
     w("")
     w(softcore_block(old_text) or BEGIN + "\n" + END)
@@ -1035,7 +912,8 @@ def matrix_section(res, w, bad, every, work):
         ceil = MATRIX_BATCH_CEILINGS.get(sym)
         row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
         w("| " + " | ".join(row) + " |")
-    for key, text in MATRIX_MISSED.items():
+    w("\nWhere the instructions go (docs/budget-analysis.md, copied here):")
+    for key, text in ANALYSIS["Sampler matrix"].items():
         w(f"\n**{key}.** {text}")
     breakdown_section(st, every, work, w)
 
