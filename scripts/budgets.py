@@ -102,51 +102,53 @@ SAMPLER_ROWS = [
 # RV32IMAC's for Zbb too) or a relative goal (factor, row key of the same
 # tier it is relative to, added constant): `factor × that row's max +
 # constant`.
+def per_isa(m4, rv):
+    """A goal of `m4` instructions on the Cortex-M4, `rv` on RV32IMAC with
+    or without Zbb."""
+    return {"m4": m4, "rv": rv, "rvzbb": rv}
+
+
+def both_tiers(key, label, wrappers, calls, goals):
+    """The ACCURATE row `key` and the FAST row `<key>_f` of one
+    configuration: `wrappers` and `goals` are (ACCURATE, FAST) pairs, a
+    relative goal given once (FAST's is relative to the FAST row)."""
+    if not isinstance(goals, list):
+        goals = [goals, goals if goals is None else (goals[0], goals[1] + "_f", goals[2])]
+    return [(key, label, "ACCURATE", wrappers[0], calls, goals[0]),
+            (key + "_f", label, "FAST", wrappers[1], calls, goals[1])]
+
+
+ALL_64 = slice(0, 64)
+# The BC1 wrappers are called in pairs (cache filled, then hit).
+BC1_FILL, BC1_HIT = slice(0, 128, 2), slice(1, 128, 2)
+# The anisotropic wrapper: 64 calls of each probe count in turn.
+ANISO = [(n, slice(64 * i, 64 * (i + 1))) for i, n in enumerate((2, 4, 16))]
+TS = "rm_bench_ts_"
 MATRIX_ROWS = [
-    ("tw_bil", "RGBA8 bilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_bench_bilinear",
-     slice(0, 64), {"m4": 85, "rv": 115, "rvzbb": 115}),
-    ("tw_bil_f", "RGBA8 bilinear, wrap, bias/clamps set", "FAST", "rm_bench_bilinear_fast",
-     slice(0, 64), {"m4": 80, "rv": 110, "rvzbb": 110}),
-    ("tw_tri", "RGBA8 trilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_bench_trilinear",
-     slice(0, 64), {"m4": 170, "rv": 230, "rvzbb": 230}),
-    ("tw_tri_f", "RGBA8 trilinear, wrap, bias/clamps set", "FAST", "matrix:rm_bench_trilinear_fast",
-     slice(0, 64), {"m4": 140, "rv": 200, "rvzbb": 200}),
+    *both_tiers("tw_bil", "RGBA8 bilinear, wrap, bias/clamps set",
+                ("matrix:rm_bench_bilinear", "rm_bench_bilinear_fast"), ALL_64,
+                [per_isa(85, 115), per_isa(80, 110)]),
+    *both_tiers("tw_tri", "RGBA8 trilinear, wrap, bias/clamps set",
+                ("matrix:rm_bench_trilinear", "matrix:rm_bench_trilinear_fast"), ALL_64,
+                [per_isa(170, 230), per_isa(140, 200)]),
     ("tw_tri_n", "RGBA8 trilinear, wrap, bias/clamps set, with fetch statistics", "ACCURATE",
-     "rm_bench_trilinear_counted", slice(0, 64), None),
-    ("ts_bil", "RGBA8 bilinear, mirror u / border v", "ACCURATE", "rm_bench_ts_bilinear",
-     slice(0, 64), (1.15, "tw_bil", 0)),
-    ("ts_bil_f", "RGBA8 bilinear, mirror u / border v", "FAST", "rm_bench_ts_bilinear_fast",
-     slice(0, 64), (1.15, "tw_bil_f", 0)),
-    ("ts_tri", "RGBA8 trilinear, mirror u / border v", "ACCURATE", "rm_bench_ts_trilinear",
-     slice(0, 64), (1.15, "tw_tri", 0)),
-    ("ts_tri_f", "RGBA8 trilinear, mirror u / border v", "FAST", "rm_bench_ts_trilinear_fast",
-     slice(0, 64), (1.15, "tw_tri_f", 0)),
-    ("ts_srgb", "sRGB trilinear, re-encoded (mirror/border)", "ACCURATE", "rm_bench_ts_srgb",
-     slice(0, 64), (1.6, "ts_tri", 0)),
-    ("ts_565", "RGB565 trilinear (mirror/border)", "ACCURATE", "rm_bench_ts_rgb565",
-     slice(0, 64), (1.25, "ts_tri", 0)),
-    ("ts_565_f", "RGB565 trilinear (mirror/border)", "FAST", "rm_bench_ts_rgb565_fast",
-     slice(0, 64), (1.25, "ts_tri_f", 0)),
-    ("ts_bc1_hit", "BC1 trilinear, cache hits (mirror/border)", "ACCURATE", "rm_bench_ts_bc1",
-     slice(1, 128, 2), (1.3, "ts_tri", 0)),
-    ("ts_bc1_hit_f", "BC1 trilinear, cache hits (mirror/border)", "FAST", "rm_bench_ts_bc1_fast",
-     slice(1, 128, 2), (1.3, "ts_tri_f", 0)),
-    ("ts_bc1_fill", "BC1 trilinear, cache filled (fill cost, no goal)", "ACCURATE", "rm_bench_ts_bc1",
-     slice(0, 128, 2), None),
-    ("ts_bc1_fill_f", "BC1 trilinear, cache filled (fill cost, no goal)", "FAST",
-     "rm_bench_ts_bc1_fast", slice(0, 128, 2), None),
-    ("an2", "anisotropic 2× sample", "ACCURATE", "rm_bench_ts_aniso",
-     slice(0, 64), (2, "tw_tri", 100)),
-    ("an4", "anisotropic 4× sample", "ACCURATE", "rm_bench_ts_aniso", slice(64, 128),
-     (4, "tw_tri", 100)),
-    ("an16", "anisotropic 16× sample", "ACCURATE", "rm_bench_ts_aniso", slice(128, 192),
-     (16, "tw_tri", 100)),
-    ("an2_f", "anisotropic 2× sample", "FAST", "rm_bench_ts_aniso_fast",
-     slice(0, 64), (2, "tw_tri_f", 100)),
-    ("an4_f", "anisotropic 4× sample", "FAST", "rm_bench_ts_aniso_fast", slice(64, 128),
-     (4, "tw_tri_f", 100)),
-    ("an16_f", "anisotropic 16× sample", "FAST", "rm_bench_ts_aniso_fast", slice(128, 192),
-     (16, "tw_tri_f", 100)),
+     "rm_bench_trilinear_counted", ALL_64, None),
+    *both_tiers("ts_bil", "RGBA8 bilinear, mirror u / border v", (TS + "bilinear", TS + "bilinear_fast"),
+                ALL_64, (1.15, "tw_bil", 0)),
+    *both_tiers("ts_tri", "RGBA8 trilinear, mirror u / border v", (TS + "trilinear", TS + "trilinear_fast"),
+                ALL_64, (1.15, "tw_tri", 0)),
+    ("ts_srgb", "sRGB trilinear, re-encoded (mirror/border)", "ACCURATE", TS + "srgb", ALL_64,
+     (1.6, "ts_tri", 0)),
+    *both_tiers("ts_565", "RGB565 trilinear (mirror/border)", (TS + "rgb565", TS + "rgb565_fast"), ALL_64,
+                (1.25, "ts_tri", 0)),
+    *both_tiers("ts_bc1_hit", "BC1 trilinear, cache hits (mirror/border)", (TS + "bc1", TS + "bc1_fast"),
+                BC1_HIT, (1.3, "ts_tri", 0)),
+    *both_tiers("ts_bc1_fill", "BC1 trilinear, cache filled (fill cost, no goal)", (TS + "bc1", TS + "bc1_fast"),
+                BC1_FILL, None),
+    *[(f"an{n}", f"anisotropic {n}× sample", "ACCURATE", TS + "aniso", calls, (n, "tw_tri", 100))
+      for n, calls in ANISO],
+    *[(f"an{n}_f", f"anisotropic {n}× sample", "FAST", TS + "aniso_fast", calls, (n, "tw_tri_f", 100))
+      for n, calls in ANISO],
 ]
 # Batches of the wrap rows: (label, tier, batch wrapper, single-call row).
 MATRIX_BATCHES = [
