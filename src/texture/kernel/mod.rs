@@ -425,23 +425,8 @@ impl Kernel for (Linear, Fast) {
     const TIER: Precision = Precision::Fast;
     type Lanes = Texel;
     type Wide = accurate::Wide;
-    // The exact level values; the blend's rounding term enters with the
-    // first level. (Adding `2¹⁵` to each level instead, as ACCURATE does,
-    // measured more instructions on the Cortex-M4 and on RV32IMAC.)
     software_levels!();
-    type Started = accurate::Wide;
-    #[inline(always)]
-    fn start_blend(a: accurate::Wide, t: u32, k: Rounding) -> accurate::Wide {
-        accurate::blend_start(a, t).map(|v| v.wrapping_add(k.blend))
-    }
-    #[inline(always)]
-    fn finish_one(s: accurate::Wide) -> Texel {
-        accurate::blend_finish_one(s)
-    }
-    #[inline(always)]
-    fn finish_blend(s: accurate::Wide, b: accurate::Wide, t: u32, _: Rounding) -> Texel {
-        accurate::blend_finish(s, b, t)
-    }
+    blend_later!();
 
     rgba8_texels!();
     #[inline(always)]

@@ -711,8 +711,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
                 // Wrapped on both axes: every tap is a texel (no border),
                 // addressed by the view without a mask.
-                let c = l.wrap_constants(bits).unwrap_or(self.levels[level].c);
-                let (t, fx, fy) = l.wrap_footprint(u, v, c, bits);
+                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
             let [cx, cy] = self.levels[level].c;

@@ -48,8 +48,7 @@ use core::fmt;
 use core::marker::PhantomData;
 use core::ptr::NonNull;
 
-use crate::texture::address::{pow2_wrap_taps, wrap_constant};
-use crate::texture::kernel::accurate::WEIGHT_BITS as WRAP_BITS;
+use crate::texture::address::pow2_wrap_taps;
 use crate::texture::storage::mip::{
     Geometry, MAX_LEVELS, MAX_SIZE, MipError, Pyramid, Texel, TexelSource,
 };
@@ -65,19 +64,15 @@ pub struct LevelView<'a> {
     /// Sides `w = 2^kx`, `h = 2^ky ≤ 2¹⁵`; `w` is also the row stride.
     w: u32,
     h: u32,
-    /// Row stride in bytes (`4w`).
-    stride: u32,
-    /// The wrap constants `[cx, cy]` of the ACCURATE kernel's 12-bit
-    /// weights ([`wrap_constant`]`(kx, 12)`, `(ky, 12)`), so that its
-    /// wrapped footprint reads one record per level.
-    c12: [u32; 2],
-    /// `w − 1`, `h − 1` (`< 2¹⁵`).
-    mx: u16,
-    my: u16,
+    /// `w − 1`, `h − 1`.
+    mx: u32,
+    my: u32,
     /// `31 − kx`, `31 − ky`: shifts that move bit `kx` (`ky`) of an index
     /// to bit 31 (the copy bit of a mirrored axis).
-    sx: u8,
-    sy: u8,
+    sx: u32,
+    sy: u32,
+    /// Row stride in bytes (`4w`).
+    stride: u32,
     _texels: PhantomData<&'a [Texel]>,
 }
 
@@ -111,13 +106,11 @@ impl<'a> LevelView<'a> {
             base: NonNull::from(texels).cast(),
             w,
             h,
-            // `w, h ≤ 2¹⁵` (checked above): the casts are exact.
-            mx: (w - 1) as u16,
-            my: (h - 1) as u16,
-            sx: w.leading_zeros() as u8,
-            sy: h.leading_zeros() as u8,
+            mx: w - 1,
+            my: h - 1,
+            sx: w.leading_zeros(),
+            sy: h.leading_zeros(),
             stride: w * 4,
-            c12: [w, h].map(|n| wrap_constant(n.trailing_zeros(), WRAP_BITS)),
             _texels: PhantomData,
         })
     }
@@ -151,44 +144,35 @@ impl<'a> LevelView<'a> {
     #[inline(always)]
     #[must_use]
     pub fn mask_x(&self) -> u32 {
-        u32::from(self.mx)
+        self.mx
     }
 
     /// `h − 1`, the mask of a row index.
     #[inline(always)]
     #[must_use]
     pub fn mask_y(&self) -> u32 {
-        u32::from(self.my)
+        self.my
     }
 
     /// `31 − log2 w`: `x << shift_x()` has bit `log2 w` of `x` in bit 31.
     #[inline(always)]
     #[must_use]
     pub fn shift_x(&self) -> u32 {
-        u32::from(self.sx)
+        self.sx
     }
 
     /// `31 − log2 h`, as [`shift_x`](Self::shift_x) for rows.
     #[inline(always)]
     #[must_use]
     pub fn shift_y(&self) -> u32 {
-        u32::from(self.sy)
-    }
-
-    /// The wrap constants `[cx, cy]` of this level for `bits` weight bits
-    /// when the view holds them (the ACCURATE kernel's 12), else `None`
-    /// (decided at compile time for a constant `bits`).
-    #[inline(always)]
-    #[must_use]
-    pub(crate) fn wrap_constants(&self, bits: u32) -> Option<[u32; 2]> {
-        (bits == WRAP_BITS).then_some(self.c12)
+        self.sy
     }
 
     /// The texel at row `y ≤ my`, column `x ≤ mx` (the callers' reduced
     /// indices).
     #[inline(always)]
     fn read(&self, x: u32, y: u32) -> Texel {
-        debug_assert!(x <= self.mask_x() && y <= self.mask_y());
+        debug_assert!(x <= self.mx && y <= self.my);
         let row = y as usize * self.stride as usize;
         // SAFETY: `x ≤ mx`, `y ≤ my` (every caller reduces them), so the
         // byte offset `4(y·w + x) ≤ 4(w·h − 1)` lies in the slice of at
@@ -203,8 +187,8 @@ impl<'a> LevelView<'a> {
     #[inline(always)]
     #[must_use]
     pub fn footprint(&self, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        let (x0, x1) = (x[0] & self.mask_x(), x[1] & self.mask_x());
-        let (y0, y1) = (y[0] & self.mask_y(), y[1] & self.mask_y());
+        let (x0, x1) = (x[0] & self.mx, x[1] & self.mx);
+        let (y0, y1) = (y[0] & self.my, y[1] & self.my);
         [
             self.read(x0, y0),
             self.read(x1, y0),
@@ -227,8 +211,8 @@ impl<'a> LevelView<'a> {
         [cx, cy]: [u32; 2],
         bits: u32,
     ) -> ([Texel; 4], u32, u32) {
-        let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.mask_x(), cx, bits);
-        let (y0, y1, fy) = pow2_wrap_taps(v, self.h, self.mask_y(), cy, bits);
+        let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.mx, cx, bits);
+        let (y0, y1, fy) = pow2_wrap_taps(v, self.h, self.my, cy, bits);
         let t = [
             self.read(x0, y0),
             self.read(x1, y0),
@@ -243,7 +227,7 @@ impl<'a> LevelView<'a> {
     #[inline(always)]
     #[must_use]
     pub fn texel(&self, x: u32, y: u32) -> Texel {
-        self.read(x.min(self.mask_x()), y.min(self.mask_y()))
+        self.read(x.min(self.mx), y.min(self.my))
     }
 }
 
