@@ -39,7 +39,7 @@ use raymip::texture::storage::mip::Texel;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
 use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
-use raymip_demo_firmware::inputs::{self, N, Rng};
+use raymip_demo_firmware::inputs::{self, N, XorShift32};
 use raymip_demo_firmware::{exit, measured_calls, println};
 
 use raymip_demo_firmware::probes::Tex;
@@ -95,7 +95,7 @@ fn once(call: impl FnOnce() -> usize) -> (u32, u32) {
 }
 
 /// Draws the [`N`] inputs of one kind.
-fn draw<T>(rng: &mut Rng, mut f: impl FnMut(&mut Rng) -> T) -> [T; N] {
+fn draw<T>(rng: &mut XorShift32, mut f: impl FnMut(&mut XorShift32) -> T) -> [T; N] {
     core::array::from_fn(|_| f(rng))
 }
 
@@ -129,8 +129,8 @@ raymip_demo_entry::main! {
     };
     let mut tex: Tex = Sampler::new(p);
 
-    let mut rng = Rng(inputs::SEED);
-    let empty_in = draw(&mut rng, Rng::next);
+    let mut rng = XorShift32(inputs::SEED);
+    let empty_in = draw(&mut rng, XorShift32::next_u32);
     let lod_in = draw(&mut rng, inputs::table_lod);
     let cone_in = draw(&mut rng, inputs::cone_lod);
     let bil_in = draw(&mut rng, inputs::bilinear);
