@@ -79,19 +79,42 @@ fn axis_parts(
     plus: Option<&GSample>,
     scale: i32,
 ) -> (Bfp3, Bfp3) {
+    match pair(c, minus, plus) {
+        Some((a, b)) => (pos_diff(a, b, scale), normal_diff(a, b)),
+        None => (Bfp3::ZERO, Bfp3::ZERO),
+    }
+}
+
+/// The two samples whose difference is the axis's differential (`a − b`):
+/// `(plus, c)` or `(c, minus)`, the side with the smaller `|t − t_c|`
+/// (ties: `plus`); `None` when both are missing.
+#[inline(always)]
+fn pair<'a>(
+    c: &'a GSample,
+    minus: Option<&'a GSample>,
+    plus: Option<&'a GSample>,
+) -> Option<(&'a GSample, &'a GSample)> {
     let dt = |s: &GSample| s.t.abs_diff(c.t);
-    let (a, b) = match (minus, plus) {
-        (Some(m), Some(p)) if dt(m) < dt(p) => (c, m),
-        (_, Some(p)) => (p, c),
-        (Some(m), None) => (c, m),
-        (None, None) => return (Bfp3::ZERO, Bfp3::ZERO),
-    };
+    match (minus, plus) {
+        (Some(m), Some(p)) if dt(m) < dt(p) => Some((c, m)),
+        (_, Some(p)) => Some((p, c)),
+        (Some(m), None) => Some((c, m)),
+        (None, None) => None,
+    }
+}
+
+/// `a.p − b.p` at `2^scale` (wrapping beyond the documented positions).
+#[inline(always)]
+fn pos_diff(a: &GSample, b: &GSample, scale: i32) -> Bfp3 {
     let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
+    Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX))
+}
+
+/// `a.n − b.n` in I2F30 (saturated at ±2).
+#[inline(always)]
+fn normal_diff(a: &GSample, b: &GSample) -> Bfp3 {
     let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
-    (
-        Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX)),
-        Bfp3::new(dn, -30),
-    )
+    Bfp3::new(dn, -30)
 }
 
 /// The first hit's differential state from the G-buffer (positions at
@@ -107,9 +130,12 @@ pub fn first_hit(
     [left, right, up, down]: [Option<&GSample>; 4],
     scale: i32,
 ) -> [DirDiff; 2] {
-    let (dox, dnx) = axis_parts(c, left, right, scale);
-    let (doy, dny) = axis_parts(c, up, down, scale);
-    s.set(0, dox);
-    s.set(1, doy);
-    [DirDiff(dnx), DirDiff(dny)]
+    // The two sides chosen first (two pointers each), then each
+    // differential stored as soon as it is made: its temporaries end there.
+    let (x, y) = (pair(c, left, right), pair(c, up, down));
+    s.set(0, x.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
+    s.set(1, y.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
+    let n =
+        |p: Option<(&GSample, &GSample)>| DirDiff(p.map_or(Bfp3::ZERO, |(a, b)| normal_diff(a, b)));
+    [n(x), n(y)]
 }
