@@ -68,20 +68,9 @@ pub fn axis(
     plus: Option<&GSample>,
     scale: i32,
 ) -> (PosDiff, DirDiff) {
-    let (p, n) = axis_parts(c, minus, plus, scale);
-    (PosDiff(p), DirDiff(n))
-}
-
-#[inline(always)]
-fn axis_parts(
-    c: &GSample,
-    minus: Option<&GSample>,
-    plus: Option<&GSample>,
-    scale: i32,
-) -> (Bfp3, Bfp3) {
     match pair(c, minus, plus) {
-        Some((a, b)) => (pos_diff(a, b, scale), normal_diff(a, b)),
-        None => (Bfp3::ZERO, Bfp3::ZERO),
+        Some((a, b)) => (PosDiff(pos_diff(a, b, scale)), DirDiff(normal_diff(a, b))),
+        None => (PosDiff::ZERO, DirDiff::ZERO),
     }
 }
 
@@ -138,4 +127,76 @@ pub fn first_hit(
     let n =
         |p: Option<(&GSample, &GSample)>| DirDiff(p.map_or(Bfp3::ZERO, |(a, b)| normal_diff(a, b)));
     [n(x), n(y)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixed::types::I2F30;
+
+    fn sample(p: [i32; 3], n: [i32; 3], t: u32) -> GSample {
+        GSample {
+            p,
+            n: UnitVec(n.map(I2F30::from_bits)),
+            t,
+        }
+    }
+
+    fn value(m: [i32; 3], e: i32) -> [f64; 3] {
+        m.map(|x| f64::from(x) * f64::from(e).exp2())
+    }
+
+    #[test]
+    fn the_side_with_the_smaller_distance_step() {
+        let one = 1 << 30;
+        let c = sample([0, 0, 0], [0, 0, one], 100);
+        // |Δt| = 10, 3, 10 (a tie with `m`) and 20.
+        let m = sample([-4, 0, 0], [1 << 20, 0, one], 90);
+        let p = sample([0, 6, 0], [0, 1 << 21, one], 103);
+        let tie = sample([0, 0, 8], [0, -(1 << 22), one], 110);
+        let far = sample([0, 0, 2], [0, 0, one], 120);
+        let pos = |r: (PosDiff, DirDiff)| {
+            let (m, e) = r.0.parts();
+            value(m, e)
+        };
+        let nrm = |r: (PosDiff, DirDiff)| {
+            let (m, e) = r.1.parts();
+            value(m, e)
+        };
+        // `plus` nearer: P₊ − P, n₊ − n.
+        let r = axis(&c, Some(&m), Some(&p), 0);
+        assert_eq!(pos(r), [0.0, 6.0, 0.0]);
+        assert_eq!(nrm(r), [0.0, 1.0 / 512.0, 0.0]);
+        // `minus` nearer: P − P₋, n − n₋.
+        let r = axis(&c, Some(&m), Some(&far), 0);
+        assert_eq!(pos(r), [4.0, 0.0, 0.0]);
+        assert_eq!(nrm(r), [-1.0 / 1024.0, 0.0, 0.0]);
+        // A tie: `plus`.
+        let r = axis(&c, Some(&m), Some(&tie), 0);
+        assert_eq!(pos(r), [0.0, 0.0, 8.0]);
+        assert_eq!(nrm(r), [0.0, -1.0 / 256.0, 0.0]);
+        // One side only, or none.
+        assert_eq!(pos(axis(&c, Some(&m), None, 0)), [4.0, 0.0, 0.0]);
+        assert_eq!(pos(axis(&c, None, Some(&m), 0)), [-4.0, 0.0, 0.0]);
+        assert_eq!(axis(&c, None, None, 0), (PosDiff::ZERO, DirDiff::ZERO));
+        // The first hit: the same choice per axis, positions at 2^scale
+        // stored in the state (its ∂D kept), normals returned.
+        let dd = DirDiff::new([1, 2, 3], -20);
+        let mut s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, dd, dd);
+        let [nx, ny] = first_hit(&mut s, &c, [Some(&m), Some(&p), Some(&far), Some(&m)], -2);
+        assert_eq!(s.dox(), axis(&c, Some(&m), Some(&p), -2).0);
+        assert_eq!(s.doy(), axis(&c, Some(&far), Some(&m), -2).0);
+        assert_eq!(value(s.dox().parts().0, s.dox().parts().1), [0.0, 1.5, 0.0]);
+        assert_eq!(
+            value(s.doy().parts().0, s.doy().parts().1),
+            [-1.0, 0.0, 0.0]
+        );
+        assert_eq!((s.ddx(), s.ddy()), (dd, dd));
+        assert_eq!(nx, axis(&c, Some(&m), Some(&p), 0).1);
+        assert_eq!(ny, axis(&c, Some(&far), Some(&m), 0).1);
+        assert_ne!(nx, DirDiff::ZERO);
+        // No neighbour in y: no differential there.
+        let [_, ny] = first_hit(&mut s, &c, [None, Some(&p), None, None], -2);
+        assert_eq!((s.doy(), ny), (PosDiff::ZERO, DirDiff::ZERO));
+    }
 }
