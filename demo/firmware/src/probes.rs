@@ -53,8 +53,37 @@ pub type TexCounted<'a> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap>>;
 /// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
 pub type Tw<'a, P = Accurate> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P, NoStats>>;
 
+/// The measured wrappers and the calls the budget binary makes of each:
+/// `scripts/budget-rows.txt`, which `scripts/budgets.py` reads too.
+pub const ROWS: &str = include_str!("../../../scripts/budget-rows.txt");
+
+/// Whether a line of [`ROWS`] names the wrapper `name` (`name ;` at its
+/// start).
+#[must_use]
+pub const fn listed(name: &str) -> bool {
+    let (rows, name) = (ROWS.as_bytes(), name.as_bytes());
+    let mut line = 0;
+    while line < rows.len() {
+        let mut j = 0;
+        while j < name.len() && line + j < rows.len() && rows[line + j] == name[j] {
+            j += 1;
+        }
+        let end = line + j;
+        if j == name.len() && end + 1 < rows.len() && rows[end] == b' ' && rows[end + 1] == b';' {
+            return true;
+        }
+        while line < rows.len() && rows[line] != b'\n' {
+            line += 1;
+        }
+        line += 1;
+    }
+    false
+}
+
 /// A measured wrapper: the function, public, with a stable symbol name for
-/// the traces (`no_mangle`) and never inlined.
+/// the traces (`no_mangle`) and never inlined; a wrapper that is not a row
+/// of [`ROWS`] does not compile.
+#[macro_export]
 macro_rules! probe {
     ($(#[$m:meta])* fn $name:ident($($a:ident: $t:ty),*) -> $ret:ty $body:block) => {
         $(#[$m])*
@@ -62,6 +91,10 @@ macro_rules! probe {
         #[unsafe(no_mangle)]
         #[inline(never)]
         pub fn $name($($a: $t),*) -> $ret $body
+        const _: () = assert!(
+            $crate::probes::listed(stringify!($name)),
+            concat!(stringify!($name), " is not a row of scripts/budget-rows.txt")
+        );
     };
 }
 
