@@ -118,13 +118,13 @@ type Sample<'a> = &'a mut dyn FnMut(TexCoord, TexCoord, Lod, Mode) -> Texel;
 /// (trilinear, bilinear): any `u`, `v`; lods from −2 to 10 (the pyramid
 /// has [`raymip_demo_scene::TEX_LEVELS`] levels). `hash`: FNV-1a over
 /// `a`'s samples, continued.
-fn mismatches(rng: &mut Rng, hash: &mut u32, a: Sample<'_>, b: Sample<'_>) -> u32 {
+fn mismatches(rng: &mut XorShift32, hash: &mut u32, a: Sample<'_>, b: Sample<'_>) -> u32 {
     let mut bad = 0;
     for mode in [Mode::Trilinear, Mode::BilinearNearestLevel] {
         for _ in 0..CHECKS {
-            let u = TexCoord::from_bits(i64::from(rng.next() as i32));
-            let v = TexCoord::from_bits(i64::from(rng.next() as i32));
-            let lod = Lod::from_bits((rng.next() % (12 << 8)) as i16 - (2 << 8));
+            let u = TexCoord::from_bits(i64::from(rng.next_u32() as i32));
+            let v = TexCoord::from_bits(i64::from(rng.next_u32() as i32));
+            let lod = Lod::from_bits((rng.next_u32() % (12 << 8)) as i16 - (2 << 8));
             let t = a(u, v, lod, mode);
             bad += u32::from(t != b(u, v, lod, mode));
             for byte in t.to_le_bytes() {
