@@ -152,20 +152,31 @@ typedef uint8_t RmMode;
 
 // Addressing of a texture axis: `rm_sampler_init` takes one for both
 // axes, `RmSamplerDesc` one per axis.
+//
+// The numbers are those of raymip's Rust `AddressMode`, which the
+// co-processor's operands carry too. They follow Vulkan's
+// `VkSamplerAddressMode` for 0–2 (`REPEAT`, `MIRRORED_REPEAT`,
+// `CLAMP_TO_EDGE`), as D3D11's `D3D11_TEXTURE_ADDRESS_MODE` orders them
+// (`WRAP`, `MIRROR`, `CLAMP`, numbered there from 1); 3 and 4 are swapped
+// against Vulkan (`CLAMP_TO_BORDER` = 3, `MIRROR_CLAMP_TO_EDGE` = 4).
 enum RmAddress
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint8_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
-  // Repeat: only the fractional part of a coordinate is used.
+  // Repeat: only the fractional part of a coordinate is used (Vulkan
+  // `REPEAT`).
   RM_ADDRESS_WRAP = 0,
-  // Clamp to edge.
-  RM_ADDRESS_CLAMP = 1,
-  // Repeat, every other copy mirrored (D3D `MIRROR`).
-  RM_ADDRESS_MIRROR = 2,
-  // Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`).
+  // Repeat, every other copy mirrored (Vulkan `MIRRORED_REPEAT`, D3D
+  // `MIRROR`).
+  RM_ADDRESS_MIRROR = 1,
+  // Clamp to edge (Vulkan `CLAMP_TO_EDGE`).
+  RM_ADDRESS_CLAMP = 2,
+  // Mirror once around 0, then clamp to the edge (Vulkan
+  // `MIRROR_CLAMP_TO_EDGE`, D3D `MIRROR_ONCE`).
   RM_ADDRESS_MIRROR_ONCE = 3,
-  // Texels outside the level read the border colour (D3D `BORDER`).
+  // Texels outside the level read the border colour (Vulkan
+  // `CLAMP_TO_BORDER`, D3D `BORDER`).
   RM_ADDRESS_BORDER = 4,
 };
 #ifndef __cplusplus

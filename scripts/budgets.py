@@ -39,10 +39,6 @@ ALL_CALLS = CALLS[:2] + FAST_CALLS[:2] + CALLS[2:] + FAST_CALLS[2:]
 BEGIN, END = "<!-- softcore:begin -->", "<!-- softcore:end -->"
 README_BEGIN, README_END = "<!-- sampler-budgets:begin -->", "<!-- sampler-budgets:end -->"
 
-# Wrappers that serve several rows, and how many calls each must show.
-CALLS_TRACED = {"rm_bench_ts_bilinear": 64, "rm_bench_ts_trilinear": 64, "rm_bench_ts_srgb": 64,
-                "rm_bench_ts_rgb565": 64, "rm_bench_ts_bc1": 128, "rm_bench_ts_aniso": 192,
-                "rm_bench_geomlod": 128, "rm_batch_geomlod": 4}
 # Ray differentials (feature `raydiff`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
 RD_ROWS = [("rd_primary", "primary set-up from the camera"),
@@ -52,7 +48,6 @@ RD_ROWS = [("rd_primary", "primary set-up from the camera"),
            ("rd_footprint", "footprint (two texel-space axes)"),
            ("rd_lod", "lod from the footprint (larger axis)"),
            ("rd_gbuffer", "G-buffer first-hit set-up (four neighbours)")]
-CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in RD_ROWS})
 # Cortex-M4 goals of the ray differentials (issue 33; max instructions):
 # per call, and per textured hit as sums of rows.
 RD_GOALS = {"rd_primary": 150, "rd_transfer": 150, "rd_reflect": 120, "rd_refract": 300,
@@ -65,13 +60,13 @@ RD_SUM_GOALS = [("footprint + lod", ["rd_footprint", "rd_lod"], 150),
 # CI ceilings of the ray differentials (max instructions per call): the goal
 # where it is met, else this measurement's maximum + 10 %.
 RD_CEILINGS = {
-    "rd_primary": {"m4": 203, "rv": 449, "rvzbb": 347},
-    "rd_transfer": {"m4": 306, "rv": 476, "rvzbb": 328},
-    "rd_reflect": {"m4": 238, "rv": 422, "rvzbb": 344},
-    "rd_refract": {"m4": 638, "rv": 1013, "rvzbb": 653},
+    "rd_primary": {"m4": 182, "rv": 299, "rvzbb": 245},
+    "rd_transfer": {"m4": 286, "rv": 456, "rvzbb": 328},
+    "rd_reflect": {"m4": 228, "rv": 387, "rvzbb": 344},
+    "rd_refract": {"m4": 638, "rv": 999, "rvzbb": 653},
     "rd_footprint": {"m4": 66, "rv": 75, "rvzbb": 75},
     "rd_lod": {"m4": 80, "rv": 136, "rvzbb": 105},
-    "rd_gbuffer": {"m4": 235, "rv": 292, "rvzbb": 246},
+    "rd_gbuffer": {"m4": 204, "rv": 290, "rvzbb": 226},
 }
 # Environment map (feature `envmap`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
@@ -79,7 +74,6 @@ ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
             ("env_cone_lat", "cone lod with the pole term"),
             ("env_raydiff", "ray-differential lod with the pole term"),
             ("env_uv", "direction → (u, v), two 32-bit vectorings (3 CORDIC steps + series)")]
-CALLS_TRACED.update({"rm_bench_" + k: 64 for k, _ in ENV_ROWS})
 
 # Sampler-state (ts_*) rows: (key, label, wrapper, its calls of this row, the
 # sampler-accuracy cell of the README (format, filter) or None). The order
@@ -108,54 +102,54 @@ SAMPLER_ROWS = [
 # RV32IMAC's for Zbb too) or a relative goal (factor, row key of the same
 # tier it is relative to, added constant): `factor × that row's max +
 # constant`.
+def per_isa(m4, rv):
+    """A goal of `m4` instructions on the Cortex-M4, `rv` on RV32IMAC with
+    or without Zbb."""
+    return {"m4": m4, "rv": rv, "rvzbb": rv}
+
+
+def both_tiers(key, label, wrappers, calls, goals):
+    """The ACCURATE row `key` and the FAST row `<key>_f` of one
+    configuration: `wrappers` and `goals` are (ACCURATE, FAST) pairs, a
+    relative goal given once (FAST's is relative to the FAST row)."""
+    if not isinstance(goals, list):
+        goals = [goals, goals if goals is None else (goals[0], goals[1] + "_f", goals[2])]
+    return [(key, label, "ACCURATE", wrappers[0], calls, goals[0]),
+            (key + "_f", label, "FAST", wrappers[1], calls, goals[1])]
+
+
+ALL_64 = slice(0, 64)
+# The BC1 wrappers are called in pairs (cache filled, then hit).
+BC1_FILL, BC1_HIT = slice(0, 128, 2), slice(1, 128, 2)
+# The anisotropic wrapper: 64 calls of each probe count in turn.
+ANISO = [(n, slice(64 * i, 64 * (i + 1))) for i, n in enumerate((2, 4, 16))]
+TS = "rm_bench_ts_"
 MATRIX_ROWS = [
-    ("tw_bil", "RGBA8 bilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_bench_bilinear",
-     slice(0, 64), {"m4": 85, "rv": 115, "rvzbb": 115}),
-    ("tw_bil_f", "RGBA8 bilinear, wrap, bias/clamps set", "FAST", "rm_bench_bilinear_fast",
-     slice(0, 64), {"m4": 80, "rv": 110, "rvzbb": 110}),
-    ("tw_tri", "RGBA8 trilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_bench_trilinear",
-     slice(0, 64), {"m4": 170, "rv": 230, "rvzbb": 230}),
-    ("tw_tri_f", "RGBA8 trilinear, wrap, bias/clamps set", "FAST", "matrix:rm_bench_trilinear_fast",
-     slice(0, 64), {"m4": 140, "rv": 200, "rvzbb": 200}),
+    *both_tiers("tw_bil", "RGBA8 bilinear, wrap, bias/clamps set",
+                ("matrix:rm_bench_bilinear", "rm_bench_bilinear_fast"), ALL_64,
+                [per_isa(85, 115), per_isa(80, 110)]),
+    *both_tiers("tw_tri", "RGBA8 trilinear, wrap, bias/clamps set",
+                ("matrix:rm_bench_trilinear", "matrix:rm_bench_trilinear_fast"), ALL_64,
+                [per_isa(170, 230), per_isa(140, 200)]),
     ("tw_tri_n", "RGBA8 trilinear, wrap, bias/clamps set, with fetch statistics", "ACCURATE",
-     "rm_bench_trilinear_counted", slice(0, 64), None),
-    ("ts_bil", "RGBA8 bilinear, mirror u / border v", "ACCURATE", "rm_bench_ts_bilinear",
-     slice(0, 64), (1.15, "tw_bil", 0)),
-    ("ts_bil_f", "RGBA8 bilinear, mirror u / border v", "FAST", "rm_bench_ts_bilinear_fast",
-     slice(0, 64), (1.15, "tw_bil_f", 0)),
-    ("ts_tri", "RGBA8 trilinear, mirror u / border v", "ACCURATE", "rm_bench_ts_trilinear",
-     slice(0, 64), (1.15, "tw_tri", 0)),
-    ("ts_tri_f", "RGBA8 trilinear, mirror u / border v", "FAST", "rm_bench_ts_trilinear_fast",
-     slice(0, 64), (1.15, "tw_tri_f", 0)),
-    ("ts_srgb", "sRGB trilinear, re-encoded (mirror/border)", "ACCURATE", "rm_bench_ts_srgb",
-     slice(0, 64), (1.6, "ts_tri", 0)),
-    ("ts_565", "RGB565 trilinear (mirror/border)", "ACCURATE", "rm_bench_ts_rgb565",
-     slice(0, 64), (1.25, "ts_tri", 0)),
-    ("ts_565_f", "RGB565 trilinear (mirror/border)", "FAST", "rm_bench_ts_rgb565_fast",
-     slice(0, 64), (1.25, "ts_tri_f", 0)),
-    ("ts_bc1_hit", "BC1 trilinear, cache hits (mirror/border)", "ACCURATE", "rm_bench_ts_bc1",
-     slice(1, 128, 2), (1.3, "ts_tri", 0)),
-    ("ts_bc1_hit_f", "BC1 trilinear, cache hits (mirror/border)", "FAST", "rm_bench_ts_bc1_fast",
-     slice(1, 128, 2), (1.3, "ts_tri_f", 0)),
-    ("ts_bc1_fill", "BC1 trilinear, cache filled (fill cost, no goal)", "ACCURATE", "rm_bench_ts_bc1",
-     slice(0, 128, 2), None),
-    ("ts_bc1_fill_f", "BC1 trilinear, cache filled (fill cost, no goal)", "FAST",
-     "rm_bench_ts_bc1_fast", slice(0, 128, 2), None),
-    ("an2", "anisotropic 2× sample", "ACCURATE", "rm_bench_ts_aniso",
-     slice(0, 64), (2, "tw_tri", 100)),
-    ("an4", "anisotropic 4× sample", "ACCURATE", "rm_bench_ts_aniso", slice(64, 128),
-     (4, "tw_tri", 100)),
-    ("an16", "anisotropic 16× sample", "ACCURATE", "rm_bench_ts_aniso", slice(128, 192),
-     (16, "tw_tri", 100)),
-    ("an2_f", "anisotropic 2× sample", "FAST", "rm_bench_ts_aniso_fast",
-     slice(0, 64), (2, "tw_tri_f", 100)),
-    ("an4_f", "anisotropic 4× sample", "FAST", "rm_bench_ts_aniso_fast", slice(64, 128),
-     (4, "tw_tri_f", 100)),
-    ("an16_f", "anisotropic 16× sample", "FAST", "rm_bench_ts_aniso_fast", slice(128, 192),
-     (16, "tw_tri_f", 100)),
+     "rm_bench_trilinear_counted", ALL_64, None),
+    *both_tiers("ts_bil", "RGBA8 bilinear, mirror u / border v", (TS + "bilinear", TS + "bilinear_fast"),
+                ALL_64, (1.15, "tw_bil", 0)),
+    *both_tiers("ts_tri", "RGBA8 trilinear, mirror u / border v", (TS + "trilinear", TS + "trilinear_fast"),
+                ALL_64, (1.15, "tw_tri", 0)),
+    ("ts_srgb", "sRGB trilinear, re-encoded (mirror/border)", "ACCURATE", TS + "srgb", ALL_64,
+     (1.6, "ts_tri", 0)),
+    *both_tiers("ts_565", "RGB565 trilinear (mirror/border)", (TS + "rgb565", TS + "rgb565_fast"), ALL_64,
+                (1.25, "ts_tri", 0)),
+    *both_tiers("ts_bc1_hit", "BC1 trilinear, cache hits (mirror/border)", (TS + "bc1", TS + "bc1_fast"),
+                BC1_HIT, (1.3, "ts_tri", 0)),
+    *both_tiers("ts_bc1_fill", "BC1 trilinear, cache filled (fill cost, no goal)", (TS + "bc1", TS + "bc1_fast"),
+                BC1_FILL, None),
+    *[(f"an{n}", f"anisotropic {n}× sample", "ACCURATE", TS + "aniso", calls, (n, "tw_tri", 100))
+      for n, calls in ANISO],
+    *[(f"an{n}_f", f"anisotropic {n}× sample", "FAST", TS + "aniso_fast", calls, (n, "tw_tri_f", 100))
+      for n, calls in ANISO],
 ]
-CALLS_TRACED.update({"rm_bench_ts_aniso_fast": 192, "rm_bench_ts_bc1_fast": 128})
-CALLS_TRACED.update({sym: 64 for _, _, _, sym, sl, _ in MATRIX_ROWS if sym not in CALLS_TRACED})
 # Batches of the wrap rows: (label, tier, batch wrapper, single-call row).
 MATRIX_BATCHES = [
     ("RGBA8 bilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_batch_bilinear", "tw_bil"),
@@ -163,7 +157,6 @@ MATRIX_BATCHES = [
     ("RGBA8 trilinear, wrap, bias/clamps set", "ACCURATE", "matrix:rm_batch_trilinear", "tw_tri"),
     ("RGBA8 trilinear, wrap, bias/clamps set", "FAST", "rm_batch_trilinear_fast", "tw_tri_f"),
 ]
-CALLS_TRACED.update({sym: 2 for _, _, sym, _ in MATRIX_BATCHES})
 # The wrap rows have the plain rows' types, so they call the plain rows'
 # wrappers a second time (`matrix_rows` runs after the plain rows): the
 # calls after the first `n` of these wrappers are the matrix's, under the
@@ -172,7 +165,7 @@ MATRIX_SHARED = {"rm_bench_bilinear": 64, "rm_bench_trilinear": 64, "rm_bench_tr
                  "rm_batch_bilinear": 2, "rm_batch_trilinear": 2}
 # CI ceilings of the matrix (max instructions per call; batches: steady per
 # hit): the goal where it is met, else the achieved value + 5 % (reasons in
-# MATRIX_MISSED and the per-class breakdown). Fixed numbers, so a slower
+# docs/budget-analysis.md and the per-class breakdown). Fixed numbers, so a slower
 # build fails.
 MATRIX_CEILINGS = {
     "tw_bil": {"m4": 111, "rv": 139, "rvzbb": 137},
@@ -204,66 +197,6 @@ MATRIX_BATCH_CEILINGS = {
     "matrix:rm_batch_trilinear": {"m4": 224, "rv": 249, "rvzbb": 244},
     "rm_batch_trilinear_fast": {"m4": 196, "rv": 230, "rvzbb": 201},
 }
-MATRIX_MISSED = {
-    "Wrap rows (RGBA8, `Pow2Pyramid`)": (
-        "The state costs nothing per call: bias, lod clamp and the level clamp are one add and the "
-        "clamp pair every call executes. Per level the direct path reads the level's view (first "
-        "texel, sides, masks, row stride) and the kernel's wrap constants, computes per axis one "
-        "32×32→64-bit multiply (index in the high word, weight in the low word) and the wrapped "
-        "neighbour `(i + 1) & (n − 1)`, two row pointers (`base + y·stride`) and four loads, with no "
-        "bounds check (the views are validated when the `Pow2Pyramid` is made). The ACCURATE filter "
-        "is per texel and channel one extract and one multiply-accumulate (24-bit corner weights: two "
-        "channels never share a product), each chain started from the rounding term held in a "
-        "register (`Rounding`). On the Cortex-M4 the remaining excess is the \"frame, stack arguments, "
-        "spills\" column: the footprint's four texels, four corner weights, the accumulator and the "
-        "rounding term (and in trilinear the first level's four values) leave no room in the 13 "
-        "usable registers for the addressing the scheduler of a generic ARMv7E-M build interleaves with "
-        "the channels. FAST pairs two channels per 32×32→64-bit product, but LLVM splits each chain of "
-        "four multiply-accumulates into `umull` pairs joined by `adds`/`adc` instead of one `umull` and "
-        "three `umlal`. RV32IMAC has no multiply-accumulate, no bit-field extract (channels 1 and 2 cost "
-        "two shifts) and no scaled-index load, and its 64-bit product is `mul` + `mulhu`."),
-    "Mirror u / border v": (
-        "Mirror on a power-of-two level is one multiply-accumulate onto a constant (the mirrored "
-        "period's index in the high word) and an XOR per tap (`pow2_mirror_taps`); the border axis is "
-        "decided once per footprint: both taps inside (one unsigned compare) take the wrap-like path, "
-        "only an axis with a tap outside computes the clamped taps and replaces the border texels. "
-        "The largest calls are those on that edge path at the small levels (a 2- or 4-texel axis puts a "
-        "tap outside for a quarter to a half of the coordinates), and on the Cortex-M4 they spill more."),
-    "sRGB, RGB565": (
-        "sRGB decodes each texel by table into four 16-bit lanes, one channel per word, so the "
-        "filter reads them without an extract (three table loads and alpha `·257` per texel), filters "
-        "one channel per 32-bit multiply-accumulate with 16-bit weights and re-encodes three "
-        "channels, each by a 736-byte table of threshold counts and two compares (no search): its "
-        "goal is met. RGB565 is read through `Image`'s footprint (the level's size, offset and "
-        "row starts once per footprint, then per texel its two bytes and the bit replication); the "
-        "sampler addresses a power-of-two image as the direct "
-        "path does (the level's constants from its table) but cannot read it without the image's "
-        "own clamps. The goals need the expansion once per cached block (an RGBA8 block read as the "
-        "direct path reads a level)."),
-    "BC1 on cache hits": (
-        "`TexelCache::footprint` reads the level's record once (texel clamp, block offset, padded "
-        "grid: `LevelGrid`), computes each block column's and row's part of the Morton number once "
-        "(two reads of a 256-entry table each) and looks each block the footprint touches up once, "
-        "in the order of the texel reads (one lookup counted as the accesses it stands for: the same "
-        "counters and LRU order as per texel): one lookup in 9 of 16 positions, two or four when the "
-        "footprint straddles block edges. The lookup is inlined (the 64-bit clock, the set's tag "
-        "compare, the stamp and hit counter), the fill on a miss is not. The largest calls straddle "
-        "block edges in both levels; on the Cortex-M4 the footprint function (called once per level) "
-        "and the generic path spill. The goal needs the block read as the direct path reads a level "
-        "(a cached block as a level view, no tag lookup per block)."),
-    "Anisotropic N×": (
-        "The probe set-up (`aniso::probes`, once per sample): the four axis components scaled to "
-        "texels (one 32×32-bit multiply for a component below one normalized unit), two squared "
-        "lengths, two logarithms, the probe count from a 65-entry table of the ratio's top bits (no "
-        "search), the step by a reciprocal. The probe loop has no saturating adds when no step can "
-        "saturate (a start within ±2⁶²). Each probe is a trilinear sample that keeps both levels' "
-        "8.16 values for the mean, about a trilinear call; the set-up and the mean exceed the 100 "
-        "the goal leaves for them, so the goal holds only for 16 probes."),
-    "Batches (steady ≤ 0.9 × single call)": (
-        "The batch loop keeps the sampler's fields in registers and has no frame per hit, but the "
-        "per-hit work is the single call's (lod window, level view, addressing, filter)."),
-}
-
 # Geometric LOD rows: (key, label, single-instance calls, batch calls
 # (32 then 64 instances)).
 GEOMLOD_ROWS = [
@@ -284,28 +217,6 @@ BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12, "rv": 20}, "trilinear":
 # the FAST table batch reads the ray stack's normalised Pl and writes one
 # word per hit): the goal where it is met, else the achieved value + 10 %.
 BATCH_CEILINGS = {"lod_fast": {"m4": 12, "rv": 20, "rvzbb": 20}}
-# Why a batch meets or misses its goal, per hit. The heading ("goal met" /
-# "goal missed") and the counts {m4}, {rv}, {rvzbb} (steady state per hit)
-# come from the measurement.
-BATCH_ANALYSIS = {
-    "lod_fast": (
-        "Cortex-M4 {m4} per hit against the goal of 12, RV32IMAC {rv} and Zbb {rvzbb} against "
-        "20. The batch writes one `LodWord` per hit: the lod bits in an `i32`, an untextured "
-        "entry outside the `Lod` range (the wrapping difference with the marker `Log2Pb::UNTEXTURED`, "
-        "I16F16 bits −2³¹, flips bit 31, so the word lies near ±2²³ while textured words lie within ±127 levels; "
-        "`LodWord::get` reads it as `Option<Lod>`), so the loop has neither the untextured branch "
-        "nor the `Option` tag and its second store. On the M4 the loop is unrolled four times, "
-        "35 instructions per four hits: the key and `log2 Pb` words (five `ldr`/`ldrd` for eight "
-        "words), the index (`bfc`, twice after a `mov`: `bfc` overwrites its register), the "
-        "table read (`ldr` with the index scaled by 4), `sub` of `log2 Pb`, `add` of the entry, "
-        "`asr #8` to I8F8, the stores (`str`/`strd`: three for four words), two address adds "
-        "and the loop counter (`adds`, `cmp`, `bne`). RV32IMAC (not unrolled): `lw` ×2, the "
-        "index (`andi`, `slli`, `add`: no scaled-index load), `lw` of the entry, `sub`, `add`, "
-        "`srai`, `sw`, two pointer increments and `bne`, 13; Zbb has no scaled add (that is "
-        "Zba), so the same 13. Ceiling = the goal."
-    ),
-}
-
 # Ceilings checked in CI: the goal where it is met, else the achieved
 # maximum + 10 % (the reason is in the "Goals missed" section below).
 CEILINGS = {
@@ -318,72 +229,6 @@ CEILINGS = {
     "trilinear_fast": {"m4": 230, "rv": 336, "rvzbb": 313},
 }
 
-# Why a goal is missed, per call: what the accurate path must execute,
-# instruction by instruction (the counts per class are in the
-# "Executed instruction mix" table).
-MISSED = {
-    "lod": (
-        "The accurate path keeps today's results bit for bit (64-entry table, linear interpolation, "
-        "error 2⁻¹³). Per call on the M4: the untextured test (`cmp`, branch); the 64-bit `Pl` "
-        "normalised word-wise (high word non-zero: `cbz`, `clz`, `lsl`, `lsr`, `eor`, `lsr`, `orr`, "
-        "falling through; zero: `orr`, `clz`, `lsl`, `add` and a branch back); the interval read (`ubfx` index, `movw`/`movt` "
-        "table address, address add, two loads: entry and slope, the I8F8 rounding and the "
-        "integer offset folded into the entry); the interpolation (`ubfx` weight, `mul`, add of "
-        "the rounding constant, add with `lsr #16`); `log2 Pl − (lz << 16) − log2 Pb` (two "
-        "adds/subs), the `lsr #8` to I8F8, the `Option` tag, and a `push`/`mov r7, sp`/`pop` frame "
-        "because the frame pointer is on and seven values are live. RV32IMAC has no `clz`: two "
-        "compare-and-shift steps and a byte-table read (`srli`, `seqz`, `slli`, `sll` per step, "
-        "`lui`/`addi`/`add`/`lbu` for the table) replace one instruction, and RISC-V has no "
-        "bit-field extract or shifted operand (index and weight cost two instructions each, "
-        "every shifted add one more). Below 20 needs the interpolation gone: a larger table read "
-        "without it (the FAST tier `table_lod::<Fast>`, not bit-identical: its row above)."
-    ),
-    "cone_lod": (
-        "Two accurate logarithms (the 64-bit width as in table lod, the 32-bit `n·d` after its "
-        "clamp to [2⁻¹⁶, 1]: `cmp`/`it` pairs), each with its interval read and interpolation "
-        "multiply, Δ clamped to ±2³⁰ (two compares) so the sum cannot overflow, and the final "
-        "clamp to the I8F8 range (`ssat`-like compare pairs). Twice the table-lod work plus the "
-        "clamps; on RV32IMAC twice the soft `clz`."
-    ),
-    "bilinear": (
-        "The same call as the sampler matrix's \"RGBA8 bilinear, wrap\" ACCURATE row (a "
-        "`Pow2Pyramid`, no fetch statistics): its analysis and the per-class count of its executed "
-        "path are in the \"Sampler matrix\" section."
-    ),
-    "trilinear": (
-        "The same call as the sampler matrix's \"RGBA8 trilinear, wrap\" ACCURATE row: its analysis "
-        "and per-class count are in the \"Sampler matrix\" section; the batch (`Sampler::sample_batch`) "
-        "runs the same per-hit work without the frame."
-    ),
-}
-
-MISSED.update({
-    "trilinear_fast": (
-        "The same call as the sampler matrix's \"RGBA8 trilinear, wrap\" FAST row (bound 1.5 LSB): "
-        "its analysis and per-class count are in the \"Sampler matrix\" section."
-    ),
-    "lod_fast": (
-        "The FAST path drops the interpolation (one read of a 1024-entry table, log2 error ≤ 2⁻¹⁰, "
-        "lod error ≤ 2⁻⁸ as documented for both paths). On the M4 it meets the goal: frame "
-        "(`push`, `mov r7, sp`, `pop`: the target keeps frame pointers), untextured test (`cmp`, "
-        "branch), the high-word normalisation (`cbz`, `clz`, `lsl`, `lsr`, `eor`, `lsr`, `orr`), "
-        "`ubfx` index, `movw`/`movt` table address, one `ldr`, `sub` of `log2 Pb`, `lsr #8`, "
-        "`sub` of `lz << 8`, the `Option` tag. RV32IMAC has no `clz`: the soft count (two "
-        "compare-and-shift steps and a byte-table read, 11 instructions on the longest path) "
-        "alone exceeds the gap to 30, and the index costs `srli`/`lui`/`addi`/`and` (no bit-field "
-        "extract; the mask 0xFFC is no 12-bit immediate); Zbb: the same without the soft count, "
-        "plus `lui` for the untextured constant and `lui`/`addi` for the table address, 3 over. "
-        "Below that needs the path length kept normalised in the ray stack (no count per hit)."
-    ),
-    "cone_lod_fast": (
-        "Two FAST logarithms (each one table read) instead of two interpolations, Δ clamped with "
-        "one `ssat` on the M4 (range [−2³⁰, 2³⁰)), `|n·d|` clamped to [2⁻¹⁶, 1] (two compare "
-        "pairs). The M4 meets the goal; on RV32IMAC the two soft leading-zero counts, the 64-bit "
-        "absolute value (no carry flag: `sltu` chains) and compare-and-branch clamps (no `ssat`, "
-        "no `min`/`max` without Zbb) exceed it; with Zbb the table addressing (`lui`/`addi` per "
-        "constant, no bit-field extract) and the `Option` test remain."
-    ),
-})
 # Ceilings of the sampler-state and geometric-LOD rows (max instructions
 # per call; geomlod: per instance, steady state): the first measurement's
 # maximum + 10 %, rounded up.
@@ -502,6 +347,37 @@ def load_classes(root):
     return rules
 
 
+def load_analysis(root):
+    """The paragraphs of docs/budget-analysis.md: {section: {heading:
+    paragraph}}, the `## ` sections and their `### ` headings in order,
+    each paragraph's lines joined by spaces."""
+    out, section, heading = {}, None, None
+    with open(os.path.join(root, "docs", "budget-analysis.md")) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("### "):
+                heading = line[4:]
+                out[section][heading] = ""
+            elif line.startswith("## "):
+                section, heading = line[3:], None
+                out[section] = {}
+            elif line and heading is not None:
+                text = out[section][heading]
+                out[section][heading] = f"{text} {line}" if text else line
+    return out
+
+
+def load_rows(root):
+    """The measured wrappers of scripts/budget-rows.txt: {symbol: calls}."""
+    rows = {}
+    with open(os.path.join(root, "scripts", "budget-rows.txt")) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                sym, calls = (x.strip() for x in line.split(";"))
+                rows[sym] = int(calls)
+    return rows
+
+
 HASH = re.compile(r"::h[0-9a-f]{16}$")
 
 
@@ -611,10 +487,21 @@ def without_softcore(text):
     return BLOCK.sub(lambda m: f"<!-- {m.group(1)}:begin --><!-- {m.group(1)}:end -->", text)
 
 
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ANALYSIS = load_analysis(ROOT)
+
+
 def render(work, old_text, readme):
     firsts = {k: {} for k, _ in ISAS}
     every = {k: {} for k, _ in ISAS}
     res = {k: count(work, k, firsts[k], every[k]) for k, _ in ISAS}
+    rows = load_rows(ROOT)
+    for k, _ in ISAS:
+        for sym in sorted(set(rows) | set(res[k])):
+            got, want = len(res[k].get(sym, [])), rows.get(sym)
+            if got != want:
+                sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}"
+                         + ("" if want else " (not a row of scripts/budget-rows.txt)"))
     for k, _ in ISAS:
         for sym, n in MATRIX_SHARED.items():
             for d in (res[k], every[k]):
@@ -622,23 +509,6 @@ def render(work, old_text, readme):
                 d[sym], d["matrix:" + sym] = calls[:n], calls[n:]
     ops = {k: mnemonics(work, k) for k, _ in ISAS}
     bad = []
-    for k, _ in ISAS:
-        for c, _ in CALLS:
-            for pre in ("rm_bench_", "rm_bench_f32_"):
-                got = len(res[k].get(pre + c, []))
-                if got != 64:
-                    sys.exit(f"budgets: {k} {pre}{c}: {got} calls traced, want 64")
-            got = len(res[k].get("rm_batch_" + c, []))
-            if got != 2:
-                sys.exit(f"budgets: {k} rm_batch_{c}: {got} calls traced, want 2")
-        for c, _ in FAST_CALLS:
-            batches = len(res[k].get("rm_batch_" + c, [])) if c in FAST_BATCHED else 2
-            if len(res[k].get("rm_bench_" + c, [])) != 64 or batches != 2:
-                sys.exit(f"budgets: {k} {c}: want 64 calls and 2 batches traced")
-        for sym, want in CALLS_TRACED.items():
-            got = len(res[k].get(sym, []))
-            if got != want:
-                sys.exit(f"budgets: {k} {sym}: {got} calls traced, want {want}")
     L = page_head("raymip firmware budgets", "README.md", [
         "engineers sizing a controller's firmware: every budget measured on the",
         "targets (instructions, cycles, code, stack, FPGA logic), each table against its ceiling.",
@@ -729,11 +599,14 @@ def render(work, old_text, readme):
         ceil = BATCH_CEILINGS.get(c)
         row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
         w("| " + " | ".join(row) + " |")
-    for c, text in BATCH_ANALYSIS.items():
+    for heading, text in ANALYSIS["Batches"].items():
+        c = {label + " batch": c for c, label in ALL_CALLS}[heading]
         steady = {k: (res[k]["rm_batch_" + c][1] - res[k]["rm_batch_" + c][0]) / 32 for k, _ in ISAS}
-        met = all(steady[k] <= g for k, g in BATCH_GOALS[c].items())
-        text = text.format(**{k: f"{v:.1f}" for k, v in steady.items()})
-        w(f"\n**{dict(ALL_CALLS)[c]} batch, goal {'met' if met else 'missed'}.** {text}")
+        g = BATCH_GOALS[c]
+        met = all(steady[k] <= goal for k, goal in g.items())
+        w(f"\n**{heading}, goal {'met' if met else 'missed'}.** Cortex-M4 {steady['m4']:.1f} per hit "
+          f"against the goal of {g['m4']}, RV32IMAC {steady['rv']:.1f} and Zbb {steady['rvzbb']:.1f} "
+          f"against {g['rv']}. {text}")
 
     mi, mz = kv(work, "rv", "minstret"), kv(work, "rvzbb", "minstret")
     w("\nCross-check on RV32 with `minstret` under `-icount shift=0`, read before and after each call:")
@@ -870,13 +743,14 @@ def render(work, old_text, readme):
     missed = [(c, k) for c, _ in ALL_CALLS for k, _ in ISAS if (c, k) not in ok]
     if missed:
         w("\n## Goals missed, and why\n")
-        w("Per path: an accurate path listed here may have its goal met by its FAST path (above).\n")
+        w("Per path: an accurate path listed here may have its goal met by its FAST path (above).")
+        w("The analysis of each call is docs/budget-analysis.md, copied here.\n")
         w("Missed (call, ISA, max instructions / goal): " + "; ".join(
             f"{dict(ALL_CALLS)[c]} {dict(ISAS)[k]} {stat(res[k]['rm_bench_' + c])[2]} / {GOALS[c][k]}"
             for c, k in missed) + ".\n")
-        for c, text in MISSED.items():
-            if any(cc == c for cc, _ in missed):
-                w(f"**{dict(ALL_CALLS)[c]}.** {text}\n")
+        for label, text in ANALYSIS["Per-hit calls"].items():
+            if any(dict(ALL_CALLS)[c] == label for c, _ in missed):
+                w(f"**{label}.** {text}\n")
 
     w("")
     w(softcore_block(old_text) or BEGIN + "\n" + END)
@@ -1040,7 +914,8 @@ def matrix_section(res, w, bad, every, work):
         ceil = MATRIX_BATCH_CEILINGS.get(sym)
         row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
         w("| " + " | ".join(row) + " |")
-    for key, text in MATRIX_MISSED.items():
+    w("\nWhere the instructions go (docs/budget-analysis.md, copied here):")
+    for key, text in ANALYSIS["Sampler matrix"].items():
         w(f"\n**{key}.** {text}")
     breakdown_section(st, every, work, w)
 
@@ -1049,7 +924,7 @@ def breakdown_section(st, every, work, w):
     """Per-class counts of the executed path of every matrix row whose goal
     is missed on some ISA: the call with the most instructions of each ISA,
     classified by scripts/budget-classes.txt."""
-    rules = load_classes(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    rules = load_classes(ROOT)
     missed = [(key, label, tier, sym, sl) for key, label, tier, sym, sl, goal in MATRIX_ROWS
               if goal is not None and any(st[k][key][2] > matrix_goal(goal, st, k) for k, _ in ISAS)]
     if not missed:

@@ -106,6 +106,28 @@ def keep_pnr(old, key, v, synth_keys):
     return True
 
 
+def variant_figures(a, data, old, key, stat, pnr, parsers, lut_cell):
+    """The figures of variant `key`: its synthesis from `stat`.txt and, with
+    --pnr and a `pnr`.seconds file, its placement from `pnr`.log (the
+    device's total logic cells into `data`), else the previous run's
+    placement when its synthesis is unchanged (keep_pnr). `parsers`: the
+    family's (stat parser, place-and-route parser, synthesis keys).
+    Returns (figures, "placed" | "kept" | "changed")."""
+    parse_syn, parse_pnr_log, synth_keys = parsers
+    v = parse_syn(open(os.path.join(a.work, stat + ".txt")).read())
+    if v["lut"] == 0:
+        sys.exit(f"fpga.py: {stat}.txt has no {lut_cell} count")
+    seconds = os.path.join(a.work, pnr + ".seconds")
+    if a.pnr and os.path.exists(seconds):
+        p = parse_pnr_log(open(os.path.join(a.work, pnr + ".log")).read())
+        if p is None:
+            sys.exit(f"fpga.py: {pnr}.log has no utilisation / frequency")
+        v["lc"], data["lc_total"], v["mhz"] = p
+        v["pnr_s"] = int(open(seconds).read())
+        return v, "placed"
+    return v, "kept" if keep_pnr(old, key, v, synth_keys) else "changed"
+
+
 def ecp5_table(data):
     return synth_table(data, ECP5_VARIANTS,
                        (("LUT4", "lut"), ("flip-flops", "ff"), ("carry (CCU2C)", "carry"), ("DSPs (MULT18X18D)", "dsp"),
@@ -142,17 +164,11 @@ def ecp5_data(a, old_text):
     data = {"device": "LFE5U-45F (CABGA381, speed 6)", "seed": 1, "lc_total": 43848, "ram_bytes": a.ecp5_ram,
             "variants": {}}
     for key, _ in ECP5_VARIANTS:
-        v = parse_ecp5_stat(open(os.path.join(a.work, f"ecp5-stat-{key}.txt")).read())
-        if v["lut"] == 0:
-            sys.exit(f"fpga.py: ecp5-stat-{key}.txt has no LUT4 count")
-        if a.pnr and os.path.exists(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")):
-            p = parse_ecp5_pnr(open(os.path.join(a.work, f"ecp5-pnr-{key}.log")).read())
-            if p is None:
-                sys.exit(f"fpga.py: ecp5-pnr-{key}.log has no utilisation / frequency")
-            v["lc"], data["lc_total"], v["mhz"] = p
-            v["pnr_s"] = int(open(os.path.join(a.work, f"ecp5-pnr-{key}.seconds")).read())
+        v, how = variant_figures(a, data, old, key, f"ecp5-stat-{key}", f"ecp5-pnr-{key}",
+                                 (parse_ecp5_stat, parse_ecp5_pnr, ECP5_SYNTH_KEYS), "LUT4")
+        if how == "placed":
             data["nextpnr"] = a.ecp5_nextpnr
-        elif keep_pnr(old, key, v, ECP5_SYNTH_KEYS):
+        elif how == "kept":
             data["nextpnr"] = old.get("nextpnr")
             data["lc_total"] = old.get("lc_total", data["lc_total"])
         else:
@@ -230,16 +246,9 @@ def main():
     old = read_data(old_text, "fpga")
     data = {"device": "iCE40 UP5K (sg48)", "seed": 1, "lc_total": 5280, "ram_bytes": a.ram, "variants": {}}
     for key, n, _ in VARIANTS:
-        v = parse_stat(open(os.path.join(a.work, f"stat-{n}.txt")).read())
-        if v["lut"] == 0:
-            sys.exit(f"fpga.py: stat-{n}.txt has no SB_LUT4 count")
-        if a.pnr and os.path.exists(os.path.join(a.work, f"pnr-{n}.seconds")):
-            p = parse_pnr(open(os.path.join(a.work, f"pnr-{n}.log")).read())
-            if p is None:
-                sys.exit(f"fpga.py: pnr-{n}.log has no utilisation / frequency")
-            v["lc"], data["lc_total"], v["mhz"] = p
-            v["pnr_s"] = int(open(os.path.join(a.work, f"pnr-{n}.seconds")).read())
-        elif not keep_pnr(old, key, v, SYNTH_KEYS):
+        v, how = variant_figures(a, data, old, key, f"stat-{n}", f"pnr-{n}",
+                                 (parse_stat, parse_pnr, SYNTH_KEYS), "SB_LUT4")
+        if how == "changed":
             print(f"fpga.py: {key}: synthesis figures changed: run scripts/fpga --pnr for its clock")
         data["variants"][key] = v
     e_data = ecp5_data(a, old_text)

@@ -64,35 +64,47 @@ const _: () = assert!(
 
 /// Addressing of a texture axis: [`rm_sampler_init`] takes one for both
 /// axes, [`RmSamplerDesc`] one per axis.
+///
+/// The numbers are those of raymip's Rust `AddressMode`, which the
+/// co-processor's operands carry too. They follow Vulkan's
+/// `VkSamplerAddressMode` for 0–2 (`REPEAT`, `MIRRORED_REPEAT`,
+/// `CLAMP_TO_EDGE`), as D3D11's `D3D11_TEXTURE_ADDRESS_MODE` orders them
+/// (`WRAP`, `MIRROR`, `CLAMP`, numbered there from 1); 3 and 4 are swapped
+/// against Vulkan (`CLAMP_TO_BORDER` = 3, `MIRROR_CLAMP_TO_EDGE` = 4).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RmAddress {
-    /// Repeat: only the fractional part of a coordinate is used.
+    /// Repeat: only the fractional part of a coordinate is used (Vulkan
+    /// `REPEAT`).
     Wrap = 0,
-    /// Clamp to edge.
-    Clamp = 1,
-    /// Repeat, every other copy mirrored (D3D `MIRROR`).
-    Mirror = 2,
-    /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`).
+    /// Repeat, every other copy mirrored (Vulkan `MIRRORED_REPEAT`, D3D
+    /// `MIRROR`).
+    Mirror = 1,
+    /// Clamp to edge (Vulkan `CLAMP_TO_EDGE`).
+    Clamp = 2,
+    /// Mirror once around 0, then clamp to the edge (Vulkan
+    /// `MIRROR_CLAMP_TO_EDGE`, D3D `MIRROR_ONCE`).
     MirrorOnce = 3,
-    /// Texels outside the level read the border colour (D3D `BORDER`).
+    /// Texels outside the level read the border colour (Vulkan
+    /// `CLAMP_TO_BORDER`, D3D `BORDER`).
     Border = 4,
 }
+// The C numbers are `AddressMode`'s: `RmAddress::mode` is `from_index`.
+const _: () = assert!(
+    RmAddress::Wrap as u8 == AddressMode::Wrap as u8
+        && RmAddress::Mirror as u8 == AddressMode::Mirror as u8
+        && RmAddress::Clamp as u8 == AddressMode::ClampToEdge as u8
+        && RmAddress::MirrorOnce as u8 == AddressMode::MirrorOnce as u8
+        && RmAddress::Border as u8 == AddressMode::ClampToBorder as u8
+        && AddressMode::ALL.len() == 5
+);
 
 impl RmAddress {
-    /// The address mode numbered `n` in C (the discriminants above), `None`
-    /// for a number above 4: the one mapping the C ABI's functions and its
-    /// tests use.
+    /// The address mode numbered `n` in C (the discriminants above, which
+    /// are [`AddressMode`]'s), `None` for a number above 4.
     #[must_use]
-    pub fn mode(n: u8) -> Option<AddressMode> {
-        match n {
-            0 => Some(AddressMode::Wrap),
-            1 => Some(AddressMode::ClampToEdge),
-            2 => Some(AddressMode::Mirror),
-            3 => Some(AddressMode::MirrorOnce),
-            4 => Some(AddressMode::ClampToBorder),
-            _ => None,
-        }
+    pub const fn mode(n: u8) -> Option<AddressMode> {
+        AddressMode::from_index(n)
     }
 }
 

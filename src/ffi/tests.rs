@@ -47,8 +47,8 @@ fn ok_lod(pl: u64, e: i32) -> (RmStatus, i16) {
 fn c_address_numbers_name_their_modes() {
     use crate::texture::AddressMode::{ClampToBorder, ClampToEdge, Mirror, MirrorOnce, Wrap};
     use RmAddress as C;
-    let c = [C::Wrap, C::Clamp, C::Mirror, C::MirrorOnce, C::Border];
-    let modes = [Wrap, ClampToEdge, Mirror, MirrorOnce, ClampToBorder];
+    let c = [C::Wrap, C::Mirror, C::Clamp, C::MirrorOnce, C::Border];
+    let modes = [Wrap, Mirror, ClampToEdge, MirrorOnce, ClampToBorder];
     for (c, mode) in c.into_iter().zip(modes) {
         assert_eq!(RmAddress::mode(c as u8), Some(mode), "{c:?}");
     }

@@ -29,7 +29,7 @@ use raymip::texture::{Cfg, Mode, NoStats, Sampler};
 use raymip::units::{Accurate, Fast, Footprint, Lod, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
-use crate::inputs::{self, N, Rng};
+use crate::inputs::{self, N, XorShift32};
 
 /// The plain sampler: RGBA8 power-of-two pyramid (direct level views),
 /// wrap, ACCURATE, no fetch statistics (the matrix's keys count none: a
@@ -53,8 +53,37 @@ pub type TexCounted<'a> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap>>;
 /// The wrap rows' key (bias and lod clamp set at run time) at tier `P`.
 pub type Tw<'a, P = Accurate> = Sampler<Pow2Pyramid<'a>, Cfg<Wrap, Wrap, Linear, P, NoStats>>;
 
+/// The measured wrappers and the calls the budget binary makes of each:
+/// `scripts/budget-rows.txt`, which `scripts/budgets.py` reads too.
+pub const ROWS: &str = include_str!("../../../scripts/budget-rows.txt");
+
+/// Whether a line of [`ROWS`] names the wrapper `name` (`name ;` at its
+/// start).
+#[must_use]
+pub const fn listed(name: &str) -> bool {
+    let (rows, name) = (ROWS.as_bytes(), name.as_bytes());
+    let mut line = 0;
+    while line < rows.len() {
+        let mut j = 0;
+        while j < name.len() && line + j < rows.len() && rows[line + j] == name[j] {
+            j += 1;
+        }
+        let end = line + j;
+        if j == name.len() && end + 1 < rows.len() && rows[end] == b' ' && rows[end + 1] == b';' {
+            return true;
+        }
+        while line < rows.len() && rows[line] != b'\n' {
+            line += 1;
+        }
+        line += 1;
+    }
+    false
+}
+
 /// A measured wrapper: the function, public, with a stable symbol name for
-/// the traces (`no_mangle`) and never inlined.
+/// the traces (`no_mangle`) and never inlined; a wrapper that is not a row
+/// of [`ROWS`] does not compile.
+#[macro_export]
 macro_rules! probe {
     ($(#[$m:meta])* fn $name:ident($($a:ident: $t:ty),*) -> $ret:ty $body:block) => {
         $(#[$m])*
@@ -62,6 +91,10 @@ macro_rules! probe {
         #[unsafe(no_mangle)]
         #[inline(never)]
         pub fn $name($($a: $t),*) -> $ret $body
+        const _: () = assert!(
+            $crate::probes::listed(stringify!($name)),
+            concat!(stringify!($name), " is not a row of scripts/budget-rows.txt")
+        );
     };
 }
 
@@ -201,7 +234,7 @@ impl Images {
     /// The images of the demo texture.
     #[must_use]
     pub fn new() -> Self {
-        let bc1 = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
+        let bc1 = inputs::bytes(&mut XorShift32(inputs::SEED ^ 0xBC1));
         let mut rgb565 = [0u8; RGB565_LEN];
         for (b, &t) in rgb565
             .chunks_exact_mut(2)
@@ -468,7 +501,7 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     use raymip::path::raydiff::gbuffer::GSample;
     use raymip::setup::table::TexTriangle;
     use raymip::units::Coord;
-    let mut rng = Rng(inputs::SEED ^ 0xD1FF);
+    let mut rng = XorShift32(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
     let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
     let t = |x: i32| TexCoord::from_bits(i64::from(x) << 32);

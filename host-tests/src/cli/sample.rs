@@ -43,40 +43,35 @@ use raymip::units::{Footprint, Lod, Precision, TexCoord};
 
 use crate::scene::ppm::{PpmError, RgbImage, read_ppm};
 
-/// Addressing mode on the command line.
+/// Addressing mode on the command line, numbered as [`AddressMode`] (and
+/// the C ABI's `RmAddress`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[repr(u8)]
 pub enum AddressArg {
     /// Repeat the texture.
-    Wrap,
+    Wrap = AddressMode::Wrap as u8,
     /// Clamp to the edge texels.
-    Clamp,
+    Clamp = AddressMode::ClampToEdge as u8,
     /// Repeat, every other copy mirrored.
-    Mirror,
+    Mirror = AddressMode::Mirror as u8,
     /// Mirror once around 0, then clamp to the edge.
-    MirrorOnce,
+    MirrorOnce = AddressMode::MirrorOnce as u8,
     /// Outside the texture: the border colour (--border).
-    Border,
+    Border = AddressMode::ClampToBorder as u8,
 }
 
 impl AddressArg {
-    /// The firmware address mode.
+    /// The firmware address mode: the one of the same number.
     #[must_use]
     pub fn mode(self) -> AddressMode {
-        match self {
-            Self::Wrap => AddressMode::Wrap,
-            Self::Clamp => AddressMode::ClampToEdge,
-            Self::Mirror => AddressMode::Mirror,
-            Self::MirrorOnce => AddressMode::MirrorOnce,
-            Self::Border => AddressMode::ClampToBorder,
-        }
+        AddressMode::ALL[usize::from(self as u8)]
     }
 
     /// The original sampler's addressing, for wrap and clamp.
     #[must_use]
     pub fn plain(self) -> Option<AddressMode> {
         match self {
-            Self::Wrap => Some(AddressMode::Wrap),
-            Self::Clamp => Some(AddressMode::ClampToEdge),
+            Self::Wrap | Self::Clamp => Some(self.mode()),
             _ => None,
         }
     }
@@ -801,4 +796,30 @@ pub fn run<R: BufRead, W: Write>(
         output,
         "<stdin>",
     )
+}
+
+#[cfg(test)]
+mod address_tests {
+    use super::{AddressArg, AddressMode};
+    use clap::ValueEnum;
+
+    /// Each command-line name selects the mode it names, and every mode has one.
+    #[test]
+    fn address_names_select_their_modes() {
+        let named = [
+            ("wrap", AddressMode::Wrap),
+            ("clamp", AddressMode::ClampToEdge),
+            ("mirror", AddressMode::Mirror),
+            ("mirror-once", AddressMode::MirrorOnce),
+            ("border", AddressMode::ClampToBorder),
+        ];
+        assert_eq!(AddressArg::value_variants().len(), AddressMode::ALL.len());
+        for (name, mode) in named {
+            assert_eq!(
+                AddressArg::from_str(name, false).map(AddressArg::mode),
+                Ok(mode),
+                "{name}"
+            );
+        }
+    }
 }

@@ -1,7 +1,8 @@
 //! Budgets of single per-hit calls (run by `scripts/budgets` under QEMU).
 //!
 //! Each measured function is a `#[no_mangle] #[inline(never)]` wrapper
-//! around one library call, called [`N`] times with the pseudo-random inputs
+//! ([`probe!`], a row of `scripts/budget-rows.txt` with its number of
+//! calls) around one library call, called [`N`] times with the pseudo-random inputs
 //! of [`raymip_demo_firmware::inputs`], hidden from the optimiser
 //! (`black_box`):
 //!
@@ -66,6 +67,7 @@ use raymip::texture::storage::mip::Texel;
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};
 use raymip_demo_firmware::inputs::{self, Draws, N};
+use raymip_demo_firmware::probe;
 use raymip_demo_firmware::probes::{
     self, Images, Meter, SampleIn, Subjects, Tex, TexFast, rm_batch_bilinear, rm_batch_trilinear,
     rm_bench_bilinear, rm_bench_trilinear, rm_bench_trilinear_fast,
@@ -81,134 +83,111 @@ type LodNormIn = (NormPl, Log2Pb);
 type ConeIn = (Width, Delta, Option<U1F31>);
 type Instances = [(u32, Depth)];
 
-/// One table LOD.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod::<Accurate>(pl, pb)
+probe! {
+    /// One table LOD.
+    fn rm_bench_lod(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+        table_lod::<Accurate>(pl, pb)
+    }
 }
 
-/// One ray-cone LOD with the normal term.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_cone_lod(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod::<Accurate>(w, delta, n_dot_d)
+probe! {
+    /// One ray-cone LOD with the normal term.
+    fn rm_bench_cone_lod(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+        cone_lod::<Accurate>(w, delta, n_dot_d)
+    }
 }
 
-/// One FAST table LOD (1024-entry log2 table, no interpolation).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
-    table_lod::<Fast>(pl, pb)
+probe! {
+    /// One FAST table LOD (1024-entry log2 table, no interpolation).
+    fn rm_bench_lod_fast(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
+        table_lod::<Fast>(pl, pb)
+    }
 }
 
-/// One FAST ray-cone LOD with the normal term.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_cone_lod_fast(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
-    cone_lod::<Fast>(w, delta, n_dot_d)
+probe! {
+    /// One FAST ray-cone LOD with the normal term.
+    fn rm_bench_cone_lod_fast(w: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
+        cone_lod::<Fast>(w, delta, n_dot_d)
+    }
 }
 
-/// One table LOD in f32.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_f32_lod(pl: f32, log2_pb: f32) -> f32 {
-    table_lod_f32(pl, log2_pb)
+probe! {
+    /// One table LOD in f32.
+    fn rm_bench_f32_lod(pl: f32, log2_pb: f32) -> f32 {
+        table_lod_f32(pl, log2_pb)
+    }
 }
 
-/// One ray-cone LOD with the normal term in f32.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_f32_cone_lod(w: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
-    cone_lod_f32(w, delta, n_dot_d)
+probe! {
+    /// One ray-cone LOD with the normal term in f32.
+    fn rm_bench_f32_cone_lod(w: f32, delta: f32, n_dot_d: Option<f32>) -> f32 {
+        cone_lod_f32(w, delta, n_dot_d)
+    }
 }
 
-/// One bilinear sample at the nearest level in f32.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_f32_bilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
-    s.sample(u, v, lod, Mode::BilinearNearestLevel)
+probe! {
+    /// One bilinear sample at the nearest level in f32.
+    fn rm_bench_f32_bilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
+        s.sample(u, v, lod, Mode::BilinearNearestLevel)
+    }
 }
 
-/// One trilinear sample in f32.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_f32_trilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
-    s.sample(u, v, lod, Mode::Trilinear)
+probe! {
+    /// One trilinear sample in f32.
+    fn rm_bench_f32_trilinear(s: &SamplerF32<'_>, u: f32, v: f32, lod: f32) -> Texel {
+        s.sample(u, v, lod, Mode::Trilinear)
+    }
 }
 
-/// A batch of table LODs.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
-    table_lod_batch::<Accurate>(hits, out)
+probe! {
+    /// A batch of table LODs.
+    fn rm_batch_lod(hits: &[LodIn], out: &mut [Option<Lod>]) -> usize {
+        table_lod_batch::<Accurate>(hits, out)
+    }
 }
 
-/// A batch of ray-cone LODs.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
-    cone_lod_batch::<Accurate>(hits, out)
+probe! {
+    /// A batch of ray-cone LODs.
+    fn rm_batch_cone_lod(hits: &[ConeIn], out: &mut [Lod]) -> usize {
+        cone_lod_batch::<Accurate>(hits, out)
+    }
 }
 
-/// A batch of FAST table LODs (one `LodWord` per hit).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [LodWord]) -> usize {
-    table_lod_norm_batch(hits, out)
+probe! {
+    /// A batch of FAST table LODs (one `LodWord` per hit).
+    fn rm_batch_lod_fast(hits: &[LodNormIn], out: &mut [LodWord]) -> usize {
+        table_lod_norm_batch(hits, out)
+    }
 }
 
-/// A batch of FAST ray-cone LODs.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_cone_lod_fast(hits: &[ConeIn], out: &mut [Lod]) -> usize {
-    cone_lod_batch::<Fast>(hits, out)
+probe! {
+    /// A batch of FAST ray-cone LODs.
+    fn rm_batch_cone_lod_fast(hits: &[ConeIn], out: &mut [Lod]) -> usize {
+        cone_lod_batch::<Fast>(hits, out)
+    }
 }
 
-/// The instance records of one instance: called 64 times with the
-/// discrete selector, then 64 times with the stochastic one.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_geomlod(
-    sel: &Selector,
-    inst: (u32, Depth),
-    out: &mut [InstanceLod],
-) -> Result<usize, RecordsFull> {
-    sel.fill(core::iter::once(inst), out)
+probe! {
+    /// The instance records of one instance: called 64 times with the
+    /// discrete selector, then 64 times with the stochastic one.
+    fn rm_bench_geomlod(sel: &Selector, inst: (u32, Depth), out: &mut [InstanceLod]) -> Result<usize, RecordsFull> {
+        sel.fill(core::iter::once(inst), out)
+    }
 }
 
-/// The instance records of a slice of instances: called with 32 and 64
-/// instances, discrete then stochastic.
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_batch_geomlod(
-    sel: &Selector,
-    inst: &Instances,
-    out: &mut [InstanceLod],
-) -> Result<usize, RecordsFull> {
-    sel.fill(inst.iter().copied(), out)
+probe! {
+    /// The instance records of a slice of instances: called with 32 and 64
+    /// instances, discrete then stochastic.
+    fn rm_batch_geomlod(sel: &Selector, inst: &Instances, out: &mut [InstanceLod]) -> Result<usize, RecordsFull> {
+        sel.fill(inst.iter().copied(), out)
+    }
 }
 
-/// An empty call (baseline of the `minstret` call-inclusive counts).
-#[allow(unsafe_code)]
-#[unsafe(no_mangle)]
-#[inline(never)]
-pub fn rm_bench_empty(x: u32) -> u32 {
-    x
+probe! {
+    /// An empty call (baseline of the `minstret` call-inclusive counts).
+    fn rm_bench_empty(x: u32) -> u32 {
+        x
+    }
 }
 
 /// Retired-instruction counter (RISC-V `minstret`; 0 elsewhere).
@@ -307,43 +286,35 @@ impl Meter for Traced {
 mod env {
     use raymip::lod::envmap::{EnvMap, direction_uv};
     use raymip::units::{Lod, Spread, TexCoord, UnitVec};
+    use raymip_demo_firmware::probe;
 
-    /// Cone lod, equator texel (no direction).
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_env_cone(m: &EnvMap, g: Spread) -> Lod {
-        m.cone_lod(g, None)
+    probe! {
+        /// Cone lod, equator texel (no direction).
+        fn rm_bench_env_cone(m: &EnvMap, g: Spread) -> Lod {
+            m.cone_lod(g, None)
+        }
     }
 
-    /// Cone lod with the pole term of the direction.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_env_cone_lat(m: &EnvMap, g: Spread, d: UnitVec) -> Lod {
-        m.cone_lod(g, Some(d))
+    probe! {
+        /// Cone lod with the pole term of the direction.
+        fn rm_bench_env_cone_lat(m: &EnvMap, g: Spread, d: UnitVec) -> Lod {
+            m.cone_lod(g, Some(d))
+        }
     }
 
-    /// Ray-differential lod with the pole term.
     #[cfg(feature = "raydiff")]
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_env_raydiff(
-        m: &EnvMap,
-        dx: raymip::path::raydiff::DirDiff,
-        dy: raymip::path::raydiff::DirDiff,
-        d: UnitVec,
-    ) -> Lod {
-        m.raydiff_lod(dx, dy, Some(d))
+    probe! {
+        /// Ray-differential lod with the pole term.
+        fn rm_bench_env_raydiff(m: &EnvMap, dx: raymip::path::raydiff::DirDiff, dy: raymip::path::raydiff::DirDiff, d: UnitVec) -> Lod {
+            m.raydiff_lod(dx, dy, Some(d))
+        }
     }
 
-    /// The lat-long `(u, v)` of a direction.
-    #[allow(unsafe_code)]
-    #[unsafe(no_mangle)]
-    #[inline(never)]
-    pub fn rm_bench_env_uv(d: UnitVec) -> (TexCoord, TexCoord) {
-        direction_uv(d)
+    probe! {
+        /// The lat-long `(u, v)` of a direction.
+        fn rm_bench_env_uv(d: UnitVec) -> (TexCoord, TexCoord) {
+            direction_uv(d)
+        }
     }
 }
 
@@ -352,7 +323,7 @@ mod env {
 #[cfg(feature = "envmap")]
 #[inline(always)]
 fn envmap_rows() {
-    let mut rng = inputs::Rng(inputs::SEED ^ 0xE0E0);
+    let mut rng = inputs::XorShift32(inputs::SEED ^ 0xE0E0);
     let env_in = inputs::draw(&mut rng, inputs::envmap);
     let Ok(map) = raymip::lod::envmap::EnvMap::new(2048, 1024) else {
         process::exit(1)
