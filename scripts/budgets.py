@@ -60,13 +60,13 @@ RD_SUM_GOALS = [("footprint + lod", ["rd_footprint", "rd_lod"], 150),
 # CI ceilings of the ray differentials (max instructions per call): the goal
 # where it is met, else this measurement's maximum + 10 %.
 RD_CEILINGS = {
-    "rd_primary": {"m4": 203, "rv": 449, "rvzbb": 347},
-    "rd_transfer": {"m4": 306, "rv": 476, "rvzbb": 328},
-    "rd_reflect": {"m4": 238, "rv": 422, "rvzbb": 344},
-    "rd_refract": {"m4": 638, "rv": 1013, "rvzbb": 653},
+    "rd_primary": {"m4": 182, "rv": 299, "rvzbb": 245},
+    "rd_transfer": {"m4": 286, "rv": 456, "rvzbb": 328},
+    "rd_reflect": {"m4": 228, "rv": 387, "rvzbb": 344},
+    "rd_refract": {"m4": 638, "rv": 999, "rvzbb": 653},
     "rd_footprint": {"m4": 66, "rv": 75, "rvzbb": 75},
     "rd_lod": {"m4": 80, "rv": 136, "rvzbb": 105},
-    "rd_gbuffer": {"m4": 235, "rv": 292, "rvzbb": 246},
+    "rd_gbuffer": {"m4": 204, "rv": 290, "rvzbb": 226},
 }
 # Environment map (feature `envmap`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.

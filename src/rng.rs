@@ -1,8 +1,13 @@
-//! A small deterministic random number generator for per-pixel, per-frame
-//! decisions on the controller (the stochastic-LOD ray mask; other stages
-//! that need reproducible random choices can share it).
+//! The crate's deterministic random number generators: [`Rng`] for
+//! per-pixel, per-frame decisions on the controller (the stochastic-LOD ray
+//! mask; other stages that need reproducible random choices can share it),
+//! and the two generators of measurement and test inputs,
+//! [`XorShift32`] (the demo firmware's budget and cycle-count inputs) and
+//! [`XorShift64`] (the host tests' inputs), kept here so that every
+//! generator has one home; recorded budget rows and golden hashes depend on
+//! their sequences.
 //!
-//! Counter-based: the state advances by the golden-ratio Weyl constant
+//! [`Rng`] is counter-based: the state advances by the golden-ratio Weyl constant
 //! `0x9E37_79B9` (odd, so the state visits all 2³² values before repeating)
 //! and each output is a bijective 32-bit integer hash of the state
 //! (xor-shift / multiply finaliser, constants `0x7FEB_352D`, `0x846C_A68B`,
@@ -84,11 +89,104 @@ impl Rng {
     }
 }
 
+/// Marsaglia's xorshift32 (shifts 13, 17, 5): the generator of the budget
+/// and cycle-count inputs of the demo firmware (`raymip_demo_firmware::inputs`),
+/// whose recorded rows depend on its sequence. Not for decisions on the
+/// controller ([`Rng`] is). The state must not be 0 (0 stays 0).
+///
+/// # Example
+/// ```
+/// use raymip::rng::XorShift32;
+/// let mut r = XorShift32(0x2545_F491);
+/// assert_eq!(r.next_u32(), 0xE124_B63A);
+/// assert_eq!(r.0, 0xE124_B63A); // the output is the new state
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct XorShift32(pub u32);
+
+impl XorShift32 {
+    /// The next 32 pseudo-random bits (the new state).
+    #[inline]
+    #[must_use]
+    pub const fn next_u32(&mut self) -> u32 {
+        let mut x = self.0;
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        self.0 = x;
+        x
+    }
+}
+
+/// Marsaglia's xorshift64 (shifts 13, 7, 17): the generator of the host
+/// tests' inputs (random textures, coordinates, states; the f64 draws of
+/// `raymip_reference::Draw` read it as an iterator), whose recorded golden
+/// hashes depend on its sequence. The state must not be 0 (0 stays 0).
+///
+/// # Example
+/// ```
+/// use raymip::rng::XorShift64;
+/// let mut r = XorShift64(0x9E37_79B9_7F4A_7C15);
+/// assert_eq!(r.next_u64(), 0xDC1B_77AE_0BF3_4DAD);
+/// let mut words = [0u32; 2];
+/// r.fill_u32(&mut words); // the low halves of the next two outputs
+/// assert_eq!(words, [0x026E_6076, 0xE590_6136]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct XorShift64(pub u64);
+
+impl XorShift64 {
+    /// The next 64 pseudo-random bits (the new state).
+    #[inline]
+    #[must_use]
+    pub const fn next_u64(&mut self) -> u64 {
+        let mut x = self.0;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        self.0 = x;
+        x
+    }
+
+    /// Fills `out` with the low 32 bits of successive
+    /// [`next_u64`](Self::next_u64) values (random texels of a test texture).
+    pub fn fill_u32(&mut self, out: &mut [u32]) {
+        for w in out {
+            *w = self.next_u64() as u32;
+        }
+    }
+}
+
+/// Never ends: every call is [`XorShift64::next_u64`].
+impl Iterator for XorShift64 {
+    type Item = u64;
+
+    fn next(&mut self) -> Option<u64> {
+        Some(self.next_u64())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
     use std::vec::Vec;
+
+    /// The input generators' sequences, pinned (the recorded budget rows
+    /// and golden hashes depend on them).
+    #[test]
+    fn xorshift_sequences_are_pinned() {
+        let mut a = XorShift32(0x2545_F491);
+        let got = [a.next_u32(), a.next_u32(), a.next_u32()];
+        assert_eq!(got, [0xE124_B63A, 0x8B9A_74AB, 0x64E1_B3AC]);
+        assert_eq!(a.0, 0x64E1_B3AC);
+        let mut b = XorShift64(0x9E37_79B9_7F4A_7C15);
+        assert_eq!(b.next(), Some(0xDC1B_77AE_0BF3_4DAD));
+        let mut w = [0u32; 2];
+        b.fill_u32(&mut w);
+        assert_eq!(w, [0x026E_6076, 0xE590_6136]);
+        assert_eq!(b.next_u64(), 0x305F_050C_368D_CC74);
+    }
 
     /// Reference vectors: the hash written out step by step in u64
     /// arithmetic (independent of the wrapping u32 code above).

@@ -84,22 +84,26 @@
 // its tex.tri/tex.bil the firmware writes neither the block nor texels.
 //
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
-// Pipelined for the clock (one multiply or one add per stage): tex.lod,
-// tex.bt, tex.lvl, tex.tap, tex.ram and tex.sel answer one cycle later
-// (rsp_valid registered; tex.bt and tex.sel go on in the background),
-// tex.bw and tex.addr two (the scaled positions, then the index maps,
-// addresses and corner weights), tex.log2pl three (tex_log2pl.v), tex.blend
-// three (the two level products, their rounded sum), tex.bb five (the
-// row's corner products, their sum, the level's sum, the rounding); the
-// texture unit fetches a level's two rows in consecutive cycles and
-// answers tex.tri 13 cycles after the command (9 with t = 0), tex.bil 9 (as
-// tb_cfu_tex.cpp counts: the cycle of the transfer is 1).
+// Pipelined for the clock (at most one multiply, one add or one index map
+// per stage): tex.lod, tex.bt, tex.lvl, tex.tap, tex.ram and tex.sel
+// answer one cycle later (rsp_valid registered; tex.bt and tex.sel go on
+// in the background), tex.bw and tex.addr five (A1 the shifted
+// coordinates, A2 the scaled positions and weights, B1 the index maps, B2
+// the addresses and corner weights, then the answer), tex.log2pl five
+// (tex_log2pl.v with PIPE = 1), tex.blend three (the two level products,
+// their sum), tex.bb five (the row's corner products, their sum, the
+// level's sum, the rounding). tex.sel's background reads take seven cycles
+// (the window's words, the lod clamped below, then above, the levels'
+// addresses, their words); the texture unit then fetches a level's two
+// rows in consecutive cycles and answers tex.tri 15 cycles after the
+// command (11 with t = 0), tex.bil 11 (as tb_cfu_tex.cpp counts: the cycle
+// of the transfer is 1).
 // The filter runs the four channels in parallel as the corner sum of
 // src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
 // W = [(4096 − fx)(4096 − fy), fx(4096 − fy), (4096 − fx)fy, fx·fy]
 // (the same integer as pcpi_tex.v's nested rows), then (X + 2⁷) >> 8 kept
 // as the level's 8.16 value and (X + 2⁷ + 2²³) >> 24 the rounded texel;
-// the blend w0·(256 − t) + w1·t + 2²³ >> 24.
+// the blend (w0·(256 − t) + 2²³) + w1·t >> 24.
 // Every output bit is checked against vectors written by the Rust firmware
 // code (tb_cfu_tex.cpp, scripts/softcore).
 `timescale 1 ns / 1 ps
@@ -162,50 +166,49 @@ module Cfu #(
     reg  [1:0] lcnt;
     reg        lbusy;
     wire [31:0] log2pl;
-    tex_log2pl log2 (.clk(clk), .x({b, a}), .log2pl(log2pl));
+    tex_log2pl #(.PIPE(1)) log2 (.clk(clk), .x({b, a}), .log2pl(log2pl));
     /* verilator lint_off UNUSEDSIGNAL */  // outside the I8F8 lod
     wire [31:0] diff = a - b;
     /* verilator lint_on UNUSEDSIGNAL */
     wire [31:0] lod = b == UNTEXTURED ? UNTEXTURED : {{16{diff[23]}}, diff[23:8]};
 
     // ---- Addressing -------------------------------------------------------
-    // Texel index `i` of an axis of 2^k texels in `mode` (see the header).
-    function [15:0] mapi(input [31:0] i, input [3:0] k, input [1:0] mode);
-        reg [31:0] mx, m, r;
-        /* verilator lint_off UNUSEDSIGNAL */  // o < 2¹⁵
-        reg [31:0] o;
-        /* verilator lint_on UNUSEDSIGNAL */
+    // Texel index `i` of an axis of 2^k texels in `mode` (see the header),
+    // with mx = 2^k − 1 and kb = 2^k: i[k] and "i > mx" as masks, not as
+    // a variable bit select and a 32-bit compare.
+    function [15:0] mapi(input [31:0] i, input [15:0] mx, input [15:0] kb, input [1:0] mode);
+        reg ik, ov, ovr;
+        reg [31:0] r;
         begin
-            mx = (32'd1 << k) - 32'd1;
-            m = i & ((mx << 1) | 32'd1);
+            ik = |(i[15:0] & kb);
             r = i ^ {32{i[31]}};
+            ov = |i[31:16] || |(i[15:0] & ~mx);
+            ovr = |r[31:16] || |(r[15:0] & ~mx);
             case (mode)
-                2'd0: o = i & mx;
-                2'd1: o = (m & mx) ^ (m[{1'b0, k}] ? mx : 32'd0);
-                2'd2: o = i[31] ? 32'd0 : i > mx ? mx : i;
-                default: o = r > mx ? mx : r;
+                2'd0: mapi = i[15:0] & mx;
+                2'd1: mapi = (i[15:0] ^ {16{ik}}) & mx;
+                2'd2: mapi = i[31] ? 16'd0 : ov ? mx : i[15:0];
+                default: mapi = ovr ? mx : r[15:0];
             endcase
-            mapi = o[15:0];
         end
     endfunction
 
-    // One axis: the first tap's scaled position `i` (32-bit two's
-    // complement) and the weight `f` of coordinate `q` (I4F28).
-    function [43:0] scaled(input [31:0] q, input [3:0] k, input [1:0] mode);
-        /* verilator lint_off UNUSEDSIGNAL */  // p[19:0]: below the weight
-        reg [63:0] p;
-        /* verilator lint_on UNUSEDSIGNAL */
-        reg [31:0] hi;
+    // One axis of coordinate `q` (I4F28) on 2^k texels: the scaled
+    // position p = (q[27:0] << (k + 4)) + 2¹⁹ − 2³¹ plus the integer part
+    // `hi << k` (hi as the mode reduces q's integer bits) in its top word
+    // is one 64-bit sum s + {h, 2³¹ + 2¹⁹}: s = q[27:0] << (k + 4) and
+    // h = (hi << k) − 1 = ((hi − 1) << k) | (2^k − 1) for the first tap's
+    // index, h = hi << k for the second's (index + 1). Returns
+    // {s[47:4], h − 1 part, h part}.
+    function [107:0] shifted(input [31:0] q, input [3:0] k, input [1:0] mode);
+        reg [4:0] hi, him1;
+        reg [31:0] mx;
         begin
-            p = ({36'd0, q[27:0]} << ({1'b0, k} + 5'd4)) + 64'h0000_0000_0008_0000 - 64'h0000_0000_8000_0000;
-            hi = mode == 2'd0 ? 32'd0 : mode == 2'd1 ? {31'd0, q[28]} : {{28{q[31]}}, q[31:28]};
-            scaled = {p[63:32] + (hi << k), p[31:20]};
+            hi = mode == 2'd0 ? 5'd0 : mode == 2'd1 ? {4'd0, q[28]} : {q[31], q[31:28]};
+            him1 = hi - 5'd1;
+            mx = (32'd1 << k) - 32'd1;
+            shifted = {{16'd0, q[27:0]} << k, ({{27{him1[4]}}, him1} << k) | mx, {{27{hi[4]}}, hi} << k};
         end
-    endfunction
-
-    // base + 4·(y·2^kx + x): the index has at most 30 bits (kx + ky ≤ 30).
-    function [31:0] texel(input [31:0] base, input [3:0] k, input [15:0] x, input [15:0] y);
-        texel = base + ({16'd0, y} << ({1'b0, k} + 5'd2)) + {14'd0, x, 2'd0};
     endfunction
 
     // The level tex.addr addresses (tex.lvl).
@@ -218,6 +221,7 @@ module Cfu #(
     reg [17:0] slod;
     reg [17:0] swin0;
     reg [27:0] swin1;
+    reg [17:0] swmax;
     reg  [7:0] tt;
     reg  [3:0] tlow;
     reg  [1:0] tmu, tmv;
@@ -228,9 +232,9 @@ module Cfu #(
     // The upper level enters the addressing two cycles after the lower.
     reg  [1:0] l1cnt;
 
-    // Stage A: the scaled positions and weights. Sources: tex.addr (the
-    // tex.lvl level), tex.bw (the weights alone), tex.tri/tex.bil (the
-    // lower or nearest level), the upper level of tex.tri.
+    // Stage A1: the shifted coordinates. Sources: tex.addr (the tex.lvl
+    // level), tex.bw (the weights alone), tex.tri/tex.bil (the lower or
+    // nearest level), the upper level of tex.tri.
     wire inj_addr = op1 && funct3 == 3'd1;
     wire inj_bw = op0 && funct3 == 3'd2;
     wire inj_tri = op2 && funct3 == 3'd2;
@@ -242,22 +246,50 @@ module Cfu #(
     wire [3:0] in_kx = inj_addr ? lkx : (inj_up || (inj_bil && near_up)) ? tkx1 : tkx0;
     wire [3:0] in_ky = inj_addr ? lky : (inj_up || (inj_bil && near_up)) ? tky1 : tky0;
     wire [1:0] in_mu = inj_addr ? lmu : tmu, in_mv = inj_addr ? lmv : tmv;
-    wire [43:0] sx = scaled(in_u, in_kx, in_mu), sy = scaled(in_v, in_ky, in_mv);
-    reg        a_v;
+    wire [107:0] shx = shifted(in_u, in_kx, in_mu), shy = shifted(in_v, in_ky, in_mv);
+    reg        a_v, a_bw;
     reg  [1:0] a_tag, a_lt;
-    reg [31:0] a_ix, a_iy, a_base;
-    reg [12:0] a_wx, a_wy;
+    reg [43:0] a_sx, a_sy;
+    reg [31:0] a_hmx, a_hpx, a_hmy, a_hpy, a_base;
+    reg [12:0] a_bwx, a_bwy;
     reg  [3:0] a_kx, a_ky;
     reg  [1:0] a_mu, a_mv;
 
-    // Stage B: index maps, the four texel addresses, the corner weights.
-    wire [15:0] x0 = mapi(a_ix, a_kx, a_mu), x1 = mapi(a_ix + 32'd1, a_kx, a_mu);
-    wire [15:0] y0 = mapi(a_iy, a_ky, a_mv), y1 = mapi(a_iy + 32'd1, a_ky, a_mv);
-    wire [12:0] fxc = 13'd4096 - a_wx, fyc = 13'd4096 - a_wy;
-    /* verilator lint_off UNUSEDSIGNAL */  // every weight ≤ 2²⁴
-    wire [25:0] w00 = fxc * fyc, w10 = a_wx * fyc, w01 = fxc * a_wy, w11 = a_wx * a_wy;
+    // Stage A2: the two sums per axis: the taps' indices and the weights.
+    /* verilator lint_off UNUSEDSIGNAL */  // below the weight; the second sum's low word is the first's
+    wire [63:0] pmx = {16'd0, a_sx, 4'd0} + {a_hmx, 32'h8008_0000};
+    wire [63:0] ppx = {16'd0, a_sx, 4'd0} + {a_hpx, 32'h8008_0000};
+    wire [63:0] pmy = {16'd0, a_sy, 4'd0} + {a_hmy, 32'h8008_0000};
+    wire [63:0] ppy = {16'd0, a_sy, 4'd0} + {a_hpy, 32'h8008_0000};
     /* verilator lint_on UNUSEDSIGNAL */
-    // tex.addr's other taps, the weights of tex.bw / tex.addr.
+    reg        b_v;
+    reg  [1:0] b_tag, b_lt;
+    reg [31:0] b_i0x, b_i1x, b_i0y, b_i1y, b_base;
+    reg [12:0] b_wx, b_wy;
+    reg [15:0] b_mxx, b_kbx, b_mxy, b_kby;
+    reg  [3:0] b_kx;
+    reg  [1:0] b_mu, b_mv;
+
+    // Stage B1: index maps and the weights' complements.
+    reg        c_v;
+    reg  [1:0] c_tag, c_lt;
+    reg [15:0] c_x0, c_x1, c_y0, c_y1;
+    reg [12:0] c_wx, c_wy, c_fxc, c_fyc;
+    reg [31:0] c_base;
+    reg  [3:0] c_kx;
+
+    // Stage B2: the four texel addresses base + 4·(y·2^kx + x) (x < 2^kx:
+    // an OR), the corner weights.
+    function [31:0] texel(input [31:0] base, input [3:0] k, input [15:0] x, input [15:0] y);
+        texel = base + ((({16'd0, y} << k) | {16'd0, x}) << 2);
+    endfunction
+    /* verilator lint_off UNUSEDSIGNAL */  // every weight ≤ 2²⁴
+    wire [25:0] w00 = c_fxc * c_fyc, w10 = c_wx * c_fyc, w01 = c_fxc * c_wy, w11 = c_wx * c_wy;
+    /* verilator lint_on UNUSEDSIGNAL */
+    // tex.addr's taps (answered from d_* a cycle after B2), the weights of
+    // tex.bw / tex.addr.
+    reg        d_v;
+    reg        d_addr;
     reg [31:0] a10, a01, a11;
     reg [24:0] lw00, lw10, lw01, lw11;
     // A level of the texture unit: its four texel addresses and weights,
@@ -269,11 +301,12 @@ module Cfu #(
 
     // ---- The RAM port -----------------------------------------------------
     // Two words a cycle, at byte addresses `wa` and `wb` (different
-    // parities, or equal): each bank reads the one of its parity.
+    // parities, or equal): each bank reads the one of its parity. The
+    // descriptor block's pairs come from registers (ra, rb).
+    reg [31:0] ra, rb;
     /* verilator lint_off UNUSEDSIGNAL */  // outside the RAM's offset bits
-    wire [31:0] blk_w = sq == 3'd4 ? sp + 32'd8 + {26'd0, tlow, 2'd0} : sp;
-    wire [31:0] wa = sq != 3'd0 ? blk_w : lrow ? lp01 : lp00;
-    wire [31:0] wb = sq != 3'd0 ? blk_w + 32'd4 : lrow ? lp11 : lp10;
+    wire [31:0] wa = sq != 3'd0 ? ra : lrow ? lp01 : lp00;
+    wire [31:0] wb = sq != 3'd0 ? rb : lrow ? lp11 : lp10;
     /* verilator lint_on UNUSEDSIGNAL */
     assign mem_adr_0 = wa[2] ? wb[RAM_AW+2:3] : wa[RAM_AW+2:3];
     assign mem_adr_1 = wa[2] ? wa[RAM_AW+2:3] : wb[RAM_AW+2:3];
@@ -297,7 +330,7 @@ module Cfu #(
     wire [11:0] wlo = swin1[11:0], whi = swin1[23:12];
     wire [17:0] wmax = $signed(wsum) < $signed({6'd0, wlo}) ? {6'd0, wlo} : wsum;
     /* verilator lint_off UNUSEDSIGNAL */  // wmax ≥ lo ≥ 0: the top bits only compare
-    wire [17:0] wbits = wmax > {6'd0, whi} ? {6'd0, whi} : wmax;
+    wire [17:0] wbits = swmax > {6'd0, whi} ? {6'd0, whi} : swmax;
     /* verilator lint_on UNUSEDSIGNAL */
 
     // ---- The filter: four channels in parallel ----------------------------
@@ -320,7 +353,8 @@ module Cfu #(
     reg  [1:0] f3_lt;
     reg [127:0] f3_x;
     reg [95:0] w0, w1;
-    // The blend: B1 the two products per channel, B2 their rounded sum.
+    // The blend: B1 the two products per channel (the first with the
+    // rounding term 2²³), B2 their sum.
     reg        bl_v, b2_v;
     reg  [8:0] bl_t;
     reg [127:0] b2_q0, b2_q1;
@@ -339,7 +373,7 @@ module Cfu #(
             wire [31:0] xr = f3_x[32*c+31:32*c] + 32'h0080_0080;
             wire [32:0] q0 = {9'd0, w0[24*c+23:24*c]} * {24'd0, bl_tc};
             wire [32:0] q1 = {9'd0, w1[24*c+23:24*c]} * {24'd0, bl_t};
-            wire [31:0] bs = b2_q0[32*c+31:32*c] + b2_q1[32*c+31:32*c] + 32'h0080_0000;
+            wire [31:0] bs = b2_q0[32*c+31:32*c] + b2_q1[32*c+31:32*c];
             /* verilator lint_on UNUSEDSIGNAL */
             assign pa_n[32*c+31:32*c] = pa[31:0];
             assign pb_n[32*c+31:32*c] = pb[31:0];
@@ -347,7 +381,7 @@ module Cfu #(
             assign x_n[32*c+31:32*c] = sum0[32*c+31:32*c] + f2_r[32*c+31:32*c];
             assign wide_n[24*c+23:24*c] = xw[31:8];
             assign round_n[8*c+7:8*c] = xr[31:24];
-            assign q0_n[32*c+31:32*c] = q0[31:0];
+            assign q0_n[32*c+31:32*c] = q0[31:0] + 32'h0080_0000;
             assign q1_n[32*c+31:32*c] = q1[31:0];
             assign blend_n[8*c+7:8*c] = bs[31:24];
         end
@@ -360,7 +394,7 @@ module Cfu #(
         // tex.log2pl.
         if (lbusy) begin
             lcnt <= lcnt + 2'd1;
-            if (lcnt == 2'd1) begin
+            if (lcnt == 2'd3) begin
                 lbusy                 <= 1'b0;
                 pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
@@ -371,48 +405,91 @@ module Cfu #(
         // The upper level of tex.tri.
         if (l1cnt != 2'd0) l1cnt <= l1cnt - 2'd1;
 
-        // Stage A.
+        // Stage A1.
         a_v <= inj_addr || inj_bw || inj_tri || inj_bil || inj_up;
+        a_bw <= inj_bw;
         a_tag <= inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
         a_lt <= inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
-        a_ix <= sx[43:12];
-        a_iy <= sy[43:12];
-        a_wx <= inj_bw ? a[12:0] : {1'b0, sx[11:0]};
-        a_wy <= inj_bw ? b[12:0] : {1'b0, sy[11:0]};
+        a_sx <= shx[107:64];
+        a_hmx <= shx[63:32];
+        a_hpx <= shx[31:0];
+        a_sy <= shy[107:64];
+        a_hmy <= shy[63:32];
+        a_hpy <= shy[31:0];
+        a_bwx <= a[12:0];
+        a_bwy <= b[12:0];
         a_base <= in_base;
         a_kx <= in_kx;
         a_ky <= in_ky;
         a_mu <= in_mu;
         a_mv <= in_mv;
 
-        // Stage B.
-        if (a_v) begin
-            if (a_tag == AT_TMU) begin
+        // Stage A2.
+        b_v <= a_v;
+        b_tag <= a_tag;
+        b_lt <= a_lt;
+        b_i0x <= pmx[63:32];
+        b_i1x <= ppx[63:32];
+        b_i0y <= pmy[63:32];
+        b_i1y <= ppy[63:32];
+        b_wx <= a_bw ? a_bwx : {1'b0, pmx[31:20]};
+        b_wy <= a_bw ? a_bwy : {1'b0, pmy[31:20]};
+        b_mxx <= (16'd1 << a_kx) - 16'd1;
+        b_kbx <= 16'd1 << a_kx;
+        b_mxy <= (16'd1 << a_ky) - 16'd1;
+        b_kby <= 16'd1 << a_ky;
+        b_base <= a_base;
+        b_kx <= a_kx;
+        b_mu <= a_mu;
+        b_mv <= a_mv;
+
+        // Stage B1.
+        c_v <= b_v;
+        c_tag <= b_tag;
+        c_lt <= b_lt;
+        c_x0 <= mapi(b_i0x, b_mxx, b_kbx, b_mu);
+        c_x1 <= mapi(b_i1x, b_mxx, b_kbx, b_mu);
+        c_y0 <= mapi(b_i0y, b_mxy, b_kby, b_mv);
+        c_y1 <= mapi(b_i1y, b_mxy, b_kby, b_mv);
+        c_wx <= b_wx;
+        c_wy <= b_wy;
+        c_fxc <= 13'd4096 - b_wx;
+        c_fyc <= 13'd4096 - b_wy;
+        c_base <= b_base;
+        c_kx <= b_kx;
+
+        // Stage B2: a level of the texture unit, or tex.addr's taps and
+        // tex.bw's weights (answered the cycle after).
+        d_v <= 1'b0;
+        if (c_v) begin
+            lp00 <= texel(c_base, c_kx, c_x0, c_y0);
+            lp10 <= texel(c_base, c_kx, c_x1, c_y0);
+            lp01 <= texel(c_base, c_kx, c_x0, c_y1);
+            lp11 <= texel(c_base, c_kx, c_x1, c_y1);
+            if (c_tag == AT_TMU) begin
                 lv_v  <= 1'b1;
-                lv_lt <= a_lt;
-                lp00  <= texel(a_base, a_kx, x0, y0);
-                lp10  <= texel(a_base, a_kx, x1, y0);
-                lp01  <= texel(a_base, a_kx, x0, y1);
-                lp11  <= texel(a_base, a_kx, x1, y1);
+                lv_lt <= c_lt;
                 lv00  <= w00[24:0];
                 lv10  <= w10[24:0];
                 lv01  <= w01[24:0];
                 lv11  <= w11[24:0];
             end else begin
-                lw00      <= w00[24:0];
-                lw10      <= w10[24:0];
-                lw01      <= w01[24:0];
-                lw11      <= w11[24:0];
-                pend      <= 1'b0;
-                rsp_valid <= 1'b1;
-                if (a_tag == AT_ADDR) begin
-                    a10                   <= texel(a_base, a_kx, x1, y0);
-                    a01                   <= texel(a_base, a_kx, x0, y1);
-                    a11                   <= texel(a_base, a_kx, x1, y1);
-                    rsp_payload_outputs_0 <= texel(a_base, a_kx, x0, y0);
-                end else begin
-                    rsp_payload_outputs_0 <= 32'd0;
-                end
+                lw00   <= w00[24:0];
+                lw10   <= w10[24:0];
+                lw01   <= w01[24:0];
+                lw11   <= w11[24:0];
+                d_v    <= 1'b1;
+                d_addr <= c_tag == AT_ADDR;
+            end
+        end
+        if (d_v) begin
+            pend                  <= 1'b0;
+            rsp_valid             <= 1'b1;
+            rsp_payload_outputs_0 <= d_addr ? lp00 : 32'd0;
+            if (d_addr) begin
+                a10 <= lp10;
+                a01 <= lp01;
+                a11 <= lp11;
             end
         end
 
@@ -429,11 +506,11 @@ module Cfu #(
             lrow   <= !lrow;
             if (lrow) lv_v <= 1'b0;
         end
-        if (a_v && a_tag == AT_TMU) lv_v <= 1'b1;
+        if (c_v && c_tag == AT_TMU) lv_v <= 1'b1;
 
         // tex.sel's reads: 1 the window's words (after the CPU's writes),
-        // 2 their data, 3 the windowed lod, 4 the two levels' words, 5
-        // their data.
+        // 2 their data, 3 the lod clamped below, 4 clamped above, 5 the
+        // two levels' word addresses, 6 their words, 7 their data.
         case (sq)
             3'd1: if (sq_go) sq <= 3'd2;
             3'd2: begin
@@ -442,14 +519,23 @@ module Cfu #(
                 sq    <= 3'd3;
             end
             3'd3: begin
+                swmax <= wmax;
+                sq    <= 3'd4;
+            end
+            3'd4: begin
                 tt   <= wbits[7:0];
                 tlow <= wbits[11:8];
                 tmu  <= swin1[25:24];
                 tmv  <= swin1[27:26];
-                sq   <= 3'd4;
+                sq   <= 3'd5;
             end
-            3'd4: sq <= 3'd5;
             3'd5: begin
+                ra <= sp + 32'd8 + {26'd0, tlow, 2'd0};
+                rb <= sp + 32'd12 + {26'd0, tlow, 2'd0};
+                sq <= 3'd6;
+            end
+            3'd6: sq <= 3'd7;
+            3'd7: begin
                 tb0  <= {RAM_BASE[31:RAM_LOG2], dat_a[RAM_LOG2-3:0], 2'd0};
                 tkx0 <= dat_a[27:24];
                 tky0 <= dat_a[31:28];
@@ -567,6 +653,8 @@ module Cfu #(
                         rsp_payload_outputs_0 <= {31'd0, blk_ok};
                         if (blk_ok) begin
                             sp   <= a;
+                            ra   <= a;
+                            rb   <= a + 32'd4;
                             slod <= b[17:0];
                             sq   <= 3'd1;
                         end
@@ -591,6 +679,9 @@ module Cfu #(
             sq        <= 3'd0;
             l1cnt     <= 2'd0;
             a_v       <= 1'b0;
+            b_v       <= 1'b0;
+            c_v       <= 1'b0;
+            d_v       <= 1'b0;
             lv_v      <= 1'b0;
             lrow      <= 1'b0;
             md_v      <= 1'b0;

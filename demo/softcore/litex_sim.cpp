@@ -18,13 +18,21 @@
 #include "Vsim___024root.h"
 #include "Vsim_sim.h"
 #include "elf_load.h"
+#include "main_ram.h"
 #include "verilated.h"
 
 namespace {
 
 // LiteX's `main_ram` region (litex_soc.py MAIN_RAM).
 constexpr uint32_t kRamBase = 0x4000'0000;
+// The main RAM's arrays (main_ram.h, written by litex_soc.py beside the
+// model's Verilog): LiteX's SRAM `main_ram`, or the CFU SoC's BankedRAM,
+// words 2i in `main_ram_even`[i] and 2i + 1 in `main_ram_odd`[i].
+#if RAYMIP_RAM_BANKS == 2
+constexpr uint32_t kRamBytes = 2 * sizeof(Vsim_sim::main_ram_even);
+#else
 constexpr uint32_t kRamBytes = sizeof(Vsim_sim::main_ram);
+#endif
 
 }  // namespace
 
@@ -41,8 +49,15 @@ int main(int argc, char** argv) {
 
     std::vector<uint8_t> image(kRamBytes, 0);
     if (!elf::load(argv[1], image, kRamBase)) return 2;
+#if RAYMIP_RAM_BANKS == 2
+    auto& even = top->rootp->sim->main_ram_even;
+    auto& odd = top->rootp->sim->main_ram_odd;
+    for (uint32_t w = 0; w < kRamBytes / 4; ++w)
+        (w % 2 ? odd : even)[w / 2] = elf::rd32(image, size_t(w) * 4);
+#else
     auto& ram = top->rootp->sim->main_ram;
     for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = elf::rd32(image, size_t(w) * 4);
+#endif
 
     top->sys_clk = 0;
     top->sys_rst = 1;

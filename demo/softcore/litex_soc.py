@@ -1,19 +1,22 @@
 #!/usr/bin/env python3
 """The raymip LiteX SoC: VexRiscv (the `full` variant of pythondata-cpu-vexriscv,
 or `full+cfu` with the texture co-processor demo/softcore/cfu_tex.v on its
-CFU port), one integrated main RAM holding code and data, LiteX's UART and
-a simulation exit register, for LiteX's simulation platform.
+CFU port), one main RAM holding code and data, LiteX's UART and a
+simulation exit register, for LiteX's simulation platform.
 
---cfu names cfu_tex.v; its tex_log2pl.v beside it is added too, and the
-CFU's texture unit gets its read port on the main RAM (add_cfu_ram_port).
+--cfu names cfu_tex.v; its tex_log2pl.v beside it is added too, the main
+RAM is BankedRAM (even and odd words) instead of LiteX's integrated SRAM,
+and the CFU's texture unit gets a read port on each bank
+(add_cfu_ram_port).
 
 Generates the SoC's Verilog with LiteX's SoC builder (SoCCore, SimPlatform)
 into --out: `sim.v` (top module `sim`), the CPU's and the CFU's Verilog
 files listed in `sources.txt` (the installed packages' paths: nothing is
 copied), `public.vlt` (the Verilator configuration that lets the driver
-demo/softcore/litex_sim.cpp load an ELF image into the main RAM) and
-`csr.csv`. scripts/softcore then builds the Verilator model itself: one
-model per variant serves every firmware image.
+demo/softcore/litex_sim.cpp load an ELF image into the main RAM),
+`main_ram.h` (for the driver: one main RAM array, or the CFU SoC's two
+banks) and `csr.csv`. scripts/softcore then builds the Verilator model
+itself: one model per variant serves every firmware image.
 
 The memory map is LiteX's, with the firmware's fixed addresses
 (demo/softcore/litex/memory.x and demo/firmware/src/console.rs), which this
@@ -31,12 +34,15 @@ import os
 import re
 import sys
 
-from migen import Cat, Constant, Module, Signal, If
+from migen import Cat, Memory, Module, Mux, Signal, If
+from migen.fhdl.specials import WRITE_FIRST
 
 from litex.build.generic_platform import Pins, Subsignal
 from litex.build.sim import SimPlatform
 from litex.build.io import CRG
 from litex.soc.integration import export
+from litex.soc.integration.soc import SoCRegion
+from litex.soc.interconnect import wishbone
 from litex.soc.integration.soc_core import SoCCore
 from litex.soc.interconnect.csr import AutoCSR, CSRStorage
 
@@ -76,6 +82,35 @@ class SimExit(Module, AutoCSR):
         self.comb += pads.code.eq(self.code.storage)
 
 
+class BankedRAM(Module):
+    """The main RAM of the CFU SoC as two banks of 32-bit words, `even` and
+    `odd` (word address bit 0), each a memory of its own with the bus's
+    read/write port (byte enables) and one read port `cfu_ports[b]` for the
+    texture unit: two ports per memory, so that block RAM holds each bank
+    once (one memory with three ports is copied). On the Wishbone bus it
+    behaves as LiteX's SRAM: the data and ack one cycle after the request."""
+
+    def __init__(self, ram_bytes):
+        words = ram_bytes // 4
+        aw = words.bit_length() - 1
+        assert words == 1 << aw, "the main RAM's size must be a power of two"
+        self.bus = wishbone.Interface(data_width=32, address_width=32, addressing="word")
+        self.banks = [Memory(32, words // 2, name=f"main_ram_{n}") for n in ("even", "odd")]
+        ports = [m.get_port(write_capable=True, we_granularity=8, mode=WRITE_FIRST) for m in self.banks]
+        self.cfu_ports = [m.get_port(has_re=False) for m in self.banks]
+        self.specials += self.banks + ports + self.cfu_ports
+        bus = self.bus
+        adr = bus.adr[:aw]
+        for b, port in enumerate(ports):
+            self.comb += [port.adr.eq(adr[1:]), port.dat_w.eq(bus.dat_w)]
+            self.comb += [port.we[i].eq(bus.cyc & bus.stb & bus.we & bus.sel[i] & (adr[0] == b)) for i in range(4)]
+        # The bank of the word read in the previous cycle.
+        odd = Signal()
+        self.sync += odd.eq(adr[0])
+        self.comb += bus.dat_r.eq(Mux(odd, ports[1].dat_r, ports[0].dat_r))
+        self.sync += [bus.ack.eq(0), If(bus.cyc & bus.stb & ~bus.ack, bus.ack.eq(1))]
+
+
 class RaymipSoC(SoCCore):
     """VexRiscv + main RAM + UART + exit register on LiteX's simulation
     platform; `cfu` the path of the CFU's Verilog, or None."""
@@ -92,13 +127,16 @@ class RaymipSoC(SoCCore):
             cpu_reset_address=MAIN_RAM,
             integrated_rom_size=0,
             integrated_sram_size=0,
-            integrated_main_ram_size=ram_bytes,
+            # The CFU SoC's main RAM is BankedRAM, added below.
+            integrated_main_ram_size=0 if cfu else ram_bytes,
             uart_name="sim",
             with_timer=False,
         )
         if cfu:
             # The CFU's logarithm pipeline, shared with the PicoRV32 unit.
             platform.add_source(os.path.join(os.path.dirname(cfu), "tex_log2pl.v"))
+            self.main_ram = BankedRAM(ram_bytes)
+            self.bus.add_slave("main_ram", self.main_ram.bus, SoCRegion(origin=MAIN_RAM, size=ram_bytes))
             self.add_cfu_ram_port(ram_bytes)
         self.sim_exit = SimExit(platform.request("sim_exit"))
         # An interrupt-free firmware and a UART without the host's side:
@@ -109,20 +147,16 @@ class RaymipSoC(SoCCore):
 
     def add_cfu_ram_port(self, ram_bytes):
         """The texture unit's read port on the main RAM (cfu_tex.v's
-        `mem_*` ports): two more read ports of the main RAM's memory, one
-        on its even and one on its odd words (the unit's two banks; in
-        block RAM the memory's bus port and these read ports make
-        dual-port banks), and `mem_hold` while the CPU's data bus has a
-        write in flight (the unit's first read of a tex.sel waits for it)."""
+        `mem_*` ports): the second port of each bank of BankedRAM, bank 0
+        the even and bank 1 the odd words, and `mem_hold` while the CPU's
+        data bus has a write in flight (the unit's first read of a tex.sel
+        waits for it)."""
         words = ram_bytes // 4
         aw = words.bit_length() - 2  # words per bank 2^aw
-        assert words == 1 << (aw + 1), "the main RAM's size must be a power of two"
-        mem = self.main_ram.mem
-        ports = [mem.get_port(has_re=False) for _ in range(2)]
-        self.specials += ports
+        ports = self.main_ram.cfu_ports
         adr = [Signal(aw, name=f"cfu_mem_adr_{b}") for b in range(2)]
-        for b, (port, a) in enumerate(zip(ports, adr)):
-            self.comb += port.adr.eq(Cat(Constant(b, 1), a))
+        for port, a in zip(ports, adr):
+            self.comb += port.adr.eq(a)
         dbus = self.cpu.dbus
         hold = Signal(name="cfu_mem_hold")
         self.comb += hold.eq(dbus.cyc & dbus.we)
@@ -175,8 +209,21 @@ def main():
     with open(os.path.join(out, "sources.txt"), "w") as f:
         f.write("\n".join(sources) + "\n")
     # The main RAM's memory array, writable from the driver.
+    # The main RAM's memory arrays (one, or BankedRAM's two), writable from
+    # the driver, and how many there are (`main_ram.h`).
+    arrays = ["main_ram_even", "main_ram_odd"] if cfu else ["main_ram"]
     with open(os.path.join(out, "public.vlt"), "w") as f:
-        f.write("`verilator_config\npublic_flat_rw -module \"sim\" -var \"main_ram\"\n")
+        f.write("`verilator_config\n")
+        for name in arrays:
+            f.write(f"public_flat_rw -module \"sim\" -var \"{name}\"\n")
+    with open(os.path.join(out, "main_ram.h"), "w") as f:
+        f.write("// Written by demo/softcore/litex_soc.py: the main RAM's memory arrays.\n"
+                f"#define RAYMIP_RAM_BANKS {len(arrays)}\n")
+    with open(os.path.join(out, "sim.v")) as f:
+        verilog = f.read()
+    missing = [n for n in arrays if not re.search(rf"reg \[31:0\] {n}\[", verilog)]
+    if missing:
+        sys.exit(f"litex_soc.py: the generated Verilog lacks the main RAM arrays {missing}")
     # The firmware's constants against the generated map.
     regions = {}
     with open(os.path.join(out, "csr.csv")) as f:

@@ -8,14 +8,14 @@ use std::hint::black_box;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fixed::types::{I16F16, I32F32, U1F31, U32F32};
 use raymip::lod::{cone_lod, table_lod};
+use raymip::rng::XorShift64;
 use raymip::units::{Accurate, Delta, Log2Pb, PathLength, Width};
-use raymip_reference::Rng;
 
 const N: usize = 1024;
 
 /// Deterministic pseudo-random inputs (xorshift), the same for both precisions.
 fn inputs() -> Vec<(f32, f32, f32, f32)> {
-    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let mut rng = XorShift64(0x2545_F491_4F6C_DD1D);
     let mut next = || (rng.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
     (0..N)
         .map(|_| {

@@ -15,10 +15,10 @@ use std::fmt::Write as _;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
+use raymip::rng::XorShift64;
 use raymip_host::output::machine::machine_line;
 use raymip_host::output::report::{publish, write_option};
 use raymip_host::raydiff_chains::{CLASSES, Outcome, Raymip, run};
-use raymip_reference::Rng;
 use rayon::prelude::*;
 
 const BLOCK: &str = "raydiff-accuracy";
@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .into_par_iter()
             .map(|i| {
                 bar.inc(1);
-                run(&Raymip, class, &mut Rng(2 * i + 1))
+                run(&Raymip, class, &mut XorShift64(2 * i + 1))
             })
             .collect();
         out.sort_by(|a, b| a.err.total_cmp(&b.err));

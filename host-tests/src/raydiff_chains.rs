@@ -24,7 +24,8 @@
 
 use raymip::units::Lod;
 
-use raymip_reference::Rng;
+use raymip::rng::XorShift64;
+use raymip_reference::Draw;
 use raymip_reference::raydiff::{
     self as rf, Diff, MIN_COS, Triangle, V, axpy, cross, dot, norm, scale, unit,
 };
@@ -182,17 +183,17 @@ pub struct Outcome {
 }
 
 /// Uniform in `[2^lo, 2^hi)` on a log scale.
-fn log_uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+fn log_uniform(rng: &mut XorShift64, lo: f64, hi: f64) -> f64 {
     rng.range(lo, hi).exp2()
 }
 
 /// True with probability `1/k`.
-fn one_in(rng: &mut Rng, k: u64) -> bool {
+fn one_in(rng: &mut XorShift64, k: u64) -> bool {
     rng.next_u64().is_multiple_of(k)
 }
 
 /// A random unit vector.
-fn random_unit(rng: &mut Rng) -> V {
+fn random_unit(rng: &mut XorShift64) -> V {
     loop {
         let v = [
             rng.range(-1.0, 1.0),
@@ -218,7 +219,7 @@ fn basis(n: V) -> (V, V) {
 }
 
 /// A unit normal facing `d` at `|D·n| = c`, otherwise random.
-fn facing_normal(rng: &mut Rng, d: V, c: f64) -> V {
+fn facing_normal(rng: &mut XorShift64, d: V, c: f64) -> V {
     let (a, b) = basis(d);
     let phi = rng.range(0.0, core::f64::consts::TAU);
     let w = axpy(scale(phi.cos(), a), phi.sin(), b);
@@ -227,7 +228,7 @@ fn facing_normal(rng: &mut Rng, d: V, c: f64) -> V {
 }
 
 /// `|D·n|` of a hit: ordinary in `[2⁻³, 1]`, grazing down to `MIN_COS`.
-fn cosine(rng: &mut Rng, grazing: bool) -> f64 {
+fn cosine(rng: &mut XorShift64, grazing: bool) -> f64 {
     if grazing {
         log_uniform(rng, -16.0, -4.0).max(MIN_COS)
     } else {
@@ -329,7 +330,7 @@ impl<F: Firmware> Chain<'_, F> {
 }
 
 /// Runs one chain of class `class` from `rng`.
-pub fn run<F: Firmware>(fw: &F, class: Class, rng: &mut Rng) -> Outcome {
+pub fn run<F: Firmware>(fw: &F, class: Class, rng: &mut XorShift64) -> Outcome {
     let loc = [fw.local(), Local::UNIT];
     // Camera: unit forward axis, per-pixel steps γ ⟂ f, a pixel anywhere
     // in a 1024² image.
@@ -461,7 +462,7 @@ fn finish<F: Firmware>(ch: &Chain<'_, F>, class: Class, tri: Triangle, bounces: 
 /// (`⟂ n`, any offset), shaped by the class; quantised by the firmware's
 /// coordinate format (vertices below 2²⁰ on the 2⁻³² grid: the
 /// reference decides the degenerate classes exactly).
-fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle {
+fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut XorShift64, n: V) -> Triangle {
     let (a, b) = basis(n);
     let l = if class == Class::SlowUv {
         log_uniform(rng, 4.0, 12.0)
@@ -538,7 +539,7 @@ fn triangle<F: Firmware>(fw: &F, class: Class, rng: &mut Rng, n: V) -> Triangle 
             uv = [uv[0]; 3];
         }
     }
-    let size = |rng: &mut Rng| (log_uniform(rng, 0.0, 12.0).round() as u32).clamp(1, 4096);
+    let size = |rng: &mut XorShift64| (log_uniform(rng, 0.0, 12.0).round() as u32).clamp(1, 4096);
     Triangle {
         p,
         uv,

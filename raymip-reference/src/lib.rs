@@ -1,6 +1,6 @@
 //! f64 references of raymip's stages, written from the definitions (papers,
 //! API specifications) without the firmware, and the deterministic test
-//! random-number generator. The firmware's unit and integration tests, the
+//! generator's f64 draws. The firmware's unit and integration tests, the
 //! host harness (`raymip-host`) and the fuzz targets compare the firmware
 //! against these; each reference states the definition it follows.
 //!
@@ -11,7 +11,7 @@
 //!
 //! | module | reference of |
 //! |---|---|
-//! | [`rng`] | the test inputs' generator (xorshift64) |
+//! | [`rng`] | f64 draws from the test inputs' generator (`raymip::rng::XorShift64`) |
 //! | [`pb`] | `log2 Pb` of a textured triangle (table method set-up) |
 //! | [`lod`] | the lod of each method: table, ray cone, ray-differential footprint |
 //! | [`geomlod`] | the geometric-LOD parameter of an instance from its depth |
@@ -28,4 +28,4 @@ pub mod raydiff;
 pub mod rng;
 pub mod sampler;
 
-pub use rng::Rng;
+pub use rng::Draw;

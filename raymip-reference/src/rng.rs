@@ -1,38 +1,43 @@
-//! The one generator of test inputs: xorshift64 (Marsaglia 2003),
-//! deterministic from its seed, the same sequence on every host. Recorded
-//! results (the firmware's golden sampler hashes) depend on its sequence.
-//! The firmware's own generator for decisions on the controller is
-//! `raymip::rng` (32-bit, counter-based): a part of the product, not of the
-//! tests.
+//! f64 draws from the test inputs' generator. The generators themselves
+//! live in `raymip::rng` (xorshift64 for the host tests' inputs beside the
+//! firmware's own 32-bit generators); this crate does not depend on
+//! `raymip`, so it reads any source of 64-bit words: an
+//! `Iterator<Item = u64>`, which `raymip::rng::XorShift64` is.
 
-/// Deterministic xorshift64 generator (the seed must be non-zero).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rng(pub u64);
+/// Uniform f64 draws from a never-ending source of 64-bit words.
+pub trait Draw {
+    /// The next 64 pseudo-random bits.
+    fn bits(&mut self) -> u64;
 
-impl Rng {
-    /// Next 64 pseudo-random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// Uniform in [0, 1) with 53 bits.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Fills `out` with the low 32 bits of successive [`next_u64`](Self::next_u64)
-    /// values (random texels of a test texture).
-    pub fn fill_u32(&mut self, out: &mut [u32]) {
-        for w in out {
-            *w = self.next_u64() as u32;
-        }
+    /// Uniform in [0, 1) with 53 bits (the top 53 of [`bits`](Self::bits)).
+    fn unit(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
     }
 
     /// Uniform in [`lo`, `hi`).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
+    }
+}
+
+impl<I: Iterator<Item = u64>> Draw for I {
+    /// The iterator's next word (0 once it ends, which a generator never does).
+    fn bits(&mut self) -> u64 {
+        self.next().unwrap_or(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Draw;
+
+    /// `unit` takes the top 53 bits, `range` scales it.
+    #[test]
+    fn unit_and_range_scale_the_top_bits() {
+        let mut words = [u64::MAX, 0, 1 << 63].into_iter();
+        assert_eq!(words.unit(), 1.0 - 2f64.powi(-53));
+        assert_eq!(words.range(2.0, 4.0), 2.0);
+        assert_eq!(words.range(2.0, 4.0), 3.0);
+        assert_eq!(words.bits(), 0);
     }
 }

@@ -453,6 +453,48 @@ mod tests {
             assert_eq!(st.pl_norm, NormPl::new(st.pl), "after +{t:#x}");
         }
         assert!(st.saturated);
+        // Saturation is sticky: a further segment that saturates `Pl` again
+        // (the cone does not) keeps the flag.
+        st = st.advance(PathLength::ONE);
+        assert!(st.saturated && st.pl == PathLength::MAX);
+    }
+
+    /// When `γ·t` saturates and the sum with the width overflows too, the
+    /// cone still reports saturation (both flags set at once).
+    #[cfg(feature = "cone")]
+    #[test]
+    fn cone_flags_saturation_of_product_and_sum() {
+        let cone = RayCone {
+            width: Width::ONE,
+            spread: Spread::from_num(1.5),
+        };
+        let (got, saturated) = cone.advance(PathLength::MAX);
+        assert_eq!((got.width, saturated), (Width::MAX, true));
+        let neg = RayCone {
+            width: Width::from_num(-1),
+            spread: Spread::from_num(-1.5),
+        };
+        assert_eq!(
+            neg.advance(PathLength::MAX),
+            (
+                RayCone {
+                    width: Width::MIN,
+                    ..neg
+                },
+                true
+            )
+        );
+    }
+
+    /// A bounce whose spread saturates keeps the flag of a path that had
+    /// saturated before.
+    #[cfg(feature = "cone")]
+    #[test]
+    fn bounce_keeps_saturation() {
+        let once = PathState::primary(&spread(0.001), 0).bounce(Spread::MAX);
+        assert!(once.saturated && once.cone.spread == Spread::MAX);
+        let twice = once.bounce(Spread::MAX);
+        assert!(twice.saturated && twice.cone.spread == Spread::MAX);
     }
 
     #[test]
@@ -462,6 +504,7 @@ mod tests {
         for d in 0..3u8 {
             s.push(PathState { depth: d, ..base }).unwrap();
         }
+        assert!(!s.is_empty());
         let extra = PathState { depth: 9, ..base };
         assert_eq!(s.push(extra), Err(StackFull(extra, ())));
         assert_eq!(s.len(), 3, "overflow keeps the stack");

@@ -11,11 +11,11 @@ use raymip::setup::table::{TABLE_MAX_ERROR, TexTriangle};
 use raymip::units::{Accurate, Coord, Log2Pb, PathLength, Spread, TexCoord, Width};
 
 use crate::common;
-use common::{Rng, log2_pb_f64};
+use common::{Draw, XorShift64, log2_pb_f64};
 
 #[test]
 fn measured_error_of_every_lod_stage() {
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = XorShift64(0x9E37_79B9_7F4A_7C15);
     let q = |x: f64| I32F32::from_num(x).to_num::<f64>();
     let (mut e_log2, mut e_table, mut e_lod, mut e_cone, mut e_normal) =
         (0f64, 0f64, 0f64, 0f64, 0f64);

@@ -22,7 +22,7 @@ use raymip::texture::{AddressMode, Cfg, FilterError, Mode, Sampler, SamplerDesc,
 use raymip::units::{Fast, Lod, TexCoord};
 
 use crate::common;
-use common::{Rng, random_texture, samples_for};
+use common::{XorShift64, random_texture, samples_for};
 use raymip_reference::sampler::{self as reference, Texture};
 
 /// A generated pyramid with random level 0, owned, and the reference's
@@ -296,7 +296,7 @@ fn high_contrast_edges() {
     }
     generate(&g, &mut buf).unwrap();
     let t = Tex::new(g, buf);
-    let mut rng = Rng(99);
+    let mut rng = XorShift64(99);
     let mut samples = Vec::new();
     for _ in 0..20_000 {
         let u = TexCoord::from_bits((rng.next_u64() >> 31) as i64);
@@ -422,7 +422,7 @@ fn fast_trilinear_every_lod_step() {
         }
         generate(&g, &mut bw).unwrap();
         for t in [Tex::new(g, bw), Tex::random(w, h, levels, 17)] {
-            let mut rng = Rng(u64::from(w) * 31 + 1);
+            let mut rng = XorShift64(u64::from(w) * 31 + 1);
             let mut samples = Vec::new();
             for lb in 0..=(i16::from(levels) * 256) {
                 let lod = Lod::from_bits(lb);

@@ -10,7 +10,7 @@ use raymip::texture::storage::mip::{
 };
 
 use crate::common;
-use common::Rng;
+use common::XorShift64;
 
 fn channel(t: Texel, c: usize) -> f64 {
     f64::from((t >> (8 * c)) & 0xFF)
@@ -49,7 +49,7 @@ fn reference_texel(src: &[Texel], sw: u32, sh: u32, dw: u32, dh: u32, x: u32, y:
 fn check(w: u32, h: u32, levels: u8, seed: u64) -> f64 {
     let g = Geometry::new(w, h, levels).unwrap();
     assert_eq!(g.len(), pyramid_len(w, h, levels));
-    let mut rng = Rng(seed | 1);
+    let mut rng = XorShift64(seed | 1);
     let mut buf: Vec<Texel> = vec![0; g.len()];
     for t in &mut buf[..(w * h) as usize] {
         *t = rng.next_u64() as u32;

@@ -128,22 +128,8 @@ pub mod inputs {
     /// Seed of the generator for the whole budget run.
     pub const SEED: u32 = 0x2545_F491;
 
-    /// Deterministic xorshift32 generator.
-    #[derive(Clone, Debug)]
-    pub struct Rng(pub u32);
-
-    impl Rng {
-        /// The next 32 pseudo-random bits.
-        #[allow(clippy::should_implement_trait)]
-        pub fn next(&mut self) -> u32 {
-            let mut x = self.0;
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            self.0 = x;
-            x
-        }
-    }
+    /// The inputs' generator (xorshift32; its home is `raymip::rng`).
+    pub use raymip::rng::XorShift32;
 
     /// The inputs of the budget calls in the budgets' order, all from one
     /// generator seeded with [`SEED`]: [`N`] draws of each kind. `rng` is
@@ -163,15 +149,15 @@ pub mod inputs {
         /// [`aniso`] inputs.
         pub aniso: [(TexCoord, TexCoord, Footprint); N],
         /// The generator after these draws.
-        pub rng: Rng,
+        pub rng: XorShift32,
     }
 
     impl Draws {
-        /// Every kind drawn in turn from `Rng(SEED)`.
+        /// Every kind drawn in turn from `XorShift32(SEED)`.
         #[must_use]
         pub fn new() -> Self {
-            let mut rng = Rng(SEED);
-            let empty = draw(&mut rng, Rng::next);
+            let mut rng = XorShift32(SEED);
+            let empty = draw(&mut rng, XorShift32::next_u32);
             let lod = draw(&mut rng, table_lod);
             let cone = draw(&mut rng, cone_lod);
             let bilinear = draw(&mut rng, bilinear);
@@ -196,40 +182,40 @@ pub mod inputs {
     }
 
     /// [`N`] inputs drawn by `f` in turn.
-    pub fn draw<T>(rng: &mut Rng, mut f: impl FnMut(&mut Rng) -> T) -> [T; N] {
+    pub fn draw<T>(rng: &mut XorShift32, mut f: impl FnMut(&mut XorShift32) -> T) -> [T; N] {
         core::array::from_fn(|_| f(rng))
     }
 
     /// Table lod: `Pl` over 2⁻¹⁶ .. 2¹⁶ scene units, `log2 Pb` over [−16, 16).
-    pub fn table_lod(r: &mut Rng) -> (PathLength, Log2Pb) {
-        let shift = 16 + r.next() % 32;
-        let pl = PathLength::from_bits((u64::from(r.next()) << (shift - 16)) | 1);
-        let pb = Log2Pb::from_log2(I16F16::from_bits((r.next() as i32) >> 11));
+    pub fn table_lod(r: &mut XorShift32) -> (PathLength, Log2Pb) {
+        let shift = 16 + r.next_u32() % 32;
+        let pl = PathLength::from_bits((u64::from(r.next_u32()) << (shift - 16)) | 1);
+        let pb = Log2Pb::from_log2(I16F16::from_bits((r.next_u32() as i32) >> 11));
         (pl, pb)
     }
 
     /// Cone lod: width up to 2⁸ scene units, Δ over [−64, 64), `|n·d|` ≥ 2⁻¹¹.
-    pub fn cone_lod(r: &mut Rng) -> (Width, Delta, Option<U1F31>) {
-        let w = Width::from_bits(i64::from(r.next()) << (r.next() % 24));
-        let d = Delta::from_bits((r.next() as i32) >> 10);
-        let c = Some(U1F31::from_bits(r.next() | (1 << 20)));
+    pub fn cone_lod(r: &mut XorShift32) -> (Width, Delta, Option<U1F31>) {
+        let w = Width::from_bits(i64::from(r.next_u32()) << (r.next_u32() % 24));
+        let d = Delta::from_bits((r.next_u32() as i32) >> 10);
+        let c = Some(U1F31::from_bits(r.next_u32() | (1 << 20)));
         (w, d, c)
     }
 
     /// Bilinear sample: `u, v ∈ [0, 1)`, lod over [0, 5).
-    pub fn bilinear(r: &mut Rng) -> (TexCoord, TexCoord, Lod) {
-        let u = TexCoord::from_bits(i64::from(r.next()));
-        let v = TexCoord::from_bits(i64::from(r.next()));
-        let lod = Lod::from_bits((r.next() % (5 << 8)) as i16);
+    pub fn bilinear(r: &mut XorShift32) -> (TexCoord, TexCoord, Lod) {
+        let u = TexCoord::from_bits(i64::from(r.next_u32()));
+        let v = TexCoord::from_bits(i64::from(r.next_u32()));
+        let lod = Lod::from_bits((r.next_u32() % (5 << 8)) as i16);
         (u, v, lod)
     }
 
     /// Trilinear sample: as [`bilinear`], the lod's fraction never 0 (both
     /// levels are filtered).
-    pub fn trilinear(r: &mut Rng) -> (TexCoord, TexCoord, Lod) {
-        let u = TexCoord::from_bits(i64::from(r.next()));
-        let v = TexCoord::from_bits(i64::from(r.next()));
-        let lod = Lod::from_bits((r.next() % (5 << 8)) as i16 | 1);
+    pub fn trilinear(r: &mut XorShift32) -> (TexCoord, TexCoord, Lod) {
+        let u = TexCoord::from_bits(i64::from(r.next_u32()));
+        let v = TexCoord::from_bits(i64::from(r.next_u32()));
+        let lod = Lod::from_bits((r.next_u32() % (5 << 8)) as i16 | 1);
         (u, v, lod)
     }
 
@@ -281,12 +267,12 @@ pub mod inputs {
     /// the 32×32 demo texture) and a minor axis perpendicular to it, 16 or
     /// 32 times shorter, so every cap up to 16× is reached (probe count =
     /// the cap).
-    pub fn aniso(r: &mut Rng) -> (TexCoord, TexCoord, Footprint) {
-        let u = TexCoord::from_bits(i64::from(r.next()));
-        let v = TexCoord::from_bits(i64::from(r.next()));
-        let a = i64::from(r.next() as i32) << 1;
-        let b = i64::from(r.next() as i32) << 1;
-        let k = 4 + (r.next() & 1);
+    pub fn aniso(r: &mut XorShift32) -> (TexCoord, TexCoord, Footprint) {
+        let u = TexCoord::from_bits(i64::from(r.next_u32()));
+        let v = TexCoord::from_bits(i64::from(r.next_u32()));
+        let a = i64::from(r.next_u32() as i32) << 1;
+        let b = i64::from(r.next_u32() as i32) << 1;
+        let k = 4 + (r.next_u32() & 1);
         let fp = Footprint {
             x: [TexCoord::from_bits(a), TexCoord::from_bits(b)],
             y: [TexCoord::from_bits(-b >> k), TexCoord::from_bits(a >> k)],
@@ -296,10 +282,10 @@ pub mod inputs {
 
     /// Pseudo-random bytes (the stored blocks of the BC1 row: every
     /// 8-byte pattern is a valid BC1 block, both colour modes occur).
-    pub fn bytes<const L: usize>(r: &mut Rng) -> [u8; L] {
+    pub fn bytes<const L: usize>(r: &mut XorShift32) -> [u8; L] {
         let mut b = [0u8; L];
         for x in &mut b {
-            *x = (r.next() >> 24) as u8;
+            *x = (r.next_u32() >> 24) as u8;
         }
         b
     }
@@ -307,10 +293,10 @@ pub mod inputs {
     /// Instances of the geometric-LOD rows: ids counting from `first`,
     /// camera-space depths over `[−2, 70)` scene units (16 fractional
     /// bits; some before `z_near` and beyond `z_far` of [`selector`]).
-    pub fn instances<const L: usize>(r: &mut Rng, first: u32) -> [(u32, Depth); L] {
+    pub fn instances<const L: usize>(r: &mut XorShift32, first: u32) -> [(u32, Depth); L] {
         let mut out = [(0, Depth::ZERO); L];
         for (i, x) in (first..).zip(out.iter_mut()) {
-            let z = i64::from(r.next() % (72 << 16)) - (2 << 16);
+            let z = i64::from(r.next_u32() % (72 << 16)) - (2 << 16);
             *x = (i, Depth::from_bits(z << 16));
         }
         out
@@ -339,7 +325,7 @@ pub mod inputs {
     /// `±1`, `z` up to `−½`), and direction differentials up to 2⁻⁸.
     #[cfg(feature = "envmap")]
     pub fn envmap(
-        r: &mut Rng,
+        r: &mut XorShift32,
     ) -> (
         raymip::units::Spread,
         raymip::units::UnitVec,
@@ -347,8 +333,8 @@ pub mod inputs {
         [fixed::types::I2F30; 3],
     ) {
         use fixed::types::I2F30;
-        let g = raymip::units::Spread::from_bits(((r.next() >> 12) | (1 << 18)) as i32);
-        let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
+        let g = raymip::units::Spread::from_bits(((r.next_u32() >> 12) | (1 << 18)) as i32);
+        let mut f = |sh: u32| I2F30::from_bits((r.next_u32() as i32) >> sh);
         let d = [f(1), f(1), f(2)];
         let dx = [f(9), f(9), f(9)];
         let dy = [f(9), f(9), f(9)];
@@ -360,17 +346,17 @@ pub mod inputs {
     /// `(±½, ±½, −0.7)`, a normal near `+z` with small differentials, hit
     /// distance in [1, 65) scene units.
     #[cfg(feature = "raydiff")]
-    pub fn raydiff(r: &mut Rng) -> RayDiffIn {
+    pub fn raydiff(r: &mut XorShift32) -> RayDiffIn {
         use fixed::types::{I2F30, I32F32};
         use raymip::path::raydiff::{DirDiff, PosDiff, RayDiff};
-        let mut f = |sh: u32| I2F30::from_bits((r.next() as i32) >> sh);
+        let mut f = |sh: u32| I2F30::from_bits((r.next_u32() as i32) >> sh);
         let d = [f(2), f(2), I2F30::from_num(-0.7)];
         let n = [f(4), f(4), I2F30::from_num(0.99)];
         let dn = [f(10), f(10), f(10)];
         let dd = [[f(9), f(9), f(9)], [f(9), f(9), f(9)]];
-        let mut g = |_| I32F32::from_bits(i64::from(r.next() as i32) >> 7);
+        let mut g = |_| I32F32::from_bits(i64::from(r.next_u32() as i32) >> 7);
         let o: [[I32F32; 3]; 2] = [core::array::from_fn(&mut g), core::array::from_fn(&mut g)];
-        let t = PathLength::from_bits(u64::from(r.next() >> 6) + (1 << 32));
+        let t = PathLength::from_bits(u64::from(r.next_u32() >> 6) + (1 << 32));
         let s = RayDiff::new(
             PosDiff::from_i32f32(o[0]),
             PosDiff::from_i32f32(o[1]),

@@ -29,7 +29,7 @@ use raymip::texture::{Cfg, Mode, NoStats, Sampler};
 use raymip::units::{Accurate, Fast, Footprint, Lod, TexCoord};
 use raymip_demo_scene::{TEX_LEVELS, TEX_SIZE};
 
-use crate::inputs::{self, N, Rng};
+use crate::inputs::{self, N, XorShift32};
 
 /// The plain sampler: RGBA8 power-of-two pyramid (direct level views),
 /// wrap, ACCURATE, no fetch statistics (the matrix's keys count none: a
@@ -234,7 +234,7 @@ impl Images {
     /// The images of the demo texture.
     #[must_use]
     pub fn new() -> Self {
-        let bc1 = inputs::bytes(&mut Rng(inputs::SEED ^ 0xBC1));
+        let bc1 = inputs::bytes(&mut XorShift32(inputs::SEED ^ 0xBC1));
         let mut rgb565 = [0u8; RGB565_LEN];
         for (b, &t) in rgb565
             .chunks_exact_mut(2)
@@ -501,7 +501,7 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
     use raymip::path::raydiff::gbuffer::GSample;
     use raymip::setup::table::TexTriangle;
     use raymip::units::Coord;
-    let mut rng = Rng(inputs::SEED ^ 0xD1FF);
+    let mut rng = XorShift32(inputs::SEED ^ 0xD1FF);
     let rd_in: [inputs::RayDiffIn; N] = core::array::from_fn(|_| inputs::raydiff(&mut rng));
     let c = |x: i32| Coord::from_bits(i64::from(x) << 32);
     let t = |x: i32| TexCoord::from_bits(i64::from(x) << 32);

@@ -15,6 +15,7 @@
 
 pub mod texformat;
 
+use raymip::rng::XorShift64;
 use raymip::texture::Mode;
 use raymip::texture::address::AddressMode;
 use raymip::texture::kernel::accurate::BILERP_MAX_ERROR_LSB;
@@ -27,7 +28,7 @@ use raymip::texture::storage::format::{ColorSpace, Format, TexelFormat};
 use raymip::texture::storage::image::Image;
 use raymip::texture::storage::mip::{Geometry, Texel};
 use raymip::units::{Lod, Precision, TexCoord};
-use raymip_reference::Rng;
+use raymip_reference::Draw;
 use raymip_reference::sampler::{self as reference, Address, State, Texture};
 
 /// One stored uncompressed texel (little-endian word) to RGBA 0..=255
@@ -148,7 +149,7 @@ pub const FILTERS: [&str; 5] = [
 /// bit-identical to an independent decoder.
 #[must_use]
 pub fn measure(samples: usize, seed: u64, precision: Precision) -> Vec<AccuracyRow> {
-    let mut rng = Rng(seed.max(1));
+    let mut rng = XorShift64(seed.max(1));
     let geometry = Geometry::new(24, 20, 5).expect("geometry");
     let mut rows = Vec::new();
     for format in TexelFormat::ALL {
@@ -206,7 +207,7 @@ fn channel_error(got: Texel, want: [f64; 4]) -> f64 {
 /// A pseudo-random pyramid of `geometry` (levels generated from random
 /// level-0 texels, in sRGB space when `space` is sRGB) stored as `format`.
 fn random_image_bytes(
-    rng: &mut Rng,
+    rng: &mut XorShift64,
     geometry: &Geometry,
     format: TexelFormat,
     space: ColorSpace,
@@ -252,7 +253,7 @@ pub fn fuzz_case(bytes: &[u8]) -> Option<(String, f64, f64)> {
     let fi = usize::from(b[3]) % FILTERS.len();
     let mut seed = [0u8; 8];
     seed.copy_from_slice(&b[4..]);
-    let mut rng = Rng(u64::from_le_bytes(seed).max(1));
+    let mut rng = XorShift64(u64::from_le_bytes(seed).max(1));
     let geometry = Geometry::new(24, 20, 5).expect("geometry");
     let bytes = random_image_bytes(&mut rng, &geometry, format, space);
     let image = Image::new(
@@ -313,7 +314,7 @@ fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput, precision: Precisi
 }
 
 /// A random sampler state (address modes, border, bias, lod clamps).
-fn random_state(rng: &mut Rng, out: SrgbOutput) -> (SamplerDesc, [AddressMode; 2]) {
+fn random_state(rng: &mut XorShift64, out: SrgbOutput) -> (SamplerDesc, [AddressMode; 2]) {
     let pick = |x: f64| AddressMode::ALL[((x * 5.0) as usize).min(4)];
     let address = [pick(rng.unit()), pick(rng.unit())];
     let border_bits = (rng.unit() * 4_294_967_296.0) as u32;
@@ -344,7 +345,7 @@ fn random_state(rng: &mut Rng, out: SrgbOutput) -> (SamplerDesc, [AddressMode; 2
 /// reference: `(firmware texel, reference channels)`, or `None` for an
 /// anisotropic footprint whose probe count is a rounding tie.
 fn sample_pair(
-    rng: &mut Rng,
+    rng: &mut XorShift64,
     fi: usize,
     image: Image<'_>,
     reference: &Texture,

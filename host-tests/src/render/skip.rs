@@ -335,14 +335,15 @@ pub fn bit_identical(a: &Image, b: &Image) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raymip_reference::Rng;
+    use raymip::rng::XorShift64;
+    use raymip_reference::Draw;
 
     /// The closest-point distance against a dense barycentric sampling of
     /// the triangle: never larger than any sample's distance (a bound that
     /// must not be too large), and within the sampling step of the best.
     #[test]
     fn triangle_distance_against_sampling() {
-        let mut rng = Rng(0x5EED);
+        let mut rng = XorShift64(0x5EED);
         let mut r = || rng.range(-2.0, 2.0);
         for _ in 0..300 {
             let tri: [V3; 3] = std::array::from_fn(|_| V3::new(r(), r(), r()));

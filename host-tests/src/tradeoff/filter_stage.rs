@@ -34,7 +34,8 @@ use raymip::units::{Fast, Footprint, Lod, TexCoord};
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
 use crate::accuracy;
-use raymip_reference::Rng;
+use raymip::rng::XorShift64;
+use raymip_reference::Draw;
 use raymip_reference::sampler::{self as reference, State, Texture};
 
 /// The f64 reference sampler over a test texture.
@@ -56,7 +57,7 @@ impl TestTexture {
         let geometry = Geometry::new(size, size, full_levels(size, size))
             .unwrap_or_else(|e| panic!("texture {size}: {e}"));
         let mut texels = vec![0; geometry.len()];
-        let mut r = Rng(seed | 1);
+        let mut r = XorShift64(seed | 1);
         for t in &mut texels[..(size * size) as usize] {
             *t = r.next_u64() as u32;
         }
@@ -108,7 +109,7 @@ pub type Input = (TexCoord, TexCoord, Lod);
 /// `n` random inputs for a texture of `levels` levels.
 #[must_use]
 pub fn inputs(n: usize, levels: u8, seed: u64) -> Vec<Input> {
-    let mut r = Rng(seed | 1);
+    let mut r = XorShift64(seed | 1);
     (0..n)
         .map(|_| {
             let u = TexCoord::from_num(r.unit());
@@ -320,7 +321,7 @@ pub type AnisoInput = (TexCoord, TexCoord, Footprint);
 /// major axis perpendicular to it, 16 to 32 times longer.
 #[must_use]
 pub fn aniso_inputs(n: usize, size: u32, seed: u64) -> Vec<AnisoInput> {
-    let mut r = Rng(seed | 1);
+    let mut r = XorShift64(seed | 1);
     let c = |x: f64| TexCoord::from_num(x);
     (0..n)
         .map(|_| {

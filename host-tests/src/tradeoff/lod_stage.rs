@@ -13,7 +13,8 @@ use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Wi
 use super::log2fx::{self, Log2Fx, Log2Tables};
 use super::timing::measure;
 use super::{Row, Settings, Stage, error_stats};
-use raymip_reference::Rng;
+use raymip::rng::XorShift64;
+use raymip_reference::Draw;
 use raymip_reference::lod as reference;
 
 /// One hit's inputs, exactly representable in the firmware's formats.
@@ -39,7 +40,7 @@ const RAYDIFF_TEXELS: u32 = 256;
 /// value rounded to its fixed-point format first, so all precisions see
 /// the same numbers.
 fn hits(n: usize) -> Vec<Hit> {
-    let mut r = Rng(0x2545_F491_4F6C_DD1D);
+    let mut r = XorShift64(0x2545_F491_4F6C_DD1D);
     (0..n)
         .map(|_| {
             let pl = U32F32::from_num(2f64.powf(r.range(-8.0, 12.0)));

@@ -85,7 +85,7 @@ mod tests {
             (Log2Fx::Lut256, 2.9e-3),
             (Log2Fx::Mitchell, 0.0862),
         ];
-        let mut r = raymip_reference::Rng(0x9E37_79B9_7F4A_7C15);
+        let mut r = raymip::rng::XorShift64(0x9E37_79B9_7F4A_7C15);
         for (v, bound) in bounds {
             let mut worst = 0.0f64;
             for _ in 0..20_000 {

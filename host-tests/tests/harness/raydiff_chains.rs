@@ -6,8 +6,8 @@
 
 use proptest::prelude::*;
 use raymip::lod::raydiff::RAYDIFF_LOD_MAX_ERROR;
+use raymip::rng::XorShift64;
 use raymip_host::raydiff_chains::{CLASSES, Class, Raymip, run};
-use raymip_reference::Rng;
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(20_000))]
@@ -16,7 +16,7 @@ proptest! {
     #[test]
     fn every_class_within_its_bound(class in 0..CLASSES.len(), seed in 1u64..) {
         let class = CLASSES[class];
-        let o = run(&Raymip, class, &mut Rng(seed));
+        let o = run(&Raymip, class, &mut XorShift64(seed));
         if matches!(class, Class::Collinear | Class::FlatUv) {
             // The exact zero tests: Lod::MAX or Lod::MIN, no rounding.
             prop_assert_eq!(o.err, 0.0, "{:?}", o);
@@ -36,7 +36,7 @@ fn the_bound_is_tight_where_it_should_be() {
     for class in CLASSES {
         let (mut tight, mut n, mut worst) = (0, 0, 0.0f64);
         for i in 0..2_000u64 {
-            let o = run(&Raymip, class, &mut Rng(0x5EED ^ (i << 8) | 1));
+            let o = run(&Raymip, class, &mut XorShift64(0x5EED ^ (i << 8) | 1));
             n += 1;
             tight += usize::from(o.bound <= RAYDIFF_LOD_MAX_ERROR);
             worst = worst.max(o.err);

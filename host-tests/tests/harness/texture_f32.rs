@@ -69,14 +69,15 @@ fn f32_matches_fixed() {
 /// out (counted: few).
 #[test]
 fn f32_aniso_matches_f64_reference() {
+    use raymip::rng::XorShift64;
     use raymip_host::tradeoff::filter_stage::{TestTexture, ref_state};
-    use raymip_reference::Rng;
+    use raymip_reference::Draw;
     use raymip_reference::sampler::{Mode as RefMode, Sampler as RefSampler};
 
     let tex = TestTexture::random(32, 0xA2150);
     let rt = tex.reference();
     let float = SamplerF32::new(tex.geometry, &tex.texels, AddressMode::Wrap).unwrap();
-    let mut r = Rng(77);
+    let mut r = XorShift64(77);
     let (mut ties, n) = (0, 5_000);
     for i in 0..n {
         let max = (i % 16) as u8 + 1;

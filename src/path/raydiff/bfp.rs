@@ -92,10 +92,13 @@ impl Bfp3 {
         // ∈ [0, 31] (a zero vector shifts by 31 and stays zero).
         let o = (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31));
         let s = clz32(((o as u32) << 1) | 1) as i32;
+        // Both exponents made, then one selected (no branch: the caller's
+        // block continues, and values it made stay in 32-bit registers).
+        let e = (e - s).clamp(EXP_MIN, EXP_MAX);
         let e = if (m[0] | m[1] | m[2]) == 0 {
             EXP_MIN
         } else {
-            (e - s).clamp(EXP_MIN, EXP_MAX)
+            e
         };
         Self {
             m: m.map(|x| x << s),

@@ -68,30 +68,42 @@ pub fn axis(
     plus: Option<&GSample>,
     scale: i32,
 ) -> (PosDiff, DirDiff) {
-    let (p, n) = axis_parts(c, minus, plus, scale);
-    (PosDiff(p), DirDiff(n))
+    match pair(c, minus, plus) {
+        Some((a, b)) => (PosDiff(pos_diff(a, b, scale)), DirDiff(normal_diff(a, b))),
+        None => (PosDiff::ZERO, DirDiff::ZERO),
+    }
 }
 
+/// The two samples whose difference is the axis's differential (`a − b`):
+/// `(plus, c)` or `(c, minus)`, the side with the smaller `|t − t_c|`
+/// (ties: `plus`); `None` when both are missing.
 #[inline(always)]
-fn axis_parts(
-    c: &GSample,
-    minus: Option<&GSample>,
-    plus: Option<&GSample>,
-    scale: i32,
-) -> (Bfp3, Bfp3) {
+fn pair<'a>(
+    c: &'a GSample,
+    minus: Option<&'a GSample>,
+    plus: Option<&'a GSample>,
+) -> Option<(&'a GSample, &'a GSample)> {
     let dt = |s: &GSample| s.t.abs_diff(c.t);
-    let (a, b) = match (minus, plus) {
-        (Some(m), Some(p)) if dt(m) < dt(p) => (c, m),
-        (_, Some(p)) => (p, c),
-        (Some(m), None) => (c, m),
-        (None, None) => return (Bfp3::ZERO, Bfp3::ZERO),
-    };
+    match (minus, plus) {
+        (Some(m), Some(p)) if dt(m) < dt(p) => Some((c, m)),
+        (_, Some(p)) => Some((p, c)),
+        (Some(m), None) => Some((c, m)),
+        (None, None) => None,
+    }
+}
+
+/// `a.p − b.p` at `2^scale` (wrapping beyond the documented positions).
+#[inline(always)]
+fn pos_diff(a: &GSample, b: &GSample, scale: i32) -> Bfp3 {
     let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
+    Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX))
+}
+
+/// `a.n − b.n` in I2F30 (saturated at ±2).
+#[inline(always)]
+fn normal_diff(a: &GSample, b: &GSample) -> Bfp3 {
     let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
-    (
-        Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX)),
-        Bfp3::new(dn, -30),
-    )
+    Bfp3::new(dn, -30)
 }
 
 /// The first hit's differential state from the G-buffer (positions at
@@ -107,9 +119,84 @@ pub fn first_hit(
     [left, right, up, down]: [Option<&GSample>; 4],
     scale: i32,
 ) -> [DirDiff; 2] {
-    let (dox, dnx) = axis_parts(c, left, right, scale);
-    let (doy, dny) = axis_parts(c, up, down, scale);
-    s.set(0, dox);
-    s.set(1, doy);
-    [DirDiff(dnx), DirDiff(dny)]
+    // The two sides chosen first (two pointers each), then each
+    // differential stored as soon as it is made: its temporaries end there.
+    let (x, y) = (pair(c, left, right), pair(c, up, down));
+    s.set(0, x.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
+    s.set(1, y.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
+    let n =
+        |p: Option<(&GSample, &GSample)>| DirDiff(p.map_or(Bfp3::ZERO, |(a, b)| normal_diff(a, b)));
+    [n(x), n(y)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixed::types::I2F30;
+
+    fn sample(p: [i32; 3], n: [i32; 3], t: u32) -> GSample {
+        GSample {
+            p,
+            n: UnitVec(n.map(I2F30::from_bits)),
+            t,
+        }
+    }
+
+    fn value(m: [i32; 3], e: i32) -> [f64; 3] {
+        m.map(|x| f64::from(x) * f64::from(e).exp2())
+    }
+
+    #[test]
+    fn the_side_with_the_smaller_distance_step() {
+        let one = 1 << 30;
+        let c = sample([0, 0, 0], [0, 0, one], 100);
+        // |Δt| = 10, 3, 10 (a tie with `m`) and 20.
+        let m = sample([-4, 0, 0], [1 << 20, 0, one], 90);
+        let p = sample([0, 6, 0], [0, 1 << 21, one], 103);
+        let tie = sample([0, 0, 8], [0, -(1 << 22), one], 110);
+        let far = sample([0, 0, 2], [0, 0, one], 120);
+        let pos = |r: (PosDiff, DirDiff)| {
+            let (m, e) = r.0.parts();
+            value(m, e)
+        };
+        let nrm = |r: (PosDiff, DirDiff)| {
+            let (m, e) = r.1.parts();
+            value(m, e)
+        };
+        // `plus` nearer: P₊ − P, n₊ − n.
+        let r = axis(&c, Some(&m), Some(&p), 0);
+        assert_eq!(pos(r), [0.0, 6.0, 0.0]);
+        assert_eq!(nrm(r), [0.0, 1.0 / 512.0, 0.0]);
+        // `minus` nearer: P − P₋, n − n₋.
+        let r = axis(&c, Some(&m), Some(&far), 0);
+        assert_eq!(pos(r), [4.0, 0.0, 0.0]);
+        assert_eq!(nrm(r), [-1.0 / 1024.0, 0.0, 0.0]);
+        // A tie: `plus`.
+        let r = axis(&c, Some(&m), Some(&tie), 0);
+        assert_eq!(pos(r), [0.0, 0.0, 8.0]);
+        assert_eq!(nrm(r), [0.0, -1.0 / 256.0, 0.0]);
+        // One side only, or none.
+        assert_eq!(pos(axis(&c, Some(&m), None, 0)), [4.0, 0.0, 0.0]);
+        assert_eq!(pos(axis(&c, None, Some(&m), 0)), [-4.0, 0.0, 0.0]);
+        assert_eq!(axis(&c, None, None, 0), (PosDiff::ZERO, DirDiff::ZERO));
+        // The first hit: the same choice per axis, positions at 2^scale
+        // stored in the state (its ∂D kept), normals returned.
+        let dd = DirDiff::new([1, 2, 3], -20);
+        let mut s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, dd, dd);
+        let [nx, ny] = first_hit(&mut s, &c, [Some(&m), Some(&p), Some(&far), Some(&m)], -2);
+        assert_eq!(s.dox(), axis(&c, Some(&m), Some(&p), -2).0);
+        assert_eq!(s.doy(), axis(&c, Some(&far), Some(&m), -2).0);
+        assert_eq!(value(s.dox().parts().0, s.dox().parts().1), [0.0, 1.5, 0.0]);
+        assert_eq!(
+            value(s.doy().parts().0, s.doy().parts().1),
+            [-1.0, 0.0, 0.0]
+        );
+        assert_eq!((s.ddx(), s.ddy()), (dd, dd));
+        assert_eq!(nx, axis(&c, Some(&m), Some(&p), 0).1);
+        assert_eq!(ny, axis(&c, Some(&far), Some(&m), 0).1);
+        assert_ne!(nx, DirDiff::ZERO);
+        // No neighbour in y: no differential there.
+        let [_, ny] = first_hit(&mut s, &c, [None, Some(&p), None, None], -2);
+        assert_eq!((s.doy(), ny), (PosDiff::ZERO, DirDiff::ZERO));
+    }
 }

@@ -433,21 +433,14 @@ impl RayDiff {
         let d = bits(d);
         // D·f in 2⁻³⁰ units (one truncation; ≤ 2³⁰ + 1 for unit vectors).
         let df = (dot64(d, bits(forward)) >> 30) as i32;
-        let axis = |r: Bfp3| -> Bfp3 {
-            // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
-            let dr = (dot64(r.m, d) >> 31) as i32;
-            // (r − (D·r)·D)/8: |·| < 2²⁹.
-            let v = Bfp3::new(
-                core::array::from_fn(|k| (r.m[k] >> 3) - mulhi(dr, d[k])),
-                r.e + 3,
-            );
-            // (D·f)·v = mulhi(v, df)·2²: df is D·f·2³⁰.
-            Bfp3::new(v.m.map(|x| mulhi(x, df)), v.e + 2)
-        };
-        let mut s = Self::ZERO;
-        s.set(2, axis(right.0));
-        s.set(3, axis(up.0));
-        s
+        // Both axes inline and the state built in place (no call, no copy
+        // of `ZERO`).
+        let (x, y) = (primary_axis(d, df, right.0), primary_axis(d, df, up.0));
+        Self {
+            m: [[0; 3], [0; 3], x.m, y.m],
+            // `Bfp3::new` keeps the exponents in [EXP_MIN, EXP_MAX] ⊂ i16.
+            e: [EXP_MIN as i16, EXP_MIN as i16, x.e as i16, y.e as i16],
+        }
     }
 
     /// Transfer to a hit at distance `t` on a surface of unit normal `n`
@@ -581,6 +574,21 @@ impl RayDiff {
             self.set(2 + axis, Bfp3::new(r, e));
         }
     }
+}
+
+/// One axis of [`RayDiff::primary`]: `(D·f)·(r − (D·r)·D)` for the unit
+/// direction `d` (I2F30 bits), `df` = `D·f` in 2⁻³⁰ units and the step `r`.
+#[inline(always)]
+fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
+    // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
+    let dr = (dot64(r.m, d) >> 31) as i32;
+    // (r − (D·r)·D)/8: |·| < 2²⁹.
+    let v = Bfp3::new(
+        core::array::from_fn(|k| (r.m[k] >> 3) - mulhi(dr, d[k])),
+        r.e + 3,
+    );
+    // (D·f)·v = mulhi(v, df)·2²: df is D·f·2³⁰.
+    Bfp3::new(v.m.map(|x| mulhi(x, df)), v.e + 2)
 }
 
 /// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at

@@ -323,7 +323,7 @@ mod env {
 #[cfg(feature = "envmap")]
 #[inline(always)]
 fn envmap_rows() {
-    let mut rng = inputs::Rng(inputs::SEED ^ 0xE0E0);
+    let mut rng = inputs::XorShift32(inputs::SEED ^ 0xE0E0);
     let env_in = inputs::draw(&mut rng, inputs::envmap);
     let Ok(map) = raymip::lod::envmap::EnvMap::new(2048, 1024) else {
         process::exit(1)
