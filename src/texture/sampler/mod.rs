@@ -886,6 +886,19 @@ mod tests {
         u32::from_le_bytes([v, v, v, 255])
     }
 
+    /// `with_address` puts its mode on both axes of the key and of the
+    /// state it reports.
+    #[test]
+    fn with_address_sets_both_axes() {
+        let buf = [0u32; 4];
+        let p = Pyramid::new(Geometry::new(2, 2, 1).unwrap(), &buf).unwrap();
+        for mode in AddressMode::ALL {
+            let s = Sampler::with_address(p, mode);
+            assert_eq!(s.address(), [mode; 2]);
+            assert_eq!(s.state().address(), [mode; 2]);
+        }
+    }
+
     #[test]
     fn centres_return_texels() {
         let g = Geometry::new(4, 2, 3).unwrap();
