@@ -323,8 +323,9 @@ pub(crate) fn blend_wide_in_range(a: Wide, b: Wide, t: u32, r: u32) -> Texel {
 /// [`ROUND_TEXEL`]: the chains start from the bilinear texel's rounding
 /// term, and the level blend needs no rounding term of its own:
 /// `a·(256 − t) + b·t + 2²³ = (a + 2¹⁵)·(256 − t) + (b + 2¹⁵)·t`).
-/// Each channel `≤ 255·2¹⁶ + 2¹⁵ < 2²⁴`. Also the FAST kernel's level
-/// form (`fast::level_half`).
+/// Each channel `≤ 255·2¹⁶ + 2¹⁵ < 2²⁴`. Unused where feature `pcpi` on
+/// riscv32 filters the ACCURATE levels on the co-processor.
+#[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
 #[inline(always)]
 pub(crate) fn bilerp_half(t: [Texel; 4], fx: u32, fy: u32, r: u32) -> Wide {
     debug_assert_eq!(r, ROUND_TEXEL);
@@ -335,6 +336,7 @@ pub(crate) fn bilerp_half(t: [Texel; 4], fx: u32, fy: u32, r: u32) -> Wide {
 /// values: `a·(256 − t)` per channel (`t ≤ 256`; `< 2³²`).
 /// [`blend_finish`] adds the second level's share and rounds; with
 /// `t = 0` [`blend_finish_one`] rounds it alone.
+#[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
 #[inline(always)]
 pub(crate) fn blend_start(a: Wide, t: u32) -> Wide {
     let s = (1u32 << BLEND_BITS).wrapping_sub(t);
@@ -345,6 +347,7 @@ pub(crate) fn blend_start(a: Wide, t: u32) -> Wide {
 /// [`blend_start`]`(a + 2¹⁵, t)` and `b + 2¹⁵` ([`bilerp_half`] values):
 /// `(a·(256 − t) + b·t + 2²³) >> 24`, which is
 /// [`blend_wide_in_range`]`(a, b, t, 2²³)` (tested), each `≤ 255`.
+#[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
 #[inline(always)]
 pub(crate) fn blend_finish(started: Wide, b: Wide, t: u32) -> Texel {
     let mut out = 0u32;
@@ -357,6 +360,7 @@ pub(crate) fn blend_finish(started: Wide, b: Wide, t: u32) -> Texel {
 /// `started >> 24` per channel for `started =` [`blend_start`]`(a + 2¹⁵, 0)
 /// = 256·(a + 2¹⁵)`: `(a + 2¹⁵) >> 16`, which is
 /// [`round_wide_in_range`]`(a)` (tested).
+#[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
 #[inline(always)]
 pub(crate) fn blend_finish_one(started: Wide) -> Texel {
     let mut out = 0u32;
@@ -384,6 +388,8 @@ pub fn blend_texels(a: Texel, b: Texel, t: u32) -> Texel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::XorShift64;
+    use crate::texture::kernel::footprint;
 
     fn texel(r: u8, g: u8, b: u8, a: u8) -> Texel {
         u32::from_le_bytes([r, g, b, a])
@@ -553,26 +559,11 @@ mod tests {
     /// footprints and weights.
     #[test]
     fn started_blend_equals_blend_of_levels() {
-        let mut x = 0x5851_F42D_4C95_7F2D_u64;
+        let mut rng = XorShift64(0x5851_F42D_4C95_7F2D);
+        let mut next = || rng.next_u64();
         let draws = if cfg!(miri) { 4 } else { 400 };
         for n in 0..draws {
-            let mut next = || {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                x
-            };
-            let fp = |x: u64, n: u32| match n % 5 {
-                0 => [u32::MAX; 4],
-                1 => [0, u32::MAX, u32::MAX, 0],
-                _ => [
-                    x as u32,
-                    (x >> 32) as u32,
-                    (x >> 16) as u32,
-                    (x as u32).rotate_left(7),
-                ],
-            };
-            let (ta, tb) = (fp(next(), n), fp(next(), n / 5));
+            let (ta, tb) = (footprint(next(), n), footprint(next(), n / 5));
             let r = next();
             let w = |k: u32| match (n + k) % 7 {
                 0 => 0,

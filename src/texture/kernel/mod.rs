@@ -243,13 +243,14 @@ macro_rules! blend_later {
     };
 }
 
-/// The trilinear levels of the 8.16 linear kernels (ACCURATE, and FAST
-/// with the same level values): a level is its 8.16 value plus 2¹⁵
-/// (`$level`: ACCURATE's chains start from the bilinear texel's rounding
-/// term, FAST adds it to its exact value),
+/// The trilinear levels of the ACCURATE linear kernel (in software; feature
+/// `pcpi` on riscv32 filters them on the co-processor): a level is its 8.16
+/// value plus 2¹⁵ (`$level`: the chains start from the bilinear texel's
+/// rounding term),
 /// the first level is started as `a·(256 − t)` ([`accurate::blend_start`])
 /// and the second adds `b·t` and rounds: the level blend with its rounding
 /// folded into the levels (`accurate::bilerp_half`).
+#[cfg(not(all(feature = "pcpi", target_arch = "riscv32")))]
 macro_rules! levels_8_16 {
     ($level:expr) => {
         type Level = accurate::Wide;
@@ -515,9 +516,27 @@ srgb_kernel!(
     |t| t
 );
 
+/// A test footprint of four packed texels from 64 random bits: every
+/// channel at its maximum when `n % 5 == 0`, a checkerboard of extremes
+/// when `n % 5 == 1`, else four words of `x`.
+#[cfg(test)]
+pub(crate) fn footprint(x: u64, n: u32) -> [u32; 4] {
+    match n % 5 {
+        0 => [u32::MAX; 4],
+        1 => [0, u32::MAX, u32::MAX, 0],
+        _ => [
+            x as u32,
+            (x >> 32) as u32,
+            (x >> 16) as u32,
+            (x as u32).rotate_left(7),
+        ],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::XorShift64;
 
     /// Every kernel's trilinear levels: a first level started with `t` and
     /// a second level give [`Kernel::blend`] of their bilinear values, a
@@ -526,26 +545,14 @@ mod tests {
     /// and extreme footprints and weights (`< 2^WEIGHT_BITS`).
     fn started_levels_blend<K: Kernel>() {
         let k = Rounding::new();
-        let mut x = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut rng = XorShift64(0x9E37_79B9_7F4A_7C15);
+        let mut next = || rng.next_u64();
         let draws = if cfg!(miri) { 3 } else { 300 };
         for n in 0..draws {
-            let mut next = || {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                x
-            };
-            let fp = |x: u64, n: u32| match n % 5 {
-                0 => [u32::MAX; 4],
-                1 => [0, u32::MAX, u32::MAX, 0],
-                _ => [
-                    x as u32,
-                    (x >> 32) as u32,
-                    (x >> 16) as u32,
-                    (x as u32).rotate_left(7),
-                ],
-            };
-            let (ta, tb) = (fp(next(), n).map(K::load), fp(next(), n / 5).map(K::load));
+            let (ta, tb) = (
+                footprint(next(), n).map(K::load),
+                footprint(next(), n / 5).map(K::load),
+            );
             let r = next();
             let top = (1u32 << K::WEIGHT_BITS) - 1;
             let w = |i: u32| match (n + i) % 7 {
