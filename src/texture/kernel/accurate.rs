@@ -490,22 +490,14 @@ mod tests {
     /// rounded bilerp and the wide values are bit-identical to it.
     #[test]
     fn corner_sum_equals_nested_form() {
-        let mut x = 0x9E37_79B9_u64;
+        let mut rng = XorShift64(0x9E37_79B9);
         let (step_x, step_y) = if cfg!(miri) { (1024, 2048) } else { (1, 61) };
         for fx in (0..=4096u32).step_by(step_x) {
             for fy in (0..=4096u32).step_by(step_y).chain([1, 4095, 4096]) {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
+                let x = rng.next_u64();
                 let t = match fx % 5 {
                     0 => [u32::MAX, 0, 0, u32::MAX],
-                    1 => [0, u32::MAX, u32::MAX, 0],
-                    _ => [
-                        x as u32,
-                        (x >> 32) as u32,
-                        (x >> 16) as u32,
-                        (x as u32).rotate_left(7),
-                    ],
+                    _ => footprint(x, fx),
                 };
                 let w = bilerp_in_range(t, fx, fy, ROUND_WIDE);
                 let mut rounded = 0;
