@@ -211,6 +211,16 @@ mod tests {
         }
     }
 
+    /// The compile-time EOTF takes the linear piece at its threshold
+    /// `0.04045` itself (the power piece differs there in the last bits),
+    /// and the power piece just above it.
+    #[test]
+    fn compile_time_eotf_at_the_threshold() {
+        assert_eq!(super::eotf(0.04045), 0.04045 / 12.92);
+        let above: f64 = 0.040_450_000_1;
+        assert!((super::eotf(above) - eotf(above)).abs() < 1e-15);
+    }
+
     #[test]
     fn tables_match_f64() {
         for (c, &d) in DECODE.iter().enumerate() {
