@@ -514,8 +514,10 @@ mod tests {
             );
             assert!(std::format!("{e}").contains(&std::format!("{w}x{h}")));
         }
-        let m = EnvMap::new(MAX_SIZE, 1).unwrap();
-        assert_eq!((m.width(), m.height()), (MAX_SIZE, 1));
+        for (w, h) in [(MAX_SIZE, 1), (7, MAX_SIZE)] {
+            let m = EnvMap::new(w, h).unwrap();
+            assert_eq!((m.width(), m.height()), (w, h));
+        }
     }
 
     #[test]
@@ -529,10 +531,13 @@ mod tests {
             m.cone_lod(g, Some(UnitVec([z, z, -o]))),
             m.cone_lod(g, None)
         );
-        // Poles, and the zero direction: the pole term saturates at 16.
+        // Poles, and the zero direction: the pole term saturates at 16,
+        // −log2 MIN_COS_LAT (the documented clamp is the one applied).
+        let pole = -MIN_COS_LAT.to_num::<f64>().log2();
+        assert_eq!(pole, 16.0);
         for d in [[z, o, z], [z, -o, z], [z, z, z]] {
             let l = m.cone_lod(g, Some(UnitVec(d))).to_num::<f64>();
-            assert!((l - 16.0).abs() <= ENVMAP_LOD_MAX_ERROR, "{l}");
+            assert!((l - pole).abs() <= ENVMAP_LOD_MAX_ERROR, "{l}");
         }
         // Zero spread: 2⁻³⁰ rad, far below level 0; negative spread: |γ|.
         let zero = m.cone_lod(Spread::ZERO, None).to_num::<f64>();
@@ -598,6 +603,27 @@ mod tests {
             let want = round(c * 2f64.powi(31 - 2 * j as i32) / gain);
             assert_eq!(i64::from(g), want, "length series {j}");
         }
+    }
+
+    /// The length series at its largest residual angle, without the CORDIC
+    /// roundings: pairs of multiples of 64 (every shift exact) at angles
+    /// just above `atan ½ + atan ¼ ≈ 40.6°` (no negated step, residual
+    /// `φ ≈ −atan ⅛`). What is left is the series's own error, its Horner
+    /// roundings 0.82, the final floor 1 and the remainder 0.16 (module
+    /// docs): within 2·2⁻³⁰ (relative), where a wrong `t⁸` coefficient is
+    /// 5·2⁻³⁰ off.
+    #[test]
+    fn octant_length_series_at_the_largest_residual() {
+        let mut worst = 0.0f64;
+        for i in 0..2_000u32 {
+            let theta = (40.605 + f64::from(i) * 5e-5).to_radians();
+            let a = ((1 << 30) + (i.wrapping_mul(500_009) << 6) % (1 << 30)) & !63;
+            let b = (f64::from(a) * theta.tan()) as u32 & !63;
+            let (_, len) = octant_atan(a, b);
+            let l = f64::from(a).hypot(f64::from(b));
+            worst = worst.max((f64::from(len) - l).abs() / l * 2f64.powi(30));
+        }
+        assert!(worst <= 2.0, "length error {worst:.2}·2⁻³⁰");
     }
 
     /// Every combination of 0, `±(2ᵏ ± 1)`, `±2ᵏ` and the extremes: in

@@ -287,11 +287,15 @@ fn fast_cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
 /// assert!(out[0].get().is_some_and(|l| l > Lod::from_num(3.5)));
 /// assert_eq!(out[1].get(), None);
 /// assert_eq!(out[1], LodWord::UNTEXTURED);
-/// assert_eq!(LodWord::from(Some(Lod::ONE)).to_bits(), 256);
+/// assert_eq!(LodWord::from(Some(Lod::ONE)).0, 256);
 /// ```
 #[derive(Clone, Copy, Debug)]
 #[repr(transparent)]
-pub struct LodWord(i32);
+pub struct LodWord(
+    /// The raw word: [`Lod`] bits in `[−2¹⁵, 2¹⁵)`, else untextured (every
+    /// value is a valid word).
+    pub i32,
+);
 
 impl LodWord {
     /// The canonical untextured word, `i32::MIN` (any word outside
@@ -309,21 +313,6 @@ impl LodWord {
         } else {
             None
         }
-    }
-
-    /// The raw word: [`Lod`] bits in `[−2¹⁵, 2¹⁵)`, else untextured.
-    #[inline]
-    #[must_use]
-    pub const fn to_bits(self) -> i32 {
-        self.0
-    }
-
-    /// A word from its raw value (any value: outside `[−2¹⁵, 2¹⁵)` it
-    /// reads as untextured).
-    #[inline]
-    #[must_use]
-    pub const fn from_bits(bits: i32) -> Self {
-        Self(bits)
     }
 }
 
@@ -625,20 +614,20 @@ mod tests {
     #[test]
     fn lod_word_niche() {
         // The Lod range reads back, every word outside it is untextured.
-        assert_eq!(LodWord::from_bits(0).get(), Some(Lod::ZERO));
-        assert_eq!(LodWord::from_bits(-1).get(), Some(-Lod::DELTA));
-        assert_eq!(LodWord::from_bits(32767).get(), Some(Lod::MAX));
-        assert_eq!(LodWord::from_bits(-32768).get(), Some(Lod::MIN));
+        assert_eq!(LodWord(0).get(), Some(Lod::ZERO));
+        assert_eq!(LodWord(-1).get(), Some(-Lod::DELTA));
+        assert_eq!(LodWord(32767).get(), Some(Lod::MAX));
+        assert_eq!(LodWord(-32768).get(), Some(Lod::MIN));
         for bits in [32768, -32769, 1 << 23, -(1 << 23), i32::MIN, i32::MAX] {
-            assert_eq!(LodWord::from_bits(bits).get(), None, "{bits:#x}");
-            assert_eq!(LodWord::from_bits(bits), LodWord::UNTEXTURED);
+            assert_eq!(LodWord(bits).get(), None, "{bits:#x}");
+            assert_eq!(LodWord(bits), LodWord::UNTEXTURED);
         }
-        assert_eq!(LodWord::UNTEXTURED.to_bits(), i32::MIN);
+        assert_eq!(LodWord::UNTEXTURED.0, i32::MIN);
         assert_eq!(LodWord::default(), LodWord::UNTEXTURED);
-        assert_eq!(LodWord::from(Some(Lod::from_num(-2.5))).to_bits(), -640);
+        assert_eq!(LodWord::from(Some(Lod::from_num(-2.5))).0, -640);
         assert_eq!(LodWord::from(None), LodWord::UNTEXTURED);
-        assert_ne!(LodWord::from_bits(1), LodWord::UNTEXTURED);
-        assert_ne!(LodWord::from_bits(1), LodWord::from_bits(2));
+        assert_ne!(LodWord(1), LodWord::UNTEXTURED);
+        assert_ne!(LodWord(1), LodWord(2));
         for l in [Lod::MIN, -Lod::DELTA, Lod::ZERO, Lod::MAX] {
             assert_eq!(Option::<Lod>::from(LodWord::from(Some(l))), Some(l));
         }
@@ -647,9 +636,9 @@ mod tests {
         let max_key = NormPl::from_bits((31 << 16) | 1023);
         assert_eq!(NormPl::from_bits(i32::MAX), max_key);
         for key in [NormPl::ZERO, NormPl::new(PathLength::ONE), max_key] {
-            let mut w = [LodWord::from_bits(0); 2];
+            let mut w = [LodWord(0); 2];
             table_lod_norm_batch(&[(key, Log2Pb::UNTEXTURED), (key, Log2Pb::MAX)], &mut w);
-            assert_eq!(w[0].get(), None, "{key:?}: {:#x}", w[0].to_bits());
+            assert_eq!(w[0].get(), None, "{key:?}: {:#x}", w[0].0);
             assert!(w[1].get().is_some());
         }
         // The ends of the textured range: ±127 levels (±32512 bits).
@@ -661,7 +650,7 @@ mod tests {
             ],
             &mut w,
         );
-        assert_eq!(w.map(LodWord::to_bits), [32512, -32512]);
+        assert_eq!(w.map(|w| w.0), [32512, -32512]);
     }
 
     #[test]
@@ -965,14 +954,14 @@ mod tests {
             let k: std::vec::Vec<_> = t.iter().map(|&(pl, pb)| (NormPl::new(pl), pb)).collect();
             const UNTOUCHED: i32 = 0x1234_5678;
             let len = if longer { t.len() + extra } else { t.len().saturating_sub(extra) };
-            let mut out = std::vec![LodWord::from_bits(UNTOUCHED); len];
+            let mut out = std::vec![LodWord(UNTOUCHED); len];
             let n = table_lod_norm_batch(&k, &mut out);
             prop_assert_eq!(n, t.len().min(len));
             for (i, (o, &(pl, pb))) in out.iter().zip(&t).enumerate() {
-                prop_assert_eq!(o.get(), table_lod::<Fast>(pl, pb), "hit {}: word {:#x}", i, o.to_bits());
+                prop_assert_eq!(o.get(), table_lod::<Fast>(pl, pb), "hit {}: word {:#x}", i, o.0);
                 prop_assert_eq!(o.get(), table_lod_norm(k[i].0, pb));
             }
-            prop_assert!(out[n..].iter().all(|o| o.to_bits() == UNTOUCHED));
+            prop_assert!(out[n..].iter().all(|o| o.0 == UNTOUCHED));
             // The ACCURATE batch over the same hits and lengths.
             let mut acc = std::vec![Some(Lod::MIN); len];
             prop_assert_eq!(table_lod_batch::<Accurate>(&t, &mut acc), n);
@@ -999,18 +988,18 @@ mod tests {
                 2 => Log2Pb::DEGENERATE_UV,
                 _ => Log2Pb::from_bits(b),
             };
-            let mut w = [LodWord::from_bits(0)];
+            let mut w = [LodWord(0)];
             table_lod_norm_batch(&[(key, pb)], &mut w);
             prop_assert_eq!(w[0].get(), table_lod_norm(key, pb));
             if pb.is_untextured() {
                 prop_assert_eq!(w[0].get(), None);
-                prop_assert!(w[0].to_bits().unsigned_abs() >= 1 << 22, "{:#x}", w[0].to_bits());
+                prop_assert!(w[0].0.unsigned_abs() >= 1 << 22, "{:#x}", w[0].0);
             } else {
                 let got = w[0].get().unwrap().to_num::<f64>();
                 let want = f64::from(e) + (1.0 + f64::from(i) / 1024.0).log2()
                     - pb.to_i16f16().to_num::<f64>();
                 prop_assert!((got - want).abs() <= LOD_MAX_ERROR, "{:#x} {:?}: {} vs f64 {}", bits, pb, got, want);
-                prop_assert!(w[0].to_bits().abs() <= 32512);
+                prop_assert!(w[0].0.abs() <= 32512);
             }
         }
 

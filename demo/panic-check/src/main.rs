@@ -333,7 +333,7 @@ fn main() -> ! {
             words.get_mut(..bb(3)).unwrap_or_default(),
         ));
         bb(words.map(LodWord::get));
-        bb(LodWord::from_bits(bb(1 << 20)).to_bits());
+        bb(LodWord(bb(1 << 20)).get());
         bb(LodWord::from(bb(Some(Lod::ONE))) == LodWord::UNTEXTURED);
         bb(Option::<Lod>::from(bb(LodWord::UNTEXTURED)));
         let mut cone_out = [Lod::ZERO; 4];

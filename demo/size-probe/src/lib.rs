@@ -29,6 +29,32 @@ pub static TEX: [u32; TEX_LEN] = {
     t
 };
 
+/// The path part both full probes measure: a primary path of `$spread`
+/// advanced one segment and bounced, pushed on a ray stack and popped off
+/// it, and the clamped table lod of entry 0 of the `PbTable` `$table` for
+/// `$levels` levels. Evaluates to `(popped state, that entry's log2 Pb,
+/// lod)`. A macro, expanded in each probe's `main`, so that the probe's
+/// code is the calls themselves (a function, even always inlined, is
+/// compiled differently by a few bytes).
+#[macro_export]
+macro_rules! one_bounce {
+    ($spread:expr, $table:expr, $levels:expr) => {{
+        use core::hint::black_box as bb;
+        use raymip::path::raystack::{PathState, RayStack};
+        use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread};
+        let mut stack: RayStack = RayStack::new();
+        let st = PathState::primary($spread, bb(0xFF))
+            .advance(bb(PathLength::from_bits(1 << 33)))
+            .bounce(bb(Spread::ZERO));
+        let _ = bb(stack.push(st));
+        let st = stack.pop().unwrap_or(st);
+        let pb = $table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
+        let lod =
+            raymip::lod::table_lod_clamped::<Accurate>(st.pl, pb, $levels).unwrap_or(Lod::ZERO);
+        (st, pb, lod)
+    }};
+}
+
 /// Sizes on this target of the types a firmware keeps per path and per
 /// texture, as the sizes of symbols: `scripts/features` reads them with
 /// `nm -S` for each feature set (`raymip-host memory` uses them). Zeroed

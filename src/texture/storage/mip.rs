@@ -179,16 +179,9 @@ impl Geometry {
     /// [`MAX_SIZE`]), [`MipError::BadLevels`] (`levels` 0 or above
     /// [`full_levels`]).
     pub const fn new(width: u32, height: u32, levels: u8) -> Result<Self, MipError> {
-        if width == 0 || height == 0 {
-            return Err(MipError::ZeroSize);
-        }
-        if width > MAX_SIZE || height > MAX_SIZE {
-            return Err(MipError::TooLarge);
-        }
-        if levels == 0 || levels > full_levels(width, height) {
-            return Err(MipError::BadLevels);
-        }
-        Self::with_stored(width, height, levels, 0, levels - 1)
+        // Every level stored; for `levels = 0` the last level wraps to 255,
+        // which `trimmed` rejects (`last ≥ levels`).
+        Self::trimmed(width, height, levels, 0, levels.wrapping_sub(1))
     }
 
     /// Geometry of a trimmed pyramid: a `width × height` texture whose
@@ -211,21 +204,16 @@ impl Geometry {
         first: u8,
         last: u8,
     ) -> Result<Self, MipError> {
-        match Self::new(width, height, levels) {
-            Err(e) => Err(e),
-            Ok(_) if first > last || last >= levels => Err(MipError::BadLevels),
-            Ok(_) => Self::with_stored(width, height, levels, first, last),
+        if width == 0 || height == 0 {
+            return Err(MipError::ZeroSize);
         }
-    }
-
-    /// [`Geometry::trimmed`] after the checks.
-    const fn with_stored(
-        width: u32,
-        height: u32,
-        levels: u8,
-        first: u8,
-        last: u8,
-    ) -> Result<Self, MipError> {
+        if width > MAX_SIZE || height > MAX_SIZE {
+            return Err(MipError::TooLarge);
+        }
+        // `last < levels` also rejects `levels = 0`.
+        if levels > full_levels(width, height) || first > last || last >= levels {
+            return Err(MipError::BadLevels);
+        }
         let mut offsets = [0u32; MAX_LEVELS as usize + 1];
         let mut total: u32 = 0;
         let mut k = 0u8;

@@ -20,13 +20,11 @@
 use core::hint::black_box as bb;
 use raymip_size_probe::{TEX, TEX_LEN, TEX_LEVELS, TEX_SIZE};
 
-use raymip::lod::table_lod_clamped;
-use raymip::path::raystack::{PathState, RayStack};
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::storage::mip::{Geometry, Pyramid};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Lod, Log2Pb, PathLength, Spread, TexCoord};
+use raymip::units::{Log2Pb, Spread, TexCoord};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -66,16 +64,11 @@ raymip_demo_entry::main! {
     let mut direct = Sampler::wrap(p);
     #[cfg(feature = "cache")]
     let mut cached = Sampler::clamp(raymip::texture::storage::cache::TexelCache::<_, 8, 2>::new(p));
-    let mut stack: RayStack = RayStack::new();
-    let st = PathState::primary(&spread, bb(0xFF))
-        .advance(bb(PathLength::from_bits(1 << 33)))
-        .bounce(bb(Spread::ZERO));
-    let _ = bb(stack.push(st));
-    let st = stack.pop().unwrap_or(st);
-    let pb = table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
-    let lod = table_lod_clamped::<Accurate>(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
+    // The state and the entry feed the optional stages below.
+    #[cfg_attr(not(feature = "cone"), allow(unused_variables))]
+    let (st, pb, lod) = raymip_size_probe::one_bounce!(&spread, table, g.levels());
     #[cfg(feature = "cone")]
-    let lod = bb(lod).saturating_add(raymip::lod::cone_lod::<Accurate>(
+    let lod = bb(lod).saturating_add(raymip::lod::cone_lod::<raymip::units::Accurate>(
         st.cone.width,
         pb.delta(&spread).unwrap_or(raymip::units::Delta::ZERO),
         bb(Some(fixed::types::U1F31::from_bits(1 << 30))),
@@ -115,7 +108,7 @@ raymip_demo_entry::main! {
 /// lod.
 #[cfg(feature = "raydiff")]
 #[inline(never)]
-fn raydiff(g: Geometry, st: PathState) {
+fn raydiff(g: Geometry, st: raymip::path::raystack::PathState) {
     use fixed::types::{I2F30, I4F28};
     use raymip::lod::raydiff::RayDiffTriangle;
     use raymip::path::raydiff::gbuffer::{GSample, first_hit};
@@ -164,7 +157,7 @@ fn raydiff(g: Geometry, st: PathState) {
 /// differential lod.
 #[cfg(feature = "envmap")]
 #[inline(never)]
-fn envmap(st: PathState) {
+fn envmap(st: raymip::path::raystack::PathState) {
     use fixed::types::I2F30;
     use raymip::lod::envmap::{EnvMap, direction_uv};
     use raymip::units::UnitVec;

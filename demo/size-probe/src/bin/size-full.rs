@@ -12,14 +12,13 @@ use core::hint::black_box as bb;
 use raymip_size_probe as _;
 
 use fixed::types::U1F31;
-use raymip::lod::{cone_lod, table_lod_clamped};
-use raymip::path::raystack::{PathState, RayStack};
+use raymip::lod::cone_lod;
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::{PbTable, TexTriangle};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::mip::{Geometry, Pyramid, generate};
 use raymip::texture::{Mode, Sampler};
-use raymip::units::{Accurate, Coord, Delta, Lod, Log2Pb, PathLength, Spread, TexCoord, Width};
+use raymip::units::{Accurate, Coord, Delta, Log2Pb, Spread, TexCoord, Width};
 
 fn exit(code: i32) -> ! {
     semihosting::process::exit(code)
@@ -54,14 +53,7 @@ raymip_demo_entry::main! {
     };
     let mut direct = Sampler::wrap(p);
     let mut cached = Sampler::clamp(TexelCache::<_, 8, 2>::new(p));
-    let mut stack: RayStack = RayStack::new();
-    let st = PathState::primary(&spread, bb(0xFF))
-        .advance(bb(PathLength::from_bits(1 << 33)))
-        .bounce(bb(Spread::ZERO));
-    let _ = bb(stack.push(st));
-    let st = stack.pop().unwrap_or(st);
-    let pb = table.get(bb(0)).unwrap_or(Log2Pb::UNTEXTURED);
-    let l1 = table_lod_clamped::<Accurate>(st.pl, pb, g.levels()).unwrap_or(Lod::ZERO);
+    let (st, pb, l1) = raymip_size_probe::one_bounce!(&spread, table, g.levels());
     let l2 = cone_lod::<Accurate>(
         st.cone.width,
         pb.delta(&spread).unwrap_or(Delta::ZERO),
