@@ -766,6 +766,39 @@ pub(crate) mod tests {
         }
     }
 
+    /// `∂D` and `∂n` at one exponent, every mantissa at its largest and
+    /// the two dot products of `∂cos θᵢ` of one sign: their sum is
+    /// `2√3` times a vector's scale, inside 32 bits only with the bit of
+    /// headroom the alignment leaves.
+    #[test]
+    fn refract_largest_aligned_dot_products() {
+        let c = I2F30::from_num(0.577_350_269_189_625_7);
+        let (n, d) = (UnitVec([c; 3]), UnitVec([-c; 3]));
+        let (dd, dn) = (Bfp3::new([i32::MIN; 3], -40), Bfp3::new([i32::MAX; 3], -40));
+        assert_eq!((dd.e, dn.e), (-40, -40));
+        let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
+        let eta = I4F28::from_num(1.0 / 1.5);
+        let mut got = s;
+        got.refract(
+            d,
+            n,
+            [DirDiff(dn), DirDiff::ZERO],
+            Eta::from_fixed(eta),
+            I2F30::ONE,
+        );
+        let ef = eta.to_num::<f64>();
+        let want = rf::refract(&state(&s), vu(d), vu(n), val(dn), [0.0; 3], ef, 1.0);
+        let scale = (1.0 + 2.0 * ef + ef * ef) * (norm(val(dd)) + norm(val(dn)));
+        let err = dist(got.ddx().to_f64(), want.ddx);
+        assert!(
+            err <= REFRACT_ERROR * scale,
+            "{:e}: {:?} vs {:?}",
+            err / scale,
+            got.ddx().to_f64(),
+            want.ddx
+        );
+    }
+
     #[test]
     fn conversions() {
         let v = [0.375, -1e-9, 3.0e12];
