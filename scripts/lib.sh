@@ -12,6 +12,8 @@
 #   demo_target       cargo target dir of the demo/ workspace ($DEMO_TARGET_DIR or
 #                     target/demo: its own, so RUSTFLAGS never rebuild the host)
 #   demo_rustflags    RUSTFLAGS of every demo build (see demo_cargo)
+#   ARM_RUSTFLAGS     what demo_cargo adds for $ARM: code scheduled for the
+#                     Cortex-M4 (.cargo/config.toml and the templates set the same)
 #   QARM QRV QCOMMON  QEMU command lines: Cortex-M4 on mps2-an386, RV32 on virt,
 #                     and the options both share (semihosting carries output and exit code)
 #   QTIMEOUT          seconds before a hung guest is killed (120, or $QEMU_TIMEOUT)
@@ -38,6 +40,9 @@ demo_target=${DEMO_TARGET_DIR:-$host_target/demo}
 # fixed name makes the images, and so BUDGETS.md, independent of where the
 # repository is cloned. Only for demo builds (RUSTFLAGS would rebuild the host).
 demo_rustflags="--remap-path-prefix=$root=/raymip"
+# RUSTFLAGS replaces the per-target rustflags of .cargo/config.toml, so the
+# Cortex-M4 schedule is added here for builds that name $ARM (see demo_cargo).
+ARM_RUSTFLAGS="-C target-cpu=cortex-m4"
 
 QARM=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4)
 QRV=(qemu-system-riscv32 -machine virt -bios none)
@@ -212,9 +217,10 @@ ensure_targets() {
 
 # demo_cargo [+TOOLCHAIN] [--dir DIR] [--rustflags FLAGS] CARGO-ARGS...:
 # cargo in demo/ with the demo target dir (or DIR) and demo_rustflags (plus
-# FLAGS). Runs in a subshell: the caller's directory is unchanged.
+# FLAGS, plus ARM_RUSTFLAGS when CARGO-ARGS name `--target $ARM`). Runs in a
+# subshell: the caller's directory is unchanged.
 demo_cargo() {
-    local tc=() dir=$demo_target flags=$demo_rustflags
+    local tc=() dir=$demo_target flags=$demo_rustflags a prev=
     while [ $# -gt 0 ]; do
         case "$1" in
             +*) tc=("$1"); shift ;;
@@ -222,6 +228,12 @@ demo_cargo() {
             --rustflags) flags="$flags $2"; shift 2 ;;
             *) break ;;
         esac
+    done
+    for a in "$@"; do
+        if [ "$a" = "--target=$ARM" ] || { [ "$prev" = --target ] && [ "$a" = "$ARM" ]; }; then
+            flags="$flags $ARM_RUSTFLAGS"
+        fi
+        prev=$a
     done
     (cd "$root/demo" && CARGO_TARGET_DIR=$dir RUSTFLAGS=$flags cargo "${tc[@]}" "$@")
 }
