@@ -63,7 +63,7 @@ RD_CEILINGS = {
     "rd_primary": {"m4": 182, "rv": 299, "rvzbb": 245},
     "rd_transfer": {"m4": 286, "rv": 456, "rvzbb": 328},
     "rd_reflect": {"m4": 228, "rv": 387, "rvzbb": 344},
-    "rd_refract": {"m4": 638, "rv": 999, "rvzbb": 653},
+    "rd_refract": {"m4": 607, "rv": 924, "rvzbb": 596},
     "rd_footprint": {"m4": 66, "rv": 75, "rvzbb": 75},
     "rd_lod": {"m4": 80, "rv": 136, "rvzbb": 105},
     "rd_gbuffer": {"m4": 204, "rv": 290, "rvzbb": 226},

@@ -10,15 +10,13 @@
 // (default 2e9). A summary line goes to stderr.
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <vector>
 
 #include "Vsim.h"
 #include "Vsim___024root.h"
 #include "Vsim_sim.h"
-#include "elf_load.h"
 #include "main_ram.h"
+#include "sim_driver.h"
 #include "verilated.h"
 
 namespace {
@@ -37,26 +35,22 @@ constexpr uint32_t kRamBytes = sizeof(Vsim_sim::main_ram);
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: litex-sim FIRMWARE.elf [MAX_CYCLES]\n");
-        return 2;
-    }
-    const uint64_t max_cycles = argc > 2 ? std::strtoull(argv[2], nullptr, 0) : 2000000000ull;
+    sim::Args args;
+    if (!sim::parse(argc, argv, "litex-sim", args)) return 2;
     // Line by line, so that a log shows how far a run got.
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     auto ctx = std::make_unique<VerilatedContext>();
     auto top = std::make_unique<Vsim>(ctx.get());
 
-    std::vector<uint8_t> image(kRamBytes, 0);
-    if (!elf::load(argv[1], image, kRamBase)) return 2;
+    const auto words = sim::ram_words(args.elf, kRamBytes, kRamBase);
+    if (words.empty()) return 2;
 #if RAYMIP_RAM_BANKS == 2
     auto& even = top->rootp->sim->main_ram_even;
     auto& odd = top->rootp->sim->main_ram_odd;
-    for (uint32_t w = 0; w < kRamBytes / 4; ++w)
-        (w % 2 ? odd : even)[w / 2] = elf::rd32(image, size_t(w) * 4);
+    for (uint32_t w = 0; w < kRamBytes / 4; ++w) (w % 2 ? odd : even)[w / 2] = words[w];
 #else
     auto& ram = top->rootp->sim->main_ram;
-    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = elf::rd32(image, size_t(w) * 4);
+    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = words[w];
 #endif
 
     top->sys_clk = 0;
@@ -64,8 +58,8 @@ int main(int argc, char** argv) {
     top->sim_trace = 0;
     top->serial_source_ready = 1;
     uint64_t cycle = 0;
-    int status = 124;
-    for (; cycle < max_cycles; ++cycle) {
+    int status = sim::kTimeout;
+    for (; cycle < args.max_cycles; ++cycle) {
         if (cycle == 8) top->sys_rst = 0;
         // The UART's stream: a byte is taken at the rising edge where
         // valid and ready are both high (ready always is).
@@ -83,18 +77,13 @@ int main(int argc, char** argv) {
     }
     // Bytes the firmware queued in the UART before exiting (they reach the
     // stream a few cycles after the CSR write; the FIFO holds at most 16).
-    for (int i = 0; status != 124 && i < 256; ++i) {
+    for (int i = 0; status != sim::kTimeout && i < 256; ++i) {
         if (top->serial_source_valid) std::putchar(top->serial_source_data);
         top->sys_clk = 1;
         top->eval();
         top->sys_clk = 0;
         top->eval();
     }
-    std::fflush(stdout);
-    if (status == 124) std::fprintf(stderr, "litex-sim: no exit within %llu cycles\n",
-                                    (unsigned long long)max_cycles);
-    std::fprintf(stderr, "litex-sim: exit code %d after %llu cycles (RAM %u KiB)\n", status,
-                 (unsigned long long)cycle, kRamBytes / 1024);
     top->final();
-    return status;
+    return sim::summary("litex-sim", status, cycle, args, kRamBytes);
 }

@@ -10,14 +10,12 @@
 // (default 2e9). A summary line goes to stderr.
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <vector>
 
 #include "Vsoc.h"
 #include "Vsoc___024root.h"
 #include "Vsoc_soc.h"
-#include "elf_load.h"
+#include "sim_driver.h"
 #include "verilated.h"
 
 namespace {
@@ -27,24 +25,21 @@ constexpr uint32_t kRamBytes = sizeof(Vsoc_soc::ram);
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: soc-sim FIRMWARE.elf [MAX_CYCLES]\n");
-        return 2;
-    }
-    const uint64_t max_cycles = argc > 2 ? std::strtoull(argv[2], nullptr, 0) : 2000000000ull;
+    sim::Args args;
+    if (!sim::parse(argc, argv, "soc-sim", args)) return 2;
     auto ctx = std::make_unique<VerilatedContext>();
     auto top = std::make_unique<Vsoc>(ctx.get());
 
-    std::vector<uint8_t> image(kRamBytes, 0);
-    if (!elf::load(argv[1], image, 0)) return 2;
+    const auto words = sim::ram_words(args.elf, kRamBytes, 0);
+    if (words.empty()) return 2;
     auto& ram = top->rootp->soc->ram;
-    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = elf::rd32(image, size_t(w) * 4);
+    for (uint32_t w = 0; w < kRamBytes / 4; ++w) ram[w] = words[w];
 
     top->clk = 0;
     top->resetn = 0;
     uint64_t cycle = 0;
-    int status = 124;
-    for (; cycle < max_cycles; ++cycle) {
+    int status = sim::kTimeout;
+    for (; cycle < args.max_cycles; ++cycle) {
         if (cycle == 8) top->resetn = 1;
         top->clk = 1;
         top->eval();
@@ -67,11 +62,6 @@ int main(int argc, char** argv) {
             break;
         }
     }
-    std::fflush(stdout);
-    if (status == 124) std::fprintf(stderr, "soc-sim: no exit within %llu cycles\n",
-                                    (unsigned long long)max_cycles);
-    std::fprintf(stderr, "soc-sim: exit code %d after %llu cycles (RAM %u KiB)\n", status,
-                 (unsigned long long)cycle, kRamBytes / 1024);
     top->final();
-    return status;
+    return sim::summary("soc-sim", status, cycle, args, kRamBytes);
 }

@@ -38,6 +38,7 @@
 use core::fmt;
 
 pub mod parity;
+pub mod pow2_check;
 
 use raymip::lod::{clamp_lod, table_lod};
 use raymip::path::raystack::{PathState, RayStack};

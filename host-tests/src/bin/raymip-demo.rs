@@ -10,6 +10,9 @@
 //!   lines the QEMU demos print (`scripts/test-all` compares them).
 //! * `raymip-demo parity`: prints the GPU-style sampler's parity line (the
 //!   firmware `parity` binary prints the same on both targets).
+//! * `raymip-demo pow2-check`: prints the power-of-two pyramid check's
+//!   line (`raymip_demo_scene::pow2_check`; the firmware `check-pow2`
+//!   binary prints the same on the soft cores).
 //! * `raymip-demo pcpi-vectors FILE`: writes the texture co-processor's
 //!   reference vectors (`raymip_host::cli::pcpi_vectors`) for the
 //!   Verilator testbench of `demo/softcore/pcpi_tex.v`.
@@ -21,7 +24,7 @@ use raymip_host::cli::demo_data::{DATA_DIR, generate_data, stale_files};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity | pcpi-vectors FILE"
+        "usage: raymip-demo gen-data [--check] | render [--ppm FILE] | parity | pow2-check | pcpi-vectors FILE"
     );
     ExitCode::from(2)
 }
@@ -115,6 +118,16 @@ fn main() -> ExitCode {
             }
             None => {
                 eprintln!("error: parity set-up failed");
+                ExitCode::FAILURE
+            }
+        },
+        Some("pow2-check") => match raymip_demo_scene::pow2_check::run() {
+            Some(c) => {
+                println!("{c}");
+                ExitCode::SUCCESS
+            }
+            None => {
+                eprintln!("error: the demo texture is invalid");
                 ExitCode::FAILURE
             }
         },

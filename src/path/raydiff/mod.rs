@@ -79,10 +79,12 @@
 //!   `c = η − η²·cos θᵢ/cos θₜ` as normalised 31-bit mantissas: each
 //!   multiply-high `< 4u` relative, `cos θᵢ` to `2⁻³⁰`, so
 //!   `|δc| ≤ 19u·η + 20u·η²/cos θₜ` and `|δμ| ≤ (9 + η)u + u|μ|`; `∂cos θᵢ`
-//!   from two exact dot products (`< 10u·N`, `N = |∂D| + |∂n|`), `∂μ`
-//!   (`< (33η + 34η²/cos θₜ)·u·N`); the three terms by one multiply-high
+//!   from `∂D` and `∂n` at their larger exponent plus one (one truncation
+//!   each, `< 2u` of the larger), two exact dot products and one
+//!   truncation (`< 11u·N`, `N = |∂D| + |∂n|`), `∂μ`
+//!   (`< (34η + 35η²/cos θₜ)·u·N`); the three terms by one multiply-high
 //!   each and summed at the largest exponent (`< 24u·(η + |c| + |μ|)·N`):
-//!   `(37 + 119η + 62η²/cos θₜ)·u·N ≤ 64u·(1 + 2η + η²/cos θₜ)·N`.
+//!   `(37 + 120η + 63η²/cos θₜ)·u·N ≤ 64u·(1 + 2η + η²/cos θₜ)·N`.
 //!
 //! The footprint and lod add their own ([`crate::lod::raydiff`]); along a
 //! path the local errors propagate with each operation's gain (`1/|D·n|`
@@ -553,11 +555,16 @@ impl RayDiff {
         let coef = eta_s.sub(eta_s.mul(eta_s).mul(Scalar::new(ci, -30)).mul(inv_ct));
         for (axis, nn) in dn.iter().enumerate() {
             let (dd, nn) = (self.get(2 + axis), nn.0);
-            // −∂cos θᵢ = ∂D·n + D·∂n, each halved in its own units, then
-            // aligned; ∂μ = −c·(∂D·n + D·∂n).
-            let sa = Scalar::new((dot64(dd.m, n) >> 31) as i32, dd.e + 1);
-            let sb = Scalar::new((dot64(d, nn.m) >> 31) as i32, nn.e + 1);
-            let dmu = coef.mul(sa.add(sb));
+            // −∂cos θᵢ = ∂D·n + D·∂n with ∂D and ∂n at one exponent and
+            // one bit of headroom (|·| ≤ 2³⁰, so each dot product is below
+            // √3·2⁶⁰ for unit `D`, `n`), in units of 2^(ea+1) after one
+            // truncation; ∂μ = −c·(∂D·n + D·∂n).
+            let ea = dd.e.max(nn.e) + 1;
+            let a = dd.m.map(|x| shr(x, ea - dd.e));
+            let b = nn.m.map(|x| shr(x, ea - nn.e));
+            // Wrapping: only non-unit `D`, `n` reach ±2⁶³ (no panic).
+            let g = (dot64(a, n).wrapping_add(dot64(d, b)) >> 31) as i32;
+            let dmu = coef.mul(Scalar::new(g, ea + 1));
             // The three terms η·∂D, −∂μ·n (mulhi with n: 2⁻³⁰ units),
             // μ·∂n at their exponents, each below 2³⁰ before the shift.
             let e1 = dd.e + eta_s.e + 32;
@@ -615,12 +622,6 @@ impl Scalar {
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         Self::new(mulhi(self.m, o.m), self.e + o.e + 32)
-    }
-
-    #[inline(always)]
-    fn add(self, o: Self) -> Self {
-        let e = self.e.max(o.e) + 1;
-        Self::new(shr(self.m, e - self.e) + shr(o.m, e - o.e), e)
     }
 
     #[inline(always)]
@@ -763,6 +764,39 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    /// `∂D` and `∂n` at one exponent, every mantissa at its largest and
+    /// the two dot products of `∂cos θᵢ` of one sign: their sum is
+    /// `2√3` times a vector's scale, inside 32 bits only with the bit of
+    /// headroom the alignment leaves.
+    #[test]
+    fn refract_largest_aligned_dot_products() {
+        let c = I2F30::from_num(0.577_350_269_189_625_7);
+        let (n, d) = (UnitVec([c; 3]), UnitVec([-c; 3]));
+        let (dd, dn) = (Bfp3::new([i32::MIN; 3], -40), Bfp3::new([i32::MAX; 3], -40));
+        assert_eq!((dd.e, dn.e), (-40, -40));
+        let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
+        let eta = I4F28::from_num(1.0 / 1.5);
+        let mut got = s;
+        got.refract(
+            d,
+            n,
+            [DirDiff(dn), DirDiff::ZERO],
+            Eta::from_fixed(eta),
+            I2F30::ONE,
+        );
+        let ef = eta.to_num::<f64>();
+        let want = rf::refract(&state(&s), vu(d), vu(n), val(dn), [0.0; 3], ef, 1.0);
+        let scale = (1.0 + 2.0 * ef + ef * ef) * (norm(val(dd)) + norm(val(dn)));
+        let err = dist(got.ddx().to_f64(), want.ddx);
+        assert!(
+            err <= REFRACT_ERROR * scale,
+            "{:e}: {:?} vs {:?}",
+            err / scale,
+            got.ddx().to_f64(),
+            want.ddx
+        );
     }
 
     #[test]

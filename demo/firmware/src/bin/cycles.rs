@@ -24,17 +24,6 @@
 //! and one per batch kind:
 //! `batch NAME: n32 cycles A instret B n64 cycles C instret D` (minus the
 //! empty measurement).
-//!
-//! Last, the samples of the power-of-two pyramid (direct level views: with
-//! feature `cfu`, the co-processor's texture unit samples them) against
-//! the same texture as a plain `Pyramid` (read texel by texel: no unit),
-//! trilinear and bilinear, wrap and mirror/clamp-to-edge, [`CHECKS`] random
-//! inputs each with lods from below level 0 to above the last level:
-//! `check pow2: n N mismatches M hash H`, H the FNV-1a hash of the pow2
-//! samples. `scripts/softcore` requires M = 0 and the same H on every soft
-//! core (with feature `cfu` the plain pyramid's samples use the
-//! co-processor's filter instructions; the VexRiscv build without it is
-//! software alone).
 #![no_std]
 #![no_main]
 #![forbid(unsafe_code)]
@@ -46,11 +35,8 @@ use raymip::lod::log2_fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
-use raymip::texture::address::{ClampToEdge, Mirror, Wrap};
-use raymip::texture::kernel::Linear;
-use raymip::texture::storage::mip::{Pyramid, Texel};
-use raymip::texture::storage::pow2::Pow2Pyramid;
-use raymip::texture::{Cfg, Mode, NoStats, Sampler};
+use raymip::texture::storage::mip::Texel;
+use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
 use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
 use raymip_demo_firmware::inputs::{self, N, XorShift32};
@@ -106,33 +92,6 @@ fn once(call: impl FnOnce() -> usize) -> (u32, u32) {
     let c1 = cycles32();
     bb(y);
     (c1.wrapping_sub(c0), i1.wrapping_sub(i0))
-}
-
-/// Random inputs per sampler pair and mode of the pow2 check.
-const CHECKS: u32 = 512;
-
-/// One sample: `u`, `v`, lod, mode.
-type Sample<'a> = &'a mut dyn FnMut(TexCoord, TexCoord, Lod, Mode) -> Texel;
-
-/// Samples where `a` and `b` differ over [`CHECKS`] random inputs per mode
-/// (trilinear, bilinear): any `u`, `v`; lods from −2 to 10 (the pyramid
-/// has [`raymip_demo_scene::TEX_LEVELS`] levels). `hash`: FNV-1a over
-/// `a`'s samples, continued.
-fn mismatches(rng: &mut XorShift32, hash: &mut u32, a: Sample<'_>, b: Sample<'_>) -> u32 {
-    let mut bad = 0;
-    for mode in [Mode::Trilinear, Mode::BilinearNearestLevel] {
-        for _ in 0..CHECKS {
-            let u = TexCoord::from_bits(i64::from(rng.next_u32() as i32));
-            let v = TexCoord::from_bits(i64::from(rng.next_u32() as i32));
-            let lod = Lod::from_bits((rng.next_u32() % (12 << 8)) as i16 - (2 << 8));
-            let t = a(u, v, lod, mode);
-            bad += u32::from(t != b(u, v, lod, mode));
-            for byte in t.to_le_bytes() {
-                *hash = (*hash ^ u32::from(byte)).wrapping_mul(0x0100_0193);
-            }
-        }
-    }
-    bad
 }
 
 /// Draws the [`N`] inputs of one kind.
@@ -257,32 +216,5 @@ raymip_demo_entry::main! {
         once(|| sample_batch(&mut tex, bb(&tri_in[..n]), Mode::Trilinear, &mut tex_out))
     });
 
-    let Some((g, p)) = raymip_demo_scene::tex0_pow2() else {
-        exit(1)
-    };
-    let Ok(plain) = Pyramid::new(g, &raymip_demo_scene::TEX0) else {
-        exit(1)
-    };
-    type Ww<S> = Sampler<S, Cfg<Wrap, Wrap, Linear, Accurate, NoStats>>;
-    type Mc<S> = Sampler<S, Cfg<Mirror, ClampToEdge, Linear, Accurate, NoStats>>;
-    let mut plain_ww: Ww<Pyramid<'static>> = Sampler::new(plain);
-    let mut pow2_mc: Mc<Pow2Pyramid<'static>> = Sampler::new(p);
-    let mut plain_mc: Mc<Pyramid<'static>> = Sampler::new(plain);
-    let mut hash = 0x811C_9DC5;
-    let bad = mismatches(
-        &mut rng,
-        &mut hash,
-        &mut |u, v, l, m| tex.sample(u, v, l, m),
-        &mut |u, v, l, m| plain_ww.sample(u, v, l, m),
-    ) + mismatches(
-        &mut rng,
-        &mut hash,
-        &mut |u, v, l, m| pow2_mc.sample(u, v, l, m),
-        &mut |u, v, l, m| plain_mc.sample(u, v, l, m),
-    );
-    println!(
-        "check pow2: n {} mismatches {bad} hash {hash:#010x}",
-        4 * CHECKS
-    );
     exit(0)
 }
