@@ -628,7 +628,7 @@ mod tests {
 
     /// `quadrant_atan` rounds the octant angle to nearest: over random
     /// pairs of the lower octant (`b ≤ a`) its mean signed error against
-    /// f64 is below ¼ unit of `2^−(32+e)` turn (measured: 0.02 and 0.05),
+    /// f64 is below ¼ unit of `2^−(32+e)` turn,
     /// where a rounding constant off by a factor of two or a sign shifts it
     /// by ½ unit or more. And the fold keeps each pair on its side of ⅛
     /// turn: the diagonal `b = a` is the lower octant's, never past it.
