@@ -870,8 +870,9 @@ pub(crate) mod tests {
         /// The refraction within `REFRACT_ERROR·(1 + 2η + η²/cos θₜ)(|∂D| + |∂n|)`,
         /// η over the I4F28 range used (0.25–7.9), cos θₜ down to 0.
         #[test]
-        fn refract_within_its_bound(dd in bfp(-80..0), dn in bfp(-80..0), d in unit(), n in unit(),
-                                    eta in 0.25..7.9f64, ct_frac in 0.0..1.0f64, exact in any::<bool>()) {
+        fn refract_within_its_bound(dd in bfp(-80..0), dn in bfp(-80..0), dd2 in bfp(-80..0), dn2 in bfp(-80..0),
+                                    o in bfp(-80..40), d in unit(), n in unit(), eta in 0.25..7.9f64,
+                                    ct_frac in 0.0..1.0f64, exact in any::<bool>()) {
             let du = unit_q(d);
             let nf = if dot(vu(du), vu(unit_q(n))) > 0.0 { n.map(|x| -x) } else { n };
             let nu = unit_q(nf);
@@ -882,14 +883,18 @@ pub(crate) mod tests {
             let k = 1.0 - ef * ef * (1.0 - ci * ci);
             // cos θₜ from the directions, or any value (the caller's).
             let ct = I2F30::from_num(if exact && k >= 0.0 { k.sqrt() } else { ct_frac });
-            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
+            // Each axis its own ∂D and ∂n, and ∂O set (kept).
+            let s = RayDiff::new(PosDiff(o), PosDiff(Bfp3::new([1, -2, 3], o.e - 7)), DirDiff(dd), DirDiff(dd2));
             let mut got = s;
-            got.refract(du, nu, [DirDiff(dn), DirDiff::ZERO], Eta::from_fixed(eta), ct);
+            got.refract(du, nu, [DirDiff(dn), DirDiff(dn2)], Eta::from_fixed(eta), ct);
             let ctf = ct.to_num::<f64>().max(rf::MIN_COS);
-            let want = rf::refract(&state(&s), df, nq, val(dn), [0.0; 3], ef, ctf);
-            let scale = (1.0 + 2.0 * ef + ef * ef / ctf) * (norm(val(dd)) + norm(val(dn)));
-            let err = dist(got.ddx().to_f64(), want.ddx);
-            prop_assert!(err <= REFRACT_ERROR * scale, "{:e}: {:?} vs {:?}", err / scale, got.ddx().to_f64(), want.ddx);
+            let want = rf::refract(&state(&s), df, nq, val(dn), val(dn2), ef, ctf);
+            for (g, w, a, b) in [(got.ddx(), want.ddx, dd, dn), (got.ddy(), want.ddy, dd2, dn2)] {
+                let scale = (1.0 + 2.0 * ef + ef * ef / ctf) * (norm(val(a)) + norm(val(b)));
+                let err = dist(g.to_f64(), w);
+                prop_assert!(err <= REFRACT_ERROR * scale, "{:e}: {:?} vs {:?}", err / scale, g.to_f64(), w);
+            }
+            prop_assert_eq!((got.dox(), got.doy()), (s.dox(), s.doy()));
         }
 
         /// The primary set-up within `PRIMARY_ERROR·(|D·f| + 1)·|r|`, any
