@@ -776,19 +776,33 @@ pub(crate) mod tests {
         let (n, d) = (UnitVec([c; 3]), UnitVec([-c; 3]));
         let (dd, dn) = (Bfp3::new([i32::MIN; 3], -40), Bfp3::new([i32::MAX; 3], -40));
         assert_eq!((dd.e, dn.e), (-40, -40));
+        refract_x_within_bound(d, n, dd, dn, I4F28::from_num(1.0 / 1.5), I2F30::ONE);
+    }
+
+    /// The three terms of `∂T` (η·∂D, ∂μ·n, μ·∂n) near their largest at
+    /// one exponent and of one sign (η just below 8, cos θₜ = 1, the
+    /// largest mantissas): their sum fits 32 bits only with the bit of
+    /// headroom of the common exponent (without it the x axis is off by
+    /// 0.14 of its scale).
+    #[test]
+    fn refract_largest_aligned_terms() {
+        let unit = |b: [i32; 3]| UnitVec(b.map(I2F30::from_bits));
+        let d = unit([150_477_606, -465_389_534, 955_871_632]);
+        let n = unit([193_524_233, 470_637_611, -945_499_929]);
+        let dd = Bfp3::new([1 << 30, 1 << 30, 2_146_119_543], -47);
+        let dn = Bfp3::new([1_270_073_125, i32::MAX, i32::MAX], -47);
+        refract_x_within_bound(d, n, dd, dn, I4F28::MAX, I2F30::ONE);
+    }
+
+    /// `refract` of the x axis (`∂D = dd`, `∂n = dn`) within
+    /// `REFRACT_ERROR·(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` of f64.
+    fn refract_x_within_bound(d: UnitVec, n: UnitVec, dd: Bfp3, dn: Bfp3, eta: I4F28, ct: I2F30) {
         let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
-        let eta = I4F28::from_num(1.0 / 1.5);
         let mut got = s;
-        got.refract(
-            d,
-            n,
-            [DirDiff(dn), DirDiff::ZERO],
-            Eta::from_fixed(eta),
-            I2F30::ONE,
-        );
-        let ef = eta.to_num::<f64>();
-        let want = rf::refract(&state(&s), vu(d), vu(n), val(dn), [0.0; 3], ef, 1.0);
-        let scale = (1.0 + 2.0 * ef + ef * ef) * (norm(val(dd)) + norm(val(dn)));
+        got.refract(d, n, [DirDiff(dn), DirDiff::ZERO], Eta::from_fixed(eta), ct);
+        let (ef, ctf) = (eta.to_num::<f64>(), ct.to_num::<f64>().max(rf::MIN_COS));
+        let want = rf::refract(&state(&s), vu(d), vu(n), val(dn), [0.0; 3], ef, ctf);
+        let scale = (1.0 + 2.0 * ef + ef * ef / ctf) * (norm(val(dd)) + norm(val(dn)));
         let err = dist(got.ddx().to_f64(), want.ddx);
         assert!(
             err <= REFRACT_ERROR * scale,
