@@ -82,23 +82,38 @@ impl Bfp3 {
         e: EXP_MIN,
     };
 
-    /// `m·2ᵉ` normalised (any mantissas, any `e`; the exponent saturates at
-    /// [`EXP_MIN`], [`EXP_MAX`]).
+    /// `m·2ᵉ` normalised, for any mantissas and `|e| ≤ 2¹⁷` (every
+    /// caller's exponent is within `2¹⁶`); the exponent saturates at
+    /// [`EXP_MIN`], [`EXP_MAX`].
     #[inline(always)]
     #[must_use]
     pub fn new(m: [i32; 3], e: i32) -> Self {
-        // The largest magnitude (less one for negatives) has its top bit
-        // clear: one leading zero wanted, `clz((o << 1) | 1) = clz(o) − 1`
-        // ∈ [0, 31] (a zero vector shifts by 31 and stays zero).
-        let o = (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31));
-        let s = clz32(((o as u32) << 1) | 1) as i32;
-        // Both exponents made, then one selected (no branch: the caller's
-        // block continues, and values it made stay in 32-bit registers).
-        let e = (e - s).clamp(EXP_MIN, EXP_MAX);
+        let s = norm_shift(m);
+        let zero = (m[0] | m[1] | m[2]) == 0;
+        // Bit for bit the same; the cheaper per target (the Cortex-M4
+        // subtracts conditionally; on RV32 a pushed exponent costs more).
+        #[cfg(target_arch = "arm")]
+        let e = exp_pushed(e - s, zero);
+        #[cfg(not(target_arch = "arm"))]
+        let e = exp_selected(e - s, zero);
+        Self {
+            m: m.map(|x| x << s),
+            e,
+        }
+    }
+
+    /// [`Bfp3::new`] (bit for bit) for `e ∈ [EXP_MIN + 31, EXP_MAX]`,
+    /// where no clamp is needed: a zero vector selects [`EXP_MIN`]. For a
+    /// constant `e`, one selected constant costs less than the clamp the
+    /// pushed exponent of [`Bfp3::new`] would keep.
+    #[inline(always)]
+    #[must_use]
+    pub fn new_in_range(m: [i32; 3], e: i32) -> Self {
+        let s = norm_shift(m);
         let e = if (m[0] | m[1] | m[2]) == 0 {
             EXP_MIN
         } else {
-            e
+            e - s
         };
         Self {
             m: m.map(|x| x << s),
@@ -110,11 +125,61 @@ impl Bfp3 {
     /// the largest (any `e`: it saturates).
     #[must_use]
     pub fn from_wide(m: [i64; 3], e: i32) -> Self {
-        let o = (m[0] ^ (m[0] >> 63)) | (m[1] ^ (m[1] >> 63)) | (m[2] ^ (m[2] >> 63));
-        let s = (64 - o.leading_zeros() as i32 - 31).max(0);
-        let e = e.clamp(2 * EXP_MIN, 2 * EXP_MAX) + s;
-        Self::new(m.map(|x| (x >> s) as i32), e)
+        let s = wide_shift(m);
+        Self::new(
+            m.map(|x| (x >> s) as i32),
+            e.clamp(2 * EXP_MIN, 2 * EXP_MAX) + s,
+        )
     }
+}
+
+/// The left shift that normalises the mantissas `m`: the largest
+/// magnitude (less one for negatives) gets one leading zero,
+/// `clz((o << 1) | 1) = clz(o) − 1` ∈ [0, 31] (a zero vector shifts by 31
+/// and stays zero).
+#[inline(always)]
+#[must_use]
+pub(crate) fn norm_shift(m: [i32; 3]) -> i32 {
+    let o = (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31));
+    clz32(((o as u32) << 1) | 1) as i32
+}
+
+/// `e` clamped to [`EXP_MIN`, `EXP_MAX`], or [`EXP_MIN`] for a zero
+/// vector, for `|e| ≤ 2¹⁷ + 31`: a zero vector's exponent is pushed 2¹⁸
+/// below, where the clamp gives EXP_MIN (on the Cortex-M4 a conditional
+/// subtract of an immediate, where EXP_MIN is a constant to load).
+#[inline(always)]
+#[must_use]
+#[cfg_attr(
+    not(target_arch = "arm"),
+    allow(
+        dead_code,
+        reason = "the Cortex-M4's form: tested on the host against exp_selected"
+    )
+)]
+pub(crate) fn exp_pushed(e: i32, zero: bool) -> i32 {
+    let e = if zero { e - (1 << 18) } else { e };
+    e.clamp(EXP_MIN, EXP_MAX)
+}
+
+/// [`exp_pushed`] (same value) with EXP_MIN selected after the clamp, for
+/// any `e`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn exp_selected(e: i32, zero: bool) -> i32 {
+    // Both made, then one selected (no branch: the caller's block
+    // continues, and values it made stay in 32-bit registers).
+    let e = e.clamp(EXP_MIN, EXP_MAX);
+    if zero { EXP_MIN } else { e }
+}
+
+/// The right shift that leaves 64-bit mantissas `m` within 32 bits, the
+/// largest with 31 significant bits (0 when they fit already).
+#[inline(always)]
+#[must_use]
+pub(crate) fn wide_shift(m: [i64; 3]) -> i32 {
+    let o = (m[0] ^ (m[0] >> 63)) | (m[1] ^ (m[1] >> 63)) | (m[2] ^ (m[2] >> 63));
+    (64 - o.leading_zeros() as i32 - 31).max(0)
 }
 
 #[cfg(test)]
@@ -163,8 +228,27 @@ mod tests {
         }
     }
 
+    /// The two zero-exponent forms agree over all of `exp_pushed`'s range
+    /// (every exponent, both flags).
+    #[test]
+    fn exponent_forms_agree() {
+        let r = (1 << 17) + 31;
+        for e in -r..=r {
+            for zero in [false, true] {
+                assert_eq!(exp_pushed(e, zero), exp_selected(e, zero), "{e} {zero}");
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn in_range_normalises_as_new(m in any::<[i32; 3]>(), z in 0usize..4, e in EXP_MIN + 31..=EXP_MAX) {
+            // The zero vector in a quarter of the cases.
+            let m = if z == 3 { [0; 3] } else { m };
+            prop_assert_eq!(Bfp3::new_in_range(m, e), Bfp3::new(m, e));
+        }
 
         #[test]
         fn reciprocal_within_its_bound(x in (1u32 << 31)..=u32::MAX) {

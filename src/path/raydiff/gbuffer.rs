@@ -103,7 +103,7 @@ fn pos_diff(a: &GSample, b: &GSample, scale: i32) -> Bfp3 {
 #[inline(always)]
 fn normal_diff(a: &GSample, b: &GSample) -> Bfp3 {
     let dn = core::array::from_fn(|k| a.n[k].to_bits().saturating_sub(b.n[k].to_bits()));
-    Bfp3::new(dn, -30)
+    Bfp3::new_in_range(dn, -30)
 }
 
 /// The first hit's differential state from the G-buffer (positions at

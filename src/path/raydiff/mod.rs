@@ -103,7 +103,9 @@ mod bfp;
 pub mod gbuffer;
 
 use crate::lod::log2::clz32;
-pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, recip, shr};
+pub(crate) use bfp::{
+    Bfp3, EXP_MAX, EXP_MIN, dot64, exp_selected, mulhi, norm_shift, recip, shr, wide_shift,
+};
 
 use crate::units::UnitVec;
 
@@ -607,16 +609,25 @@ struct Scalar {
 }
 
 impl Scalar {
+    /// `m·2ᵉ` normalised as [`Bfp3::new`] (bit for bit), with zero
+    /// selected after the clamp: in the chain of scalar operations the
+    /// compiler folds the clamp's bounds into the next exponent sum, which
+    /// a pushed exponent would defeat.
     #[inline(always)]
     fn new(m: i32, e: i32) -> Self {
-        let v = Bfp3::new([m, 0, 0], e);
-        Self { m: v.m[0], e: v.e }
+        let s = norm_shift([m, 0, 0]);
+        Self {
+            m: m << s,
+            e: exp_selected(e - s, m == 0),
+        }
     }
 
+    /// `m·2ᵉ` from a 64-bit mantissa as [`Bfp3::from_wide`] (bit for bit),
+    /// normalised as [`Scalar::new`].
     #[inline(always)]
     fn wide(m: i64, e: i32) -> Self {
-        let v = Bfp3::from_wide([m, 0, 0], e);
-        Self { m: v.m[0], e: v.e }
+        let s = wide_shift([m, 0, 0]);
+        Self::new((m >> s) as i32, e.clamp(2 * EXP_MIN, 2 * EXP_MAX) + s)
     }
 
     #[inline(always)]
@@ -840,6 +851,18 @@ pub(crate) mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        /// `Scalar::new` and `Scalar::wide` normalise as `Bfp3::new` and
+        /// `Bfp3::from_wide` on one component, bit for bit (shifts down to
+        /// 0 and −1, exponents beyond both clamps).
+        #[test]
+        fn scalar_normalises_as_bfp3(m in any::<i64>(), s in 0u32..64, e in -(1i32 << 17)..=1 << 17) {
+            let m = m >> s;
+            let (a, b) = (Scalar::new(m as i32, e), Bfp3::new([m as i32, 0, 0], e));
+            prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
+            let (a, b) = (Scalar::wide(m, e), Bfp3::from_wide([m, 0, 0], e));
+            prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
+        }
 
         /// The transfer within `TRANSFER_ERROR·(|∂O| + t|∂D|)(1 + 1/|D·n|)`
         /// of f64 on the same inputs: any mantissas, exponents across 120
