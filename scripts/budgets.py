@@ -187,9 +187,9 @@ MATRIX_CEILINGS = {
     "an2": {"m4": 888, "rv": 1101, "rvzbb": 1079},
     "an4": {"m4": 1322, "rv": 1641, "rvzbb": 1621},
     "an16": {"m4": 3812, "rv": 4881, "rvzbb": 4871},
-    "an2_f": {"m4": 878, "rv": 1063, "rvzbb": 1010},
-    "an4_f": {"m4": 1305, "rv": 1563, "rvzbb": 1480},
-    "an16_f": {"m4": 3862, "rv": 4564, "rvzbb": 4302},
+    "an2_f": {"m4": 829, "rv": 1063, "rvzbb": 1010},
+    "an4_f": {"m4": 1205, "rv": 1563, "rvzbb": 1480},
+    "an16_f": {"m4": 3444, "rv": 4564, "rvzbb": 4302},
 }
 MATRIX_BATCH_CEILINGS = {
     "matrix:rm_batch_bilinear": {"m4": 115, "rv": 137, "rvzbb": 132},
