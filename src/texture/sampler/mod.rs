@@ -714,10 +714,21 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
+            // Every tap is read (the view masks it into the level) and a
+            // border tap replaced afterwards: a range test per tap, no
+            // branch.
             let [cx, cy] = self.levels[level].c;
-            let xt = mu.pow2_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
-            let yt = mv.pow2_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
-            (xt, yt, l.footprint(xt.i, yt.i))
+            let xt = mu.pow2_masked_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
+            let yt = mv.pow2_masked_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
+            let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
+            if K::U::MAY_BORDER || K::V::MAY_BORDER {
+                for (k, l) in lanes.iter_mut().enumerate() {
+                    if xt.border[k & 1] | yt.border[k >> 1] {
+                        *l = self.border;
+                    }
+                }
+            }
+            return (lanes, xt.f, yt.f);
         } else {
             // Power-of-two geometries address as the direct path does (the
             // level's constants from the table); other sizes by the
