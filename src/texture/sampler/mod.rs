@@ -1062,8 +1062,8 @@ mod tests {
     }
 
     /// The direct path (a power-of-two pyramid's level views: wrap
-    /// without masks, mirror by XOR, clamp and border decided once per
-    /// axis) and the generic path (`TexelSource::footprint` of the same
+    /// without masks, mirror by XOR, clamp decided once per axis, border
+    /// taps replaced after a range test per tap) and the generic path (`TexelSource::footprint` of the same
     /// pyramid, and of a texel cache) give the same results and counters
     /// for every filter mode, key kind (static axes, run-time axes, mixed),
     /// tier and colour space, on square, long and one-texel-wide
