@@ -243,9 +243,14 @@ impl AddressMode {
     /// [`wrap_constant`]`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
     /// multiply), mirror by [`pow2_mirror_taps`] (a multiply-accumulate
     /// and an XOR per tap), the clamping modes as for any size. Equal to
-    /// `taps` for every input (tested).
+    /// `taps` for every input (tested). With `MASKED`, for a reader that
+    /// masks its indices with `m` and replaces border taps by the border
+    /// colour (a sampler's direct level views):
+    /// [`ClampToBorder`](Self::ClampToBorder) by [`pow2_border_taps`] (a
+    /// border tap's index is not clamped, and no branch decides it); the
+    /// flags, weight and the indices of taps inside are the same (tested).
     #[inline(always)]
-    pub(crate) fn pow2_taps(
+    pub(crate) fn pow2_taps<const MASKED: bool>(
         self,
         coord: TexCoord,
         n: u32,
@@ -264,29 +269,8 @@ impl AddressMode {
                 }
             }
             Self::Mirror => pow2_mirror_taps(coord, n, m, s, bits),
+            Self::ClampToBorder if MASKED => pow2_border_taps(coord, n, m, bits),
             _ => self.taps(coord, n, bits),
-        }
-    }
-
-    /// [`pow2_taps`](Self::pow2_taps) for a reader that masks its indices
-    /// with `m` and replaces border taps by the border colour (a sampler's
-    /// direct level views): [`ClampToBorder`](Self::ClampToBorder) by
-    /// [`pow2_border_taps`] (a border tap's index is not clamped, and no
-    /// branch decides it), the other modes as `pow2_taps`. Flags, weight
-    /// and the indices of taps inside equal `pow2_taps`' (tested).
-    #[inline(always)]
-    pub(crate) fn pow2_masked_taps(
-        self,
-        coord: TexCoord,
-        n: u32,
-        m: u32,
-        s: u32,
-        c: u32,
-        bits: u32,
-    ) -> AxisTaps {
-        match self {
-            Self::ClampToBorder => pow2_border_taps(coord, n, m, bits),
-            _ => self.pow2_taps(coord, n, m, s, c, bits),
         }
     }
 }
@@ -566,7 +550,7 @@ mod tests {
     /// by a multiply-accumulate and an XOR, the clamping modes decided
     /// once per axis) equal the general taps for every mode, side `2^k`,
     /// weight width, and random, seam and edge coordinates; so does
-    /// `pow2_masked_taps` but for the indices of border taps, which stay
+    /// `pow2_taps::<true>` but for the indices of border taps, which stay
     /// inside the level.
     #[test]
     fn pow2_taps_equal_general_taps() {
@@ -592,14 +576,14 @@ mod tests {
                             let want = m.taps(c, size, b);
                             let wc = wrap_constant(k, b);
                             assert_eq!(
-                                m.pow2_taps(c, size, size - 1, 31 - k, wc, b),
+                                m.pow2_taps::<false>(c, size, size - 1, 31 - k, wc, b),
                                 want,
                                 "{m:?} k {k} bits {bits:#x} weight bits {b}"
                             );
                             // The masked form: the same flags, weight and
                             // inside indices; a border tap's index is any
                             // texel of the level.
-                            let got = m.pow2_masked_taps(c, size, size - 1, 31 - k, wc, b);
+                            let got = m.pow2_taps::<true>(c, size, size - 1, 31 - k, wc, b);
                             let inside =
                                 |t: AxisTaps| [0, 1].map(|k| (!t.border[k]).then_some(t.i[k]));
                             assert_eq!(

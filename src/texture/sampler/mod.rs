@@ -718,8 +718,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             // border tap replaced afterwards: a range test per tap, no
             // branch.
             let [cx, cy] = self.levels[level].c;
-            let xt = mu.pow2_masked_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
-            let yt = mv.pow2_masked_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
+            let xt = mu.pow2_taps::<true>(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
+            let yt = mv.pow2_taps::<true>(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
             let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
             if K::U::MAY_BORDER || K::V::MAY_BORDER {
                 for (k, l) in lanes.iter_mut().enumerate() {
@@ -738,8 +738,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let [mx, my] = a.masks();
                 let [sx, sy] = a.s.map(u32::from);
                 (
-                    mu.pow2_taps(u, mx + 1, mx, sx, a.c[0], bits),
-                    mv.pow2_taps(v, my + 1, my, sy, a.c[1], bits),
+                    mu.pow2_taps::<false>(u, mx + 1, mx, sx, a.c[0], bits),
+                    mv.pow2_taps::<false>(v, my + 1, my, sy, a.c[1], bits),
                 )
             } else {
                 let (w, h) = self.source.geometry().level_size(level as u8);
