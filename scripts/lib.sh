@@ -220,10 +220,13 @@ ensure_targets() {
 # FLAGS, plus ARM_RUSTFLAGS when CARGO-ARGS name `--target $ARM`), and
 # scripts/rustc-metadata as RUSTC_WRAPPER: cargo's -C metadata of raymip
 # (outside demo/) hashes the checkout path, and with it the images' function
-# layout would depend on where the repository is cloned. Runs in a subshell:
-# the caller's directory is unchanged.
+# layout would depend on where the repository is cloned. The flag `--cfg
+# raymip_rustc_metadata` (no code tests it) is there for cargo's fingerprint,
+# which covers RUSTFLAGS but not the wrapper: a target dir built without the
+# wrapper is rebuilt, never mixed with it. Runs in a subshell: the caller's
+# directory is unchanged.
 demo_cargo() {
-    local tc=() dir=$demo_target flags=$demo_rustflags a prev=
+    local tc=() dir=$demo_target flags="$demo_rustflags --cfg raymip_rustc_metadata" a prev=
     while [ $# -gt 0 ]; do
         case "$1" in
             +*) tc=("$1"); shift ;;
