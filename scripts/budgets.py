@@ -57,17 +57,6 @@ RD_SUM_GOALS = [("footprint + lod", ["rd_footprint", "rd_lod"], 150),
                  ["rd_transfer", "rd_footprint", "rd_lod"], 300),
                 ("G-buffer per first hit (set-up + footprint + lod)",
                  ["rd_gbuffer", "rd_footprint", "rd_lod"], 180)]
-# CI ceilings of the ray differentials (max instructions per call): the goal
-# where it is met, else this measurement's maximum + 10 %.
-RD_CEILINGS = {
-    "rd_primary": {"m4": 182, "rv": 299, "rvzbb": 245},
-    "rd_transfer": {"m4": 286, "rv": 456, "rvzbb": 328},
-    "rd_reflect": {"m4": 228, "rv": 387, "rvzbb": 344},
-    "rd_refract": {"m4": 607, "rv": 924, "rvzbb": 596},
-    "rd_footprint": {"m4": 66, "rv": 75, "rvzbb": 75},
-    "rd_lod": {"m4": 80, "rv": 136, "rvzbb": 105},
-    "rd_gbuffer": {"m4": 204, "rv": 290, "rvzbb": 226},
-}
 # Environment map (feature `envmap`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
 ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
@@ -163,40 +152,6 @@ MATRIX_BATCHES = [
 # key `matrix:<wrapper>`.
 MATRIX_SHARED = {"rm_bench_bilinear": 64, "rm_bench_trilinear": 64, "rm_bench_trilinear_fast": 64,
                  "rm_batch_bilinear": 2, "rm_batch_trilinear": 2}
-# CI ceilings of the matrix (max instructions per call; batches: steady per
-# hit): the goal where it is met, else the achieved value + 5 % (reasons in
-# docs/budget-analysis.md and the per-class breakdown). Fixed numbers, so a slower
-# build fails.
-MATRIX_CEILINGS = {
-    "tw_bil": {"m4": 111, "rv": 139, "rvzbb": 137},
-    "tw_bil_f": {"m4": 113, "rv": 146, "rvzbb": 135},
-    "tw_tri": {"m4": 244, "rv": 292, "rvzbb": 290},
-    "tw_tri_f": {"m4": 220, "rv": 278, "rvzbb": 255},
-    "tw_tri_n": {"m4": 264, "rv": 301, "rvzbb": 298},
-    "ts_bil": {"m4": 146, "rv": 199, "rvzbb": 189},
-    "ts_bil_f": {"m4": 152, "rv": 197, "rvzbb": 183},
-    "ts_tri": {"m4": 328, "rv": 403, "rvzbb": 392},
-    "ts_tri_f": {"m4": 284, "rv": 385, "rvzbb": 355},
-    "ts_srgb": {"m4": 502, "rv": 612, "rvzbb": 596},
-    "ts_565": {"m4": 638, "rv": 762, "rvzbb": 727},
-    "ts_565_f": {"m4": 593, "rv": 743, "rvzbb": 690},
-    "ts_bc1_hit": {"m4": 754, "rv": 875, "rvzbb": 840},
-    "ts_bc1_hit_f": {"m4": 708, "rv": 857, "rvzbb": 805},
-    "ts_bc1_fill": {"m4": 3333, "rv": 3535, "rvzbb": 3445},
-    "ts_bc1_fill_f": {"m4": 3287, "rv": 3517, "rvzbb": 3410},
-    "an2": {"m4": 888, "rv": 1101, "rvzbb": 1079},
-    "an4": {"m4": 1322, "rv": 1641, "rvzbb": 1621},
-    "an16": {"m4": 3812, "rv": 4881, "rvzbb": 4871},
-    "an2_f": {"m4": 878, "rv": 1063, "rvzbb": 1010},
-    "an4_f": {"m4": 1305, "rv": 1563, "rvzbb": 1480},
-    "an16_f": {"m4": 3862, "rv": 4564, "rvzbb": 4302},
-}
-MATRIX_BATCH_CEILINGS = {
-    "matrix:rm_batch_bilinear": {"m4": 115, "rv": 137, "rvzbb": 132},
-    "rm_batch_bilinear_fast": {"m4": 130, "rv": 134, "rvzbb": 121},
-    "matrix:rm_batch_trilinear": {"m4": 224, "rv": 249, "rvzbb": 244},
-    "rm_batch_trilinear_fast": {"m4": 196, "rv": 230, "rvzbb": 201},
-}
 # Geometric LOD rows: (key, label, single-instance calls, batch calls
 # (32 then 64 instances)).
 GEOMLOD_ROWS = [
@@ -204,41 +159,117 @@ GEOMLOD_ROWS = [
     ("stochastic", "stochastic, t = ½", slice(64, 128), slice(2, 4)),
 ]
 
-# Goals of issue 10 (instructions per call, max over the 64 calls).
-GOALS = {
-    "lod": {"m4": 20, "rv": 30, "rvzbb": 20},
-    "cone_lod": {"m4": 40, "rv": 60, "rvzbb": 45},
-    "bilinear": {"m4": 90, "rv": 110, "rvzbb": 100},
-    "trilinear": {"m4": 150, "rv": 200, "rvzbb": 180},
-}
-GOALS.update({f: GOALS[a] for f, a in FAST_OF.items()})
-BATCH_GOALS = {"lod": {"m4": 12}, "lod_fast": {"m4": 12, "rv": 20}, "trilinear": {"m4": 120}}
-# Ceilings on the steady state per hit of a batch, checked in CI (issue 21:
-# the FAST table batch reads the ray stack's normalised Pl and writes one
-# word per hit): the goal where it is met, else the achieved value + 10 %.
-BATCH_CEILINGS = {"lod_fast": {"m4": 12, "rv": 20, "rvzbb": 20}}
-# Ceilings checked in CI: the goal where it is met, else the achieved
-# maximum + 10 % (the reason is in the "Goals missed" section below).
-CEILINGS = {
-    "lod": {"m4": 31, "rv": 52, "rvzbb": 33},
-    "cone_lod": {"m4": 65, "rv": 105, "rvzbb": 68},
-    "bilinear": {"m4": 123, "rv": 178, "rvzbb": 172},
-    "trilinear": {"m4": 263, "rv": 354, "rvzbb": 349},
-    "lod_fast": {"m4": 20, "rv": 42, "rvzbb": 26},
-    "cone_lod_fast": {"m4": 40, "rv": 92, "rvzbb": 54},
-    "trilinear_fast": {"m4": 230, "rv": 336, "rvzbb": 313},
-}
 
-# Ceilings of the sampler-state and geometric-LOD rows (max instructions
-# per call; geomlod: per instance, steady state): the first measurement's
-# maximum + 10 %, rounded up.
-GEOMLOD_CEILINGS = {
-    "discrete": {"m4": 97, "rv": 78, "rvzbb": 73},
-    "stochastic": {"m4": 117, "rv": 92, "rvzbb": 86},
-}
+
+# Goals and CI ceilings, in instructions, one line per (kind, row): the
+# Cortex-M4, RV32IMAC and RV32IMAC+Zbb figures, `-` where a kind has none.
+# Fixed numbers, so a slower build fails. The kinds:
+#   goal                  the goal of a call (max per call over its 64 calls);
+#                         a FAST path has the goal of the call it stands in for
+#   ceiling               CI ceiling of a call: the goal where it is met, else
+#                         the achieved maximum + 10 % (reason in "Goals missed")
+#   batch_goal            goal of a batch's steady state per hit
+#   batch_ceiling         CI ceiling of a batch's steady state per hit: the goal
+#                         where it is met, else the achieved value + 10 %
+#   rd_ceiling            ray differentials (max per call): the goal where it
+#                         is met, else the measured maximum + 10 %
+#   matrix_ceiling        the sampler matrix (max per call): the goal where it
+#                         is met, else the achieved value + 5 % (reasons in
+#                         docs/budget-analysis.md and the per-class breakdown)
+#   matrix_batch_ceiling  batches of the matrix's wrap rows (steady per hit),
+#                         the same rule
+#   geomlod_ceiling       geometric LOD per instance (steady state): the first
+#                         measurement's maximum + 10 %, rounded up
+LIMITS = """
+kind                  row                           m4    rv rvzbb
+goal                  lod                           20    30    20
+goal                  cone_lod                      40    60    45
+goal                  bilinear                      90   110   100
+goal                  trilinear                    150   200   180
+ceiling               lod                           31    52    33
+ceiling               cone_lod                      65   105    68
+ceiling               bilinear                     123   178   172
+ceiling               trilinear                    263   354   349
+ceiling               lod_fast                      20    42    26
+ceiling               cone_lod_fast                 40    92    54
+ceiling               trilinear_fast               230   336   313
+batch_goal            lod                           12     -     -
+batch_goal            lod_fast                      12    20     -
+batch_goal            trilinear                    120     -     -
+batch_ceiling         lod_fast                      12    20    20
+rd_ceiling            rd_primary                   182   299   245
+rd_ceiling            rd_transfer                  286   456   328
+rd_ceiling            rd_reflect                   228   387   344
+rd_ceiling            rd_refract                   607   924   596
+rd_ceiling            rd_footprint                  66    75    75
+rd_ceiling            rd_lod                        80   136   105
+rd_ceiling            rd_gbuffer                   204   290   226
+matrix_ceiling        tw_bil                       111   139   137
+matrix_ceiling        tw_bil_f                     113   146   135
+matrix_ceiling        tw_tri                       244   292   290
+matrix_ceiling        tw_tri_f                     220   278   255
+matrix_ceiling        tw_tri_n                     264   301   298
+matrix_ceiling        ts_bil                       146   199   189
+matrix_ceiling        ts_bil_f                     152   197   183
+matrix_ceiling        ts_tri                       328   403   392
+matrix_ceiling        ts_tri_f                     284   385   355
+matrix_ceiling        ts_srgb                      502   612   596
+matrix_ceiling        ts_565                       638   762   727
+matrix_ceiling        ts_565_f                     593   743   690
+matrix_ceiling        ts_bc1_hit                   754   875   840
+matrix_ceiling        ts_bc1_hit_f                 708   857   805
+matrix_ceiling        ts_bc1_fill                 3333  3535  3445
+matrix_ceiling        ts_bc1_fill_f               3287  3517  3410
+matrix_ceiling        an2                          888  1101  1079
+matrix_ceiling        an4                         1322  1641  1621
+matrix_ceiling        an16                        3812  4881  4871
+matrix_ceiling        an2_f                        878  1063  1010
+matrix_ceiling        an4_f                       1305  1563  1480
+matrix_ceiling        an16_f                      3862  4564  4302
+matrix_batch_ceiling  matrix:rm_batch_bilinear     115   137   132
+matrix_batch_ceiling  rm_batch_bilinear_fast       130   134   121
+matrix_batch_ceiling  matrix:rm_batch_trilinear    224   249   244
+matrix_batch_ceiling  rm_batch_trilinear_fast      196   230   201
+geomlod_ceiling       discrete                      97    78    73
+geomlod_ceiling       stochastic                   117    92    86
+"""
+
+
+def limits(kind):
+    """{row: {isa: instructions}} of one kind of the LIMITS table."""
+    table = {}
+    for line in LIMITS.strip().splitlines()[1:]:
+        k, row, *figures = line.split()
+        if k == kind:
+            table[row] = {isa: int(n) for (isa, _), n in zip(ISAS, figures) if n != "-"}
+    return table
+
+
+GOALS = limits("goal")
+GOALS.update({f: GOALS[a] for f, a in FAST_OF.items()})
+CEILINGS = limits("ceiling")
+BATCH_GOALS = limits("batch_goal")
+BATCH_CEILINGS = limits("batch_ceiling")
+RD_CEILINGS = limits("rd_ceiling")
+MATRIX_CEILINGS = limits("matrix_ceiling")
+MATRIX_BATCH_CEILINGS = limits("matrix_batch_ceiling")
+GEOMLOD_CEILINGS = limits("geomlod_ceiling")
 
 SIZE_CEILING = 6144  # minimal .text, bytes
 STATIC_TRILINEAR_CEILING = 512  # bytes
+
+
+def ceiling_cell(table, key, value, bad, what):
+    """The ceiling column of row `key` of a LIMITS kind (M4 / RV32 / Zbb, "—"
+    for a row without ceilings). Appends a FAIL line to `bad` for each ISA
+    whose `value(isa)` is above its ceiling, `what(isa, value)` naming it."""
+    ceil = table.get(key)
+    if not ceil:
+        return "—"
+    for k, _ in ISAS:
+        if value(k) > ceil[k]:
+            bad.append(f"{what(k, value(k))} > ceiling {ceil[k]}")
+    return " / ".join(str(ceil[k]) for k, _ in ISAS)
 
 
 def symbols(work, name):
@@ -720,12 +751,9 @@ def render(work, old_text, readme):
             one, per = gl[k][key]
             row += [fmt(one), f"{per:.1f}"]
         row.append(recs["m4"].get(key, "?"))
-        ceil = GEOMLOD_CEILINGS.get(key)
-        row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
+        row.append(ceiling_cell(GEOMLOD_CEILINGS, key, lambda k: gl[k][key][1], bad,
+                                lambda k, v: f"{k} geomlod {key}: {v:.1f} per instance"))
         w("| " + " | ".join(row) + " |")
-        for k, _ in ISAS:
-            if ceil and gl[k][key][1] > ceil[k]:
-                bad.append(f"{k} geomlod {key}: {gl[k][key][1]:.1f} per instance > ceiling {ceil[k]}")
         if len({recs[k].get(key) for k, _ in ISAS}) != 1:
             bad.append(f"geomlod {key}: record counts differ between targets: {recs}")
 
@@ -887,12 +915,9 @@ def matrix_section(res, w, bad, every, work):
             total += len(ok)
             row.append(" / ".join(f"≤ {g[k]}" for k, _ in ISAS))
             row.append(" / ".join("yes" if o else "no" for o in ok))
-        ceil = MATRIX_CEILINGS.get(key)
-        row.append(" / ".join(str(ceil[k]) for k, _ in ISAS) if ceil else "—")
+        row.append(ceiling_cell(MATRIX_CEILINGS, key, lambda k: st[k][key][2], bad,
+                                lambda k, v: f"{k} matrix {key}: max {v} instructions"))
         w("| " + " | ".join(row) + " |")
-        for k, _ in ISAS:
-            if ceil and st[k][key][2] > ceil[k]:
-                bad.append(f"{k} matrix {key}: max {st[k][key][2]} instructions > ceiling {ceil[k]}")
     w(f"\nGoals met: {met} of {total} (row × ISA).\n")
     w("Batches of the wrap rows (`Sampler::sample_batch`, called with 32 and then 64 hits): steady")
     w("per hit = (count for 64 − count for 32) / 32, against the goal single call − 10 % (of the")

@@ -253,7 +253,165 @@ impl<'a> SamplerF32<'a> {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+    use crate::rng::XorShift64;
+    use raymip_reference::sampler::{
+        Address, Mode as RefMode, Sampler as RefSampler, State, Texture,
+    };
+
+    /// The filter modes and their f64 counterparts.
+    const MODES: [(Mode, RefMode); 4] = [
+        (Mode::Trilinear, RefMode::Trilinear),
+        (Mode::BilinearNearestLevel, RefMode::BilinearNearestLevel),
+        (Mode::Nearest, RefMode::Nearest),
+        (
+            Mode::NearestTexelLinearLevel,
+            RefMode::NearestTexelLinearLevel,
+        ),
+    ];
+
+    /// Each channel of `got` within ½ + 1/64 of the unrounded f64 value:
+    /// the final rounding plus the f32 arithmetic's own error.
+    fn near(got: Texel, want: [f64; 4]) -> bool {
+        (0..4).all(|c| (f64::from(got.to_le_bytes()[c]) - want[c]).abs() <= 0.5 + 1.0 / 64.0)
+    }
+
+    /// A 6×5 texture of 3 levels (odd and even sides) with random texels,
+    /// as the f32 sampler and the f64 reference read it.
+    fn texture(r: &mut XorShift64) -> (Geometry, std::vec::Vec<Texel>, Texture) {
+        let g = Geometry::new(6, 5, 3).unwrap();
+        let mut texels = std::vec![0; g.len()];
+        r.fill_u32(&mut texels);
+        let t = Texture::from_rgba8_levels(6, 5, 3, &texels);
+        (g, texels, t)
+    }
+
+    /// `k/2^bits` for a random `k < span·2^bits`, plus `lo`: exact in f32.
+    fn dyadic(r: &mut XorShift64, lo: f32, span: u32, bits: u32) -> f32 {
+        lo + (r.next_u64() % u64::from(span << bits)) as f32 / (1u32 << bits) as f32
+    }
+
+    /// The f32 sampler computes the f64 reference's definitions: every
+    /// address mode and filter mode, coordinates in `[−2.5, 2.5)` and far
+    /// out (multiples of 2¹⁶ added, where only the reduction to one period
+    /// keeps `u·w` exact in f32), lods below, between and above the stored
+    /// levels. The inputs are short dyadic fractions, so `u·w`, the floors
+    /// and the weights are exact and the nearest modes read the reference's
+    /// texels: only the interpolations' f32 roundings and the final
+    /// rounding remain.
+    #[test]
+    fn sample_matches_the_f64_reference() {
+        let mut r = XorShift64(0x5EED_F32B_A5E1_1AE5);
+        let (g, texels, t) = texture(&mut r);
+        for (a, ra) in AddressMode::ALL.into_iter().zip(Address::ALL) {
+            let sampler = SamplerF32::new(g, &texels, a).unwrap();
+            let exact = RefSampler {
+                tex: &t,
+                state: State {
+                    address: [ra; 2],
+                    ..State::default()
+                },
+            };
+            for (mode, ref_mode) in MODES {
+                for i in 0..200 {
+                    let far = |r: &mut XorShift64| {
+                        if i % 4 == 0 {
+                            (r.next_u64() % 7) as f32 * 65_536.0 - 196_608.0
+                        } else {
+                            0.0
+                        }
+                    };
+                    let u = far(&mut r) + dyadic(&mut r, -2.5, 5, 6);
+                    let v = far(&mut r) + dyadic(&mut r, -2.5, 5, 6);
+                    let lod = dyadic(&mut r, -1.0, 5, 6);
+                    let got = sampler.sample(u, v, lod, mode);
+                    let want = exact.sample(f64::from(u), f64::from(v), f64::from(lod), ref_mode);
+                    assert!(
+                        near(got, want),
+                        "{a:?} {mode:?} ({u}, {v}) lod {lod}: {got:08x} vs {want:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The anisotropic f32 filter against the f64 reference's probe rule:
+    /// random footprints of every eccentricity and every cap `1..=16`.
+    /// Footprints at a discontinuity of the rule are left out (counted):
+    /// a probe count `major/minor` within 10⁻⁴ of an integer, two axes
+    /// within 10⁻⁴ of the same length.
+    #[test]
+    fn sample_aniso_matches_the_f64_reference() {
+        let mut r = XorShift64(0xA115_0F32_0000_0001);
+        let (g, texels, t) = texture(&mut r);
+        let sampler = SamplerF32::new(g, &texels, AddressMode::Wrap).unwrap();
+        let (mut skipped, n) = (0, 800);
+        for i in 0..n {
+            let max = (i % 16) as u8 + 1;
+            let exact = RefSampler {
+                tex: &t,
+                state: State {
+                    max_aniso: u32::from(max),
+                    ..State::default()
+                },
+            };
+            let (u, v) = (dyadic(&mut r, -1.0, 2, 8), dyadic(&mut r, -1.0, 2, 8));
+            let squash = dyadic(&mut r, 0.0, 1, 8);
+            let a = [dyadic(&mut r, -0.5, 1, 8), dyadic(&mut r, -0.5, 1, 8)];
+            let b = [
+                dyadic(&mut r, -0.5, 1, 8) * squash,
+                dyadic(&mut r, -0.5, 1, 8) * squash,
+            ];
+            let len = |a: [f32; 2]| (f64::from(a[0]) * 6.0).hypot(f64::from(a[1]) * 5.0);
+            let (la, lb) = (len(a), len(b));
+            let ratio = la.max(lb) / la.min(lb).max(1e-300);
+            if (ratio - ratio.round()).abs() < 1e-4 || (la - lb).abs() < 1e-4 * la.max(lb) {
+                skipped += 1;
+                continue;
+            }
+            // Trilinear: continuous in the probe positions and the lod.
+            let got = sampler.sample_aniso(u, v, [a, b], max, Mode::Trilinear);
+            let axes = [a.map(f64::from), b.map(f64::from)];
+            let want = exact.sample_aniso(f64::from(u), f64::from(v), axes, RefMode::Trilinear);
+            assert!(
+                near(got, want),
+                "max {max} ({u}, {v}) {axes:?}: {got:08x} vs {want:?}"
+            );
+        }
+        assert!(skipped * 50 < n, "{skipped} of {n} left out");
+    }
+
+    /// `floor` is `f32::floor` on integers, halves, either side of zero
+    /// and at and beyond 2²³ (where every f32 is an integer).
+    #[test]
+    fn floor_of_reference_values() {
+        for x in [
+            0.0f32,
+            -0.0,
+            2.0,
+            -2.0,
+            2.5,
+            -2.5,
+            0.25,
+            -0.25,
+            8_388_607.5,
+            -8_388_607.5,
+        ] {
+            assert_eq!(floor(x), libm::floorf(x), "{x}");
+        }
+        for x in [8_388_608.0f32, -8_388_608.0, 1e9, -1e9, 3e38] {
+            assert_eq!(floor(x), x, "{x}");
+        }
+    }
+
+    /// `pack` rounds each channel half up: 0.49 → 0, 0.5 → 1, 254.5 →
+    /// 255, 255 → 255, red in the low byte.
+    #[test]
+    fn pack_rounds_half_up() {
+        assert_eq!(pack([0.49, 0.5, 254.5, 255.0]), 0xFFFF_0100);
+        assert_eq!(channels(0xFFFF_0100), [0.0, 1.0, 255.0, 255.0]);
+    }
 
     /// Reference values worked out by hand (exact in f32).
     #[test]

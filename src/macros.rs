@@ -1,6 +1,6 @@
 //! The crate's two enum shapes, written once: the unit-variant error enums
-//! of the set-up edges and the fieldless enums numbered by their
-//! discriminants.
+//! of the set-up edges, and the index (`ALL`, `from_index`) of the
+//! fieldless enums numbered by their discriminants.
 
 /// An error enum of unit variants, each `Variant => "message"`, with its
 /// `Display` (the message) and `core::error::Error`.
@@ -28,24 +28,16 @@ macro_rules! unit_error {
     };
 }
 
-/// A fieldless enum whose discriminants are `0, 1, …` in declaration order
-/// (checked at compile time), with `ALL` (every variant in that order) and
-/// `from_index` (the variant of a discriminant).
+/// `ALL` (every variant, in discriminant order) and `from_index` (the
+/// variant of a discriminant) for a fieldless enum declared just before,
+/// named with its variants: `indexed_enum! { Name: A, B, … }`. Checked at
+/// compile time: the list names every variant (an exhaustive `match`) and
+/// the discriminants are `0, 1, …` in its order.
 macro_rules! indexed_enum {
-    (
-        $(#[$meta:meta])*
-        pub enum $name:ident {
-            $( $(#[$vmeta:meta])* $variant:ident = $n:literal, )+
-        }
-    ) => {
-        $(#[$meta])*
-        pub enum $name {
-            $( $(#[$vmeta])* $variant = $n, )+
-        }
-
+    ($name:ident: $($variant:ident),+ $(,)?) => {
         impl $name {
             /// Every variant, in index order.
-            pub const ALL: [Self; [$($n),+].len()] = [$(Self::$variant),+];
+            pub const ALL: [Self; [$(Self::$variant),+].len()] = [$(Self::$variant),+];
 
             /// The variant numbered `n` (its discriminant), `None` for
             /// `n ≥ ALL.len()`.
@@ -60,6 +52,9 @@ macro_rules! indexed_enum {
         }
 
         const _: () = {
+            let _every_variant_listed = |e: $name| match e {
+                $($name::$variant)|+ => (),
+            };
             let mut i = 0;
             while i < $name::ALL.len() {
                 assert!($name::ALL[i] as usize == i, "discriminants are not 0, 1, …");

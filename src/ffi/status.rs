@@ -2,7 +2,6 @@
 //! precision tier, sRGB output, pixel format), with their checked byte
 //! forms and the pointer check every function makes.
 
-use crate::texture::storage::format::TexelFormat;
 use crate::texture::{AddressMode, Mode};
 
 // The sampler and image types the enums are documented against.
@@ -133,55 +132,11 @@ pub enum RmSrgbOutput {
     Linear = 1,
 }
 
-/// Pixel format of an [`RmImage`].
-#[repr(u8)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RmFormat {
-    /// 8 bits per channel, bytes r, g, b, a in memory (as a `uint32_t`
-    /// on a little-endian core: red in bits 0–7, alpha in bits 24–31).
-    Rgba8 = 0,
-    /// 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
-    Rgb565 = 1,
-    /// 16 bits: red 5, green 5, blue 5, alpha 1.
-    Rgba5551 = 2,
-    /// 16 bits: 4 bits per channel.
-    Rgba4444 = 3,
-    /// Luminance and alpha, 8 bits each.
-    La8 = 4,
-    /// Luminance, 8 bits.
-    L8 = 5,
-    /// Alpha, 8 bits (colour 0).
-    A8 = 6,
-    /// BC1 (DXT1): 8 bytes per 4×4 block.
-    Bc1 = 7,
-    /// BC2 (DXT3): 16 bytes per block.
-    Bc2 = 8,
-    /// BC3 (DXT5): 16 bytes per block.
-    Bc3 = 9,
-    /// BC4: 8 bytes per block, one channel (red).
-    Bc4 = 10,
-}
-const _: () = {
-    let c = [
-        RmFormat::Rgba8,
-        RmFormat::Rgb565,
-        RmFormat::Rgba5551,
-        RmFormat::Rgba4444,
-        RmFormat::La8,
-        RmFormat::L8,
-        RmFormat::A8,
-        RmFormat::Bc1,
-        RmFormat::Bc2,
-        RmFormat::Bc3,
-        RmFormat::Bc4,
-    ];
-    assert!(c.len() == TexelFormat::ALL.len());
-    let mut i = 0;
-    while i < c.len() {
-        assert!(c[i] as u8 == TexelFormat::ALL[i] as u8);
-        i += 1;
-    }
-};
+/// Pixel format of an [`RmImage`]: raymip's
+/// [`TexelFormat`](crate::texture::storage::format::TexelFormat) itself,
+/// which the header declares under this name (constants `RM_FORMAT_*`,
+/// numbered by the discriminants).
+pub use crate::texture::storage::format::TexelFormat as RmFormat;
 
 /// An [`RmMode`] as it crosses the boundary: any byte (an enum parameter
 /// holding a value outside the enum would be undefined behaviour in Rust),

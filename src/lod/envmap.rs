@@ -394,6 +394,18 @@ fn quadrant_atan<const E: i32>(a: u32, b: u32) -> (u32, u32) {
     )
 }
 
+/// The scale of [`direction_uv`]'s latitude pair: `r` the longitude
+/// pair's length in units of 2^(1−s) raw (`s = clz(max(|x|, |z|))`; bit
+/// length 30 to 32, `2³⁰·(1 − 2⁻²⁶) ≤ r < 1.42·2³¹`), `ay = |y|` raw
+/// (`≤ 2³¹`). Returns the one `e ∈ [−31, 2]` for which the larger of
+/// `r·2^(1−s−e)` and `ay·2⁻ᵉ` (floored) lies in `[2³⁰, 2³¹)`,
+/// [`quadrant_atan`]'s input range, with no headroom bit left unused.
+#[inline(always)]
+fn latitude_exponent(r: u32, s: u32, ay: u32) -> i32 {
+    let len_r = 30 + u32::from(r >= 1 << 30) + u32::from(r >= 1 << 31);
+    (32 - clz32(ay)).max(len_r + 1 - s) as i32 - 31
+}
+
 /// `(u, v)` of a latitude-longitude map for direction `d`
 /// (`u = ½ + atan2(x, −z)/2π ∈ [0, 1]`, `v = ½ − asin(y)/π ∈ [0, 1]`,
 /// with `asin(y) = atan2(y, √(x² + z²))`, so `d` need not be unit length;
@@ -441,12 +453,9 @@ pub fn direction_uv(d: UnitVec) -> (TexCoord, TexCoord) {
         (true, false) => 2 * half - lon,
         (true, true) => lon,
     };
-    // Latitude atan2(y, r): r is r_raw·2^(s−1) (bit length 30 to 32:
-    // 2³⁰·(1 − 2⁻²⁶) ≤ r < 1.42·2³¹), |y| ≤ 2³¹ raw; both scaled by 2⁻ᵉ,
-    // e chosen so that the larger lies in [2³⁰, 2³¹).
+    // Latitude atan2(y, r): both scaled by 2⁻ᵉ.
     let ay = y.unsigned_abs();
-    let len_r = 30 + u32::from(r >= 1 << 30) + u32::from(r >= 1 << 31);
-    let e = (32 - clz32(ay)).max(len_r + 1 - s) as i32 - 31; // −31 ..= 2
+    let e = latitude_exponent(r, s, ay);
     // r·2^(1−s−e): a left shift of at most 1 or a right shift ≤ 31.
     let sr = 1 - s as i32 - e;
     let rn = if sr >= 0 { r << sr } else { r >> -sr };
@@ -682,6 +691,44 @@ mod tests {
                     if z <= 0 {
                         assert!((quarter..=3 * quarter).contains(&u), "{d:?}: u {u}");
                     }
+                }
+            }
+        }
+    }
+
+    /// The latitude pair's scale keeps every headroom bit: for lengths at
+    /// and around the bit-length boundaries of `r` (2³⁰, the smallest `r`
+    /// `2³⁰·(1 − 2⁻²⁶)` just below it, 2³¹, the largest `1.42·2³¹`), every
+    /// normalisation shift `s` and latitudes from 0 to 2³¹, `e` is the one
+    /// exponent for which the larger of `r·2^(1−s−e)` and `|y|·2⁻ᵉ`
+    /// (floored) lies in `[2³⁰, 2³¹)`, [`quadrant_atan`]'s input range. A
+    /// scale one bit too small keeps the same angle but doubles the CORDIC
+    /// steps' relative roundings.
+    #[test]
+    fn latitude_scale_fills_the_word() {
+        let r_min = (f64::from(1u32 << 30) * (1.0 - 2f64.powi(-26))).ceil() as u32;
+        let r_max = (1.42 * f64::from(1u32 << 31)) as u32;
+        let mut rs = std::vec![r_min, r_max];
+        for edge in [1u32 << 30, 1 << 31] {
+            rs.extend((1..=16).map(|k| edge - k));
+            rs.extend((0..16).map(|k| edge + k));
+        }
+        rs.retain(|r| (r_min..=r_max).contains(r));
+        let mut ays = std::vec![0u32, 1, u32::MAX / 3, 1 << 31];
+        for k in 0..31 {
+            ays.extend([1u32 << k, (1u32 << (k + 1)) - 1, (1u32 << k) + 1]);
+        }
+        for &r in &rs {
+            for s in 0..32u32 {
+                for &ay in &ays {
+                    // The pair at scale 2ᵉ, e from −40 to 3, exactly (u128).
+                    let at = |e: i32| {
+                        let sh = |v: u128, k: i32| if k >= 0 { v << k } else { v >> -k };
+                        (sh(u128::from(r), 1 - s as i32 - e), sh(u128::from(ay), -e))
+                    };
+                    let fits = |(a, b): (u128, u128)| (1 << 30..1 << 31).contains(&a.max(b));
+                    let want = (-40..=3).find(|&e| fits(at(e))).unwrap();
+                    assert_eq!(latitude_exponent(r, s, ay), want, "r {r}, s {s}, |y| {ay}");
                 }
             }
         }

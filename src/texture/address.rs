@@ -25,39 +25,39 @@
 use crate::texture::kernel::accurate::WEIGHT_BITS;
 use crate::units::TexCoord;
 
-indexed_enum! {
-    /// What a sampler does with coordinates outside `[0, 1)`, per axis.
-    ///
-    /// # Example
-    /// ```
-    /// use raymip::AddressMode;
-    /// // Texel index −1 and 8 of a level 8 texels wide (valid: 0..=7).
-    /// assert_eq!(AddressMode::Wrap.index(-1, 8), Some(7));
-    /// assert_eq!(AddressMode::Mirror.index(8, 8), Some(7)); // mirrored copy
-    /// assert_eq!(AddressMode::ClampToEdge.index(-1, 8), Some(0));
-    /// assert_eq!(AddressMode::MirrorOnce.index(-3, 8), Some(2)); // |−3| − 1
-    /// assert_eq!(AddressMode::ClampToBorder.index(8, 8), None); // border colour
-    /// // A sampler picks it at run time: `Sampler::with_address(pyramid, mode)`.
-    /// ```
-    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-    pub enum AddressMode {
-        /// Repeat (D3D `WRAP`, Vulkan `REPEAT`).
-        #[default]
-        Wrap = 0,
-        /// Repeat, every other copy mirrored (D3D `MIRROR`, Vulkan
-        /// `MIRRORED_REPEAT`).
-        Mirror = 1,
-        /// Clamp texel indices to the edge (D3D `CLAMP`, Vulkan
-        /// `CLAMP_TO_EDGE`).
-        ClampToEdge = 2,
-        /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`,
-        /// Vulkan `MIRROR_CLAMP_TO_EDGE`).
-        MirrorOnce = 3,
-        /// Texels outside the level read the sampler's border colour (D3D
-        /// `BORDER`, Vulkan `CLAMP_TO_BORDER`).
-        ClampToBorder = 4,
-    }
+/// What a sampler does with coordinates outside `[0, 1)`, per axis.
+///
+/// # Example
+/// ```
+/// use raymip::AddressMode;
+/// // Texel index −1 and 8 of a level 8 texels wide (valid: 0..=7).
+/// assert_eq!(AddressMode::Wrap.index(-1, 8), Some(7));
+/// assert_eq!(AddressMode::Mirror.index(8, 8), Some(7)); // mirrored copy
+/// assert_eq!(AddressMode::ClampToEdge.index(-1, 8), Some(0));
+/// assert_eq!(AddressMode::MirrorOnce.index(-3, 8), Some(2)); // |−3| − 1
+/// assert_eq!(AddressMode::ClampToBorder.index(8, 8), None); // border colour
+/// // A sampler picks it at run time: `Sampler::with_address(pyramid, mode)`.
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AddressMode {
+    /// Repeat (D3D `WRAP`, Vulkan `REPEAT`).
+    #[default]
+    Wrap = 0,
+    /// Repeat, every other copy mirrored (D3D `MIRROR`, Vulkan
+    /// `MIRRORED_REPEAT`).
+    Mirror = 1,
+    /// Clamp texel indices to the edge (D3D `CLAMP`, Vulkan
+    /// `CLAMP_TO_EDGE`).
+    ClampToEdge = 2,
+    /// Mirror once around 0, then clamp to the edge (D3D `MIRROR_ONCE`,
+    /// Vulkan `MIRROR_CLAMP_TO_EDGE`).
+    MirrorOnce = 3,
+    /// Texels outside the level read the sampler's border colour (D3D
+    /// `BORDER`, Vulkan `CLAMP_TO_BORDER`).
+    ClampToBorder = 4,
 }
+
+indexed_enum! { AddressMode: Wrap, Mirror, ClampToEdge, MirrorOnce, ClampToBorder }
 
 impl AddressMode {
     /// `u` reduced (exactly) to the range that selects the same texels,

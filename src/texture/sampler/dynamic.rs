@@ -136,6 +136,27 @@ macro_rules! each {
     };
 }
 
+/// `pub fn`s that call the selected key's [`Sampler`] method of the same
+/// name with the same arguments, one per `fn name(&self | &mut self, arg:
+/// Type, …) -> Return;` (after its docs and attributes).
+macro_rules! forward {
+    () => {};
+    ($(#[$a:meta])* fn $name:ident(&mut self $(, $arg:ident: $ty:ty)*) $(-> $ret:ty)?; $($rest:tt)*) => {
+        $(#[$a])*
+        pub fn $name(&mut self $(, $arg: $ty)*) $(-> $ret)? {
+            each!(self, s => s.$name($($arg),*))
+        }
+        forward!($($rest)*);
+    };
+    ($(#[$a:meta])* fn $name:ident(&self $(, $arg:ident: $ty:ty)*) $(-> $ret:ty)?; $($rest:tt)*) => {
+        $(#[$a])*
+        pub fn $name(&self $(, $arg: $ty)*) $(-> $ret)? {
+            each!(self, s => s.$name($($arg),*))
+        }
+        forward!($($rest)*);
+    };
+}
+
 impl<S: TexelSource> DynSampler<S> {
     /// The sampler of the key [`DynKey::select`] picks for `state`'s
     /// address modes and sRGB output, `space` and `precision`, over
@@ -175,77 +196,35 @@ impl<S: TexelSource> DynSampler<S> {
         }
     }
 
-    /// [`Sampler::sample`] of the selected key.
-    #[inline]
-    pub fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel {
-        each!(self, s => s.sample(u, v, lod, mode))
-    }
-
-    /// [`Sampler::sample_batch`] of the selected key.
-    pub fn sample_batch(
-        &mut self,
-        hits: &[(TexCoord, TexCoord, Lod)],
-        mode: Mode,
-        out: &mut [Texel],
-    ) -> usize {
-        each!(self, s => s.sample_batch(hits, mode, out))
-    }
-
-    /// [`Sampler::sample_aniso`] of the selected key.
-    pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
-        each!(self, s => s.sample_aniso(u, v, fp))
-    }
-
-    /// [`Sampler::sample_stochastic`] of the selected key.
-    pub fn sample_stochastic(
-        &mut self,
-        u: TexCoord,
-        v: TexCoord,
-        lod: Lod,
-        mode: StochasticMode,
-        bits: u32,
-    ) -> Texel {
-        each!(self, s => s.sample_stochastic(u, v, lod, mode, bits))
-    }
-
-    /// The precision tier of the results.
-    #[must_use]
-    pub fn precision(&self) -> Precision {
-        each!(self, s => s.precision())
-    }
-
-    /// The sampler state.
-    #[must_use]
-    pub fn state(&self) -> &SamplerState {
-        each!(self, s => s.state())
-    }
-
-    /// The source's geometry.
-    #[must_use]
-    pub fn geometry(&self) -> Geometry {
-        each!(self, s => s.geometry())
-    }
-
-    /// Fetch counters.
-    #[must_use]
-    pub fn stats(&self) -> FetchStats {
-        each!(self, s => s.stats())
-    }
-
-    /// Zeroes the fetch counters.
-    pub fn reset_stats(&mut self) {
-        each!(self, s => s.reset_stats());
-    }
-
-    /// The texel source.
-    #[must_use]
-    pub fn source(&self) -> &S {
-        each!(self, s => s.source())
-    }
-
-    /// The texel source, mutable.
-    #[must_use]
-    pub fn source_mut(&mut self) -> &mut S {
-        each!(self, s => s.source_mut())
+    forward! {
+        /// [`Sampler::sample`] of the selected key.
+        #[inline]
+        fn sample(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: Mode) -> Texel;
+        /// [`Sampler::sample_batch`] of the selected key.
+        fn sample_batch(&mut self, hits: &[(TexCoord, TexCoord, Lod)], mode: Mode, out: &mut [Texel]) -> usize;
+        /// [`Sampler::sample_aniso`] of the selected key.
+        fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel;
+        /// [`Sampler::sample_stochastic`] of the selected key.
+        fn sample_stochastic(&mut self, u: TexCoord, v: TexCoord, lod: Lod, mode: StochasticMode, bits: u32) -> Texel;
+        /// The precision tier of the results.
+        #[must_use]
+        fn precision(&self) -> Precision;
+        /// The sampler state.
+        #[must_use]
+        fn state(&self) -> &SamplerState;
+        /// The source's geometry.
+        #[must_use]
+        fn geometry(&self) -> Geometry;
+        /// Fetch counters.
+        #[must_use]
+        fn stats(&self) -> FetchStats;
+        /// Zeroes the fetch counters.
+        fn reset_stats(&mut self);
+        /// The texel source.
+        #[must_use]
+        fn source(&self) -> &S;
+        /// The texel source, mutable.
+        #[must_use]
+        fn source_mut(&mut self) -> &mut S;
     }
 }

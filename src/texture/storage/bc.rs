@@ -247,6 +247,95 @@ mod tests {
         assert!(out.iter().all(|&x| x >> 8 == 0xFF_0000));
     }
 
+    /// Every texel of one block per mode: endpoints whose channels are all
+    /// non-zero and different (each term of an interpolation counts),
+    /// every index at several texel positions (no periodic pattern), the
+    /// palettes worked by hand from the formulas of the module docs. Also
+    /// the one-texel decode (texel numbers taken mod 16) and an
+    /// uncompressed format, which decodes to zeros.
+    #[test]
+    fn every_texel_of_each_mode() {
+        // Colour indices of texels 0..16 (bytes 4..8 of a colour block).
+        const CI: [usize; 16] = [0, 1, 2, 3, 3, 2, 1, 0, 1, 3, 0, 2, 2, 0, 3, 1];
+        const CI_BYTES: [u8; 4] = [0xE4, 0x1B, 0x8D, 0x72];
+        // Value indices of texels 0..16 (bytes 2..8 of a value block).
+        const VI: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 7, 5, 3, 1, 6, 4, 2, 0];
+        const VI_BYTES: [u8; 6] = [0x88, 0xC6, 0xFA, 0xEF, 0x62, 0x0A];
+        // RGB565 (31, 20, 10) = 0xFA8A widens to (255, 81, 82), (4, 50, 25)
+        // = 0x2659 to (33, 203, 206).
+        let (hi, lo) = ([0x8A, 0xFA], [0x59, 0x26]);
+        let (e_hi, e_lo) = (t(255, 81, 82, 255), t(33, 203, 206, 255));
+        let colour = |c0: [u8; 2], c1: [u8; 2]| [&c0[..], &c1, &CI_BYTES].concat();
+        let value = |r0: u8, r1: u8| [&[r0, r1][..], &VI_BYTES].concat();
+        // c₂ = (2c₀ + c₁)/3 = (543, 365, 370)/3, c₃ = (c₀ + 2c₁)/3 =
+        // (321, 487, 494)/3.
+        let four = [e_hi, e_lo, t(181, 121, 123, 255), t(107, 162, 164, 255)];
+        // c₀ < c₁: c₂ = (c₀ + c₁)/2 = (288, 284, 288)/2, c₃ transparent.
+        let three = [e_lo, e_hi, t(144, 142, 144, 255), 0];
+        // c₀ = c₁ is the three-colour mode too.
+        let same = [e_lo, e_lo, e_lo, 0];
+        // r₀ = 200 > r₁ = 50: r_k = ((8 − k)·200 + (k − 1)·50)/7.
+        let eight = [200, 50, 178, 157, 135, 114, 92, 71];
+        // r₀ = 50 ≤ r₁ = 201: r_k = ((6 − k)·50 + (k − 1)·201)/5, 0, 255.
+        let six = [50, 201, 80, 110, 140, 170, 0, 255];
+        // r₀ = r₁ = 90: six values, all 90, then 0 and 255.
+        let equal = [90, 90, 90, 90, 90, 90, 0, 255];
+        // BC2: the alpha nibble of texel i is 7i mod 16.
+        let alpha = [0x70, 0x5E, 0x3C, 0x1A, 0xF8, 0xD6, 0xB4, 0x92];
+        let nibble = |i: usize| (7 * i as u32 % 16) * 17;
+        let rgb = |c: Texel| c & 0x00FF_FFFF;
+        let cases: [(TexelFormat, std::vec::Vec<u8>, [Texel; 16]); 8] = [
+            (TexelFormat::Bc1, colour(hi, lo), CI.map(|k| four[k])),
+            (TexelFormat::Bc1, colour(lo, hi), CI.map(|k| three[k])),
+            (TexelFormat::Bc1, colour(lo, lo), CI.map(|k| same[k])),
+            // BC2 and BC3 colour blocks are four-colour, also for c₀ < c₁.
+            (
+                TexelFormat::Bc2,
+                [&alpha[..], &colour(lo, hi)].concat(),
+                core::array::from_fn(|i| {
+                    rgb([e_lo, e_hi, four[3], four[2]][CI[i]]) | nibble(i) << 24
+                }),
+            ),
+            (
+                TexelFormat::Bc3,
+                [value(200, 50), colour(hi, lo)].concat(),
+                core::array::from_fn(|i| rgb(four[CI[i]]) | eight[VI[i]] << 24),
+            ),
+            (
+                TexelFormat::Bc4,
+                value(200, 50),
+                VI.map(|k| eight[k] | 0xFF00_0000),
+            ),
+            (
+                TexelFormat::Bc4,
+                value(50, 201),
+                VI.map(|k| six[k] | 0xFF00_0000),
+            ),
+            (
+                TexelFormat::Bc4,
+                value(90, 90),
+                VI.map(|k| equal[k] | 0xFF00_0000),
+            ),
+        ];
+        for (format, block, want) in cases {
+            let mut out = [0; 16];
+            decode_block(format, &block, &mut out);
+            assert_eq!(out, want, "{format:?} {block:02x?}");
+            for (i, &w) in want.iter().enumerate() {
+                assert_eq!(decode_texel(format, &block, i), w, "{format:?} texel {i}");
+                assert_eq!(
+                    decode_texel(format, &block, i + 16),
+                    w,
+                    "{format:?} texel {i} + 16"
+                );
+            }
+        }
+        let mut out = [1; 16];
+        decode_block(TexelFormat::Rgba8, &[0xFF; 16], &mut out);
+        assert_eq!(out, [0; 16]);
+        assert_eq!(decode_texel(TexelFormat::Rgba8, &[0xFF; 16], 3), 0);
+    }
+
     proptest! {
         /// One-texel decode equals the block decode, for every format.
         #[test]

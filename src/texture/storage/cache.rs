@@ -703,6 +703,32 @@ mod tests {
         assert_eq!(BlockLayout::new(&g).len(), 256);
     }
 
+    /// A texel past the level's last column or row is in the last
+    /// texel's block, as [`Geometry::texel_index`] clamps it: also where
+    /// the padded block grid has a column or row past the level's blocks
+    /// (sides that are multiples of the block but not powers of two),
+    /// whose numbers a clamp to the wrong side would reach.
+    #[test]
+    fn texels_past_the_edge_are_in_the_last_block() {
+        for (w, h, l) in [(12, 20, 3), (24, 40, 4), (37, 5, 6), (64, 64, 7)] {
+            let g = Geometry::new(w, h, l).unwrap();
+            let layout = BlockLayout::new(&g);
+            for k in 0..l {
+                let (lw, lh) = g.level_size(k);
+                for past in [0, 1, 4, 5, u32::MAX - lw.max(lh)] {
+                    for y in [0, lh / 2, lh - 1] {
+                        let want = layout.index(k, lw - 1, y);
+                        assert_eq!(layout.index(k, lw + past, y), want, "{w}x{h} {k} x {past}");
+                    }
+                    for x in [0, lw / 2, lw - 1] {
+                        let want = layout.index(k, x, lh - 1);
+                        assert_eq!(layout.index(k, x, lh + past), want, "{w}x{h} {k} y {past}");
+                    }
+                }
+            }
+        }
+    }
+
     /// The per-axis parts of [`LevelGrid`] give the block numbers of the
     /// interleaved definition (the low bits of column and row interleaved,
     /// the high bits of the longer side above them, plus the level's

@@ -30,35 +30,38 @@ use core::fmt;
 
 use crate::texture::storage::mip::Texel;
 
-indexed_enum! {
-    /// Storage format of a texture's texels.
-    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-    pub enum TexelFormat {
-        /// 8 bits per channel, bytes r, g, b, a.
-        #[default]
-        Rgba8 = 0,
-        /// 16 bits: red 5, green 6, blue 5 (alpha 255).
-        Rgb565 = 1,
-        /// 16 bits: red 5, green 5, blue 5, alpha 1.
-        Rgba5551 = 2,
-        /// 16 bits: 4 bits per channel.
-        Rgba4444 = 3,
-        /// Luminance and alpha, 8 bits each.
-        La8 = 4,
-        /// Luminance, 8 bits.
-        L8 = 5,
-        /// Alpha, 8 bits (colour 0).
-        A8 = 6,
-        /// BC1 (DXT1): 8 bytes per 4×4 block, RGB + 1-bit alpha.
-        Bc1 = 7,
-        /// BC2 (DXT3): 16 bytes per block, explicit 4-bit alpha + BC1 colour.
-        Bc2 = 8,
-        /// BC3 (DXT5): 16 bytes per block, interpolated alpha + BC1 colour.
-        Bc3 = 9,
-        /// BC4: 8 bytes per block, one interpolated channel (red).
-        Bc4 = 10,
-    }
+/// Storage format of a texture's texels (the C ABI's `RmFormat`, the
+/// pixel format of an `RmImage`).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TexelFormat {
+    /// 8 bits per channel, bytes r, g, b, a in memory (as a 32-bit word
+    /// on a little-endian core: red in bits 0–7, alpha in bits 24–31).
+    #[default]
+    Rgba8 = 0,
+    /// 16 bits little-endian: red 5, green 6, blue 5 (alpha 255).
+    Rgb565 = 1,
+    /// 16 bits: red 5, green 5, blue 5, alpha 1.
+    Rgba5551 = 2,
+    /// 16 bits: 4 bits per channel.
+    Rgba4444 = 3,
+    /// Luminance and alpha, 8 bits each.
+    La8 = 4,
+    /// Luminance, 8 bits.
+    L8 = 5,
+    /// Alpha, 8 bits (colour 0).
+    A8 = 6,
+    /// BC1 (DXT1): 8 bytes per 4×4 block, RGB + 1-bit alpha.
+    Bc1 = 7,
+    /// BC2 (DXT3): 16 bytes per block, explicit 4-bit alpha + BC1 colour.
+    Bc2 = 8,
+    /// BC3 (DXT5): 16 bytes per block, interpolated alpha + BC1 colour.
+    Bc3 = 9,
+    /// BC4: 8 bytes per block, one interpolated channel (red).
+    Bc4 = 10,
 }
+
+indexed_enum! { TexelFormat: Rgba8, Rgb565, Rgba5551, Rgba4444, La8, L8, A8, Bc1, Bc2, Bc3, Bc4 }
 
 impl TexelFormat {
     /// Whether texels are stored in 4×4 compressed blocks (BC1–BC4).

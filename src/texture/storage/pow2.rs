@@ -374,6 +374,12 @@ mod tests {
                 let (lw, lh) = g.level_size(level);
                 let view = *views.levels().unwrap().level(usize::from(level));
                 assert_eq!((view.width(), view.height()), (lw, lh));
+                assert_eq!((view.mask_x(), view.mask_y()), (lw - 1, lh - 1));
+                // Bit log2 w of a column (log2 h of a row) shifted to bit 31.
+                assert_eq!(
+                    (lw << view.shift_x(), lh << view.shift_y()),
+                    (1 << 31, 1 << 31)
+                );
                 for y in 0..lh + 2 {
                     for x in 0..lw + 2 {
                         assert_eq!(d.texel(level, x, y), p.get(level, x, y));
@@ -409,6 +415,30 @@ mod tests {
         assert!(LevelView::new(&buf[..7], 4, 2).is_none());
         assert!(LevelView::new(&buf[..8], 4, 2).is_some());
         assert!(LevelView::new(&buf, 3, 2).is_none());
+        assert!(LevelView::new(&buf, 4, 3).is_none());
         assert!(LevelView::new(&buf, 1 << 16, 1).is_none());
+        assert!(LevelView::new(&buf, 1, 1 << 16).is_none());
+        // The largest sides, 2¹⁵, are viewed.
+        let long = std::vec![0u32; 1 << 15];
+        assert!(LevelView::new(&long, 1 << 15, 1).is_some());
+        assert!(LevelView::new(&long, 1, 1 << 15).is_some());
+    }
+
+    /// The views' and the pyramid's `Debug` name them and the sides.
+    #[test]
+    fn debug_names_the_sides() {
+        let buf = [0u32; 11];
+        let p = Pyramid::new(Geometry::new(4, 2, 3).unwrap(), &buf).unwrap();
+        let d = Pow2Pyramid::new(p).unwrap();
+        let view = std::format!("{:?}", d.levels().unwrap().level(0));
+        assert!(
+            view.starts_with("LevelView") && view.contains("w: 4, h: 2"),
+            "{view}"
+        );
+        let pyramid = std::format!("{d:?}");
+        assert!(
+            pyramid.starts_with("Pow2Pyramid") && pyramid.contains("Pyramid"),
+            "{pyramid}"
+        );
     }
 }
