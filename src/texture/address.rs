@@ -243,9 +243,14 @@ impl AddressMode {
     /// [`wrap_constant`]`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
     /// multiply), mirror by [`pow2_mirror_taps`] (a multiply-accumulate
     /// and an XOR per tap), the clamping modes as for any size. Equal to
-    /// `taps` for every input (tested).
+    /// `taps` for every input (tested). With `MASKED`, for a reader that
+    /// masks its indices with `m` and replaces border taps by the border
+    /// colour (a sampler's direct level views):
+    /// [`ClampToBorder`](Self::ClampToBorder) by [`pow2_border_taps`] (a
+    /// border tap's index is not clamped, and no branch decides it); the
+    /// flags, weight and the indices of taps inside are the same (tested).
     #[inline(always)]
-    pub(crate) fn pow2_taps(
+    pub(crate) fn pow2_taps<const MASKED: bool>(
         self,
         coord: TexCoord,
         n: u32,
@@ -264,38 +269,58 @@ impl AddressMode {
                 }
             }
             Self::Mirror => pow2_mirror_taps(coord, n, m, s, bits),
+            Self::ClampToBorder if MASKED => pow2_border_taps(coord, n, m, bits),
             _ => self.taps(coord, n, bits),
         }
     }
 }
 
 /// [`AddressMode::taps`] of [`Mirror`](AddressMode::Mirror) for a
-/// power-of-two side `n = 2^k`, `m = n − 1`, `s = 31 − k`. With `q = floor(u) mod 2`
-/// and `lo` the fractional bits of `u`, the position
-/// `x = (u mod 2)·n − ½ + 2^−(bits+1)` in 32.32 fixed point is
-/// `lo·n + q·n·2³² + 2^(31−bits) − 2³¹`: one 32×32→64-bit
+/// power-of-two side `n = 2^k`, `m = n − 1`, `s = 31 − k`. With `h` the
+/// integer part of `u` and `lo` its fractional bits, the position
+/// `x = u·n − ½ + 2^−(bits+1)` in 32.32 fixed point is
+/// `lo·n + h·n·2³² + 2^(31−bits) − 2³¹`: one 32×32→64-bit
 /// multiply-accumulate (`umlal` on the M4) onto the constant
-/// `(q·n − 1)·2³² + 2³¹ + 2^(31−bits)`. Its high word `j ∈ [−1, 2n − 1]`
-/// is the tap in the unfolded period `[0, 2n)` (−1 and `2n` its seam
-/// neighbours), the weight is the top `bits` bits of the low word. A tap
-/// `j` of the second copy (bit `k` set) maps to `2n − 1 − j`, i.e. its low
+/// `−2³² + 2³¹ + 2^(31−bits)`, then `h·n` added to the high word (`mla`).
+/// Its high word `j` is the tap modulo 2³², and only `j mod 2n` (bits
+/// `0 ..= k`, which `2n | 2³²` keeps) decides the texel: a tap of the
+/// second copy (bit `k` set) maps to `2n − 1 − (j mod 2n)`, i.e. its low
 /// `k` bits inverted: `(j ^ (bit k of j ? all ones : 0)) & (n − 1)`, the
-/// sign of `j << s` spread by an arithmetic shift (−1 and `2n` go to 0).
+/// sign of `j << s` spread by an arithmetic shift. The weight is the top
+/// `bits` bits of the low word.
 #[inline(always)]
 pub(crate) fn pow2_mirror_taps(coord: TexCoord, n: u32, m: u32, s: u32, bits: u32) -> AxisTaps {
     let b = coord.to_bits();
-    let q = (b >> 32) as u32 & 1;
-    let start = (u64::from(q.wrapping_mul(n).wrapping_sub(1)) << 32)
-        | u64::from((1u32 << 31) | (1 << (31 - bits)));
+    let h = (b >> 32) as u32;
+    let start = (u64::from(u32::MAX) << 32) | u64::from((1u32 << 31) | (1 << (31 - bits)));
     let p = u64::from(b as u32)
         .wrapping_mul(u64::from(n))
         .wrapping_add(start);
-    let j = (p >> 32) as u32;
+    let j = ((p >> 32) as u32).wrapping_add(h.wrapping_mul(n));
     let fold = |j: u32| (j ^ ((j.wrapping_shl(s) as i32 >> 31) as u32)) & m;
     AxisTaps {
         i: [fold(j), fold(j.wrapping_add(1))],
         f: (p as u32) >> (32 - bits),
         border: [false; 2],
+    }
+}
+
+/// [`AddressMode::taps`] of [`ClampToBorder`](AddressMode::ClampToBorder)
+/// for a power-of-two side `n`, `m = n − 1`, for a reader that replaces
+/// every border tap by the border colour: the same border flags, weight
+/// and inside indices, a border tap's index `i & m` (some texel of the
+/// level, read and then replaced) instead of the clamped one. No branch:
+/// a range test per tap.
+#[inline(always)]
+pub(crate) fn pow2_border_taps(coord: TexCoord, n: u32, m: u32, bits: u32) -> AxisTaps {
+    let offset = (1i64 << (31 - bits)) - (1 << 31);
+    let (i, frac) = AddressMode::ClampToBorder.scaled(coord, n, offset);
+    let i = [i as u32, (i as u32).wrapping_add(1)];
+    AxisTaps {
+        i: i.map(|i| i & m),
+        f: frac >> (32 - bits),
+        // A negative tap as `u32` is above any side.
+        border: i.map(|i| i >= n),
     }
 }
 
@@ -524,7 +549,9 @@ mod tests {
     /// The power-of-two forms (`pow2_taps`: wrap by one multiply, mirror
     /// by a multiply-accumulate and an XOR, the clamping modes decided
     /// once per axis) equal the general taps for every mode, side `2^k`,
-    /// weight width, and random, seam and edge coordinates.
+    /// weight width, and random, seam and edge coordinates; so does
+    /// `pow2_taps::<true>` but for the indices of border taps, which stay
+    /// inside the level.
     #[test]
     fn pow2_taps_equal_general_taps() {
         let mut x = 0x9E37_79B9_7F4A_7C15u64;
@@ -546,10 +573,27 @@ mod tests {
                     ] {
                         let c = TexCoord::from_bits(bits);
                         for b in [8, 12, 16] {
+                            let want = m.taps(c, size, b);
+                            let wc = wrap_constant(k, b);
                             assert_eq!(
-                                m.pow2_taps(c, size, size - 1, 31 - k, wrap_constant(k, b), b),
-                                m.taps(c, size, b),
+                                m.pow2_taps::<false>(c, size, size - 1, 31 - k, wc, b),
+                                want,
                                 "{m:?} k {k} bits {bits:#x} weight bits {b}"
+                            );
+                            // The masked form: the same flags, weight and
+                            // inside indices; a border tap's index is any
+                            // texel of the level.
+                            let got = m.pow2_taps::<true>(c, size, size - 1, 31 - k, wc, b);
+                            let inside =
+                                |t: AxisTaps| [0, 1].map(|k| (!t.border[k]).then_some(t.i[k]));
+                            assert_eq!(
+                                (got.border, got.f, inside(got)),
+                                (want.border, want.f, inside(want)),
+                                "{m:?} k {k} bits {bits:#x} weight bits {b}"
+                            );
+                            assert!(
+                                got.i.iter().all(|&i| i < size),
+                                "{m:?} k {k} bits {bits:#x}"
                             );
                         }
                     }

@@ -106,9 +106,9 @@ pub const FAST_LEVEL_MAX_ERROR_LSB: f64 = 255.0 / 256.0;
 /// (`½ + 255/256 = 1.4961`; proof in the [module docs](self)).
 pub const FAST_MAX_ERROR_LSB: f64 = 1.5;
 
-/// The two bytes of a pair word: channel `lo` in bits 0..8, `hi` in
-/// bits 24..32.
-const PAIR: u32 = 0xFF00_00FF;
+/// The mask of a pair word: channel `lo` in bits 0..8, `hi` in bits
+/// 24..32 (the two bytes a pair sum keeps apart).
+pub const PAIR: u32 = 0xFF00_00FF;
 
 /// Rounding constants of a pair sum for a rounded bilinear texel: `2²³`
 /// in the low word (`c_lo` in 8.24), `2¹⁵` in the high word (`c_hi` in
@@ -128,10 +128,11 @@ pub fn corner_weights(x: u32, y: u32) -> [u32; 4] {
 /// (`umlal`), low and high words apart elsewhere (`mul`, `mulhu`).
 const WIDE: bool = cfg!(target_arch = "arm");
 
-/// The pair words of a texel: `[c₀ | c₃<<24, c₂ | c₁<<24]`.
+/// The pair words of a texel: `[c₀ | c₃<<24, c₂ | c₁<<24]`, with the
+/// mask `m =` [`PAIR`].
 #[inline(always)]
-fn pairs(t: Texel) -> [u32; 2] {
-    [t & PAIR, t.rotate_right(16) & PAIR]
+fn pairs(t: Texel, m: u32) -> [u32; 2] {
+    [t & m, t.rotate_right(16) & m]
 }
 
 /// `r + Σᵢ pᵢ·wᵢ` for pair words `pᵢ` and scaled weights `wᵢ` (sum
@@ -163,8 +164,8 @@ fn pair_sum<const WIDE: bool>(p: [u32; 4], w: [u32; 4], r: u64) -> u64 {
 /// The two pair sums `[c₀ | c₃, c₂ | c₁]` of the footprint `t` (`t00,
 /// t10, t01, t11`) with scaled weights `w`, started from `r`.
 #[inline(always)]
-fn pair_sums<const WIDE: bool>(t: [Texel; 4], w: [u32; 4], r: u64) -> [u64; 2] {
-    let p = t.map(pairs);
+fn pair_sums<const WIDE: bool>(t: [Texel; 4], w: [u32; 4], r: u64, m: u32) -> [u64; 2] {
+    let p = t.map(|t| pairs(t, m));
     [
         pair_sum::<WIDE>(p.map(|x| x[0]), w, r),
         pair_sum::<WIDE>(p.map(|x| x[1]), w, r),
@@ -173,8 +174,8 @@ fn pair_sums<const WIDE: bool>(t: [Texel; 4], w: [u32; 4], r: u64) -> [u64; 2] {
 
 /// [`bilinear`] in a sum form (both give the same integers; tested).
 #[inline(always)]
-fn bilinear_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32) -> Wide {
-    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), 0);
+fn bilinear_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, m: u32) -> Wide {
+    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), 0, m);
     // Low words 8.24 (`c₀`, `c₂`), high words 8.16 (`c₃`, `c₁`).
     [
         (a as u32) >> 8,
@@ -186,9 +187,9 @@ fn bilinear_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32) -> Wide {
 
 /// [`bilinear_texel`] in a sum form (both give the same texel; tested).
 #[inline(always)]
-fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, r: u64) -> Texel {
+fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, r: u64, m: u32) -> Texel {
     debug_assert_eq!(r, ROUND_PAIR);
-    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), r);
+    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), r, m);
     // Rounded results: the low lane in bits 24..32 of the low word, the
     // high lane in bits 16..24 of the high word (which is below 2²⁴).
     let (a_lo, a_hi) = (a as u32, (a >> 32) as u32);
@@ -202,7 +203,16 @@ fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, r: u64) 
 #[inline(always)]
 #[must_use]
 pub fn bilinear(t: [Texel; 4], x: u32, y: u32) -> Wide {
-    bilinear_with::<WIDE>(t, x, y)
+    bilinear_with::<WIDE>(t, x, y, PAIR)
+}
+
+/// [`bilinear`] with the pair mask `m =` [`PAIR`] given (the sampler's
+/// [`Rounding`](super::Rounding): a register or one load, where a constant
+/// the compiler sees is rematerialised by two instructions on the M4 in a
+/// loop short of registers).
+#[inline(always)]
+pub(crate) fn bilinear_masked(t: [Texel; 4], x: u32, y: u32, m: u32) -> Wide {
+    bilinear_with::<WIDE>(t, x, y, m)
 }
 
 /// [`bilinear`] rounded to a texel, bit-identical to
@@ -212,7 +222,7 @@ pub fn bilinear(t: [Texel; 4], x: u32, y: u32) -> Wide {
 #[inline(always)]
 #[must_use]
 pub fn bilinear_texel(t: [Texel; 4], x: u32, y: u32) -> Texel {
-    bilinear_texel_with::<WIDE>(t, x, y, ROUND_PAIR)
+    bilinear_texel_with::<WIDE>(t, x, y, ROUND_PAIR, PAIR)
 }
 
 /// [`bilinear_texel`] with the rounding constants `r =` [`ROUND_PAIR`]
@@ -220,7 +230,7 @@ pub fn bilinear_texel(t: [Texel; 4], x: u32, y: u32) -> Texel {
 /// from registers).
 #[inline(always)]
 pub(crate) fn bilinear_texel_rounded(t: [Texel; 4], x: u32, y: u32, r: u64) -> Texel {
-    bilinear_texel_with::<WIDE>(t, x, y, r)
+    bilinear_texel_with::<WIDE>(t, x, y, r, PAIR)
 }
 
 #[cfg(test)]
@@ -314,7 +324,7 @@ mod tests {
             let w = corner_weights(x, y);
             for start in [0, ROUND_PAIR] {
                 for k in 0..2 {
-                    let words = t.map(|v| pairs(v)[k]);
+                    let words = t.map(|v| pairs(v, PAIR)[k]);
                     assert_eq!(
                         pair_sum::<true>(words, w, start),
                         pair_sum::<false>(words, w, start),
@@ -324,12 +334,12 @@ mod tests {
             }
             // Both sum forms: the same values.
             assert_eq!(
-                bilinear_with::<true>(t, x, y),
-                bilinear_with::<false>(t, x, y)
+                bilinear_with::<true>(t, x, y, PAIR),
+                bilinear_with::<false>(t, x, y, PAIR)
             );
             assert_eq!(
-                bilinear_texel_with::<true>(t, x, y, ROUND_PAIR),
-                bilinear_texel_with::<false>(t, x, y, ROUND_PAIR)
+                bilinear_texel_with::<true>(t, x, y, ROUND_PAIR, PAIR),
+                bilinear_texel_with::<false>(t, x, y, ROUND_PAIR, PAIR)
             );
             let e = exact_weights(u64::from(x), u64::from(y));
             let wide = bilinear(t, x, y);

@@ -55,16 +55,20 @@ mod sealed {
 /// ([`Rounding::new`]) and handed to every kernel call: each
 /// multiply-accumulate chain then starts from a register holding its
 /// rounding term, instead of a separate add after the chain (which is what
-/// a compiler emits for a constant it can see). The values are fixed
-/// ([`accurate::ROUND_WIDE`], [`accurate::ROUND_TEXEL`],
-/// [`accurate::ROUND_BLEND`], [`fast::ROUND_PAIR`]); only where they come
-/// from differs.
+/// a compiler emits for a constant it can see). It also holds the FAST
+/// pair mask [`fast::PAIR`], which the anisotropic probe loop reads from
+/// here rather than rebuilding it (two instructions on the M4) per probe.
+/// The values are fixed ([`accurate::ROUND_WIDE`],
+/// [`accurate::ROUND_TEXEL`], [`accurate::ROUND_BLEND`],
+/// [`fast::ROUND_PAIR`], [`fast::PAIR`]); only where they come from
+/// differs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Rounding {
     wide: u32,
     texel: u32,
     blend: u32,
     pair: u64,
+    pair_mask: u32,
 }
 
 impl Rounding {
@@ -76,6 +80,7 @@ impl Rounding {
             texel: accurate::ROUND_TEXEL,
             blend: accurate::ROUND_BLEND,
             pair: fast::ROUND_PAIR,
+            pair_mask: fast::PAIR,
         }
     }
 }
@@ -426,13 +431,23 @@ impl Kernel for (Linear, Fast) {
     const TIER: Precision = Precision::Fast;
     type Lanes = Texel;
     type Wide = accurate::Wide;
-    software_levels!();
+    type Level = Self::Wide;
+    // The sampler's levels take the mask as a constant (kept in a
+    // register there); the probe loop's bilinear takes it from `k`.
+    #[inline(always)]
+    fn level(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Self::Wide {
+        fast::bilinear(l, fx, fy)
+    }
+    #[inline(always)]
+    fn round_level(a: Self::Wide) -> Texel {
+        Self::round(a)
+    }
     blend_later!();
 
     rgba8_texels!();
     #[inline(always)]
-    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, _: Rounding) -> Self::Wide {
-        fast::bilinear(l, fx, fy)
+    fn bilinear(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
+        fast::bilinear_masked(l, fx, fy, k.pair_mask)
     }
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {

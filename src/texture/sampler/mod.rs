@@ -714,10 +714,21 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
+            // Every tap is read (the view masks it into the level) and a
+            // border tap replaced afterwards: a range test per tap, no
+            // branch.
             let [cx, cy] = self.levels[level].c;
-            let xt = mu.pow2_taps(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
-            let yt = mv.pow2_taps(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
-            (xt, yt, l.footprint(xt.i, yt.i))
+            let xt = mu.pow2_taps::<true>(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
+            let yt = mv.pow2_taps::<true>(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
+            let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
+            if K::U::MAY_BORDER || K::V::MAY_BORDER {
+                for (k, l) in lanes.iter_mut().enumerate() {
+                    if xt.border[k & 1] | yt.border[k >> 1] {
+                        *l = self.border;
+                    }
+                }
+            }
+            return (lanes, xt.f, yt.f);
         } else {
             // Power-of-two geometries address as the direct path does (the
             // level's constants from the table); other sizes by the
@@ -727,8 +738,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let [mx, my] = a.masks();
                 let [sx, sy] = a.s.map(u32::from);
                 (
-                    mu.pow2_taps(u, mx + 1, mx, sx, a.c[0], bits),
-                    mv.pow2_taps(v, my + 1, my, sy, a.c[1], bits),
+                    mu.pow2_taps::<false>(u, mx + 1, mx, sx, a.c[0], bits),
+                    mv.pow2_taps::<false>(v, my + 1, my, sy, a.c[1], bits),
                 )
             } else {
                 let (w, h) = self.source.geometry().level_size(level as u8);
@@ -1051,8 +1062,8 @@ mod tests {
     }
 
     /// The direct path (a power-of-two pyramid's level views: wrap
-    /// without masks, mirror by XOR, clamp and border decided once per
-    /// axis) and the generic path (`TexelSource::footprint` of the same
+    /// without masks, mirror by XOR, clamp decided once per axis, border
+    /// taps replaced after a range test per tap) and the generic path (`TexelSource::footprint` of the same
     /// pyramid, and of a texel cache) give the same results and counters
     /// for every filter mode, key kind (static axes, run-time axes, mixed),
     /// tier and colour space, on square, long and one-texel-wide
