@@ -217,10 +217,16 @@ ensure_targets() {
 
 # demo_cargo [+TOOLCHAIN] [--dir DIR] [--rustflags FLAGS] CARGO-ARGS...:
 # cargo in demo/ with the demo target dir (or DIR) and demo_rustflags (plus
-# FLAGS, plus ARM_RUSTFLAGS when CARGO-ARGS name `--target $ARM`). Runs in a
-# subshell: the caller's directory is unchanged.
+# FLAGS, plus ARM_RUSTFLAGS when CARGO-ARGS name `--target $ARM`), and
+# scripts/rustc-metadata as RUSTC_WRAPPER: cargo's -C metadata of raymip
+# (outside demo/) hashes the checkout path, and with it the images' function
+# layout would depend on where the repository is cloned. The flag `--cfg
+# raymip_rustc_metadata` (no code tests it) is there for cargo's fingerprint,
+# which covers RUSTFLAGS but not the wrapper: a target dir built without the
+# wrapper is rebuilt, never mixed with it. Runs in a subshell: the caller's
+# directory is unchanged.
 demo_cargo() {
-    local tc=() dir=$demo_target flags=$demo_rustflags a prev=
+    local tc=() dir=$demo_target flags="$demo_rustflags --cfg raymip_rustc_metadata" a prev=
     while [ $# -gt 0 ]; do
         case "$1" in
             +*) tc=("$1"); shift ;;
@@ -235,7 +241,8 @@ demo_cargo() {
         fi
         prev=$a
     done
-    (cd "$root/demo" && CARGO_TARGET_DIR=$dir RUSTFLAGS=$flags cargo "${tc[@]}" "$@")
+    (cd "$root/demo" && CARGO_TARGET_DIR=$dir RUSTFLAGS=$flags RUSTC_WRAPPER=$root/scripts/rustc-metadata \
+        RAYMIP_ROOT=$root cargo "${tc[@]}" "$@")
 }
 
 # qemu_arm ELF [QEMU-ARGS...] / qemu_rv ELF [QEMU-ARGS...]: run a bare-metal
