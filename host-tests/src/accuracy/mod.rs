@@ -309,7 +309,10 @@ fn error_bound(fi: usize, space: ColorSpace, out: SrgbOutput, precision: Precisi
         0 if space == ColorSpace::Srgb => 0.5,
         0 => 0.0,
         1..=3 => base,
-        _ => base + ANISO_LOD_ERROR_LSB * if encoded { 2.0 } else { 1.0 },
+        // Re-encoded: the probe lod's error is a linear-space error, and
+        // the sRGB curve is steepest (12.92) at the dark end, where a blend
+        // of a dark level with a bright one lands (as SRGB_MAX_ERROR_LSB).
+        _ => base + ANISO_LOD_ERROR_LSB * if encoded { SRGB_STEEPEST_SLOPE } else { 1.0 },
     }
 }
 
@@ -414,3 +417,8 @@ fn sample_pair(
 /// fractional bits, so the level blend weight may differ by
 /// `2⁻⁸ + 2⁻¹³`, times at most 255 LSB between the two levels.
 pub const ANISO_LOD_ERROR_LSB: f64 = 255.0 * (1.0 / 256.0 + 1.0 / 8192.0);
+
+/// The sRGB encoding's steepest slope (its linear segment, `12.92`):
+/// a linear-space error `e` LSB changes a re-encoded channel by at most
+/// `12.92·e` LSB.
+pub const SRGB_STEEPEST_SLOPE: f64 = 12.92;
