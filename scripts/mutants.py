@@ -330,6 +330,11 @@ def run(args):
     whole = len(todo) == len(mutants) - len(eq) - sum(1 for m in mutants if m["unbuilt"])
     tree, lock = run_tree()
     fingerprint = sync_tree(tree)
+    clean = tree + ".clean"
+    if not os.path.exists(clean):
+        forget_builds(tree)
+    else:
+        os.remove(clean)
     # Stage "lib" tests each mutant with the unit tests only (`cargo test
     # --lib`: one test binary to build, not three); a mutant they catch is
     # caught. Only the ones they miss (or that time out) go on to stage
@@ -348,6 +353,9 @@ def run(args):
             sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
         done = {r[4] for r in rec.rows if stage == "all" or r[1] in ("caught", "unviable")}
         todo = [m for m in todo if m["name"] not in done]
+    if not timed_out:
+        # No build of this run was killed: the next run may build on it.
+        open(clean, "w").close()
     lock.close()
     rows = [r for rec in records for r in rec.rows]
     counts = Counter(r[1] for r in rows)
@@ -534,6 +542,28 @@ def run_tree():
     except OSError:
         sys.exit(f"mutants: another run is using {tree} (same target directory)")
     return tree, lock
+
+
+def forget_builds(tree):
+    """Start the crate's builds afresh: the last run in TREE was stopped (time
+    box, interrupt) or never ran. A rustc killed mid-build can leave an
+    incremental state from which a later build of the reverted source
+    still contains the mutant (seen once: the unmutated tree then fails its
+    own tests), so the crate's incremental states and the baseline record
+    go, and the crate roots are touched to rebuild every test binary."""
+    import glob
+    import shutil
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    for d in glob.glob(os.path.join(target, "*", "incremental", "*")):
+        if os.path.basename(d).split("-")[0] in ("raymip", "firmware"):
+            shutil.rmtree(d, ignore_errors=True)
+    for f in (tree + ".baseline.json",):
+        if os.path.exists(f):
+            os.remove(f)
+    now = time.time()
+    for f in ("src/lib.rs", "tests/firmware/main.rs"):
+        if os.path.exists(os.path.join(tree, f)):
+            os.utime(os.path.join(tree, f), (now, now))
 
 
 def sync_tree(tree):
