@@ -540,7 +540,9 @@ def run_tree():
     try:
         fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except OSError:
-        sys.exit(f"mutants: another run is using {tree} (same target directory)")
+        print(f"mutants: waiting for the run that uses {tree} (same target directory)",
+              flush=True)
+        fcntl.flock(lock, fcntl.LOCK_EX)
     return tree, lock
 
 
