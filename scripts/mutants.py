@@ -340,7 +340,15 @@ def run(args):
     # caught. Only the ones they miss (or that time out) go on to stage
     # "all", every test of the crate; only its outcomes can be "missed".
     stages = ["all"] if args.all_tests else ["lib", "all"]
-    clock = {"deadline": None}
+    clock = {"deadline": None, "stop": False}
+
+    def stop(signum, frame):
+        # SIGINT or SIGTERM: end like the time box (record what finished,
+        # run no further stage).
+        clock["stop"] = True
+
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGTERM, stop)
     records, timed_out = [], False
     for stage in stages:
         if not todo or timed_out:
@@ -362,7 +370,7 @@ def run(args):
     print(f"mutants: recorded {len(rows)} in "
           + ", ".join(os.path.relpath(rec.path, ROOT) for rec in records if rec.rows) + ": "
           + ", ".join(f"{counts[o]} {o}" for o in OUTCOMES.values())
-          + (f"; time box of {args.time_box:.0f} s reached, {len(todo)} not run to the end"
+          + (f"; stopped (time box or signal), {len(todo)} not run to the end"
              if timed_out else ""))
     bad = [r for r in rows if r[1] in ("missed", "timeout")]
     for r in bad:
@@ -419,7 +427,7 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
             # The time box counts from the end of the first baseline (the
             # unmutated build and one run of the tests): mutants only.
             clock["deadline"] = time.monotonic() + args.time_box
-        if clock["deadline"] and time.monotonic() > clock["deadline"]:
+        if clock["stop"] or (clock["deadline"] and time.monotonic() > clock["deadline"]):
             # cargo-mutants stops on SIGINT, kills its cargo and puts the
             # mutated file back; what it finished is in outcomes.json.
             timed_out = True
