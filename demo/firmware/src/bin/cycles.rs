@@ -122,7 +122,7 @@ fn measure<I: Copy, O>(xs: &[I; N], call: impl FnMut(I) -> O) -> (Stat, Stat) {
 #[inline(never)]
 fn series<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> [(u32, u32); N] {
     let mut counts = [(0, 0); N];
-    for _ in 0..if WARM_UP { 2 } else { 1 } {
+    for _ in 0..bb(if WARM_UP { 2 } else { 1 }) {
         for (&x, count) in xs.iter().zip(&mut counts) {
             let x = bb(x);
             let c0 = cycles32();
