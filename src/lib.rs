@@ -29,7 +29,7 @@
 //! | texture | storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
 //! | texture | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
 //! | texture | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
-//! | texture | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
+//! | texture | the one sampler: state, filter modes, batches, anisotropy, stochastic filtering | [`texture::sampler`], [`texture::mode`] | lod window, level choice, footprint, kernel |
 //! | geometric LOD | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
 //! | – | per-pixel, per-frame random numbers; the generators of measurement and test inputs | [`rng`] | Weyl step + 32-bit hash; xorshift32, xorshift64 |
 //! | co-processor | custom instructions of a soft core's texture unit (features `pcpi`, `cfu`) | [`coproc`] | the same bits in hardware |
