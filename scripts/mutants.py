@@ -326,8 +326,69 @@ def run(args):
     with open(os.path.join(out_dir, "examine.txt"), "w", encoding="utf-8") as f:
         for m in todo:
             f.write(escape_name(m["name"]) + "\n")
-    cmd = ["--no-shuffle", "-o", out_dir, "--colors", "never"]
-    if len(todo) < len(mutants) - len(eq) - sum(1 for m in mutants if m["unbuilt"]):
+    by_name = {m["name"]: m for m in mutants if m["key"] not in eq}
+    whole = len(todo) == len(mutants) - len(eq) - sum(1 for m in mutants if m["unbuilt"])
+    tree, lock = run_tree()
+    fingerprint = sync_tree(tree)
+    clean = tree + ".clean"
+    if not os.path.exists(clean):
+        forget_builds(tree)
+    else:
+        os.remove(clean)
+    # Stage "lib" tests each mutant with the unit tests only (`cargo test
+    # --lib`: one test binary to build, not three); a mutant they catch is
+    # caught. Only the ones they miss (or that time out) go on to stage
+    # "all", every test of the crate; only its outcomes can be "missed".
+    stages = ["all"] if args.all_tests else ["lib", "all"]
+    clock = {"deadline": None, "stop": False}
+
+    def stop(signum, frame):
+        # SIGINT or SIGTERM: end like the time box (record what finished,
+        # run no further stage).
+        clock["stop"] = True
+
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGTERM, stop)
+    records, timed_out = [], False
+    for stage in stages:
+        if not todo or timed_out:
+            break
+        rec, timed_out = run_stage(args, stage, todo, whole and stage == stages[0], mutants, eq,
+                                   by_name, tree, fingerprint, os.path.join(out_dir, stage),
+                                   label, clock)
+        records.append(rec)
+        if not rec.baseline_ok:
+            sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
+        done = {r[4] for r in rec.rows if stage == "all" or r[1] in ("caught", "unviable")}
+        todo = [m for m in todo if m["name"] not in done]
+    if not timed_out:
+        # No build of this run was killed: the next run may build on it.
+        open(clean, "w").close()
+    lock.close()
+    rows = [r for rec in records for r in rec.rows]
+    counts = Counter(r[1] for r in rows)
+    print(f"mutants: recorded {len(rows)} in "
+          + ", ".join(os.path.relpath(rec.path, ROOT) for rec in records if rec.rows) + ": "
+          + ", ".join(f"{counts[o]} {o}" for o in OUTCOMES.values())
+          + (f"; stopped (time box or signal), {len(todo)} not run to the end"
+             if timed_out else ""))
+    bad = [r for r in rows if r[1] in ("missed", "timeout")]
+    for r in bad:
+        print(f"  {r[1].upper()}: {r[4]}")
+    if not args.no_report:
+        report(args, quiet=True)
+    return 1 if bad else 0
+
+
+def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint, out_dir, label,
+              clock):
+    """One cargo-mutants run over TODO in TREE with the tests of STAGE ("lib"
+    or "all"); returns its Record and whether the time box ended it."""
+    cmd = ["--no-shuffle", "-o", out_dir, "--colors", "never", "--in-place"]
+    if stage == "lib":
+        # -C: the build (cargo test --no-run) and the test run both.
+        cmd += ["--cargo-arg=--lib"]
+    if not whole:
         # cargo-mutants 27.1 applies name filters to every genre but
         # StructField: the file filter keeps those to the selected files
         # (and their outcomes are recorded too).
@@ -339,24 +400,36 @@ def run(args):
         for m in mutants:
             if m["key"] in eq or m["unbuilt"]:
                 cmd += ["-E", escape_name(m["name"])]
+    baseline = read_baseline(tree, fingerprint, stage)
+    if baseline is not None:
+        # These tests passed on this tree in this target directory:
+        # cargo-mutants gets the timeout its baseline would have set (5
+        # times the unmutated test run, at least the minimum of
+        # .cargo/mutants.toml).
+        timeout = max(MINIMUM_TEST_TIMEOUT, 5 * baseline)
+        cmd += ["--baseline", "skip", "--timeout", f"{timeout:.0f}"]
+        print(f"mutants: {stage} tests: baseline skipped (they passed on this tree in "
+              f"{baseline:.0f} s); test timeout {timeout:.0f} s", flush=True)
     started = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
-    rec = Record(started, label, len(todo), {m["name"]: m for m in mutants if m["key"] not in eq},
-                 os.path.join(out_dir, "mutants.out", "outcomes.json"))
+    rec = Record(started, label + ("-lib" if stage == "lib" else ""), len(todo), by_name,
+                 os.path.join(out_dir, "mutants.out", "outcomes.json"), stage)
+    rec.baseline_done = baseline is not None
+    print(f"mutants: {len(todo)} with the {'unit tests (--lib)' if stage == 'lib' else 'every test'}",
+          flush=True)
     proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
-                            cwd=ROOT, start_new_session=True)
-    deadline = None
+                            cwd=tree, start_new_session=True)
     timed_out = False
     while proc.poll() is None:
         # The record is rewritten as outcomes arrive: an interrupted run
         # keeps what it finished.
         rec.update(proc.pid)
-        if args.time_box and deadline is None and rec.baseline_done:
-            # The time box counts from the end of the baseline (the build of
-            # the copied tree and one run of the tests): mutants only.
-            deadline = time.monotonic() + args.time_box
-        if deadline and time.monotonic() > deadline:
-            # cargo-mutants stops on SIGINT, kills its cargo and removes
-            # its build directory; what it finished is in outcomes.json.
+        if args.time_box and clock["deadline"] is None and rec.baseline_done:
+            # The time box counts from the end of the first baseline (the
+            # unmutated build and one run of the tests): mutants only.
+            clock["deadline"] = time.monotonic() + args.time_box
+        if clock["stop"] or (clock["deadline"] and time.monotonic() > clock["deadline"]):
+            # cargo-mutants stops on SIGINT, kills its cargo and puts the
+            # mutated file back; what it finished is in outcomes.json.
             timed_out = True
             os.killpg(proc.pid, signal.SIGINT)
             try:
@@ -367,27 +440,17 @@ def run(args):
             break
         time.sleep(5)
     rec.update(None, timed_out=timed_out)
-    if not rec.baseline_ok:
-        sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
-    rows = rec.rows
-    counts = Counter(r[1] for r in rows)
-    print(f"mutants: recorded {len(rows)} in {os.path.relpath(rec.path, ROOT)}: "
-          + ", ".join(f"{counts[o]} {o}" for o in OUTCOMES.values())
-          + (f"; time box of {args.time_box:.0f} s reached, {len(todo) - len(rows)} not run"
-             if timed_out else ""))
-    bad = [r for r in rows if r[1] in ("missed", "timeout")]
-    for r in bad:
-        print(f"  {r[1].upper()}: {r[4]}")
-    if not args.no_report:
-        report(args, quiet=True)
-    return 1 if bad else 0
+    if rec.baseline_test is not None:
+        write_baseline(tree, fingerprint, stage, rec.baseline_test)
+    return rec, timed_out
 
 
 class Record:
     """One run's record file in mutation/runs/, rewritten from outcomes.json."""
 
-    def __init__(self, started, label, selected, by_name, outcomes_file):
+    def __init__(self, started, label, selected, by_name, outcomes_file, stage="all"):
         self.started, self.label, self.selected = started, label, selected
+        self.stage = stage
         self.by_name, self.outcomes_file = by_name, outcomes_file
         self.path = os.path.join(RUNS, f"{started.replace(':', '').replace('-', '')}-{label}.tsv")
         self.load0 = os.getloadavg()[0]
@@ -395,6 +458,7 @@ class Record:
         self.ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         self.cpu_live = 0.0
         self.rows, self.baseline_ok, self.baseline_done, self.version = [], True, False, "?"
+        self.baseline_test = None
         self.commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
                                      capture_output=True, text=True).stdout.strip()
         self.dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"],
@@ -419,12 +483,18 @@ class Record:
             if sc == "Baseline":
                 self.baseline_ok = o["summary"] == "Success"
                 self.baseline_done = True
+                if self.baseline_ok:
+                    self.baseline_test = sum(p["duration"] for p in o["phase_results"]
+                                             if p["phase"] == "Test")
                 continue
             name = sc["Mutant"]["name"]
             m = self.by_name.get(name)
             if m is None or o["summary"] not in OUTCOMES:
                 continue
             d = {p["phase"]: p["duration"] for p in o["phase_results"]}
+            if self.stage == "lib" and OUTCOMES[o["summary"]] in ("missed", "timeout"):
+                # Not missed yet: the next stage runs it with every test.
+                continue
             rows.append((m["key"], OUTCOMES[o["summary"]], d.get("Build", 0.0),
                          d.get("Test", 0.0), name))
         self.rows = rows
@@ -442,6 +512,9 @@ class Record:
             f.write(f"# load average: {self.load0:.1f} at start, {os.getloadavg()[0]:.1f} "
                     "at end\n")
             f.write(f"# nice: {os.nice(0)}\n")
+            if self.stage == "lib":
+                f.write("# tests: the unit tests (cargo test --lib); the mutants they missed "
+                        "are in the next record, run with every test\n")
             f.write(f"# wall seconds: {time.monotonic() - self.t0:.0f}\n")
             f.write(f"# cpu seconds: {cpu:.0f}\n")
             f.write(f"# mutants tested: {len(rows)} of {self.selected} selected"
@@ -451,6 +524,137 @@ class Record:
             for r in rows:
                 f.write(f"{r[0]}\t{r[1]}\t{r[2]:.1f}\t{r[3]:.1f}\t{r[4]}\n")
         os.replace(tmp, self.path)
+
+
+# .cargo/mutants.toml's minimum_test_timeout (s): the floor of the timeout
+# given to cargo-mutants when the baseline is skipped.
+MINIMUM_TEST_TIMEOUT = 120
+
+
+def run_tree():
+    """The directory cargo-mutants mutates in place, and its lock.
+
+    A fixed copy of the work tree per target directory (cargo-mutants' own
+    copy has a new name each run, so every run rebuilt the crate from
+    scratch before its first mutant): with the same path, the incremental
+    build of the last run is reused. Outside the checkout, so no other
+    .cargo/config.toml applies."""
+    import fcntl
+    target = os.path.abspath(os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target")))
+    tag = hashlib.sha1(target.encode()).hexdigest()[:10]
+    tree = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"raymip-mutants-{tag}")
+    os.makedirs(tree, exist_ok=True)
+    lock = open(tree + ".lock", "w")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        print(f"mutants: waiting for the run that uses {tree} (same target directory)",
+              flush=True)
+        fcntl.flock(lock, fcntl.LOCK_EX)
+    return tree, lock
+
+
+def forget_builds(tree):
+    """Start the crate's builds afresh: the last run in TREE was stopped (time
+    box, interrupt) or never ran. A rustc killed mid-build can leave an
+    incremental state from which a later build of the reverted source
+    still contains the mutant (seen once: the unmutated tree then fails its
+    own tests), so the crate's incremental states and the baseline record
+    go, and the crate roots are touched to rebuild every test binary."""
+    import glob
+    import shutil
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    for d in glob.glob(os.path.join(target, "*", "incremental", "*")):
+        if os.path.basename(d).split("-")[0] in ("raymip", "firmware"):
+            shutil.rmtree(d, ignore_errors=True)
+    for f in (tree + ".baseline.json",):
+        if os.path.exists(f):
+            os.remove(f)
+    now = time.time()
+    for f in ("src/lib.rs", "tests/firmware/main.rs"):
+        if os.path.exists(os.path.join(tree, f)):
+            os.utime(os.path.join(tree, f), (now, now))
+
+
+def sync_tree(tree):
+    """Make TREE hold the work tree's files (tracked and untracked, not
+    ignored; what cargo-mutants would copy): only files whose content
+    differs are written (a new mtime: cargo rebuilds what changed, and a
+    file a killed run left mutated is restored). Returns the fingerprint of
+    the content, with the toolchain and the features."""
+    files = subprocess.run(["git", "ls-files", "-z", "-co", "--exclude-standard"], cwd=ROOT,
+                           capture_output=True, check=True).stdout.decode().split("\0")
+    files = sorted(f for f in files if f and os.path.isfile(os.path.join(ROOT, f)))
+    h = hashlib.sha1()
+    for tool in (["rustc", "-vV"], ["cargo", "mutants", "--version"]):
+        h.update(subprocess.run(tool, capture_output=True, check=True).stdout)
+    h.update(FEATURES.encode())
+    keep = set(files)
+    for f in files:
+        with open(os.path.join(ROOT, f), "rb") as src:
+            data = src.read()
+        # Every run rewrites its record and the report's block: neither
+        # is code, and the block's text (counts, times, mutant names) quotes
+        # no constant that tests/firmware/doc_tables.rs checks, so they
+        # leave the fingerprint out (the equivalent list stays in), as do
+        # the scripts (the crate's tests never read scripts/).
+        if f.startswith(("mutation/runs/", "scripts/")):
+            pass
+        elif f == os.path.relpath(DOC, ROOT):
+            text = data.decode()
+            if BEGIN in text and END in text:
+                text = text[:text.index(BEGIN)] + text[text.index(END):]
+            h.update(f.encode() + b"\0" + hashlib.sha1(text.encode()).digest())
+        else:
+            h.update(f.encode() + b"\0" + hashlib.sha1(data).digest())
+        dst = os.path.join(tree, f)
+        try:
+            with open(dst, "rb") as old:
+                if old.read() == data:
+                    continue
+        except OSError:
+            os.makedirs(os.path.dirname(dst), exist_ok=True)
+        with open(dst, "wb") as out:
+            out.write(data)
+        os.chmod(dst, os.stat(os.path.join(ROOT, f)).st_mode & 0o777)
+    for d, _, names in os.walk(tree):
+        for n in names:
+            rel = os.path.relpath(os.path.join(d, n), tree)
+            if rel not in keep:
+                os.remove(os.path.join(d, n))
+    return h.hexdigest()
+
+
+def read_baseline(tree, fingerprint, stage):
+    """Seconds of the unmutated test run when this exact tree (fingerprint)
+    passed STAGE's tests ("lib" or "all"; "all" includes "lib") in this
+    target directory, else None. The environment's MUTANTS_BASELINE=run
+    forces a baseline."""
+    if os.environ.get("MUTANTS_BASELINE", "auto") == "run":
+        return None
+    try:
+        with open(tree + ".baseline.json", encoding="utf-8") as f:
+            b = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if b.get("fingerprint") != fingerprint:
+        return None
+    t = b.get(stage, b.get("all"))
+    return None if t is None else float(t)
+
+
+def write_baseline(tree, fingerprint, stage, test_s):
+    b = {}
+    try:
+        with open(tree + ".baseline.json", encoding="utf-8") as f:
+            b = json.load(f)
+    except (OSError, ValueError):
+        pass
+    if b.get("fingerprint") != fingerprint:
+        b = {"fingerprint": fingerprint}
+    b[stage] = test_s
+    with open(tree + ".baseline.json", "w", encoding="utf-8") as f:
+        json.dump(b, f)
 
 
 def process_cpu(pid):
@@ -635,6 +839,9 @@ def main():
     ap.add_argument("--time-box", type=float, metavar="S",
                     help="stop cargo-mutants S seconds after its baseline (the unmutated "
                          "build and tests); what finished is recorded")
+    ap.add_argument("--all-tests", action="store_true",
+                    help="test every mutant with every test (default: the unit tests first, "
+                         "every test only for the mutants they miss)")
     ap.add_argument("--list", action="store_true", help="print the selection, run nothing")
     ap.add_argument("--report", action="store_true",
                     help="only rewrite the docs/reliability.md block from the records")

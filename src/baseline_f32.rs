@@ -1,9 +1,11 @@
 //! The per-hit stages in `f32` (feature `f32`): table lod, cone lod and the
-//! texture filters written with floats and [`libm`], with the same
-//! definitions as the fixed-point modules. They are the comparison
-//! baseline of `BUDGETS.md` (the same calls counted on Cortex-M4F, whose
-//! FPU runs them, and on RV32IMAC, where they become soft-float calls) and
-//! of the host benches; the fixed-point modules stay the product.
+//! texture filters, as the comparison baseline.
+//!
+//! They are written with floats and [`libm`], with the same definitions as
+//! the fixed-point modules. They are the comparison baseline of
+//! `BUDGETS.md` (the same calls counted on Cortex-M4F, whose FPU runs them,
+//! and on RV32IMAC, where they become soft-float calls) and of the host
+//! benches; the fixed-point modules stay the product.
 //!
 //! Not for FPU-less cores' per-hit path (soft float); not bit-identical
 //! across targets. Cost of the feature: nothing unless called (the module

@@ -1,6 +1,8 @@
-//! Stochastic geometric level of detail for instanced geometry (after
-//! NVIDIA's "Implementing Stochastic Levels of Detail with DirectX
-//! Raytracing", 2020): per instance a LOD from its camera-space depth, and
+//! Stochastic geometric level of detail for instanced geometry: a LOD per
+//! instance from its depth, and a dissolve between two LODs by ray masks.
+//!
+//! After NVIDIA's "Implementing Stochastic Levels of Detail with DirectX
+//! Raytracing", 2020: per instance a LOD from its camera-space depth, and
 //! during a LOD transition two instances (the two neighbouring LODs) with
 //! complementary 8-bit instance masks; each path draws one random ray-mask
 //! bit, so a path sees exactly one of the two and the image dissolves from

@@ -17,6 +17,7 @@
 //! | part | stage | module | per hit |
 //! |---|---|---|---|
 //! | vocabulary | the quantities the API passes as types (path length, cone width, spread, lod, texture coordinate, …) and the precision tiers `Accurate`, `Fast` | [`units`] | – (zero-cost newtypes) |
+//! | – | per-pixel, per-frame random numbers; the generators of measurement and test inputs | [`rng`] | Weyl step + 32-bit hash; xorshift32, xorshift64 |
 //! | set-up | camera pixel spread `γ` | [`setup::camera`] | – |
 //! | set-up | per-triangle `log2 Pb` | [`setup::table`] | one table read |
 //! | set-up | scene analysis: MIP levels a scene can select per texture, skips | [`setup::analysis`] | — (trimmed pyramids, untextured marks) |
@@ -29,9 +30,8 @@
 //! | texture | storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
 //! | texture | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
 //! | texture | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
-//! | texture | the one sampler: state, modes, batches, anisotropy, stochastic filtering | [`texture::sampler`] | lod window, level choice, footprint, kernel |
+//! | texture | the one sampler: state, filter modes, batches, anisotropy, stochastic filtering | [`texture::sampler`], [`texture::mode`] | lod window, level choice, footprint, kernel |
 //! | geometric LOD | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
-//! | – | per-pixel, per-frame random numbers; the generators of measurement and test inputs | [`rng`] | Weyl step + 32-bit hash; xorshift32, xorshift64 |
 //! | co-processor | custom instructions of a soft core's texture unit (features `pcpi`, `cfu`) | [`coproc`] | the same bits in hardware |
 //! | f32 baseline | the per-hit stages in `f32` (feature `f32`) | `baseline_f32` | – (comparison only) |
 //! | C ABI | `extern "C"` functions and `#[repr(C)]` types (feature `ffi`) | `ffi` | – |

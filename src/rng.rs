@@ -1,11 +1,13 @@
-//! The crate's deterministic random number generators: [`Rng`] for
-//! per-pixel, per-frame decisions on the controller (the stochastic-LOD ray
-//! mask; other stages that need reproducible random choices can share it),
-//! and the two generators of measurement and test inputs,
-//! [`XorShift32`] (the demo firmware's budget and cycle-count inputs) and
-//! [`XorShift64`] (the host tests' inputs), kept here so that every
-//! generator has one home; recorded budget rows and golden hashes depend on
-//! their sequences.
+//! The crate's deterministic random number generators, for the controller
+//! and for measurement and test inputs.
+//!
+//! [`Rng`] serves per-pixel, per-frame decisions on the controller (the
+//! stochastic-LOD ray mask; other stages that need reproducible random
+//! choices can share it). The two generators of measurement and test
+//! inputs, [`XorShift32`] (the demo firmware's budget and cycle-count
+//! inputs) and [`XorShift64`] (the host tests' inputs), are kept here so
+//! that every generator has one home; recorded budget rows and golden
+//! hashes depend on their sequences.
 //!
 //! [`Rng`] is counter-based: the state advances by the golden-ratio Weyl constant
 //! `0x9E37_79B9` (odd, so the state visits all 2³² values before repeating)

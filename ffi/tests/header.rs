@@ -1,8 +1,9 @@
 //! `include/raymip.h` is exactly what cbindgen (as a library, so the test
 //! command needs no `cargo install cbindgen`) generates from `src/ffi/mod.rs`
-//! and `src/texture/storage/format.rs` (`TexelFormat`, exported as
-//! `RmFormat`) with `cbindgen.toml`, with the rustdoc link brackets taken
-//! out of the comments (a link to `rm_sample` reads `rm_sample` in C, not
+//! and the files of the two core enums it exports as they are,
+//! `src/texture/mode.rs` (`Mode`, as `RmMode`) and
+//! `src/texture/storage/format.rs` (`TexelFormat`, as `RmFormat`), with
+//! `cbindgen.toml`, with the rustdoc link brackets taken out of the comments (a link to `rm_sample` reads `rm_sample` in C, not
 //! ``[`rm_sample`]``). `RAYMIP_WRITE_HEADER=1` rewrites the header instead
 //! (`scripts/c-abi --write`).
 
@@ -18,9 +19,10 @@ fn header_is_up_to_date() {
     let bindings = cbindgen::Builder::new()
         .with_config(config)
         .with_src(root.join("src/ffi/mod.rs"))
+        .with_src(root.join("src/texture/mode.rs"))
         .with_src(root.join("src/texture/storage/format.rs"))
         .generate()
-        .expect("cbindgen parses src/ffi/mod.rs and src/texture/storage/format.rs");
+        .expect("cbindgen parses src/ffi/mod.rs and the two core enums' files");
     let mut raw = Vec::new();
     bindings.write(&mut raw);
     let generated = without_link_brackets(&String::from_utf8(raw).expect("cbindgen writes UTF-8"));

@@ -1,7 +1,8 @@
 //! Co-processors: wrappers of the custom instructions of texture units
-//! built beside a soft core. Each is compiled only for the core and feature
-//! it belongs to; without one every path is the software one, with the
-//! same bits.
+//! built beside a soft core.
+//!
+//! Each is compiled only for the core and feature it belongs to; without
+//! one every path is the software one, with the same bits.
 //!
 //! * `pcpi` (feature `pcpi`, `riscv32` only): the PicoRV32 texture
 //!   co-processor on the PCPI port (`demo/softcore/pcpi_tex.v`): the lod

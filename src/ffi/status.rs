@@ -2,7 +2,7 @@
 //! precision tier, sRGB output, pixel format), with their checked byte
 //! forms and the pointer check every function makes.
 
-use crate::texture::{AddressMode, Mode};
+use crate::texture::AddressMode;
 
 // The sampler and image types the enums are documented against.
 #[cfg(doc)]
@@ -41,25 +41,11 @@ pub enum RmStatus {
     Uninitialised = -10,
 }
 
-/// Filter mode of [`rm_sample`] and [`rm_sample_batch`].
-#[repr(u8)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RmMode {
-    /// Bilinear within a level, linear between levels.
-    Trilinear = 0,
-    /// Bilinear within the nearest level `floor(lod + 1/2)`.
-    BilinearNearestLevel = 1,
-    /// Nearest texel of the nearest level.
-    Nearest = 2,
-    /// Nearest texel in each of two levels, linear between levels.
-    NearestTexelLinearLevel = 3,
-}
-const _: () = assert!(
-    RmMode::Trilinear as u8 == Mode::Trilinear as u8
-        && RmMode::BilinearNearestLevel as u8 == Mode::BilinearNearestLevel as u8
-        && RmMode::Nearest as u8 == Mode::Nearest as u8
-        && RmMode::NearestTexelLinearLevel as u8 == Mode::NearestTexelLinearLevel as u8
-);
+/// Filter mode of [`rm_sample`] and [`rm_sample_batch`]: raymip's
+/// [`Mode`](crate::texture::Mode) itself, which the header declares under this name (constants
+/// `RM_MODE_*`, numbered by the discriminants; `ffi` includes the
+/// `trilinear` feature, so all four are there).
+pub use crate::texture::Mode as RmMode;
 
 /// Addressing of a texture axis: [`rm_sampler_init`] takes one for both
 /// axes, [`RmSamplerDesc`] one per axis.

@@ -1,7 +1,9 @@
-//! Environment-map level of detail (Akenine-Möller and Nilsson, Ray
-//! Tracing Gems ch. 21) for rays that leave the scene, and the direction →
-//! texture coordinate mapping of a latitude-longitude map, in fixed point.
-//! Feature `envmap` (the ray-differential variant also needs `raydiff`).
+//! Environment-map level of detail for rays that leave the scene, and the
+//! direction → texture coordinate mapping of a latitude-longitude map, in
+//! fixed point.
+//!
+//! After Akenine-Möller and Nilsson, Ray Tracing Gems ch. 21. Feature
+//! `envmap` (the ray-differential variant also needs `raydiff`).
 //!
 //! An environment map lies infinitely far away: its lookup depends only on
 //! the ray's direction, and its footprint only on the ray's angular spread

@@ -1,10 +1,11 @@
-//! Texture-space footprint of a hit from its ray differentials: the
-//! barycentric differentials of the transferred `∂P = ∂O'`
-//! ([`crate::path::raydiff::RayDiff::transfer`]) mapped through the
-//! triangle's UVs to `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` (pbrt's `dudx,
-//! dvdx, dudy, dvdy`, the two axes [`crate::texture::sampler::aniso`]
-//! takes), and the lod as `log2` of the larger axis in level-0 texels (the
-//! hardware paper's eq. 1).
+//! Texture-space footprint and lod of a hit from its ray differentials.
+//!
+//! The barycentric differentials of the transferred `∂P = ∂O'`
+//! ([`crate::path::raydiff::RayDiff::transfer`]) are mapped through the
+//! triangle's UVs to `(∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y)` (pbrt's `dudx, dvdx,
+//! dudy, dvdy`, the two axes [`crate::texture::sampler::aniso`] takes); the
+//! lod is `log2` of the larger axis in level-0 texels (the hardware paper's
+//! eq. 1).
 //!
 //! # Per-triangle constant
 //!

@@ -1,6 +1,8 @@
 //! The ray stack: fixed-capacity storage of the path state that texture LOD
-//! needs across reflection and refraction bounces (Park et al. 2011 carry the
-//! accumulated path length `Pl`; ray cones carry width and spread).
+//! needs across reflection and refraction bounces.
+//!
+//! Park et al. 2011 carry the accumulated path length `Pl`; ray cones carry
+//! width and spread.
 //!
 //! # Number formats: range analysis
 //!

@@ -1,7 +1,9 @@
 //! The camera's pixel spread angle `γ = atan(2·tan(fov_y/2)/H)` (radians,
-//! I2F30) with its `log2` precomputed: the camera constant of the Pb table
-//! (`log2 Pb = −Δ − log2 γ`, see [`table`](crate::setup::table)) and of the primary
-//! ray cone. Set up once per camera and image height.
+//! I2F30) with its `log2` precomputed.
+//!
+//! It is the camera constant of the Pb table (`log2 Pb = −Δ − log2 γ`, see
+//! [`table`](crate::setup::table)) and of the primary ray cone. Set up once
+//! per camera and image height.
 
 use fixed::types::I16F16;
 

@@ -1,11 +1,14 @@
-//! G-buffer ray differentials ("RayDiffs GB"): the first hit's position
-//! and normal differentials from the neighbouring pixels' first hits
-//! instead of a transfer, the direction differentials from the camera
-//! ([`super::RayDiff::primary`]). Per axis the side whose hit distance
-//! differs less from the centre's is taken (the neighbour across a
-//! silhouette is the one with the larger `|Δt|`): `∂P/∂x = P₊ − P` or
-//! `P − P₋`, the same for the normal. A pixel without a neighbour hit on
-//! either side of an axis has no differential in that axis (zero).
+//! G-buffer ray differentials ("RayDiffs GB"): a first hit's differentials
+//! from its neighbouring pixels' first hits.
+//!
+//! The first hit's position and normal differentials come from the
+//! neighbouring pixels' first hits instead of a transfer, the direction
+//! differentials from the camera ([`super::RayDiff::primary`]). Per axis
+//! the side whose hit distance differs less from the centre's is taken (the
+//! neighbour across a silhouette is the one with the larger `|Δt|`): `∂P/∂x
+//! = P₊ − P` or `P − P₋`, the same for the normal. A pixel without a
+//! neighbour hit on either side of an axis has no differential in that axis
+//! (zero).
 //!
 //! The G-buffer holds positions and distances as 32-bit integers in units
 //! of `2^scale` scene units, one `scale` for the whole buffer (chosen at

@@ -1,11 +1,13 @@
 //! Ray differentials (Igehy 1999, "Tracing Ray Differentials") in 32-bit
-//! block floating point: the per-pixel derivatives of a ray's origin and
-//! direction, carried by the ray stack, transferred to each hit, reflected
-//! and refracted there, and turned into a texture-space footprint
-//! ([`crate::lod::raydiff`]) whose larger axis gives the lod and whose two
-//! axes drive anisotropic filtering. Primary rays are set up from the
-//! camera ([`RayDiff::primary`]), or first hits from a G-buffer
-//! ([`gbuffer`]). Feature `raydiff`.
+//! block floating point.
+//!
+//! The per-pixel derivatives of a ray's origin and direction, carried by
+//! the ray stack, transferred to each hit, reflected and refracted there,
+//! and turned into a texture-space footprint ([`crate::lod::raydiff`])
+//! whose larger axis gives the lod and whose two axes drive anisotropic
+//! filtering. Primary rays are set up from the camera
+//! ([`RayDiff::primary`]), or first hits from a G-buffer ([`gbuffer`]).
+//! Feature `raydiff`.
 //!
 //! # State and number formats
 //!

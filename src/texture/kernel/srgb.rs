@@ -1,9 +1,11 @@
-//! The sRGB ends of the ACCURATE kernel: texels decoded to 16-bit linear
-//! lanes before filtering ([`load`]), filtered values (16.8, 65535·256 =
-//! 1.0) re-encoded to sRGB or rounded to 8-bit linear after it
-//! ([`encode_output`], [`linear_output`]). The filter between them is the
-//! corner sum of [`super::accurate`] on 16-bit lanes with 16-bit position
-//! weights.
+//! The sRGB ends of the ACCURATE kernel: decoding texels to linear before
+//! filtering, re-encoding after it.
+//!
+//! Texels are decoded to 16-bit linear lanes before filtering ([`load`]);
+//! filtered values (16.8, 65535·256 = 1.0) are re-encoded to sRGB or
+//! rounded to 8-bit linear after it ([`encode_output`], [`linear_output`]).
+//! The filter between them is the corner sum of [`super::accurate`] on
+//! 16-bit lanes with 16-bit position weights.
 //!
 //! # Error bounds (per channel, against the exact f64 filter)
 //!

@@ -1,8 +1,9 @@
-//! The run-time-configured sampler for the C ABI and the harness's CLI:
-//! a small static table of keys, one of which is picked once at set-up
-//! from a [`SamplerState`], a colour space and a [`Precision`]; every
-//! sample then runs that key's specialised code (one `match` per call on
-//! the stored variant, none per texel).
+//! The run-time-configured sampler for the C ABI and the harness's CLI.
+//!
+//! A small static table of keys, one of which is picked once at set-up from
+//! a [`SamplerState`], a colour space and a [`Precision`]; every sample
+//! then runs that key's specialised code (one `match` per call on the
+//! stored variant, none per texel).
 //!
 //! | [`DynKey`] | key | when |
 //! |---|---|---|

@@ -1,9 +1,11 @@
 //! Stochastic texture filtering (Pharr et al., "Filtering After Shading
-//! with Stochastic Texture Filtering", 2024): instead of blending texels,
-//! pick one level or one texel at random with probability equal to its
-//! filter weight. One sample is noisy; its expectation is the filter, so
-//! the noise averages out over the samples a renderer takes anyway (frames,
-//! pixels' sub-samples), at a fraction of the texel reads.
+//! with Stochastic Texture Filtering", 2024).
+//!
+//! Instead of blending texels, pick one level or one texel at random with
+//! probability equal to its filter weight. One sample is noisy; its
+//! expectation is the filter, so the noise averages out over the samples a
+//! renderer takes anyway (frames, pixels' sub-samples), at a fraction of
+//! the texel reads.
 //!
 //! | [`StochasticMode`] | texel reads | expectation |
 //! |---|---|---|
