@@ -55,19 +55,21 @@ mod sealed {
 /// ([`Rounding::new`]) and handed to every kernel call: each
 /// multiply-accumulate chain then starts from a register holding its
 /// rounding term, instead of a separate add after the chain (which is what
-/// a compiler emits for a constant it can see). It also holds the FAST
-/// pair mask [`fast::PAIR`], which the anisotropic probe loop reads from
-/// here rather than rebuilding it (two instructions on the M4) per probe.
-/// The values are fixed ([`accurate::ROUND_WIDE`],
-/// [`accurate::ROUND_TEXEL`], [`accurate::ROUND_BLEND`],
-/// [`fast::ROUND_PAIR`], [`fast::PAIR`]); only where they come from
-/// differs.
+/// a compiler emits for a constant it can see). On Arm it also holds the
+/// FAST pair mask [`fast::PAIR`], which the anisotropic probe loop reads
+/// from here rather than rebuilding it (two instructions on the M4) per
+/// probe; elsewhere the mask stays a constant (RV32 builds it in one
+/// instruction, and the larger record cost cycles there). The values are
+/// fixed ([`accurate::ROUND_WIDE`], [`accurate::ROUND_TEXEL`],
+/// [`accurate::ROUND_BLEND`], [`fast::ROUND_PAIR`], [`fast::PAIR`]); only
+/// where they come from differs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Rounding {
     wide: u32,
     texel: u32,
     blend: u32,
     pair: u64,
+    #[cfg(target_arch = "arm")]
     pair_mask: u32,
 }
 
@@ -80,8 +82,20 @@ impl Rounding {
             texel: accurate::ROUND_TEXEL,
             blend: accurate::ROUND_BLEND,
             pair: fast::ROUND_PAIR,
+            #[cfg(target_arch = "arm")]
             pair_mask: fast::PAIR,
         }
+    }
+
+    /// The FAST pair mask [`fast::PAIR`]: read from the record on Arm, the
+    /// constant elsewhere.
+    #[inline(always)]
+    fn pair_mask(self) -> u32 {
+        #[cfg(target_arch = "arm")]
+        let m = self.pair_mask;
+        #[cfg(not(target_arch = "arm"))]
+        let m = fast::PAIR;
+        m
     }
 }
 
@@ -447,7 +461,7 @@ impl Kernel for (Linear, Fast) {
     rgba8_texels!();
     #[inline(always)]
     fn bilinear(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide {
-        fast::bilinear_masked(l, fx, fy, k.pair_mask)
+        fast::bilinear_masked(l, fx, fy, k.pair_mask())
     }
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
