@@ -120,20 +120,20 @@ module Cfu #(
     parameter integer RAM_AW = 15
 ) (
     input  wire              clk,
-    input  wire              reset,
-    input  wire              cmd_valid,
-    output wire              cmd_ready,
-    input  wire [       9:0] cmd_payload_function_id,
-    input  wire [      31:0] cmd_payload_inputs_0,
-    input  wire [      31:0] cmd_payload_inputs_1,
-    output reg               rsp_valid,
-    input  wire              rsp_ready,
-    output reg  [      31:0] rsp_payload_outputs_0,
-    output wire [RAM_AW-1:0] mem_adr_0,
-    output wire [RAM_AW-1:0] mem_adr_1,
-    input  wire [      31:0] mem_dat_0,
-    input  wire [      31:0] mem_dat_1,
-    input  wire              mem_hold
+    input  wire              reset,                    // synchronous, active high
+    input  wire              cmd_valid,                // an instruction ...
+    output wire              cmd_ready,                // ... taken when both are high
+    input  wire [       9:0] cmd_payload_function_id,  // {funct7, funct3}
+    input  wire [      31:0] cmd_payload_inputs_0,     // rs1
+    input  wire [      31:0] cmd_payload_inputs_1,     // rs2
+    output reg               rsp_valid,                // the answer ...
+    input  wire              rsp_ready,                // ... taken when both are high
+    output reg  [      31:0] rsp_payload_outputs_0,    // rd
+    output wire [RAM_AW-1:0] mem_adr_0,                // bank 0 (even words): word index
+    output wire [RAM_AW-1:0] mem_adr_1,                // bank 1 (odd words): word index
+    input  wire [      31:0] mem_dat_0,                // bank 0's word, a cycle after
+    input  wire [      31:0] mem_dat_1,                // bank 1's word, a cycle after
+    input  wire              mem_hold                  // the CPU has a write on its data bus
 );
     /* verilator lint_on DECLFILENAME */
     localparam [31:0] UNTEXTURED = 32'h8000_0000;
@@ -217,16 +217,16 @@ module Cfu #(
     reg  [1:0] lmu, lmv;
     // The texture unit's state after tex.sel: the block's address, the
     // windowed lod, the modes and the two levels (texel (0, 0) and sides).
-    reg [31:0] sp;
-    reg [17:0] slod;
-    reg [17:0] swin0;
-    reg [27:0] swin1;
-    reg [17:0] swmax;
-    reg  [7:0] tt;
-    reg  [3:0] tlow;
-    reg  [1:0] tmu, tmv;
-    reg [31:0] tb0, tb1;
-    reg  [3:0] tkx0, tky0, tkx1, tky1;
+    reg [31:0] sp;                      // the block's byte address
+    reg [17:0] slod;                    // the lod operand (I8F8 bits)
+    reg [17:0] swin0;                   // word 0: the lod bias
+    reg [27:0] swin1;                   // word 1: the window and the modes
+    reg [17:0] swmax;                   // max(lod + bias, lo)
+    reg  [7:0] tt;                      // the windowed lod: level fraction t
+    reg  [3:0] tlow;                    // and lower level
+    reg  [1:0] tmu, tmv;                // the address modes
+    reg [31:0] tb0, tb1;                // the two levels' texel (0, 0)
+    reg  [3:0] tkx0, tky0, tkx1, tky1;  // and log2 of their sides
     // tex.tri's coordinates, for its upper level.
     reg [31:0] tu, tv;
     // The upper level enters the addressing two cycles after the lower.

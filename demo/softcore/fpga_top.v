@@ -2,16 +2,14 @@
 // of scripts/fpga (issue 23): soc.v with its console, exit and fault
 // signals reduced to the pins a 48-pin iCE40 UP5K package offers. The core,
 // the co-processor (ENABLE_TEX) and the RAM are those the Verilator runs
-// use; only the RAM size differs (RAM_BYTES, set by scripts/fpga: the
-// SoC's 128 KiB would be the UP5K's four SPRAM blocks, which Yosys 0.23
-// does not infer, so the flow maps a smaller RAM to block RAM).
+// use; only the RAM size differs (soc's RAM_BYTES, which scripts/fpga sets
+// with ENABLE_TEX on soc itself: the SoC's 128 KiB would be the UP5K's four
+// SPRAM blocks, which Yosys 0.23 does not infer, so the flow maps a smaller
+// RAM to block RAM).
 `timescale 1 ns / 1 ps
 `default_nettype none
 
-module fpga_top #(
-    parameter integer RAM_BYTES = 8 * 1024,
-    parameter integer ENABLE_TEX = 0
-) (
+module fpga_top (
     input  wire       clk,
     input  wire       resetn,
     output wire       trap,
@@ -25,10 +23,7 @@ module fpga_top #(
     wire [31:0] fault_addr;
     assign exit_nonzero = |exit_code;
 
-    soc #(
-        .RAM_BYTES(RAM_BYTES),
-        .ENABLE_TEX(ENABLE_TEX)
-    ) soc (
+    soc soc (
         .clk(clk),
         .resetn(resetn),
         .trap(trap),

@@ -115,18 +115,9 @@ module soc #(
 
     generate
         if (ENABLE_TEX != 0) begin : tex
-            pcpi_tex cop (
-                .clk(clk),
-                .resetn(resetn),
-                .pcpi_valid(pcpi_valid),
-                .pcpi_insn(pcpi_insn),
-                .pcpi_rs1(pcpi_rs1),
-                .pcpi_rs2(pcpi_rs2),
-                .pcpi_wr(pcpi_wr),
-                .pcpi_rd(pcpi_rd),
-                .pcpi_wait(pcpi_wait),
-                .pcpi_ready(pcpi_ready)
-            );
+            // Its ports are clk, resetn and the core's PCPI wires, of the
+            // same names here (SystemVerilog `.*`).
+            pcpi_tex cop (.*);
         end else begin : no_tex
             assign pcpi_wr = 1'b0;
             assign pcpi_rd = 32'b0;

@@ -370,6 +370,7 @@ impl RayDiffTriangle {
     /// `∂P/∂y` through the texel-space gradients. Degenerate triangle: the
     /// largest footprint; zero UV area: zero. Per hit; never panics.
     #[must_use]
+    #[inline]
     pub fn footprint(&self, s: &RayDiff) -> RayDiffFootprint {
         match self.kind {
             Kind::Textured => {}
@@ -410,6 +411,7 @@ impl RayDiffFootprint {
     /// triangle's [`Lod::MAX`]). Within [`RAYDIFF_LOD_MAX_ERROR`] of f64
     /// (conditions in the [module docs](self)). Per hit; never panics.
     #[must_use]
+    #[inline]
     pub fn lod(&self) -> Lod {
         // |a|² of each axis: |u|, |v| < 1.5·2³⁰, so the sum is below 2⁶³.
         let len2 =

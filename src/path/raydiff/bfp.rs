@@ -204,6 +204,11 @@ mod tests {
         assert_eq!(Bfp3::new([1, 1, 1], EXP_MAX + 100).e, EXP_MAX);
         assert_eq!(Bfp3::new([1, 1, 1], EXP_MIN - 100).e, EXP_MIN);
         assert_eq!(Bfp3::new([1, 1, 1], EXP_MIN).e, EXP_MIN);
+        // The documented saturation points, ±2¹⁴ (one `ssat #15`), as
+        // numbers: the constants themselves are what is checked.
+        assert_eq!(Bfp3::new([1, 1, 1], 1 << 17).e, (1 << 14) - 1);
+        assert_eq!(Bfp3::new([1, 1, 1], -(1 << 17)).e, -(1 << 14));
+        assert_eq!(Bfp3::ZERO.e, -(1 << 14));
         assert_eq!(Bfp3::from_wide([i64::MIN, 0, 1], 0).m[0], i32::MIN);
         assert_eq!(shr(-5, 40), -1);
         assert_eq!(shr(5, -3), 5);

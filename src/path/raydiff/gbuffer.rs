@@ -116,6 +116,7 @@ fn normal_diff(a: &GSample, b: &GSample) -> Bfp3 {
 /// and y (`up`, `down`). Returns the normal differentials
 /// `[∂n/∂x, ∂n/∂y]` that [`RayDiff::reflect`] and [`RayDiff::refract`]
 /// take. Per first hit; never panics.
+#[inline]
 pub fn first_hit(
     s: &mut RayDiff,
     c: &GSample,

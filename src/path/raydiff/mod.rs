@@ -435,6 +435,7 @@ impl RayDiff {
     /// `d/|d|`, with `1/|d| = D·f`), the same with `u` in y. Set-up per
     /// pixel; never panics.
     #[must_use]
+    #[inline]
     pub fn primary(d: UnitVec, forward: UnitVec, right: DirDiff, up: DirDiff) -> Self {
         let d = bits(d);
         // D·f in 2⁻³⁰ units (one truncation; ≤ 2³⁰ + 1 for unit vectors).
@@ -454,6 +455,7 @@ impl RayDiff {
     /// `∂O' = q + ∂t·D`; `∂D` is unchanged. `∂O'` is then the hit point's
     /// differential on the tangent plane ([`crate::lod::raydiff`] reads
     /// it). `|D·n|` is clamped to [`MIN_COS`]. Per hit; never panics.
+    #[inline]
     pub fn transfer(&mut self, d: UnitVec, t: PathLength, n: UnitVec) {
         let (d, n) = (bits(d), bits(n));
         // D·n exact in 2⁻⁶⁰ units, |D·n| clamped to ≥ MIN_COS (2⁴⁴ units):
@@ -507,6 +509,7 @@ impl RayDiff {
     /// eq. 14–15): `∂R = ∂D − 2·((D·n)·∂n + ∂(D·n)·n)`,
     /// `∂(D·n) = ∂D·n + D·∂n`; `∂O` (the hit's) is kept. Per hit; never
     /// panics.
+    #[inline]
     pub fn reflect(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2]) {
         let (d, n) = (bits(d), bits(n));
         // D·n in 2⁻³⁰ units (one truncation).
