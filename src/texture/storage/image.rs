@@ -125,6 +125,22 @@ pub struct Image<'a, F: PixelFormat = AnyFormat> {
     bytes: &'a [u8],
     /// Byte offset of each level; entries past `levels` hold the total.
     offsets: [usize; MAX_LEVELS as usize + 1],
+    /// What a footprint reads per level index `0 ..= 16` (clamped as
+    /// [`get`](Self::get) clamps): made once here, so that a footprint
+    /// loads one record instead of recomputing the level's size and offset.
+    rows: [LevelRows; MAX_LEVELS as usize + 1],
+}
+
+/// One level of an uncompressed [`Image`] as a footprint reads it.
+#[derive(Clone, Copy, Debug, Default)]
+struct LevelRows {
+    /// Byte offset of the level ([`Image::level_offset`]).
+    offset: usize,
+    /// Row stride in bytes (width · unit bytes).
+    pitch: usize,
+    /// The last column and row (`w − 1`, `h − 1` of
+    /// [`Geometry::level_size`]).
+    last: [u32; 2],
 }
 
 impl<'a> Image<'a, AnyFormat> {
@@ -198,13 +214,25 @@ impl<'a, F: PixelFormat> Image<'a, F> {
                 got: bytes.len(),
             });
         }
-        Ok(Self {
+        let mut image = Self {
             geometry,
             kind,
             format,
             bytes,
             offsets,
-        })
+            rows: [LevelRows::default(); MAX_LEVELS as usize + 1],
+        };
+        let unit = format.texel().unit_bytes() as usize;
+        for (k, r) in (0u8..).zip(image.rows.iter_mut()) {
+            let (w, h) = geometry.level_size(k);
+            let k = usize::from(k.min(geometry.top_level()));
+            *r = LevelRows {
+                offset: offsets.get(k).copied().unwrap_or(0),
+                pitch: w as usize * unit,
+                last: [w - 1, h - 1],
+            };
+        }
+        Ok(image)
     }
 
     /// The format.
@@ -282,9 +310,10 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         self.get(level, x, y)
     }
 
-    /// Uncompressed formats: the level's size and offset and the two row
-    /// starts once per footprint, then per texel one read of its bytes and
-    /// the format's expansion (BC formats read texel by texel).
+    /// Uncompressed formats: the level's record (offset, pitch, last
+    /// column and row) and the two row starts once per footprint, then per
+    /// texel one read of its bytes and the format's expansion (BC formats
+    /// read texel by texel).
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         let f = self.kind.texel();
@@ -296,12 +325,11 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
                 self.get(level, x[1], y[1]),
             ];
         }
-        let (w, h) = self.geometry.level_size(level);
+        let l = self.rows[usize::from(level.min(MAX_LEVELS))];
         let unit = f.unit_bytes() as usize;
-        let pitch = w as usize * unit;
-        let base = self.level_offset(level);
-        let rows = [y[0], y[1]].map(|y| base + y.min(h - 1) as usize * pitch);
-        let cols = [x[0], x[1]].map(|x| x.min(w - 1) as usize * unit);
+        let [lx, ly] = l.last;
+        let rows = [y[0], y[1]].map(|y| l.offset + y.min(ly) as usize * l.pitch);
+        let cols = [x[0], x[1]].map(|x| x.min(lx) as usize * unit);
         let texel = |at: usize| f.decode(self.raw(at, unit));
         [
             texel(rows[0] + cols[0]),
@@ -380,6 +408,40 @@ mod tests {
         );
         let one_row = usize::try_from(4 * u64::from(u32::MAX)).unwrap_or(usize::MAX);
         assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
+    }
+
+    /// The footprint (the level records made once) reads the texels
+    /// `get` reads, in every uncompressed format and size, at every level
+    /// index (past the top too) and with indices past the edges.
+    #[test]
+    fn footprint_equals_texel_reads() {
+        for (w, h, levels) in [(9, 6, 4), (8, 4, 4), (1, 5, 3)] {
+            let g = Geometry::new(w, h, levels).unwrap();
+            for f in TexelFormat::ALL {
+                let n = image_len(w, h, levels, f);
+                let bytes: Vec<u8> = (0..n as u32)
+                    .map(|i| (i.wrapping_mul(2_654_435_761) >> 11) as u8)
+                    .collect();
+                let mut img = Image::new(g, Format::linear(f), &bytes).unwrap();
+                for level in 0..=20u8 {
+                    for x in [[0, 1], [3, 0], [8, 9], [7, u32::MAX]] {
+                        for y in [[0, 1], [2, 0], [5, 6], [u32::MAX, 3]] {
+                            let want = [
+                                img.get(level, x[0], y[0]),
+                                img.get(level, x[1], y[0]),
+                                img.get(level, x[0], y[1]),
+                                img.get(level, x[1], y[1]),
+                            ];
+                            assert_eq!(
+                                img.footprint(level, x, y),
+                                want,
+                                "{f:?} {level} {x:?} {y:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// Through the cache (block decode on fill) and directly (texel
