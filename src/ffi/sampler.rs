@@ -39,6 +39,14 @@ pub(super) const SAMPLER_MAGIC: u64 = u64::from_le_bytes(*b"raymipSm");
 
 /// The texture behind a sampler: an RGBA8 pyramid or an image in any
 /// format, in the sampler of its key.
+///
+/// The variants differ in size (an [`Image`] keeps a footprint record per
+/// level); the slot lives in the caller's [`RmSampler`] words, so the enum's
+/// size is the largest variant's either way and there is no heap to box it in.
+#[allow(
+    clippy::large_enum_variant,
+    reason = "no allocator: the slot is stored in the caller's RmSampler words"
+)]
 pub(super) enum SlotSampler {
     Pyramid(DynSampler<Pyramid<'static>>),
     Image(DynSampler<Image<'static, AnyFormat>>),
