@@ -476,7 +476,6 @@ impl RayDiff {
         let (tn, tz) = normalise64(t.to_bits());
         let tm = (tn >> 1) as i32;
         let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
-        let ew = lz as i32 - 32;
         for axis in 0..2 {
             let (o, dd) = (self.get(axis), self.get(2 + axis));
             // q = ∂O + t·∂D at 2^eq, |qₖ| < 2³¹ (∂O shifted by at least 1,
@@ -486,19 +485,25 @@ impl RayDiff {
             let q: [i32; 3] =
                 core::array::from_fn(|k| shr(o.m[k], eq - o.e) + shr(mulhi(tm, dd.m[k]), eq - ep));
             // q·n = qn·2^(eq+1) (exact dot, one truncation, |qn| < √3·2³⁰),
-            // normalised to qm·2^eqn.
+            // normalised to qm·2^(eq+1−sn).
             let qn = (dot64(q, n) >> 31) as i32;
             let sn = clz32((((qn ^ (qn >> 31)) as u32) << 1) | 1) as i32;
-            let (qm, eqn) = (qn << sn, eq + 1 - sn);
-            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eqn+e_w+32),
+            let qm = qn << sn;
+            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eq+1−sn+lz),
             // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
-            let et_ = eqn + ew + 32;
-            let er = (eq + 1).max(et_);
+            // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
+            // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
+            // sn ∈ [0, 31]): the shifts 1 + max(0, gap) ≤ 20 and
+            // max(0, −gap) ≤ 31 need no clamp.
+            let gap = lz as i32 - sn;
+            let (sq, st) = (1 + gap.max(0), (-gap).max(0));
+            let er = eq + sq;
             let r: [i32; 3] = core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // (non-unit `D`, `n`) reach ±2³¹; the result is then
                 // garbage, but no panic.
-                shr(q[k], er - eq).wrapping_sub(shr(mulhi(qm, w[k]), er - et_))
+                q[k].wrapping_shr(sq as u32)
+                    .wrapping_sub(mulhi(qm, w[k]).wrapping_shr(st as u32))
             });
             self.set(axis, Bfp3::new(r, er));
         }
@@ -542,6 +547,7 @@ impl RayDiff {
     /// `∂μ = (η − η²·cos θᵢ / cos θₜ)·∂cos θᵢ`, `∂cos θᵢ = −(∂D·n + D·∂n)`,
     /// `∂T = η·∂D + ∂μ·n + μ·∂n`; `∂O` is kept. `cos θₜ` is clamped to
     /// [`MIN_COS`] (near the critical angle). Per hit; never panics.
+    #[inline]
     pub fn refract(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2], eta: Eta, cos_t: I2F30) {
         let (d, n) = (bits(d), bits(n));
         let eta = eta.0.to_bits();
