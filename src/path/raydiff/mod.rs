@@ -58,10 +58,12 @@
 //! | [`RayDiff::refract`] | [`REFRACT_ERROR`] = 2⁻²⁴ | `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` |
 //!
 //! * **Primary.** `(D·r)` from an exact 64-bit dot product, one truncation
-//!   (`< 2u|r|`); `r − (D·r)·D` at eight times the unit of `r`: two
-//!   truncations and that error, `< 18u|r|∞`; normalised, times `D·f`
-//!   (exact dot, `< u`) by one multiply-high (`< 4u` of the result):
-//!   `18u·(D·f)|r| + 10u|r| ≤ 32u·(|D·f| + 1)|r|`.
+//!   (`< 2u|r|`); `r − (D·r)·D` at twice the unit of `r`, not normalised:
+//!   the halved `r` (`< 2u|r|∞`), the term `(D·r)·D` by one multiply-high
+//!   at eight times the unit (`< 8u|r|∞`) and that error, `< 12u|r|∞`;
+//!   times `D·f` (exact dot, `< u`) by one multiply-high at eight times
+//!   the unit of `r` (`< 8u|r|∞`), then normalised (exact):
+//!   `12u·|D·f||r| + 9u|r| ≤ 32u·(|D·f| + 1)|r|`.
 //! * **Transfer.** `t` to 31 bits (`< u·t`); `t·∂D` by one multiply-high
 //!   of two 31-bit mantissas (at least 29 bits: `< 4u·t|∂D|`); the sum at
 //!   the larger exponent (two truncations, `< 8u·S`, `S = |∂O| + t|∂D|`):
@@ -602,13 +604,12 @@ impl RayDiff {
 fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
     // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
     let dr = (dot64(r.m, d) >> 31) as i32;
-    // (r − (D·r)·D)/8: |·| < 2²⁹.
-    let v = Bfp3::new(
-        core::array::from_fn(|k| (r.m[k] >> 3) - mulhi(dr, d[k])),
-        r.e + 3,
-    );
-    // (D·f)·v = mulhi(v, df)·2²: df is D·f·2³⁰.
-    Bfp3::new(v.m.map(|x| mulhi(x, df)), v.e + 2)
+    // (r − (D·r)·D)/2 in the units of r (|·| ≤ √3·2³⁰ for unit `D`: the
+    // projection is no longer than r), not normalised: the product with
+    // D·f below keeps its absolute error within the bound.
+    let v: [i32; 3] = core::array::from_fn(|k| (r.m[k] >> 1).wrapping_sub(mulhi(dr, d[k]) << 2));
+    // (D·f)·v = mulhi(v, df)·2³: df is D·f·2³⁰.
+    Bfp3::new(v.map(|x| mulhi(x, df)), r.e + 3)
 }
 
 /// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at
