@@ -36,7 +36,7 @@ use raymip::lod::{
 };
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::{Rng, mix32};
-use raymip::setup::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
+use raymip::texture::storage::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::address::AddressMode;

@@ -190,7 +190,7 @@ impl Geometry {
     /// `first ..= last`, `first` first. Reads of a level outside that range
     /// are clamped into it, so a sampler gives the same texels as with the
     /// full pyramid for every lod whose levels are stored
-    /// (`crate::setup::analysis` computes that range for a scene). The stored
+    /// (`crate::texture::storage::analysis` computes that range for a scene). The stored
     /// texels are the sub-slice [`Geometry::stored_range`] of the full
     /// pyramid (see [`Pyramid::trim`]).
     ///

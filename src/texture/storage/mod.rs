@@ -9,7 +9,9 @@
 //! | [`bc`] | BC1–BC4 block decoding (the cache's fill path) |
 //! | [`cache`] | the texel cache (4×4 blocks, Morton order, LRU) |
 //! | [`srgb`] | sRGB decode/encode tables, linear-space pyramids |
+//! | [`analysis`] | set-up: the MIP levels a scene can select per texture (trimmed pyramids) and the textures it never samples |
 
+pub mod analysis;
 pub mod bc;
 #[cfg(feature = "cache")]
 pub mod cache;
