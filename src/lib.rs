@@ -149,7 +149,7 @@
 // ABI (`ffi`, caller pointers), the co-processors (`coproc::pcpi` and
 // `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers and the
 // CFU's texel reads) and the direct texel reads of
-// `texture::storage::pow2` (indices reduced to validated level views).
+// `texture::storage::level` (indices reduced to validated level views).
 #![deny(unsafe_code)]
 #![deny(
     missing_docs,
