@@ -789,6 +789,31 @@ pub(crate) mod tests {
         }
     }
 
+    /// A hit where `∂O` lies almost in the surface (`q·n = −2⁻²⁰·|q|`) at
+    /// `|D·n| = 2⁻¹⁰`: `q·n` is normalised before its product with
+    /// `D/(D·n)`, so the result keeps the precision of `q` (within `2⁻²⁴`
+    /// of its scale here, where the documented bound allows `2⁻¹³`); an
+    /// unnormalised `q·n` would align `q` to the term's unit and lose 14
+    /// bits of it.
+    #[test]
+    fn transfer_keeps_a_small_q_dot_n_exact() {
+        let z = I2F30::ZERO;
+        let d = unit_q([(1.0 - 2f64.powi(-20)).sqrt(), 0.0, -(2f64.powi(-10))]);
+        let n = UnitVec([z, z, I2F30::ONE]);
+        let o = PosDiff::from_f64([1.0, 0.0, -(2f64.powi(-20))]);
+        let s = RayDiff::new(o, o, DirDiff::ZERO, DirDiff::ZERO);
+        let mut got = s;
+        got.transfer(d, PathLength::ZERO, n);
+        let want = rf::transfer(&state(&s), vu(d), 0.0, vu(n));
+        let err = dist(got.dox().to_f64(), want.dox);
+        assert!(
+            err <= 2f64.powi(-24),
+            "{err:e}: {:?} vs {:?}",
+            got.dox().to_f64(),
+            want.dox
+        );
+    }
+
     /// `∂D` and `∂n` at one exponent, every mantissa at its largest and
     /// the two dot products of `∂cos θᵢ` of one sign: their sum is
     /// `2√3` times a vector's scale, inside 32 bits only with the bit of
