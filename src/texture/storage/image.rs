@@ -136,21 +136,26 @@ struct LevelRows {
     /// Byte offset of the level ([`Image::level_offset`]; at most the
     /// image's byte length).
     offset: usize,
-    /// Row stride in bytes: width · unit bytes, or for BC formats blocks
-    /// per row · block bytes (at most 2¹⁷ for sides up to
-    /// [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE)).
-    pitch: u32,
     /// The last column and row (`w − 1`, `h − 1` of
     /// [`Geometry::level_size`]; below [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE), so 16 bits).
     last: [u16; 2],
 }
 
 impl LevelRows {
-    /// Byte offset of unit (texel or block) `(x, y)` of the level, both
-    /// in range.
+    /// Byte offset of texel `(x, y)` of the level (both in range; for a
+    /// BC format the texel's block).
     #[inline(always)]
     fn byte(self, x: u32, y: u32, f: TexelFormat) -> usize {
-        self.offset + y as usize * self.pitch as usize + x as usize * f.unit_bytes() as usize
+        let [lx, _] = self.last.map(usize::from);
+        let (x, y) = (x as usize, y as usize);
+        let unit = f.unit_bytes() as usize;
+        if f.is_block_compressed() {
+            // ⌈w/4⌉ = ⌊(w − 1)/4⌋ + 1 blocks per row.
+            let b = BLOCK as usize;
+            self.offset + ((y / b) * (lx / b + 1) + x / b) * unit
+        } else {
+            self.offset + (y * (lx + 1) + x) * unit
+        }
     }
 }
 
@@ -211,7 +216,6 @@ impl<'a, F: PixelFormat> Image<'a, F> {
         bytes: &'a [u8],
     ) -> Result<Self, ImageTooShort> {
         let f = format.texel();
-        let unit = f.unit_bytes();
         let mut rows = [LevelRows::default(); MAX_LEVELS as usize];
         let (mut total, mut offset) = (0usize, 0usize);
         for (k, r) in (0u8..).zip(rows.iter_mut()) {
@@ -222,14 +226,8 @@ impl<'a, F: PixelFormat> Image<'a, F> {
                 total = total.saturating_add(usize::try_from(n).unwrap_or(usize::MAX));
             }
             let (w, h) = geometry.level_size(k);
-            let row_units = if f.is_block_compressed() {
-                w.div_ceil(BLOCK)
-            } else {
-                w
-            };
             *r = LevelRows {
                 offset,
-                pitch: row_units * unit,
                 // Sides ≤ MAX_SIZE = 2¹⁵ (`Geometry`): `w − 1` fits.
                 last: [(w - 1) as u16, (h - 1) as u16],
             };
@@ -282,8 +280,9 @@ impl<'a, F: PixelFormat> Image<'a, F> {
         let l = self.level(level);
         // The last block column and row: ⌈w/4⌉ − 1 = ⌊(w − 1)/4⌋.
         let [lx, ly] = l.last.map(|n| u32::from(n) / BLOCK);
+        let (x, y) = (bx.min(lx) * BLOCK, by.min(ly) * BLOCK);
         self.bytes
-            .get(l.byte(bx.min(lx), by.min(ly), self.kind.texel())..)
+            .get(l.byte(x, y, self.kind.texel())..)
             .unwrap_or(&[])
     }
 
@@ -330,7 +329,7 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         self.get(level, x, y)
     }
 
-    /// Uncompressed formats: the level's record (offset, pitch, last
+    /// Uncompressed formats: the level's record (offset, last
     /// column and row) and the two row starts once per footprint, then per
     /// texel one read of its bytes and the format's expansion (BC formats
     /// read texel by texel).
@@ -348,7 +347,8 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         let l = self.level(level);
         let unit = f.unit_bytes() as usize;
         let [lx, ly] = l.last.map(u32::from);
-        let rows = [y[0], y[1]].map(|y| l.offset + y.min(ly) as usize * l.pitch as usize);
+        let pitch = (lx as usize + 1) * unit;
+        let rows = [y[0], y[1]].map(|y| l.offset + y.min(ly) as usize * pitch);
         let cols = [x[0], x[1]].map(|x| x.min(lx) as usize * unit);
         let texel = |at: usize| f.decode(self.raw(at, unit));
         [
