@@ -555,13 +555,19 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     /// side-by-side blocks, the four reads are made one by one.)
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        // The clamps of `texel`: the texel to the stored level's size, the
-        // block number's coordinates to the padded grid (which only a
-        // trimmed level past the last stored one can exceed).
-        let (level, g) = self.layout.grid(level);
+        // The clamp of `texel`: the texel to the stored level's size.
+        let (_, g) = self.layout.grid(level);
         let [lx, ly] = g.last.map(u32::from);
-        let x = [x[0].min(lx), x[1].min(lx)];
-        let y = [y[0].min(ly), y[1].min(ly)];
+        self.footprint_in_level(level, x.map(|x| x.min(lx)), y.map(|y| y.min(ly)))
+    }
+
+    /// [`footprint`](Self::footprint) without the texel clamp (an index
+    /// past the level reads a texel of another block). The block number's
+    /// coordinates are still clamped to the padded grid, which a trimmed
+    /// level past the last stored one can exceed.
+    #[inline]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let (level, g) = self.layout.grid(level);
         let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
         let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
         let at = |i: usize, j: usize| in_block(x[i], y[j]);

@@ -329,12 +329,20 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         self.get(level, x, y)
     }
 
-    /// Uncompressed formats: the level's record (offset, last
-    /// column and row) and the two row starts once per footprint, then per
-    /// texel one read of its bytes and the format's expansion (BC formats
-    /// read texel by texel).
+    /// Uncompressed formats: the level's record (offset, last column and
+    /// row) and the two row starts once per footprint, then per texel one
+    /// read of its bytes and the format's expansion (BC formats read texel
+    /// by texel).
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let [lx, ly] = self.level(level).last.map(u32::from);
+        self.footprint_in_level(level, x.map(|x| x.min(lx)), y.map(|y| y.min(ly)))
+    }
+
+    /// [`footprint`](Self::footprint) without the clamps: an index past
+    /// the level reads another texel of the image, or 0 past its bytes.
+    #[inline]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         let f = self.kind.texel();
         if f.is_block_compressed() {
             return [
@@ -346,10 +354,9 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         }
         let l = self.level(level);
         let unit = f.unit_bytes() as usize;
-        let [lx, ly] = l.last.map(u32::from);
-        let pitch = (lx as usize + 1) * unit;
-        let rows = [y[0], y[1]].map(|y| l.offset + y.min(ly) as usize * pitch);
-        let cols = [x[0], x[1]].map(|x| x.min(lx) as usize * unit);
+        let pitch = (usize::from(l.last[0]) + 1) * unit;
+        let rows = y.map(|y| l.offset + y as usize * pitch);
+        let cols = x.map(|x| x as usize * unit);
         let texel = |at: usize| f.decode(self.raw(at, unit));
         [
             texel(rows[0] + cols[0]),
@@ -517,6 +524,14 @@ mod tests {
                                 want,
                                 "{f:?} {level} {x:?} {y:?}"
                             );
+                            let (lw, lh) = g.level_size(level);
+                            if x.iter().all(|&x| x < lw) && y.iter().all(|&y| y < lh) {
+                                assert_eq!(
+                                    img.footprint_in_level(level, x, y),
+                                    want,
+                                    "in level: {f:?} {level} {x:?} {y:?}"
+                                );
+                            }
                         }
                     }
                 }
