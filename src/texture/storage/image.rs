@@ -437,6 +437,14 @@ mod tests {
         assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
     }
 
+    /// `n` pseudo-random bytes (bits `shift ..` of a multiplicative hash
+    /// of the index).
+    fn pattern(n: usize, shift: u32) -> Vec<u8> {
+        (0..n as u32)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> shift) as u8)
+            .collect()
+    }
+
     /// Texel `(x, y)` of `level` addressed from the layout of the module
     /// docs alone (level and indices clamped), not from the records.
     fn reference_texel(
@@ -475,10 +483,7 @@ mod tests {
         for (w, h, levels) in [(9, 6, 4), (8, 4, 4), (1, 5, 3), (13, 7, 2)] {
             let g = Geometry::new(w, h, levels).unwrap();
             for f in TexelFormat::ALL {
-                let n = image_len(w, h, levels, f);
-                let bytes: Vec<u8> = (0..n as u32)
-                    .map(|i| (i.wrapping_mul(2_654_435_761) >> 9) as u8)
-                    .collect();
+                let bytes = pattern(image_len(w, h, levels, f), 9);
                 let img = Image::new(g, Format::linear(f), &bytes).unwrap();
                 for level in 0..=20u8 {
                     for y in (0..h + 2).chain([u32::MAX]) {
@@ -505,10 +510,7 @@ mod tests {
         for (w, h, levels) in [(9, 6, 4), (8, 4, 4), (1, 5, 3)] {
             let g = Geometry::new(w, h, levels).unwrap();
             for f in TexelFormat::ALL {
-                let n = image_len(w, h, levels, f);
-                let bytes: Vec<u8> = (0..n as u32)
-                    .map(|i| (i.wrapping_mul(2_654_435_761) >> 11) as u8)
-                    .collect();
+                let bytes = pattern(image_len(w, h, levels, f), 11);
                 let mut img = Image::new(g, Format::linear(f), &bytes).unwrap();
                 for level in 0..=20u8 {
                     for x in [[0, 1], [3, 0], [8, 9], [7, u32::MAX]] {
