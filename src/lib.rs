@@ -12,7 +12,9 @@
 //! documented ranges and small error enums at the API edges.
 //!
 //! Data flows one way, one folder per part of the pipeline, one module per
-//! stage:
+//! stage; a module uses only its own row's module and those of the rows
+//! above it (`tests/firmware/layering.rs` checks the import graph against
+//! this order):
 //!
 //! | part | stage | module | per hit |
 //! |---|---|---|---|
