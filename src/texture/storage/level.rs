@@ -39,7 +39,7 @@
 //!   initialised, aligned `Texel`; the slice's length is not compared
 //!   again.
 //!
-//! With feature `cfu` on riscv32, [`cfu_footprint`] reads memory at the
+//! With feature `cfu` on riscv32, `cfu_footprint` reads memory at the
 //! four addresses the co-processor's `tex.addr`/`tex.tap` return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
 //! by construction of the RTL (every mode's index map ends in a mask or a
 //! clamp to the level; the Verilator testbench checks every address bit
