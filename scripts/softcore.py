@@ -299,8 +299,10 @@ def vex_lines(a, calls, vex):
     L.append(f"{vex['ram']} KiB integrated main RAM (code and data) on LiteX's Wishbone bus, LiteX's UART; simulated cycle by")
     L.append(f"cycle by {a.verilator} with the driver `demo/softcore/litex_sim.cpp`. With caches, each series runs")
     L.append("once untimed before the timed pass (`WARM_UP` in `demo/firmware/src/counters.rs`): warm caches, as in")
-    L.append("a per-hit loop; the direct-mapped caches make every count depend on the image's layout (a change")
-    L.append(f"elsewhere in the code can move a row by tens of cycles). Empty measurement {vex['base'][0]} cycles.\n")
+    L.append("a per-hit loop. The timed loop runs from two places half a KiB apart modulo 1 KiB and the one with")
+    L.append("fewer cycles is kept (`series`), so the harness's own code lines do not evict the callee's; the")
+    L.append("direct-mapped caches still make every count depend on the image's layout (a change elsewhere in the")
+    L.append(f"code can move a row by tens of cycles). Empty measurement {vex['base'][0]} cycles.\n")
     if cfu:
         L.append("With the co-processor: VexRiscv `full+cfu` (`VexRiscv_FullCfu.v`) with `demo/softcore/cfu_tex.v` on its")
         L.append("CFU port, the firmware with feature `cfu` (the instructions of the PCPI unit plus the addressing")
