@@ -340,20 +340,21 @@ def run(args):
     # caught. Only the ones they miss (or that time out) go on to stage
     # "all", every test of the crate; only its outcomes can be "missed".
     stages = ["all"] if args.all_tests else ["lib", "all"]
-    clock = {"deadline": None, "stop": False}
+    clock = {"deadline": None, "stop": 0, "stopping": None, "grace": args.stop_grace}
 
     def stop(signum, frame):
         # SIGINT or SIGTERM: end like the time box (record what finished,
-        # run no further stage).
-        clock["stop"] = True
+        # run no further stage); a second one ends without waiting for the
+        # running build.
+        clock["stop"] += 1
 
     signal.signal(signal.SIGINT, stop)
     signal.signal(signal.SIGTERM, stop)
-    records, timed_out = [], False
+    records, timed_out, build_killed = [], False, False
     for stage in stages:
         if not todo or timed_out:
             break
-        rec, timed_out = run_stage(args, stage, todo, whole and stage == stages[0], mutants, eq,
+        rec, timed_out, build_killed = run_stage(args, stage, todo, whole and stage == stages[0], mutants, eq,
                                    by_name, tree, fingerprint, os.path.join(out_dir, stage),
                                    label, clock)
         records.append(rec)
@@ -361,7 +362,7 @@ def run(args):
             sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
         done = {r[4] for r in rec.rows if stage == "all" or r[1] in ("caught", "unviable")}
         todo = [m for m in todo if m["name"] not in done]
-    if not timed_out:
+    if not build_killed:
         # No build of this run was killed: the next run may build on it.
         open(clean, "w").close()
     lock.close()
@@ -418,7 +419,7 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
           flush=True)
     proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
                             cwd=tree, start_new_session=True)
-    timed_out = False
+    timed_out = build_killed = False
     while proc.poll() is None:
         # The record is rewritten as outcomes arrive: an interrupted run
         # keeps what it finished.
@@ -428,21 +429,63 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
             # unmutated build and one run of the tests): mutants only.
             clock["deadline"] = time.monotonic() + args.time_box
         if clock["stop"] or (clock["deadline"] and time.monotonic() > clock["deadline"]):
+            if clock["stopping"] is None:
+                clock["stopping"] = time.monotonic()
+            # A rustc killed mid-build can leave an incremental state that
+            # the next run must throw away (forget_builds: a full rebuild
+            # of the crate). Up to the grace period, wait for the running
+            # mutant's build to end: SIGINT in its test phase keeps the
+            # state whole. A second signal stops at once.
+            waited = time.monotonic() - clock["stopping"]
+            if clock["stop"] < 2 and waited < clock["grace"] and building(proc.pid):
+                time.sleep(0.5)
+                continue
+            timed_out = True
+            build_killed = building(proc.pid)
             # cargo-mutants stops on SIGINT, kills its cargo and puts the
             # mutated file back; what it finished is in outcomes.json.
-            timed_out = True
             os.killpg(proc.pid, signal.SIGINT)
             try:
                 proc.wait(timeout=60)
             except subprocess.TimeoutExpired:
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
+                build_killed = True
+            print(f"mutants: stopped {waited:.0f} s after the time box or signal, "
+                  + ("during a build (the next run rebuilds the crate)" if build_killed
+                     else "outside a build (the next run builds on this one)"), flush=True)
             break
         time.sleep(5)
     rec.update(None, timed_out=timed_out)
     if rec.baseline_test is not None:
         write_baseline(tree, fingerprint, stage, rec.baseline_test)
-    return rec, timed_out
+    return rec, timed_out, build_killed
+
+
+def building(pid):
+    """Whether a rustc runs under process PID (cargo-mutants): the build
+    phase of a mutant, or of the baseline."""
+    children = defaultdict(list)
+    names = {}
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            with open(f"/proc/{d}/stat", encoding="utf-8") as f:
+                stat = f.read()
+        except OSError:
+            continue
+        name = stat[stat.index("(") + 1:stat.rindex(")")]
+        ppid = int(stat[stat.rindex(")") + 2:].split()[1])
+        children[ppid].append(int(d))
+        names[int(d)] = name
+    todo = list(children[pid])
+    while todo:
+        p = todo.pop()
+        if names.get(p) == "rustc":
+            return True
+        todo.extend(children[p])
+    return False
 
 
 class Record:
@@ -839,6 +882,10 @@ def main():
     ap.add_argument("--time-box", type=float, metavar="S",
                     help="stop cargo-mutants S seconds after its baseline (the unmutated "
                          "build and tests); what finished is recorded")
+    ap.add_argument("--stop-grace", type=float, default=120, metavar="S",
+                    help="at the time box or a signal, wait up to S s for the running "
+                         "mutant's build to end, so the next run builds on this one "
+                         "(0: stop at once)")
     ap.add_argument("--all-tests", action="store_true",
                     help="test every mutant with every test (default: the unit tests first, "
                          "every test only for the mutants they miss)")

@@ -17,17 +17,16 @@
 //! | part | stage | module | per hit |
 //! |---|---|---|---|
 //! | vocabulary | the quantities the API passes as types (path length, cone width, spread, lod, texture coordinate, …) and the precision tiers `Accurate`, `Fast` | [`units`] | – (zero-cost newtypes) |
+//! | – | fixed-point logarithms, ACCURATE and FAST: the kernels of set-up, path state, lod and texture | [`log2`], [`log2::fast`] | leading zeros + table read |
 //! | – | per-pixel, per-frame random numbers; the generators of measurement and test inputs | [`rng`] | Weyl step + 32-bit hash; xorshift32, xorshift64 |
 //! | set-up | camera pixel spread `γ` | [`setup::camera`] | – |
 //! | set-up | per-triangle `log2 Pb` | [`setup::table`] | one table read |
-//! | set-up | scene analysis: MIP levels a scene can select per texture, skips | [`setup::analysis`] | — (trimmed pyramids, untextured marks) |
 //! | path state | path state across bounces | [`path::raystack`] | `Pl += t`, `w += γ·t` |
 //! | path state | ray differentials (feature `raydiff`) | `path::raydiff` | transfer, reflection, refraction per hit |
-//! | lod | fixed-point logarithms, ACCURATE and FAST | [`lod::log2`], [`lod::log2_fast`] | leading zeros + table read |
 //! | lod | level of detail | [`lod`] | `log2 Pl − log2 Pb` or ray cones |
 //! | lod | texture-space footprint and lod from ray differentials (feature `raydiff`) | `lod::raydiff` | four dot products, one logarithm |
 //! | lod | environment-map lod and lat-long mapping of rays that leave the scene (feature `envmap`) | `lod::envmap` | one or two logarithms; `(u, v)`: two 3-step CORDIC vectorings, a division and short series in 32-bit words |
-//! | texture | storage: pyramids, typed image formats, BC, texel cache, sRGB (set-up) | [`texture::storage`] | level offset + texel index |
+//! | texture | storage: pyramids, typed image formats, BC, texel cache, sRGB; scene analysis: the MIP levels a scene can select per texture (set-up) | [`texture::storage`] | level offset + texel index |
 //! | texture | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
 //! | texture | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
 //! | texture | the one sampler: state, filter modes, batches, anisotropy, stochastic filtering | [`texture::sampler`], [`texture::mode`] | lod window, level choice, footprint, kernel |
@@ -150,7 +149,7 @@
 // ABI (`ffi`, caller pointers), the co-processors (`coproc::pcpi` and
 // `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers and the
 // CFU's texel reads) and the direct texel reads of
-// `texture::storage::pow2` (indices reduced to validated level views).
+// `texture::storage::level` (indices reduced to validated level views).
 #![deny(unsafe_code)]
 #![deny(
     missing_docs,
@@ -170,6 +169,7 @@ pub mod coproc;
 pub mod ffi;
 pub mod geomlod;
 pub mod lod;
+pub mod log2;
 pub mod path;
 pub mod rng;
 pub mod setup;

@@ -41,7 +41,7 @@ use core::fmt;
 use core::ops::{Add, AddAssign, Index, IndexMut, Neg, Sub, SubAssign};
 
 use fixed::traits::{FromFixed, ToFixed};
-use fixed::types::{I2F30, I8F8, I16F16, I32F32, U16F16, U32F32};
+use fixed::types::{I2F30, I8F8, I16F16, I32F32, U1F31, U16F16, U32F32};
 
 /// The API shared by every quantity newtype: constants, raw bits,
 /// conversions and the arithmetic of one quantity with itself.
@@ -669,6 +669,11 @@ pub struct Footprint {
 #[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[repr(transparent)]
 pub struct UnitVec(pub [I2F30; 3]);
+
+/// Smallest cosine between unit vectors the lods use: the clamp of `|n·d|`
+/// in the cone lod's normal term, and of `|D·n|` and `cos θₜ` in the ray
+/// differentials' transfer and refraction: 2⁻¹⁶ (U1F31 raw `1 << 15`).
+pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 
 /// As the component array.
 impl fmt::Debug for UnitVec {

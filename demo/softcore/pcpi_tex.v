@@ -9,7 +9,7 @@
 //             (scene units, the firmware's `PathLength`). rd = log2 Pl in
 //             I16F16 bits plus 0x80 (the I8F8 rounding offset of a lod),
 //             exactly `biased − (lz << 16)` of the firmware's
-//             `log2_u32f32_parts` (src/lod/log2.rs): lz = leading zeros of the
+//             `log2_u32f32_parts` (src/log2/mod.rs): lz = leading zeros of the
 //             64-bit value (63 for zero: Pl = 0 reads as 2⁻³²), the 32-bit
 //             mantissa m = top word of Pl << lz, index m[30:25] into the
 //             64 intervals of round(log2(1 + i/64)·2¹⁶), weight m[24:9],

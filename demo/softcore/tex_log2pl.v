@@ -2,7 +2,7 @@
 // on PicoRV32's PCPI port, cfu_tex.v on VexRiscv's CFU port): `tex.log2pl`,
 // log2 of a U32F32 path length in I16F16 bits plus 0x80, exactly
 // `biased − (lz << 16)` of the firmware's `log2_u32f32_parts`
-// (src/lod/log2.rs); see pcpi_tex.v's header for the instruction.
+// (src/log2/mod.rs); see pcpi_tex.v's header for the instruction.
 //
 // A free-running pipeline: `x` presented in cycle t is normalised in two
 // registered steps (the coarse shifts 32/16/8 at the end of t, the fine

@@ -68,8 +68,8 @@
 #![allow(unsafe_code)]
 
 use super::{BIL, BLOCK_WORDS, RAM, SEL, TAP01, TAP10, TAP11, TEXTURE_UNIT, TRI};
+use crate::texture::storage::level::LevelView;
 use crate::texture::storage::mip::Texel;
-use crate::texture::storage::pow2::LevelView;
 use crate::units::Lod;
 
 /// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the

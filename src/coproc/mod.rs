@@ -52,7 +52,7 @@
 //! levels `l = 0 … 16` ([`level_word`]).
 
 use crate::texture::address::AddressMode;
-use crate::texture::storage::pow2::Pow2Levels;
+use crate::texture::storage::level::Pow2Levels;
 use crate::units::TexCoord;
 
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]

@@ -74,7 +74,7 @@ pub const UNTEXTURED: i32 = i32::MIN;
 /// `tex.log2pl`: `log2` of the U32F32 raw value `pl` in I16F16 bits plus
 /// `0x80` (the I8F8 rounding offset), range `[−32·2¹⁶ + 0x80, 32·2¹⁶ + 0x80]`;
 /// `pl = 0` reads as one raw unit (`−32·2¹⁶ + 0x80`). Equal to
-/// `log2_u32f32(pl).to_bits() + 0x80` of [`crate::lod::log2`] for every input.
+/// `log2_u32f32(pl).to_bits() + 0x80` of [`crate::log2`] for every input.
 #[inline(always)]
 #[must_use]
 pub fn log2pl(pl: u64) -> i32 {

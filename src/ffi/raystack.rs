@@ -72,7 +72,7 @@ impl From<RmPathState> for PathState {
         let pl = PathLength::from_bits(s.pl);
         Self {
             pl,
-            pl_norm: crate::lod::log2_fast::NormPl::new(pl),
+            pl_norm: crate::log2::fast::NormPl::new(pl),
             cone: RayCone {
                 width: Width::from_bits(s.cone_width),
                 spread: Spread::from_bits(s.cone_spread),

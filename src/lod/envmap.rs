@@ -62,7 +62,7 @@
 //!
 //! Every lod is within [`ENVMAP_LOD_MAX_ERROR`] `= 2⁻⁸` level of the same
 //! formula in f64 on the same (quantised) inputs, for every input: the
-//! spread's `log2` within 2⁻¹³ ([`crate::lod::log2::LOG2_MAX_ERROR`]; halved for
+//! spread's `log2` within 2⁻¹³ ([`crate::log2::LOG2_MAX_ERROR`]; halved for
 //! the squared `|∂D|²`), the map constant `log2 W − log2 2π` within
 //! `2⁻¹³ + 2⁻¹⁷`, the latitude term (`½·log2(x² + z²)`, `x² + z²` exact)
 //! within `2⁻¹⁴ + 2⁻¹⁷`, the output rounding 2⁻⁹: at most `2⁻⁹ + 2.6·2⁻¹³
@@ -133,7 +133,7 @@ use core::fmt;
 
 use fixed::types::I2F30;
 
-use crate::lod::log2::{clz32, log2_bits, log2_u32};
+use crate::log2::{clz32, log2_bits, log2_u32};
 use crate::units::{Lod, Spread, TexCoord, UnitVec};
 
 /// Documented error bound of [`EnvMap::cone_lod`] and

@@ -26,7 +26,7 @@
 //! | tier | calls | log2 | error bound |
 //! |---|---|---|---|
 //! | [`Accurate`] (bit-identical on every target) | [`table_lod`], [`cone_lod`], [`table_lod_batch`], [`cone_lod_batch`] | 64-entry table, linear interpolation, ≤ 2⁻¹³ | ≤ 2⁻⁸ level |
-//! | [`Fast`] (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | the same calls, and from the ray stack's normalised `Pl` [`table_lod_norm`], [`table_lod_norm_batch`] (no leading-zero count, one [`LodWord`] per hit) | 1024-entry table, no interpolation ([`log2_fast`]), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
+//! | [`Fast`] (fewer instructions per hit; identical on every target, may differ from ACCURATE by 1/256 level) | the same calls, and from the ray stack's normalised `Pl` [`table_lod_norm`], [`table_lod_norm_batch`] (no leading-zero count, one [`LodWord`] per hit) | 1024-entry table, no interpolation ([`log2::fast`](crate::log2::fast)), ≤ 2⁻¹⁰ | ≤ 2⁻⁸ level |
 //!
 //! Both meet the same documented bound [`LOD_MAX_ERROR`]; the FAST tier
 //! spends its margin (`2⁻¹⁰ + 2⁻¹⁰ + 2⁻⁹ = 2⁻⁸` with the entry error).
@@ -39,8 +39,6 @@
 //!
 //! # Submodules
 //!
-//! * [`log2`], [`log2_fast`]: the fixed-point logarithms of the ACCURATE
-//!   and FAST paths.
 //! * `raydiff` (feature `raydiff`): the texture-space footprint of a hit
 //!   from its ray differentials, and its lod.
 //! * `envmap` (feature `envmap`): the lods of rays that leave the scene on
@@ -49,23 +47,24 @@
 
 #[cfg(feature = "envmap")]
 pub mod envmap;
-pub mod log2;
-pub mod log2_fast;
 #[cfg(feature = "raydiff")]
 pub mod raydiff;
 
+#[cfg(feature = "cone")]
 use fixed::types::U1F31;
 
 #[cfg(feature = "cone")]
-use crate::lod::log2::LOD_BIAS;
-#[cfg(all(feature = "cone", not(all(feature = "pcpi", target_arch = "riscv32"))))]
-use crate::lod::log2::log2_u1f31_biased;
-use crate::lod::log2::log2_u32f32_parts;
+use crate::log2::LOD_BIAS;
 #[cfg(feature = "cone")]
-use crate::lod::log2_fast::log2_u1f31_fast_biased;
-use crate::lod::log2_fast::{NormPl, log2_u32f32_fast_parts};
+use crate::log2::fast::log2_u1f31_fast_biased;
+use crate::log2::fast::{NormPl, log2_u32f32_fast_parts};
+#[cfg(all(feature = "cone", not(all(feature = "pcpi", target_arch = "riscv32"))))]
+use crate::log2::log2_u1f31_biased;
+use crate::log2::log2_u32f32_parts;
 #[cfg(feature = "cone")]
 use crate::units::Delta;
+#[cfg(feature = "cone")]
+use crate::units::MIN_COS;
 #[cfg(feature = "cone")]
 use crate::units::Width;
 #[cfg(doc)]
@@ -76,11 +75,6 @@ use crate::units::{Lod, Log2Pb, PathLength, Precision, Tier};
 /// levels: 2⁻⁸.
 pub const LOD_MAX_ERROR: f64 = 1.0 / 256.0;
 
-/// Smallest `|n·d|` used by the normal term, and smallest `|D·n|` and
-/// `cos θₜ` of the ray differentials' transfer and refraction: 2⁻¹⁶
-/// (U1F31 raw `1 << 15`).
-pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
-
 /// Table method: `lod = log2 Pl − log2 Pb` for the accumulated path length
 /// `pl` (scene units) and the hit triangle's table entry, in tier `T`.
 /// `None` for an untextured triangle (nothing to fetch). `Pl = 0` is read
@@ -88,8 +82,8 @@ pub const MIN_COS: U1F31 = U1F31::from_bits(1 << 15);
 ///
 /// | tier | log2 | error against f64 |
 /// |---|---|---|
-/// | [`Accurate`] | 64-entry table, interpolated ([`log2`]) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
-/// | [`Fast`] | 1024-entry table, no interpolation ([`log2_fast`]) | ≤ [`LOD_MAX_ERROR`] (log2 ≤ 2⁻¹⁰, entry ≤ 2⁻¹⁰, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step (1/256 level) |
+/// | [`Accurate`] | 64-entry table, interpolated ([`log2`](crate::log2)) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
+/// | [`Fast`] | 1024-entry table, no interpolation ([`log2::fast`](crate::log2::fast)) | ≤ [`LOD_MAX_ERROR`] (log2 ≤ 2⁻¹⁰, entry ≤ 2⁻¹⁰, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step (1/256 level) |
 ///
 /// Both are monotonic non-decreasing in `Pl` and identical on every
 /// target. No saturation is needed: `log2 Pl ∈ [−32, 32)` and every entry
@@ -146,8 +140,8 @@ fn table_lod_soft(pl: PathLength, pb: Log2Pb) -> Option<Lod> {
 ///
 /// | tier | log2 | error against f64 of the same inputs |
 /// |---|---|---|
-/// | [`Accurate`] | 64-entry table, interpolated ([`log2`]) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
-/// | [`Fast`] | both logarithms from the 1024-entry table, no interpolation ([`log2_fast`]) | ≤ [`LOD_MAX_ERROR`] (two log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step |
+/// | [`Accurate`] | 64-entry table, interpolated ([`log2`](crate::log2)) | ≤ [`LOD_MAX_ERROR`] `= 2⁻⁸` level |
+/// | [`Fast`] | both logarithms from the 1024-entry table, no interpolation ([`log2::fast`](crate::log2::fast)) | ≤ [`LOD_MAX_ERROR`] (two log2 ≤ 2⁻¹⁰ each, output rounding ≤ 2⁻⁹); may differ from [`Accurate`] by one step |
 #[cfg(feature = "cone")]
 #[inline]
 #[must_use]
@@ -277,7 +271,7 @@ fn fast_cone_lod(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
 /// # Example
 /// ```
 /// use raymip::lod::{LodWord, table_lod_norm_batch, table_lod_norm};
-/// use raymip::lod::log2_fast::NormPl;
+/// use raymip::log2::fast::NormPl;
 /// use raymip::{Lod, Log2Pb, PathLength};
 /// let key = NormPl::new(PathLength::from_num(12));
 /// let hits = [(key, Log2Pb::from_bits(0)), (key, Log2Pb::UNTEXTURED)];
@@ -713,13 +707,13 @@ mod tests {
         if pb.is_untextured() {
             return None;
         }
-        let d = crate::lod::log2::log2_u32f32(pl.to_fixed()).to_bits() - pb.to_i16f16().to_bits();
+        let d = crate::log2::log2_u32f32(pl.to_fixed()).to_bits() - pb.to_i16f16().to_bits();
         Some(Lod::from_bits(((d + 0x80) >> 8) as i16))
     }
 
     #[cfg(feature = "cone")]
     fn cone_lod_formula(width: Width, delta: Delta, n_dot_d: Option<U1F31>) -> Lod {
-        use crate::lod::log2::log2_bits;
+        use crate::log2::log2_bits;
         let lw = log2_bits(width.to_bits().unsigned_abs(), 32);
         let mut l = delta.saturating_add(Delta::from_fixed(lw));
         if let Some(c) = n_dot_d {

@@ -39,7 +39,7 @@
 //! * zero UV area: [`RayDiffTriangle::is_flat_uv`]; the footprint is zero
 //!   and the lod [`Lod::MIN`] (level 0);
 //! * grazing hits: bounded by the transfer's clamp
-//!   ([`MIN_COS`](crate::lod::MIN_COS)).
+//!   ([`MIN_COS`](crate::units::MIN_COS)).
 //!
 //! # Error bound
 //!
@@ -85,7 +85,7 @@
 //! camera chains of every case class (`host-tests/src/raydiff_chains.rs`:
 //! slivers to 2²⁰:1, u and v ranges differing by 2¹⁶, UV gradients down
 //! to 2⁻³⁰, collinear and zero-UV-area triangles, cosines down to
-//! [`MIN_COS`](crate::lod::MIN_COS), ten bounces through planes, convex
+//! [`MIN_COS`](crate::units::MIN_COS), ten bounces through planes, convex
 //! and concave mirrors and refractions up to total internal reflection,
 //! concave mirrors near their focus) and tests the lod against f64 within
 //! this bound (proptests and the fuzz target `raydiff_chain`); the
@@ -93,7 +93,7 @@
 //! of the ordinary, sliver, lopsided-UV and slow-UV chains. The measured
 //! errors per class (all below 2⁻⁷) are in `docs/lod-methods.md`.
 
-use crate::lod::log2::{mantissa_log2, normalise64};
+use crate::log2::{mantissa_log2, normalise64};
 use crate::path::raydiff::{EXP_MIN, PosDiff, RayDiff, mulhi, shr};
 use crate::setup::table::TexTriangle;
 use crate::units::Footprint;

@@ -51,7 +51,7 @@
 
 use core::fmt;
 
-use crate::lod::log2_fast::NormPl;
+use crate::log2::fast::NormPl;
 use crate::setup::camera::PixelSpread;
 #[cfg(feature = "cone")]
 use crate::units::Width;

@@ -7,7 +7,7 @@
 
 use fixed::types::I16F16;
 
-use crate::lod::log2::log2_bits;
+use crate::log2::log2_bits;
 use crate::units::Spread;
 
 unit_error! {
@@ -79,7 +79,7 @@ impl PixelSpread {
         self.angle
     }
 
-    /// `log2 γ` (I16F16; error ≤ [`LOG2_MAX_ERROR`](crate::lod::log2::LOG2_MAX_ERROR)).
+    /// `log2 γ` (I16F16; error ≤ [`LOG2_MAX_ERROR`](crate::log2::LOG2_MAX_ERROR)).
     #[must_use]
     pub const fn log2(&self) -> I16F16 {
         self.log2
@@ -96,7 +96,7 @@ mod tests {
         let s = PixelSpread::from_fov_y(40f64.to_radians(), 600).unwrap();
         let want = (2.0 * (20f64.to_radians()).tan() / 600.0).atan();
         assert!((s.angle().to_num::<f64>() - want).abs() < 1e-9);
-        assert!((s.log2().to_num::<f64>() - want.log2()).abs() <= crate::lod::log2::LOG2_MAX_ERROR);
+        assert!((s.log2().to_num::<f64>() - want.log2()).abs() <= crate::log2::LOG2_MAX_ERROR);
         assert_eq!(
             PixelSpread::from_fov_y(0.0, 600),
             Err(CameraError::BadAngle)

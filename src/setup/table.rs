@@ -37,7 +37,7 @@
 //! products cannot overflow. Then
 //! `log2(A/N) = ½·log2|e₁×e₂|² − log2|uv₁×uv₂| − log2 w − log2 h`
 //! needs no square root and no division. Each of the four logarithms is off
-//! by at most [`LOG2_MAX_ERROR`](crate::lod::log2::LOG2_MAX_ERROR), so an entry is
+//! by at most [`LOG2_MAX_ERROR`](crate::log2::LOG2_MAX_ERROR), so an entry is
 //! within [`TABLE_MAX_ERROR`] `= 2⁻¹⁰` level of the exact value.
 //!
 //! # Degenerate triangles (documented values, never a panic)
@@ -52,7 +52,7 @@
 
 use fixed::types::{I16F16, I32F32};
 
-use crate::lod::log2::{log2_bits_u128, log2_u32};
+use crate::log2::{log2_bits_u128, log2_u32};
 use crate::setup::camera::PixelSpread;
 #[cfg(feature = "cone")]
 use crate::units::Delta;

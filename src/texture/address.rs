@@ -22,8 +22,11 @@
 //! indices lie in `(−2¹⁷, 2¹⁷)`; the mapping handles any `i32` (a final
 //! clamp keeps results in range), so no input panics.
 
-use crate::texture::kernel::accurate::WEIGHT_BITS;
+use crate::texture::storage::level::pow2_wrap_taps;
 use crate::units::TexCoord;
+
+/// Fractional bits of the bilinear weights.
+pub const WEIGHT_BITS: u32 = 12;
 
 /// What a sampler does with coordinates outside `[0, 1)`, per axis.
 ///
@@ -240,7 +243,7 @@ impl AddressMode {
 impl AddressMode {
     /// [`taps`](Self::taps) on a power-of-two side `n = 2^k` with
     /// `m = n − 1`, `s = 31 − k` and the wrap constant `c =`
-    /// [`wrap_constant`]`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
+    /// [`wrap_constant`](crate::texture::storage::level::wrap_constant)`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
     /// multiply), mirror by [`pow2_mirror_taps`] (a multiply-accumulate
     /// and an XOR per tap), the clamping modes as for any size. Equal to
     /// `taps` for every input (tested). With `MASKED`, for a reader that
@@ -333,41 +336,6 @@ pub(crate) struct AxisTaps {
     pub(crate) border: [bool; 2],
 }
 
-/// `(2^(31 − bits) − 2³¹)/2^k` as wrapping `u32` for a power-of-two side
-/// `2^k`, `k ≤ 31 − bits` (exact: the numerator is a multiple of
-/// `2^(31 − bits)`): the constant of [`pow2_wrap_taps`].
-#[must_use]
-pub(crate) const fn wrap_constant(k: u32, bits: u32) -> u32 {
-    let c = (1i32 << (31 - bits)).wrapping_add(i32::MIN);
-    c.wrapping_shr(k) as u32
-}
-
-/// [`AddressMode::taps`] of [`Wrap`](AddressMode::Wrap) for a power-of-two
-/// side `size = 2^k` with one 32×32→64-bit multiply, `c =`
-/// [`wrap_constant`]`(k, bits)`. With `x = u·size − ½ + 2^−(bits+1)` in
-/// 2⁻³²-texel units and `u` the fractional bits of the coordinate,
-/// `x = size·y` for the integer `y = u + c` (exact for `k ≤ 31 − bits`).
-/// For `y mod 2³²` the product `size·y` has `i₀ = floor(x / 2³²)` already
-/// wrapped to `[0, size)` in its high word and the weight in the top
-/// `bits` bits of its low word; `i₁ = (i₀ + 1) & m` with `m = size − 1`
-/// (given: a level view's mask, so that the view's own mask of the same
-/// index folds into it). Tested equal to
-/// `taps` for every side up to [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE).
-#[inline(always)]
-pub(crate) fn pow2_wrap_taps(
-    coord: TexCoord,
-    size: u32,
-    m: u32,
-    c: u32,
-    bits: u32,
-) -> (u32, u32, u32) {
-    let y = (coord.to_bits() as u32).wrapping_add(c);
-    let p = u64::from(y) * u64::from(size);
-    let i0 = (p >> 32) as u32;
-    let f = (p as u32) >> (32 - bits);
-    (i0, i0.wrapping_add(1) & m, f)
-}
-
 /// An address mode as a type: what a [`Sampler`](crate::texture::Sampler)
 /// compiles in for one axis. The five static modes are zero-sized;
 /// [`AnyAxis`] carries its mode as a value (the run-time form's fallback,
@@ -437,6 +405,7 @@ impl Axis for AnyAxis {
 mod tests {
     extern crate std;
     use super::*;
+    use crate::texture::storage::level::wrap_constant;
     use proptest::prelude::*;
 
     /// Reference: the Vulkan wrapping operation on an integer index, in

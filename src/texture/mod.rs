@@ -3,7 +3,7 @@
 //!
 //! | stage | module | per sample |
 //! |---|---|---|
-//! | storage: pyramids, images in any format, BC blocks, the texel cache, sRGB | [`storage`] | level offset, texel decode or cache tag compare |
+//! | storage: pyramids, images in any format, BC blocks, the texel cache, sRGB; the levels a scene can select (set-up) | [`storage`] | level offset, texel decode or cache tag compare |
 //! | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`address`] | one multiply per axis and level |
 //! | filter kernels, one per precision tier | [`kernel`] | 4 or 8 texels, one multiply-accumulate chain |
 //! | the sampler (state, filter modes, batches, anisotropy, stochastic filtering) | [`sampler`], [`mode`] | lod window, level choice, footprint, kernel |

@@ -3,8 +3,8 @@
 //! maxima (quoted in docs/accuracy.md) and checks the documented bounds.
 
 use fixed::types::{I32F32, U1F31};
-use raymip::lod::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::lod::{LOD_MAX_ERROR, cone_lod, table_lod};
+use raymip::log2::{LOG2_MAX_ERROR, log2_bits};
 use raymip::path::raystack::PathState;
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::{TABLE_MAX_ERROR, TexTriangle};

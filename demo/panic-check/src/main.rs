@@ -28,15 +28,15 @@ use raymip::ffi::{
 use raymip::geomlod::{
     DepthToLod, InstanceLod, LodMode, Selector, choose, ray_mask, transition_step, visible,
 };
-use raymip::lod::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
-use raymip::lod::log2_fast::{NormPl, log2_u32f32_fast};
+use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
+use raymip::log2::fast::{NormPl, log2_u32f32_fast};
 use raymip::lod::{
     LodWord, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
     table_lod_norm, table_lod_norm_batch,
 };
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::{Rng, mix32};
-use raymip::setup::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
+use raymip::texture::storage::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::address::AddressMode;

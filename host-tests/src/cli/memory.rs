@@ -22,8 +22,8 @@ use std::path::{Path, PathBuf};
 
 use raymip::Log2Pb;
 use raymip::path::raystack::stack_bound;
-use raymip::setup::analysis::LodRange;
 use raymip::texture::Mode;
+use raymip::texture::storage::analysis::LodRange;
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::TexelFormat;
 use raymip::texture::storage::image::image_len;

@@ -67,8 +67,8 @@ use std::fmt::Write as _;
 
 use fixed::types::U32F32;
 use raymip::coproc::{BLOCK_WORDS, coord_i4f28, level_config};
-use raymip::lod::log2::log2_u32f32;
 use raymip::lod::table_lod;
+use raymip::log2::log2_u32f32;
 use raymip::rng::Rng;
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::AnyAxis;
@@ -513,7 +513,7 @@ mod tests {
             let got = f64::from(log2pl(p).wrapping_sub(0x80) as i32) / 65536.0;
             let want = (p.max(1) as f64).log2() - 32.0;
             assert!(
-                (got - want).abs() <= raymip::lod::log2::LOG2_MAX_ERROR,
+                (got - want).abs() <= raymip::log2::LOG2_MAX_ERROR,
                 "{p:#x}: {got} vs {want}"
             );
             for pb in [Log2Pb::MIN, Log2Pb::MAX, Log2Pb::from_bits(0x12345)] {

@@ -1,6 +1,6 @@
 //! What a scene doesn't need, on the host: path-length bounds per
 //! texture from the scene's geometry, the firmware's set-up analysis
-//! (`raymip::setup::analysis`) over the Pb table, pyramids trimmed to the levels
+//! (`raymip::texture::storage::analysis`) over the Pb table, pyramids trimmed to the levels
 //! any hit can select, and a render with them.
 //!
 //! Bounds ([`path_bounds`]), per texture, from the triangles that use it
@@ -19,12 +19,12 @@
 //! (float rounding of the distances, fixed-point rounding of each
 //! segment). Only the firmware table method and the level-0 methods (mip0,
 //! truth) are trimmed; cone, ray-differential and float renders keep full
-//! pyramids (see `raymip::setup::analysis` on cones).
+//! pyramids (see `raymip::texture::storage::analysis` on cones).
 
-use raymip::setup::analysis::{
+use raymip::texture::Mode;
+use raymip::texture::storage::analysis::{
     LevelRange, LodRange, PathBounds, TextureUse, analyse, mark_skipped,
 };
-use raymip::texture::Mode;
 use raymip::texture::storage::mip::{Geometry, Pyramid, TexelSource};
 use raymip::units::{Lod, PathLength};
 use serde::Serialize;

@@ -2,7 +2,8 @@
 
 use fixed::types::{I16F16, U1F31};
 use raymip::baseline_f32::{cone_lod_f32, table_lod_f32};
-use raymip::lod::{MIN_COS, clamp_lod, cone_lod, table_lod};
+use raymip::lod::{clamp_lod, cone_lod, table_lod};
+use raymip::units::MIN_COS;
 use raymip::units::{Accurate, Delta, Lod, Log2Pb, PathLength, Width};
 
 use super::{FLOAT_CLASSES, Runner, bad, clamp, near, value};

@@ -8,7 +8,7 @@
 //! or every `mₖ = 0` with `e` = [`EXP_MIN`]. Truncating a normalised vector
 //! to `2ᵉ` costs less than `2⁻²⁹·(1 + 2⁻³⁰)` of its largest component.
 
-use crate::lod::log2::clz32;
+use crate::log2::clz32;
 
 /// Smallest exponent (that of the zero vector): `−2¹⁴`.
 pub const EXP_MIN: i32 = -(1 << 14);

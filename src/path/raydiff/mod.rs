@@ -97,14 +97,14 @@
 
 use fixed::types::{I2F30, I4F28};
 
-use crate::lod::MIN_COS;
-use crate::lod::log2::normalise64;
+use crate::log2::normalise64;
+use crate::units::MIN_COS;
 use crate::units::PathLength;
 
 mod bfp;
 pub mod gbuffer;
 
-use crate::lod::log2::clz32;
+use crate::log2::clz32;
 pub(crate) use bfp::{
     Bfp3, EXP_MAX, EXP_MIN, dot64, exp_selected, mulhi, norm_shift, recip, shr, wide_shift,
 };

@@ -69,8 +69,9 @@
 
 use crate::texture::storage::mip::Texel;
 
-/// Fractional bits of the bilinear weights.
-pub const WEIGHT_BITS: u32 = 12;
+/// Fractional bits of the bilinear weights: the address stage's
+/// ([`address::WEIGHT_BITS`](crate::texture::address::WEIGHT_BITS)).
+pub use crate::texture::address::WEIGHT_BITS;
 
 /// Weight 1.0 in [`WEIGHT_BITS`] format (4096).
 pub const WEIGHT_ONE: u32 = 1 << WEIGHT_BITS;

@@ -23,7 +23,7 @@
 //!
 //! Fixed point: axis components in texels are clamped to `|x| < 2¹⁵`
 //! (the largest texture side) with 16 fractional bits, squared lengths
-//! are U32F32 in `u64`, logarithms come from [`crate::lod::log2`] (error
+//! are U32F32 in `u64`, logarithms come from [`crate::log2`] (error
 //! 2⁻¹³) and `N` from a comparison with `log2 k`, `k = 1 … 16`; the probe
 //! step `a_uv / N` is one 64-bit division at set-up of the sample. A zero
 //! axis reads as the smallest positive length (lod ≈ −16, clamped later).
@@ -31,7 +31,7 @@
 use fixed::types::I16F16;
 
 use super::{Key, Sampler};
-use crate::lod::log2::log2_bits;
+use crate::log2::log2_bits;
 use crate::texture::Stats;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};

@@ -37,9 +37,9 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crate::texture::address::wrap_constant;
 use crate::texture::address::{AddressMode, AnyAxis, Axis, ClampToEdge, Wrap};
 use crate::texture::kernel::{Kernel, Linear, Rounding};
+use crate::texture::storage::level::wrap_constant;
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
 use crate::texture::{FetchStats, FilterError, Mode, Stats, tex_coord_from_f64};
 use crate::units::{Accurate, Lod, Precision, TexCoord};

@@ -40,25 +40,8 @@
 
 use core::fmt;
 
-use crate::texture::storage::pow2::Pow2Levels;
-
-/// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
-///
-/// # Example
-/// ```
-/// use raymip::Texel;
-/// let t: Texel = u32::from_le_bytes([0x10, 0x20, 0x30, 0xFF]); // r, g, b, a
-/// assert_eq!(t, 0xFF30_2010);
-/// assert_eq!((t & 0xFF, t >> 24), (0x10, 0xFF)); // red low, alpha high
-/// ```
-pub type Texel = u32;
-
-/// Largest number of stored levels (a 32768-texel side has 16).
-pub const MAX_LEVELS: u8 = 16;
-
-/// Largest texture side in texels: 2¹⁵ = 32768 (keeps every offset and
-/// block number inside `u32` on 32-bit targets).
-pub const MAX_SIZE: u32 = 1 << 15;
+use crate::texture::storage::level::Pow2Levels;
+pub use crate::texture::storage::level::{MAX_LEVELS, MAX_SIZE, Texel};
 
 /// Number of levels of the full chain down to 1×1:
 /// `1 + floor(log2(max(w, h)))`; 0 when a side is 0.
@@ -190,7 +173,7 @@ impl Geometry {
     /// `first ..= last`, `first` first. Reads of a level outside that range
     /// are clamped into it, so a sampler gives the same texels as with the
     /// full pyramid for every lod whose levels are stored
-    /// (`crate::setup::analysis` computes that range for a scene). The stored
+    /// (`crate::texture::storage::analysis` computes that range for a scene). The stored
     /// texels are the sub-slice [`Geometry::stored_range`] of the full
     /// pyramid (see [`Pyramid::trim`]).
     ///

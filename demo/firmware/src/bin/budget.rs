@@ -59,7 +59,7 @@ use core::hint::black_box as bb;
 use fixed::types::{I16F16, U1F31};
 use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::geomlod::{InstanceLod, LodMode, RecordsFull, Selector};
-use raymip::lod::log2_fast::NormPl;
+use raymip::log2::fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };

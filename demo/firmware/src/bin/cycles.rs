@@ -31,7 +31,7 @@
 use core::hint::black_box as bb;
 
 use fixed::types::U1F31;
-use raymip::lod::log2_fast::NormPl;
+use raymip::log2::fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };

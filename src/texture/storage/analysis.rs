@@ -52,7 +52,7 @@
 use core::fmt;
 
 use crate::lod::{clamp_lod, table_lod};
-use crate::texture::Mode;
+use crate::texture::mode::Mode;
 use crate::units::{Accurate, Lod, Log2Pb, PathLength};
 
 /// The nearest and farthest accumulated path length `Pl` (scene units)
@@ -123,7 +123,7 @@ pub struct AnalysisStats {
 ///
 /// # Example
 /// ```
-/// use raymip::setup::analysis::{AnalysisError, PathBounds, TextureUse, analyse};
+/// use raymip::texture::storage::analysis::{AnalysisError, PathBounds, TextureUse, analyse};
 /// use raymip::{Log2Pb, PathLength};
 /// let entries = [Log2Pb::from_bits(0); 3];
 /// let bounds = [Some(PathBounds { nearest: PathLength::ONE, farthest: PathLength::ONE })];
@@ -178,7 +178,7 @@ impl core::error::Error for AnalysisError {}
 ///
 /// # Example
 /// ```
-/// use raymip::setup::analysis::{AnalysisStats, LevelRange, LodRange, PathBounds, TextureUse, analyse};
+/// use raymip::texture::storage::analysis::{AnalysisStats, LevelRange, LodRange, PathBounds, TextureUse, analyse};
 /// use raymip::{Lod, Log2Pb, Mode, PathLength};
 /// // Texture 0 on two triangles, log2 Pb = 0 and 1; triangle 2 untextured;
 /// // triangle 3 uses texture 1, which the caller knows no hit can reach.

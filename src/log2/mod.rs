@@ -1,6 +1,11 @@
 //! Fixed-point base-2 logarithm: leading-zero count + 64-entry table with
 //! linear interpolation.
 //!
+//! This module is the ACCURATE tier's logarithm; [`fast`] is the FAST
+//! tier's (1024-entry table, no interpolation). Set-up, path state, lod
+//! and texture all call them, so they sit on the ground floor beside
+//! [`units`](crate::units).
+//!
 //! # Method
 //!
 //! For an unsigned fixed-point value `x = bits · 2^-f` with `bits ≠ 0`, let
@@ -45,6 +50,8 @@
 //! byte table ([`clz32_soft`]) replace the compiler's generic sequence.
 //! A 64-bit input is normalised word-wise on 32-bit cores (one `clz` of the
 //! high word, or of the low word when the high word is zero).
+
+pub mod fast;
 
 use fixed::types::{I16F16, U16F16, U32F32};
 

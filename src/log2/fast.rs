@@ -5,13 +5,13 @@
 //!
 //! # Method
 //!
-//! As in [`crate::lod::log2`], `log2 x = (n − f) + log2 m` with `m ∈ [1, 2)` the
+//! As in [`crate::log2`], `log2 x = (n − f) + log2 m` with `m ∈ [1, 2)` the
 //! mantissa normalised to 32 bits (same normalisation, same zero rule: a
 //! zero input reads as one raw unit). The ten bits after the leading one
 //! select an interval `[1 + i/1024, 1 + (i+1)/1024)` of the mantissa; the
 //! table holds `log2` of the interval's midpoint `1 + (i + ½)/1024`,
 //! rounded to U0F16 (the I8F8 rounding offset and the integer bias of
-//! [`crate::lod::log2`] folded in, so a lod needs no constant of its own).
+//! [`crate::log2`] folded in, so a lod needs no constant of its own).
 //! Against the accurate kernel this saves the slope read, the weight
 //! extract, the multiply and the rounding add.
 //!
@@ -31,7 +31,7 @@
 
 use fixed::types::{I16F16, U32F32};
 
-use crate::lod::log2::{LOD_BIAS, normalise64};
+use crate::log2::{LOD_BIAS, normalise64};
 use crate::units::PathLength;
 
 /// Documented maximum absolute error of [`log2_u32f32_fast`] (and of the
@@ -87,7 +87,7 @@ fn mantissa_log2_fast_biased(m: u32) -> u32 {
 }
 
 /// FAST log2 of a U32F32 raw value, split as
-/// [`crate::lod::log2::log2_u32f32_parts`]: `(lz, biased)` with
+/// [`crate::log2::log2_u32f32_parts`]: `(lz, biased)` with
 /// `log2 (I16F16 bits) + 0x80 ≈ biased − (lz << 16)`, `lz ∈ 0..=63`,
 /// within [`FAST_LOG2_MAX_ERROR`].
 #[inline(always)]
@@ -97,19 +97,19 @@ pub(crate) fn log2_u32f32_fast_parts(bits: u64) -> (u32, u32) {
 }
 
 /// FAST log2 of a U1F31 raw value `x ≠ 0` in I16F16 bits plus
-/// [`LOD_BIAS`] (as [`crate::lod::log2`]'s accurate `log2_u1f31_biased`),
+/// [`LOD_BIAS`] (as [`crate::log2`]'s accurate `log2_u1f31_biased`),
 /// within [`FAST_LOG2_MAX_ERROR`].
 #[cfg(feature = "cone")]
 #[inline(always)]
 pub(crate) fn log2_u1f31_fast_biased(x: u32) -> i32 {
-    let (m, lz) = crate::lod::log2::normalise32_nonzero(x);
+    let (m, lz) = crate::log2::normalise32_nonzero(x);
     mantissa_log2_fast_biased(m) as i32 - ((lz as i32) << 16)
 }
 
 /// FAST log2 of a path length or distance in U32F32 (range `[2⁻³², 2³²)` →
 /// `[−32, 32)`); zero gives about −32 (read as 2⁻³²). Error ≤
 /// [`FAST_LOG2_MAX_ERROR`] `= 2⁻¹⁰` (the ACCURATE
-/// [`crate::lod::log2::log2_u32f32`] is within 2⁻¹³). Monotonic non-decreasing.
+/// [`crate::log2::log2_u32f32`] is within 2⁻¹³). Monotonic non-decreasing.
 #[inline]
 #[must_use]
 pub fn log2_u32f32_fast(x: U32F32) -> I16F16 {
@@ -149,7 +149,7 @@ const NORM_TABLE: [i32; 1 << INDEX_BITS] = {
 ///
 /// # Example
 /// ```
-/// use raymip::lod::log2_fast::NormPl;
+/// use raymip::log2::fast::NormPl;
 /// use raymip::lod::{LOD_MAX_ERROR, table_lod_norm};
 /// use raymip::{Log2Pb, PathLength};
 /// // Pl = 12 = 2³ · 1.5: exponent 3, mantissa bits after the leading one

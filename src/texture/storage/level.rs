@@ -1,0 +1,297 @@
+//! One level in memory: the texel word, the size limits, and validated
+//! views of power-of-two levels.
+//!
+//! A [`LevelView`] is a level's first texel, its sides and masks and its
+//! row stride, checked once when it is made; [`Pow2Levels`] holds one per
+//! level index `0 ..= 16`. The sampler reads the texels of a
+//! [`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid) through
+//! them: two row pointers (`base + y·stride`) and the four texels
+//! `row[x]` per footprint, with no bounds check per sample. [`Texel`],
+//! [`MAX_SIZE`] and [`MAX_LEVELS`] are here, below the pyramids
+//! ([`crate::texture::storage::mip`] re-exports them), so that
+//! [`TexelSource`](crate::texture::storage::mip::TexelSource) can hand
+//! out these views; so is the one-multiply wrap of a power-of-two side
+//! (`pow2_wrap_taps`) that the views and the address modes share.
+//!
+//! # Safety
+//!
+//! This is the crate's only texture module with `unsafe` code: the texel
+//! reads of [`LevelView`]. The argument, in full:
+//!
+//! * A view is made only by [`LevelView::new`] from a slice `&'a [Texel]`
+//!   of at least `w·h` texels, `w = 2^kx`, `h = 2^ky`, `kx, ky ≤ 15`
+//!   ([`MAX_SIZE`]); it keeps the slice's start pointer (whose provenance
+//!   covers the whole slice), `w`, `h`, `mx = w − 1`, `my = h − 1`, the
+//!   row stride `4w` in bytes (and two shift counts no read uses). Its
+//!   fields are private and never written after construction, and it
+//!   holds a `PhantomData<&'a [Texel]>`: it cannot outlive the shared
+//!   borrow, during which the texels can be neither freed nor written,
+//!   and moving a view does not move them.
+//! * Every read first reduces its indices to `x ≤ mx`, `y ≤ my` (a mask
+//!   `& mx` / `& my`, or a `min` with them; or, for a wrapped
+//!   footprint, takes the first index as the high word of the 32×32-bit
+//!   product of a 32-bit fraction with the side, which is below the
+//!   side, and the second as the first plus one, masked), so the texel index
+//!   `y·w + x ≤ (h − 1)·w + w − 1 = w·h − 1` lies inside the slice. The
+//!   row's byte offset `y·4w < 2³²` is computed in `usize` (no overflow
+//!   on 32-bit or wider targets), and the read is one `ptr::byte_add`
+//!   (the row), one `ptr::add` (the column) and `ptr::read` of an
+//!   initialised, aligned `Texel`; the slice's length is not compared
+//!   again.
+//!
+//! Tests: views of every level of trimmed and full pyramids read exactly
+//! what [`Pyramid::get`](crate::texture::storage::mip::Pyramid::get) reads, over every index and beyond (masks and
+//! clamps), also under Miri (`scripts/robustness`, filter `pow2::`).
+
+#![allow(unsafe_code)]
+
+use core::fmt;
+use core::marker::PhantomData;
+use core::ptr::NonNull;
+
+use crate::units::TexCoord;
+
+/// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
+///
+/// # Example
+/// ```
+/// use raymip::Texel;
+/// let t: Texel = u32::from_le_bytes([0x10, 0x20, 0x30, 0xFF]); // r, g, b, a
+/// assert_eq!(t, 0xFF30_2010);
+/// assert_eq!((t & 0xFF, t >> 24), (0x10, 0xFF)); // red low, alpha high
+/// ```
+pub type Texel = u32;
+
+/// Largest number of stored levels (a 32768-texel side has 16).
+pub const MAX_LEVELS: u8 = 16;
+
+/// Largest texture side in texels: 2¹⁵ = 32768 (keeps every offset and
+/// block number inside `u32` on 32-bit targets).
+pub const MAX_SIZE: u32 = 1 << 15;
+
+/// `(2^(31 − bits) − 2³¹)/2^k` as wrapping `u32` for a power-of-two side
+/// `2^k`, `k ≤ 31 − bits` (exact: the numerator is a multiple of
+/// `2^(31 − bits)`): the constant of [`pow2_wrap_taps`].
+#[must_use]
+pub(crate) const fn wrap_constant(k: u32, bits: u32) -> u32 {
+    let c = (1i32 << (31 - bits)).wrapping_add(i32::MIN);
+    c.wrapping_shr(k) as u32
+}
+
+/// [`AddressMode::taps`](crate::texture::address::AddressMode::taps) of
+/// [`Wrap`](crate::texture::address::AddressMode::Wrap) for a power-of-two
+/// side `size = 2^k` with one 32×32→64-bit multiply, `c =`
+/// [`wrap_constant`]`(k, bits)`. With `x = u·size − ½ + 2^−(bits+1)` in
+/// 2⁻³²-texel units and `u` the fractional bits of the coordinate,
+/// `x = size·y` for the integer `y = u + c` (exact for `k ≤ 31 − bits`).
+/// For `y mod 2³²` the product `size·y` has `i₀ = floor(x / 2³²)` already
+/// wrapped to `[0, size)` in its high word and the weight in the top
+/// `bits` bits of its low word; `i₁ = (i₀ + 1) & m` with `m = size − 1`
+/// (given: a level view's mask, so that the view's own mask of the same
+/// index folds into it). Tested equal to
+/// `taps` for every side up to [`MAX_SIZE`].
+#[inline(always)]
+pub(crate) fn pow2_wrap_taps(
+    coord: TexCoord,
+    size: u32,
+    m: u32,
+    c: u32,
+    bits: u32,
+) -> (u32, u32, u32) {
+    let y = (coord.to_bits() as u32).wrapping_add(c);
+    let p = u64::from(y) * u64::from(size);
+    let i0 = (p >> 32) as u32;
+    let f = (p as u32) >> (32 - bits);
+    (i0, i0.wrapping_add(1) & m, f)
+}
+
+/// One power-of-two level in memory, validated ([module docs](self)):
+/// every read is in bounds by construction.
+#[derive(Clone, Copy)]
+pub struct LevelView<'a> {
+    /// The level's first texel (of at least `w·h` in a slice borrowed
+    /// for `'a`).
+    base: NonNull<Texel>,
+    /// Sides `w = 2^kx`, `h = 2^ky ≤ 2¹⁵`; `w` is also the row stride.
+    w: u32,
+    h: u32,
+    /// `w − 1`, `h − 1`.
+    mx: u32,
+    my: u32,
+    /// `31 − kx`, `31 − ky`: shifts that move bit `kx` (`ky`) of an index
+    /// to bit 31 (the copy bit of a mirrored axis).
+    sx: u32,
+    sy: u32,
+    /// Row stride in bytes (`4w`).
+    stride: u32,
+    _texels: PhantomData<&'a [Texel]>,
+}
+
+// SAFETY: a view is a shared borrow of texels (`&'a [Texel]`, which is
+// `Send` and `Sync`) plus plain integers; nothing writes through it.
+unsafe impl Send for LevelView<'_> {}
+// SAFETY: as for `Send`.
+unsafe impl Sync for LevelView<'_> {}
+
+impl fmt::Debug for LevelView<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("LevelView")
+            .field("w", &self.w)
+            .field("h", &self.h)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> LevelView<'a> {
+    /// A view of the `w × h` level starting at `texels[0]`, `None` unless
+    /// `w` and `h` are powers of two `≤ 2¹⁵` and `texels` holds `w·h`
+    /// texels.
+    #[must_use]
+    pub fn new(texels: &'a [Texel], w: u32, h: u32) -> Option<Self> {
+        let ok = w.is_power_of_two() && h.is_power_of_two() && w <= MAX_SIZE && h <= MAX_SIZE;
+        let len = (w as usize).checked_mul(h as usize)?;
+        if !ok || texels.len() < len {
+            return None;
+        }
+        Some(Self {
+            base: NonNull::from(texels).cast(),
+            w,
+            h,
+            mx: w - 1,
+            my: h - 1,
+            sx: w.leading_zeros(),
+            sy: h.leading_zeros(),
+            stride: w * 4,
+            _texels: PhantomData,
+        })
+    }
+
+    /// The level's first texel: the start of `w·h` initialised texels,
+    /// valid and unwritten while the view lives (the co-processor's
+    /// addressing returns addresses inside them, read by
+    /// `coproc::cfu::footprint`; the texture unit's descriptor block
+    /// locates them, `coproc::descriptor_block`).
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn base(&self) -> NonNull<Texel> {
+        self.base
+    }
+
+    /// Width `w` in texels (a power of two).
+    #[inline(always)]
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.w
+    }
+
+    /// Height `h` in texels (a power of two).
+    #[inline(always)]
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.h
+    }
+
+    /// `w − 1`, the mask of a column index.
+    #[inline(always)]
+    #[must_use]
+    pub fn mask_x(&self) -> u32 {
+        self.mx
+    }
+
+    /// `h − 1`, the mask of a row index.
+    #[inline(always)]
+    #[must_use]
+    pub fn mask_y(&self) -> u32 {
+        self.my
+    }
+
+    /// `31 − log2 w`: `x << shift_x()` has bit `log2 w` of `x` in bit 31.
+    #[inline(always)]
+    #[must_use]
+    pub fn shift_x(&self) -> u32 {
+        self.sx
+    }
+
+    /// `31 − log2 h`, as [`shift_x`](Self::shift_x) for rows.
+    #[inline(always)]
+    #[must_use]
+    pub fn shift_y(&self) -> u32 {
+        self.sy
+    }
+
+    /// The texel at row `y ≤ my`, column `x ≤ mx` (the callers' reduced
+    /// indices).
+    #[inline(always)]
+    fn read(&self, x: u32, y: u32) -> Texel {
+        debug_assert!(x <= self.mx && y <= self.my);
+        let row = y as usize * self.stride as usize;
+        // SAFETY: `x ≤ mx`, `y ≤ my` (every caller reduces them), so the
+        // byte offset `4(y·w + x) ≤ 4(w·h − 1)` lies in the slice of at
+        // least `w·h` texels the view was made from (checked by `new`),
+        // which is borrowed shared for `'a` (module docs).
+        unsafe { self.base.as_ptr().byte_add(row).add(x as usize).read() }
+    }
+
+    /// The footprint `(x[0], y[0])`, `(x[1], y[0])`, `(x[0], y[1])`,
+    /// `(x[1], y[1])` with the indices masked to the level (`x & (w − 1)`,
+    /// `y & (h − 1)`: the identity on in-range indices, a wrap beyond).
+    #[inline(always)]
+    #[must_use]
+    pub fn footprint(&self, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let (x0, x1) = (x[0] & self.mx, x[1] & self.mx);
+        let (y0, y1) = (y[0] & self.my, y[1] & self.my);
+        [
+            self.read(x0, y0),
+            self.read(x1, y0),
+            self.read(x0, y1),
+            self.read(x1, y1),
+        ]
+    }
+
+    /// The footprint of a coordinate wrapped on both axes
+    /// ([`pow2_wrap_taps`] with the wrap constants `cx`, `cy` of this
+    /// level and `bits` weight bits) and its weights `(fx, fy)`. No mask:
+    /// `pow2_wrap_taps` gives `i₀` as the high word of a 32×32-bit product
+    /// with the side (so `i₀ < w`, resp. `< h`) and `i₁ = (i₀ + 1) & m`.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn wrap_footprint(
+        &self,
+        u: TexCoord,
+        v: TexCoord,
+        [cx, cy]: [u32; 2],
+        bits: u32,
+    ) -> ([Texel; 4], u32, u32) {
+        let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.mx, cx, bits);
+        let (y0, y1, fy) = pow2_wrap_taps(v, self.h, self.my, cy, bits);
+        let t = [
+            self.read(x0, y0),
+            self.read(x1, y0),
+            self.read(x0, y1),
+            self.read(x1, y1),
+        ];
+        (t, fx, fy)
+    }
+
+    /// The texel `(x, y)` clamped to the level (`min(x, w − 1)`,
+    /// `min(y, h − 1)`), as [`TexelSource::texel`](crate::texture::storage::mip::TexelSource::texel) reads.
+    #[inline(always)]
+    #[must_use]
+    pub fn texel(&self, x: u32, y: u32) -> Texel {
+        self.read(x.min(self.mx), y.min(self.my))
+    }
+}
+/// The [`LevelView`]s of a
+/// [`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid), indexed by level `0 ..= 16`
+/// (levels outside the stored range repeat the nearest stored one).
+#[derive(Clone, Copy, Debug)]
+pub struct Pow2Levels<'a>(pub(crate) [LevelView<'a>; MAX_LEVELS as usize + 1]);
+
+impl<'a> Pow2Levels<'a> {
+    /// The view of `level` (`≤ 16`; larger indices read the top entry).
+    #[inline(always)]
+    #[must_use]
+    pub fn level(&self, level: usize) -> &LevelView<'a> {
+        &self.0[level.min(MAX_LEVELS as usize)]
+    }
+}
