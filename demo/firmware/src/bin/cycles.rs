@@ -31,10 +31,10 @@
 use core::hint::black_box as bb;
 
 use fixed::types::U1F31;
-use raymip::log2::fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
+use raymip::log2::fast::NormPl;
 use raymip::texture::storage::mip::Texel;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
