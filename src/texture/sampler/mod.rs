@@ -747,7 +747,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let (w, h) = self.source.geometry().level_size(level as u8);
                 (mu.taps(u, w, bits), mv.taps(v, h, bits))
             };
-            let t = self.source.footprint(level as u8, xt.i, yt.i);
+            // The taps are inside the level (`level_size`): no clamp.
+            let t = self.source.footprint_in_level(level as u8, xt.i, yt.i);
             (xt, yt, t)
         };
         let mut lanes = t.map(Kern::<K>::load);
