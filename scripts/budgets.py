@@ -214,10 +214,10 @@ matrix_ceiling        ts_bil_f                     149   197   183
 matrix_ceiling        ts_tri                       273   403   392
 matrix_ceiling        ts_tri_f                     264   385   355
 matrix_ceiling        ts_srgb                      447   612   596
-matrix_ceiling        ts_565                       610   762   727
-matrix_ceiling        ts_565_f                     591   743   690
-matrix_ceiling        ts_bc1_hit                   754   875   840
-matrix_ceiling        ts_bc1_hit_f                 708   857   805
+matrix_ceiling        ts_565                       534   698   680
+matrix_ceiling        ts_565_f                     517   684   650
+matrix_ceiling        ts_bc1_hit                   650   781   769
+matrix_ceiling        ts_bc1_hit_f                 627   770   740
 matrix_ceiling        ts_bc1_fill                 3333  3535  3445
 matrix_ceiling        ts_bc1_fill_f               3287  3517  3410
 matrix_ceiling        an2                          888  1101  1079

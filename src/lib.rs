@@ -12,13 +12,16 @@
 //! documented ranges and small error enums at the API edges.
 //!
 //! Data flows one way, one folder per part of the pipeline, one module per
-//! stage:
+//! stage; a module uses only its own row's module and those of the rows
+//! above it (`tests/firmware/layering.rs` checks the import graph against
+//! this order):
 //!
 //! | part | stage | module | per hit |
 //! |---|---|---|---|
 //! | vocabulary | the quantities the API passes as types (path length, cone width, spread, lod, texture coordinate, …) and the precision tiers `Accurate`, `Fast` | [`units`] | – (zero-cost newtypes) |
 //! | – | fixed-point logarithms, ACCURATE and FAST: the kernels of set-up, path state, lod and texture | [`log2`], [`log2::fast`] | leading zeros + table read |
 //! | – | per-pixel, per-frame random numbers; the generators of measurement and test inputs | [`rng`] | Weyl step + 32-bit hash; xorshift32, xorshift64 |
+//! | co-processor | custom instructions of a soft core's texture unit (features `pcpi`, `cfu`), on raw words | [`coproc`] | the same bits in hardware |
 //! | set-up | camera pixel spread `γ` | [`setup::camera`] | – |
 //! | set-up | per-triangle `log2 Pb` | [`setup::table`] | one table read |
 //! | path state | path state across bounces | [`path::raystack`] | `Pl += t`, `w += γ·t` |
@@ -30,8 +33,8 @@
 //! | texture | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`texture::address`] | one multiply per axis and level |
 //! | texture | filter kernels, ACCURATE and FAST | [`texture::kernel`] | 4–8 texel reads, one multiply-accumulate chain |
 //! | texture | the one sampler: state, filter modes, batches, anisotropy, stochastic filtering | [`texture::sampler`], [`texture::mode`] | lod window, level choice, footprint, kernel |
+//! | texture | co-processor operands and the texture unit's descriptor block, from address modes and level views | [`texture::coproc`] | – |
 //! | geometric LOD | stochastic geometric LOD (per instance) | [`geomlod`] | depth → LOD, two 8-bit instance masks |
-//! | co-processor | custom instructions of a soft core's texture unit (features `pcpi`, `cfu`) | [`coproc`] | the same bits in hardware |
 //! | f32 baseline | the per-hit stages in `f32` (feature `f32`) | `baseline_f32` | – (comparison only) |
 //! | C ABI | `extern "C"` functions and `#[repr(C)]` types (feature `ffi`) | `ffi` | – |
 //!
@@ -147,9 +150,9 @@
 #![cfg_attr(docsrs, feature(doc_cfg))]
 // Safe Rust but for three modules, each with its safety argument: the C
 // ABI (`ffi`, caller pointers), the co-processors (`coproc::pcpi` and
-// `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers and the
-// CFU's texel reads) and the direct texel reads of
-// `texture::storage::level` (indices reduced to validated level views).
+// `coproc::cfu` on riscv32: their one-instruction `asm!` wrappers) and the
+// direct texel reads of `texture::storage::level` (indices reduced to
+// validated level views, or the CFU's addresses inside them).
 #![deny(unsafe_code)]
 #![deny(
     missing_docs,

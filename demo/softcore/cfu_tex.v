@@ -46,7 +46,7 @@
 //             base is aligned to its size); 0 without a RAM (HAS_RAM = 0).
 //   funct7 2, funct3 1  tex.sel rd, rs1, rs2
 //             rs1 = the byte address of a sampler's descriptor block (19
-//             words, src/coproc/mod.rs writes them):
+//             words, src/texture/coproc.rs writes them):
 //               word 0: the lod bias (I8F8 bits, sign-extended),
 //               word 1: lo[11:0] | hi[23:12] | mode_u[25:24] | mode_v[27:26]
 //                       (the lod window, I8F8 bits in [0, 3840]; modes as

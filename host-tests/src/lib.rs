@@ -1,5 +1,10 @@
 //! Host harness for raymip: scene loaders, renderer, CLI, the sampler's
 //! accuracy against the f64 references (`raymip-reference`), benchmarks.
+//!
+//! Floors, top first: `cli`, `tradeoff`, `stress`, `render`, `scene`,
+//! `accuracy`, `raydiff_chains`, `output`, `workload`, `error`. Each
+//! module uses only its own floor and those after it
+//! (`tests/firmware/layering.rs` checks it).
 #![warn(missing_docs)]
 // No function over 100 lines (clippy counts code lines; the default limit).
 #![warn(clippy::too_many_lines)]

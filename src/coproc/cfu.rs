@@ -16,14 +16,15 @@
 //!   memory from `(u, v)`, the level's size and the address modes (wrap,
 //!   mirror, clamp to edge, mirror once), as texel addresses. The sampler's
 //!   in-memory path of the ACCURATE linear kernel takes its footprint from
-//!   [`footprint`]: the firmware only loads the four texels, and the
+//!   `texture::storage::level::cfu_footprint` (where the texel reads and
+//!   their safety argument are): the firmware only loads the four texels, and the
 //!   weights stay in the co-processor for `tex.bt`/`tex.bb`.
 //! * the texture unit `tex.ram`, `tex.sel`, `tex.tri`, `tex.bil`
 //!   (`funct7 = 2`): the co-processor reads the texels itself through a
 //!   read port of its own on the SoC's RAM and filters them. A sampler
 //!   whose pyramid and lod window the unit can take keeps its
 //!   [`TextureUnit`] (the descriptor block the unit reads,
-//!   [`super::descriptor_block`]); a sample is then [`TextureUnit::select`]
+//!   [`descriptor_block`](crate::texture::coproc::descriptor_block)); a sample is then [`TextureUnit::select`]
 //!   and [`trilinear`] or [`bilinear`], and the in-memory path above is
 //!   what samplers whose texels lie outside that RAM take.
 //!
@@ -35,27 +36,14 @@
 //! weights), so none is `pure`: the compiler keeps each, in program order.
 //! [`enable`] writes one CSR of the CFU plugin and nothing else.
 //!
-//! [`footprint`] reads memory at the four addresses `tex.addr`/`tex.tap`
-//! return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
-//! by construction of the RTL (every mode's index map ends in a mask or a
-//! clamp to the level; the Verilator testbench checks every address bit
-//! of the reference vectors, `scripts/softcore`), where `base`, `2^kx` and
-//! `2^ky` are a [`LevelView`]'s first texel and sides: the view guarantees
-//! `2^(kx + ky)` initialised texels there for as long as it lives (its
-//! construction checks them against a borrowed slice,
-//! `texture::storage::pow2`). So each address is that of one of those
-//! texels, aligned, read while the view is borrowed. On a core without the
-//! co-processor the first instruction traps (illegal instruction) before
-//! any read.
-//!
 //! The texture unit's instructions read memory, but not through the CPU:
 //! the co-processor's read port returns words of the RAM to the unit, and
-//! the instructions return plain words (any `u32` is a valid [`Texel`] or
+//! the instructions return plain words (any `u32` is a valid [`Texel`](crate::texture::storage::mip::Texel) or
 //! flag); nothing is written. `tex.sel` reads the descriptor block at the
 //! address it is given, a [`TextureUnit`]'s own field, borrowed for the
 //! call; `tex.tri`/`tex.bil` read texels at `base + 4·(y·2^kx + x)` with
 //! `base`, `kx`, `ky` a level's from the block, which
-//! [`super::descriptor_block`] made from a [`LevelView`]'s first texel and
+//! [`descriptor_block`](crate::texture::coproc::descriptor_block) made from a [`LevelView`](crate::texture::storage::level::LevelView)'s first texel and
 //! sides (exposing that memory's provenance), and `x < 2^kx`, `y < 2^ky` by
 //! construction of the RTL (as for `tex.addr` above): texels of a view of
 //! the sampler's source, borrowed by the sampler for as long as it lives.
@@ -67,9 +55,7 @@
 //! values the program stored.
 #![allow(unsafe_code)]
 
-use super::{BIL, BLOCK_WORDS, RAM, SEL, TAP01, TAP10, TAP11, TEXTURE_UNIT, TRI};
-use crate::texture::storage::level::LevelView;
-use crate::texture::storage::mip::Texel;
+use super::{BIL, BLOCK_WORDS, RAM, SEL, TEXTURE_UNIT, TRI};
 use crate::units::Lod;
 
 /// Enables VexRiscv's CFU plugin (bit 31 of CSR `0xBC0`): until then the
@@ -152,28 +138,6 @@ pub fn tap<const F3: u32>() -> u32 {
     r
 }
 
-/// The bilinear footprint `[t00, t10, t01, t11]` of the coordinates
-/// `(u, v)` ([`super::coord_i4f28`] operands) on the level `l`, addressed
-/// in the modes of `modes` (`level_config(0, 0, mu, mv)`); the weights
-/// stay latched in the co-processor for `tex.bt`/`tex.bb`. The texels are
-/// those the software taps select (same bits, `scripts/softcore`).
-#[inline(always)]
-#[must_use]
-pub fn footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4] {
-    // `shift = 31 − log2(side)`, sides ≤ 2¹⁵ (`LevelView::new`).
-    let (kx, ky) = (31 - l.shift_x(), 31 - l.shift_y());
-    let base = l.base().as_ptr().expose_provenance() as u32;
-    level(base, kx | ky << 4 | modes);
-    let a = [addr(u, v), tap::<TAP10>(), tap::<TAP01>(), tap::<TAP11>()];
-    // SAFETY: each address is that of one of the `2^(kx + ky)` texels at
-    // `base` (module docs: `base + 4·j`, `j < 2^(kx + ky)`, aligned), which
-    // the view keeps initialised and unwritten while it lives (its
-    // invariant, `LevelView::base`); `expose_provenance` exposed the
-    // provenance of that memory above, and `Texel` (u32) has no invalid
-    // values.
-    a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() })
-}
-
 /// `tex.ram`: the RAM the texture unit reads, `(base address, bytes)`.
 #[inline]
 #[must_use]
@@ -204,7 +168,7 @@ pub struct TextureUnit {
 }
 
 impl TextureUnit {
-    /// A unit for `block` ([`super::descriptor_block`] for the RAM of
+    /// A unit for `block` ([`descriptor_block`](crate::texture::coproc::descriptor_block) for the RAM of
     /// [`ram`]), or none.
     #[must_use]
     pub const fn new(block: Option<[u32; BLOCK_WORDS]>) -> Self {
@@ -252,20 +216,20 @@ impl TextureUnit {
 /// [`TextureUnit::select`].
 #[inline(always)]
 #[must_use]
-pub fn trilinear(u: u32, v: u32) -> Texel {
+pub fn trilinear(u: u32, v: u32) -> u32 {
     sample::<TRI>(u, v)
 }
 
 /// `tex.bil`: the bilinear sample of the nearest level, as [`trilinear`].
 #[inline(always)]
 #[must_use]
-pub fn bilinear(u: u32, v: u32) -> Texel {
+pub fn bilinear(u: u32, v: u32) -> u32 {
     sample::<BIL>(u, v)
 }
 
 /// `tex.tri` (`F3 = TRI`) or `tex.bil` (`BIL`).
 #[inline(always)]
-fn sample<const F3: u32>(u: u32, v: u32) -> Texel {
+fn sample<const F3: u32>(u: u32, v: u32) -> u32 {
     let r: u32;
     // SAFETY: one custom-0 R-type instruction (module docs): the unit reads
     // texels of the selected block's levels (views the sampler borrows)

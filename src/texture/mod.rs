@@ -7,6 +7,7 @@
 //! | addressing per axis (wrap, mirror, clamp, mirror once, border) | [`address`] | one multiply per axis and level |
 //! | filter kernels, one per precision tier | [`kernel`] | 4 or 8 texels, one multiply-accumulate chain |
 //! | the sampler (state, filter modes, batches, anisotropy, stochastic filtering) | [`sampler`], [`mode`] | lod window, level choice, footprint, kernel |
+//! | co-processor operands and the texture unit's descriptor block (features `pcpi`, `cfu`) | [`coproc`] | – (the same bits in hardware) |
 //!
 //! # One sampler, specialised at compile time
 //!
@@ -41,6 +42,7 @@
 use core::fmt;
 
 pub mod address;
+pub mod coproc;
 pub mod kernel;
 pub mod mode;
 pub mod sampler;

@@ -5,6 +5,7 @@
 
 mod common;
 mod doc_tables;
+mod layering;
 mod lod_accuracy;
 mod sampler_golden;
 mod texture_accuracy;

@@ -6,9 +6,10 @@
 //! ([`probes`]: wrappers, subjects and the order of their calls).
 //!
 //! This crate denies `unsafe_code`; the exceptions are the [`stack`] module
-//! (it reads the stack pointer and writes/reads memory below it) and the
+//! (it reads the stack pointer and writes/reads memory below it), the
 //! `#[unsafe(no_mangle)]` attribute of the [`probes`] wrappers (stable
-//! symbol names for the QEMU traces).
+//! symbol names for the QEMU traces) and, on VexRiscv, the jump over the
+//! alignment padding that places the timed loops of [`counters`].
 #![no_std]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]

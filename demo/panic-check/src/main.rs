@@ -28,15 +28,14 @@ use raymip::ffi::{
 use raymip::geomlod::{
     DepthToLod, InstanceLod, LodMode, Selector, choose, ray_mask, transition_step, visible,
 };
-use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
-use raymip::log2::fast::{NormPl, log2_u32f32_fast};
 use raymip::lod::{
     LodWord, clamp_lod, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_clamped,
     table_lod_norm, table_lod_norm_batch,
 };
+use raymip::log2::fast::{NormPl, log2_u32f32_fast};
+use raymip::log2::{clz32, log2_bits, log2_u16f16, log2_u32, log2_u32f32};
 use raymip::path::raystack::{PathState, RayStack};
 use raymip::rng::{Rng, mix32};
-use raymip::texture::storage::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::setup::camera::PixelSpread;
 use raymip::setup::table::PbTable;
 use raymip::texture::address::AddressMode;
@@ -46,6 +45,7 @@ use raymip::texture::sampler::aniso::probes;
 use raymip::texture::sampler::dynamic::DynSampler;
 use raymip::texture::sampler::state::{SamplerDesc, SamplerState, SrgbOutput};
 use raymip::texture::sampler::stochastic::StochasticMode;
+use raymip::texture::storage::analysis::{PathBounds, TextureUse, analyse, mark_skipped};
 use raymip::texture::storage::bc;
 use raymip::texture::storage::cache::{BlockCache, BlockLayout, TexelCache};
 use raymip::texture::storage::format::{ColorSpace, Format, Rgb565, TexelFormat};

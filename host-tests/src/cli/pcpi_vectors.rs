@@ -33,8 +33,8 @@
 //! does not implement them and its testbench stops at the first), the
 //! addressing instructions with OP = the function id `{funct7, funct3}`:
 //! * `8` `tex.lvl` (`RS1` = the level's byte address, `RS2` =
-//!   [`raymip::coproc::level_config`]; `RD = 0`),
-//! * `9` `tex.addr` (`RS1`, `RS2` = [`raymip::coproc::coord_i4f28`] of `u`,
+//!   [`raymip::texture::coproc::level_config`]; `RD = 0`),
+//! * `9` `tex.addr` (`RS1`, `RS2` = [`raymip::texture::coproc::coord_i4f28`] of `u`,
 //!   `v` in each axis's mode; `RD` = the address of `t00`) and `a` … `c`
 //!   `tex.tap` (`t10`, `t01`, `t11`), the addresses from
 //!   [`raymip::texture::address::AddressMode::linear`] (the software taps),
@@ -66,12 +66,13 @@
 use std::fmt::Write as _;
 
 use fixed::types::U32F32;
-use raymip::coproc::{BLOCK_WORDS, coord_i4f28, level_config};
+use raymip::coproc::BLOCK_WORDS;
 use raymip::lod::table_lod;
 use raymip::log2::log2_u32f32;
 use raymip::rng::Rng;
 use raymip::texture::address::AddressMode;
 use raymip::texture::address::AnyAxis;
+use raymip::texture::coproc::{coord_i4f28, level_config};
 use raymip::texture::kernel::accurate::{WEIGHT_ONE, Wide, bilerp, blend_wide, round_wide};
 use raymip::texture::sampler::state::SamplerDesc;
 use raymip::texture::storage::pow2::Pow2Pyramid;

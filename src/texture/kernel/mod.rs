@@ -184,7 +184,7 @@ pub trait Kernel: sealed::Sealed + 'static {
     fn round_level(a: Self::Level) -> Texel;
     /// Whether the CFU co-processor's filter computes this kernel (the
     /// ACCURATE linear kernel, RGBA8): the sampler may then sample through
-    /// its texture unit (`coproc::descriptor_block`) or take footprints
+    /// its texture unit (`texture::coproc::descriptor_block`) or take footprints
     /// from its addressing instructions and filter them with
     /// [`coproc_level`](Self::coproc_level) (feature `cfu` on riscv32).
     const COPROC_FOOTPRINT: bool = false;

@@ -379,7 +379,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
     /// The descriptor block of this sampler for the CFU co-processor's
     /// texture unit reading the `ram.1` bytes at address `ram.0`
-    /// ([`crate::coproc::descriptor_block`] of the source's level views,
+    /// ([`crate::texture::coproc::descriptor_block`] of the source's level views,
     /// the lod window and the address modes), `None` when the unit cannot
     /// sample for it: a kernel other than the ACCURATE linear one, a source
     /// without direct power-of-two level views, the border colour, or
@@ -394,7 +394,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         if !Kern::<K>::COPROC_FOOTPRINT {
             return None;
         }
-        crate::coproc::descriptor_block(
+        crate::texture::coproc::descriptor_block(
             self.source.levels()?,
             self.lod.bias,
             (self.lod.lo, self.lod.hi),
@@ -409,7 +409,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
     #[inline(always)]
     fn unit_sample(&self, u: TexCoord, v: TexCoord, lod: Lod, trilinear: bool) -> Option<Texel> {
-        use crate::coproc::{cfu, coord_i4f28};
+        use crate::coproc::cfu;
+        use crate::texture::coproc::coord_i4f28;
         if !Kern::<K>::COPROC_FOOTPRINT || !self.unit.select(lod) {
             return None;
         }
@@ -670,7 +671,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
 
     /// Feature `cfu` on riscv32: the level value at `level` (`≤ 16`) with
     /// the footprint and its weights from the co-processor's addressing
-    /// instructions (`coproc::cfu::footprint`: the same taps and weights as
+    /// instructions (`texture::storage::level::cfu_footprint`: the same taps and weights as
     /// [`footprint`](Self::footprint)'s direct path, tested bit for bit),
     /// for a kernel that keeps its weights there, addressable axes (no
     /// border colour) and a source with direct level views; `None`
@@ -683,14 +684,15 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         v: TexCoord,
         level: usize,
     ) -> Option<<Kern<K> as Kernel>::Level> {
-        use crate::coproc::{addressable, cfu, coord_i4f28, level_config};
+        use crate::texture::coproc::{addressable, coord_i4f28, level_config};
+        use crate::texture::storage::level::cfu_footprint;
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
         if !Kern::<K>::COPROC_FOOTPRINT || !addressable(mu) || !addressable(mv) {
             return None;
         }
         let l = self.source.levels()?.level(level);
         let modes = level_config(0, 0, mu, mv);
-        let t = cfu::footprint(l, modes, coord_i4f28(mu, u), coord_i4f28(mv, v));
+        let t = cfu_footprint(l, modes, coord_i4f28(mu, u), coord_i4f28(mv, v));
         Some(Kern::<K>::coproc_level(t, self.rounding))
     }
 
@@ -745,7 +747,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let (w, h) = self.source.geometry().level_size(level as u8);
                 (mu.taps(u, w, bits), mv.taps(v, h, bits))
             };
-            let t = self.source.footprint(level as u8, xt.i, yt.i);
+            // The taps are inside the level (`level_size`): no clamp.
+            let t = self.source.footprint_in_level(level as u8, xt.i, yt.i);
             (xt, yt, t)
         };
         let mut lanes = t.map(Kern::<K>::load);

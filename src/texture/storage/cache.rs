@@ -30,7 +30,10 @@
 //!
 //! True LRU per set: every way holds the value of a 64-bit access clock at
 //! its last use; a miss replaces an empty way, else the way with the
-//! smallest stamp. Counters: [`CacheStats`].
+//! smallest stamp. Counters: [`CacheStats`]. The clock counts every
+//! access, so a hit only advances the clock and writes its way's stamp:
+//! the hit count is the clock's advance since the counters were zeroed
+//! minus the misses.
 
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Pyramid, Texel, TexelSource};
 
@@ -317,8 +320,13 @@ pub struct BlockCache<const SETS: usize, const WAYS: usize> {
     tags: [[u32; WAYS]; SETS],
     /// Access clock at last use; 0 = empty way.
     stamps: [[u64; WAYS]; SETS],
+    /// Accesses since construction (wrapping: 2⁶⁴ accesses are beyond
+    /// any run).
     clock: u64,
-    stats: CacheStats,
+    /// The clock when the counters were last zeroed.
+    since: u64,
+    /// Misses since then.
+    misses: u64,
 }
 
 impl<const SETS: usize, const WAYS: usize> Default for BlockCache<SETS, WAYS> {
@@ -338,7 +346,8 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
             tags: [[0; WAYS]; SETS],
             stamps: [[0; WAYS]; SETS],
             clock: 0,
-            stats: CacheStats { hits: 0, misses: 0 },
+            since: 0,
+            misses: 0,
         }
     }
 
@@ -363,7 +372,7 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
     #[inline]
     fn lookup_n(&mut self, block_address: u32, n: u32) -> (bool, usize, usize) {
         let n = u64::from(n.max(1));
-        self.clock = self.clock.saturating_add(n);
+        self.clock = self.clock.wrapping_add(n);
         let set = block_address as usize % SETS;
         let (Some(tags), Some(stamps)) = (self.tags.get_mut(set), self.stamps.get_mut(set)) else {
             return (false, 0, 0);
@@ -373,7 +382,6 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
         for (way, (tag, stamp)) in tags.iter().zip(stamps.iter_mut()).enumerate() {
             if *tag == block_address && *stamp != 0 {
                 *stamp = self.clock;
-                self.stats.hits += n;
                 return (true, set, way);
             }
         }
@@ -391,8 +399,7 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
             *t = block_address;
             *s = self.clock;
         }
-        self.stats.misses += 1;
-        self.stats.hits += n - 1;
+        self.misses = self.misses.wrapping_add(1);
         (false, set, victim)
     }
 
@@ -406,12 +413,19 @@ impl<const SETS: usize, const WAYS: usize> BlockCache<SETS, WAYS> {
     /// Counters since construction or the last [`reset_stats`](Self::reset_stats).
     #[must_use]
     pub fn stats(&self) -> CacheStats {
-        self.stats
+        CacheStats {
+            hits: self
+                .clock
+                .wrapping_sub(self.since)
+                .wrapping_sub(self.misses),
+            misses: self.misses,
+        }
     }
 
     /// Zeroes the counters (contents stay).
     pub fn reset_stats(&mut self) {
-        self.stats = CacheStats::default();
+        self.since = self.clock;
+        self.misses = 0;
     }
 
     /// Empties the cache (counters stay).
@@ -541,13 +555,19 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     /// side-by-side blocks, the four reads are made one by one.)
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        // The clamps of `texel`: the texel to the stored level's size, the
-        // block number's coordinates to the padded grid (which only a
-        // trimmed level past the last stored one can exceed).
-        let (level, g) = self.layout.grid(level);
+        // The clamp of `texel`: the texel to the stored level's size.
+        let (_, g) = self.layout.grid(level);
         let [lx, ly] = g.last.map(u32::from);
-        let x = [x[0].min(lx), x[1].min(lx)];
-        let y = [y[0].min(ly), y[1].min(ly)];
+        self.footprint_in_level(level, x.map(|x| x.min(lx)), y.map(|y| y.min(ly)))
+    }
+
+    /// [`footprint`](Self::footprint) without the texel clamp (an index
+    /// past the level reads a texel of another block). The block number's
+    /// coordinates are still clamped to the padded grid, which a trimmed
+    /// level past the last stored one can exceed.
+    #[inline]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let (level, g) = self.layout.grid(level);
         let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
         let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
         let at = |i: usize, j: usize| in_block(x[i], y[j]);

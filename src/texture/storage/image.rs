@@ -123,24 +123,40 @@ pub struct Image<'a, F: PixelFormat = AnyFormat> {
     kind: F,
     format: Format,
     bytes: &'a [u8],
-    /// Byte offset of each level; entries past `levels` hold the total.
-    offsets: [usize; MAX_LEVELS as usize + 1],
-    /// What a footprint reads per level index `0 ..= 16` (clamped as
-    /// [`get`](Self::get) clamps): made once here, so that a footprint
-    /// loads one record instead of recomputing the level's size and offset.
-    rows: [LevelRows; MAX_LEVELS as usize + 1],
+    /// Where each level index `0 .. MAX_LEVELS` reads (clamped as
+    /// [`get`](Self::get) clamps; indices past the top level repeat the
+    /// top's record): made once here, so that a read loads one record
+    /// instead of recomputing the level's size and offset.
+    rows: [LevelRows; MAX_LEVELS as usize],
 }
 
-/// One level of an uncompressed [`Image`] as a footprint reads it.
+/// One level of an [`Image`] as a read addresses it.
 #[derive(Clone, Copy, Debug, Default)]
 struct LevelRows {
-    /// Byte offset of the level ([`Image::level_offset`]).
+    /// Byte offset of the level ([`Image::level_offset`]; at most the
+    /// image's byte length).
     offset: usize,
-    /// Row stride in bytes (width · unit bytes).
-    pitch: usize,
     /// The last column and row (`w − 1`, `h − 1` of
-    /// [`Geometry::level_size`]).
-    last: [u32; 2],
+    /// [`Geometry::level_size`]; below [`MAX_SIZE`](crate::texture::storage::mip::MAX_SIZE), so 16 bits).
+    last: [u16; 2],
+}
+
+impl LevelRows {
+    /// Byte offset of texel `(x, y)` of the level (both in range; for a
+    /// BC format the texel's block).
+    #[inline(always)]
+    fn byte(self, x: u32, y: u32, f: TexelFormat) -> usize {
+        let [lx, _] = self.last.map(usize::from);
+        let (x, y) = (x as usize, y as usize);
+        let unit = f.unit_bytes() as usize;
+        if f.is_block_compressed() {
+            // ⌈w/4⌉ = ⌊(w − 1)/4⌋ + 1 blocks per row.
+            let b = BLOCK as usize;
+            self.offset + ((y / b) * (lx / b + 1) + x / b) * unit
+        } else {
+            self.offset + (y * (lx + 1) + x) * unit
+        }
+    }
 }
 
 impl<'a> Image<'a, AnyFormat> {
@@ -199,40 +215,44 @@ impl<'a, F: PixelFormat> Image<'a, F> {
         format: Format,
         bytes: &'a [u8],
     ) -> Result<Self, ImageTooShort> {
-        let mut offsets = [0usize; MAX_LEVELS as usize + 1];
-        let mut total = 0usize;
-        for (k, o) in (0u8..).zip(offsets.iter_mut()) {
-            *o = total;
+        let f = format.texel();
+        let mut rows = [LevelRows::default(); MAX_LEVELS as usize];
+        let (mut total, mut offset) = (0usize, 0usize);
+        for (k, r) in (0u8..).zip(rows.iter_mut()) {
+            // Past the top level the top's offset stays.
             if k < geometry.levels() {
-                let n = level_bytes(geometry.width(), geometry.height(), k, format.texel());
+                offset = total;
+                let n = level_bytes(geometry.width(), geometry.height(), k, f);
                 total = total.saturating_add(usize::try_from(n).unwrap_or(usize::MAX));
             }
+            let (w, h) = geometry.level_size(k);
+            *r = LevelRows {
+                offset,
+                // Sides ≤ MAX_SIZE = 2¹⁵ (`Geometry`): `w − 1` fits.
+                last: [(w - 1) as u16, (h - 1) as u16],
+            };
         }
-        if bytes.len() < total {
+        let needed = total;
+        if bytes.len() < needed {
             return Err(ImageTooShort {
-                needed: total,
+                needed,
                 got: bytes.len(),
             });
         }
-        let mut image = Self {
+        Ok(Self {
             geometry,
             kind,
             format,
             bytes,
-            offsets,
-            rows: [LevelRows::default(); MAX_LEVELS as usize + 1],
-        };
-        let unit = format.texel().unit_bytes() as usize;
-        for (k, r) in (0u8..).zip(image.rows.iter_mut()) {
-            let (w, h) = geometry.level_size(k);
-            let k = usize::from(k.min(geometry.top_level()));
-            *r = LevelRows {
-                offset: offsets.get(k).copied().unwrap_or(0),
-                pitch: w as usize * unit,
-                last: [w - 1, h - 1],
-            };
-        }
-        Ok(image)
+            rows,
+        })
+    }
+
+    /// The record of `level` (clamped to the top level: the records past
+    /// it repeat the top's).
+    #[inline(always)]
+    fn level(&self, level: u8) -> LevelRows {
+        self.rows[usize::from(level.min(MAX_LEVELS - 1))]
     }
 
     /// The format.
@@ -250,20 +270,20 @@ impl<'a, F: PixelFormat> Image<'a, F> {
     /// Byte offset of `level` (clamped to the top stored level).
     #[must_use]
     pub fn level_offset(&self, level: u8) -> usize {
-        let k = usize::from(level.min(self.geometry.top_level()));
-        self.offsets.get(k).copied().unwrap_or(0)
+        self.level(level).offset
     }
 
     /// The bytes of block `(bx, by)` of a BC `level` (clamped to the
     /// level's block grid; empty if out of data).
     #[inline]
     fn block_bytes(&self, level: u8, bx: u32, by: u32) -> &'a [u8] {
-        let (w, h) = self.geometry.level_size(level);
-        let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
-        let (bx, by) = (bx.min(bw - 1) as usize, by.min(bh - 1) as usize);
-        let unit = self.kind.texel().unit_bytes() as usize;
-        let at = self.level_offset(level) + (by * bw as usize + bx) * unit;
-        self.bytes.get(at..).unwrap_or(&[])
+        let l = self.level(level);
+        // The last block column and row: ⌈w/4⌉ − 1 = ⌊(w − 1)/4⌋.
+        let [lx, ly] = l.last.map(|n| u32::from(n) / BLOCK);
+        let (x, y) = (bx.min(lx) * BLOCK, by.min(ly) * BLOCK);
+        self.bytes
+            .get(l.byte(x, y, self.kind.texel())..)
+            .unwrap_or(&[])
     }
 
     /// Texel `(x, y)` of `level` as RGBA8 (sRGB data left encoded); level
@@ -271,16 +291,15 @@ impl<'a, F: PixelFormat> Image<'a, F> {
     #[inline]
     #[must_use]
     pub fn get(&self, level: u8, x: u32, y: u32) -> Texel {
-        let (w, h) = self.geometry.level_size(level);
-        let (x, y) = (x.min(w - 1), y.min(h - 1));
+        let l = self.level(level);
+        let [lx, ly] = l.last.map(u32::from);
+        let (x, y) = (x.min(lx), y.min(ly));
         let f = self.kind.texel();
         if f.is_block_compressed() {
             let block = self.block_bytes(level, x / BLOCK, y / BLOCK);
             bc::decode_texel(f, block, ((y % BLOCK) * BLOCK + x % BLOCK) as usize)
         } else {
-            let unit = f.unit_bytes() as usize;
-            let at = self.level_offset(level) + (y as usize * w as usize + x as usize) * unit;
-            f.decode(self.raw(at, unit))
+            f.decode(self.raw(l.byte(x, y, f), f.unit_bytes() as usize))
         }
     }
 
@@ -310,12 +329,20 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         self.get(level, x, y)
     }
 
-    /// Uncompressed formats: the level's record (offset, pitch, last
-    /// column and row) and the two row starts once per footprint, then per
-    /// texel one read of its bytes and the format's expansion (BC formats
-    /// read texel by texel).
+    /// Uncompressed formats: the level's record (offset, last column and
+    /// row) and the two row starts once per footprint, then per texel one
+    /// read of its bytes and the format's expansion (BC formats read texel
+    /// by texel).
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let [lx, ly] = self.level(level).last.map(u32::from);
+        self.footprint_in_level(level, x.map(|x| x.min(lx)), y.map(|y| y.min(ly)))
+    }
+
+    /// [`footprint`](Self::footprint) without the clamps: an index past
+    /// the level reads another texel of the image, or 0 past its bytes.
+    #[inline]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         let f = self.kind.texel();
         if f.is_block_compressed() {
             return [
@@ -325,11 +352,11 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
                 self.get(level, x[1], y[1]),
             ];
         }
-        let l = self.rows[usize::from(level.min(MAX_LEVELS))];
+        let l = self.level(level);
         let unit = f.unit_bytes() as usize;
-        let [lx, ly] = l.last;
-        let rows = [y[0], y[1]].map(|y| l.offset + y.min(ly) as usize * l.pitch);
-        let cols = [x[0], x[1]].map(|x| x.min(lx) as usize * unit);
+        let pitch = (usize::from(l.last[0]) + 1) * unit;
+        let rows = y.map(|y| l.offset + y as usize * pitch);
+        let cols = x.map(|x| x as usize * unit);
         let texel = |at: usize| f.decode(self.raw(at, unit));
         [
             texel(rows[0] + cols[0]),
@@ -410,6 +437,71 @@ mod tests {
         assert_eq!(image_len(u32::MAX, 1, 1, TexelFormat::Rgba8), one_row);
     }
 
+    /// `n` pseudo-random bytes (bits `shift ..` of a multiplicative hash
+    /// of the index).
+    fn pattern(n: usize, shift: u32) -> Vec<u8> {
+        (0..n as u32)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> shift) as u8)
+            .collect()
+    }
+
+    /// Texel `(x, y)` of `level` addressed from the layout of the module
+    /// docs alone (level and indices clamped), not from the records.
+    fn reference_texel(
+        bytes: &[u8],
+        g: Geometry,
+        f: TexelFormat,
+        level: u8,
+        x: u32,
+        y: u32,
+    ) -> Texel {
+        let k = level.min(g.top_level());
+        let (w, h) = ((g.width() >> k).max(1), (g.height() >> k).max(1));
+        let (x, y) = (x.min(w - 1) as usize, y.min(h - 1) as usize);
+        let base = image_len(g.width(), g.height(), k, f);
+        let unit = f.unit_bytes() as usize;
+        if f.is_block_compressed() {
+            let bw = w.div_ceil(BLOCK) as usize;
+            let at = base + ((y / 4) * bw + x / 4) * unit;
+            bc::decode_texel(f, &bytes[at..at + unit], (y % 4) * 4 + x % 4)
+        } else {
+            let at = base + (y * w as usize + x) * unit;
+            let raw = bytes[at..at + unit]
+                .iter()
+                .rev()
+                .fold(0, |v, &b| (v << 8) | u32::from(b));
+            f.decode(raw)
+        }
+    }
+
+    /// `get` reads the texel the module docs' layout places at `(x, y)`,
+    /// in every format, for sizes with partial blocks and a single column,
+    /// at every level index (past the top too) and with indices past the
+    /// edges.
+    #[test]
+    fn get_follows_the_layout() {
+        for (w, h, levels) in [(9, 6, 4), (8, 4, 4), (1, 5, 3), (13, 7, 2)] {
+            let g = Geometry::new(w, h, levels).unwrap();
+            for f in TexelFormat::ALL {
+                let bytes = pattern(image_len(w, h, levels, f), 9);
+                let img = Image::new(g, Format::linear(f), &bytes).unwrap();
+                for level in 0..=20u8 {
+                    for y in (0..h + 2).chain([u32::MAX]) {
+                        for x in (0..w + 2).chain([u32::MAX]) {
+                            assert_eq!(
+                                img.get(level, x, y),
+                                reference_texel(&bytes, g, f, level, x, y),
+                                "{f:?} {w}x{h} {level} {x} {y}"
+                            );
+                        }
+                    }
+                }
+                let k = levels - 1;
+                assert_eq!(img.level_offset(20), image_len(w, h, k, f));
+            }
+        }
+    }
+
     /// The footprint (the level records made once) reads the texels
     /// `get` reads, in every uncompressed format and size, at every level
     /// index (past the top too) and with indices past the edges.
@@ -418,10 +510,7 @@ mod tests {
         for (w, h, levels) in [(9, 6, 4), (8, 4, 4), (1, 5, 3)] {
             let g = Geometry::new(w, h, levels).unwrap();
             for f in TexelFormat::ALL {
-                let n = image_len(w, h, levels, f);
-                let bytes: Vec<u8> = (0..n as u32)
-                    .map(|i| (i.wrapping_mul(2_654_435_761) >> 11) as u8)
-                    .collect();
+                let bytes = pattern(image_len(w, h, levels, f), 11);
                 let mut img = Image::new(g, Format::linear(f), &bytes).unwrap();
                 for level in 0..=20u8 {
                     for x in [[0, 1], [3, 0], [8, 9], [7, u32::MAX]] {
@@ -437,6 +526,14 @@ mod tests {
                                 want,
                                 "{f:?} {level} {x:?} {y:?}"
                             );
+                            let (lw, lh) = g.level_size(level);
+                            if x.iter().all(|&x| x < lw) && y.iter().all(|&y| y < lh) {
+                                assert_eq!(
+                                    img.footprint_in_level(level, x, y),
+                                    want,
+                                    "in level: {f:?} {level} {x:?} {y:?}"
+                                );
+                            }
                         }
                     }
                 }

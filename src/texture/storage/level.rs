@@ -39,6 +39,19 @@
 //!   initialised, aligned `Texel`; the slice's length is not compared
 //!   again.
 //!
+//! With feature `cfu` on riscv32, `cfu_footprint` reads memory at the
+//! four addresses the co-processor's `tex.addr`/`tex.tap` return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
+//! by construction of the RTL (every mode's index map ends in a mask or a
+//! clamp to the level; the Verilator testbench checks every address bit
+//! of the reference vectors, `scripts/softcore`), where `base`, `2^kx` and
+//! `2^ky` are a [`LevelView`]'s first texel and sides: the view guarantees
+//! `2^(kx + ky)` initialised texels there for as long as it lives (its
+//! construction checks them against a borrowed slice,
+//! `texture::storage::pow2`). So each address is that of one of those
+//! texels, aligned, read while the view is borrowed. On a core without the
+//! co-processor the first instruction traps (illegal instruction) before
+//! any read.
+//!
 //! Tests: views of every level of trimmed and full pyramids read exactly
 //! what [`Pyramid::get`](crate::texture::storage::mip::Pyramid::get) reads, over every index and beyond (masks and
 //! clamps), also under Miri (`scripts/robustness`, filter `pow2::`).
@@ -49,6 +62,10 @@ use core::fmt;
 use core::marker::PhantomData;
 use core::ptr::NonNull;
 
+#[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+use crate::coproc::cfu::{addr, level, tap};
+#[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+use crate::coproc::{TAP01, TAP10, TAP11};
 use crate::units::TexCoord;
 
 /// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
@@ -169,8 +186,8 @@ impl<'a> LevelView<'a> {
     /// The level's first texel: the start of `w·h` initialised texels,
     /// valid and unwritten while the view lives (the co-processor's
     /// addressing returns addresses inside them, read by
-    /// `coproc::cfu::footprint`; the texture unit's descriptor block
-    /// locates them, `coproc::descriptor_block`).
+    /// `cfu_footprint`; the texture unit's descriptor block
+    /// locates them, `texture::coproc::descriptor_block`).
     #[inline(always)]
     #[must_use]
     pub(crate) fn base(&self) -> NonNull<Texel> {
@@ -281,6 +298,32 @@ impl<'a> LevelView<'a> {
         self.read(x.min(self.mx), y.min(self.my))
     }
 }
+/// Feature `cfu` on riscv32, the addressing instructions of
+/// [`crate::coproc::cfu`] (module docs: the safety of this read).
+///
+/// The bilinear footprint `[t00, t10, t01, t11]` of the coordinates
+/// `(u, v)` ([`coord_i4f28`](crate::texture::coproc::coord_i4f28) operands) on the level `l`, addressed
+/// in the modes of `modes` (`level_config(0, 0, mu, mv)`); the weights
+/// stay latched in the co-processor for `tex.bt`/`tex.bb`. The texels are
+/// those the software taps select (same bits, `scripts/softcore`).
+#[cfg(all(feature = "cfu", target_arch = "riscv32"))]
+#[inline(always)]
+#[must_use]
+pub fn cfu_footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4] {
+    // `shift = 31 − log2(side)`, sides ≤ 2¹⁵ (`LevelView::new`).
+    let (kx, ky) = (31 - l.shift_x(), 31 - l.shift_y());
+    let base = l.base().as_ptr().expose_provenance() as u32;
+    level(base, kx | ky << 4 | modes);
+    let a = [addr(u, v), tap::<TAP10>(), tap::<TAP01>(), tap::<TAP11>()];
+    // SAFETY: each address is that of one of the `2^(kx + ky)` texels at
+    // `base` (module docs: `base + 4·j`, `j < 2^(kx + ky)`, aligned), which
+    // the view keeps initialised and unwritten while it lives (its
+    // invariant, `LevelView::base`); `expose_provenance` exposed the
+    // provenance of that memory above, and `Texel` (u32) has no invalid
+    // values.
+    a.map(|a| unsafe { core::ptr::with_exposed_provenance::<Texel>(a as usize).read() })
+}
+
 /// The [`LevelView`]s of a
 /// [`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid), indexed by level `0 ..= 16`
 /// (levels outside the stored range repeat the nearest stored one).

@@ -480,6 +480,16 @@ pub trait TexelSource {
             self.texel(level, x[1], y[1]),
         ]
     }
+    /// [`footprint`](Self::footprint) for indices inside `level` (`level
+    /// ≤ 16`, `x[i] <` its width and `y[i] <` its height as
+    /// [`Geometry::level_size`] gives them, which a sampler's taps are): a
+    /// source may skip the clamps. Other indices give texels of the
+    /// source unspecified by this contract (never a panic). The default is
+    /// [`footprint`](Self::footprint).
+    #[inline(always)]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        self.footprint(level, x, y)
+    }
     /// The level views of a power-of-two pyramid in memory
     /// ([`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid)): lets a
     /// [`Sampler`](crate::texture::Sampler) compute texel addresses itself
@@ -617,6 +627,11 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         (**self).footprint(level, x, y)
+    }
+
+    #[inline]
+    fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        (**self).footprint_in_level(level, x, y)
     }
 
     #[inline(always)]

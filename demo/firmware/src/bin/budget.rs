@@ -59,10 +59,10 @@ use core::hint::black_box as bb;
 use fixed::types::{I16F16, U1F31};
 use raymip::baseline_f32::{SamplerF32, cone_lod_f32, table_lod_f32};
 use raymip::geomlod::{InstanceLod, LodMode, RecordsFull, Selector};
-use raymip::log2::fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
+use raymip::log2::fast::NormPl;
 use raymip::texture::storage::mip::Texel;
 use raymip::texture::{AddressMode, Mode, Sampler};
 use raymip::units::{Accurate, Delta, Depth, Fast, Lod, Log2Pb, PathLength, Width};

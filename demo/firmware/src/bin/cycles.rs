@@ -31,14 +31,14 @@
 use core::hint::black_box as bb;
 
 use fixed::types::U1F31;
-use raymip::log2::fast::NormPl;
 use raymip::lod::{
     LodWord, cone_lod, cone_lod_batch, table_lod, table_lod_batch, table_lod_norm_batch,
 };
+use raymip::log2::fast::NormPl;
 use raymip::texture::storage::mip::Texel;
 use raymip::texture::{Mode, Sampler};
 use raymip::units::{Accurate, Delta, Fast, Lod, Log2Pb, PathLength, TexCoord, Width};
-use raymip_demo_firmware::counters::{Stat, WARM_UP, cycles32, instret32};
+use raymip_demo_firmware::counters::{WARM_UP, measure, once};
 use raymip_demo_firmware::inputs::{self, N, XorShift32};
 use raymip_demo_firmware::{exit, measured_calls, println};
 
@@ -82,59 +82,9 @@ fn sample_batch(
     s.sample_batch(hits, mode, out)
 }
 
-/// Cycles and instructions of one call of `call` (counter reads included).
-#[inline(always)]
-fn once(call: impl FnOnce() -> usize) -> (u32, u32) {
-    let c0 = cycles32();
-    let i0 = instret32();
-    let y = call();
-    let i1 = instret32();
-    let c1 = cycles32();
-    bb(y);
-    (c1.wrapping_sub(c0), i1.wrapping_sub(i0))
-}
-
 /// Draws the [`N`] inputs of one kind.
 fn draw<T>(rng: &mut XorShift32, mut f: impl FnMut(&mut XorShift32) -> T) -> [T; N] {
     core::array::from_fn(|_| f(rng))
-}
-
-/// The statistics of the cycles and instructions around each call of
-/// `call` on `xs` ([`series`]).
-#[inline(always)]
-fn measure<I: Copy, O>(xs: &[I; N], call: impl FnMut(I) -> O) -> (Stat, Stat) {
-    let (mut cy, mut ir) = (Stat::EMPTY, Stat::EMPTY);
-    for (c, i) in series(xs, call) {
-        cy.add(c);
-        ir.add(i);
-    }
-    (cy, ir)
-}
-
-/// The counts (cycles, instructions) around each call of `call` on `xs`.
-/// A function of its own per series, which only reads the counters, makes
-/// the calls and stores the counts: the statistics and the other series'
-/// code do not run between two timed calls, where on a direct-mapped
-/// instruction cache they could evict the callee. On a cached core the
-/// first pass warms the caches and its counts are overwritten
-/// ([`WARM_UP`]); it is the same loop, so the timed pass finds the
-/// loop's own code cached too.
-#[inline(never)]
-fn series<I: Copy, O>(xs: &[I; N], mut call: impl FnMut(I) -> O) -> [(u32, u32); N] {
-    let mut counts = [(0, 0); N];
-    for _ in 0..bb(if WARM_UP { 2 } else { 1 }) {
-        for (&x, count) in xs.iter().zip(&mut counts) {
-            let x = bb(x);
-            let c0 = cycles32();
-            let i0 = instret32();
-            let y = call(x);
-            let i1 = instret32();
-            let c1 = cycles32();
-            bb(y);
-            *count = (c1.wrapping_sub(c0), i1.wrapping_sub(i0));
-        }
-    }
-    counts
 }
 
 raymip_demo_entry::main! {
