@@ -160,4 +160,33 @@ mod tests {
         assert!(!addressable(AddressMode::ClampToBorder));
         assert!(addressable(AddressMode::MirrorOnce));
     }
+
+    /// A sampler's block ([`Sampler::texture_unit_block`](crate::texture::Sampler::texture_unit_block))
+    /// is its power-of-two source's descriptor block for the ACCURATE
+    /// linear kernel; none for a kernel that keeps no weights in the
+    /// co-processor, or texels outside the unit's RAM.
+    #[test]
+    fn sampler_block_is_its_sources_descriptor_block() {
+        use crate::texture::address::Wrap;
+        use crate::texture::kernel::{Fast, Linear};
+        use crate::texture::storage::mip::{Geometry, Pyramid, pyramid_len};
+        use crate::texture::storage::pow2::Pow2Pyramid;
+        use crate::texture::{Cfg, Sampler};
+        let texels: vec::Vec<u32> = (0..pyramid_len(8, 4, 4) as u32).collect();
+        let p = Pyramid::new(Geometry::new(8, 4, 4).unwrap(), &texels).unwrap();
+        let p = Pow2Pyramid::new(p).unwrap();
+        let ram = (texels.as_ptr().expose_provenance(), 4 * texels.len());
+        let block = Sampler::wrap(p).texture_unit_block(ram).unwrap();
+        // Level 0 (8×4) at word 0 of the RAM, level 1 (4×2) after its 32
+        // texels; both axes wrap.
+        assert_eq!(block[2], level_word(0, 3, 2));
+        assert_eq!(block[3], level_word(32, 2, 1));
+        assert_eq!(
+            block[1] >> 24,
+            AddressMode::Wrap as u32 | (AddressMode::Wrap as u32) << 2
+        );
+        let fast = Sampler::<_, Cfg<Wrap, Wrap, Linear, Fast>>::new(p);
+        assert_eq!(fast.texture_unit_block(ram), None);
+        assert_eq!(Sampler::wrap(p).texture_unit_block((ram.0, 64)), None);
+    }
 }
