@@ -197,10 +197,10 @@ batch_goal            lod                           12     -     -
 batch_goal            lod_fast                      12    20     -
 batch_goal            trilinear                    120     -     -
 batch_ceiling         lod_fast                      12    20    20
-rd_ceiling            rd_primary                   182   299   245
-rd_ceiling            rd_transfer                  286   456   328
+rd_ceiling            rd_primary                   150   225   200
+rd_ceiling            rd_transfer                  275   438   308
 rd_ceiling            rd_reflect                   228   387   344
-rd_ceiling            rd_refract                   607   924   596
+rd_ceiling            rd_refract                   537   829   509
 rd_ceiling            rd_footprint                  66    75    75
 rd_ceiling            rd_lod                        80   136   105
 rd_ceiling            rd_gbuffer                   204   290   226

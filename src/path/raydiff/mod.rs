@@ -58,10 +58,12 @@
 //! | [`RayDiff::refract`] | [`REFRACT_ERROR`] = 2⁻²⁴ | `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` |
 //!
 //! * **Primary.** `(D·r)` from an exact 64-bit dot product, one truncation
-//!   (`< 2u|r|`); `r − (D·r)·D` at eight times the unit of `r`: two
-//!   truncations and that error, `< 18u|r|∞`; normalised, times `D·f`
-//!   (exact dot, `< u`) by one multiply-high (`< 4u` of the result):
-//!   `18u·(D·f)|r| + 10u|r| ≤ 32u·(|D·f| + 1)|r|`.
+//!   (`< 2u|r|`); `r − (D·r)·D` at twice the unit of `r`, not normalised:
+//!   the halved `r` (`< 2u|r|∞`), the term `(D·r)·D` by one multiply-high
+//!   at eight times the unit (`< 8u|r|∞`) and that error, `< 12u|r|∞`;
+//!   times `D·f` (exact dot, `< u`) by one multiply-high at eight times
+//!   the unit of `r` (`< 8u|r|∞`), then normalised (exact):
+//!   `12u·|D·f||r| + 9u|r| ≤ 32u·(|D·f| + 1)|r|`.
 //! * **Transfer.** `t` to 31 bits (`< u·t`); `t·∂D` by one multiply-high
 //!   of two 31-bit mantissas (at least 29 bits: `< 4u·t|∂D|`); the sum at
 //!   the larger exponent (two truncations, `< 8u·S`, `S = |∂O| + t|∂D|`):
@@ -476,7 +478,6 @@ impl RayDiff {
         let (tn, tz) = normalise64(t.to_bits());
         let tm = (tn >> 1) as i32;
         let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
-        let ew = lz as i32 - 32;
         for axis in 0..2 {
             let (o, dd) = (self.get(axis), self.get(2 + axis));
             // q = ∂O + t·∂D at 2^eq, |qₖ| < 2³¹ (∂O shifted by at least 1,
@@ -486,19 +487,25 @@ impl RayDiff {
             let q: [i32; 3] =
                 core::array::from_fn(|k| shr(o.m[k], eq - o.e) + shr(mulhi(tm, dd.m[k]), eq - ep));
             // q·n = qn·2^(eq+1) (exact dot, one truncation, |qn| < √3·2³⁰),
-            // normalised to qm·2^eqn.
+            // normalised to qm·2^(eq+1−sn).
             let qn = (dot64(q, n) >> 31) as i32;
             let sn = clz32((((qn ^ (qn >> 31)) as u32) << 1) | 1) as i32;
-            let (qm, eqn) = (qn << sn, eq + 1 - sn);
-            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eqn+e_w+32),
+            let qm = qn << sn;
+            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eq+1−sn+lz),
             // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
-            let et_ = eqn + ew + 32;
-            let er = (eq + 1).max(et_);
+            // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
+            // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
+            // sn ∈ [0, 31]): the shifts 1 + max(0, gap) ≤ 20 and
+            // max(0, −gap) ≤ 31 need no clamp.
+            let gap = lz as i32 - sn;
+            let (sq, st) = (1 + gap.max(0), (-gap).max(0));
+            let er = eq + sq;
             let r: [i32; 3] = core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // (non-unit `D`, `n`) reach ±2³¹; the result is then
                 // garbage, but no panic.
-                shr(q[k], er - eq).wrapping_sub(shr(mulhi(qm, w[k]), er - et_))
+                q[k].wrapping_shr(sq as u32)
+                    .wrapping_sub(mulhi(qm, w[k]).wrapping_shr(st as u32))
             });
             self.set(axis, Bfp3::new(r, er));
         }
@@ -542,6 +549,7 @@ impl RayDiff {
     /// `∂μ = (η − η²·cos θᵢ / cos θₜ)·∂cos θᵢ`, `∂cos θᵢ = −(∂D·n + D·∂n)`,
     /// `∂T = η·∂D + ∂μ·n + μ·∂n`; `∂O` is kept. `cos θₜ` is clamped to
     /// [`MIN_COS`] (near the critical angle). Per hit; never panics.
+    #[inline]
     pub fn refract(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2], eta: Eta, cos_t: I2F30) {
         let (d, n) = (bits(d), bits(n));
         let eta = eta.0.to_bits();
@@ -596,13 +604,12 @@ impl RayDiff {
 fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
     // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
     let dr = (dot64(r.m, d) >> 31) as i32;
-    // (r − (D·r)·D)/8: |·| < 2²⁹.
-    let v = Bfp3::new(
-        core::array::from_fn(|k| (r.m[k] >> 3) - mulhi(dr, d[k])),
-        r.e + 3,
-    );
-    // (D·f)·v = mulhi(v, df)·2²: df is D·f·2³⁰.
-    Bfp3::new(v.m.map(|x| mulhi(x, df)), v.e + 2)
+    // (r − (D·r)·D)/2 in the units of r (|·| ≤ √3·2³⁰ for unit `D`: the
+    // projection is no longer than r), not normalised: the product with
+    // D·f below keeps its absolute error within the bound.
+    let v: [i32; 3] = core::array::from_fn(|k| (r.m[k] >> 1).wrapping_sub(mulhi(dr, d[k]) << 2));
+    // (D·f)·v = mulhi(v, df)·2³: df is D·f·2³⁰.
+    Bfp3::new(v.map(|x| mulhi(x, df)), r.e + 3)
 }
 
 /// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at
@@ -780,6 +787,31 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    /// A hit where `∂O` lies almost in the surface (`q·n = −2⁻²⁰·|q|`) at
+    /// `|D·n| = 2⁻¹⁰`: `q·n` is normalised before its product with
+    /// `D/(D·n)`, so the result keeps the precision of `q` (within `2⁻²⁴`
+    /// of its scale here, where the documented bound allows `2⁻¹³`); an
+    /// unnormalised `q·n` would align `q` to the term's unit and lose 14
+    /// bits of it.
+    #[test]
+    fn transfer_keeps_a_small_q_dot_n_exact() {
+        let z = I2F30::ZERO;
+        let d = unit_q([(1.0 - 2f64.powi(-20)).sqrt(), 0.0, -(2f64.powi(-10))]);
+        let n = UnitVec([z, z, I2F30::ONE]);
+        let o = PosDiff::from_f64([1.0, 0.0, -(2f64.powi(-20))]);
+        let s = RayDiff::new(o, o, DirDiff::ZERO, DirDiff::ZERO);
+        let mut got = s;
+        got.transfer(d, PathLength::ZERO, n);
+        let want = rf::transfer(&state(&s), vu(d), 0.0, vu(n));
+        let err = dist(got.dox().to_f64(), want.dox);
+        assert!(
+            err <= 2f64.powi(-24),
+            "{err:e}: {:?} vs {:?}",
+            got.dox().to_f64(),
+            want.dox
+        );
     }
 
     /// `∂D` and `∂n` at one exponent, every mantissa at its largest and
