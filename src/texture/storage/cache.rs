@@ -815,6 +815,32 @@ mod tests {
         assert!(!c.access(7));
     }
 
+    /// `capacity()` is the number of blocks the cache holds at once: a
+    /// pass over `capacity()` consecutive blocks (`WAYS` per set) leaves
+    /// every one cached, so a second pass only hits, while one block more
+    /// puts `WAYS + 1` blocks in set 0 and a second pass misses. Sets and
+    /// ways differ (4 × 3), so a sum, quotient or constant in place of
+    /// `SETS · WAYS` fails.
+    #[test]
+    fn capacity_is_the_number_of_blocks_held() {
+        fn second_pass_misses(blocks: u32) -> u64 {
+            let mut c: BlockCache<4, 3> = BlockCache::new();
+            for b in 0..blocks {
+                let _ = c.access(b);
+            }
+            c.reset_stats();
+            for b in 0..blocks {
+                let _ = c.access(b);
+            }
+            c.stats().misses
+        }
+        let cap = BlockCache::<4, 3>::new().capacity();
+        assert_eq!(cap, 12);
+        let cap = u32::try_from(cap).unwrap();
+        assert_eq!(second_pass_misses(cap), 0);
+        assert!(second_pass_misses(cap + 1) > 0);
+    }
+
     /// A footprint read with one lookup per block gives the texels, hit
     /// and miss counts and later behaviour of four single reads, for every
     /// block pattern (one block, two side by side, two above each other,
