@@ -80,7 +80,7 @@ VEX_CEILINGS = {
     "tw_bil": 322, "tw_bil_f": 279, "tw_tri": 762, "tw_tri_f": 720, "tw_tri_n": 711, "ts_bil": 294,
     "ts_bil_f": 307, "ts_tri": 767, "ts_tri_f": 776, "ts_srgb": 1265, "ts_565": 1879, "ts_565_f": 2431,
     "ts_bc1_hit": 3255, "ts_bc1_hit_f": 3089, "ts_bc1_fill": 9951, "ts_bc1_fill_f": 10313, "an2": 3972,
-    "an4": 4719, "an16": 10095, "an2_f": 2994, "an4_f": 3612, "an16_f": 7563, "rd_primary": 7220,
+    "an4": 4719, "an16": 10095, "an2_f": 2994, "an4_f": 3612, "an16_f": 8549, "rd_primary": 7220,
     "rd_transfer": 10567, "rd_reflect": 10199, "rd_refract": 19717, "rd_footprint": 2059, "rd_lod": 1039,
     "rd_gbuffer": 3154,
 }
