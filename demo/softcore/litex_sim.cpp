@@ -5,15 +5,31 @@
 // firmware's exit code. One model serves every firmware image.
 //
 // Usage: litex-sim FIRMWARE.elf [MAX_CYCLES]
+// With LITEX_SIM_PROFILE=FILE and LITEX_SIM_PROFILE_ROOT=ADDR in the
+// environment: the cycle profile of every call of the function at ADDR
+// (from the retirement of its first instruction to that of the
+// instruction at its return address, callees included) into FILE: a line
+// `calls N` (the calls), then one line `pc retired cycles` (hex pc,
+// decimal counts) per instruction address that retired inside those
+// calls. Every cycle is charged to the next instruction that leaves
+// VexRiscv's last stage (the cycle it leaves and the cycles since the one
+// before), so a stall shows on the instruction that waited: a data-cache
+// miss on its load, a co-processor's latency on its custom instruction,
+// an instruction-cache refill or a taken branch's bubbles on the
+// instruction after them.
 // Exit status: the firmware's exit code (3 when it trapped: its trap
 // handler prints the cause); 2 usage or ELF errors; 124 MAX_CYCLES reached
 // (default 2e9). A summary line goes to stderr.
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <map>
 #include <memory>
+#include <utility>
 
 #include "Vsim.h"
 #include "Vsim___024root.h"
+#include "Vsim_VexRiscv.h"
 #include "Vsim_sim.h"
 #include "main_ram.h"
 #include "sim_driver.h"
@@ -59,7 +75,42 @@ int main(int argc, char** argv) {
     top->serial_source_ready = 1;
     uint64_t cycle = 0;
     int status = sim::kTimeout;
+    // The profile: pc -> (retired, cycles) inside the calls of `root`;
+    // `idle` the cycles since the last instruction left the last stage,
+    // `ret` the return address of the call in progress (`inside`).
+    const char* profile = std::getenv("LITEX_SIM_PROFILE");
+    const char* root_env = std::getenv("LITEX_SIM_PROFILE_ROOT");
+    if (profile && !root_env) {
+        std::fprintf(stderr, "litex-sim: LITEX_SIM_PROFILE needs LITEX_SIM_PROFILE_ROOT\n");
+        return 2;
+    }
+    const uint32_t root = root_env ? uint32_t(std::strtoul(root_env, nullptr, 0)) : 0;
+    std::map<uint32_t, std::pair<uint64_t, uint64_t>> prof;
+    uint64_t idle = 0, calls = 0;
+    uint32_t ret = 0;
+    bool inside = false;
+    const auto* cpu = top->rootp->sim->VexRiscv;
     for (; cycle < args.max_cycles; ++cycle) {
+        if (profile && cycle >= 8) {
+            ++idle;
+            if (cpu->lastStageIsFiring) {
+                const uint32_t pc = cpu->lastStagePc;
+                if (!inside && pc == root) {
+                    // The call's return address: `ra` as the call left it.
+                    inside = true;
+                    ret = cpu->RegFilePlugin_regFile[1];
+                    ++calls;
+                } else if (inside && pc == ret) {
+                    inside = false;
+                }
+                if (inside) {
+                    auto& e = prof[pc];
+                    e.first += 1;
+                    e.second += idle;
+                }
+                idle = 0;
+            }
+        }
         if (cycle == 8) top->sys_rst = 0;
         // The UART's stream: a byte is taken at the rising edge where
         // valid and ready are both high (ready always is).
@@ -85,5 +136,17 @@ int main(int argc, char** argv) {
         top->eval();
     }
     top->final();
+    if (profile) {
+        FILE* f = std::fopen(profile, "w");
+        if (!f) {
+            std::perror(profile);
+            return 2;
+        }
+        std::fprintf(f, "calls %llu\n", (unsigned long long)calls);
+        for (const auto& [pc, e] : prof)
+            std::fprintf(f, "%08x %llu %llu\n", pc, (unsigned long long)e.first,
+                         (unsigned long long)e.second);
+        std::fclose(f);
+    }
     return sim::summary("litex-sim", status, cycle, args, kRamBytes);
 }
