@@ -26,7 +26,12 @@ script checks against the generated CSR map:
   0xf000_0000  CSRs: `uart` (rxtx, txfull, ...) and `sim_exit` (a write of
                the exit code ends the simulation), each at a fixed page.
 
-Usage: litex_soc.py --out DIR [--cfu] [--ram-bytes N]
+--bursting: LiteX's bus bursting (SoCCore's `bus_bursting`): the main RAM
+answers the incrementing bursts of VexRiscv's cache refills one word a
+cycle (LiteX's integrated SRAM, or BankedRAM); without it one word every
+two cycles. scripts/softcore and scripts/fpga measure the SoC without it.
+
+Usage: litex_soc.py --out DIR [--cfu] [--ram-bytes N] [--bursting]
 """
 import argparse
 import csv
@@ -88,9 +93,13 @@ class BankedRAM(Module):
     read/write port (byte enables) and one read port `cfu_ports[b]` for the
     texture unit: two ports per memory, so that block RAM holds each bank
     once (one memory with three ports is copied). On the Wishbone bus it
-    behaves as LiteX's SRAM: the data and ack one cycle after the request."""
+    behaves as LiteX's SRAM: the data and ack one cycle after the request,
+    and with `bursting` one word a cycle in an incrementing read burst
+    (`cti` 0b010, as VexRiscv's cache refills are): while a burst beat is
+    acknowledged the banks already read the next word, and ack stays high
+    until the beat that ends the burst."""
 
-    def __init__(self, ram_bytes):
+    def __init__(self, ram_bytes, bursting=False):
         words = ram_bytes // 4
         aw = words.bit_length() - 1
         assert words == 1 << aw, "the main RAM's size must be a power of two"
@@ -101,21 +110,33 @@ class BankedRAM(Module):
         self.specials += self.banks + ports + self.cfu_ports
         bus = self.bus
         adr = bus.adr[:aw]
+        # The word the banks read: with bursting, the next one of an
+        # incrementing read burst whose beat is acknowledged now, else the
+        # bus's. (Without, the SoC's Verilog is the one without the option.)
+        radr = adr
+        if bursting:
+            burst = Signal()
+            radr = Signal(aw)
+            self.comb += [
+                burst.eq(bus.cyc & bus.stb & ~bus.we & (bus.cti == wishbone.CTI_BURST_INCREMENTING)),
+                radr.eq(Mux(burst & bus.ack, adr + 1, adr)),
+            ]
         for b, port in enumerate(ports):
-            self.comb += [port.adr.eq(adr[1:]), port.dat_w.eq(bus.dat_w)]
+            self.comb += [port.adr.eq(radr[1:]), port.dat_w.eq(bus.dat_w)]
             self.comb += [port.we[i].eq(bus.cyc & bus.stb & bus.we & bus.sel[i] & (adr[0] == b)) for i in range(4)]
         # The bank of the word read in the previous cycle.
         odd = Signal()
-        self.sync += odd.eq(adr[0])
+        self.sync += odd.eq(radr[0])
         self.comb += bus.dat_r.eq(Mux(odd, ports[1].dat_r, ports[0].dat_r))
-        self.sync += [bus.ack.eq(0), If(bus.cyc & bus.stb & ~bus.ack, bus.ack.eq(1))]
+        more = (~bus.ack | burst) if bursting else ~bus.ack
+        self.sync += [bus.ack.eq(0), If(bus.cyc & bus.stb & more, bus.ack.eq(1))]
 
 
 class RaymipSoC(SoCCore):
     """VexRiscv + main RAM + UART + exit register on LiteX's simulation
     platform; `cfu` the path of the CFU's Verilog, or None."""
 
-    def __init__(self, cfu=None, ram_bytes=256 * 1024):
+    def __init__(self, cfu=None, ram_bytes=256 * 1024, bursting=False):
         platform = SimPlatform("SIM", _io)
         self.crg = CRG(platform.request("sys_clk"), platform.request("sys_rst"))
         SoCCore.__init__(
@@ -131,11 +152,12 @@ class RaymipSoC(SoCCore):
             integrated_main_ram_size=0 if cfu else ram_bytes,
             uart_name="sim",
             with_timer=False,
+            bus_bursting=bursting,
         )
         if cfu:
             # The CFU's logarithm pipeline, shared with the PicoRV32 unit.
             platform.add_source(os.path.join(os.path.dirname(cfu), "tex_log2pl.v"))
-            self.main_ram = BankedRAM(ram_bytes)
+            self.main_ram = BankedRAM(ram_bytes, bursting)
             self.bus.add_slave("main_ram", self.main_ram.bus, SoCRegion(origin=MAIN_RAM, size=ram_bytes))
             self.add_cfu_ram_port(ram_bytes)
         self.sim_exit = SimExit(platform.request("sim_exit"))
@@ -177,10 +199,12 @@ def main():
     ap.add_argument("--out", required=True, help="output directory")
     ap.add_argument("--cfu", help="Verilog of the CFU (module Cfu); without: the plain `full` variant")
     ap.add_argument("--ram-bytes", type=int, default=256 * 1024)
+    ap.add_argument("--bursting", action="store_true",
+                    help="LiteX's bus bursting: cache refills one word a cycle")
     a = ap.parse_args()
     out = os.path.abspath(a.out)
     cfu = os.path.abspath(a.cfu) if a.cfu else None
-    soc = RaymipSoC(cfu=cfu, ram_bytes=a.ram_bytes)
+    soc = RaymipSoC(cfu=cfu, ram_bytes=a.ram_bytes, bursting=a.bursting)
     for name, page in CSR_LOCATIONS.items():
         soc.csr.locs[name] = page
     # LiteX's Builder would also generate the BIOS's software tree and
