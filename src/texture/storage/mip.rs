@@ -814,6 +814,36 @@ mod tests {
         }
     }
 
+    /// A mutable borrow of a source reads as the source: geometry,
+    /// texels, footprints (clamped and in-level) and, for a power-of-two
+    /// pyramid, its level views (the sampler's direct path), so a sampler
+    /// over `&mut source` takes the same path as over the source.
+    #[test]
+    fn mutable_borrow_reads_as_its_source() {
+        use crate::texture::storage::pow2::Pow2Pyramid;
+        let g = Geometry::new(4, 2, 3).unwrap();
+        let buf: std::vec::Vec<Texel> =
+            (0..g.len() as u32).map(|i| 0x0101_0101 * (i + 1)).collect();
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        let mut d = Pow2Pyramid::new(p).unwrap();
+        for level in 0..4u8 {
+            for (x, y) in [([0, 1], [0, 1]), ([3, 0], [1, 0]), ([1, 2], [1, 1])] {
+                let want = p.footprint(level, x, y);
+                let mut b = &mut p;
+                assert_eq!(TexelSource::geometry(&b), g);
+                assert_eq!(b.texel(level, x[1], y[0]), want[1]);
+                assert_eq!(b.footprint(level, x, y), want);
+                assert_eq!(b.footprint_in_level(level, x, y), want);
+                assert!(TexelSource::levels(&b).is_none());
+                let mut b = &mut d;
+                assert_eq!(b.footprint(level, x, y), want);
+                assert_eq!(b.footprint_in_level(level, x, y), want);
+                let views = TexelSource::levels(&b).map(|l| l.level(usize::from(level)));
+                assert_eq!(views.map(|v| v.texel(x[0], y[1])), Some(want[2]));
+            }
+        }
+    }
+
     #[test]
     fn footprint_equals_texel_reads() {
         let g = Geometry::new(5, 3, 3).unwrap();
