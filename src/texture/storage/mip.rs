@@ -821,6 +821,27 @@ mod tests {
     #[test]
     fn mutable_borrow_reads_as_its_source() {
         use crate::texture::storage::pow2::Pow2Pyramid;
+        /// What `s` reads at `level`, `x`, `y` through the trait (for
+        /// `S = &mut T`, the borrow's own impl): geometry, texel
+        /// `(x[1], y[0])`, footprint, in-level footprint, and texel
+        /// `(x[0], y[1])` of the level view when there are views.
+        fn reads<S: TexelSource>(
+            mut s: S,
+            level: u8,
+            x: [u32; 2],
+            y: [u32; 2],
+        ) -> (Geometry, Texel, [Texel; 4], [Texel; 4], Option<Texel>) {
+            let view = s
+                .levels()
+                .map(|l| l.level(usize::from(level)).texel(x[0], y[1]));
+            (
+                s.geometry(),
+                s.texel(level, x[1], y[0]),
+                s.footprint(level, x, y),
+                s.footprint_in_level(level, x, y),
+                view,
+            )
+        }
         let g = Geometry::new(4, 2, 3).unwrap();
         let buf: std::vec::Vec<Texel> =
             (0..g.len() as u32).map(|i| 0x0101_0101 * (i + 1)).collect();
@@ -828,18 +849,16 @@ mod tests {
         let mut d = Pow2Pyramid::new(p).unwrap();
         for level in 0..4u8 {
             for (x, y) in [([0, 1], [0, 1]), ([3, 0], [1, 0]), ([1, 2], [1, 1])] {
-                let want = p.footprint(level, x, y);
-                let mut b = &mut p;
-                assert_eq!(TexelSource::geometry(&b), g);
-                assert_eq!(b.texel(level, x[1], y[0]), want[1]);
-                assert_eq!(b.footprint(level, x, y), want);
-                assert_eq!(b.footprint_in_level(level, x, y), want);
-                assert!(TexelSource::levels(&b).is_none());
-                let mut b = &mut d;
-                assert_eq!(b.footprint(level, x, y), want);
-                assert_eq!(b.footprint_in_level(level, x, y), want);
-                let views = TexelSource::levels(&b).map(|l| l.level(usize::from(level)));
-                assert_eq!(views.map(|v| v.texel(x[0], y[1])), Some(want[2]));
+                let want = reads(p, level, x, y);
+                assert_eq!(want.0, g);
+                assert_eq!(want.1, p.get(level, x[1], y[0]));
+                assert_eq!(want.2[2], p.get(level, x[0], y[1]));
+                assert_eq!(want.3, want.2);
+                assert_eq!(want.4, None);
+                assert_eq!(reads(&mut p, level, x, y), want);
+                let views = (want.0, want.1, want.2, want.3, Some(want.2[2]));
+                assert_eq!(reads(d, level, x, y), views);
+                assert_eq!(reads(&mut d, level, x, y), views);
             }
         }
     }
