@@ -71,35 +71,37 @@ pub fn axis(
     plus: Option<&GSample>,
     scale: i32,
 ) -> (PosDiff, DirDiff) {
-    match pair(c, minus, plus) {
-        Some((a, b)) => (PosDiff(pos_diff(a, b, scale)), DirDiff(normal_diff(a, b))),
-        None => (PosDiff::ZERO, DirDiff::ZERO),
-    }
+    let (a, b) = pair(c, minus, plus);
+    (PosDiff(pos_diff(a, b, scale)), DirDiff(normal_diff(a, b)))
 }
 
 /// The two samples whose difference is the axis's differential (`a − b`):
 /// `(plus, c)` or `(c, minus)`, the side with the smaller `|t − t_c|`
-/// (ties: `plus`); `None` when both are missing.
+/// (ties: `plus`); `(c, c)` when both are missing (a zero difference, so
+/// the differentials are zero without a test of their own).
 #[inline(always)]
 fn pair<'a>(
     c: &'a GSample,
     minus: Option<&'a GSample>,
     plus: Option<&'a GSample>,
-) -> Option<(&'a GSample, &'a GSample)> {
+) -> (&'a GSample, &'a GSample) {
     let dt = |s: &GSample| s.t.abs_diff(c.t);
     match (minus, plus) {
-        (Some(m), Some(p)) if dt(m) < dt(p) => Some((c, m)),
-        (_, Some(p)) => Some((p, c)),
-        (Some(m), None) => Some((c, m)),
-        (None, None) => None,
+        (Some(m), Some(p)) if dt(m) < dt(p) => (c, m),
+        (_, Some(p)) => (p, c),
+        (Some(m), None) => (c, m),
+        (None, None) => (c, c),
     }
 }
 
-/// `a.p − b.p` at `2^scale` (wrapping beyond the documented positions).
+/// `a.p − b.p` at `2^scale` (wrapping beyond the documented positions),
+/// `scale` clamped to `[EXP_MIN + 31, EXP_MAX]` = `[−16353, 16383]` (far
+/// beyond every scene): there no normalised exponent leaves the
+/// representable range, so no clamp remains after the normalisation.
 #[inline(always)]
 fn pos_diff(a: &GSample, b: &GSample, scale: i32) -> Bfp3 {
     let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
-    Bfp3::new(dp, scale.clamp(EXP_MIN, EXP_MAX))
+    Bfp3::new_in_range(dp, scale.clamp(EXP_MIN + 31, EXP_MAX))
 }
 
 /// `a.n − b.n` in I2F30 (saturated at ±2).
@@ -126,11 +128,9 @@ pub fn first_hit(
     // The two sides chosen first (two pointers each), then each
     // differential stored as soon as it is made: its temporaries end there.
     let (x, y) = (pair(c, left, right), pair(c, up, down));
-    s.set(0, x.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
-    s.set(1, y.map_or(Bfp3::ZERO, |(a, b)| pos_diff(a, b, scale)));
-    let n =
-        |p: Option<(&GSample, &GSample)>| DirDiff(p.map_or(Bfp3::ZERO, |(a, b)| normal_diff(a, b)));
-    [n(x), n(y)]
+    s.set(0, pos_diff(x.0, x.1, scale));
+    s.set(1, pos_diff(y.0, y.1, scale));
+    [x, y].map(|(a, b)| DirDiff(normal_diff(a, b)))
 }
 
 #[cfg(test)]
@@ -202,5 +202,40 @@ mod tests {
         // No neighbour in y: no differential there.
         let [_, ny] = first_hit(&mut s, &c, [None, Some(&p), None, None], -2);
         assert_eq!((s.doy(), ny), (PosDiff::ZERO, DirDiff::ZERO));
+    }
+
+    /// The buffer's scale is clamped to `[EXP_MIN + 31, EXP_MAX]`: a unit
+    /// difference at the lowest scale normalises to `2³⁰·2^(EXP_MIN + 1)`,
+    /// the largest mantissa at the highest keeps `EXP_MAX`; zero stays the
+    /// canonical zero at every scale.
+    #[test]
+    fn scale_clamped_to_its_range() {
+        let one = 1 << 30;
+        let c = sample([0, 0, 0], [0, 0, one], 100);
+        let m = sample([-1, 0, 0], [0, 0, one], 100);
+        let big = sample([0, -one, 0], [0, 0, one], 100);
+        for low in [i32::MIN, EXP_MIN - 1, EXP_MIN, EXP_MIN + 31] {
+            assert_eq!(
+                axis(&c, Some(&m), None, low).0.parts(),
+                ([one, 0, 0], EXP_MIN + 1)
+            );
+        }
+        assert_eq!(
+            axis(&c, Some(&m), None, EXP_MIN + 32).0.parts(),
+            ([one, 0, 0], EXP_MIN + 2)
+        );
+        for high in [EXP_MAX, EXP_MAX + 1, i32::MAX] {
+            assert_eq!(
+                axis(&c, Some(&big), None, high).0.parts(),
+                ([0, one, 0], EXP_MAX)
+            );
+        }
+        assert_eq!(
+            axis(&c, Some(&big), None, EXP_MAX - 1).0.parts(),
+            ([0, one, 0], EXP_MAX - 1)
+        );
+        for scale in [i32::MIN, 0, i32::MAX] {
+            assert_eq!(axis(&c, Some(&c), None, scale).0, PosDiff::ZERO);
+        }
     }
 }

@@ -75,10 +75,14 @@
 //!   (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|w| ≤ 1/|D·n|` and
 //!   `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 + 1/|D·n|)`.
 //! * **Reflection.** `∂D` and `∂n` at one exponent with 3 and 5 bits of
-//!   headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation each); `D·n` to
-//!   `2⁻³⁰` (`< u`); `∂(D·n)` from exact dot products, one truncation
-//!   (`< (1 + 2√3)·2ᵉ` with the inputs'); `2((D·n)·∂n + ∂(D·n)·n)` exact
-//!   in 64 bits and truncated once: `12.93·2ᵉ + 2u|∂n| ≤ 128u·(|∂D| + 4|∂n|)`.
+//!   headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation each, `< 2ᵉ`), `∂n`
+//!   also at `2ᵉ⁻²` (`< 2ᵉ/4`); `D·n` to `2⁻³⁰` (`< u`); `∂(D·n)` from
+//!   exact dot products, one truncation (`< (2√3 + ½)·2ᵉ` with the
+//!   inputs'); `n` saturated at `1 − 2⁻³⁰` (`< u`, times
+//!   `|∂(D·n)| < 0.55·2³⁰·2ᵉ`: `< 0.55·2ᵉ`); the half term
+//!   `(D·n)·∂n + ∂(D·n)·n` by two multiply-highs (`< 2ᵉ` each):
+//!   `6.76·2ᵉ + u|∂n|`, doubled, and `∂D`'s truncation:
+//!   `14.5·2ᵉ + 2u|∂n| ≤ 128u·(|∂D| + 4|∂n|)`.
 //! * **Refraction.** The scalars `μ`, `1/cos θₜ` (division and Newton step) and
 //!   `c = η − η²·cos θᵢ/cos θₜ` as normalised 31-bit mantissas: each
 //!   multiply-high `< 4u` relative, `cos θᵢ` to `2⁻³⁰`, so
@@ -521,21 +525,27 @@ impl RayDiff {
         let (d, n) = (bits(d), bits(n));
         // D·n in 2⁻³⁰ units (one truncation).
         let c = (dot64(d, n) >> 30) as i32;
+        // 2n in 2⁻³² units (a component of ±1 saturated to 1 − 2⁻³⁰: one
+        // `ssat` and a shift).
+        let n2 = n.map(|x| x.clamp(-(1 << 30), (1 << 30) - 1) << 1);
         for (axis, nn) in dn.iter().enumerate() {
             let (dd, nn) = (self.get(2 + axis), nn.0);
             // Common exponent with headroom: |∂D| ≤ 2²⁸, |∂n| ≤ 2²⁶ units,
             // so |∂(D·n)| < √3·(2²⁸ + 2²⁶) and the term below < 1.2·2³⁰.
             let e = (dd.e + 3).max(nn.e + 5);
             let a = dd.m.map(|x| shr(x, e - dd.e));
-            let b = nn.m.map(|x| shr(x, e - nn.e));
-            // ∂(D·n) in units of 2ᵉ, one truncation.
-            let s = ((dot64(a, n) + dot64(d, b)) >> 30) as i32;
+            // ∂n at 2^(e−2) (|·| ≤ 2²⁸) for its product with D·n, and at 2ᵉ.
+            let b4 = nn.m.map(|x| shr(x, e - 2 - nn.e));
+            let b = b4.map(|x| x >> 2);
+            // 2·∂(D·n) in units of 2ᵉ (|·| < 1.1·2³⁰), one truncation.
+            let s2 = ((dot64(a, n) + dot64(d, b)) >> 29) as i32;
             let r: [i32; 3] = core::array::from_fn(|k| {
-                // 2·((D·n)·∂n + ∂(D·n)·n) = (c·b + s·n)/2²⁹: exact in 64
-                // bits, one truncation (c and n are 2³⁰ times D·n and n).
-                let t = i64::from(c) * i64::from(b[k]) + i64::from(s) * i64::from(n[k]);
+                // (D·n)·∂n + ∂(D·n)·n = mulhi(c, 4∂n) + mulhi(2∂(D·n), 2n)
+                // in units of 2ᵉ (below 0.6·2³⁰; one `smmul` and one
+                // `smmla`), doubled in the subtraction.
+                let h = mulhi(c, b4[k]).wrapping_add(mulhi(s2, n2[k]));
                 // Wrapping: only non-unit `D`, `n` reach ±2³¹ (no panic).
-                a[k].wrapping_sub((t >> 29) as i32)
+                a[k].wrapping_sub(h << 1)
             });
             self.set(2 + axis, Bfp3::new(r, e));
         }
@@ -840,6 +850,60 @@ pub(crate) mod tests {
         let dd = Bfp3::new([1 << 30, 1 << 30, 2_146_119_543], -47);
         let dn = Bfp3::new([1_270_073_125, i32::MAX, i32::MAX], -47);
         refract_x_within_bound(d, n, dd, dn, I4F28::MAX, I2F30::ONE);
+    }
+
+    /// A reflection at the largest `∂(D·n)`: `∂D` and `∂n` at their
+    /// largest mantissas with the exponents that give both their least
+    /// headroom (3 and 5 bits), `n` and `D` along `±(1, 1, 1)` and the two
+    /// dot products of one sign: `2∂(D·n)` is `1.08·2³⁰` units, inside 32
+    /// bits only with the bit the halving leaves; and an axis normal,
+    /// whose component 1 is saturated.
+    #[test]
+    fn reflect_largest_dot_product_and_axis_normal() {
+        let c = I2F30::from_num(0.577_350_269_189_625_7);
+        let (z, o) = (I2F30::ZERO, I2F30::ONE);
+        let cases = [
+            (
+                UnitVec([-c; 3]),
+                UnitVec([c; 3]),
+                [i32::MIN; 3],
+                [i32::MAX; 3],
+            ),
+            (
+                UnitVec([c; 3]),
+                UnitVec([c; 3]),
+                [i32::MAX; 3],
+                [i32::MAX; 3],
+            ),
+            (
+                UnitVec([z, c, -c]),
+                UnitVec([z, z, o]),
+                [i32::MAX, 0, i32::MIN],
+                [1 << 30, 7, -1],
+            ),
+            (
+                UnitVec([-o, z, z]),
+                UnitVec([o, z, z]),
+                [i32::MIN, 5, 0],
+                [i32::MIN, 0, 3],
+            ),
+        ];
+        for (d, n, dd, dn) in cases {
+            let (dd, dn) = (Bfp3::new(dd, -40), Bfp3::new(dn, -42));
+            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff::ZERO);
+            let mut got = s;
+            got.reflect(d, n, [DirDiff(dn), DirDiff::ZERO]);
+            let want = rf::reflect(&state(&s), vu(d), vu(n), val(dn), [0.0; 3]);
+            let scale = norm(val(dd)) + 4.0 * norm(val(dn));
+            let err = dist(got.ddx().to_f64(), want.ddx);
+            assert!(
+                err <= REFLECT_ERROR * scale,
+                "{:e}: {:?} vs {:?}",
+                err / scale,
+                got.ddx().to_f64(),
+                want.ddx
+            );
+        }
     }
 
     /// `refract` of the x axis (`∂D = dd`, `∂n = dn`) within
