@@ -188,11 +188,11 @@ goal                  bilinear                      90   110   100
 goal                  trilinear                    150   200   180
 ceiling               lod                           31    52    33
 ceiling               cone_lod                      65   105    68
-ceiling               bilinear                     123   178   172
-ceiling               trilinear                    263   354   349
+ceiling               bilinear                      97   137   135
+ceiling               trilinear                    221   283   283
 ceiling               lod_fast                      20    42    26
 ceiling               cone_lod_fast                 40    92    54
-ceiling               trilinear_fast               230   336   313
+ceiling               trilinear_fast               209   276   254
 batch_goal            lod                           12     -     -
 batch_goal            lod_fast                      12    20     -
 batch_goal            trilinear                    120     -     -
@@ -204,10 +204,10 @@ rd_ceiling            rd_refract                   537   829   509
 rd_ceiling            rd_footprint                  66    75    75
 rd_ceiling            rd_lod                        80   136   105
 rd_ceiling            rd_gbuffer                   204   290   226
-matrix_ceiling        tw_bil                       111   139   137
-matrix_ceiling        tw_bil_f                     113   146   135
-matrix_ceiling        tw_tri                       244   292   290
-matrix_ceiling        tw_tri_f                     220   278   255
+matrix_ceiling        tw_bil                        97   137   135
+matrix_ceiling        tw_bil_f                     103   146   132
+matrix_ceiling        tw_tri                       221   283   283
+matrix_ceiling        tw_tri_f                     209   276   254
 matrix_ceiling        tw_tri_n                     264   301   298
 matrix_ceiling        ts_bil                       131   199   189
 matrix_ceiling        ts_bil_f                     149   197   183
@@ -226,10 +226,10 @@ matrix_ceiling        an16                        3812  4881  4871
 matrix_ceiling        an2_f                        829  1063  1010
 matrix_ceiling        an4_f                       1205  1563  1480
 matrix_ceiling        an16_f                      3444  4564  4302
-matrix_batch_ceiling  matrix:rm_batch_bilinear     115   137   132
-matrix_batch_ceiling  rm_batch_bilinear_fast       130   134   121
-matrix_batch_ceiling  matrix:rm_batch_trilinear    224   249   244
-matrix_batch_ceiling  rm_batch_trilinear_fast      196   230   201
+matrix_batch_ceiling  matrix:rm_batch_bilinear     108   134   130
+matrix_batch_ceiling  rm_batch_bilinear_fast       103   132   119
+matrix_batch_ceiling  matrix:rm_batch_trilinear    208   243   238
+matrix_batch_ceiling  rm_batch_trilinear_fast      191   228   201
 geomlod_ceiling       discrete                      97    78    73
 geomlod_ceiling       stochastic                   117    92    86
 """

@@ -163,40 +163,42 @@ impl fmt::Display for SamplerError {
 
 impl core::error::Error for SamplerError {}
 
-/// The addressing constants of one level of a power-of-two geometry, per
-/// axis `[u, v]`: the wrap constant [`wrap_constant`]`(k, bits)` for the
-/// kernel's weight width and the shift `s = 31 − k` of the side
-/// `n = 2^k ≤ 2¹⁵` (the mask is `n − 1 = (2³¹ − 1) >> s`), in 12 bytes:
-/// the arguments of `AddressMode::pow2_taps`.
+/// The addressing constants of every level index `0 ..= 16` of a
+/// power-of-two geometry, per axis `[u, v]`: the wrap constants
+/// [`wrap_constant`]`(k, bits)` for the kernel's weight width, and the
+/// shifts `s = 31 − k` of the sides `n = 2^k ≤ 2¹⁵` (the mask is
+/// `n − 1 = (2³¹ − 1) >> s`): the arguments of `AddressMode::pow2_taps`.
+/// The wrap constants have a table of their own with 8-byte entries, so
+/// that the direct path (which takes the sides and masks from the level
+/// views and only the constants from here) addresses a level's pair with
+/// one shifted index and reads it with one `ldrd` on the M4.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-struct LevelAddr {
-    c: [u32; 2],
-    s: [u8; 2],
+struct LevelTable {
+    c: [[u32; 2]; MAX_LEVELS as usize + 1],
+    s: [[u8; 2]; MAX_LEVELS as usize + 1],
 }
 
-impl LevelAddr {
-    /// The masks `n − 1` of both axes.
+impl LevelTable {
+    /// The masks `n − 1` of both axes of level `level ≤ 16`.
     #[inline(always)]
-    fn masks(&self) -> [u32; 2] {
-        self.s.map(|s| i32::MAX as u32 >> (s & 31))
+    fn masks(&self, level: usize) -> [u32; 2] {
+        self.s[level].map(|s| i32::MAX as u32 >> (s & 31))
     }
 }
 
-/// The [`LevelAddr`] of every level index `0 ..= 16` of `g` (levels past
-/// the top repeat it, as [`Geometry::level_size`] clamps them) when both
-/// sides are powers of two (then every level's are), else `None`.
-fn level_table(g: &Geometry, bits: u32) -> Option<[LevelAddr; MAX_LEVELS as usize + 1]> {
+/// The [`LevelTable`] of `g` (levels past the top repeat it, as
+/// [`Geometry::level_size`] clamps them) when both sides are powers of two
+/// (then every level's are), else `None`.
+fn level_table(g: &Geometry, bits: u32) -> Option<LevelTable> {
     if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
         return None;
     }
-    let mut t = [LevelAddr::default(); MAX_LEVELS as usize + 1];
-    for (k, e) in (0u8..).zip(t.iter_mut()) {
+    let mut t = LevelTable::default();
+    for ((k, c), s) in (0u8..).zip(t.c.iter_mut()).zip(t.s.iter_mut()) {
         let (w, h) = g.level_size(k);
         let n = [w, h];
-        *e = LevelAddr {
-            c: n.map(|n| wrap_constant(n.trailing_zeros(), bits)),
-            s: n.map(|n| n.leading_zeros() as u8),
-        };
+        *c = n.map(|n| wrap_constant(n.trailing_zeros(), bits));
+        *s = n.map(|n| n.leading_zeros() as u8);
     }
     Some(t)
 }
@@ -271,7 +273,7 @@ pub struct Sampler<S: TexelSource, K: Key = Cfg> {
     /// [`level_table`] for the kernel's weight bits (entry 16 repeats the
     /// top level so that `lower + 1` needs no check); all zero, and
     /// `pow2` false, for other geometries.
-    levels: [LevelAddr; MAX_LEVELS as usize + 1],
+    levels: LevelTable,
     pow2: bool,
     /// Feature `cfu` on riscv32: the co-processor's texture unit with this
     /// sampler's descriptor block ([`texture_unit_block`](Self::texture_unit_block)
@@ -455,7 +457,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[cfg(feature = "trilinear")]
     #[inline(always)]
     pub fn sample_trilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
-        self.trilinear_counted(u, v, lod, |s, one_level| {
+        self.trilinear_counted(u, v, lod, self.rounding, |s, one_level| {
             if one_level {
                 s.count(4, 4);
             } else {
@@ -468,7 +470,9 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// left to `count(stats, one_level)`, called once: `one_level` when the
     /// blend weight is 0 (one level read, 4 texel reads skipped), else 8
     /// texels were read. (Called in each branch, where the single call's
-    /// counter updates cost least; the batch counts once per batch.)
+    /// counter updates cost least; the batch counts once per batch.) `k`:
+    /// the rounding terms (the sampler's field for a single call, the
+    /// constants in a batch: [`sample_batch`](Self::sample_batch)).
     #[cfg(feature = "trilinear")]
     #[inline(always)]
     fn trilinear_counted(
@@ -476,6 +480,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         u: TexCoord,
         v: TexCoord,
         lod: Lod,
+        k: Rounding,
         mut count: impl FnMut(&mut K::Stats, bool),
     ) -> Texel {
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
@@ -490,8 +495,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // next to `lower`'s entry (one address for both levels).
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
-        let k = self.rounding;
-        let a = self.level_value(u, v, lower);
+        let a = self.level_value(u, v, lower, k);
         // Level `a` enters the blend before the branch: its own values
         // are dead before the second level's footprint is read.
         let started = Kern::<K>::start_blend(a, t, k);
@@ -499,7 +503,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             count(&mut self.stats, true);
             Kern::<K>::finish_one(started)
         } else {
-            let b = self.level_value(u, v, lower + 1);
+            let b = self.level_value(u, v, lower + 1, k);
             count(&mut self.stats, false);
             Kern::<K>::finish_blend(started, b, t, k)
         }
@@ -509,12 +513,14 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[inline(always)]
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         self.stats.count(4, 0);
-        self.bilinear_uncounted(u, v, lod)
+        self.bilinear_uncounted(u, v, lod, self.rounding)
     }
 
-    /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter.
+    /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter,
+    /// with the rounding terms `k` (as for
+    /// [`trilinear_counted`](Self::trilinear_counted)).
     #[inline(always)]
-    fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
+    fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod, k: Rounding) -> Texel {
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
         if let Some(t) = self.unit_sample(u, v, lod, false) {
             return t;
@@ -525,7 +531,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             return Kern::<K>::round_level(a);
         }
         let (t, fx, fy) = self.footprint(u, v, level);
-        Kern::<K>::bilinear_texel(t, fx, fy, self.rounding)
+        Kern::<K>::bilinear_texel(t, fx, fy, k)
     }
 
     /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
@@ -598,6 +604,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         }
         // `n ≤ isize::MAX`: the casts to `u64` are exact.
         let texels = n as u64 * 4;
+        // The filtered modes take the rounding terms as constants, not the
+        // sampler's field: a loop would keep the field's values in
+        // registers across iterations (on the Cortex-M4, spilled with the
+        // loop's pointers), while constants are rebuilt where a chain uses
+        // them. The values are the same (`Rounding::new`).
+        let k = Rounding::new();
         match mode {
             // The two filtered modes count once per batch (the same totals
             // as per call), keeping the counters out of the loop.
@@ -605,7 +617,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             Mode::Trilinear => {
                 let mut one_level = 0usize;
                 for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
-                    *o = self.trilinear_counted(u, v, lod, |_, one| {
+                    *o = self.trilinear_counted(u, v, lod, k, |_, one| {
                         one_level += usize::from(one);
                     });
                 }
@@ -614,7 +626,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             }
             Mode::BilinearNearestLevel => {
                 for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
-                    *o = self.bilinear_uncounted(u, v, lod);
+                    *o = self.bilinear_uncounted(u, v, lod, k);
                 }
                 self.stats.count(texels, 0);
             }
@@ -652,7 +664,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// The kernel's level value of the footprint at `level` (`≤ 16`):
     /// through the co-processor's addressing where it applies
     /// ([`coproc_level`](Self::coproc_level)), else [`footprint`](Self::footprint)
-    /// and the kernel.
+    /// and the kernel, with the rounding terms `k`.
     #[cfg(feature = "trilinear")]
     #[inline(always)]
     fn level_value(
@@ -660,13 +672,14 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         u: TexCoord,
         v: TexCoord,
         level: usize,
+        k: Rounding,
     ) -> <Kern<K> as Kernel>::Level {
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
         if let Some(a) = self.coproc_level(u, v, level) {
             return a;
         }
         let (t, fx, fy) = self.footprint(u, v, level);
-        Kern::<K>::level(t, fx, fy, self.rounding)
+        Kern::<K>::level(t, fx, fy, k)
     }
 
     /// Feature `cfu` on riscv32: the level value at `level` (`≤ 16`) with
@@ -713,13 +726,13 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
                 // Wrapped on both axes: every tap is a texel (no border),
                 // addressed by the view without a mask.
-                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels[level].c, bits);
+                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels.c[level], bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
             // Every tap is read (the view masks it into the level) and a
             // border tap replaced afterwards: a range test per tap, no
             // branch.
-            let [cx, cy] = self.levels[level].c;
+            let [cx, cy] = self.levels.c[level];
             let xt = mu.pow2_taps::<true>(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
             let yt = mv.pow2_taps::<true>(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
             let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
@@ -736,12 +749,12 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             // level's constants from the table); other sizes by the
             // general taps.
             let (xt, yt) = if self.pow2 {
-                let a = &self.levels[level];
-                let [mx, my] = a.masks();
-                let [sx, sy] = a.s.map(u32::from);
+                let [mx, my] = self.levels.masks(level);
+                let [sx, sy] = self.levels.s[level].map(u32::from);
+                let [cx, cy] = self.levels.c[level];
                 (
-                    mu.pow2_taps::<false>(u, mx + 1, mx, sx, a.c[0], bits),
-                    mv.pow2_taps::<false>(v, my + 1, my, sy, a.c[1], bits),
+                    mu.pow2_taps::<false>(u, mx + 1, mx, sx, cx, bits),
+                    mv.pow2_taps::<false>(v, my + 1, my, sy, cy, bits),
                 )
             } else {
                 let (w, h) = self.source.geometry().level_size(level as u8);
