@@ -25,7 +25,7 @@ use core::fmt;
 use crate::texture::storage::bc::{self, BLOCK_TEXELS};
 use crate::texture::storage::cache::{BLOCK, TexelMemory};
 use crate::texture::storage::format::{
-    AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, TexelFormat,
+    AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, RGB565_SPLIT, TexelFormat,
 };
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
 
@@ -340,7 +340,9 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
     }
 
     /// [`footprint`](Self::footprint) without the clamps: an index past
-    /// the level reads another texel of the image, or 0 past its bytes.
+    /// the level reads another texel of the image, or past its bytes the
+    /// expansion of 0. RGB565 expands each texel by the split table
+    /// (`RGB565_SPLIT`: two loads and an OR).
     #[inline]
     fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         let f = self.kind.texel();
@@ -357,13 +359,22 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
         let pitch = (usize::from(l.last[0]) + 1) * unit;
         let rows = y.map(|y| l.offset + y as usize * pitch);
         let cols = x.map(|x| x as usize * unit);
-        let texel = |at: usize| f.decode(self.raw(at, unit));
-        [
-            texel(rows[0] + cols[0]),
-            texel(rows[0] + cols[1]),
-            texel(rows[1] + cols[0]),
-            texel(rows[1] + cols[1]),
-        ]
+        let at = [
+            rows[0] + cols[0],
+            rows[0] + cols[1],
+            rows[1] + cols[0],
+            rows[1] + cols[1],
+        ];
+        if f == TexelFormat::Rgb565 {
+            let [lo, hi] = &RGB565_SPLIT;
+            let texel = |at: usize| match self.bytes.get(at..).and_then(<[u8]>::first_chunk) {
+                Some(&[a, b]) => lo[usize::from(a)] | hi[usize::from(b)],
+                // Past the bytes: the expansion of 0 (`hi[0]` is alpha alone).
+                None => lo[0],
+            };
+            return [texel(at[0]), texel(at[1]), texel(at[2]), texel(at[3])];
+        }
+        at.map(|at| f.decode(self.raw(at, unit)))
     }
 }
 
@@ -538,6 +549,23 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// Indices whose bytes lie past the image's data read the expansion
+    /// of 0 (never a panic), in every uncompressed format.
+    #[test]
+    fn footprint_past_the_data_reads_the_expansion_of_zero() {
+        let g = Geometry::new(4, 4, 3).unwrap();
+        for f in TexelFormat::ALL
+            .into_iter()
+            .filter(|f| !f.is_block_compressed())
+        {
+            let bytes = pattern(image_len(4, 4, 3, f), 7);
+            let mut img = Image::new(g, Format::linear(f), &bytes).unwrap();
+            let far = u32::MAX / 2;
+            let got = img.footprint_in_level(0, [far, far], [far, 1 << 30]);
+            assert_eq!(got, [f.decode(0); 4], "{f:?}");
         }
     }
 
