@@ -10,8 +10,8 @@
 //!   more fractional bits (16.8, as the filters produce it) becomes the
 //!   8-bit code `round(255·OETF(x))`: the number of the 255 decision
 //!   thresholds [`ENCODE_THRESHOLDS`]`[k] = ceil(EOTF((k + ½)/255)·65535·256)`
-//!   at or below `x`, read from a 736-byte bucket table of counts and two
-//!   compares (no search). Exact for the 16.8 input: the result equals the f64
+//!   at or below `x`, read from a 1216-byte bucket table of counts and one
+//!   compare (no search). Exact for the 16.8 input: the result equals the f64
 //!   rounding of `255·OETF(x)` except where `x` lies within one 16.8 step
 //!   of a threshold.
 //! * **Pyramids** of sRGB textures are generated in linear space
@@ -88,24 +88,53 @@ pub const ENCODE_THRESHOLDS: [u32; 256] = {
 pub const SRGB_ENCODE_MAX_ERROR_LSB: f64 = 0.55;
 
 /// Tier boundary of [`ENCODE_BUCKETS`]: values below `2²⁰` fall into
-/// buckets of 2¹² (the thresholds there are at least 5092 apart: at most
-/// one per bucket), values above into buckets of 2¹⁵ (thresholds at least
-/// 29 000 apart there: at most two per bucket). Tested.
-const ENCODE_TIER: u32 = 1 << 20;
+/// buckets of 2¹² (the thresholds there are more than 2¹² apart: at most
+/// one per bucket), values above into buckets of 2¹⁴ (thresholds more than
+/// 2¹⁴ apart there: at most one per bucket). Tested.
+const ENCODE_TIER: u32 = 1 << ENCODE_TIER_BITS;
+
+/// `log2` of [`ENCODE_TIER`].
+const ENCODE_TIER_BITS: u32 = 20;
+
+/// Buckets of [`ENCODE_BUCKETS`]: 256 of 2¹² below [`ENCODE_TIER`], 960 of
+/// 2¹⁴ from it up to 2²⁴.
+const ENCODE_BUCKET_COUNT: usize = 256 + (((1 << 24) - ENCODE_TIER) >> 14) as usize;
+
+/// The largest input [`encode`] distinguishes (`2²⁴ − 1`, above 1.0 in
+/// 16.8): larger values are clamped to it.
+const ENCODE_MAX: u32 = (1 << 24) - 1;
+
+/// The bucket of `x < 2²⁴`: `x >> 12` below [`ENCODE_TIER`] (`x >> 20 =
+/// 0`), else `192 + (x >> 14)` (the first coarse bucket, `2²⁰ >> 14 = 64`,
+/// follows the 256 fine ones); below [`ENCODE_BUCKET_COUNT`]. (Both forms
+/// give 256 at the tier, so the test is on the tier's bits.)
+#[inline(always)]
+const fn encode_bucket(x: u32) -> u32 {
+    if x >> ENCODE_TIER_BITS == 0 {
+        x >> 12
+    } else {
+        192 + (x >> 14)
+    }
+}
+
+/// The start of bucket `b` (the inverse of [`encode_bucket`] on bucket
+/// starts; both forms give `2²⁰` at `b = 256`).
+const fn encode_bucket_start(b: u32) -> u32 {
+    if b >> 8 == 0 {
+        b << 12
+    } else {
+        (b - 192) << 14
+    }
+}
 
 /// `ENCODE_BUCKETS[b]`: the number of [`ENCODE_THRESHOLDS`] entries at or
-/// below the start of bucket `b` (`x >> 12` below [`ENCODE_TIER`], then
-/// `224 + (x >> 15)`, up to `x < 2²⁴`; larger values are clamped to the
-/// last bucket, whose count is 255).
-const ENCODE_BUCKETS: [u8; 736] = {
-    let mut t = [0u8; 736];
+/// below the start of bucket `b` ([`encode_bucket`]; values of `2²⁴` and
+/// more are clamped to the last bucket, whose count is 255).
+const ENCODE_BUCKETS: [u8; ENCODE_BUCKET_COUNT] = {
+    let mut t = [0u8; ENCODE_BUCKET_COUNT];
     let mut b = 0;
-    while b < 736 {
-        let start: u32 = if b < 256 {
-            (b as u32) << 12
-        } else {
-            ((b as u32) - 224) << 15
-        };
+    while b < ENCODE_BUCKET_COUNT {
+        let start = encode_bucket_start(b as u32);
         let mut c = 0;
         while c < 255 && ENCODE_THRESHOLDS[c] <= start {
             c += 1;
@@ -120,25 +149,16 @@ const ENCODE_BUCKETS: [u8; 736] = {
 /// values give 255): `round(255·OETF(x))`, the number of
 /// [`ENCODE_THRESHOLDS`] entries at or below `x`: the count below the
 /// bucket of `x` (the private table `ENCODE_BUCKETS`) plus the (at most
-/// two) thresholds inside it that `x` reaches. Never panics.
+/// one) threshold inside it that `x` reaches. Never panics.
 #[inline]
 #[must_use]
 pub fn encode(x: u32) -> u8 {
-    let x = x.min((1 << 24) - 1);
-    let b = if x < ENCODE_TIER {
-        x >> 12
-    } else {
-        224 + (x >> 15)
-    };
+    let x = x.min(ENCODE_MAX);
+    let b = encode_bucket(x);
     let c = ENCODE_BUCKETS.get(b as usize).copied().unwrap_or(255);
-    // Entry 255 is the sentinel `u32::MAX`: `c + 1 ≤ 255` reads it at most.
-    let at = |k: u8| {
-        ENCODE_THRESHOLDS
-            .get(usize::from(k))
-            .copied()
-            .unwrap_or(u32::MAX)
-    };
-    c + u8::from(x >= at(c)) + u8::from(x >= at(c.saturating_add(1)))
+    // Entry 255 is the sentinel `u32::MAX`: `c ≤ 255` reads it at most.
+    let t = ENCODE_THRESHOLDS[usize::from(c)];
+    c + u8::from(x >= t)
 }
 
 /// The linear L16 value of sRGB code `c`.
@@ -235,8 +255,9 @@ mod tests {
     }
 
     /// The bucketed encode equals the binary search over every input of
-    /// the 16.8 range and beyond, and the buckets hold at most one (below
-    /// 2²⁰) or two thresholds.
+    /// the 16.8 range and beyond, and the buckets hold at most one
+    /// threshold (below 2²⁰ of 2¹², above of 2¹⁴), each bucket starting
+    /// where the previous one ends.
     #[test]
     fn encode_equals_the_search() {
         let search = |x: u32| {
@@ -260,6 +281,18 @@ mod tests {
             assert!(gap > 1 << 12, "{w:?}");
             assert!(w[0] < ENCODE_TIER || gap > 1 << 14, "{w:?}");
         }
+        assert_eq!(ENCODE_BUCKET_COUNT, 1216);
+        for b in 1..ENCODE_BUCKET_COUNT as u32 {
+            let (start, end) = (encode_bucket_start(b - 1), encode_bucket_start(b));
+            assert_eq!(end - start, if b <= 256 { 1 << 12 } else { 1 << 14 }, "{b}");
+            assert_eq!(
+                (encode_bucket(start), encode_bucket(end - 1)),
+                (b - 1, b - 1)
+            );
+        }
+        assert_eq!(encode_bucket(ENCODE_MAX), ENCODE_BUCKET_COUNT as u32 - 1);
+        assert_eq!(encode_bucket(ENCODE_TIER - 1), 255);
+        assert_eq!(encode_bucket(ENCODE_TIER), 256);
     }
 
     #[test]
