@@ -213,9 +213,9 @@ matrix_ceiling        ts_bil                       131   199   189
 matrix_ceiling        ts_bil_f                     149   197   183
 matrix_ceiling        ts_tri                       273   403   392
 matrix_ceiling        ts_tri_f                     264   385   355
-matrix_ceiling        ts_srgb                      447   612   596
-matrix_ceiling        ts_565                       534   698   680
-matrix_ceiling        ts_565_f                     517   684   650
+matrix_ceiling        ts_srgb                      416   516   512
+matrix_ceiling        ts_565                       469   557   551
+matrix_ceiling        ts_565_f                     441   545   510
 matrix_ceiling        ts_bc1_hit                   650   781   769
 matrix_ceiling        ts_bc1_hit_f                 627   770   740
 matrix_ceiling        ts_bc1_fill                 3333  3535  3445
