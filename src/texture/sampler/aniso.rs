@@ -24,15 +24,23 @@
 //! Fixed point: axis components in texels are clamped to `|x| < 2¹⁵`
 //! (the largest texture side) with 16 fractional bits, squared lengths
 //! are U32F32 in `u64`, logarithms come from [`crate::log2`] (error
-//! 2⁻¹³) and `N` from a comparison with `log2 k`, `k = 1 … 16`; the probe
-//! step `a_uv / N` is one 64-bit division at set-up of the sample. A zero
-//! axis reads as the smallest positive length (lod ≈ −16, clamped later).
-
-use fixed::types::I16F16;
+//! 2⁻¹³) and `N` from a comparison with `log2 k`, `k = 1 … 16`, by a
+//! table of the ratio's top bits; the probe step `a_uv / N` is a multiply
+//! by a reciprocal. A zero axis reads as the smallest positive length
+//! (lod ≈ −16, clamped later).
+//!
+//! Cost: a footprint below one normalized unit per component on a level
+//! 0 below 2¹⁵ texels a side (every real pixel's) is scaled and squared
+//! in 32-bit words (one multiply per component, no clamp: `lengths`),
+//! any other one by the clamped 64-bit form in a cold function; the same
+//! values. A sampler that wraps on both axes of a power-of-two texture
+//! steps its probes in 32-bit words (the coordinates' fractions), with
+//! no saturation to test per probe.
 
 use super::{Key, Sampler};
 use crate::log2::log2_bits;
 use crate::texture::Stats;
+use crate::texture::address::{AddressMode, Axis};
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};
 use crate::units::{Footprint, Lod, TexCoord};
@@ -114,7 +122,8 @@ const RECIP: [u32; 16] = {
     r
 };
 
-/// `c / N` for `|c| ≤ 2⁴⁷` and `N = 1 … 16` (`N = 1`: `c`) by the reciprocal
+/// `c / N` for `|c| ≤ 2⁴⁷` and `N = 1 … 16` (`N = 1`: `c`; `N > 16` reads
+/// entry `(N − 1) mod 16`) by the reciprocal
 /// [`RECIP`]: `floor(c·R / 2³²)` from one 32×32-bit and one small
 /// multiply, within `1 + |c|·2⁻⁶⁴` of the exact quotient in I32F32 units
 /// (`R` overestimates `2³²/N` by less than 1). No division on the
@@ -124,29 +133,19 @@ fn div_small(c: i64, n: u8) -> i64 {
     if n <= 1 {
         return c;
     }
-    let r = RECIP
-        .get(usize::from(n).wrapping_sub(1))
-        .copied()
-        .unwrap_or(0);
+    let r = RECIP[usize::from(n.wrapping_sub(1)) & 15];
     let hi = c >> 32;
     let lo = u64::from(c as u32) * u64::from(r);
     hi * i64::from(r) + (lo >> 32) as i64
 }
 
 /// Axis component `c` (normalized, I32F32 bits, clamped to
-/// `±2⁴⁷`, i.e. `±2¹⁵` normalized units) times `size ≤ 2¹⁵` texels, in texels with 16 fractional
-/// bits, clamped to `|x| < 2¹⁵`.
+/// `±2⁴⁷`, i.e. `±2¹⁵` normalized units) times `size` texels (at most
+/// `2¹⁵`), in texels with 16 fractional bits, clamped to `|x| < 2¹⁵`.
 #[inline(always)]
 fn texels(c: i64, size: u32) -> i64 {
     const LIMIT: i64 = (1 << 31) - 1;
     let size = size.min(crate::texture::storage::mip::MAX_SIZE);
-    // A component below one normalized unit (`|c| < 2³¹` bits, every
-    // footprint of a texel or a few): one 32×32→64-bit multiply, and the
-    // result (`|c·size| < 2⁴⁶`, shifted: `< 2³⁰`) needs no clamp. The
-    // same value as the general form below.
-    if let Ok(c) = i32::try_from(c) {
-        return (i64::from(c) * i64::from(size)) >> 16;
-    }
     ((c * i64::from(size)) >> 16).clamp(-LIMIT, LIMIT)
 }
 
@@ -159,6 +158,114 @@ fn len2(x: i64, y: i64) -> u64 {
     u64::from(x) * u64::from(x) + u64::from(y) * u64::from(y)
 }
 
+/// The footprint's four axis components (normalized, I32F32 bits), `[x₀,
+/// x₁, y₀, y₁]`.
+#[inline(always)]
+fn components(fp: &Footprint) -> [i64; 4] {
+    [fp.x[0], fp.x[1], fp.y[0], fp.y[1]].map(TexCoord::to_bits)
+}
+
+/// Whether the 32-bit [`lengths`] apply: every axis component `c` inside
+/// `[−2³², 2³²)` (below one normalized unit: the footprints of real
+/// pixels) and both sides of level 0 below `2¹⁵` texels.
+#[inline(always)]
+fn small(c: [i64; 4], width: u32, height: u32) -> bool {
+    // `(c >> 32) + 1` is 0 or 1 exactly for `c ∈ [−2³², 2³²)`.
+    let hi = |c: i64| ((c >> 32) as u32).wrapping_add(1);
+    ((hi(c[0]) | hi(c[1]) | hi(c[2]) | hi(c[3])) >> 1) | ((width | height) >> 15) == 0
+}
+
+/// The squared lengths `(|a|², |b|²)` of the footprint's axes `c = [a₀,
+/// a₁, b₀, b₁]` (normalized, I32F32 bits; [`small`]) in texels of a
+/// `width × height` level 0, U32F32 bits: each scaled component is the
+/// 32-bit word `(c·size) >> 16` (`|c·size| < 2⁴⁷`, so it fits and no
+/// clamp applies) and each square one signed 32×32→64-bit multiply
+/// (`smull`/`smlal` on the Cortex-M4). The values of
+/// [`lengths_general`] (tested over both sides of each bound).
+#[inline(always)]
+fn lengths(c: [i64; 4], width: u32, height: u32) -> (u64, u64) {
+    let t = |c: i64, size: u32| i64::from((c.wrapping_mul(i64::from(size)) >> 16) as i32);
+    let sq = |x: i64, y: i64| (x * x + y * y) as u64;
+    (
+        sq(t(c[0], width), t(c[1], height)),
+        sq(t(c[2], width), t(c[3], height)),
+    )
+}
+
+/// [`lengths`] for any components and sides: components clamped to
+/// `±2⁴⁷` ([`AXIS_LIMIT`]), scaled by [`texels`], squared by [`len2`].
+#[inline(always)]
+fn lengths_general(c: [i64; 4], width: u32, height: u32) -> (u64, u64) {
+    let c = c.map(|x| x.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+    (
+        len2(texels(c[0], width), texels(c[1], height)),
+        len2(texels(c[2], width), texels(c[3], height)),
+    )
+}
+
+/// The probe rule's results for one footprint: the probe count `N`, the
+/// lod (I8F8 bits, before the sampler's bias and clamps) and the major
+/// axis (normalized, I32F32 bits, clamped to `±2⁴⁷`).
+#[derive(Clone, Copy)]
+struct Rule {
+    count: u8,
+    lod: i16,
+    major: [i64; 2],
+}
+
+/// The probe rule (module docs) of the footprint `fp` on a `width ×
+/// height` level 0 with at most `max ∈ 1 ..= 16` probes (any other value
+/// reads entry `(max − 1) mod 16` of [`LOG2_K`]; no panic): [`lengths`]
+/// when they apply ([`small`]), else [`rule_general`].
+#[inline(always)]
+fn rule(fp: &Footprint, width: u32, height: u32, max: u8) -> Rule {
+    let c = components(fp);
+    if small(c, width, height) {
+        rule_of(c, lengths(c, width, height), max)
+    } else {
+        rule_general(c, width, height, max)
+    }
+}
+
+/// [`rule`] for any footprint: the components clamped to `±2⁴⁷`, the
+/// lengths by [`lengths_general`].
+#[cold]
+#[inline(never)]
+fn rule_general(c: [i64; 4], width: u32, height: u32, max: u8) -> Rule {
+    let c = c.map(|x| x.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+    rule_of(c, lengths_general(c, width, height), max)
+}
+
+/// The probe rule from the axis components `c` (within `±2⁴⁷`) and the
+/// axes' squared lengths `(lx, ly)`: their two logarithms, the minor
+/// axis's clamp, the count from the ratio's bucket ([`entries_below`];
+/// at most `max`, as the clamped ratio is at most `log2 max`) and the
+/// lod, the clamped minor axis's log2 to 8 fractional bits (rounded
+/// down, as `Lod::saturating_from_num` rounds; no value in `[−16, 16)`
+/// saturates).
+#[inline(always)]
+fn rule_of(c: [i64; 4], (lx, ly): (u64, u64), max: u8) -> Rule {
+    let (major, l_major, l_minor) = if lx >= ly {
+        ([c[0], c[1]], lx, ly)
+    } else {
+        ([c[2], c[3]], ly, lx)
+    };
+    // log2 of the lengths: half the log2 of the squares (I16F16 bits, in
+    // `[−16, 16)`).
+    let log_major = log2_bits(l_major, 32).to_bits() >> 1;
+    let log_minor = log2_bits(l_minor, 32).to_bits() >> 1;
+    let log_max = LOG2_K[usize::from(max.wrapping_sub(1)) & 15];
+    let log_minor = log_minor.max(log_major - log_max);
+    // `0 ≤ ratio ≤ log2 max`: the first k with ratio ≤ log2 k is one more
+    // than the number of table entries below the ratio, at most `max`.
+    let ratio = log_major - log_minor;
+    Rule {
+        count: entries_below(ratio) + 1,
+        lod: (log_minor >> 8) as i16,
+        major,
+    }
+}
+
 /// Probe count, lod and probe positions of the footprint `fp` on a
 /// `width × height` level 0 with at most `max_aniso` probes (clamped to
 /// `1 ..= 16`). Axis components beyond `±2¹⁵` normalized units are clamped
@@ -167,30 +274,14 @@ fn len2(x: i64, y: i64) -> u64 {
 #[inline]
 #[must_use]
 pub fn probes(fp: &Footprint, width: u32, height: u32, max_aniso: u8) -> Probes {
-    let max = max_aniso.clamp(1, 16);
-    let c = |x: TexCoord| x.to_bits().clamp(-AXIS_LIMIT, AXIS_LIMIT);
-    let (ax, ay) = ([c(fp.x[0]), c(fp.x[1])], [c(fp.y[0]), c(fp.y[1])]);
-    let lx = len2(texels(ax[0], width), texels(ax[1], height));
-    let ly = len2(texels(ay[0], width), texels(ay[1], height));
-    let (major, l_major, l_minor) = if lx >= ly { (ax, lx, ly) } else { (ay, ly, lx) };
-    // log2 of the lengths: half the log2 of the squares (I16F16 bits).
-    let log_major = log2_bits(l_major, 32).to_bits() >> 1;
-    let log_minor = log2_bits(l_minor, 32).to_bits() >> 1;
-    let log_max = LOG2_K.get(usize::from(max) - 1).copied().unwrap_or(0);
-    let log_minor = log_minor.max(log_major - log_max);
-    let ratio = log_major - log_minor;
-    // The first k with ratio ≤ log2 k: one more than the number of table
-    // entries below the ratio (a binary search), at most `max`.
-    let below = entries_below(ratio);
-    let count = below.saturating_add(1).min(max);
-    // I16F16 → I8F8, rounded, saturating.
-    let lod = Lod::saturating_from_num(I16F16::from_bits(log_minor));
-    let step = major.map(|c| TexCoord::from_bits(div_small(c, count)));
+    let r = rule(fp, width, height, max_aniso.clamp(1, 16));
+    let count = r.count;
+    let step = r.major.map(|c| TexCoord::from_bits(div_small(c, count)));
     let first =
         step.map(|s| TexCoord::from_bits(s.to_bits().wrapping_mul(1 - i64::from(count)) >> 1));
     Probes {
         count,
-        lod,
+        lod: Lod::from_bits(r.lod),
         first,
         step,
     }
@@ -206,27 +297,47 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// window and the level choice are computed once per sample; each
     /// probe costs an addressing and the filter. Never panics.
     pub fn sample_aniso(&mut self, u: TexCoord, v: TexCoord, fp: &Footprint) -> Texel {
-        let p = probes(
-            fp,
-            self.source.geometry().width(),
-            self.source.geometry().height(),
-            self.state.max_anisotropy(),
-        );
-        let bits = self.lod.apply(p.lod);
+        let g = self.source.geometry();
+        // The state holds `1 ..= 16` (validated when it was made).
+        let r = rule(fp, g.width(), g.height(), self.state.max_anisotropy());
+        let bits = self.lod.apply(Lod::from_bits(r.lod));
         #[cfg(feature = "trilinear")]
         let (lower, t) = ((bits >> 8) as usize & 15, bits & 0xFF);
         #[cfg(not(feature = "trilinear"))]
         let (lower, t) = (((bits + 0x80) >> 8) as usize & 15, 0);
-        let n = u32::from(p.count.max(1));
-        let start = [u.saturating_add(p.first[0]), v.saturating_add(p.first[1])];
-        // From a start within ±2⁶² (the top two bits equal) no step can
-        // saturate: `|step| ≤ 2⁴⁷` (the clamped axis over the count), at
-        // most 15 steps. Plain adds then, the same coordinates.
+        let n = u32::from(r.count);
+        let step = r.major.map(|c| div_small(c, r.count));
+        let first = step.map(|s| s.wrapping_mul(1 - i64::from(n)) >> 1);
+        // From a coordinate within ±2⁶² (the top two bits equal) no
+        // offset can saturate: `|first|, |step| ≤ 2⁴⁷` (the clamped axis
+        // over the count), at most 15 steps.
         let near = |c: TexCoord| (c.to_bits() >> 62) == (c.to_bits() >> 63);
-        let sum = if near(start[0]) && near(start[1]) {
-            self.probe_sum::<false>(start, p.step, n, lower, t)
+        let sum = if self.wraps_in_words() && near(u) && near(v) {
+            // Only the coordinates' low words (their fractions) address,
+            // and no position saturates: positions modulo 1, in 32-bit
+            // words.
+            let low = |c: TexCoord, d: i64| (c.to_bits() as u32).wrapping_add(d as u32);
+            let start = [low(u, first[0]), low(v, first[1])];
+            let at = |c: u32| TexCoord::from_bits(i64::from(c));
+            self.probe_sum(
+                start,
+                step.map(|s| s as u32),
+                n,
+                (lower, t),
+                at,
+                u32::wrapping_add,
+            )
         } else {
-            self.probe_sum::<true>(start, p.step, n, lower, t)
+            let c = TexCoord::from_bits;
+            let start = [u.saturating_add(c(first[0])), v.saturating_add(c(first[1]))];
+            let step = step.map(c);
+            // Plain adds from a start that is near, the same coordinates.
+            let same = |c: TexCoord| c;
+            if near(start[0]) && near(start[1]) {
+                self.probe_sum(start, step, n, (lower, t), same, TexCoord::wrapping_add)
+            } else {
+                self.probe_sum(start, step, n, (lower, t), same, TexCoord::saturating_add)
+            }
         };
         let per_probe = if t == 0 { 4 } else { 8 };
         self.stats.count(
@@ -236,36 +347,41 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         <K::Kernel as Kernel>::probe_mean(sum, n)
     }
 
-    /// The channel sums of `n` probes from `start` by `step` (saturating
-    /// adds when `SAT`, else wrapping ones, which give the same
-    /// coordinates when nothing saturates) in level `lower` and, when
-    /// the blend weight `t ≠ 0`, `lower + 1`.
+    /// Whether this sampler's footprints depend on a coordinate's low
+    /// word alone: wrap on both axes of a power-of-two level 0 (the taps
+    /// of `pow2_wrap_taps`, with or without direct level views), where a
+    /// whole number of texture widths added changes no tap.
     #[inline(always)]
-    fn probe_sum<const SAT: bool>(
+    fn wraps_in_words(&self) -> bool {
+        self.axes.0.mode() == AddressMode::Wrap
+            && self.axes.1.mode() == AddressMode::Wrap
+            && (self.source.levels().is_some() || self.pow2)
+    }
+
+    /// The channel sums of `n` probes from `start` by `step` (positions
+    /// advanced by `add`, read as coordinates by `at`) in level `lower`
+    /// and, when the blend weight `t ≠ 0`, `lower + 1`.
+    #[inline(always)]
+    fn probe_sum<P: Copy>(
         &mut self,
-        start: [TexCoord; 2],
-        step: [TexCoord; 2],
+        start: [P; 2],
+        step: [P; 2],
         n: u32,
-        lower: usize,
-        t: u32,
+        (lower, t): (usize, u32),
+        at: impl Fn(P) -> TexCoord,
+        add: impl Fn(P, P) -> P,
     ) -> [u32; 4] {
-        let add = |a: TexCoord, b: TexCoord| {
-            if SAT {
-                a.saturating_add(b)
-            } else {
-                a.wrapping_add(b)
-            }
-        };
         let mut sum = [0u32; 4];
         let [mut pu, mut pv] = start;
         let k = self.rounding;
         for _ in 0..n {
-            let (ta, fxa, fya) = self.footprint(pu, pv, lower);
+            let (u, v) = (at(pu), at(pv));
+            let (ta, fxa, fya) = self.footprint(u, v, lower);
             let a = <K::Kernel as Kernel>::bilinear(ta, fxa, fya, k);
             let value = if t == 0 {
                 <K::Kernel as Kernel>::probe(a)
             } else {
-                let (tb, fxb, fyb) = self.footprint(pu, pv, lower + 1);
+                let (tb, fxb, fyb) = self.footprint(u, v, lower + 1);
                 let b = <K::Kernel as Kernel>::bilinear(tb, fxb, fyb, k);
                 <K::Kernel as Kernel>::probe_blend(a, b, t, k)
             };
@@ -300,32 +416,48 @@ mod tests {
         }
     }
 
-    /// The 32-bit form of `texels` equals the 64-bit one for components
-    /// around and beyond one normalized unit.
+    /// The 32-bit lengths (components below one normalized unit, sides
+    /// below 2¹⁵) equal the general 64-bit ones, on both sides of each
+    /// bound: components at and around `±2³²` and far beyond, sides up to
+    /// and past `2¹⁵`.
     #[test]
-    fn texels_fast_path_equals_general() {
-        let general = |c: i64, size: u32| {
-            ((c * i64::from(size.min(1 << 15))) >> 16).clamp(-((1 << 31) - 1), (1 << 31) - 1)
-        };
+    fn lengths_equal_the_general_form() {
         let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        for n in 0..if cfg!(miri) { 100 } else { 200_000u32 } {
+        let mut next = || {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
-            let c = ((x as i64) >> (n % 40)).clamp(-AXIS_LIMIT, AXIS_LIMIT);
-            for size in [1, 2, 3, 32, 1000, 1 << 15, u32::MAX] {
-                assert_eq!(texels(c, size), general(c, size), "{c} {size}");
-            }
-        }
-        for c in [
-            i64::from(i32::MIN),
-            i64::from(i32::MAX),
-            -1,
+            x
+        };
+        let edges = [
             0,
-            1 << 31,
-            -(1 << 31) - 1,
-        ] {
-            assert_eq!(texels(c, 1 << 15), general(c, 1 << 15));
+            1,
+            -1,
+            (1 << 32) - 1,
+            1 << 32,
+            -(1 << 32),
+            -(1 << 32) + 1,
+            -(1 << 32) - 1,
+            AXIS_LIMIT,
+            -AXIS_LIMIT - 1,
+            i64::MAX,
+            i64::MIN,
+        ];
+        let sizes = [1, 2, 3, 32, 1000, (1 << 15) - 1, 1 << 15, u32::MAX];
+        for n in 0..if cfg!(miri) { 100 } else { 100_000u32 } {
+            let mut c = [0i64; 4];
+            for (k, c) in c.iter_mut().enumerate() {
+                let r = next();
+                *c = if r % 4 == 0 {
+                    edges[(r >> 8) as usize % edges.len()]
+                } else {
+                    (r as i64) >> (29 + (n + k as u32) % 34)
+                };
+            }
+            let (w, h) = (sizes[n as usize % 8], sizes[(n as usize / 8) % 8]);
+            if small(c, w, h) {
+                assert_eq!(lengths(c, w, h), lengths_general(c, w, h), "{c:?} {w} {h}");
+            }
         }
     }
 
