@@ -216,8 +216,9 @@ struct Rule {
 /// The probe rule (module docs) of the footprint `fp` on a `width ×
 /// height` level 0 with at most `max ∈ 1 ..= 16` probes (any other value
 /// reads entry `(max − 1) mod 16` of [`LOG2_K`]; no panic): [`lengths`]
-/// when they apply ([`small`]), else [`rule_general`].
-#[inline(always)]
+/// when they apply ([`small`]), else [`rule_general`]. Not inlined: one
+/// copy serves every sampler key (code size).
+#[inline(never)]
 fn rule(fp: &Footprint, width: u32, height: u32, max: u8) -> Rule {
     let c = components(fp);
     if small(c, width, height) {
@@ -312,7 +313,8 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // offset can saturate: `|first|, |step| ≤ 2⁴⁷` (the clamped axis
         // over the count), at most 15 steps.
         let near = |c: TexCoord| (c.to_bits() >> 62) == (c.to_bits() >> 63);
-        let sum = if self.wraps_in_words() && near(u) && near(v) {
+        let words = self.wraps_in_words();
+        let sum = if words && near(u) && near(v) {
             // Only the coordinates' low words (their fractions) address,
             // and no position saturates: positions modulo 1, in 32-bit
             // words.
@@ -331,9 +333,11 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             let c = TexCoord::from_bits;
             let start = [u.saturating_add(c(first[0])), v.saturating_add(c(first[1]))];
             let step = step.map(c);
-            // Plain adds from a start that is near, the same coordinates.
+            // Plain adds from a start that is near, the same coordinates
+            // (a sampler that steps in words saturates here: it came for
+            // a coordinate beyond ±2⁶², and one loop less is code size).
             let same = |c: TexCoord| c;
-            if near(start[0]) && near(start[1]) {
+            if !words && near(start[0]) && near(start[1]) {
                 self.probe_sum(start, step, n, (lower, t), same, TexCoord::wrapping_add)
             } else {
                 self.probe_sum(start, step, n, (lower, t), same, TexCoord::saturating_add)
