@@ -345,6 +345,10 @@ pub trait Axis: Copy + Default + core::fmt::Debug + Send + Sync + 'static {
     /// [`ClampToBorder`] and [`AnyAxis`]): without it the sampler has no
     /// border selects.
     const MAY_BORDER: bool;
+    /// Whether this axis wraps whatever the run-time state (only the
+    /// [`Wrap`] type): a sampler compiles its wrap-only shortcuts (the
+    /// anisotropic probe loop in 32-bit words) for such keys alone.
+    const ALWAYS_WRAP: bool;
     /// The mode of this axis.
     fn mode(self) -> AddressMode;
     /// The axis for `mode`, `None` when this type cannot address so.
@@ -359,6 +363,7 @@ macro_rules! static_axes {
 
         impl Axis for $name {
             const MAY_BORDER: bool = $border;
+            const ALWAYS_WRAP: bool = matches!(AddressMode::$mode, AddressMode::Wrap);
             #[inline(always)]
             fn mode(self) -> AddressMode {
                 AddressMode::$mode
@@ -392,6 +397,7 @@ pub struct AnyAxis(pub AddressMode);
 
 impl Axis for AnyAxis {
     const MAY_BORDER: bool = true;
+    const ALWAYS_WRAP: bool = false;
     #[inline(always)]
     fn mode(self) -> AddressMode {
         self.0

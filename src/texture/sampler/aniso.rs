@@ -40,7 +40,7 @@
 use super::{Key, Sampler};
 use crate::log2::log2_bits;
 use crate::texture::Stats;
-use crate::texture::address::{AddressMode, Axis};
+use crate::texture::address::Axis;
 use crate::texture::kernel::Kernel;
 use crate::texture::storage::mip::{Texel, TexelSource};
 use crate::units::{Footprint, Lod, TexCoord};
@@ -352,14 +352,14 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     }
 
     /// Whether this sampler's footprints depend on a coordinate's low
-    /// word alone: wrap on both axes of a power-of-two level 0 (the taps
+    /// word alone: a key whose two axes are the [`Wrap`](crate::texture::address::Wrap)
+    /// type (decided at compile time, so keys with run-time modes carry
+    /// no third probe loop), on a power-of-two level 0 (the taps
     /// of `pow2_wrap_taps`, with or without direct level views), where a
     /// whole number of texture widths added changes no tap.
     #[inline(always)]
     fn wraps_in_words(&self) -> bool {
-        self.axes.0.mode() == AddressMode::Wrap
-            && self.axes.1.mode() == AddressMode::Wrap
-            && (self.source.levels().is_some() || self.pow2)
+        K::U::ALWAYS_WRAP && K::V::ALWAYS_WRAP && (self.source.levels().is_some() || self.pow2)
     }
 
     /// The channel sums of `n` probes from `start` by `step` (positions
