@@ -249,7 +249,8 @@ pub(crate) const fn widen6(x: u32) -> u32 {
 /// bits 5–7 and, replicated, 0–1; no other bit of a channel depends on
 /// both bytes, so the two words never share a set bit but alpha (255 in
 /// both). Two loads and an OR per texel instead of three extractions and
-/// replications (`Image`'s footprint of RGB565 levels).
+/// replications (`Image`'s footprint of RGB565 levels, feature `cache`).
+#[cfg(any(feature = "cache", test))]
 pub(crate) static RGB565_SPLIT: [[Texel; 256]; 2] = {
     let mut t = [[0; 256]; 2];
     let mut b = 0;
