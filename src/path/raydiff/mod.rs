@@ -111,9 +111,7 @@ mod bfp;
 pub mod gbuffer;
 
 use crate::log2::clz32;
-pub(crate) use bfp::{
-    Bfp3, EXP_MAX, EXP_MIN, dot64, exp_selected, mulhi, norm_shift, recip, shr, wide_shift,
-};
+pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, norm_shift, recip, shr};
 
 use crate::units::UnitVec;
 
@@ -566,9 +564,14 @@ impl RayDiff {
         // cos θᵢ in 2⁻³⁰ units (one truncation), cos θₜ clamped.
         let ci = -((dot64(d, n) >> 30) as i32);
         let ct = cos_t.to_bits().max(MIN_COS_I2F30);
-        // μ = η·cos θᵢ − cos θₜ in 2⁻²⁸ units (64 bits, one truncation).
-        let mu = Scalar::wide(
-            ((i64::from(eta) * i64::from(ci)) >> 30) - i64::from(ct >> 2),
+        // μ = η·cos θᵢ − cos θₜ in 2⁻²⁸ units (one truncation): for unit
+        // `D`, `n` facing each other, η < 8 and cos θₜ ∈ [MIN_COS, 2) it
+        // lies in (−2, 8), within 32 bits, so it is normalised from 32 bits
+        // (the wrapping difference is exact whenever the result fits, so
+        // bit for bit the value a 64-bit normalisation gives); inputs
+        // outside that range wrap (garbage, no panic).
+        let mu = Scalar::new(
+            (((i64::from(eta) * i64::from(ci)) >> 30) as i32).wrapping_sub(ct >> 2),
             -28,
         );
         let eta_s = Scalar::new(eta, -28);
@@ -623,7 +626,12 @@ fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
 }
 
 /// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at
-/// [`EXP_MIN`]) for the few scalars of a refraction.
+/// [`EXP_MIN`]) for the few scalars of a refraction. Its exponent is not
+/// clamped: the per-call scalars (`η`, `μ`, `cos θᵢ`, `1/cos θₜ` and their
+/// products) have exponents within ±100, and a per-axis one adds an
+/// exponent of the state (`[EXP_MIN, EXP_MAX]`), so every exponent stays
+/// within `±2¹⁶` (far from `i32` overflow); the result vector's
+/// [`Bfp3::new`] clamps.
 #[derive(Clone, Copy, Debug)]
 struct Scalar {
     m: i32,
@@ -631,25 +639,16 @@ struct Scalar {
 }
 
 impl Scalar {
-    /// `m·2ᵉ` normalised as [`Bfp3::new`] (bit for bit), with zero
-    /// selected after the clamp: in the chain of scalar operations the
-    /// compiler folds the clamp's bounds into the next exponent sum, which
-    /// a pushed exponent would defeat.
+    /// `m·2ᵉ` normalised as [`Bfp3::new_in_range`] (bit for bit, so as
+    /// [`Bfp3::new`] for `e ∈ [EXP_MIN + 31, EXP_MAX]`): zero at
+    /// [`EXP_MIN`], no clamp.
     #[inline(always)]
     fn new(m: i32, e: i32) -> Self {
         let s = norm_shift([m, 0, 0]);
         Self {
             m: m << s,
-            e: exp_selected(e - s, m == 0),
+            e: if m == 0 { EXP_MIN } else { e - s },
         }
-    }
-
-    /// `m·2ᵉ` from a 64-bit mantissa as [`Bfp3::from_wide`] (bit for bit),
-    /// normalised as [`Scalar::new`].
-    #[inline(always)]
-    fn wide(m: i64, e: i32) -> Self {
-        let s = wide_shift([m, 0, 0]);
-        Self::new((m >> s) as i32, e.clamp(2 * EXP_MIN, 2 * EXP_MAX) + s)
     }
 
     #[inline(always)]
@@ -953,16 +952,18 @@ pub(crate) mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
 
-        /// `Scalar::new` and `Scalar::wide` normalise as `Bfp3::new` and
-        /// `Bfp3::from_wide` on one component, bit for bit (shifts down to
-        /// 0 and −1, exponents beyond both clamps).
+        /// `Scalar::new` normalises as `Bfp3::new_in_range` on one
+        /// component, bit for bit (shifts down to 0 and −1, any exponent of
+        /// a refraction's scalars), and so as `Bfp3::new` inside its range.
         #[test]
-        fn scalar_normalises_as_bfp3(m in any::<i64>(), s in 0u32..64, e in -(1i32 << 17)..=1 << 17) {
+        fn scalar_normalises_as_bfp3(m in any::<i64>(), s in 0u32..64, e in -(1i32 << 16)..=1 << 16) {
             let m = m >> s;
-            let (a, b) = (Scalar::new(m as i32, e), Bfp3::new([m as i32, 0, 0], e));
+            let (a, b) = (Scalar::new(m as i32, e), Bfp3::new_in_range([m as i32, 0, 0], e));
             prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
-            let (a, b) = (Scalar::wide(m, e), Bfp3::from_wide([m, 0, 0], e));
-            prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
+            if (EXP_MIN + 31..=EXP_MAX).contains(&e) {
+                let b = Bfp3::new([m as i32, 0, 0], e);
+                prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
+            }
         }
 
         /// The transfer within `TRANSFER_ERROR·(|∂O| + t|∂D|)(1 + 1/|D·n|)`
