@@ -672,6 +672,13 @@ mod tests {
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
     }
 
+    /// `pyramid_len` in a const context, as a `static` pyramid's length
+    /// (module docs): rustc evaluates it while building the tests, so a
+    /// level loop that did not end fails that build (rustc's
+    /// `long_running_const_eval` limit) instead of hanging a test run.
+    /// 256×128, 9 levels: 32768 + 8192 + 2048 + 512 + 128 + 32 + 8 + 2 + 1.
+    const _: () = assert!(pyramid_len(256, 128, 9) == 43_691);
+
     /// Sides near 2³² saturate the 64-bit sum as documented (an overflow
     /// would wrap in release and panic in debug).
     #[test]
@@ -861,6 +868,44 @@ mod tests {
                 assert_eq!(reads(&mut d, level, x, y), views);
             }
         }
+    }
+
+    /// A source that implements only `geometry` and `texel` gets the
+    /// trait's defaults: its footprint is its four texel reads in the
+    /// documented order (one `texel` call each), its in-level footprint is
+    /// that footprint, and it has no level views (a sampler then reads it
+    /// through `footprint`). Every source of the crate overrides
+    /// `footprint`, so only such a source runs the default.
+    #[test]
+    fn default_footprint_reads_four_texels() {
+        /// A pyramid read texel by texel, counting the reads.
+        struct Reads<'a>(Pyramid<'a>, u32);
+        impl TexelSource for Reads<'_> {
+            fn geometry(&self) -> Geometry {
+                self.0.geometry
+            }
+            fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+                self.1 += 1;
+                self.0.get(level, x, y)
+            }
+        }
+        let g = Geometry::new(5, 3, 3).unwrap();
+        let buf: std::vec::Vec<Texel> =
+            (0..g.len() as u32).map(|i| 0x0101_0101 * (i + 1)).collect();
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Reads(p, 0);
+        assert!(s.levels().is_none());
+        for level in 0..4u8 {
+            for (x, y) in [([0, 1], [0, 1]), ([4, 0], [2, 0]), ([9, 99], [7, u32::MAX])] {
+                // The pyramid's own footprint: its four texel reads
+                // (`footprint_equals_texel_reads`).
+                let want = p.footprint(level, x, y);
+                assert_eq!(s.footprint(level, x, y), want);
+                assert_eq!(s.footprint_in_level(level, x, y), want);
+            }
+        }
+        // 4 levels × 3 footprints × 2 calls × 4 texels.
+        assert_eq!(s.1, 96);
     }
 
     #[test]
