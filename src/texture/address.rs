@@ -243,13 +243,17 @@ impl AddressMode {
 impl AddressMode {
     /// [`taps`](Self::taps) on a power-of-two side `n = 2^k` with
     /// `m = n − 1`, `s = 31 − k` and the wrap constant `c =`
-    /// [`wrap_constant`](crate::texture::storage::level::wrap_constant)`(k, bits)`: wrap by [`pow2_wrap_taps`] (one
-    /// multiply), mirror by [`pow2_mirror_taps`] (a multiply-accumulate
-    /// and an XOR per tap), the clamping modes as for any size. Equal to
+    /// [`wrap_constant`](crate::texture::storage::level::wrap_constant)`(k, bits)`:
+    /// wrap and mirror by [`pow2_first_tap`](Self::pow2_first_tap) and
+    /// [`pow2_edge_taps`](Self::pow2_edge_taps) (wrap by [`pow2_wrap_taps`],
+    /// one multiply; mirror by [`pow2_mirror_tap`], a multiply-accumulate,
+    /// and [`mirror_fold`], an XOR per tap), the clamping modes as for any
+    /// size. Equal to
     /// `taps` for every input (tested). With `MASKED`, for a reader that
     /// masks its indices with `m` and replaces border taps by the border
     /// colour (a sampler's direct level views):
-    /// [`ClampToBorder`](Self::ClampToBorder) by [`pow2_border_taps`] (a
+    /// [`ClampToBorder`](Self::ClampToBorder) by the same two steps, a
+    /// range test per tap (a
     /// border tap's index is not clamped, and no branch decides it); the
     /// flags, weight and the indices of taps inside are the same (tested).
     #[inline(always)]
@@ -263,36 +267,94 @@ impl AddressMode {
         bits: u32,
     ) -> AxisTaps {
         match self {
-            Self::Wrap => {
-                let (i0, i1, f) = pow2_wrap_taps(coord, n, m, c, bits);
-                AxisTaps {
-                    i: [i0, i1],
-                    f,
-                    border: [false; 2],
-                }
+            // `taps` itself: its branch on inside taps skips the mapping
+            // (the same taps as the edge form, in fewer instructions on
+            // the generic path).
+            Self::ClampToEdge | Self::MirrorOnce => self.taps(coord, n, bits),
+            Self::ClampToBorder if !MASKED => self.taps(coord, n, bits),
+            _ => {
+                let (i, f) = self.pow2_first_tap(coord, n, c, bits);
+                self.pow2_edge_taps::<MASKED>(i, f, n, m, s)
             }
-            Self::Mirror => pow2_mirror_taps(coord, n, m, s, bits),
-            Self::ClampToBorder if MASKED => pow2_border_taps(coord, n, m, bits),
-            _ => self.taps(coord, n, bits),
         }
+    }
+
+    /// The first tap of an axis on a power-of-two side `n = 2^k` before
+    /// the mode maps it, and its weight (`bits` bits), `c` as for
+    /// [`pow2_taps`](Self::pow2_taps). When `i < n − 1` (unsigned) both
+    /// taps `i`, `i + 1` are texels of the level that the mode maps to
+    /// themselves (no wrap, fold, clamp or border: the footprint axis is
+    /// inside), for wrap and the clamping modes exactly then; any tap goes
+    /// through
+    /// [`pow2_edge_taps`](Self::pow2_edge_taps). Per mode:
+    /// * wrap: `i₀ ∈ [0, n)` of [`pow2_wrap_taps`];
+    /// * mirror: [`pow2_mirror_tap`], the tap modulo 2³² (then `i < n − 1`
+    ///   means a first-copy footprint without the seam, every such one
+    ///   for `u ∈ [0, 1)`; other copies are mapped by the edge taps);
+    /// * the clamping modes: `floor(x)` of [`scaled`](Self::scaled), any
+    ///   `i32` as `u32` (a negative tap is above `n − 1`).
+    #[inline(always)]
+    pub(crate) fn pow2_first_tap(self, coord: TexCoord, n: u32, c: u32, bits: u32) -> (u32, u32) {
+        match self {
+            Self::Wrap => {
+                let (i0, _, f) = pow2_wrap_taps(coord, n, n.wrapping_sub(1), c, bits);
+                (i0, f)
+            }
+            Self::Mirror => pow2_mirror_tap(coord, n, bits),
+            _ => {
+                let offset = (1i64 << (31 - bits)) - (1 << 31);
+                let (i, frac) = self.scaled(coord, n, offset);
+                (i as u32, frac >> (32 - bits))
+            }
+        }
+    }
+
+    /// The taps of an axis from its first tap `i` and weight `f`
+    /// ([`pow2_first_tap`](Self::pow2_first_tap)) on the side `n = 2^k`,
+    /// `m = n − 1`, `s = 31 − k`: wrap `[i, (i + 1) & m]`; mirror by
+    /// [`mirror_fold`] of `i` and `i + 1`; the clamping modes as
+    /// [`taps`](Self::taps) maps them (inside: themselves, else
+    /// [`map`](Self::map)); with `MASKED`, clamp-to-border as `i & m`,
+    /// `(i + 1) & m` with a range test per tap for the border flags.
+    #[inline(always)]
+    pub(crate) fn pow2_edge_taps<const MASKED: bool>(
+        self,
+        i: u32,
+        f: u32,
+        n: u32,
+        m: u32,
+        s: u32,
+    ) -> AxisTaps {
+        let i1 = i.wrapping_add(1);
+        let (i, border) = match self {
+            Self::Wrap => ([i, i1 & m], [false; 2]),
+            Self::Mirror => ([mirror_fold(i, m, s), mirror_fold(i1, m, s)], [false; 2]),
+            // A negative tap as `u32` is above any side.
+            Self::ClampToBorder if MASKED => ([i & m, i1 & m], [i >= n, i1 >= n]),
+            _ if i < m => ([i, i1], [false; 2]),
+            _ => {
+                let (i0, b0) = self.map(i as i32, n);
+                let (i1, b1) = self.map(i1 as i32, n);
+                ([i0, i1], [b0, b1])
+            }
+        };
+        AxisTaps { i, f, border }
     }
 }
 
-/// [`AddressMode::taps`] of [`Mirror`](AddressMode::Mirror) for a
-/// power-of-two side `n = 2^k`, `m = n − 1`, `s = 31 − k`. With `h` the
-/// integer part of `u` and `lo` its fractional bits, the position
+/// The first tap of [`Mirror`](AddressMode::Mirror) on a power-of-two
+/// side `n = 2^k` and its weight (`bits` bits). With `h` the integer part
+/// of `u` and `lo` its fractional bits, the position
 /// `x = u·n − ½ + 2^−(bits+1)` in 32.32 fixed point is
 /// `lo·n + h·n·2³² + 2^(31−bits) − 2³¹`: one 32×32→64-bit
 /// multiply-accumulate (`umlal` on the M4) onto the constant
 /// `−2³² + 2³¹ + 2^(31−bits)`, then `h·n` added to the high word (`mla`).
-/// Its high word `j` is the tap modulo 2³², and only `j mod 2n` (bits
-/// `0 ..= k`, which `2n | 2³²` keeps) decides the texel: a tap of the
-/// second copy (bit `k` set) maps to `2n − 1 − (j mod 2n)`, i.e. its low
-/// `k` bits inverted: `(j ^ (bit k of j ? all ones : 0)) & (n − 1)`, the
-/// sign of `j << s` spread by an arithmetic shift. The weight is the top
-/// `bits` bits of the low word.
+/// The tap `j` is the true one modulo 2³², of which only `j mod 2n`
+/// decides the texel ([`mirror_fold`]; `2n` divides 2³²). For
+/// `u ∈ [0, 1)` it is in `[−1, n − 1]`. The weight is the top `bits`
+/// bits of the low word.
 #[inline(always)]
-pub(crate) fn pow2_mirror_taps(coord: TexCoord, n: u32, m: u32, s: u32, bits: u32) -> AxisTaps {
+pub(crate) fn pow2_mirror_tap(coord: TexCoord, n: u32, bits: u32) -> (u32, u32) {
     let b = coord.to_bits();
     let h = (b >> 32) as u32;
     let start = (u64::from(u32::MAX) << 32) | u64::from((1u32 << 31) | (1 << (31 - bits)));
@@ -300,31 +362,17 @@ pub(crate) fn pow2_mirror_taps(coord: TexCoord, n: u32, m: u32, s: u32, bits: u3
         .wrapping_mul(u64::from(n))
         .wrapping_add(start);
     let j = ((p >> 32) as u32).wrapping_add(h.wrapping_mul(n));
-    let fold = |j: u32| (j ^ ((j.wrapping_shl(s) as i32 >> 31) as u32)) & m;
-    AxisTaps {
-        i: [fold(j), fold(j.wrapping_add(1))],
-        f: (p as u32) >> (32 - bits),
-        border: [false; 2],
-    }
+    (j, (p as u32) >> (32 - bits))
 }
 
-/// [`AddressMode::taps`] of [`ClampToBorder`](AddressMode::ClampToBorder)
-/// for a power-of-two side `n`, `m = n − 1`, for a reader that replaces
-/// every border tap by the border colour: the same border flags, weight
-/// and inside indices, a border tap's index `i & m` (some texel of the
-/// level, read and then replaced) instead of the clamped one. No branch:
-/// a range test per tap.
+/// The texel of a mirrored tap `j` (its value modulo `2n` decides) on a
+/// side `n = 2^k`, `m = n − 1`, `s = 31 − k`: a tap of the second copy
+/// (bit `k` set) maps to `2n − 1 − (j mod 2n)`, i.e. its low `k` bits
+/// inverted: `(j ^ (bit k of j ? all ones : 0)) & m`, the sign of
+/// `j << s` spread by an arithmetic shift.
 #[inline(always)]
-pub(crate) fn pow2_border_taps(coord: TexCoord, n: u32, m: u32, bits: u32) -> AxisTaps {
-    let offset = (1i64 << (31 - bits)) - (1 << 31);
-    let (i, frac) = AddressMode::ClampToBorder.scaled(coord, n, offset);
-    let i = [i as u32, (i as u32).wrapping_add(1)];
-    AxisTaps {
-        i: i.map(|i| i & m),
-        f: frac >> (32 - bits),
-        // A negative tap as `u32` is above any side.
-        border: i.map(|i| i >= n),
-    }
+pub(crate) fn mirror_fold(j: u32, m: u32, s: u32) -> u32 {
+    (j ^ ((j.wrapping_shl(s) as i32 >> 31) as u32)) & m
 }
 
 /// The bilinear taps of one axis: texel indices `i₀, i₁` (each `< size`),
@@ -570,6 +618,32 @@ mod tests {
                                 got.i.iter().all(|&i| i < size),
                                 "{m:?} k {k} bits {bits:#x}"
                             );
+                            // A first tap below `n − 1` is an inside
+                            // footprint axis: both taps their own texels,
+                            // no border; for wrap and the clamping modes
+                            // that is every inside one, for mirror every
+                            // one with `u ∈ [0, 1)`.
+                            let (i, f) = m.pow2_first_tap(c, size, wc, b);
+                            assert_eq!(f, want.f, "{m:?} k {k} bits {bits:#x}");
+                            if i < size - 1 {
+                                assert_eq!(want.i, [i, i + 1], "{m:?} k {k} bits {bits:#x}");
+                                assert_eq!(want.border, [false; 2]);
+                            }
+                            // And every footprint axis inside is found so
+                            // (mirror: for `u ∈ [0, 1)`): the first tap of
+                            // the reduced position, in i64.
+                            let x = m.reduce(c) * i64::from(size) - (1 << 31) + (1 << (31 - b));
+                            let p = x >> 32;
+                            let p = if m == AddressMode::Wrap {
+                                p.rem_euclid(i64::from(size))
+                            } else {
+                                p
+                            };
+                            if (0..i64::from(size) - 1).contains(&p)
+                                && (m != AddressMode::Mirror || (0..1 << 32).contains(&bits))
+                            {
+                                assert!(i < size - 1, "{m:?} k {k} bits {bits:#x}");
+                            }
                         }
                     }
                 }

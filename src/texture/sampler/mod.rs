@@ -729,12 +729,19 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
                 let (t, fx, fy) = l.wrap_footprint(u, v, self.levels.c[level], bits);
                 return (t.map(Kern::<K>::load), fx, fy);
             }
-            // Every tap is read (the view masks it into the level) and a
-            // border tap replaced afterwards: a range test per tap, no
-            // branch.
+            // Decided once per footprint: both axes' taps inside the
+            // level are read as they are (two adjacent pairs); otherwise
+            // every tap is mapped by its mode, read (the view masks it
+            // into the level) and a border tap replaced afterwards (a
+            // range test per tap, no branch).
             let [cx, cy] = self.levels.c[level];
-            let xt = mu.pow2_taps::<true>(u, l.width(), l.mask_x(), l.shift_x(), cx, bits);
-            let yt = mv.pow2_taps::<true>(v, l.height(), l.mask_y(), l.shift_y(), cy, bits);
+            let (x, fx) = mu.pow2_first_tap(u, l.width(), cx, bits);
+            let (y, fy) = mv.pow2_first_tap(v, l.height(), cy, bits);
+            if let Some(t) = l.inside_footprint(x, y) {
+                return (t.map(Kern::<K>::load), fx, fy);
+            }
+            let xt = mu.pow2_edge_taps::<true>(x, fx, l.width(), l.mask_x(), l.shift_x());
+            let yt = mv.pow2_edge_taps::<true>(y, fy, l.height(), l.mask_y(), l.shift_y());
             let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
             if K::U::MAY_BORDER || K::V::MAY_BORDER {
                 for (k, l) in lanes.iter_mut().enumerate() {

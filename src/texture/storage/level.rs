@@ -31,7 +31,9 @@
 //!   `& mx` / `& my`, or a `min` with them; or, for a wrapped
 //!   footprint, takes the first index as the high word of the 32×32-bit
 //!   product of a 32-bit fraction with the side, which is below the
-//!   side, and the second as the first plus one, masked), so the texel index
+//!   side, and the second as the first plus one, masked; or, for a
+//!   footprint inside the level, tests `x < mx` and `y < my` before it
+//!   reads `x + 1` and `y + 1`), so the texel index
 //!   `y·w + x ≤ (h − 1)·w + w − 1 = w·h − 1` lies inside the slice. The
 //!   row's byte offset `y·4w < 2³²` is computed in `usize` (no overflow
 //!   on 32-bit or wider targets), and the read is one `ptr::byte_add`
@@ -263,6 +265,34 @@ impl<'a> LevelView<'a> {
             self.read(x0, y1),
             self.read(x1, y1),
         ]
+    }
+
+    /// The footprint `(x, y)`, `(x + 1, y)`, `(x, y + 1)`, `(x + 1, y + 1)`
+    /// of a first tap whose footprint lies inside the level (`x < w − 1`
+    /// and `y < h − 1`: one unsigned compare per axis, so a negative tap
+    /// as `u32` is outside), else `None`. The two texels of a row are
+    /// adjacent in memory (one `ldrd` on the M4), and no index is masked.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn inside_footprint(&self, x: u32, y: u32) -> Option<[Texel; 4]> {
+        if x < self.mx && y < self.my {
+            let stride = self.stride as usize;
+            // SAFETY: `x + 1 ≤ mx` and `y + 1 ≤ my`, so the four texels
+            // `(y + dy)·w + x + dx` (`dx, dy ≤ 1`) lie in the slice of at
+            // least `w·h` texels the view was made from, borrowed shared
+            // for `'a` (module docs); `p` is the first of them.
+            unsafe {
+                let p = self
+                    .base
+                    .as_ptr()
+                    .byte_add(y as usize * stride)
+                    .add(x as usize);
+                let q = p.byte_add(stride);
+                Some([p.read(), p.add(1).read(), q.read(), q.add(1).read()])
+            }
+        } else {
+            None
+        }
     }
 
     /// The footprint of a coordinate wrapped on both axes

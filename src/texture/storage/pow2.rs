@@ -167,6 +167,12 @@ mod tests {
                             p.get(level, (x + 1) & (lw - 1), (y + 1) & (lh - 1)),
                         ];
                         assert_eq!(view.footprint([x, x + 1], [y, y + 1]), want);
+                        // Inside the level: the same four texels; else none
+                        // (also for the negative taps of an edge, as u32).
+                        let inside = x + 1 < lw && y + 1 < lh;
+                        assert_eq!(view.inside_footprint(x, y), inside.then_some(want));
+                        assert_eq!(view.inside_footprint(x.wrapping_sub(lw + 2), y), None);
+                        assert_eq!(view.inside_footprint(x, y.wrapping_sub(lh + 2)), None);
                         let clamped = [
                             p.get(level, x, y),
                             p.get(level, x + 1, y),
