@@ -209,10 +209,10 @@ matrix_ceiling        tw_bil_f                     103   146   132
 matrix_ceiling        tw_tri                       221   283   283
 matrix_ceiling        tw_tri_f                     209   276   254
 matrix_ceiling        tw_tri_n                     264   301   298
-matrix_ceiling        ts_bil                       131   199   189
-matrix_ceiling        ts_bil_f                     149   197   183
-matrix_ceiling        ts_tri                       273   403   392
-matrix_ceiling        ts_tri_f                     264   385   355
+matrix_ceiling        ts_bil                       131   168   189
+matrix_ceiling        ts_bil_f                     135   197   183
+matrix_ceiling        ts_tri                       272   403   392
+matrix_ceiling        ts_tri_f                     250   385   355
 matrix_ceiling        ts_srgb                      416   516   512
 matrix_ceiling        ts_565                       469   557   551
 matrix_ceiling        ts_565_f                     441   545   510
