@@ -4,7 +4,7 @@
 //! popped into its own slot), corrupt stack lengths and short buffers.
 //! Each call is checked against the Rust API it wraps (same status, same
 //! bits) and against its documented contract: a refused call writes
-//! nothing. Built with AddressSanitizer by cargo-fuzz, so an out-of-bounds
+//! nothing. Built with AddressSanitizer (cargo-fuzz, or scripts/robustness with the same flags), so an out-of-bounds
 //! access in the `unsafe` glue is a crash.
 #![no_main]
 
