@@ -99,8 +99,10 @@ macro_rules! quantity {
             }
 
             /// `src` (an integer, float or fixed-point number, in this
-            /// quantity's unit) rounded to the nearest step. Panics when it
-            /// does not fit, as `fixed`'s `from_num` (set-up and tests; the
+            /// quantity's unit) converted as `fixed` converts: a float
+            /// rounded to the nearest step (ties to even), a fixed-point
+            /// number with more fraction bits truncated towards −∞, an
+            /// integer exact. Panics when it does not fit, as `fixed`'s `from_num` (set-up and tests; the
             /// per-hit path uses the checked and saturating forms).
             #[inline]
             #[must_use]
@@ -109,7 +111,8 @@ macro_rules! quantity {
                 Self(<$fixed>::from_num(src))
             }
 
-            /// `src` rounded to the nearest step, or `None` when it does
+            /// `src` converted as by `from_num` (floats rounded, finer
+            /// fixed-point truncated towards −∞), or `None` when it does
             /// not fit (NaN included).
             #[inline]
             #[must_use]
@@ -120,14 +123,16 @@ macro_rules! quantity {
                 }
             }
 
-            /// `src` rounded to the nearest step, clamped to the range.
+            /// `src` converted as by `from_num` (floats rounded, finer
+            /// fixed-point truncated towards −∞), clamped to the range.
             #[inline]
             #[must_use]
             pub fn saturating_from_num<Src: ToFixed>(src: Src) -> Self {
                 Self(<$fixed>::saturating_from_num(src))
             }
 
-            /// `src` rounded to the nearest step, wrapped into the range.
+            /// `src` converted as by `from_num` (floats rounded, finer
+            /// fixed-point truncated towards −∞), wrapped into the range.
             #[inline]
             #[must_use]
             pub fn wrapping_from_num<Src: ToFixed>(src: Src) -> Self {
