@@ -34,6 +34,18 @@
 //! access, so a hit only advances the clock and writes its way's stamp:
 //! the hit count is the clock's advance since the counters were zeroed
 //! minus the misses.
+//!
+//! # Footprint memo
+//!
+//! A [`TexelCache`] remembers, per level parity, the last footprint it
+//! looked up: its level, block columns and rows, and the way holding each
+//! texel's block. A footprint in the same blocks (a trilinear sample's
+//! level next to the last one's, or the same sample again) is four hits
+//! in those ways: it advances the clock and reads the texels with no tag
+//! compare, and the stamps the lookups would have written are written
+//! before the next lookup. A fill forgets every memo naming the way it
+//! refills and [`TexelCache::invalidate`] forgets both, so the texels,
+//! counters and LRU order are those of one access per texel read.
 
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Pyramid, Texel, TexelSource};
 
@@ -485,6 +497,68 @@ pub struct TexelCache<M: TexelMemory, const SETS: usize, const WAYS: usize> {
     layout: BlockLayout,
     tags: BlockCache<SETS, WAYS>,
     data: [[[Texel; BLOCK_TEXELS]; WAYS]; SETS],
+    /// The last footprint read of an even level (entry 0) and of an odd
+    /// one (entry 1): a trilinear sample's two levels keep one each.
+    memo: [Memo; 2],
+}
+
+/// Where the blocks of a footprint are: its level and block columns and
+/// rows, and the way (`set · WAYS + way`) holding each texel's block, all
+/// four blocks cached there at once. Kept true by
+/// [`TexelCache::fill`], which empties every memo naming the way it
+/// refills, and [`TexelCache::invalidate`], which empties them all.
+///
+/// A footprint read through the memo writes no stamp: `replayed` keeps
+/// the clock after its four accesses, and [`settle`] writes their stamps
+/// before the next lookup, the only reader of stamps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Memo {
+    /// The footprint's level as given to `footprint_in_level`, or
+    /// [`Memo::EMPTY`].
+    level: u32,
+    /// Its two texel columns; only the block columns (`x >> 2`) are
+    /// compared.
+    x: [u32; 2],
+    /// Its two texel rows; only the block rows are compared.
+    y: [u32; 2],
+    /// The way of the block of texels `(x0, y0)`, `(x1, y0)`, `(x0, y1)`,
+    /// `(x1, y1)`, as an index into the flattened ways (`< SETS · WAYS`).
+    way: [u32; 4],
+    /// The clock after the last read through the memo whose stamps are
+    /// not written yet (the stamp of `way[i]` is `replayed − 3 + i`), or
+    /// 0 when there is none (the clock is at least 4 after a read).
+    replayed: u64,
+}
+
+impl Memo {
+    /// `level` of a memo that matches no footprint (levels are `u8`).
+    const EMPTY: u32 = u32::MAX;
+
+    /// A memo that matches no footprint.
+    const NONE: Self = Self {
+        level: Self::EMPTY,
+        x: [0; 2],
+        y: [0; 2],
+        way: [0; 4],
+        replayed: 0,
+    };
+
+    /// Makes the memo match no footprint (two stores, not a copy of
+    /// [`NONE`](Self::NONE)).
+    #[inline(always)]
+    fn clear(&mut self) {
+        self.level = Self::EMPTY;
+        self.replayed = 0;
+    }
+
+    /// Whether the footprint `(level, x, y)` touches this memo's blocks,
+    /// in the same places: the same level, block columns and block rows.
+    #[inline(always)]
+    fn matches(&self, level: u8, x: [u32; 2], y: [u32; 2]) -> bool {
+        let blocks =
+            (x[0] ^ self.x[0]) | (x[1] ^ self.x[1]) | (y[0] ^ self.y[0]) | (y[1] ^ self.y[1]);
+        u32::from(level) == self.level && blocks >> BLOCK_SHIFT == 0
+    }
 }
 
 impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, WAYS> {
@@ -496,6 +570,7 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, W
             layout: BlockLayout::new(&geometry),
             tags: BlockCache::new(),
             data: [[[0; BLOCK_TEXELS]; WAYS]; SETS],
+            memo: [Memo::NONE; 2],
         }
     }
 
@@ -513,6 +588,7 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, W
     /// Empties the cache (counters stay).
     pub fn invalidate(&mut self) {
         self.tags.invalidate();
+        self.memo = [Memo::NONE; 2];
     }
 
     /// The backing memory.
@@ -542,17 +618,15 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
         let (x, y) = (x.min(lx), y.min(ly));
         let (bx, by) = (x >> BLOCK_SHIFT, y >> BLOCK_SHIFT);
         let address = g.index(g.col_clamped(bx), g.row_clamped(by));
-        self.block_at(level, bx, by, address, 1)[in_block(x, y)]
+        settle(&mut self.tags, &mut self.memo);
+        let way = self.way_of(level, bx, by, address, 1);
+        self.read(way, in_block(x, y))
     }
 
     /// The footprint with one lookup per block it touches (one in 9 of 16
     /// positions, at most four), in the order of the texel reads, each
     /// counted as that many accesses: the same texels, counters and LRU
-    /// stamps as four [`texel`](Self::texel) calls. The block numbers come
-    /// from one `LevelGrid` part per block column and row of the
-    /// footprint. (Where one read of a block could evict another block of
-    /// the same footprint in between, a one-way set shared by two
-    /// side-by-side blocks, the four reads are made one by one.)
+    /// stamps as four [`texel`](Self::texel) calls.
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         // The clamp of `texel`: the texel to the stored level's size.
@@ -562,58 +636,31 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     }
 
     /// [`footprint`](Self::footprint) without the texel clamp (an index
-    /// past the level reads a texel of another block). The block number's
-    /// coordinates are still clamped to the padded grid, which a trimmed
-    /// level past the last stored one can exceed.
-    #[inline]
+    /// past the level reads a texel of another block). A footprint in the
+    /// same blocks as the last one of its level parity (the memo) repeats
+    /// that footprint's lookups without a tag compare: all four are hits
+    /// in the ways the memo names, so they only advance the clock and
+    /// write the stamps, exactly as the lookups would. Any other footprint
+    /// is looked up ([`footprint_lookups`](Self::footprint_lookups)).
+    #[inline(always)]
     fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        let (level, g) = self.layout.grid(level);
-        let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
-        let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
-        let at = |i: usize, j: usize| in_block(x[i], y[j]);
-        let c0 = g.col_clamped(bx[0]);
-        let r0 = g.row_clamped(by[0]);
-        let a = g.index(c0, r0);
-        if bx[0] == bx[1] && by[0] == by[1] {
-            let b = self.block_at(level, bx[0], by[0], a, 4);
-            return [b[at(0, 0)], b[at(1, 0)], b[at(0, 1)], b[at(1, 1)]];
+        let memo = self.memo[usize::from(level & 1)];
+        if !memo.matches(level, x, y) {
+            return self.footprint_lookups(level, x, y);
         }
-        if bx[0] == bx[1] {
-            // Reads t00, t10 (top block), t01, t11 (bottom block).
-            let top = self.block_at(level, bx[0], by[0], a, 2);
-            let (t00, t10) = (top[at(0, 0)], top[at(1, 0)]);
-            let c = g.index(c0, g.row_clamped(by[1]));
-            let bottom = self.block_at(level, bx[0], by[1], c, 2);
-            return [t00, t10, bottom[at(0, 1)], bottom[at(1, 1)]];
-        }
-        let c1 = g.col_clamped(bx[1]);
-        let b = g.index(c1, r0);
-        if by[0] != by[1] {
-            // Four different blocks, each read once: four single
-            // accesses in the order of the texel reads.
-            let r1 = g.row_clamped(by[1]);
-            let t00 = self.block_at(level, bx[0], by[0], a, 1)[at(0, 0)];
-            let t10 = self.block_at(level, bx[1], by[0], b, 1)[at(1, 0)];
-            let c = g.index(c0, r1);
-            let t01 = self.block_at(level, bx[0], by[1], c, 1)[at(0, 1)];
-            let d = g.index(c1, r1);
-            let t11 = self.block_at(level, bx[1], by[1], d, 1)[at(1, 1)];
-            return [t00, t10, t01, t11];
-        }
-        if WAYS > 1 || a as usize % SETS != b as usize % SETS {
-            // Reads alternate left, right, left, right: two lookups of two
-            // accesses each keep every tag, stamp order and counter, since
-            // neither block can evict the other in between.
-            let left = self.block_at(level, bx[0], by[0], a, 2);
-            let (t00, t01) = (left[at(0, 0)], left[at(0, 1)]);
-            let right = self.block_at(level, bx[1], by[0], b, 2);
-            return [t00, right[at(1, 0)], t01, right[at(1, 1)]];
+        let ways = memo.way.map(|w| w as usize);
+        // Four hits: the clock advances, the stamps are written by
+        // `settle`.
+        let clock = self.tags.clock.wrapping_add(4);
+        self.tags.clock = clock;
+        if let Some(m) = self.memo.get_mut(usize::from(level & 1)) {
+            m.replayed = clock;
         }
         [
-            self.block_at(level, bx[0], by[0], a, 1)[at(0, 0)],
-            self.block_at(level, bx[1], by[0], b, 1)[at(1, 0)],
-            self.block_at(level, bx[0], by[0], a, 1)[at(0, 1)],
-            self.block_at(level, bx[1], by[0], b, 1)[at(1, 1)],
+            self.read(ways[0], in_block(x[0], y[0])),
+            self.read(ways[1], in_block(x[1], y[0])),
+            self.read(ways[2], in_block(x[0], y[1])),
+            self.read(ways[3], in_block(x[1], y[1])),
         ]
     }
 }
@@ -624,37 +671,205 @@ fn in_block(x: u32, y: u32) -> usize {
     (((y & (BLOCK - 1)) << BLOCK_SHIFT) | (x & (BLOCK - 1))) as usize
 }
 
+/// Writes the stamps of the footprints read through `memo` since the last
+/// lookup: for each memo with a read pending, the stamps its four
+/// accesses would have written (the `i`-th texel's way gets the `i`-th
+/// access's clock, in texel order, so a way named twice keeps the later
+/// one), the older memo first (both can name the same ways when two levels
+/// past the top are read as the top level). Called before every lookup,
+/// it leaves the stamps those reads' lookups would have left.
+#[inline(always)]
+fn settle<const SETS: usize, const WAYS: usize>(
+    tags: &mut BlockCache<SETS, WAYS>,
+    memo: &mut [Memo; 2],
+) {
+    if memo[0].replayed | memo[1].replayed == 0 {
+        return;
+    }
+    let older = usize::from(memo[1].replayed < memo[0].replayed);
+    let stamps = tags.stamps.as_flattened_mut();
+    let n = stamps.len();
+    for k in [older, 1 - older] {
+        let Some(m) = memo.get_mut(k) else { continue };
+        if m.replayed != 0 {
+            for (i, way) in (0..4u64).rev().zip(m.way) {
+                // `way < n`: the remainder changes nothing and spares a check.
+                if let Some(s) = stamps.get_mut(way as usize % n) {
+                    *s = m.replayed.wrapping_sub(i);
+                }
+            }
+            m.replayed = 0;
+        }
+    }
+}
+
 impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelCache<M, SETS, WAYS> {
-    /// The data of block `(bx, by)` of `level` (`level` at most the top
-    /// level, `bx`, `by` inside its block grid), whose block number is
-    /// `address`, after `n` accesses to it: looked up once ([`BlockCache`]'s
-    /// `lookup_n`, inlined), filled from memory on a miss ([`fill`](Self::fill),
-    /// out of line).
+    /// [`footprint_in_level`](TexelSource::footprint_in_level) by one
+    /// lookup per block the footprint touches, in the order of the texel
+    /// reads, each counted as the accesses it stands for; then the
+    /// footprint's memo (its level parity's) names the ways read. The
+    /// block numbers come from one `LevelGrid` part per block column and
+    /// row of the footprint; they are clamped to the padded grid, which a
+    /// trimmed level past the last stored one can exceed. (Where one read
+    /// of a block could evict another block of the same footprint in
+    /// between, a one-way set shared by two side-by-side blocks, the four
+    /// reads are made one by one.)
+    #[inline(never)]
+    fn footprint_lookups(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        settle(&mut self.tags, &mut self.memo);
+        // This footprint's memo is written afresh below (or stays empty):
+        // the fills on the way need not look at it.
+        if let Some(m) = self.memo.get_mut(usize::from(level & 1)) {
+            m.clear();
+        }
+        let (clamped, g) = self.layout.grid(level);
+        let bx = [x[0] >> BLOCK_SHIFT, x[1] >> BLOCK_SHIFT];
+        let by = [y[0] >> BLOCK_SHIFT, y[1] >> BLOCK_SHIFT];
+        let c0 = g.col_clamped(bx[0]);
+        let r0 = g.row_clamped(by[0]);
+        let a = g.index(c0, r0);
+        // Each texel is read right after its block's lookup: a later
+        // lookup of the footprint may refill the way.
+        let at = [
+            in_block(x[0], y[0]),
+            in_block(x[1], y[0]),
+            in_block(x[0], y[1]),
+            in_block(x[1], y[1]),
+        ];
+        let (way, address, texels) = if bx[0] == bx[1] && by[0] == by[1] {
+            let w = self.way_of(clamped, bx[0], by[0], a, 4);
+            ([w; 4], [a; 4], at.map(|k| self.read(w, k)))
+        } else if bx[0] == bx[1] {
+            // Reads t00, t10 (top block), t01, t11 (bottom block).
+            let top = self.way_of(clamped, bx[0], by[0], a, 2);
+            let (t00, t10) = (self.read(top, at[0]), self.read(top, at[1]));
+            let c = g.index(c0, g.row_clamped(by[1]));
+            let bottom = self.way_of(clamped, bx[0], by[1], c, 2);
+            let (t01, t11) = (self.read(bottom, at[2]), self.read(bottom, at[3]));
+            (
+                [top, top, bottom, bottom],
+                [a, a, c, c],
+                [t00, t10, t01, t11],
+            )
+        } else {
+            let c1 = g.col_clamped(bx[1]);
+            let b = g.index(c1, r0);
+            if by[0] != by[1] {
+                // Four different blocks, each read once: four single
+                // accesses in the order of the texel reads.
+                let r1 = g.row_clamped(by[1]);
+                let (c, d) = (g.index(c0, r1), g.index(c1, r1));
+                let w00 = self.way_of(clamped, bx[0], by[0], a, 1);
+                let t00 = self.read(w00, at[0]);
+                let w10 = self.way_of(clamped, bx[1], by[0], b, 1);
+                let t10 = self.read(w10, at[1]);
+                let w01 = self.way_of(clamped, bx[0], by[1], c, 1);
+                let t01 = self.read(w01, at[2]);
+                let w11 = self.way_of(clamped, bx[1], by[1], d, 1);
+                let t11 = self.read(w11, at[3]);
+                ([w00, w10, w01, w11], [a, b, c, d], [t00, t10, t01, t11])
+            } else if WAYS > 1 || a as usize % SETS != b as usize % SETS {
+                // Reads alternate left, right, left, right. Neither block
+                // can evict the other in between, so the left block's
+                // three accesses (its second read is the third access)
+                // then the right block's last one keep every tag, stamp
+                // and counter of the four reads.
+                let left = self.way_of(clamped, bx[0], by[0], a, 3);
+                let (t00, t01) = (self.read(left, at[0]), self.read(left, at[2]));
+                let right = self.way_of(clamped, bx[1], by[0], b, 1);
+                let (t10, t11) = (self.read(right, at[1]), self.read(right, at[3]));
+                (
+                    [left, right, left, right],
+                    [a, b, a, b],
+                    [t00, t10, t01, t11],
+                )
+            } else {
+                // One way shared by both blocks: each read may evict the
+                // other block, so four single lookups, each texel read
+                // before the next lookup, and no memo.
+                let mut texels = [0; 4];
+                for (i, t) in texels.iter_mut().enumerate() {
+                    let (bx, address) = if i & 1 == 0 { (bx[0], a) } else { (bx[1], b) };
+                    let w = self.way_of(clamped, bx, by[0], address, 1);
+                    *t = self.read(w, at[i]);
+                }
+                return texels;
+            }
+        };
+        self.remember(level, x, y, way, address);
+        texels
+    }
+
+    /// Makes `(level, x, y)`, read from the flattened ways `way`, whose
+    /// blocks are numbered `address`, its level parity's memo, if each
+    /// way still holds its block (a later block of the footprint may have
+    /// evicted an earlier one from a shared set); otherwise that memo
+    /// stays empty.
     #[inline(always)]
-    fn block_at(
+    fn remember(
         &mut self,
         level: u8,
-        bx: u32,
-        by: u32,
-        address: u32,
-        n: u32,
-    ) -> &[Texel; BLOCK_TEXELS] {
-        const EMPTY: [Texel; BLOCK_TEXELS] = [0; BLOCK_TEXELS];
+        x: [u32; 2],
+        y: [u32; 2],
+        way: [usize; 4],
+        address: [u32; 4],
+    ) {
+        let tags = self.tags.tags.as_flattened();
+        let n = tags.len();
+        let held = way
+            .iter()
+            .zip(address)
+            .all(|(&w, a)| tags.get(w % n) == Some(&a));
+        if held {
+            self.memo[usize::from(level & 1)] = Memo {
+                level: u32::from(level),
+                x,
+                y,
+                // `way < SETS · WAYS`, which a cache in memory keeps far
+                // below 2³².
+                way: way.map(|w| w as u32),
+                replayed: 0,
+            };
+        }
+    }
+
+    /// Texel `k` (`< 16`) of the block in the flattened way `way` (`< SETS
+    /// · WAYS`).
+    #[inline(always)]
+    fn read(&self, way: usize, k: usize) -> Texel {
+        let blocks = self.data.as_flattened();
+        // Both remainders change nothing and spare the checks.
+        blocks
+            .get(way % blocks.len())
+            .map_or(0, |b| b[k % BLOCK_TEXELS])
+    }
+
+    /// The flattened way (`set · WAYS + way`) that holds block `(bx, by)`
+    /// of `level` (`level` at most the top level, `bx`, `by` inside its
+    /// block grid), whose block number is `address`, after `n` accesses
+    /// to it: looked up once ([`BlockCache`]'s `lookup_n`, inlined),
+    /// filled from memory on a miss ([`fill`](Self::fill), out of line).
+    #[inline(always)]
+    fn way_of(&mut self, level: u8, bx: u32, by: u32, address: u32, n: u32) -> usize {
         let (hit, set, way) = self.tags.lookup_n(address, n);
         if !hit {
             self.fill(level, bx, by, set, way);
         }
-        self.data
-            .get(set)
-            .and_then(|s| s.get(way))
-            .unwrap_or(&EMPTY)
+        set * WAYS + way
     }
 
     /// Reads block `(bx, by)` of `level` from memory into way `way` of set
-    /// `set` (a miss: out of line, so that the hits stay short).
+    /// `set` (a miss: out of line, so that the hits stay short), and
+    /// empties every memo that names that way.
     #[cold]
     #[inline(never)]
     fn fill(&mut self, level: u8, bx: u32, by: u32, set: usize, way: usize) {
+        let flat = (set * WAYS + way) as u32;
+        for memo in &mut self.memo {
+            if memo.level != Memo::EMPTY && memo.way.contains(&flat) {
+                memo.clear();
+            }
+        }
         if let Some(block) = self.data.get_mut(set).and_then(|s| s.get_mut(way)) {
             self.memory.read_block(level, bx, by, block);
         }
@@ -880,6 +1095,142 @@ mod tests {
         run::<2, 1>(p, g);
         run::<4, 1>(p, g);
         run::<2, 2>(p, g);
+        run::<8, 2>(p, g);
+    }
+
+    /// The tags, stamps, clock and counters of `a` equal `b`'s (tags
+    /// only where a way is in use), and every memo of `a` names ways
+    /// that hold its blocks: the memo never names an evicted block.
+    fn assert_same_state<const S: usize, const W: usize>(
+        a: &TexelCache<Pyramid<'_>, S, W>,
+        b: &TexelCache<Pyramid<'_>, S, W>,
+        what: &str,
+    ) {
+        // The stamps of `a` with the memo reads written.
+        let (mut ta, mut memo) = (a.tags.clone(), a.memo);
+        settle(&mut ta, &mut memo);
+        let (ta, tb) = (&ta, &b.tags);
+        assert_eq!(ta.stamps, tb.stamps, "{what}");
+        assert_eq!(
+            (ta.clock, ta.since, ta.misses),
+            (tb.clock, tb.since, tb.misses),
+            "{what}"
+        );
+        for (set, stamps) in ta.stamps.iter().enumerate() {
+            for (way, &stamp) in stamps.iter().enumerate() {
+                if stamp != 0 {
+                    assert_eq!(ta.tags[set][way], tb.tags[set][way], "{what} {set} {way}");
+                }
+            }
+        }
+        assert_eq!(a.stats(), b.stats(), "{what}");
+        for memo in a.memo.iter().filter(|m| m.level != Memo::EMPTY) {
+            let level = memo.level as u8;
+            let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
+            for (&way, (i, j)) in memo.way.iter().zip(corners) {
+                let block = a.layout.index(level, memo.x[i], memo.y[j]);
+                let (set, w) = (way as usize / W, way as usize % W);
+                assert_eq!(ta.tags[set][w], block, "{what}: memo {memo:?}");
+                assert_ne!(ta.stamps[set][w], 0, "{what}: memo {memo:?}");
+            }
+        }
+    }
+
+    /// Footprints that repeat the blocks of a recent one (the memo path),
+    /// new footprints, single texel reads (fills outside any footprint),
+    /// invalidations and zeroed counters, interleaved: the texels, the
+    /// counters, every stamp and tag equal four single reads per
+    /// footprint, and no memo names a block that is no longer where it
+    /// says, for caches whose sets are shared or not by a footprint's
+    /// blocks (one to four ways, set counts not powers of two). Levels 4
+    /// and 5 of the 4-level pyramid read level 3, so that the memos of
+    /// both parities can name the same blocks.
+    #[test]
+    fn memo_keeps_the_state_of_texel_reads() {
+        fn run<const S: usize, const W: usize>(p: Pyramid<'_>, g: Geometry) {
+            let mut a: TexelCache<Pyramid<'_>, S, W> = TexelCache::new(p);
+            let mut b: TexelCache<Pyramid<'_>, S, W> = TexelCache::new(p);
+            let mut x = 0x9E37_79B9u32;
+            let mut recent = [(0u8, [0u32; 2], [0u32; 2]); 4];
+            let mut memo_hits = 0;
+            for step in 0..if cfg!(miri) { 80 } else { 4000 } {
+                x ^= x << 13;
+                x ^= x >> 17;
+                x ^= x << 5;
+                match x % 16 {
+                    0 => {
+                        let level = ((x >> 4) % 6) as u8;
+                        let (w, h) = g.level_size(level);
+                        let (tx, ty) = ((x >> 8) % w, (x >> 20) % h);
+                        assert_eq!(a.texel(level, tx, ty), b.texel(level, tx, ty));
+                    }
+                    1 if x >> 4 & 15 == 0 => {
+                        a.invalidate();
+                        b.invalidate();
+                    }
+                    1 if x >> 4 & 15 == 1 => {
+                        a.reset_stats();
+                        b.reset_stats();
+                    }
+                    k => {
+                        let (level, fx, fy) = if k < 10 {
+                            // Taps that move inside the blocks of a
+                            // recent footprint.
+                            let (level, mut fx, mut fy) = recent[(x >> 4) as usize % 4];
+                            let (w, h) = g.level_size(level);
+                            for (t, s) in fx.iter_mut().zip([8, 10]) {
+                                *t = ((*t & !3) | (x >> s & 3)).min(w - 1);
+                            }
+                            for (t, s) in fy.iter_mut().zip([12, 14]) {
+                                *t = ((*t & !3) | (x >> s & 3)).min(h - 1);
+                            }
+                            (level, fx, fy)
+                        } else {
+                            let level = ((x >> 4) % 6) as u8;
+                            let (w, h) = g.level_size(level);
+                            let (x0, y0) = ((x >> 8) % w, (x >> 20) % h);
+                            let x1 = [(x0 + 1) % w, 0, x0][(x >> 6) as usize % 3];
+                            let y1 = [(y0 + 1) % h, 0, y0][(x >> 7) as usize % 3];
+                            (level, [x0, x1], [y0, y1])
+                        };
+                        recent[step % 4] = (level, fx, fy);
+                        let before = a.memo[usize::from(level & 1)];
+                        if before.matches(level, fx, fy) {
+                            memo_hits += 1;
+                        }
+                        let want = [
+                            b.texel(level, fx[0], fy[0]),
+                            b.texel(level, fx[1], fy[0]),
+                            b.texel(level, fx[0], fy[1]),
+                            b.texel(level, fx[1], fy[1]),
+                        ];
+                        let got = if k % 2 == 0 {
+                            a.footprint_in_level(level, fx, fy)
+                        } else {
+                            a.footprint(level, fx, fy)
+                        };
+                        assert_eq!(got, want, "{level} {fx:?} {fy:?}");
+                    }
+                }
+                assert_same_state(&a, &b, &std::format!("{S}x{W} step {step}"));
+            }
+            assert!(
+                memo_hits > if cfg!(miri) { 5 } else { 500 },
+                "{S}x{W}: {memo_hits}"
+            );
+        }
+        let g = Geometry::new(32, 16, 4).unwrap();
+        let buf: Vec<Texel> = (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(2_654_435_761))
+            .collect();
+        let p = Pyramid::new(g, &buf).unwrap();
+        run::<1, 1>(p, g);
+        run::<2, 1>(p, g);
+        run::<4, 1>(p, g);
+        run::<3, 1>(p, g);
+        run::<1, 4>(p, g);
+        run::<2, 2>(p, g);
+        run::<3, 2>(p, g);
         run::<8, 2>(p, g);
     }
 
