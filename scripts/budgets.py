@@ -216,8 +216,8 @@ matrix_ceiling        ts_tri_f                     250   385   355
 matrix_ceiling        ts_srgb                      416   516   512
 matrix_ceiling        ts_565                       469   557   551
 matrix_ceiling        ts_565_f                     441   545   510
-matrix_ceiling        ts_bc1_hit                   440   534   519
-matrix_ceiling        ts_bc1_hit_f                 422   517   491
+matrix_ceiling        ts_bc1_hit                   469   602   585
+matrix_ceiling        ts_bc1_hit_f                 448   588   554
 matrix_ceiling        ts_bc1_fill                 3333  3535  3445
 matrix_ceiling        ts_bc1_fill_f               3287  3517  3410
 matrix_ceiling        an2                          720   914   879

@@ -642,7 +642,9 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     /// in the ways the memo names, so they only advance the clock and
     /// write the stamps, exactly as the lookups would. Any other footprint
     /// is looked up ([`footprint_lookups`](Self::footprint_lookups)).
-    #[inline(always)]
+    /// Out of line: one copy per cache type, however many sampler keys
+    /// read the cache (flash).
+    #[inline(never)]
     fn footprint_in_level(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
         let memo = self.memo[usize::from(level & 1)];
         if !memo.matches(level, x, y) {
@@ -683,9 +685,17 @@ fn settle<const SETS: usize, const WAYS: usize>(
     tags: &mut BlockCache<SETS, WAYS>,
     memo: &mut [Memo; 2],
 ) {
-    if memo[0].replayed | memo[1].replayed == 0 {
-        return;
+    if memo[0].replayed | memo[1].replayed != 0 {
+        write_replayed(tags, memo);
     }
+}
+
+/// [`settle`] with a read pending: out of line, one copy per cache type.
+#[inline(never)]
+fn write_replayed<const SETS: usize, const WAYS: usize>(
+    tags: &mut BlockCache<SETS, WAYS>,
+    memo: &mut [Memo; 2],
+) {
     let older = usize::from(memo[1].replayed < memo[0].replayed);
     let stamps = tags.stamps.as_flattened_mut();
     let n = stamps.len();
