@@ -672,6 +672,28 @@ mod tests {
         assert_eq!(g.len(), pyramid_len(MAX_SIZE, MAX_SIZE, 16));
     }
 
+    /// The error messages name the limit and both counts, each in its place.
+    #[test]
+    fn error_messages() {
+        use std::string::ToString;
+        let short = MipError::BufferTooShort {
+            needed: 21,
+            got: 16,
+        };
+        assert_eq!(
+            short.to_string(),
+            "texel buffer holds 16 texels, pyramid needs 21"
+        );
+        assert_eq!(
+            MipError::TooLarge.to_string(),
+            std::format!("texture side exceeds {MAX_SIZE} texels")
+        );
+        assert_eq!(
+            MipError::ZeroSize.to_string(),
+            "texture width or height is 0"
+        );
+    }
+
     /// `pyramid_len` in a const context, as a `static` pyramid's length
     /// (module docs): rustc evaluates it while building the tests, so a
     /// level loop that did not end fails that build (rustc's
