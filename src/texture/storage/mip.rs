@@ -71,8 +71,15 @@ pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
         total = total.saturating_add(w as u64 * h as u64);
         k += 1;
     }
-    if total > usize::MAX as u64 {
-        usize::MAX
+    clamp_to(total, usize::MAX as u64)
+}
+
+/// `total` as a `usize`, clamped to `max` (`usize::MAX` as `u64` in
+/// [`pyramid_len`]: `u32::MAX` on the 32-bit targets; a parameter so that
+/// the host tests check that clamp too).
+const fn clamp_to(total: u64, max: u64) -> usize {
+    if total > max {
+        max as usize
     } else {
         total as usize
     }
@@ -700,6 +707,23 @@ mod tests {
     /// `long_running_const_eval` limit) instead of hanging a test run.
     /// 256×128, 9 levels: 32768 + 8192 + 2048 + 512 + 128 + 32 + 8 + 2 + 1.
     const _: () = assert!(pyramid_len(256, 128, 9) == 43_691);
+
+    /// The clamp of [`pyramid_len`] on the 32-bit targets (`usize::MAX =
+    /// 2³² − 1`), checked on the host: a 65536² pyramid has 4/3 · 2³²
+    /// texels, more than a 32-bit `usize` holds.
+    #[test]
+    fn pyramid_len_clamps_to_a_32_bit_usize() {
+        let max32 = u64::from(u32::MAX);
+        let total = (0..17).map(|k| (65536u64 >> k).pow(2)).sum::<u64>();
+        assert_eq!(total, 0x1_5555_5555);
+        assert_eq!(clamp_to(total, max32), u32::MAX as usize);
+        assert_eq!(clamp_to(max32 + 1, max32), u32::MAX as usize);
+        assert_eq!(clamp_to(max32, max32), u32::MAX as usize);
+        assert_eq!(clamp_to(max32 - 1, max32), u32::MAX as usize - 1);
+        assert_eq!(clamp_to(0, max32), 0);
+        // On the host `pyramid_len` has the 64-bit bound: the same sides exactly.
+        assert_eq!(pyramid_len(65536, 65536, 17) as u64, total);
+    }
 
     /// Sides near 2³² saturate the 64-bit sum as documented (an overflow
     /// would wrap in release and panic in debug).
