@@ -892,6 +892,14 @@ mod tests {
     use super::*;
     use std::vec::Vec;
 
+    /// A pyramid's texels with every texel different (a multiplicative
+    /// hash of its index), so that a wrong texel read shows.
+    fn hashed_texels(g: Geometry) -> Vec<Texel> {
+        (0..g.len() as u32)
+            .map(|i| i.wrapping_mul(2_654_435_761))
+            .collect()
+    }
+
     #[test]
     fn morton_interleaves() {
         // Bit i of x goes to bit 2i, bit i of y to bit 2i + 1 (16-bit
@@ -1097,9 +1105,7 @@ mod tests {
             }
         }
         let g = Geometry::new(32, 16, 4).unwrap();
-        let buf: Vec<Texel> = (0..g.len() as u32)
-            .map(|i| i.wrapping_mul(2_654_435_761))
-            .collect();
+        let buf = hashed_texels(g);
         let p = Pyramid::new(g, &buf).unwrap();
         run::<1, 1>(p, g);
         run::<2, 1>(p, g);
@@ -1230,9 +1236,7 @@ mod tests {
             );
         }
         let g = Geometry::new(32, 16, 4).unwrap();
-        let buf: Vec<Texel> = (0..g.len() as u32)
-            .map(|i| i.wrapping_mul(2_654_435_761))
-            .collect();
+        let buf = hashed_texels(g);
         let p = Pyramid::new(g, &buf).unwrap();
         run::<1, 1>(p, g);
         run::<2, 1>(p, g);
@@ -1247,9 +1251,7 @@ mod tests {
     #[test]
     fn cache_returns_memory_contents() {
         let g = Geometry::new(9, 6, 4).unwrap();
-        let buf: Vec<Texel> = (0..g.len() as u32)
-            .map(|i| i.wrapping_mul(2_654_435_761))
-            .collect();
+        let buf = hashed_texels(g);
         let mut p = Pyramid::new(g, &buf).unwrap();
         let mut c: TexelCache<Pyramid<'_>, 2, 2> = TexelCache::new(p);
         for k in 0..5u8 {
