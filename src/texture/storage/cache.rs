@@ -641,7 +641,7 @@ impl<M: TexelMemory, const SETS: usize, const WAYS: usize> TexelSource
     /// that footprint's lookups without a tag compare: all four are hits
     /// in the ways the memo names, so they only advance the clock and
     /// write the stamps, exactly as the lookups would. Any other footprint
-    /// is looked up ([`footprint_lookups`](Self::footprint_lookups)).
+    /// is looked up (`footprint_lookups`).
     /// Out of line: one copy per cache type, however many sampler keys
     /// read the cache (flash).
     #[inline(never)]
