@@ -210,6 +210,20 @@ impl AddressMode {
         }
     }
 
+    /// The first bilinear tap on one axis before the mode maps it, and
+    /// its weight: `x = u'·size − ½ + 2^−(bits+1)` by
+    /// [`scaled`](Self::scaled) (the half step rounds the weight to
+    /// nearest): `(floor(x), the top `bits` bits of frac(x))`, the weight
+    /// below `2^bits` (`bits ∈ [1, 31]`: 8, 12 or 16 here). What
+    /// [`taps`](Self::taps) and the clamping modes'
+    /// [`pow2_first_tap`](Self::pow2_first_tap) start from.
+    #[inline(always)]
+    fn first_tap(self, coord: TexCoord, size: u32, bits: u32) -> (i32, u32) {
+        let offset = (1i64 << (31 - bits)) - (1 << 31);
+        let (i, frac) = self.scaled(coord, size, offset);
+        (i, frac >> (32 - bits))
+    }
+
     /// Bilinear taps on one axis with `bits` fractional weight bits
     /// (12 for ACCURATE, 8 for FAST, 16 for sRGB): `x = u·size − ½ +
     /// 2^−(bits+1)` (the half step rounds the weight to nearest),
@@ -220,9 +234,7 @@ impl AddressMode {
     /// others go through [`map`](Self::map) (decided once per axis).
     #[inline(always)]
     pub(crate) fn taps(self, coord: TexCoord, size: u32, bits: u32) -> AxisTaps {
-        let offset = (1i64 << (31 - bits)) - (1 << 31);
-        let (i, frac) = self.scaled(coord, size, offset);
-        let f = frac >> (32 - bits);
+        let (i, f) = self.first_tap(coord, size, bits);
         if (i as u32) < size.wrapping_sub(1) {
             return AxisTaps {
                 i: [i as u32, (i as u32).wrapping_add(1)],
@@ -291,7 +303,7 @@ impl AddressMode {
     /// * mirror: [`pow2_mirror_tap`], the tap modulo 2³² (then `i < n − 1`
     ///   means a first-copy footprint without the seam, every such one
     ///   for `u ∈ [0, 1)`; other copies are mapped by the edge taps);
-    /// * the clamping modes: `floor(x)` of [`scaled`](Self::scaled), any
+    /// * the clamping modes: `floor(x)` of [`first_tap`](Self::first_tap), any
     ///   `i32` as `u32` (a negative tap is above `n − 1`).
     #[inline(always)]
     pub(crate) fn pow2_first_tap(self, coord: TexCoord, n: u32, c: u32, bits: u32) -> (u32, u32) {
@@ -302,9 +314,8 @@ impl AddressMode {
             }
             Self::Mirror => pow2_mirror_tap(coord, n, bits),
             _ => {
-                let offset = (1i64 << (31 - bits)) - (1 << 31);
-                let (i, frac) = self.scaled(coord, n, offset);
-                (i as u32, frac >> (32 - bits))
+                let (i, f) = self.first_tap(coord, n, bits);
+                (i as u32, f)
             }
         }
     }
