@@ -783,6 +783,32 @@ mod tests {
         generate(&g, &mut buf).unwrap();
         assert_eq!(buf[5], 18); // 90/5
         assert_eq!(buf[6], 42); // 210/5
+        // 7 → 3 (den 2·3 + 1 = 7): (3a + 3b + c)/7 = 120/7, (2c + 3d + 2e)/7 =
+        // 280/7, (e + 3f + 3g)/7 = 440/7, rounded to nearest.
+        let g = Geometry::new(7, 1, 2).unwrap();
+        let mut buf = vec![10u32, 20, 30, 40, 50, 60, 70, 0, 0, 0];
+        generate(&g, &mut buf).unwrap();
+        assert_eq!(buf[7..], [17, 40, 63]);
+    }
+
+    /// Every channel is filtered in its own byte, and a 2-D odd level
+    /// weighs each source texel by the product of its axis weights. 5×5:
+    /// the only non-zero texel, (2, 0), has x weight 1 (of 2, 2, 1 for
+    /// output 0 and 1, 2, 2 for output 1) and y weight 2 (of 2, 2, 1) in
+    /// both outputs of row 0, so each gets 2·v/25 per channel; row 1
+    /// reads source rows 2 to 4 only.
+    #[test]
+    #[cfg(feature = "mipgen")]
+    fn odd_2d_weights_in_every_channel() {
+        let g = Geometry::new(5, 5, 3).unwrap();
+        let mut buf = vec![0u32; g.len()];
+        // Channels 50, 100, 150, 200, red in the low byte.
+        buf[2] = 0xC896_6432;
+        generate(&g, &mut buf).unwrap();
+        // Level 1 (2×2): 2·v/25 = 4, 8, 12, 16.
+        assert_eq!(buf[25..29], [0x100C_0804, 0x100C_0804, 0, 0]);
+        // Level 2 (1×1): the 2×2 box, (4 + 4 + 0 + 0)/4 = 2, 4, 6, 8.
+        assert_eq!(buf[29..], [0x0806_0402]);
     }
 
     #[test]
