@@ -339,7 +339,15 @@ def run(args):
     # --lib`: one test binary to build, not three); a mutant they catch is
     # caught. Only the ones they miss (or that time out) go on to stage
     # "all", every test of the crate; only its outcomes can be "missed".
+    # Before it, stage "module" runs the same test binary with only the
+    # unit tests of the mutated files' modules (a libtest name filter per
+    # module): the same build, a fraction of the test run (the slowest unit
+    # tests are other modules' brute-force sweeps), and a mutant they catch
+    # is caught by a real test too; the rest go on to stage "lib".
     stages = ["all"] if args.all_tests else ["lib", "all"]
+    filters = module_filters(todo)
+    if not args.all_tests and not args.no_module_tests and filters:
+        stages.insert(0, "module")
     clock = {"deadline": None, "stop": 0, "stopping": None, "grace": args.stop_grace}
 
     def stop(signum, frame):
@@ -356,7 +364,7 @@ def run(args):
             break
         rec, timed_out, build_killed = run_stage(args, stage, todo, whole and stage == stages[0], mutants, eq,
                                    by_name, tree, fingerprint, os.path.join(out_dir, stage),
-                                   label, clock)
+                                   label, clock, filters)
         records.append(rec)
         if not rec.baseline_ok:
             sys.exit("cargo mutants: the unmutated tree failed its build or tests (baseline)")
@@ -381,14 +389,29 @@ def run(args):
     return 1 if bad else 0
 
 
+def module_filters(todo):
+    """libtest name filters that select the unit tests of TODO's files:
+    `texture::storage::mip::` for src/texture/storage/mip.rs (a folder's
+    mod.rs: the folder's module and its submodules). None when a mutant
+    lies in the crate root (its tests have no module prefix)."""
+    mods = sorted({module_of(m["file"]) for m in todo})
+    if not mods or "lib" in mods:
+        return None
+    return [f"{mod}::" for mod in mods]
+
+
 def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint, out_dir, label,
-              clock):
-    """One cargo-mutants run over TODO in TREE with the tests of STAGE ("lib"
-    or "all"); returns its Record and whether the time box ended it."""
+              clock, filters=None):
+    """One cargo-mutants run over TODO in TREE with the tests of STAGE
+    ("module", "lib" or "all"; FILTERS: the module stage's test name
+    filters); returns its Record and whether the time box ended it."""
     cmd = ["--no-shuffle", "-o", out_dir, "--colors", "never", "--in-place"]
-    if stage == "lib":
+    if stage in ("module", "lib"):
         # -C: the build (cargo test --no-run) and the test run both.
         cmd += ["--cargo-arg=--lib"]
+    if stage == "module":
+        # After `--`: libtest runs the tests whose names contain a filter.
+        cmd += ["--cargo-test-arg=--"] + [f"--cargo-test-arg={f}" for f in filters]
     if not whole:
         # cargo-mutants 27.1 applies name filters to every genre but
         # StructField: the file filter keeps those to the selected files
@@ -401,7 +424,8 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
         for m in mutants:
             if m["key"] in eq or m["unbuilt"]:
                 cmd += ["-E", escape_name(m["name"])]
-    baseline = read_baseline(tree, fingerprint, stage)
+    baseline = read_baseline(tree, fingerprint,
+                             stage if stage != "module" else "module " + " ".join(filters))
     if baseline is not None:
         # These tests passed on this tree in this target directory:
         # cargo-mutants gets the timeout its baseline would have set (5
@@ -412,10 +436,13 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
         print(f"mutants: {stage} tests: baseline skipped (they passed on this tree in "
               f"{baseline:.0f} s); test timeout {timeout:.0f} s", flush=True)
     started = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
-    rec = Record(started, label + ("-lib" if stage == "lib" else ""), len(todo), by_name,
+    rec = Record(started, label + ("" if stage == "all" else "-" + stage), len(todo), by_name,
                  os.path.join(out_dir, "mutants.out", "outcomes.json"), stage)
+    rec.filters = filters
     rec.baseline_done = baseline is not None
-    print(f"mutants: {len(todo)} with the {'unit tests (--lib)' if stage == 'lib' else 'every test'}",
+    tests = {"module": "unit tests of " + " ".join(filters or []) + " (--lib)",
+             "lib": "unit tests (--lib)", "all": "every test"}[stage]
+    print(f"mutants: {len(todo)} with the {tests}",
           flush=True)
     proc = subprocess.Popen(["cargo", "mutants", "-p", PACKAGE, "--features", FEATURES] + cmd,
                             cwd=tree, start_new_session=True)
@@ -458,7 +485,9 @@ def run_stage(args, stage, todo, whole, mutants, eq, by_name, tree, fingerprint,
         time.sleep(5)
     rec.update(None, timed_out=timed_out)
     if rec.baseline_test is not None:
-        write_baseline(tree, fingerprint, stage, rec.baseline_test)
+        write_baseline(tree, fingerprint,
+                       stage if stage != "module" else "module " + " ".join(filters),
+                       rec.baseline_test)
     return rec, timed_out, build_killed
 
 
@@ -502,6 +531,7 @@ class Record:
         self.cpu_live = 0.0
         self.rows, self.baseline_ok, self.baseline_done, self.version = [], True, False, "?"
         self.baseline_test = None
+        self.filters = None
         self.commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT,
                                      capture_output=True, text=True).stdout.strip()
         self.dirty = subprocess.run(["git", "status", "--porcelain", "--", "src", "tests"],
@@ -535,7 +565,7 @@ class Record:
             if m is None or o["summary"] not in OUTCOMES:
                 continue
             d = {p["phase"]: p["duration"] for p in o["phase_results"]}
-            if self.stage == "lib" and OUTCOMES[o["summary"]] in ("missed", "timeout"):
+            if self.stage != "all" and OUTCOMES[o["summary"]] in ("missed", "timeout"):
                 # Not missed yet: the next stage runs it with every test.
                 continue
             rows.append((m["key"], OUTCOMES[o["summary"]], d.get("Build", 0.0),
@@ -555,6 +585,10 @@ class Record:
             f.write(f"# load average: {self.load0:.1f} at start, {os.getloadavg()[0]:.1f} "
                     "at end\n")
             f.write(f"# nice: {os.nice(0)}\n")
+            if self.stage == "module":
+                f.write("# tests: the unit tests of " + " ".join(self.filters) + " (cargo test "
+                        "--lib -- FILTERS); the mutants they missed are in the next record, "
+                        "run with every unit test\n")
             if self.stage == "lib":
                 f.write("# tests: the unit tests (cargo test --lib); the mutants they missed "
                         "are in the next record, run with every test\n")
@@ -670,9 +704,9 @@ def sync_tree(tree):
 
 def read_baseline(tree, fingerprint, stage):
     """Seconds of the unmutated test run when this exact tree (fingerprint)
-    passed STAGE's tests ("lib" or "all"; "all" includes "lib") in this
-    target directory, else None. The environment's MUTANTS_BASELINE=run
-    forces a baseline."""
+    passed STAGE's tests ("module FILTERS", "lib" or "all"; each includes
+    the ones before) in this target directory, else None. The
+    environment's MUTANTS_BASELINE=run forces a baseline."""
     if os.environ.get("MUTANTS_BASELINE", "auto") == "run":
         return None
     try:
@@ -682,7 +716,7 @@ def read_baseline(tree, fingerprint, stage):
         return None
     if b.get("fingerprint") != fingerprint:
         return None
-    t = b.get(stage, b.get("all"))
+    t = b.get(stage, b.get("lib", b.get("all")) if stage.startswith("module") else b.get("all"))
     return None if t is None else float(t)
 
 
@@ -889,6 +923,8 @@ def main():
     ap.add_argument("--all-tests", action="store_true",
                     help="test every mutant with every test (default: the unit tests first, "
                          "every test only for the mutants they miss)")
+    ap.add_argument("--no-module-tests", action="store_true",
+                    help="no first stage with only the mutated modules' unit tests (CI's --ci)")
     ap.add_argument("--list", action="store_true", help="print the selection, run nothing")
     ap.add_argument("--report", action="store_true",
                     help="only rewrite the docs/reliability.md block from the records")
