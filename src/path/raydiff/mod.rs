@@ -561,8 +561,10 @@ impl RayDiff {
     pub fn refract(&mut self, d: UnitVec, n: UnitVec, dn: [DirDiff; 2], eta: Eta, cos_t: I2F30) {
         let (d, n) = (bits(d), bits(n));
         let eta = eta.0.to_bits();
-        // cos θᵢ in 2⁻³⁰ units (one truncation), cos θₜ clamped.
-        let ci = -((dot64(d, n) >> 30) as i32);
+        // cos θᵢ in 2⁻³⁰ units (one truncation), cos θₜ clamped. Wrapping
+        // negation: only non-unit `D`, `n` (D·n = −2) reach `i32::MIN`,
+        // whose result is then garbage, but no panic.
+        let ci = ((dot64(d, n) >> 30) as i32).wrapping_neg();
         let ct = cos_t.to_bits().max(MIN_COS_I2F30);
         // μ = η·cos θᵢ − cos θₜ in 2⁻²⁸ units (one truncation): for unit
         // `D`, `n` facing each other, η < 8 and cos θₜ ∈ [MIN_COS, 2) it
@@ -821,6 +823,31 @@ pub(crate) mod tests {
             got.dox().to_f64(),
             want.dox
         );
+    }
+
+    /// A non-unit direction and normal whose `D·n` is `−2` exactly, so
+    /// that `cos θᵢ` is `2³¹` units, one beyond `i32`: the refraction
+    /// wraps (no panic in an overflow-checked build) and the state keeps
+    /// its exponents in range.
+    #[test]
+    fn refract_cos_at_i32_min_does_not_panic() {
+        let (z, o) = (I2F30::ZERO, I2F30::ONE);
+        let d = UnitVec([I2F30::MIN, z, z]);
+        let n = UnitVec([o, z, z]);
+        assert_eq!((dot64(bits(d), bits(n)) >> 30) as i32, i32::MIN);
+        let dd = DirDiff::new([1 << 30, -5, 7], -20);
+        let mut s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, dd, dd);
+        s.refract(
+            d,
+            n,
+            [dd, DirDiff::ZERO],
+            Eta::from_fixed(I4F28::from_num(1.5)),
+            o,
+        );
+        for p in [s.ddx().parts(), s.ddy().parts()] {
+            assert!((EXP_MIN..=EXP_MAX).contains(&p.1));
+        }
+        assert_eq!(s.dox(), PosDiff::ZERO);
     }
 
     /// `∂D` and `∂n` at one exponent, every mantissa at its largest and
