@@ -469,8 +469,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// [`sample_trilinear`](Self::sample_trilinear) with the fetch counting
     /// left to `count(stats, one_level)`, called once: `one_level` when the
     /// blend weight is 0 (one level read, 4 texel reads skipped), else 8
-    /// texels were read. (Called in each branch, where the single call's
-    /// counter updates cost least; the batch counts once per batch.) `k`:
+    /// texels are read. (Called once the lod is windowed, before either
+    /// level is addressed: a single call's counter update then costs the
+    /// add and its branch on the Cortex-M4, with no register held across
+    /// the levels for it; the batch counts once per batch.) `k`:
     /// the rounding terms (the sampler's field for a single call, the
     /// constants in a batch: [`sample_batch`](Self::sample_batch)).
     #[cfg(feature = "trilinear")]
@@ -495,16 +497,18 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // next to `lower`'s entry (one address for both levels).
         let lower = (bits >> 8) as usize & 15;
         let t = bits & 0xFF;
+        // Counted first, while the registers are free: the counters'
+        // address and update then share no live range with the levels'
+        // addressing and channels.
+        count(&mut self.stats, t == 0);
         let a = self.level_value(u, v, lower, k);
         // Level `a` enters the blend before the branch: its own values
         // are dead before the second level's footprint is read.
         let started = Kern::<K>::start_blend(a, t, k);
         if t == 0 {
-            count(&mut self.stats, true);
             Kern::<K>::finish_one(started)
         } else {
             let b = self.level_value(u, v, lower + 1, k);
-            count(&mut self.stats, false);
             Kern::<K>::finish_blend(started, b, t, k)
         }
     }
