@@ -208,7 +208,7 @@ matrix_ceiling        tw_bil                        97   137   135
 matrix_ceiling        tw_bil_f                     103   146   132
 matrix_ceiling        tw_tri                       221   283   283
 matrix_ceiling        tw_tri_f                     209   276   254
-matrix_ceiling        tw_tri_n                     264   301   298
+matrix_ceiling        tw_tri_n                     233   292   291
 matrix_ceiling        ts_bil                       131   168   189
 matrix_ceiling        ts_bil_f                     135   197   183
 matrix_ceiling        ts_tri                       272   403   392
