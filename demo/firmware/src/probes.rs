@@ -22,7 +22,7 @@ use raymip::texture::address::{ClampToBorder, Mirror, Wrap};
 use raymip::texture::kernel::{Linear, Srgb};
 use raymip::texture::storage::cache::TexelCache;
 use raymip::texture::storage::format::{Bc1, ColorSpace, Rgb565, TexelFormat};
-use raymip::texture::storage::image::{Image, image_len};
+use raymip::texture::storage::image::{Image, Pow2Rgb565, image_len};
 use raymip::texture::storage::mip::{Geometry, Texel};
 use raymip::texture::storage::pow2::Pow2Pyramid;
 use raymip::texture::{Cfg, Mode, NoStats, Sampler};
@@ -160,8 +160,9 @@ sample_wrapper!(
     rm_bench_ts_srgb, Ts<Pow2Pyramid<'_>, Srgb>, Mode::Trilinear);
 
 sample_wrapper!(
-    /// One trilinear sample of an RGB565 image (decoded per texel read).
-    rm_bench_ts_rgb565, Ts<Image<'_, Rgb565>>, Mode::Trilinear);
+    /// One trilinear sample of an RGB565 image through its 16-bit level
+    /// views (each texel of a footprint expanded once).
+    rm_bench_ts_rgb565, Ts<Pow2Rgb565<'_>>, Mode::Trilinear);
 
 sample_wrapper!(
     /// One trilinear sample of a BC1 image through an 8×2-block texel cache,
@@ -198,7 +199,7 @@ sample_wrapper!(
     rm_bench_ts_trilinear_fast, TsF<Pow2Pyramid<'_>>, Mode::Trilinear);
 sample_wrapper!(
     /// RGB565 trilinear, mirror/border key, FAST.
-    rm_bench_ts_rgb565_fast, TsF<Image<'_, Rgb565>>, Mode::Trilinear);
+    rm_bench_ts_rgb565_fast, TsF<Pow2Rgb565<'_>>, Mode::Trilinear);
 sample_wrapper!(
     /// BC1 trilinear through the texel cache, mirror/border key, FAST
     /// (called in pairs like [`rm_bench_ts_bc1`]).
@@ -259,8 +260,8 @@ pub struct Subjects<'a> {
     pub rgba: Ts<Pow2Pyramid<'a>>,
     /// The same texels read as sRGB, results re-encoded.
     pub srgb: Ts<Pow2Pyramid<'a>, Srgb>,
-    /// The demo texture converted to RGB565.
-    pub rgb565: Ts<Image<'a, Rgb565>>,
+    /// The demo texture converted to RGB565 (its 16-bit level views).
+    pub rgb565: Ts<Pow2Rgb565<'a>>,
     /// Pseudo-random BC1 blocks through an 8×2-block texel cache.
     pub bc1: Ts<Bc1Cache<'a>>,
     /// RGBA8, wrap, at most 2, 4 and 16 probes.
@@ -271,11 +272,7 @@ pub struct Subjects<'a> {
     /// ACCURATE counting its reads.
     pub wrap: (Tex, TexFast, TexCounted<'a>),
     /// The mirror/border rows at the FAST tier: RGBA8, RGB565, BC1.
-    pub fast: (
-        TsF<Pow2Pyramid<'a>>,
-        TsF<Image<'a, Rgb565>>,
-        TsF<Bc1Cache<'a>>,
-    ),
+    pub fast: (TsF<Pow2Pyramid<'a>>, TsF<Pow2Rgb565<'a>>, TsF<Bc1Cache<'a>>),
 }
 
 impl<'a> Subjects<'a> {
@@ -285,7 +282,8 @@ impl<'a> Subjects<'a> {
     #[must_use]
     pub fn new(g: Geometry, p: Pow2Pyramid<'static>, images: &'a Images) -> Option<Self> {
         let state = inputs::sampler_state()?;
-        let rgb565 = Image::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
+        let rgb565 = Image::<Rgb565>::typed(g, ColorSpace::Linear, &images.rgb565).ok()?;
+        let rgb565 = Pow2Rgb565::new(rgb565).ok()?;
         let bc1 = Image::typed(g, ColorSpace::Linear, &images.bc1).ok()?;
         let aniso = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();
         let anisof = |n| Sampler::with_state(p, inputs::aniso_state(n)?).ok();

@@ -39,7 +39,7 @@ use core::marker::PhantomData;
 
 use crate::texture::address::{AddressMode, AnyAxis, Axis, ClampToEdge, Wrap};
 use crate::texture::kernel::{Kernel, Linear, Rounding};
-use crate::texture::storage::level::wrap_constant;
+use crate::texture::storage::level::{LevelView, ViewFormat, wrap_constant};
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
 use crate::texture::{FetchStats, FilterError, Mode, Stats, tex_coord_from_f64};
 use crate::units::{Accurate, Lod, Precision, TexCoord};
@@ -716,65 +716,40 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     /// The 2×2 footprint at `level` as the kernel's lanes (border taps
     /// replaced by the border colour) and its weights `(fx, fy)` (counted
     /// by the caller). A source with direct level views
-    /// ([`TexelSource::levels`]: a power-of-two pyramid in memory) is read
-    /// with two row pointers and no check; every other source through its
-    /// [`TexelSource::footprint`]. Both give the same texels. `level ≤ 16`
-    /// (the callers mask it; the tables have an entry for 16, a copy of
-    /// 15, so that `level + 1` needs no check either).
+    /// ([`TexelSource::levels`]: a power-of-two pyramid in memory;
+    /// [`TexelSource::rgb565_levels`]: a power-of-two RGB565 image) is
+    /// read with two row pointers and no check
+    /// ([`direct_footprint`](Self::direct_footprint)); every other source
+    /// through its [`TexelSource::footprint`]. Both give the same texels.
+    /// `level ≤ 16` (the callers mask it; the tables have an entry for
+    /// 16, a copy of 15, so that `level + 1` needs no check either).
     #[inline(always)]
     fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Lanes<K>; 4], u32, u32) {
+        if let Some(levels) = self.source.levels() {
+            return self.direct_footprint(levels.level(level), u, v, level);
+        }
+        if let Some(levels) = self.source.rgb565_levels() {
+            return self.direct_footprint(levels.level(level), u, v, level);
+        }
         let bits = Kern::<K>::WEIGHT_BITS;
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
-        let (xt, yt, t) = if let Some(levels) = self.source.levels() {
-            let l = levels.level(level);
-            if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
-                // Wrapped on both axes: every tap is a texel (no border),
-                // addressed by the view without a mask.
-                let (t, fx, fy) = l.wrap_footprint(u, v, self.levels.c[level], bits);
-                return (t.map(Kern::<K>::load), fx, fy);
-            }
-            // Decided once per footprint: both axes' taps inside the
-            // level are read as they are (two adjacent pairs); otherwise
-            // every tap is mapped by its mode, read (the view masks it
-            // into the level) and a border tap replaced afterwards (a
-            // range test per tap, no branch).
+        // Power-of-two geometries address as the direct path does (the
+        // level's constants from the table); other sizes by the
+        // general taps.
+        let (xt, yt) = if self.pow2 {
+            let [mx, my] = self.levels.masks(level);
+            let [sx, sy] = self.levels.s[level].map(u32::from);
             let [cx, cy] = self.levels.c[level];
-            let (x, fx) = mu.pow2_first_tap(u, l.width(), cx, bits);
-            let (y, fy) = mv.pow2_first_tap(v, l.height(), cy, bits);
-            if let Some(t) = l.inside_footprint(x, y) {
-                return (t.map(Kern::<K>::load), fx, fy);
-            }
-            let xt = mu.pow2_edge_taps::<true>(x, fx, l.width(), l.mask_x(), l.shift_x());
-            let yt = mv.pow2_edge_taps::<true>(y, fy, l.height(), l.mask_y(), l.shift_y());
-            let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
-            if K::U::MAY_BORDER || K::V::MAY_BORDER {
-                for (k, l) in lanes.iter_mut().enumerate() {
-                    if xt.border[k & 1] | yt.border[k >> 1] {
-                        *l = self.border;
-                    }
-                }
-            }
-            return (lanes, xt.f, yt.f);
+            (
+                mu.pow2_taps::<false>(u, mx + 1, mx, sx, cx, bits),
+                mv.pow2_taps::<false>(v, my + 1, my, sy, cy, bits),
+            )
         } else {
-            // Power-of-two geometries address as the direct path does (the
-            // level's constants from the table); other sizes by the
-            // general taps.
-            let (xt, yt) = if self.pow2 {
-                let [mx, my] = self.levels.masks(level);
-                let [sx, sy] = self.levels.s[level].map(u32::from);
-                let [cx, cy] = self.levels.c[level];
-                (
-                    mu.pow2_taps::<false>(u, mx + 1, mx, sx, cx, bits),
-                    mv.pow2_taps::<false>(v, my + 1, my, sy, cy, bits),
-                )
-            } else {
-                let (w, h) = self.source.geometry().level_size(level as u8);
-                (mu.taps(u, w, bits), mv.taps(v, h, bits))
-            };
-            // The taps are inside the level (`level_size`): no clamp.
-            let t = self.source.footprint_in_level(level as u8, xt.i, yt.i);
-            (xt, yt, t)
+            let (w, h) = self.source.geometry().level_size(level as u8);
+            (mu.taps(u, w, bits), mv.taps(v, h, bits))
         };
+        // The taps are inside the level (`level_size`): no clamp.
+        let t = self.source.footprint_in_level(level as u8, xt.i, yt.i);
         let mut lanes = t.map(Kern::<K>::load);
         if (K::U::MAY_BORDER || K::V::MAY_BORDER)
             && (xt.border != [false; 2] || yt.border != [false; 2])
@@ -787,6 +762,48 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             ];
             for (l, o) in lanes.iter_mut().zip(out) {
                 if o {
+                    *l = self.border;
+                }
+            }
+        }
+        (lanes, xt.f, yt.f)
+    }
+
+    /// [`footprint`](Self::footprint) through the view `l` of `level`
+    /// (`≤ 16`), its texels expanded to RGBA8 by the view's format.
+    #[inline(always)]
+    fn direct_footprint<F: ViewFormat>(
+        &self,
+        l: &LevelView<'_, F>,
+        u: TexCoord,
+        v: TexCoord,
+        level: usize,
+    ) -> ([Lanes<K>; 4], u32, u32) {
+        let bits = Kern::<K>::WEIGHT_BITS;
+        let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
+        if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
+            // Wrapped on both axes: every tap is a texel (no border),
+            // addressed by the view without a mask.
+            let (t, fx, fy) = l.wrap_footprint(u, v, self.levels.c[level], bits);
+            return (t.map(Kern::<K>::load), fx, fy);
+        }
+        // Decided once per footprint: both axes' taps inside the
+        // level are read as they are (two adjacent pairs); otherwise
+        // every tap is mapped by its mode, read (the view masks it
+        // into the level) and a border tap replaced afterwards (a
+        // range test per tap, no branch).
+        let [cx, cy] = self.levels.c[level];
+        let (x, fx) = mu.pow2_first_tap(u, l.width(), cx, bits);
+        let (y, fy) = mv.pow2_first_tap(v, l.height(), cy, bits);
+        if let Some(t) = l.inside_footprint(x, y) {
+            return (t.map(Kern::<K>::load), fx, fy);
+        }
+        let xt = mu.pow2_edge_taps::<true>(x, fx, l.width(), l.mask_x(), l.shift_x());
+        let yt = mv.pow2_edge_taps::<true>(y, fy, l.height(), l.mask_y(), l.shift_y());
+        let mut lanes = l.footprint(xt.i, yt.i).map(Kern::<K>::load);
+        if K::U::MAY_BORDER || K::V::MAY_BORDER {
+            for (k, l) in lanes.iter_mut().enumerate() {
+                if xt.border[k & 1] | yt.border[k >> 1] {
                     *l = self.border;
                 }
             }

@@ -28,6 +28,7 @@
 
 use core::fmt;
 
+use crate::texture::storage::level::ViewFormat;
 use crate::texture::storage::mip::Texel;
 
 /// Storage format of a texture's texels (the C ABI's `RmFormat`, the
@@ -249,8 +250,8 @@ pub(crate) const fn widen6(x: u32) -> u32 {
 /// bits 5–7 and, replicated, 0–1; no other bit of a channel depends on
 /// both bytes, so the two words never share a set bit but alpha (255 in
 /// both). Two loads and an OR per texel instead of three extractions and
-/// replications (`Image`'s footprint of RGB565 levels, feature `cache`).
-#[cfg(any(feature = "cache", test))]
+/// replications (`Image`'s footprint of RGB565 levels and the 16-bit
+/// level views, [`ViewFormat`] of [`Rgb565`]).
 pub(crate) static RGB565_SPLIT: [[Texel; 256]; 2] = {
     let mut t = [[0; 256]; 2];
     let mut b = 0;
@@ -262,6 +263,20 @@ pub(crate) static RGB565_SPLIT: [[Texel; 256]; 2] = {
     }
     t
 };
+
+/// An RGB565 level view ([`LevelView<'_, Rgb565>`](crate::texture::storage::level::LevelView))
+/// stores a texel as its two bytes, little-endian (the image's layout, no
+/// alignment needed) and expands it by the 2 KiB table of the bytes'
+/// parts (bit replication is separable by byte): two table loads and an
+/// OR.
+impl ViewFormat for Rgb565 {
+    type Stored = [u8; 2];
+    #[inline(always)]
+    fn expand([lo, hi]: [u8; 2]) -> Texel {
+        let [l, h] = &RGB565_SPLIT;
+        l[usize::from(lo)] | h[usize::from(hi)]
+    }
+}
 
 /// Colour space of a texture's colour channels. Example: [`Format`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -25,9 +25,10 @@ use core::fmt;
 use crate::texture::storage::bc::{self, BLOCK_TEXELS};
 use crate::texture::storage::cache::{BLOCK, TexelMemory};
 use crate::texture::storage::format::{
-    AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, RGB565_SPLIT, TexelFormat,
+    AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, RGB565_SPLIT, Rgb565, TexelFormat,
 };
-use crate::texture::storage::mip::{Geometry, MAX_LEVELS, Texel, TexelSource};
+use crate::texture::storage::level::{LevelView, Pow2Levels, ViewFormat};
+use crate::texture::storage::mip::{Geometry, MAX_LEVELS, MipError, Texel, TexelSource};
 
 /// Bytes of level `k` of a `width × height` texture in `format`.
 const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64 {
@@ -86,7 +87,7 @@ impl fmt::Display for ImageTooShort {
 impl core::error::Error for ImageTooShort {}
 
 /// A texture in caller memory (see the module docs) in the pixel format
-/// `F`: a marker type such as [`Rgb565`](crate::texture::storage::format::Rgb565)
+/// `F`: a marker type such as [`Rgb565`]
 /// (the decode of that format alone, [`Image::typed`]) or [`AnyFormat`]
 /// (chosen at run time, [`Image::new`]).
 ///
@@ -366,11 +367,11 @@ impl<F: PixelFormat> TexelSource for Image<'_, F> {
             rows[1] + cols[1],
         ];
         if f == TexelFormat::Rgb565 {
-            let [lo, hi] = &RGB565_SPLIT;
             let texel = |at: usize| match self.bytes.get(at..).and_then(<[u8]>::first_chunk) {
-                Some(&[a, b]) => lo[usize::from(a)] | hi[usize::from(b)],
-                // Past the bytes: the expansion of 0 (`hi[0]` is alpha alone).
-                None => lo[0],
+                Some(&b) => Rgb565::expand(b),
+                // Past the bytes: the expansion of 0 (`RGB565_SPLIT[1][0]`
+                // is alpha alone).
+                None => RGB565_SPLIT[0][0],
             };
             return [texel(at[0]), texel(at[1]), texel(at[2]), texel(at[3])];
         }
@@ -400,6 +401,109 @@ impl<F: PixelFormat> TexelMemory for Image<'_, F> {
                 );
             }
         }
+    }
+}
+
+/// An RGB565 [`Image`] with power-of-two sides and its 16-bit level
+/// views, one per level index `0 ..= 16` (indices past the top level
+/// repeat it): the sampler's direct source for RGB565. A
+/// [`Sampler`](crate::texture::Sampler) over it addresses the texels as
+/// over a [`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid)
+/// (two row pointers per footprint, no check per sample) and expands
+/// each of the four texels once (two loads of a split table and an OR).
+///
+/// # Example
+/// ```
+/// use raymip::texture::storage::format::{ColorSpace, Rgb565, TexelFormat};
+/// use raymip::texture::storage::image::{Image, Pow2Rgb565, image_len};
+/// use raymip::{Geometry, Lod, Mode, Sampler, TexCoord};
+/// const LEN: usize = image_len(4, 4, 3, TexelFormat::Rgb565);
+/// let bytes: Vec<u8> = (0..LEN as u32).map(|i| (i * 37) as u8).collect();
+/// let image = Image::<Rgb565>::typed(Geometry::new(4, 4, 3)?, ColorSpace::Linear, &bytes)?;
+/// let direct = Pow2Rgb565::new(image)?;
+/// // The same texels as the image, read by the sampler without a check.
+/// let (u, v, lod) = (TexCoord::from_num(0.3), TexCoord::from_num(0.6), Lod::from_num(0.5));
+/// let a = Sampler::wrap(direct).sample(u, v, lod, Mode::Trilinear);
+/// let b = Sampler::wrap(image).sample(u, v, lod, Mode::Trilinear);
+/// assert_eq!(a, b);
+/// // Sides that are not powers of two have no direct views.
+/// let odd = Image::<Rgb565>::typed(Geometry::new(3, 4, 1)?, ColorSpace::Linear, &bytes)?;
+/// assert_eq!(Pow2Rgb565::new(odd).unwrap_err(), raymip::MipError::NotPowerOfTwo);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy)]
+pub struct Pow2Rgb565<'a> {
+    image: Image<'a, Rgb565>,
+    levels: Pow2Levels<'a, Rgb565>,
+}
+
+impl fmt::Debug for Pow2Rgb565<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Pow2Rgb565")
+            .field("image", &self.image)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> Pow2Rgb565<'a> {
+    /// The views of `image`.
+    ///
+    /// # Errors
+    /// [`MipError::NotPowerOfTwo`] when a side is not a power of two;
+    /// [`MipError::BufferTooShort`] (in texels) when a level lies outside
+    /// the bytes (an [`Image`] rules that out).
+    pub fn new(image: Image<'a, Rgb565>) -> Result<Self, MipError> {
+        let g = image.geometry;
+        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
+            return Err(MipError::NotPowerOfTwo);
+        }
+        let short = MipError::BufferTooShort {
+            needed: g.len(),
+            got: image.bytes.len() / 2,
+        };
+        // The level records of the image: past the top level the top's.
+        let view = |k: u8| {
+            let (w, h) = g.level_size(k);
+            LevelView::from_bytes(image.bytes.get(image.level_offset(k)..)?, w, h)
+        };
+        let top = view(0).ok_or(short)?;
+        let mut levels = [top; MAX_LEVELS as usize + 1];
+        for (k, v) in (0u8..).zip(levels.iter_mut()) {
+            *v = view(k).ok_or(short)?;
+        }
+        Ok(Self {
+            image,
+            levels: Pow2Levels(levels),
+        })
+    }
+
+    /// The image.
+    #[must_use]
+    pub fn image(&self) -> Image<'a, Rgb565> {
+        self.image
+    }
+}
+
+impl TexelSource for Pow2Rgb565<'_> {
+    #[inline]
+    fn geometry(&self) -> Geometry {
+        self.image.geometry
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        self.levels.level(usize::from(level)).texel(x, y)
+    }
+
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let v = self.levels.level(usize::from(level));
+        v.footprint(x.map(|x| x.min(v.mask_x())), y.map(|y| y.min(v.mask_y())))
+    }
+
+    #[inline(always)]
+    fn rgb565_levels(&self) -> Option<&Pow2Levels<'_, Rgb565>> {
+        Some(&self.levels)
     }
 }
 
@@ -586,6 +690,150 @@ mod tests {
                     for x in 0..11 {
                         assert_eq!(c.texel(k, x, y), img.get(k, x, y), "{f:?} {k} {x} {y}");
                     }
+                }
+            }
+        }
+    }
+
+    /// The 16-bit level views of power-of-two RGB565 images (a module
+    /// of its own: Miri runs the `pow2::` tests, `scripts/robustness`).
+    mod pow2 {
+        use super::*;
+        use crate::texture::address::{
+            AddressMode, AnyAxis, ClampToBorder, ClampToEdge, Mirror, MirrorOnce, Wrap,
+        };
+        use crate::texture::kernel::Linear;
+        use crate::texture::sampler::{Cfg, Key, Sampler};
+        use crate::texture::{FetchStats, Mode, SamplerDesc, SamplerState};
+        use crate::units::{Fast, Lod, TexCoord};
+
+        const SIZES: [(u32, u32, u8); 5] = [(8, 4, 4), (1, 16, 5), (4, 4, 3), (2, 1, 2), (1, 1, 1)];
+
+        fn image(g: Geometry, bytes: &[u8]) -> Image<'_, Rgb565> {
+            Image::typed(g, ColorSpace::Linear, bytes).unwrap()
+        }
+
+        /// Every level index's view (past the top too) has the level's
+        /// sides and reads what `Image::get` reads: texels with clamped
+        /// indices (also as a source), footprints with masked indices,
+        /// and footprints inside the level exactly where they are inside.
+        #[test]
+        fn views_read_what_the_image_reads() {
+            for (w, h, levels) in SIZES {
+                let g = Geometry::new(w, h, levels).unwrap();
+                let bytes = pattern(image_len(w, h, levels, TexelFormat::Rgb565), 5);
+                let img = image(g, &bytes);
+                let d = Pow2Rgb565::new(img).unwrap();
+                let mut e = d;
+                for level in 0..=18u8 {
+                    let view = *d.rgb565_levels().unwrap().level(usize::from(level));
+                    let (lw, lh) = g.level_size(level);
+                    assert_eq!((view.width(), view.height()), (lw, lh));
+                    let get = |x: u32, y: u32| img.get(level, x, y);
+                    for y in (0..lh + 2).chain([u32::MAX]) {
+                        for x in (0..lw + 2).chain([u32::MAX]) {
+                            assert_eq!(view.texel(x, y), get(x, y), "{w}x{h} {level} {x} {y}");
+                            assert_eq!(e.texel(level, x, y), get(x, y));
+                            let (xs, ys) = ([x, x.wrapping_add(1)], [y, y.wrapping_add(1)]);
+                            let clamped = [get(xs[0], ys[0]), get(xs[1], ys[0]), get(xs[0], ys[1])];
+                            assert_eq!(e.footprint(level, xs, ys)[..3], clamped);
+                            let (mx, my) = (lw - 1, lh - 1);
+                            let masked = [
+                                get(xs[0] & mx, ys[0] & my),
+                                get(xs[1] & mx, ys[0] & my),
+                                get(xs[0] & mx, ys[1] & my),
+                                get(xs[1] & mx, ys[1] & my),
+                            ];
+                            assert_eq!(view.footprint(xs, ys), masked);
+                            let inside = x < lw - 1 && y < lh - 1;
+                            let want = inside.then_some(masked);
+                            assert_eq!(view.inside_footprint(x, y), want, "{level} {x} {y}");
+                        }
+                    }
+                }
+                assert_eq!(d.geometry(), g);
+                assert_eq!(d.image().bytes(), &bytes[..]);
+            }
+        }
+
+        /// Sides that are not powers of two have no views; the error
+        /// names the first failing condition.
+        #[test]
+        fn only_power_of_two_images_have_views() {
+            let bytes = pattern(image_len(6, 4, 2, TexelFormat::Rgb565), 3);
+            for (w, h) in [(6, 4), (4, 6), (3, 3)] {
+                let img = image(Geometry::new(w, h, 1).unwrap(), &bytes);
+                assert_eq!(Pow2Rgb565::new(img).unwrap_err(), MipError::NotPowerOfTwo);
+            }
+            // A view needs two bytes per texel.
+            assert!(LevelView::<Rgb565>::from_bytes(&bytes[..7], 2, 2).is_none());
+            assert!(LevelView::<Rgb565>::from_bytes(&bytes[..8], 2, 2).is_some());
+            assert!(LevelView::<Rgb565>::from_bytes(&bytes[..8], 3, 1).is_none());
+        }
+
+        /// A sampler over the views (the direct path) gives the results
+        /// and counters of a sampler over the image (the generic path)
+        /// for every filter mode and the keys of every address mode, at
+        /// both tiers.
+        #[test]
+        fn sampler_reads_the_views_as_the_image() {
+            fn check<K: Key<Stats = FetchStats>>(
+                img: Image<'_, Rgb565>,
+                state: SamplerState,
+                n: u32,
+            ) {
+                let views = Pow2Rgb565::new(img).unwrap();
+                let mut direct = Sampler::<_, K>::with_state(views, state).unwrap();
+                let mut generic = Sampler::<_, K>::with_state(img, state).unwrap();
+                let mut x = 0x2545_F491_u64 ^ u64::from(n);
+                for _ in 0..n {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    let u = TexCoord::from_bits((x as i64) >> (x % 29));
+                    let v = TexCoord::from_bits(((x >> 3) as i64).wrapping_mul(7) >> (x % 31));
+                    let lod = Lod::from_bits(((x >> 40) % 2400) as i16 - 200);
+                    for mode in [
+                        Mode::Trilinear,
+                        Mode::BilinearNearestLevel,
+                        Mode::Nearest,
+                        Mode::NearestTexelLinearLevel,
+                    ] {
+                        let want = generic.sample(u, v, lod, mode);
+                        assert_eq!(
+                            direct.sample(u, v, lod, mode),
+                            want,
+                            "{mode:?} {u} {v} {lod}"
+                        );
+                    }
+                }
+                assert_eq!(direct.stats(), generic.stats());
+            }
+            let n = if cfg!(miri) { 4 } else { 300 };
+            for (w, h, levels) in SIZES {
+                let g = Geometry::new(w, h, levels).unwrap();
+                let bytes = pattern(image_len(w, h, levels, TexelFormat::Rgb565), 7);
+                let img = image(g, &bytes);
+                let state = |address_u, address_v| {
+                    SamplerState::new(SamplerDesc {
+                        address_u,
+                        address_v,
+                        border: 0x8040_2010,
+                        lod_bias: Lod::from_bits(40),
+                        ..SamplerDesc::default()
+                    })
+                    .unwrap()
+                };
+                use AddressMode as A;
+                check::<Cfg<Wrap>>(img, state(A::Wrap, A::Wrap), n);
+                check::<Cfg<Wrap, Wrap, Linear, Fast>>(img, state(A::Wrap, A::Wrap), n);
+                let mb = state(A::Mirror, A::ClampToBorder);
+                check::<Cfg<Mirror, ClampToBorder>>(img, mb, n);
+                check::<Cfg<Mirror, ClampToBorder, Linear, Fast>>(img, mb, n);
+                check::<Cfg<ClampToEdge, MirrorOnce>>(img, state(A::ClampToEdge, A::MirrorOnce), n);
+                for (i, mu) in A::ALL.into_iter().enumerate() {
+                    let mv = A::ALL[(i + 2) % 5];
+                    check::<Cfg<AnyAxis>>(img, state(mu, mv), n / 4);
                 }
             }
         }

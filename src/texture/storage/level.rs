@@ -18,15 +18,20 @@
 //! This is the crate's only texture module with `unsafe` code: the texel
 //! reads of [`LevelView`]. The argument, in full:
 //!
-//! * A view is made only by [`LevelView::new`] from a slice `&'a [Texel]`
-//!   of at least `w·h` texels, `w = 2^kx`, `h = 2^ky`, `kx, ky ≤ 15`
-//!   ([`MAX_SIZE`]); it keeps the slice's start pointer (whose provenance
-//!   covers the whole slice), `w`, `h`, `mx = w − 1`, `my = h − 1`, the
-//!   row stride `4w` in bytes (and two shift counts no read uses). Its
-//!   fields are private and never written after construction, and it
-//!   holds a `PhantomData<&'a [Texel]>`: it cannot outlive the shared
-//!   borrow, during which the texels can be neither freed nor written,
-//!   and moving a view does not move them.
+//! * A view is made only by [`LevelView::new`] from a slice
+//!   `&'a [Texel]` (`F::Stored` of [`Rgba8`]), or by
+//!   [`LevelView::from_bytes`] (of [`Rgb565`]) from a byte slice
+//!   `&'a [u8]` read as pairs `[u8; 2]` (alignment 1, every bit pattern a
+//!   value, so its first `2·⌊len/2⌋` bytes are `⌊len/2⌋` initialised
+//!   pairs), of at least `w·h` texels, `w = 2^kx`, `h = 2^ky`,
+//!   `kx, ky ≤ 15` ([`MAX_SIZE`]); it keeps the slice's start pointer
+//!   (whose provenance covers the whole slice), `w`, `h`, `mx = w − 1`,
+//!   `my = h − 1`, the row stride `w·size_of::<F::Stored>()` in bytes
+//!   (and two shift counts no read uses). Its fields are private and
+//!   never written after construction, and it holds a
+//!   `PhantomData<&'a [F::Stored]>`: it cannot outlive the shared borrow,
+//!   during which the texels can be neither freed nor written, and moving
+//!   a view does not move them.
 //! * Every read first reduces its indices to `x ≤ mx`, `y ≤ my` (a mask
 //!   `& mx` / `& my`, or a `min` with them; or, for a wrapped
 //!   footprint, takes the first index as the high word of the 32×32-bit
@@ -35,11 +40,12 @@
 //!   footprint inside the level, tests `x < mx` and `y < my` before it
 //!   reads `x + 1` and `y + 1`), so the texel index
 //!   `y·w + x ≤ (h − 1)·w + w − 1 = w·h − 1` lies inside the slice. The
-//!   row's byte offset `y·4w < 2³²` is computed in `usize` (no overflow
-//!   on 32-bit or wider targets), and the read is one `ptr::byte_add`
-//!   (the row), one `ptr::add` (the column) and `ptr::read` of an
-//!   initialised, aligned `Texel`; the slice's length is not compared
-//!   again.
+//!   row's byte offset `y·stride`, below the slice's length in bytes, is
+//!   computed in `usize` (no overflow), and the read is one
+//!   `ptr::byte_add` (the row), one `ptr::add` (the column) and
+//!   `ptr::read` of an initialised, aligned `F::Stored` (a `Copy` value of
+//!   the slice), expanded to RGBA8 by `F::expand` (safe code); the slice's
+//!   length is not compared again.
 //!
 //! With feature `cfu` on riscv32, `cfu_footprint` reads memory at the
 //! four addresses the co-processor's `tex.addr`/`tex.tap` return. Each is `base + 4·(y·2^kx + x)` with `x < 2^kx` and `y < 2^ky`
@@ -68,6 +74,7 @@ use core::ptr::NonNull;
 use crate::coproc::cfu::{addr, level, tap};
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
 use crate::coproc::{TAP01, TAP10, TAP11};
+use crate::texture::storage::format::{Rgb565, Rgba8};
 use crate::units::TexCoord;
 
 /// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
@@ -124,13 +131,32 @@ pub(crate) fn pow2_wrap_taps(
     (i0, i0.wrapping_add(1) & m, f)
 }
 
+/// How a [`LevelView`] stores its texels and reads one as RGBA8: the
+/// format marker of its key ([`Rgba8`], the default: a [`Texel`] as it
+/// is; [`Rgb565`]: two bytes expanded by a split table).
+pub trait ViewFormat: Copy + fmt::Debug + 'static {
+    /// One stored texel (its size is the view's step per column).
+    type Stored: Copy + Send + Sync;
+    /// The RGBA8 texel of `s`.
+    fn expand(s: Self::Stored) -> Texel;
+}
+
+impl ViewFormat for Rgba8 {
+    type Stored = Texel;
+    #[inline(always)]
+    fn expand(s: Texel) -> Texel {
+        s
+    }
+}
+
 /// One power-of-two level in memory, validated ([module docs](self)):
-/// every read is in bounds by construction.
+/// every read is in bounds by construction. Its texels are stored as
+/// `F::Stored` ([`ViewFormat`]); every read returns them as RGBA8.
 #[derive(Clone, Copy)]
-pub struct LevelView<'a> {
+pub struct LevelView<'a, F: ViewFormat = Rgba8> {
     /// The level's first texel (of at least `w·h` in a slice borrowed
     /// for `'a`).
-    base: NonNull<Texel>,
+    base: NonNull<F::Stored>,
     /// Sides `w = 2^kx`, `h = 2^ky ≤ 2¹⁵`; `w` is also the row stride.
     w: u32,
     h: u32,
@@ -141,18 +167,19 @@ pub struct LevelView<'a> {
     /// to bit 31 (the copy bit of a mirrored axis).
     sx: u32,
     sy: u32,
-    /// Row stride in bytes (`4w`).
+    /// Row stride in bytes (`w` times the size of `F::Stored`).
     stride: u32,
-    _texels: PhantomData<&'a [Texel]>,
+    _texels: PhantomData<&'a [F::Stored]>,
 }
 
-// SAFETY: a view is a shared borrow of texels (`&'a [Texel]`, which is
-// `Send` and `Sync`) plus plain integers; nothing writes through it.
-unsafe impl Send for LevelView<'_> {}
+// SAFETY: a view is a shared borrow of texels (`&'a [F::Stored]`, which
+// is `Send` and `Sync` because `F::Stored` is `Sync`) plus plain
+// integers; nothing writes through it.
+unsafe impl<F: ViewFormat> Send for LevelView<'_, F> {}
 // SAFETY: as for `Send`.
-unsafe impl Sync for LevelView<'_> {}
+unsafe impl<F: ViewFormat> Sync for LevelView<'_, F> {}
 
-impl fmt::Debug for LevelView<'_> {
+impl<F: ViewFormat> fmt::Debug for LevelView<'_, F> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("LevelView")
             .field("w", &self.w)
@@ -167,24 +194,49 @@ impl<'a> LevelView<'a> {
     /// texels.
     #[must_use]
     pub fn new(texels: &'a [Texel], w: u32, h: u32) -> Option<Self> {
+        Self::at(NonNull::from(texels).cast(), texels.len(), w, h)
+    }
+}
+
+impl<'a, F: ViewFormat> LevelView<'a, F> {
+    /// The view of the `w × h` level at `base`, where `len` initialised
+    /// `F::Stored` values lie, borrowed shared for `'a` (the callers'
+    /// slices); `None` as for [`new`](Self::new).
+    fn at(base: NonNull<F::Stored>, len: usize, w: u32, h: u32) -> Option<Self> {
         let ok = w.is_power_of_two() && h.is_power_of_two() && w <= MAX_SIZE && h <= MAX_SIZE;
-        let len = (w as usize).checked_mul(h as usize)?;
-        if !ok || texels.len() < len {
+        let texels = (w as usize).checked_mul(h as usize)?;
+        // The row stride in bytes: 4w for RGBA8, 2w for RGB565.
+        let stride = u32::try_from(size_of::<F::Stored>()).ok()?.checked_mul(w)?;
+        if !ok || len < texels {
             return None;
         }
         Some(Self {
-            base: NonNull::from(texels).cast(),
+            base,
             w,
             h,
             mx: w - 1,
             my: h - 1,
             sx: w.leading_zeros(),
             sy: h.leading_zeros(),
-            stride: w * 4,
+            stride,
             _texels: PhantomData,
         })
     }
+}
 
+impl<'a> LevelView<'a, Rgb565> {
+    /// A view of the `w × h` RGB565 level starting at `bytes[0]` (two
+    /// bytes per texel, little-endian, any alignment), `None` unless `w`
+    /// and `h` are powers of two `≤ 2¹⁵` and `bytes` holds `2·w·h` bytes.
+    #[must_use]
+    pub fn from_bytes(bytes: &'a [u8], w: u32, h: u32) -> Option<Self> {
+        // `[u8; 2]` has alignment 1 and every value: the first
+        // `2·⌊len/2⌋` bytes are `⌊len/2⌋` initialised pairs.
+        Self::at(NonNull::from(bytes).cast(), bytes.len() / 2, w, h)
+    }
+}
+
+impl LevelView<'_> {
     /// The level's first texel: the start of `w·h` initialised texels,
     /// valid and unwritten while the view lives (the co-processor's
     /// addressing returns addresses inside them, read by
@@ -195,7 +247,9 @@ impl<'a> LevelView<'a> {
     pub(crate) fn base(&self) -> NonNull<Texel> {
         self.base
     }
+}
 
+impl<F: ViewFormat> LevelView<'_, F> {
     /// Width `w` in texels (a power of two).
     #[inline(always)]
     #[must_use]
@@ -245,10 +299,10 @@ impl<'a> LevelView<'a> {
         debug_assert!(x <= self.mx && y <= self.my);
         let row = y as usize * self.stride as usize;
         // SAFETY: `x ≤ mx`, `y ≤ my` (every caller reduces them), so the
-        // byte offset `4(y·w + x) ≤ 4(w·h − 1)` lies in the slice of at
-        // least `w·h` texels the view was made from (checked by `new`),
-        // which is borrowed shared for `'a` (module docs).
-        unsafe { self.base.as_ptr().byte_add(row).add(x as usize).read() }
+        // texel `y·w + x ≤ w·h − 1` lies in the slice of at least `w·h`
+        // texels the view was made from (checked by `new`), which is
+        // borrowed shared for `'a` (module docs).
+        F::expand(unsafe { self.base.as_ptr().byte_add(row).add(x as usize).read() })
     }
 
     /// The footprint `(x[0], y[0])`, `(x[1], y[0])`, `(x[0], y[1])`,
@@ -288,7 +342,7 @@ impl<'a> LevelView<'a> {
                     .byte_add(y as usize * stride)
                     .add(x as usize);
                 let q = p.byte_add(stride);
-                Some([p.read(), p.add(1).read(), q.read(), q.add(1).read()])
+                Some([p.read(), p.add(1).read(), q.read(), q.add(1).read()].map(F::expand))
             }
         } else {
             None
@@ -358,13 +412,15 @@ pub fn cfu_footprint(l: &LevelView<'_>, modes: u32, u: u32, v: u32) -> [Texel; 4
 /// [`Pow2Pyramid`](crate::texture::storage::pow2::Pow2Pyramid), indexed by level `0 ..= 16`
 /// (levels outside the stored range repeat the nearest stored one).
 #[derive(Clone, Copy, Debug)]
-pub struct Pow2Levels<'a>(pub(crate) [LevelView<'a>; MAX_LEVELS as usize + 1]);
+pub struct Pow2Levels<'a, F: ViewFormat = Rgba8>(
+    pub(crate) [LevelView<'a, F>; MAX_LEVELS as usize + 1],
+);
 
-impl<'a> Pow2Levels<'a> {
+impl<'a, F: ViewFormat> Pow2Levels<'a, F> {
     /// The view of `level` (`≤ 16`; larger indices read the top entry).
     #[inline(always)]
     #[must_use]
-    pub fn level(&self, level: usize) -> &LevelView<'a> {
+    pub fn level(&self, level: usize) -> &LevelView<'a, F> {
         &self.0[level.min(MAX_LEVELS as usize)]
     }
 }

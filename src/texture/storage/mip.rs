@@ -40,6 +40,7 @@
 
 use core::fmt;
 
+use crate::texture::storage::format::Rgb565;
 use crate::texture::storage::level::Pow2Levels;
 pub use crate::texture::storage::level::{MAX_LEVELS, MAX_SIZE, Texel};
 
@@ -507,6 +508,15 @@ pub trait TexelSource {
     fn levels(&self) -> Option<&Pow2Levels<'_>> {
         None
     }
+    /// The 16-bit level views of a power-of-two RGB565 image in memory
+    /// ([`Pow2Rgb565`](crate::texture::storage::image::Pow2Rgb565)), read
+    /// by a [`Sampler`](crate::texture::Sampler) as it reads
+    /// [`levels`](Self::levels), each texel expanded once. Every other
+    /// source returns `None`, the default.
+    #[inline(always)]
+    fn rgb565_levels(&self) -> Option<&Pow2Levels<'_, Rgb565>> {
+        None
+    }
 }
 
 /// A pyramid: geometry plus a borrowed texel slice laid out as in the
@@ -644,6 +654,11 @@ impl<T: TexelSource + ?Sized> TexelSource for &mut T {
     #[inline(always)]
     fn levels(&self) -> Option<&Pow2Levels<'_>> {
         (**self).levels()
+    }
+
+    #[inline(always)]
+    fn rgb565_levels(&self) -> Option<&Pow2Levels<'_, Rgb565>> {
+        (**self).rgb565_levels()
     }
 }
 
