@@ -214,8 +214,8 @@ matrix_ceiling        ts_bil_f                     135   197   183
 matrix_ceiling        ts_tri                       272   403   392
 matrix_ceiling        ts_tri_f                     250   385   355
 matrix_ceiling        ts_srgb                      416   516   512
-matrix_ceiling        ts_565                       469   557   551
-matrix_ceiling        ts_565_f                     441   545   510
+matrix_ceiling        ts_565                       323   406   403
+matrix_ceiling        ts_565_f                     297   388   387
 matrix_ceiling        ts_bc1_hit                   469   602   585
 matrix_ceiling        ts_bc1_hit_f                 448   588   554
 matrix_ceiling        ts_bc1_fill                 3333  3535  3445
@@ -888,8 +888,9 @@ def matrix_section(res, w, bad, every, work):
     w("One `texture::Sampler` per key (address mode per axis, colour space, tier and fetch statistics")
     w("as types), on the demo texture (32×32, 6 levels) and the 64 bilinear / trilinear inputs above.")
     w("RGBA8 rows read a `Pow2Pyramid` (the pyramid with its validated level views: texel addresses")
-    w("computed by the sampler, no check per sample); RGB565 an `Image` in memory, BC1 an `Image`")
-    w("through an 8×2-block `TexelCache`. Every key but one counts no fetch statistics (`NoStats`: a")
+    w("computed by the sampler, no check per sample); RGB565 a `Pow2Rgb565` (an RGB565 `Image` with")
+    w("its 16-bit level views, read the same way, each texel expanded once); BC1 an `Image` through")
+    w("an 8×2-block `TexelCache`. Every key but one counts no fetch statistics (`NoStats`: a")
     w("firmware that reads none); the row \"with fetch statistics\" is the wrap trilinear key with the")
     w("default `FetchStats`, for the counters' cost. Wrap rows: the state `inputs::wrap_state` (wrap on")
     w("both axes, lod bias +¼, lod clamp [½, 4], set at run time); mirror/border rows:")

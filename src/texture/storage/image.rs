@@ -431,18 +431,10 @@ impl<F: PixelFormat> TexelMemory for Image<'_, F> {
 /// assert_eq!(Pow2Rgb565::new(odd).unwrap_err(), raymip::MipError::NotPowerOfTwo);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 pub struct Pow2Rgb565<'a> {
     image: Image<'a, Rgb565>,
     levels: Pow2Levels<'a, Rgb565>,
-}
-
-impl fmt::Debug for Pow2Rgb565<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Pow2Rgb565")
-            .field("image", &self.image)
-            .finish_non_exhaustive()
-    }
 }
 
 impl<'a> Pow2Rgb565<'a> {
@@ -462,19 +454,12 @@ impl<'a> Pow2Rgb565<'a> {
             got: image.bytes.len() / 2,
         };
         // The level records of the image: past the top level the top's.
-        let view = |k: u8| {
+        let levels = Pow2Levels::from_fn(|k| {
             let (w, h) = g.level_size(k);
             LevelView::from_bytes(image.bytes.get(image.level_offset(k)..)?, w, h)
-        };
-        let top = view(0).ok_or(short)?;
-        let mut levels = [top; MAX_LEVELS as usize + 1];
-        for (k, v) in (0u8..).zip(levels.iter_mut()) {
-            *v = view(k).ok_or(short)?;
-        }
-        Ok(Self {
-            image,
-            levels: Pow2Levels(levels),
         })
+        .ok_or(short)?;
+        Ok(Self { image, levels })
     }
 
     /// The image.
@@ -785,19 +770,18 @@ mod tests {
                 let views = Pow2Rgb565::new(img).unwrap();
                 let mut direct = Sampler::<_, K>::with_state(views, state).unwrap();
                 let mut generic = Sampler::<_, K>::with_state(img, state).unwrap();
-                let mut x = 0x2545_F491_u64 ^ u64::from(n);
-                for _ in 0..n {
-                    x ^= x << 13;
-                    x ^= x >> 7;
-                    x ^= x << 17;
-                    let u = TexCoord::from_bits((x as i64) >> (x % 29));
-                    let v = TexCoord::from_bits(((x >> 3) as i64).wrapping_mul(7) >> (x % 31));
-                    let lod = Lod::from_bits(((x >> 40) % 2400) as i16 - 200);
+                // Coordinates on a grid of steps of 3/64 from −2 (edges,
+                // seams and mirror copies), lods from −0.5 to past the top.
+                for i in 0..n {
+                    let u = TexCoord::from_num(-2) + TexCoord::from_bits((i64::from(i) * 3) << 26);
+                    let v = TexCoord::from_num(3) - TexCoord::from_bits(i64::from(i * 7 % n) << 28);
+                    let lod = Lod::from_bits((i * 37 % 1600) as i16 - 128);
+                    use Mode::{BilinearNearestLevel, Nearest, NearestTexelLinearLevel, Trilinear};
                     for mode in [
-                        Mode::Trilinear,
-                        Mode::BilinearNearestLevel,
-                        Mode::Nearest,
-                        Mode::NearestTexelLinearLevel,
+                        Trilinear,
+                        BilinearNearestLevel,
+                        Nearest,
+                        NearestTexelLinearLevel,
                     ] {
                         let want = generic.sample(u, v, lod, mode);
                         assert_eq!(

@@ -417,6 +417,17 @@ pub struct Pow2Levels<'a, F: ViewFormat = Rgba8>(
 );
 
 impl<'a, F: ViewFormat> Pow2Levels<'a, F> {
+    /// The views `view(k)` of every level index `k ≤ 16`, or `None` when
+    /// one of them is `None`.
+    pub(crate) fn from_fn(view: impl Fn(u8) -> Option<LevelView<'a, F>>) -> Option<Self> {
+        let top = view(0)?;
+        let mut levels = [top; MAX_LEVELS as usize + 1];
+        for (k, v) in (0u8..).zip(levels.iter_mut()) {
+            *v = view(k)?;
+        }
+        Some(Self(levels))
+    }
+
     /// The view of `level` (`≤ 16`; larger indices read the top entry).
     #[inline(always)]
     #[must_use]

@@ -20,7 +20,7 @@
 use core::fmt;
 
 use crate::texture::storage::level::{LevelView, Pow2Levels};
-use crate::texture::storage::mip::{Geometry, MAX_LEVELS, MipError, Pyramid, Texel, TexelSource};
+use crate::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, TexelSource};
 
 /// A [`Pyramid`] with power-of-two sides and its [`LevelView`]s, one per
 /// level index `0 ..= 16` ([module docs](self)).
@@ -74,19 +74,12 @@ impl<'a> Pow2Pyramid<'a> {
             needed: g.len(),
             got: texels.len(),
         };
-        let view = |k: u8| {
+        let levels = Pow2Levels::from_fn(|k| {
             let (w, h) = g.level_size(k);
             LevelView::new(texels.get(g.level_offset(k)..)?, w, h)
-        };
-        let top = view(0).ok_or(short)?;
-        let mut levels = [top; MAX_LEVELS as usize + 1];
-        for (k, v) in (0u8..).zip(levels.iter_mut()) {
-            *v = view(k).ok_or(short)?;
-        }
-        Ok(Self {
-            pyramid,
-            levels: Pow2Levels(levels),
         })
+        .ok_or(short)?;
+        Ok(Self { pyramid, levels })
     }
 
     /// The pyramid.
@@ -124,6 +117,7 @@ impl TexelSource for Pow2Pyramid<'_> {
 mod tests {
     extern crate std;
     use super::*;
+    use crate::texture::storage::mip::MAX_LEVELS;
     use std::vec::Vec;
 
     /// Every view reads what the pyramid reads: all levels of full and
