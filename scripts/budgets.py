@@ -410,12 +410,14 @@ def load_rows(root):
 
 
 HASH = re.compile(r"::h[0-9a-f]{16}$")
+GENERICS = re.compile(r"<.*>$")
 
 
 def symbolize(work, name, pcs):
     """{address: inline stack} of `pcs` in NAME.elf: the function names
-    llvm-symbolizer gives (innermost first), each by its last path segment,
-    joined by " < "."""
+    llvm-symbolizer gives (innermost first), each by its last path segment
+    without generic arguments (line tables name an inlined frame `f<T>`,
+    full DWARF `path::f::h…`), joined by " < "."""
     import subprocess
     pcs = sorted(set(pcs))
     tool = os.environ.get("SYMBOLIZER") or "llvm-symbolizer"
@@ -424,7 +426,7 @@ def symbolize(work, name, pcs):
                           check=True).stdout
     out = {}
     for pc, block in zip(pcs, text.strip().split("\n\n")):
-        names = [HASH.sub("", n).split("::")[-1] for n in block.split("\n")[0::2]]
+        names = [GENERICS.sub("", HASH.sub("", n)).split("::")[-1] for n in block.split("\n")[0::2]]
         out[pc] = " < ".join(names)
     return out
 
