@@ -31,8 +31,30 @@ def stat_fields(pid):
     return s[s.rindex(")") + 2:].split()
 
 
-def tree_sample(root):
-    """CPU ticks of root's process tree and its runnable threads."""
+def label(pid, comm):
+    """What a process is, for the per-program table: `rustc CRATE`
+    (its --crate-name), the script a python3 or bash runs, else its
+    command name."""
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as f:
+            argv = f.read().decode(errors="replace").split("\0")
+    except OSError:
+        return comm
+    name = os.path.basename(argv[0]) if argv and argv[0] else comm
+    if name.startswith("rustc") or name in ("clippy-driver", "rustdoc"):
+        if "--crate-name" in argv[:-1]:
+            return f"{name} {argv[argv.index('--crate-name') + 1]}"
+    if name.startswith(("python", "bash")) and len(argv) > 1:
+        for a in argv[1:]:
+            if a and not a.startswith("-"):
+                return f"{name} {os.path.basename(a)}"
+    return name or comm
+
+
+def tree_sample(root, procs=None):
+    """CPU ticks of root's process tree and its runnable threads; with
+    `procs` (a dict), also each process's own ticks: procs[pid] =
+    [label, ticks, first seen (centiseconds)]."""
     parent = {}
     fields = {}
     for d in os.listdir("/proc"):
@@ -55,9 +77,21 @@ def tree_sample(root):
             seen += 1
     ticks = 0
     runnable = 0
+    now = int(time.time() * 100)
     for pid in tree:
         f = fields[pid]
         ticks += int(f[11]) + int(f[12]) + int(f[13]) + int(f[14])
+        if procs is not None:
+            own = int(f[11]) + int(f[12])
+            if pid not in procs:
+                try:
+                    with open(f"/proc/{pid}/stat") as sf:
+                        st = sf.read()
+                    comm = st[st.index("(") + 1:st.rindex(")")]
+                except OSError:
+                    comm = "?"
+                procs[pid] = [label(pid, comm), own, now]
+            procs[pid][1] = max(procs[pid][1], own)
         try:
             tasks = os.listdir(f"/proc/{pid}/task")
         except OSError:
@@ -71,15 +105,32 @@ def tree_sample(root):
     return ticks, runnable
 
 
+def write_procs(procs, path):
+    with open(path + ".tmp", "w") as o:
+        for pid, (lab, ticks, first) in sorted(procs.items()):
+            o.write(f"{pid}\t{first}\t{ticks * 100 // HZ}\t{lab}\n")
+    os.replace(path + ".tmp", path)
+
+
 def sample(root, out):
+    """Every half second until ROOT exits: a line `time ticks runnable` of
+    its tree to OUT; each process's own CPU (the last value seen: a
+    process's final half second, and one shorter than that, are missed) to
+    OUT.procs, `pid first-seen centiseconds label`."""
     root = int(root)
+    procs = {}
+    last_write = time.time()
     with open(out, "w") as o:
         while os.path.exists(f"/proc/{root}"):
             t = time.time()
-            ticks, runnable = tree_sample(root)
+            ticks, runnable = tree_sample(root, procs)
             o.write(f"{int(t * 100)} {ticks} {runnable}\n")
             o.flush()
+            if t - last_write > 30:
+                write_procs(procs, out + ".procs")
+                last_write = t
             time.sleep(max(0.0, 0.5 - (time.time() - t)))
+    write_procs(procs, out + ".procs")
 
 
 def read_steps(path):
@@ -175,6 +226,30 @@ def write(args):
     for r in bgs:
         w(f"| {r['name']} | {fmt(r['start'] - t_begin)} | {fmt(r['cpu'])} | {fmt(r['wall'])} |")
     w("")
+    procs_path = a.samples + ".procs"
+    if os.path.exists(procs_path):
+        w("Where the CPU-seconds went: per step, the programs with the most CPU-seconds (each process's own")
+        w("user + system time as last sampled, by the step running when it was first seen; `rustc X` is")
+        w("the compilation of crate X in any profile or target, summed; a background job's programs count in")
+        w("the step they ran beside; processes shorter than the half-second sampling interval are missed, so")
+        w("the rows add up to less than the step):")
+        w("")
+        w("| step | programs (CPU s) |")
+        w("|---|---|")
+        spans = [(r["start"], r["start"] + r["wall"], r["name"]) for r in steps]
+        per = {}
+        for line in open(procs_path):
+            _, first, cs, lab = line.rstrip("\n").split("\t", 3)
+            first, cs = int(first), int(cs)
+            step = next((n for t0, t1, n in spans if t0 <= first < t1), spans[-1][2])
+            per.setdefault(step, {}).setdefault(lab, 0)
+            per[step][lab] += cs
+        for _, _, n in spans:
+            top = sorted(per.get(n, {}).items(), key=lambda kv: -kv[1])
+            shown = [f"{lab} {fmt(cs)}" for lab, cs in top[:8] if cs >= 100]
+            if shown:
+                w(f"| {n.split(' (')[0]} | " + ", ".join(shown) + " |")
+        w("")
     w(f"**Total: {fmt(cpu_total)} CPU-seconds; {fmt(t_end - t_begin)} s wall under this load; "
       f"projected on an idle {ncpu}-CPU machine {proj_total / 6000:.1f} min** (at least "
       f"{cpu_total / ncpu / 6000:.1f} min: every CPU busy throughout), plus the installs above on a new machine. "
