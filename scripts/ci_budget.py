@@ -44,10 +44,12 @@ def label(pid, comm):
     if name.startswith("rustc") or name in ("clippy-driver", "rustdoc"):
         if "--crate-name" in argv[:-1]:
             return f"{name} {argv[argv.index('--crate-name') + 1]}"
-    if name.startswith(("python", "bash")) and len(argv) > 1:
-        for a in argv[1:]:
-            if a and not a.startswith("-"):
-                return f"{name} {os.path.basename(a)}"
+    if name.startswith(("python", "bash", "sh")) and len(argv) > 1:
+        if argv[1] == "-c":
+            return f"{name} -c"
+        scripts = [a for a in argv[1:] if a.endswith(".py") or "scripts/" in a]
+        if scripts:
+            return f"{name} {os.path.basename(scripts[0])}"
     return name or comm
 
 
