@@ -477,13 +477,12 @@ impl TexelSource for Pow2Rgb565<'_> {
 
     #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-        self.levels.level(usize::from(level)).texel(x, y)
+        self.levels.texel(level, x, y)
     }
 
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        let v = self.levels.level(usize::from(level));
-        v.footprint(x.map(|x| x.min(v.mask_x())), y.map(|y| y.min(v.mask_y())))
+        self.levels.clamped_footprint(level, x, y)
     }
 
     #[inline(always)]

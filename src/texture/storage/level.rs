@@ -434,4 +434,24 @@ impl<'a, F: ViewFormat> Pow2Levels<'a, F> {
     pub fn level(&self, level: usize) -> &LevelView<'a, F> {
         &self.0[level.min(MAX_LEVELS as usize)]
     }
+
+    /// Texel `(x, y)` of `level` (`≤ 16`), the indices masked to the level
+    /// as [`LevelView::texel`] does: a power-of-two source's
+    /// `TexelSource::texel`.
+    #[inline]
+    #[must_use]
+    pub fn texel(&self, level: u8, x: u32, y: u32) -> Texel {
+        self.level(usize::from(level)).texel(x, y)
+    }
+
+    /// The footprint of columns `x` and rows `y` of `level` (`≤ 16`), each
+    /// index clamped to the level's last column or row (an index past the
+    /// edge reads the edge texel): a power-of-two source's
+    /// `TexelSource::footprint`.
+    #[inline]
+    #[must_use]
+    pub fn clamped_footprint(&self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        let v = self.level(usize::from(level));
+        v.footprint(x.map(|x| x.min(v.mask_x())), y.map(|y| y.min(v.mask_y())))
+    }
 }

@@ -97,14 +97,12 @@ impl TexelSource for Pow2Pyramid<'_> {
 
     #[inline]
     fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-        self.levels.level(usize::from(level)).texel(x, y)
+        self.levels.texel(level, x, y)
     }
 
     #[inline]
     fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        let v = self.levels.level(usize::from(level));
-        let c = |i: [u32; 2], m: u32| [i[0].min(m), i[1].min(m)];
-        v.footprint(c(x, v.mask_x()), c(y, v.mask_y()))
+        self.levels.clamped_footprint(level, x, y)
     }
 
     #[inline(always)]
