@@ -28,9 +28,6 @@
 
 use core::fmt;
 
-use crate::texture::storage::level::ViewFormat;
-use crate::texture::storage::mip::Texel;
-
 /// Storage format of a texture's texels (the C ABI's `RmFormat`, the
 /// pixel format of an `RmImage`).
 #[repr(u8)]
@@ -263,6 +260,35 @@ pub(crate) static RGB565_SPLIT: [[Texel; 256]; 2] = {
     }
     t
 };
+
+/// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
+///
+/// # Example
+/// ```
+/// use raymip::Texel;
+/// let t: Texel = u32::from_le_bytes([0x10, 0x20, 0x30, 0xFF]); // r, g, b, a
+/// assert_eq!(t, 0xFF30_2010);
+/// assert_eq!((t & 0xFF, t >> 24), (0x10, 0xFF)); // red low, alpha high
+/// ```
+pub type Texel = u32;
+
+/// How a [`LevelView`](crate::texture::storage::level::LevelView) stores its texels and reads one as RGBA8: the
+/// format marker of its key ([`Rgba8`], the default: a [`Texel`] as it
+/// is; [`Rgb565`]: two bytes expanded by a split table).
+pub trait ViewFormat: Copy + fmt::Debug + 'static {
+    /// One stored texel (its size is the view's step per column).
+    type Stored: Copy + Send + Sync;
+    /// The RGBA8 texel of `s`.
+    fn expand(s: Self::Stored) -> Texel;
+}
+
+impl ViewFormat for Rgba8 {
+    type Stored = Texel;
+    #[inline(always)]
+    fn expand(s: Texel) -> Texel {
+        s
+    }
+}
 
 /// An RGB565 level view ([`LevelView<'_, Rgb565>`](crate::texture::storage::level::LevelView))
 /// stores a texel as its two bytes, little-endian (the image's layout, no

@@ -75,18 +75,8 @@ use crate::coproc::cfu::{addr, level, tap};
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
 use crate::coproc::{TAP01, TAP10, TAP11};
 use crate::texture::storage::format::{Rgb565, Rgba8};
+pub use crate::texture::storage::format::{Texel, ViewFormat};
 use crate::units::TexCoord;
-
-/// One RGBA8888 texel: `u32::from_le_bytes([r, g, b, a])`.
-///
-/// # Example
-/// ```
-/// use raymip::Texel;
-/// let t: Texel = u32::from_le_bytes([0x10, 0x20, 0x30, 0xFF]); // r, g, b, a
-/// assert_eq!(t, 0xFF30_2010);
-/// assert_eq!((t & 0xFF, t >> 24), (0x10, 0xFF)); // red low, alpha high
-/// ```
-pub type Texel = u32;
 
 /// Largest number of stored levels (a 32768-texel side has 16).
 pub const MAX_LEVELS: u8 = 16;
@@ -129,24 +119,6 @@ pub(crate) fn pow2_wrap_taps(
     let i0 = (p >> 32) as u32;
     let f = (p as u32) >> (32 - bits);
     (i0, i0.wrapping_add(1) & m, f)
-}
-
-/// How a [`LevelView`] stores its texels and reads one as RGBA8: the
-/// format marker of its key ([`Rgba8`], the default: a [`Texel`] as it
-/// is; [`Rgb565`]: two bytes expanded by a split table).
-pub trait ViewFormat: Copy + fmt::Debug + 'static {
-    /// One stored texel (its size is the view's step per column).
-    type Stored: Copy + Send + Sync;
-    /// The RGBA8 texel of `s`.
-    fn expand(s: Self::Stored) -> Texel;
-}
-
-impl ViewFormat for Rgba8 {
-    type Stored = Texel;
-    #[inline(always)]
-    fn expand(s: Texel) -> Texel {
-        s
-    }
 }
 
 /// One power-of-two level in memory, validated ([module docs](self)):
