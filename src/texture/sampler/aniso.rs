@@ -414,6 +414,18 @@ mod tests {
         for w in LOG2_K.windows(2) {
             assert!(w[1] - w[0] > 1 << 12);
         }
+        // Each bucket's entry lies inside it, `[b·2¹², (b + 1)·2¹²)`, or is
+        // `i32::MAX`; the count is the number of entries below its start.
+        for (b, &(c, e)) in BELOW.iter().enumerate() {
+            let lo = (b as i32) << 12;
+            let inside = LOG2_K.iter().find(|&&l| l >= lo && l < lo + (1 << 12));
+            assert_eq!(e, inside.copied().unwrap_or(i32::MAX), "{b}");
+            assert_eq!(
+                usize::from(c),
+                LOG2_K.iter().filter(|&&l| l < lo).count(),
+                "{b}"
+            );
+        }
         for ratio in 0..=(1 << 18) {
             let want = LOG2_K.partition_point(|&l| l < ratio) as u8;
             assert_eq!(entries_below(ratio), want, "{ratio}");
@@ -463,6 +475,55 @@ mod tests {
                 assert_eq!(lengths(c, w, h), lengths_general(c, w, h), "{c:?} {w} {h}");
             }
         }
+    }
+
+    /// The 32-bit path applies exactly when every component lies in
+    /// `[−2³², 2³²)` and both sides are below `2¹⁵`: on both sides of
+    /// each bound, one component or side at a time.
+    #[test]
+    fn small_is_the_documented_bound() {
+        let comps = [
+            0,
+            1,
+            -1,
+            (1 << 32) - 1,
+            1 << 32,
+            -(1 << 32),
+            -(1 << 32) - 1,
+            i64::MAX,
+            i64::MIN,
+        ];
+        let sizes = [1, (1 << 15) - 1, 1 << 15, u32::MAX];
+        for &x in &comps {
+            for k in 0..4 {
+                let mut c = [1 << 20, -(1 << 20), 0, 1 << 31];
+                c[k] = x;
+                for &w in &sizes {
+                    for &h in &sizes {
+                        let want = (-(1 << 32)..1 << 32).contains(&x) && w < 1 << 15 && h < 1 << 15;
+                        assert_eq!(small(c, w, h), want, "{c:?} {w} {h}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A scaled component keeps 16 fractional bits and clamps just inside
+    /// `±2¹⁵` texels, `±(2³¹ − 1)` (its magnitude fits `len2`'s `u32`):
+    /// below the bound it is exact, at `2³¹` and beyond it is the bound,
+    /// and a side above `2¹⁵` counts as `2¹⁵`.
+    #[test]
+    fn texels_clamp_inside_2_15() {
+        let lim = (1i64 << 31) - 1;
+        assert_eq!(texels(1 << 32, 1 << 14), 1 << 30);
+        assert_eq!(texels(lim << 16, 1), lim);
+        assert_eq!(texels(-(lim << 16), 1), -lim);
+        assert_eq!(texels(1 << 47, 1), lim);
+        assert_eq!(texels(-(1 << 47), 1), -lim);
+        assert_eq!(texels(AXIS_LIMIT, 1 << 15), lim);
+        assert_eq!(texels(-AXIS_LIMIT, u32::MAX), -lim);
+        assert_eq!(texels(1 << 16, u32::MAX), 1 << 15);
+        assert_eq!(len2(lim, -lim), 2 * (lim * lim) as u64);
     }
 
     #[test]
