@@ -572,13 +572,33 @@ mod tests {
         assert_eq!(p.count, 16);
     }
 
+    /// The 32-bit probe loop is chosen exactly for a key whose two axes are
+    /// the static `Wrap` type on a power-of-two level 0: not for one static
+    /// wrap axis, not for the run-time address key in wrap mode, not on a
+    /// 48-texel-wide level 0.
+    #[test]
+    fn wraps_in_words_only_for_static_wrap_on_pow2() {
+        use crate::texture::Cfg;
+        use crate::texture::address::{AnyAxis, ClampToEdge, Wrap};
+        use crate::texture::storage::mip::{Geometry, Pyramid, pyramid_len};
+        let pow2 = std::vec![0u32; pyramid_len(64, 32, 7)];
+        let npot = std::vec![0u32; pyramid_len(48, 32, 6)];
+        let p = Pyramid::new(Geometry::new(64, 32, 7).unwrap(), &pow2).unwrap();
+        let q = Pyramid::new(Geometry::new(48, 32, 6).unwrap(), &npot).unwrap();
+        assert!(Sampler::<_, Cfg<Wrap>>::new(p).wraps_in_words());
+        assert!(!Sampler::<_, Cfg<Wrap>>::new(q).wraps_in_words());
+        assert!(!Sampler::<_, Cfg<Wrap, ClampToEdge>>::new(p).wraps_in_words());
+        assert!(!Sampler::<_, Cfg<ClampToEdge, Wrap>>::new(p).wraps_in_words());
+        assert!(!Sampler::<_, Cfg<AnyAxis>>::new(p).wraps_in_words());
+    }
+
     /// `sample_aniso` against the f64 reference's anisotropic filter (the
     /// mean of exact trilinear probes by pbrt's rule, over the same
     /// levels): a random 64×32 texture, every cap `1..=16`, footprints of
     /// every eccentricity. Three keys cover the three probe loops: the
     /// static wrap key (32-bit positions on this power-of-two texture),
     /// the run-time address key in wrap and clamp to edge (coordinate
-    /// adds) and, from a coordinate near `TexCoord::MAX`, the saturating
+    /// adds) and, from coordinates near `TexCoord::MAX`, the saturating
     /// adds. A probe-count near-tie (a ratio within 10⁻³ of an integer)
     /// or two axes within 10⁻³ of the same length are left out (counted).
     /// The fetch counters count 4 texels per probe and level: 8 and none
@@ -617,11 +637,15 @@ mod tests {
                 x: axis(1.0),
                 y: axis(squash),
             };
+            // Far: both coordinates within 0.01 of `TexCoord::MAX` (bits
+            // that are multiples of 4), where only saturating adds keep
+            // the probes on the texture's last column and row.
+            let far_coord = |r: &mut XorShift64| {
+                let back = (unit(r) * 0.01 * f64::from(1u32 << 31) * 2.0) as i64;
+                TexCoord::from_bits((TexCoord::MAX.to_bits() - back) & !3)
+            };
             let (u, v) = if far {
-                (
-                    TexCoord::MAX - TexCoord::from_num(unit(&mut r) * 0.01),
-                    TexCoord::from_num(unit(&mut r)),
-                )
+                (far_coord(&mut r), far_coord(&mut r))
             } else {
                 (
                     TexCoord::from_num(unit(&mut r) * 3.0 - 1.0),

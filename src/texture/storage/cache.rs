@@ -1048,6 +1048,22 @@ mod tests {
         assert!(!c.access(7));
     }
 
+    /// A miss fills the first empty way of its set (ways in order), then
+    /// the least recently used one; a hit names the way that holds it.
+    #[test]
+    fn misses_fill_the_first_empty_way() {
+        let mut c: BlockCache<1, 4> = BlockCache::new();
+        assert_eq!(c.lookup(7), (false, 0, 0));
+        assert_eq!(c.lookup(9), (false, 0, 1));
+        assert_eq!(c.lookup(7), (true, 0, 0));
+        assert_eq!(c.lookup(11), (false, 0, 2));
+        assert_eq!(c.lookup(13), (false, 0, 3));
+        // Way 1 (block 9) is now the least recently used.
+        assert_eq!(c.lookup(15), (false, 0, 1));
+        // Then way 0 (block 7, last used at the third access).
+        assert_eq!(c.lookup(9), (false, 0, 0));
+    }
+
     /// `capacity()` is the number of blocks the cache holds at once: a
     /// pass over `capacity()` consecutive blocks (`WAYS` per set) leaves
     /// every one cached, so a second pass only hits, while one block more
@@ -1246,6 +1262,35 @@ mod tests {
         run::<2, 2>(p, g);
         run::<3, 2>(p, g);
         run::<8, 2>(p, g);
+    }
+
+    /// A texel cache's counters restart from zero at `reset_stats`
+    /// (contents stay: the next read hits), and `invalidate` empties it
+    /// (counters stay: the next read misses), for single texels and for
+    /// footprints.
+    #[test]
+    fn texel_cache_reset_and_invalidate() {
+        let g = Geometry::new(9, 6, 4).unwrap();
+        let buf = hashed_texels(g);
+        let mut p = Pyramid::new(g, &buf).unwrap();
+        let mut c: TexelCache<Pyramid<'_>, 2, 2> = TexelCache::new(p);
+        let _ = c.texel(0, 1, 1);
+        let _ = c.texel(0, 2, 1);
+        assert_eq!(c.stats(), CacheStats { hits: 1, misses: 1 });
+        c.reset_stats();
+        assert_eq!(c.stats(), CacheStats::default());
+        assert_eq!(c.texel(0, 1, 2), p.texel(0, 1, 2));
+        assert_eq!(c.stats(), CacheStats { hits: 1, misses: 0 });
+        c.invalidate();
+        assert_eq!(c.texel(0, 1, 2), p.texel(0, 1, 2));
+        assert_eq!(c.stats(), CacheStats { hits: 1, misses: 1 });
+        let want = p.footprint_in_level(0, [0, 1], [0, 1]);
+        assert_eq!(c.footprint_in_level(0, [0, 1], [0, 1]), want);
+        assert_eq!(c.footprint_in_level(0, [0, 1], [0, 1]), want);
+        c.reset_stats();
+        c.invalidate();
+        assert_eq!(c.footprint_in_level(0, [0, 1], [0, 1]), want);
+        assert_eq!(c.stats(), CacheStats { hits: 3, misses: 1 });
     }
 
     #[test]
