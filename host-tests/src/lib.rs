@@ -5,6 +5,10 @@
 //! `accuracy`, `raydiff_chains`, `output`, `workload`, `error`. Each
 //! module uses only its own floor and those after it
 //! (`tests/firmware/layering.rs` checks it).
+//!
+//! Without the default feature `app` only `accuracy`, `raydiff_chains`,
+//! the scene types and loaders (`scene::aff`, `scene::ppm`) and
+//! `cli::sample` are built: what the fuzz targets call.
 #![warn(missing_docs)]
 // No function over 100 lines (clippy counts code lines; the default limit).
 #![warn(clippy::too_many_lines)]
@@ -12,11 +16,17 @@
 
 pub mod accuracy;
 pub mod cli;
+#[cfg(feature = "app")]
 pub mod error;
+#[cfg(feature = "app")]
 pub mod output;
 pub mod raydiff_chains;
+#[cfg(feature = "app")]
 pub mod render;
 pub mod scene;
+#[cfg(feature = "app")]
 pub mod stress;
+#[cfg(feature = "app")]
 pub mod tradeoff;
+#[cfg(feature = "app")]
 pub mod workload;

@@ -4,12 +4,17 @@
 //! `builtin:NAME` or an AFF file.
 
 pub mod aff;
+#[cfg(feature = "app")]
 pub mod builtin;
+#[cfg(feature = "app")]
 pub mod instances;
+#[cfg(feature = "app")]
 mod load;
+#[cfg(feature = "app")]
 pub mod lodmesh;
 pub mod ppm;
 
+#[cfg(feature = "app")]
 pub use load::{SceneError, default_bart_dir, load_aff, load_scene, load_scene_dir, scene_label};
 
 /// A 3-vector of scene units (or a linear RGB colour): `glam`'s f64
