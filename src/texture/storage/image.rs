@@ -27,8 +27,9 @@ use crate::texture::storage::cache::{BLOCK, TexelMemory};
 use crate::texture::storage::format::{
     AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, RGB565_SPLIT, Rgb565, TexelFormat,
 };
-use crate::texture::storage::level::{LevelView, Pow2Levels, ViewFormat};
+use crate::texture::storage::level::{LevelView, ViewFormat};
 use crate::texture::storage::mip::{Geometry, MAX_LEVELS, MipError, Texel, TexelSource};
+use crate::texture::storage::pow2::Pow2Source;
 
 /// Bytes of level `k` of a `width × height` texture in `format`.
 const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64 {
@@ -431,11 +432,7 @@ impl<F: PixelFormat> TexelMemory for Image<'_, F> {
 /// assert_eq!(Pow2Rgb565::new(odd).unwrap_err(), raymip::MipError::NotPowerOfTwo);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Copy, Debug)]
-pub struct Pow2Rgb565<'a> {
-    image: Image<'a, Rgb565>,
-    levels: Pow2Levels<'a, Rgb565>,
-}
+pub type Pow2Rgb565<'a> = Pow2Source<'a, Image<'a, Rgb565>, Rgb565>;
 
 impl<'a> Pow2Rgb565<'a> {
     /// The views of `image`.
@@ -445,49 +442,15 @@ impl<'a> Pow2Rgb565<'a> {
     /// [`MipError::BufferTooShort`] (in texels) when a level lies outside
     /// the bytes (an [`Image`] rules that out).
     pub fn new(image: Image<'a, Rgb565>) -> Result<Self, MipError> {
-        let g = image.geometry;
-        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
-            return Err(MipError::NotPowerOfTwo);
-        }
-        let short = MipError::BufferTooShort {
-            needed: g.len(),
-            got: image.bytes.len() / 2,
-        };
-        // The level records of the image: past the top level the top's.
-        let levels = Pow2Levels::from_fn(|k| {
-            let (w, h) = g.level_size(k);
+        Self::with_views(image, image.bytes.len() / 2, |k, w, h| {
             LevelView::from_bytes(image.bytes.get(image.level_offset(k)..)?, w, h)
         })
-        .ok_or(short)?;
-        Ok(Self { image, levels })
     }
 
     /// The image.
     #[must_use]
     pub fn image(&self) -> Image<'a, Rgb565> {
-        self.image
-    }
-}
-
-impl TexelSource for Pow2Rgb565<'_> {
-    #[inline]
-    fn geometry(&self) -> Geometry {
-        self.image.geometry
-    }
-
-    #[inline]
-    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-        self.levels.texel(level, x, y)
-    }
-
-    #[inline]
-    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        self.levels.clamped_footprint(level, x, y)
-    }
-
-    #[inline(always)]
-    fn rgb565_levels(&self) -> Option<&Pow2Levels<'_, Rgb565>> {
-        Some(&self.levels)
+        self.source()
     }
 }
 

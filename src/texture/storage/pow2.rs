@@ -19,8 +19,127 @@
 
 use core::fmt;
 
-use crate::texture::storage::level::{LevelView, Pow2Levels};
+use crate::texture::storage::format::{Rgb565, Rgba8};
+use crate::texture::storage::level::{LevelView, Pow2Levels, ViewFormat};
 use crate::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, TexelSource};
+
+/// A source `S` with power-of-two sides and its [`LevelView`]s of format
+/// `F`, one per level index `0 ..= 16` ([module docs](self)): the
+/// sampler's direct source. [`Pow2Pyramid`] (RGBA8) and
+/// [`Pow2Rgb565`](crate::texture::storage::image::Pow2Rgb565) are its
+/// two kinds; as a [`TexelSource`] it reads every texel through the
+/// views and hands them to the sampler ([`Pow2Format`]).
+#[derive(Clone, Copy)]
+pub struct Pow2Source<'a, S, F: ViewFormat = Rgba8> {
+    source: S,
+    levels: Pow2Levels<'a, F>,
+}
+
+impl<S: fmt::Debug, F: ViewFormat> fmt::Debug for Pow2Source<'_, S, F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Pow2Source")
+            .field("source", &self.source)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, S: TexelSource, F: ViewFormat> Pow2Source<'a, S, F> {
+    /// `source` with the views `view(k, w, h)` of every level index
+    /// `k ≤ 16` (`w × h` its sides by `source`'s geometry); `got` is the
+    /// length in texels that [`MipError::BufferTooShort`] reports when a
+    /// view is `None`.
+    ///
+    /// # Errors
+    /// [`MipError::NotPowerOfTwo`] when a side is not a power of two;
+    /// [`MipError::BufferTooShort`] when a view is `None`.
+    pub(crate) fn with_views(
+        source: S,
+        got: usize,
+        view: impl Fn(u8, u32, u32) -> Option<LevelView<'a, F>>,
+    ) -> Result<Self, MipError> {
+        let g = source.geometry();
+        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
+            return Err(MipError::NotPowerOfTwo);
+        }
+        let short = MipError::BufferTooShort {
+            needed: g.len(),
+            got,
+        };
+        let levels = Pow2Levels::from_fn(|k| {
+            let (w, h) = g.level_size(k);
+            view(k, w, h)
+        })
+        .ok_or(short)?;
+        Ok(Self { source, levels })
+    }
+}
+
+impl<S: Copy, F: ViewFormat> Pow2Source<'_, S, F> {
+    /// The viewed source.
+    #[must_use]
+    pub fn source(&self) -> S {
+        self.source
+    }
+}
+
+/// A [`ViewFormat`] whose [`Pow2Levels`] a [`Pow2Source`] hands to the
+/// sampler: through [`TexelSource::levels`] (RGBA8) or
+/// [`TexelSource::rgb565_levels`] (RGB565).
+pub trait Pow2Format: ViewFormat {
+    /// `levels` as RGBA8 views, or `None` for another format.
+    #[inline(always)]
+    fn rgba8<'v, 'a>(levels: &'v Pow2Levels<'a, Self>) -> Option<&'v Pow2Levels<'a, Rgba8>> {
+        let _ = levels;
+        None
+    }
+    /// `levels` as RGB565 views, or `None` for another format.
+    #[inline(always)]
+    fn rgb565<'v, 'a>(levels: &'v Pow2Levels<'a, Self>) -> Option<&'v Pow2Levels<'a, Rgb565>> {
+        let _ = levels;
+        None
+    }
+}
+
+impl Pow2Format for Rgba8 {
+    #[inline(always)]
+    fn rgba8<'v, 'a>(levels: &'v Pow2Levels<'a, Self>) -> Option<&'v Pow2Levels<'a, Rgba8>> {
+        Some(levels)
+    }
+}
+
+impl Pow2Format for Rgb565 {
+    #[inline(always)]
+    fn rgb565<'v, 'a>(levels: &'v Pow2Levels<'a, Self>) -> Option<&'v Pow2Levels<'a, Rgb565>> {
+        Some(levels)
+    }
+}
+
+impl<S: TexelSource, F: Pow2Format> TexelSource for Pow2Source<'_, S, F> {
+    #[inline]
+    fn geometry(&self) -> Geometry {
+        self.source.geometry()
+    }
+
+    #[inline]
+    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
+        self.levels.texel(level, x, y)
+    }
+
+    #[inline]
+    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
+        self.levels.clamped_footprint(level, x, y)
+    }
+
+    #[inline(always)]
+    fn levels(&self) -> Option<&Pow2Levels<'_>> {
+        F::rgba8(&self.levels)
+    }
+
+    #[inline(always)]
+    fn rgb565_levels(&self) -> Option<&Pow2Levels<'_, Rgb565>> {
+        F::rgb565(&self.levels)
+    }
+}
 
 /// A [`Pyramid`] with power-of-two sides and its [`LevelView`]s, one per
 /// level index `0 ..= 16` ([module docs](self)).
@@ -44,18 +163,7 @@ use crate::texture::storage::mip::{Geometry, MipError, Pyramid, Texel, TexelSour
 /// assert_eq!(Pow2Pyramid::new(odd).unwrap_err(), raymip::MipError::NotPowerOfTwo);
 /// # Ok::<(), raymip::MipError>(())
 /// ```
-#[derive(Clone, Copy)]
-pub struct Pow2Pyramid<'a> {
-    pyramid: Pyramid<'a>,
-    levels: Pow2Levels<'a>,
-}
-impl fmt::Debug for Pow2Pyramid<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Pow2Pyramid")
-            .field("pyramid", &self.pyramid)
-            .finish_non_exhaustive()
-    }
-}
+pub type Pow2Pyramid<'a> = Pow2Source<'a, Pyramid<'a>>;
 
 impl<'a> Pow2Pyramid<'a> {
     /// The views of `pyramid`.
@@ -65,49 +173,16 @@ impl<'a> Pow2Pyramid<'a> {
     /// [`MipError::BufferTooShort`] when a level lies outside the texels
     /// (a [`Pyramid`] rules that out).
     pub fn new(pyramid: Pyramid<'a>) -> Result<Self, MipError> {
-        let g = pyramid.geometry();
-        if !(g.width().is_power_of_two() && g.height().is_power_of_two()) {
-            return Err(MipError::NotPowerOfTwo);
-        }
-        let texels = pyramid.texels();
-        let short = MipError::BufferTooShort {
-            needed: g.len(),
-            got: texels.len(),
-        };
-        let levels = Pow2Levels::from_fn(|k| {
-            let (w, h) = g.level_size(k);
+        let (g, texels) = (pyramid.geometry(), pyramid.texels());
+        Self::with_views(pyramid, texels.len(), |k, w, h| {
             LevelView::new(texels.get(g.level_offset(k)..)?, w, h)
         })
-        .ok_or(short)?;
-        Ok(Self { pyramid, levels })
     }
 
     /// The pyramid.
     #[must_use]
     pub fn pyramid(&self) -> Pyramid<'a> {
-        self.pyramid
-    }
-}
-
-impl TexelSource for Pow2Pyramid<'_> {
-    #[inline]
-    fn geometry(&self) -> Geometry {
-        self.pyramid.geometry()
-    }
-
-    #[inline]
-    fn texel(&mut self, level: u8, x: u32, y: u32) -> Texel {
-        self.levels.texel(level, x, y)
-    }
-
-    #[inline]
-    fn footprint(&mut self, level: u8, x: [u32; 2], y: [u32; 2]) -> [Texel; 4] {
-        self.levels.clamped_footprint(level, x, y)
-    }
-
-    #[inline(always)]
-    fn levels(&self) -> Option<&Pow2Levels<'_>> {
-        Some(&self.levels)
+        self.source
     }
 }
 
@@ -211,7 +286,7 @@ mod tests {
         );
         let pyramid = std::format!("{d:?}");
         assert!(
-            pyramid.starts_with("Pow2Pyramid") && pyramid.contains("Pyramid"),
+            pyramid.starts_with("Pow2Source") && pyramid.contains("source: Pyramid"),
             "{pyramid}"
         );
     }
