@@ -636,6 +636,19 @@ mod tests {
                             // one with `u ∈ [0, 1)`.
                             let (i, f) = m.pow2_first_tap(c, size, wc, b);
                             assert_eq!(f, want.f, "{m:?} k {k} bits {bits:#x}");
+                            // Mirror's first tap is the unreduced one,
+                            // `floor(u·n − ½ + 2^−(b+1))` modulo 2³² (in
+                            // i128 from the coordinate's bits): only a
+                            // footprint of the first copy is inside.
+                            if m == AddressMode::Mirror {
+                                let x = i128::from(bits) * i128::from(size) - (1 << 31)
+                                    + (1 << (31 - b));
+                                assert_eq!(
+                                    i,
+                                    (x >> 32) as u32,
+                                    "k {k} bits {bits:#x} weight bits {b}"
+                                );
+                            }
                             if i < size - 1 {
                                 assert_eq!(want.i, [i, i + 1], "{m:?} k {k} bits {bits:#x}");
                                 assert_eq!(want.border, [false; 2]);
