@@ -168,10 +168,8 @@ impl core::error::Error for SamplerError {}
 /// [`wrap_constant`]`(k, bits)` for the kernel's weight width, and the
 /// shifts `s = 31 − k` of the sides `n = 2^k ≤ 2¹⁵` (the mask is
 /// `n − 1 = (2³¹ − 1) >> s`): the arguments of `AddressMode::pow2_taps`.
-/// The wrap constants have a table of their own with 8-byte entries, so
-/// that the direct path (which takes the sides and masks from the level
-/// views and only the constants from here) addresses a level's pair with
-/// one shifted index and reads it with one `ldrd` on the M4.
+/// The generic path's table: the direct path reads the same constants
+/// from the level views (`LevelView::wrap_constants`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 struct LevelTable {
     c: [[u32; 2]; MAX_LEVELS as usize + 1],
@@ -258,23 +256,28 @@ impl LodWindow {
 /// assert_eq!(wrap.sample(left, v, Lod::ZERO, Mode::Nearest), 0xFFFF_FFFF);
 /// # Ok::<(), raymip::MipError>(())
 /// ```
+// In declaration order (`repr(C)`): the per-call fields first, within
+// the reach of the Cortex-M4's `ldrd` offsets (1020 bytes) from the
+// sampler's address, whatever the size of the source (a power-of-two
+// source's level views are 1088 bytes).
+#[repr(C)]
 pub struct Sampler<S: TexelSource, K: Key = Cfg> {
-    source: S,
-    state: SamplerState,
-    axes: (K::U, K::V),
     lod: LodWindow,
+    /// The kernel's rounding terms (a field, so that each filter chain
+    /// starts from a register: [`Rounding`]).
+    rounding: Rounding,
     /// The border colour as the kernel's lanes and as a nearest result.
     border: Lanes<K>,
     border_nearest: Texel,
     stats: K::Stats,
-    /// The kernel's rounding terms (a field, so that each filter chain
-    /// starts from a register: [`Rounding`]).
-    rounding: Rounding,
+    axes: (K::U, K::V),
+    pow2: bool,
+    state: SamplerState,
     /// [`level_table`] for the kernel's weight bits (entry 16 repeats the
     /// top level so that `lower + 1` needs no check); all zero, and
     /// `pow2` false, for other geometries.
     levels: LevelTable,
-    pow2: bool,
+    source: S,
     /// Feature `cfu` on riscv32: the co-processor's texture unit with this
     /// sampler's descriptor block ([`texture_unit_block`](Self::texture_unit_block)
     /// for the unit's RAM), or none.
@@ -726,10 +729,10 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[inline(always)]
     fn footprint(&mut self, u: TexCoord, v: TexCoord, level: usize) -> ([Lanes<K>; 4], u32, u32) {
         if let Some(levels) = self.source.levels() {
-            return self.direct_footprint(levels.level(level), u, v, level);
+            return self.direct_footprint(levels.level(level), u, v);
         }
         if let Some(levels) = self.source.rgb565_levels() {
-            return self.direct_footprint(levels.level(level), u, v, level);
+            return self.direct_footprint(levels.level(level), u, v);
         }
         let bits = Kern::<K>::WEIGHT_BITS;
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
@@ -769,22 +772,22 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         (lanes, xt.f, yt.f)
     }
 
-    /// [`footprint`](Self::footprint) through the view `l` of `level`
-    /// (`≤ 16`), its texels expanded to RGBA8 by the view's format.
+    /// [`footprint`](Self::footprint) through the view `l` of a level (its
+    /// sides, masks and wrap constants), its texels expanded to RGBA8 by
+    /// the view's format.
     #[inline(always)]
     fn direct_footprint<F: ViewFormat>(
         &self,
         l: &LevelView<'_, F>,
         u: TexCoord,
         v: TexCoord,
-        level: usize,
     ) -> ([Lanes<K>; 4], u32, u32) {
         let bits = Kern::<K>::WEIGHT_BITS;
         let (mu, mv) = (self.axes.0.mode(), self.axes.1.mode());
         if mu == AddressMode::Wrap && mv == AddressMode::Wrap {
             // Wrapped on both axes: every tap is a texel (no border),
             // addressed by the view without a mask.
-            let (t, fx, fy) = l.wrap_footprint(u, v, self.levels.c[level], bits);
+            let (t, fx, fy) = l.wrap_footprint(u, v, bits);
             return (t.map(Kern::<K>::load), fx, fy);
         }
         // Decided once per footprint: both axes' taps inside the
@@ -792,7 +795,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
         // every tap is mapped by its mode, read (the view masks it
         // into the level) and a border tap replaced afterwards (a
         // range test per tap, no branch).
-        let [cx, cy] = self.levels.c[level];
+        let [cx, cy] = l.wrap_constants(bits);
         let (x, fx) = mu.pow2_first_tap(u, l.width(), cx, bits);
         let (y, fy) = mv.pow2_first_tap(v, l.height(), cy, bits);
         if let Some(t) = l.inside_footprint(x, y) {

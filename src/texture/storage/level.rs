@@ -27,7 +27,8 @@
 //!   `kx, ky ≤ 15` ([`MAX_SIZE`]); it keeps the slice's start pointer
 //!   (whose provenance covers the whole slice), `w`, `h`, `mx = w − 1`,
 //!   `my = h − 1`, the row stride `w·size_of::<F::Stored>()` in bytes
-//!   (and two shift counts no read uses). Its fields are private and
+//!   (and two shift counts and the wrap constants, which no read uses:
+//!   a wrapped index is below the side whatever the constant). Its fields are private and
 //!   never written after construction, and it holds a
 //!   `PhantomData<&'a [F::Stored]>`: it cannot outlive the shared borrow,
 //!   during which the texels can be neither freed nor written, and moving
@@ -85,6 +86,10 @@ pub const MAX_LEVELS: u8 = 16;
 /// block number inside `u32` on 32-bit targets).
 pub const MAX_SIZE: u32 = 1 << 15;
 
+/// The weight widths whose wrap constants a [`LevelView`] holds: the
+/// kernels' (FAST 8, ACCURATE 12, sRGB 16).
+const WRAP_BITS: [u32; 3] = [8, 12, 16];
+
 /// `(2^(31 − bits) − 2³¹)/2^k` as wrapping `u32` for a power-of-two side
 /// `2^k`, `k ≤ 31 − bits` (exact: the numerator is a multiple of
 /// `2^(31 − bits)`): the constant of [`pow2_wrap_taps`].
@@ -141,6 +146,15 @@ pub struct LevelView<'a, F: ViewFormat = Rgba8> {
     sy: u32,
     /// Row stride in bytes (`w` times the size of `F::Stored`).
     stride: u32,
+    /// The wrap constants [`wrap_constant`]`(k, bits)` of both axes for
+    /// the kernels' weight widths `bits` = 8, 12, 16
+    /// ([`wrap_constants`](Self::wrap_constants)): in the view, so that a
+    /// sample reads a level's constants through the same pointer as its
+    /// sides and first texel.
+    c: [[u32; 2]; 3],
+    /// Pads the view to 64 bytes: a level's view is then one shift of the
+    /// level index away from the table's start.
+    _pad: [u32; 2],
     _texels: PhantomData<&'a [F::Stored]>,
 }
 
@@ -191,6 +205,8 @@ impl<'a, F: ViewFormat> LevelView<'a, F> {
             sx: w.leading_zeros(),
             sy: h.leading_zeros(),
             stride,
+            c: WRAP_BITS.map(|bits| [w, h].map(|n| wrap_constant(n.trailing_zeros(), bits))),
+            _pad: [0; 2],
             _texels: PhantomData,
         })
     }
@@ -264,6 +280,21 @@ impl<F: ViewFormat> LevelView<'_, F> {
         self.sy
     }
 
+    /// The wrap constants [`wrap_constant`]`(k, bits)` of the sides
+    /// `2^k` (`[u, v]`) for `bits` weight bits: from the view for the
+    /// kernels' widths 8, 12 and 16 (a constant `bits` selects the field
+    /// at compile time), computed for any other `bits ≤ 16`.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn wrap_constants(&self, bits: u32) -> [u32; 2] {
+        match bits {
+            8 => self.c[0],
+            12 => self.c[1],
+            16 => self.c[2],
+            _ => [self.w, self.h].map(|n| wrap_constant(n.trailing_zeros(), bits)),
+        }
+    }
+
     /// The texel at row `y ≤ my`, column `x ≤ mx` (the callers' reduced
     /// indices).
     #[inline(always)]
@@ -322,8 +353,9 @@ impl<F: ViewFormat> LevelView<'_, F> {
     }
 
     /// The footprint of a coordinate wrapped on both axes
-    /// ([`pow2_wrap_taps`] with the wrap constants `cx`, `cy` of this
-    /// level and `bits` weight bits) and its weights `(fx, fy)`. No mask:
+    /// ([`pow2_wrap_taps`] with this level's
+    /// [`wrap_constants`](Self::wrap_constants) for `bits` weight bits)
+    /// and its weights `(fx, fy)`. No mask:
     /// `pow2_wrap_taps` gives `i₀` as the high word of a 32×32-bit product
     /// with the side (so `i₀ < w`, resp. `< h`) and `i₁ = (i₀ + 1) & m`.
     #[inline(always)]
@@ -332,9 +364,9 @@ impl<F: ViewFormat> LevelView<'_, F> {
         &self,
         u: TexCoord,
         v: TexCoord,
-        [cx, cy]: [u32; 2],
         bits: u32,
     ) -> ([Texel; 4], u32, u32) {
+        let [cx, cy] = self.wrap_constants(bits);
         let (x0, x1, fx) = pow2_wrap_taps(u, self.w, self.mx, cx, bits);
         let (y0, y1, fy) = pow2_wrap_taps(v, self.h, self.my, cy, bits);
         let t = [

@@ -223,6 +223,14 @@ mod tests {
                     (lw << view.shift_x(), lh << view.shift_y()),
                     (1 << 31, 1 << 31)
                 );
+                // The wrap constants `(2^(31 − b) − 2³¹)/side`, exact, for
+                // the kernels' widths (held) and others (computed).
+                for b in [8u32, 10, 12, 16] {
+                    let want = [lw, lh].map(|n| {
+                        ((i64::from(1u32 << (31 - b)) - (1i64 << 31)) / i64::from(n)) as u32
+                    });
+                    assert_eq!(view.wrap_constants(b), want, "level {level} bits {b}");
+                }
                 for y in 0..lh + 2 {
                     for x in 0..lw + 2 {
                         assert_eq!(d.texel(level, x, y), p.get(level, x, y));
