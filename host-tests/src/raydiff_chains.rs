@@ -252,6 +252,12 @@ struct Chain<'a, F: Firmware> {
 /// `√3`: an ∞-norm bound of a 3-vector as a Euclidean one.
 const SQRT3: f64 = 1.732_050_807_568_877_2;
 
+/// The larger length of a pair of differentials (`x`, `y`): the scale of
+/// the firmware's local errors, whose pairs share one exponent.
+fn pair_norm(a: V, b: V) -> f64 {
+    norm(a).max(norm(b))
+}
+
 impl<F: Firmware> Chain<'_, F> {
     /// Transfer to a hit at `t` on the plane of normal `n`: the bounds
     /// grow by the projection's `1/|D·n|` and the local error.
@@ -261,12 +267,13 @@ impl<F: Firmware> Chain<'_, F> {
         let before = self.rf;
         self.s = self.fw.transfer(&self.s, self.d, t, n);
         self.rf = rf::transfer(&self.rf, self.d, t, n);
+        // The local error's scale is the pair's (one exponent for the x
+        // and y differentials): the larger `∂O` plus `t` times the larger
+        // `∂D`.
+        let sc = (pair_norm(before.dox, before.doy) + t * pair_norm(before.ddx, before.ddy))
+            * (1.0 + 1.0 / c);
         for (b, l) in self.bound.iter_mut().zip(&self.loc) {
-            for (a, (o, dd)) in [(before.dox, before.ddx), (before.doy, before.ddy)]
-                .into_iter()
-                .enumerate()
-            {
-                let sc = (norm(o) + t * norm(dd)) * (1.0 + 1.0 / c);
+            for a in 0..2 {
                 b[a] = (b[a] + t * b[2 + a]) / c + SQRT3 * l.transfer * sc;
             }
         }
@@ -290,10 +297,7 @@ impl<F: Firmware> Chain<'_, F> {
                 (
                     1.0,
                     4.0,
-                    [
-                        norm(dd[0]) + 4.0 * norm(dn[0]),
-                        norm(dd[1]) + 4.0 * norm(dn[1]),
-                    ],
+                    pair_norm(dd[0], dd[1]) + 4.0 * pair_norm(dn[0], dn[1]),
                 )
             }
             Some((eta, ct)) => {
@@ -308,10 +312,7 @@ impl<F: Firmware> Chain<'_, F> {
                 (
                     eta + coef,
                     coef + mu,
-                    [
-                        k * (norm(dd[0]) + norm(dn[0])),
-                        k * (norm(dd[1]) + norm(dn[1])),
-                    ],
+                    k * (pair_norm(dd[0], dd[1]) + pair_norm(dn[0], dn[1])),
                 )
             }
         };
@@ -323,7 +324,7 @@ impl<F: Firmware> Chain<'_, F> {
             };
             for a in 0..2 {
                 let bn = kappa.abs() * b[a] + SQRT3 * l.normal * norm(dn[a]);
-                b[2 + a] = gd * b[2 + a] + gn * bn + SQRT3 * local * sc[a];
+                b[2 + a] = gd * b[2 + a] + gn * bn + SQRT3 * local * sc;
             }
         }
     }
@@ -348,7 +349,10 @@ pub fn run<F: Firmware>(fw: &F, class: Class, rng: &mut XorShift64) -> Outcome {
         loc,
         s: fw.primary(d, f, r, u),
         rf: rf0,
-        bound: loc.map(|l| [0.0, 0.0, p * l.primary * norm(r), p * l.primary * norm(u)]),
+        bound: loc.map(|l| {
+            let b = p * l.primary * pair_norm(r, u);
+            [0.0, 0.0, b, b]
+        }),
         d,
         cos_min: 1.0,
     };

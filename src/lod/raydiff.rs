@@ -51,7 +51,9 @@
 //! * **Footprint** ([`FOOTPRINT_ERROR`] = 2⁻²⁴): three multiply-highs per
 //!   component (`< 8u·|M|∞|∂P|∞` each) and the gradients' truncation
 //!   (`≤ √3·2.01u·|M|∞|∂P|`): per axis `≤ √2·27.5u ≤ 64u` times
-//!   `|M|∞·|∂P|`.
+//!   `|M|∞·|∂P|`, `|∂P|` the larger of `|∂P/∂x|`, `|∂P/∂y|` (the two
+//!   share one exponent: the shorter axis is read at the longer one's
+//!   unit, see [`crate::path::raydiff`]).
 //! * **Lod** ([`LOD_ROUNDING_ERROR`] = 2⁻⁹ + 2⁻¹⁴ + 2⁻¹⁶ against the exact
 //!   lod of the computed footprint): the squared lengths exact in 64
 //!   bits, the larger by its normalised top 32 bits (`< 2⁻³¹`), the
@@ -66,7 +68,9 @@
 //! multiplies them by `η + |c|` and `|c| + |μ|`, and a curved surface's
 //! normal differentials `∂n = κ·∂P` carry `|κ|` times the bound of `∂P`
 //! (the bound of a normal differential handed in, its rounding). With
-//! `B` the resulting bound of `∂P` at the textured hit (the larger axis),
+//! `B` the resulting bound of `∂P` at the textured hit (the larger axis; the
+//! operations' local errors are on each pair's scale, the larger of its
+//! `x` and `y` vectors, so both axes' bounds grow with the larger),
 //! `M` the texel gradients and `F` the exact footprint's larger axis,
 //!
 //! ```text
@@ -94,7 +98,7 @@
 //! errors per class (all below 2⁻⁷) are in `docs/lod-methods.md`.
 
 use crate::log2::{mantissa_log2, normalise64};
-use crate::path::raydiff::{EXP_MIN, PosDiff, RayDiff, mulhi, shr};
+use crate::path::raydiff::{EXP_MIN, RayDiff, mulhi, shr};
 use crate::setup::table::TexTriangle;
 use crate::units::Footprint;
 use crate::units::Lod;
@@ -108,7 +112,7 @@ pub const RAYDIFF_LOD_MAX_ERROR: f64 = 1.0 / 128.0;
 /// Documented bound of [`RayDiffTriangle::footprint`]: the Euclidean error
 /// of each axis (texels per pixel) is at most this times
 /// `|M|∞·|∂P|`, `|M|∞` the largest component of the texel-space gradients
-/// `w·∇u`, `h·∇v`: 2⁻²⁴ (derivation in the [module docs](self#error-bound)).
+/// `w·∇u`, `h·∇v`, `|∂P|` the larger of `|∂P/∂x|`, `|∂P/∂y|`: 2⁻²⁴ (derivation in the [module docs](self#error-bound)).
 pub const FOOTPRINT_ERROR: f64 = 1.0 / 16_777_216.0;
 
 /// Documented bound of [`RayDiffFootprint::lod`] against the exact lod of
@@ -390,16 +394,16 @@ impl RayDiffTriangle {
         let g = self.g;
         // |g·p| ≤ |g|·|p| < √3·2³⁰·√3·2³¹: each sum of three multiply-highs
         // is below 3·2²⁹.
-        let axis = |p: PosDiff| -> ([i32; 2], i32) {
-            let (m, e) = p.parts();
+        // ∂P/∂x and ∂P/∂y at their one exponent.
+        let p = s.pair(0);
+        let axis = |m: [i32; 3]| -> [i32; 2] {
             let dot = |r: [i32; 3]| mulhi(r[0], m[0]) + mulhi(r[1], m[1]) + mulhi(r[2], m[2]);
-            ([dot(g[0]), dot(g[1])], self.e + e + 32)
+            [dot(g[0]), dot(g[1])]
         };
-        let (x, ex) = axis(s.dox());
-        let (y, ey) = axis(s.doy());
+        let e = self.e + p.e + 32;
         RayDiffFootprint {
-            m: [x, y],
-            e: [ex, ey],
+            m: [axis(p.m[0]), axis(p.m[1])],
+            e: [e, e],
         }
     }
 }
@@ -471,7 +475,7 @@ pub(crate) fn half_log2_max(s: [u64; 2], e: [i32; 2]) -> i32 {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::path::raydiff::DirDiff;
+    use crate::path::raydiff::{DirDiff, PosDiff};
     use proptest::prelude::*;
     use raymip_reference::raydiff::{self as rf, V, dot, norm};
 
@@ -605,6 +609,7 @@ mod tests {
             p0 in v3(), a in unit(), b in unit(), len in -6.0..10.0f64, aspect in 0.0..20.0f64,
             lam in -0.5..1.5f64, g in -30.0..10.0f64, lop in -16.0..16.0f64, th in 0.0..6.3f64,
             unit_uv in any::<bool>(), w in 0u32..13, h in 0u32..13, dpx in unit(), dpy in unit(), ps in -20.0..10.0f64,
+            aniso in -40.0..40.0f64,
         ) {
             let (w, h) = (1u32 << w, (1u32 << h).max(1) - u32::from(h > 3));
             let l = len.exp2();
@@ -638,17 +643,21 @@ mod tests {
             // Position differentials in the triangle's plane (as a transfer
             // leaves them), of any size.
             let nrm = rf::unit(rf::cross(rf::axpy(tr.p[1], -1.0, tr.p[0]), rf::axpy(tr.p[2], -1.0, tr.p[0])));
-            let inplane = |v: V| rf::scale(ps.exp2(), rf::axpy(v, -dot(v, nrm), nrm));
-            let s = state(inplane(dpx), inplane(dpy));
+            // ∂P/∂y up to 2⁴⁰ times longer or shorter than ∂P/∂x (one
+            // exponent for both: the shorter keeps the longer's absolute
+            // precision).
+            let inplane = |v: V, k: f64| rf::scale((ps + k).exp2(), rf::axpy(v, -dot(v, nrm), nrm));
+            let s = state(inplane(dpx, 0.0), inplane(dpy, aniso));
             let (px, py) = (s.dox().to_f64(), s.doy().to_f64());
             let fp = t.footprint(&s);
             let rf::Footprint::Axes(want) = tr.footprint(px, py) else { unreachable!() };
             let texel = |a: [f64; 2]| [a[0] * f64::from(w), a[1] * f64::from(h)];
             let (wx, wy) = (texel(want[0]), texel(want[1]));
             let fa = |a: usize| -> [f64; 2] { fp.m[a].map(|x| f64::from(x) * f64::from(fp.e[a]).exp2()) };
-            for (a, wa, pa) in [(0, wx, px), (1, wy, py)] {
+            let pmax = norm(px).max(norm(py));
+            for (a, wa) in [(0, wx), (1, wy)] {
                 let e = (fa(a)[0] - wa[0]).hypot(fa(a)[1] - wa[1]);
-                prop_assert!(e <= FOOTPRINT_ERROR * big * norm(pa), "axis {}: {:e}", a, e / (big * norm(pa)));
+                prop_assert!(e <= FOOTPRINT_ERROR * big * pmax, "axis {}: {:e}", a, e / (big * pmax));
             }
             let fmax = wx[0].hypot(wx[1]).max(wy[0].hypot(wy[1]));
             prop_assume!(fmax > 0.0);

@@ -284,8 +284,8 @@ impl PathState {
 
 /// Bytes of one [`PathState`] (one ray-stack entry) on every target:
 /// 32 with the `cone` feature (the cone is a 16-byte aligned pair), 16
-/// without; the `raydiff` feature adds the 56-byte differential state
-/// (88 with `cone`, 72 without). Checked at compile time on every target.
+/// without; the `raydiff` feature adds the 52-byte differential state
+/// (88 with `cone`, 72 without: the entry's alignment pads it). Checked at compile time on every target.
 pub const PATH_STATE_BYTES: usize = match (cfg!(feature = "cone"), cfg!(feature = "raydiff")) {
     (true, false) => 32,
     (false, false) => 16,

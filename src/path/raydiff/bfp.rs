@@ -88,18 +88,8 @@ impl Bfp3 {
     #[inline(always)]
     #[must_use]
     pub fn new(m: [i32; 3], e: i32) -> Self {
-        let s = norm_shift(m);
-        let zero = (m[0] | m[1] | m[2]) == 0;
-        // Bit for bit the same; the cheaper per target (the Cortex-M4
-        // subtracts conditionally; on RV32 a pushed exponent costs more).
-        #[cfg(target_arch = "arm")]
-        let e = exp_pushed(e - s, zero);
-        #[cfg(not(target_arch = "arm"))]
-        let e = exp_selected(e - s, zero);
-        Self {
-            m: m.map(|x| x << s),
-            e,
-        }
+        let ([m], e) = normalise([m], e);
+        Self { m, e }
     }
 
     /// [`Bfp3::new`] (bit for bit) for `e ∈ [EXP_MIN + 31, EXP_MAX]`,
@@ -109,16 +99,8 @@ impl Bfp3 {
     #[inline(always)]
     #[must_use]
     pub fn new_in_range(m: [i32; 3], e: i32) -> Self {
-        let s = norm_shift(m);
-        let e = if (m[0] | m[1] | m[2]) == 0 {
-            EXP_MIN
-        } else {
-            e - s
-        };
-        Self {
-            m: m.map(|x| x << s),
-            e,
-        }
+        let ([m], e) = normalise_in_range([m], e);
+        Self { m, e }
     }
 
     /// `m·2ᵉ` from 64-bit mantissas, truncated to 31 significant bits of
@@ -133,6 +115,55 @@ impl Bfp3 {
     }
 }
 
+/// `N` vectors `m·2ᵉ` normalised together (one exponent, the largest
+/// mantissa of all `3N` with one leading zero), for any mantissas and
+/// `|e| ≤ 2¹⁷`; the exponent saturates at [`EXP_MIN`], [`EXP_MAX`] (all
+/// zero: [`EXP_MIN`]). `N = 1` is [`Bfp3::new`]; `N = 2` a
+/// [`Bfp3x2`](Bfp3x2::new).
+#[inline(always)]
+#[must_use]
+pub(crate) fn normalise<const N: usize>(m: [[i32; 3]; N], e: i32) -> ([[i32; 3]; N], i32) {
+    let s = shift_of(m.iter().fold(0, |o, v| o | magnitudes(*v)));
+    let zero = is_zero(m);
+    // Bit for bit the same; the cheaper per target (the Cortex-M4
+    // subtracts conditionally; on RV32 a pushed exponent costs more).
+    #[cfg(target_arch = "arm")]
+    let e = exp_pushed(e - s, zero);
+    #[cfg(not(target_arch = "arm"))]
+    let e = exp_selected(e - s, zero);
+    (m.map(|v| v.map(|x| x << s)), e)
+}
+
+/// [`normalise`] (bit for bit) for `e ∈ [EXP_MIN + 31, EXP_MAX]`, where no
+/// clamp is needed: all zero selects [`EXP_MIN`].
+#[inline(always)]
+#[must_use]
+fn normalise_in_range<const N: usize>(m: [[i32; 3]; N], e: i32) -> ([[i32; 3]; N], i32) {
+    let s = shift_of(m.iter().fold(0, |o, v| o | magnitudes(*v)));
+    let e = if is_zero(m) { EXP_MIN } else { e - s };
+    (m.map(|v| v.map(|x| x << s)), e)
+}
+
+/// True when every mantissa is zero.
+#[inline(always)]
+fn is_zero<const N: usize>(m: [[i32; 3]; N]) -> bool {
+    m.iter().fold(0, |z, v| z | v[0] | v[1] | v[2]) == 0
+}
+
+/// The OR of the magnitudes of `m` (less one for negatives): its leading
+/// zeros are those of the largest.
+#[inline(always)]
+fn magnitudes(m: [i32; 3]) -> i32 {
+    (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31))
+}
+
+/// The left shift that gives the OR of magnitudes `o` one leading zero:
+/// `clz((o << 1) | 1) = clz(o) − 1` ∈ [0, 31] (zero shifts by 31).
+#[inline(always)]
+fn shift_of(o: i32) -> i32 {
+    clz32(((o as u32) << 1) | 1) as i32
+}
+
 /// The left shift that normalises the mantissas `m`: the largest
 /// magnitude (less one for negatives) gets one leading zero,
 /// `clz((o << 1) | 1) = clz(o) − 1` ∈ [0, 31] (a zero vector shifts by 31
@@ -140,8 +171,67 @@ impl Bfp3 {
 #[inline(always)]
 #[must_use]
 pub(crate) fn norm_shift(m: [i32; 3]) -> i32 {
-    let o = (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31));
-    clz32(((o as u32) << 1) | 1) as i32
+    shift_of(magnitudes(m))
+}
+
+/// The left shift that normalises the scalars `a`, `b` together (the
+/// larger magnitude gets one leading zero; both zero: 31).
+#[inline(always)]
+#[must_use]
+pub(crate) fn norm_shift2(a: i32, b: i32) -> i32 {
+    shift_of((a ^ (a >> 31)) | (b ^ (b >> 31)))
+}
+
+/// Two block-floating-point 3-vectors with one exponent (the `x` and `y`
+/// differentials of one quantity): `m[a]·2ᵉ`, the largest of the six
+/// `|mₖ|` in `[2³⁰ − 1, 2³¹]`, or all zero at [`EXP_MIN`]. The smaller
+/// vector keeps the absolute precision of the larger (a unit of at most
+/// `2⁻²⁹·(1 + 2⁻³⁰)` of the larger's largest component), not its own
+/// relative one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Bfp3x2 {
+    /// Mantissas of the two vectors.
+    pub m: [[i32; 3]; 2],
+    /// Exponent of their unit.
+    pub e: i32,
+}
+
+impl Bfp3x2 {
+    /// `m[a]·2ᵉ` normalised together (as [`Bfp3::new`], any mantissas,
+    /// `|e| ≤ 2¹⁷`, the exponent saturating).
+    #[inline(always)]
+    #[must_use]
+    pub fn new(m: [[i32; 3]; 2], e: i32) -> Self {
+        let (m, e) = normalise(m, e);
+        Self { m, e }
+    }
+
+    /// The pair of vectors `m[a]·2^e[a]` (each `|mₖ| ≤ 2³¹`, `|e[a]| ≤
+    /// 2¹⁷`) at the larger exponent, the other one's mantissas truncated
+    /// (by less than one unit of the larger exponent), then normalised.
+    #[inline(always)]
+    #[must_use]
+    pub fn aligned(m: [[i32; 3]; 2], e: [i32; 2]) -> Self {
+        let top = e[0].max(e[1]);
+        Self::new([0, 1].map(|a| m[a].map(|x| shr(x, top - e[a]))), top)
+    }
+
+    /// [`Bfp3x2::new`] (bit for bit) for `e ∈ [EXP_MIN + 31, EXP_MAX]`
+    /// (no clamp: all zero selects [`EXP_MIN`]), as
+    /// [`Bfp3::new_in_range`].
+    #[inline(always)]
+    #[must_use]
+    pub fn new_in_range(m: [[i32; 3]; 2], e: i32) -> Self {
+        let (m, e) = normalise_in_range(m, e);
+        Self { m, e }
+    }
+
+    /// Vector `a` (0 or 1) normalised on its own (exact).
+    #[inline(always)]
+    #[must_use]
+    pub fn get(&self, a: usize) -> Bfp3 {
+        Bfp3::new(self.m[a & 1], self.e)
+    }
 }
 
 /// `e` clamped to [`EXP_MIN`, `EXP_MAX`], or [`EXP_MIN`] for a zero
@@ -283,6 +373,47 @@ mod tests {
             prop_assert_eq!(value(v), want);
             let top = v.m.iter().map(|x| x ^ (x >> 31)).fold(0, |o, x| o | x);
             prop_assert!(m == [0; 3] || top.leading_zeros() == 1);
+        }
+
+        /// A pair normalised together keeps both values exactly, the
+        /// larger magnitude of the six with one leading zero, and agrees
+        /// with its in-range form and (for one vector) with `Bfp3::new`.
+        #[test]
+        fn pair_normalises_together(a in mantissas(), b in mantissas(), e in -1000i32..1000) {
+            let p = Bfp3x2::new([a, b], e);
+            prop_assert_eq!(p, Bfp3x2::new_in_range([a, b], e));
+            for (m, v) in [(a, p.m[0]), (b, p.m[1])] {
+                let want = m.map(|x| f64::from(x) * f64::from(e).exp2());
+                prop_assert_eq!(value(Bfp3 { m: v, e: p.e }), want);
+            }
+            let top = p.m.iter().flatten().map(|x| x ^ (x >> 31)).fold(0, |o, x| o | x);
+            prop_assert!(([a, b] == [[0; 3]; 2] && p.e == EXP_MIN) || top.leading_zeros() == 1);
+            // Each vector on its own: exact, normalised as Bfp3::new.
+            prop_assert_eq!(p.get(0), Bfp3::new(p.m[0], p.e));
+            prop_assert_eq!(p.get(1), Bfp3::new(b, e));
+            prop_assert_eq!(Bfp3x2::new([a, [0; 3]], e).m[0], Bfp3::new(a, e).m);
+            prop_assert_eq!(Bfp3x2::new([a, [0; 3]], e).e, Bfp3::new(a, e).e);
+        }
+
+        /// Aligned: the vector at the larger exponent exact, the other
+        /// truncated by less than one unit of the larger exponent.
+        #[test]
+        fn aligned_truncates_below_the_larger_unit(a in mantissas(), b in mantissas(),
+                                                   ea in -900i32..900, eb in -900i32..900) {
+            let p = Bfp3x2::aligned([a, b], [ea, eb]);
+            let unit = f64::from(ea.max(eb)).exp2();
+            for (m, e, v) in [(a, ea, p.m[0]), (b, eb, p.m[1])] {
+                let got = value(Bfp3 { m: v, e: p.e });
+                for k in 0..3 {
+                    let want = f64::from(m[k]) * f64::from(e).exp2();
+                    let err = want - got[k];
+                    // Below one unit (at most one in f64, whose sum may round up).
+                    prop_assert!((0.0..=unit).contains(&err), "{} vs {}", got[k], want);
+                    if e == ea.max(eb) {
+                        prop_assert_eq!(err, 0.0);
+                    }
+                }
+            }
         }
 
         #[test]

@@ -16,7 +16,7 @@
 //! units so that the difference of two positions fits), and unit normals
 //! in I2F30: a differential is one 32-bit subtraction per component, exact.
 
-use super::{Bfp3, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
+use super::{Bfp3, Bfp3x2, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
 
 /// One pixel's first hit in the G-buffer: position and hit distance in
 /// units of the buffer's `2^scale` scene units (positions below `2³⁰` in
@@ -94,14 +94,25 @@ fn pair<'a>(
     }
 }
 
-/// `a.p − b.p` at `2^scale` (wrapping beyond the documented positions),
+/// `a.p − b.p` in units of the buffer (wrapping beyond the documented
+/// positions).
+#[inline(always)]
+fn pos_delta(a: &GSample, b: &GSample) -> [i32; 3] {
+    core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]))
+}
+
 /// `scale` clamped to `[EXP_MIN + 31, EXP_MAX]` = `[−16353, 16383]` (far
 /// beyond every scene): there no normalised exponent leaves the
-/// representable range, so no clamp remains after the normalisation.
+/// representable range, so no clamp is needed after the normalisation.
+#[inline(always)]
+fn unit_exponent(scale: i32) -> i32 {
+    scale.clamp(EXP_MIN + 31, EXP_MAX)
+}
+
+/// `a.p − b.p` at `2^scale`, normalised.
 #[inline(always)]
 fn pos_diff(a: &GSample, b: &GSample, scale: i32) -> Bfp3 {
-    let dp = core::array::from_fn(|k| a.p[k].wrapping_sub(b.p[k]));
-    Bfp3::new_in_range(dp, scale.clamp(EXP_MIN + 31, EXP_MAX))
+    Bfp3::new_in_range(pos_delta(a, b), unit_exponent(scale))
 }
 
 /// `a.n − b.n` in I2F30 (saturated at ±2).
@@ -127,10 +138,19 @@ pub fn first_hit(
 ) -> [DirDiff; 2] {
     // The two sides chosen first (two pointers each), then each
     // differential stored as soon as it is made: its temporaries end there.
+    // The normal differentials first (they are returned), then both
+    // position differentials, exact at 2^scale: one normalisation for the
+    // pair.
     let (x, y) = (pair(c, left, right), pair(c, up, down));
-    s.set(0, pos_diff(x.0, x.1, scale));
-    s.set(1, pos_diff(y.0, y.1, scale));
-    [x, y].map(|(a, b)| DirDiff(normal_diff(a, b)))
+    let dn = [x, y].map(|(a, b)| DirDiff(normal_diff(a, b)));
+    s.set_pair(
+        0,
+        Bfp3x2::new_in_range(
+            [pos_delta(x.0, x.1), pos_delta(y.0, y.1)],
+            unit_exponent(scale),
+        ),
+    );
+    dn
 }
 
 #[cfg(test)]

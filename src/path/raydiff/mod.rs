@@ -11,13 +11,32 @@
 //!
 //! # State and number formats
 //!
-//! Each of the four differentials is a 3-vector of 32-bit mantissas with
-//! one exponent (block floating point, [`PosDiff`], [`DirDiff`]): the
-//! largest component has 31 significant bits whatever the vector's size,
-//! so a differential keeps its relative precision from `2⁻¹⁶³⁸⁴` to
-//! `2¹⁶³⁸⁴` (a footprint beyond the [`Lod`](crate::units::Lod) range
-//! saturates the lod, not the state). [`RayDiff`] stores the twelve
-//! mantissas and four 16-bit exponents: 56 bytes.
+//! Each differential is a 3-vector of 32-bit mantissas (block floating
+//! point, [`PosDiff`], [`DirDiff`]), and the `x` and `y` differentials of
+//! one quantity share one exponent: `∂O/∂x, ∂O/∂y` one, `∂D/∂x, ∂D/∂y`
+//! another. The largest of a pair's six components has 31 significant
+//! bits whatever the pair's size, so the pair keeps its relative precision
+//! from `2⁻¹⁶³⁸⁴` to `2¹⁶³⁸⁴` (a footprint beyond the
+//! [`Lod`](crate::units::Lod) range saturates the lod, not the state).
+//! [`RayDiff`] stores the twelve mantissas and two 16-bit exponents: 52
+//! bytes. Each operation then aligns, normalises and clamps once per pair
+//! instead of once per vector.
+//!
+//! **What the shared exponent costs.** The smaller vector of a pair keeps
+//! the absolute precision of the larger one, not its own relative one: its
+//! unit is at most `2⁻²⁹·(1 + 2⁻³⁰)` of the larger's largest component. So
+//! every error bound below is stated on the pair's scale (`|∂O|` is the
+//! larger of `|∂O/∂x|`, `|∂O/∂y|`, and so on), and both axes of a result
+//! are within the bound on that one scale. For a lopsided footprint
+//! (`|∂P/∂x| = k·|∂P/∂y|`, `k ≥ 1`) the smaller axis's error relative to
+//! its own length is up to `k` times the bound's relative value: at the
+//! bounds' `2⁻²³` it keeps about `23 − log2 k` bits. The lod takes the
+//! larger axis (unaffected); the anisotropic axes of a ray-traced pixel
+//! stretch by at most `1/MIN_COS = 2¹⁶` at a grazing hit, where the
+//! shorter axis still has 7 bits, more than a filter's anisotropy clamp
+//! resolves. [`RayDiff::new`] truncates the smaller vector of each pair to
+//! the larger's unit; the accessors ([`RayDiff::dox`] …) return each
+//! vector normalised on its own (exactly).
 //!
 //! | quantity | type | format |
 //! |---|---|---|
@@ -50,6 +69,11 @@
 //! second-order terms are below `2⁻⁵⁰` of each scale). On the largest
 //! component of the error, for every input (`|·|` Euclidean):
 //!
+//! Each length in a scale is the larger of the pair's two (`|∂O| =
+//! max(|∂O/∂x|, |∂O/∂y|)`, `|∂D|`, `|∂n|` and, for the primary set-up,
+//! `|r| = max(|right|, |up|)`): the bound holds for both axes of the
+//! result on that one scale.
+//!
 //! | operation | constant | scale |
 //! |---|---|---|
 //! | [`RayDiff::primary`] | [`PRIMARY_ERROR`] = 2⁻²⁵ | `(|D·f| + 1)·|r|` |
@@ -57,25 +81,32 @@
 //! | [`RayDiff::reflect`] | [`REFLECT_ERROR`] = 2⁻²³ | `|∂D| + 4·|∂n|` |
 //! | [`RayDiff::refract`] | [`REFRACT_ERROR`] = 2⁻²⁴ | `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` |
 //!
+//! The derivations below count truncations in units of a pair's exponent;
+//! every such unit is at most `u` times the pair's scale, so they hold for
+//! the smaller vector of a pair as for the larger.
+//!
 //! * **Primary.** `(D·r)` from an exact 64-bit dot product, one truncation
 //!   (`< 2u|r|`); `r − (D·r)·D` at twice the unit of `r`, not normalised:
 //!   the halved `r` (`< 2u|r|∞`), the term `(D·r)·D` by one multiply-high
 //!   at eight times the unit (`< 8u|r|∞`) and that error, `< 12u|r|∞`;
 //!   times `D·f` (exact dot, `< u`) by one multiply-high at eight times
-//!   the unit of `r` (`< 8u|r|∞`), then normalised (exact):
-//!   `12u·|D·f||r| + 9u|r| ≤ 32u·(|D·f| + 1)|r|`.
+//!   the unit of `r` (`< 8u|r|∞`), the smaller axis aligned to the
+//!   larger's unit (`< 8u|r|`), then normalised (exact):
+//!   `12u·|D·f||r| + 17u|r| ≤ 32u·(|D·f| + 1)|r|`.
 //! * **Transfer.** `t` to 31 bits (`< u·t`); `t·∂D` by one multiply-high
 //!   of two 31-bit mantissas (at least 29 bits: `< 4u·t|∂D|`); the sum at
 //!   the larger exponent (two truncations, `< 8u·S`, `S = |∂O| + t|∂D|`):
 //!   `|δq| < 13u·S`. `D·n` exact in 64 bits, clamped, its 32-bit mantissa
 //!   (`< u/2`), `1/|D·n|` by one 32/16-bit division and a Newton step (`≤ 3u`), `w = D/(D·n)` by one
 //!   multiply-high (`< 4u/|D·n|`). `q·n` exact, truncated once (`< 8u·S`)
-//!   and normalised; the term `(q·n)·w` by one multiply-high (`< 16u·S/|D·n|`,
+//!   and normalised with the other axis's (one shift for both: the
+//!   larger of the two has 31 bits); the term `(q·n)·w` by one multiply-high (`< 16u·S/|D·n|`,
 //!   `w` has at least 27 bits); the difference at the larger exponent
 //!   (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|w| ≤ 1/|D·n|` and
 //!   `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 + 1/|D·n|)`.
-//! * **Reflection.** `∂D` and `∂n` at one exponent with 3 and 5 bits of
-//!   headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation each, `< 2ᵉ`), `∂n`
+//! * **Reflection.** `∂D` and `∂n` of both axes at one exponent with 3
+//!   and 5 bits of headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation
+//!   each, `< 2ᵉ`), `∂n`
 //!   also at `2ᵉ⁻²` (`< 2ᵉ/4`); `D·n` to `2⁻³⁰` (`< u`); `∂(D·n)` from
 //!   exact dot products, one truncation (`< (2√3 + ½)·2ᵉ` with the
 //!   inputs'); `n` saturated at `1 − 2⁻³⁰` (`< u`, times
@@ -87,11 +118,13 @@
 //!   `c = η − η²·cos θᵢ/cos θₜ` as normalised 31-bit mantissas: each
 //!   multiply-high `< 4u` relative, `cos θᵢ` to `2⁻³⁰`, so
 //!   `|δc| ≤ 19u·η + 20u·η²/cos θₜ` and `|δμ| ≤ (9 + η)u + u|μ|`; `∂cos θᵢ`
-//!   from `∂D` and `∂n` at their larger exponent plus one (one truncation
-//!   each, `< 2u` of the larger), two exact dot products and one
-//!   truncation (`< 11u·N`, `N = |∂D| + |∂n|`), `∂μ`
-//!   (`< (34η + 35η²/cos θₜ)·u·N`); the three terms by one multiply-high
-//!   each and summed at the largest exponent (`< 24u·(η + |c| + |μ|)·N`):
+//!   from `∂D` and `∂n` of both axes at their largest exponent plus one
+//!   (one truncation each, `< 2u` of the larger), two exact dot products
+//!   and one truncation (`< 11u·N`, `N = |∂D| + |∂n|`), normalised with
+//!   the other axis's (one shift), `∂μ` by one multiply-high, normalised
+//!   likewise (`< (34η + 35η²/cos θₜ)·u·N`); the three terms by one
+//!   multiply-high each and summed at the largest exponent of both axes
+//!   (`< 24u·(η + |c| + |μ|)·N`):
 //!   `(37 + 120η + 63η²/cos θₜ)·u·N ≤ 64u·(1 + 2η + η²/cos θₜ)·N`.
 //!
 //! The footprint and lod add their own ([`crate::lod::raydiff`]); along a
@@ -110,25 +143,29 @@ use crate::units::PathLength;
 mod bfp;
 pub mod gbuffer;
 
-use crate::log2::clz32;
-pub(crate) use bfp::{Bfp3, EXP_MAX, EXP_MIN, dot64, mulhi, norm_shift, recip, shr};
+pub(crate) use bfp::{
+    Bfp3, Bfp3x2, EXP_MAX, EXP_MIN, dot64, mulhi, norm_shift, norm_shift2, recip, shr,
+};
 
 use crate::units::UnitVec;
 
 /// Documented bound of [`RayDiff::primary`]: the largest component of the
-/// error of `∂D/∂x` is at most this times `(|D·f| + 1)·|r|` (and `∂D/∂y`
-/// with `u`): 2⁻²⁵ (derivation in the [module docs](self#error-bound)).
+/// error of `∂D/∂x` and of `∂D/∂y` is at most this times
+/// `(|D·f| + 1)·max(|r|, |u|)`: 2⁻²⁵ (derivation in the
+/// [module docs](self#error-bound)).
 pub const PRIMARY_ERROR: f64 = 1.0 / 33_554_432.0;
 /// Documented bound of [`RayDiff::transfer`]: the largest component of the
-/// error of `∂O'` is at most this times `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)`
+/// error of `∂O'` (either axis) is at most this times
+/// `(|∂O| + t·|∂D|)·(1 + 1/|D·n|)`, each length the larger of its pair
 /// (`|D·n|` clamped): 2⁻²³.
 pub const TRANSFER_ERROR: f64 = 1.0 / 8_388_608.0;
 /// Documented bound of [`RayDiff::reflect`]: at most this times
-/// `|∂D| + 4·|∂n|` per component: 2⁻²³.
+/// `|∂D| + 4·|∂n|` per component of either axis, each length the larger
+/// of its pair: 2⁻²³.
 pub const REFLECT_ERROR: f64 = 1.0 / 8_388_608.0;
 /// Documented bound of [`RayDiff::refract`]: at most this times
-/// `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` per component (`cos θₜ`
-/// clamped): 2⁻²⁴.
+/// `(1 + 2η + η²/cos θₜ)·(|∂D| + |∂n|)` per component of either axis,
+/// each length the larger of its pair (`cos θₜ` clamped): 2⁻²⁴.
 pub const REFRACT_ERROR: f64 = 1.0 / 16_777_216.0;
 
 /// [`MIN_COS`] in I2F30 bits (the unit of `UnitVec` dot products).
@@ -313,7 +350,8 @@ impl Eta {
 
 /// The differential state of one ray (one ray-stack entry, feature
 /// `raydiff`): `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y` as four block-floating-point
-/// vectors (formats in the [module docs](self)). 56 bytes.
+/// vectors, each pair (`∂O`, `∂D`) with one exponent (formats in the
+/// [module docs](self)). 52 bytes.
 ///
 /// # Example
 /// ```
@@ -351,8 +389,9 @@ impl Eta {
 pub struct RayDiff {
     /// Mantissas of `∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`.
     m: [[i32; 3]; 4],
-    /// Their exponents (`[EXP_MIN, EXP_MAX]`).
-    e: [i16; 4],
+    /// The exponent of the `∂O` pair and of the `∂D` pair
+    /// (`[EXP_MIN, EXP_MAX]`).
+    e: [i16; 2],
 }
 
 impl Default for RayDiff {
@@ -371,36 +410,45 @@ impl RayDiff {
     /// No differential (a pinhole camera's primary ray has `∂O = 0`).
     pub const ZERO: Self = Self {
         m: [[0; 3]; 4],
-        e: [EXP_MIN as i16; 4],
+        e: [EXP_MIN as i16; 2],
     };
 
-    /// A state from its four differentials.
+    /// A state from its four differentials: each pair (`∂O`, `∂D`) at the
+    /// larger of its two exponents, the smaller vector truncated to that
+    /// unit (below `2⁻²⁹·(1 + 2⁻³⁰)` of the larger's largest component;
+    /// see the [module docs](self#state-and-number-formats)).
     #[must_use]
-    pub const fn new(dox: PosDiff, doy: PosDiff, ddx: DirDiff, ddy: DirDiff) -> Self {
-        Self {
-            m: [dox.0.m, doy.0.m, ddx.0.m, ddy.0.m],
-            e: [
-                dox.0.e as i16,
-                doy.0.e as i16,
-                ddx.0.e as i16,
-                ddy.0.e as i16,
-            ],
+    pub fn new(dox: PosDiff, doy: PosDiff, ddx: DirDiff, ddy: DirDiff) -> Self {
+        let mut s = Self::ZERO;
+        s.set_pair(0, Bfp3x2::aligned([dox.0.m, doy.0.m], [dox.0.e, doy.0.e]));
+        s.set_pair(1, Bfp3x2::aligned([ddx.0.m, ddy.0.m], [ddx.0.e, ddy.0.e]));
+        s
+    }
+
+    /// Pair `p`: 0 for `∂O`, 1 for `∂D`.
+    #[inline(always)]
+    pub(crate) fn pair(&self, p: usize) -> Bfp3x2 {
+        let p = p & 1;
+        Bfp3x2 {
+            m: [self.m[2 * p], self.m[2 * p + 1]],
+            e: i32::from(self.e[p]),
         }
     }
 
+    #[inline(always)]
+    pub(crate) fn set_pair(&mut self, p: usize, v: Bfp3x2) {
+        let p = p & 1;
+        self.m[2 * p] = v.m[0];
+        self.m[2 * p + 1] = v.m[1];
+        // `normalise` keeps the exponent in [EXP_MIN, EXP_MAX] ⊂ i16.
+        self.e[p] = v.e as i16;
+    }
+
+    /// Differential `i` (`∂O/∂x, ∂O/∂y, ∂D/∂x, ∂D/∂y`) normalised on its
+    /// own.
     #[inline(always)]
     fn get(&self, i: usize) -> Bfp3 {
-        Bfp3 {
-            m: self.m[i],
-            e: i32::from(self.e[i]),
-        }
-    }
-
-    #[inline(always)]
-    fn set(&mut self, i: usize, v: Bfp3) {
-        self.m[i] = v.m;
-        // `Bfp3::new` keeps the exponent in [EXP_MIN, EXP_MAX] ⊂ i16.
-        self.e[i] = v.e as i16;
+        self.pair(i >> 1).get(i & 1)
     }
 
     /// `∂O/∂x` (scene units per pixel).
@@ -447,10 +495,11 @@ impl RayDiff {
         // Both axes inline and the state built in place (no call, no copy
         // of `ZERO`).
         let (x, y) = (primary_axis(d, df, right.0), primary_axis(d, df, up.0));
+        let dd = Bfp3x2::aligned([x, y], [right.0.e + 3, up.0.e + 3]);
         Self {
-            m: [[0; 3], [0; 3], x.m, y.m],
-            // `Bfp3::new` keeps the exponents in [EXP_MIN, EXP_MAX] ⊂ i16.
-            e: [EXP_MIN as i16, EXP_MIN as i16, x.e as i16, y.e as i16],
+            m: [[0; 3], [0; 3], dd.m[0], dd.m[1]],
+            // `normalise` keeps the exponent in [EXP_MIN, EXP_MAX] ⊂ i16.
+            e: [EXP_MIN as i16, dd.e as i16],
         }
     }
 
@@ -480,37 +529,39 @@ impl RayDiff {
         let (tn, tz) = normalise64(t.to_bits());
         let tm = (tn >> 1) as i32;
         let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
-        for axis in 0..2 {
-            let (o, dd) = (self.get(axis), self.get(2 + axis));
-            // q = ∂O + t·∂D at 2^eq, |qₖ| < 2³¹ (∂O shifted by at least 1,
-            // t·∂D = mulhi(tm, ∂D)·2^(et+e+32) with |mulhi| ≤ 2³⁰).
-            let ep = et + dd.e + 32;
-            let eq = (o.e + 1).max(ep);
-            let q: [i32; 3] =
-                core::array::from_fn(|k| shr(o.m[k], eq - o.e) + shr(mulhi(tm, dd.m[k]), eq - ep));
-            // q·n = qn·2^(eq+1) (exact dot, one truncation, |qn| < √3·2³⁰),
-            // normalised to qm·2^(eq+1−sn).
-            let qn = (dot64(q, n) >> 31) as i32;
-            let sn = clz32((((qn ^ (qn >> 31)) as u32) << 1) | 1) as i32;
-            let qm = qn << sn;
-            // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eq+1−sn+lz),
-            // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
-            // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
-            // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
-            // sn ∈ [0, 31]): the shifts 1 + max(0, gap) ≤ 20 and
-            // max(0, −gap) ≤ 31 need no clamp.
-            let gap = lz as i32 - sn;
-            let (sq, st) = (1 + gap.max(0), (-gap).max(0));
-            let er = eq + sq;
-            let r: [i32; 3] = core::array::from_fn(|k| {
+        let (o, dd) = (self.pair(0), self.pair(1));
+        // q = ∂O + t·∂D at 2^eq for both axes, |qₖ| < 2³¹ (∂O shifted by
+        // at least 1, t·∂D = mulhi(tm, ∂D)·2^(et+e+32) with |mulhi| ≤ 2³⁰).
+        let ep = et + dd.e + 32;
+        let eq = (o.e + 1).max(ep);
+        let (so, sp) = (eq - o.e, eq - ep);
+        let q: [[i32; 3]; 2] = core::array::from_fn(|a| {
+            core::array::from_fn(|k| shr(o.m[a][k], so) + shr(mulhi(tm, dd.m[a][k]), sp))
+        });
+        // q·n = qn·2^(eq+1) per axis (exact dot, one truncation,
+        // |qn| < √3·2³⁰), both normalised by one shift to qm·2^(eq+1−sn).
+        let qn = q.map(|q| (dot64(q, n) >> 31) as i32);
+        let sn = norm_shift2(qn[0], qn[1]);
+        // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eq+1−sn+lz),
+        // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
+        // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
+        // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
+        // sn ∈ [0, 31]): the shifts 1 + max(0, gap) ≤ 20 and
+        // max(0, −gap) ≤ 31 need no clamp.
+        let gap = lz as i32 - sn;
+        let (sq, st) = (1 + gap.max(0), (-gap).max(0));
+        let r: [[i32; 3]; 2] = core::array::from_fn(|a| {
+            let qm = qn[a] << sn;
+            core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // (non-unit `D`, `n`) reach ±2³¹; the result is then
                 // garbage, but no panic.
-                q[k].wrapping_shr(sq as u32)
+                q[a][k]
+                    .wrapping_shr(sq as u32)
                     .wrapping_sub(mulhi(qm, w[k]).wrapping_shr(st as u32))
-            });
-            self.set(axis, Bfp3::new(r, er));
-        }
+            })
+        });
+        self.set_pair(0, Bfp3x2::new(r, eq + sq));
     }
 
     /// Reflection about the unit shading normal `n` with its per-pixel
@@ -526,27 +577,29 @@ impl RayDiff {
         // 2n in 2⁻³² units (a component of ±1 saturated to 1 − 2⁻³⁰: one
         // `ssat` and a shift).
         let n2 = n.map(|x| x.clamp(-(1 << 30), (1 << 30) - 1) << 1);
-        for (axis, nn) in dn.iter().enumerate() {
-            let (dd, nn) = (self.get(2 + axis), nn.0);
-            // Common exponent with headroom: |∂D| ≤ 2²⁸, |∂n| ≤ 2²⁶ units,
-            // so |∂(D·n)| < √3·(2²⁸ + 2²⁶) and the term below < 1.2·2³⁰.
-            let e = (dd.e + 3).max(nn.e + 5);
-            let a = dd.m.map(|x| shr(x, e - dd.e));
+        let dd = self.pair(1);
+        // One exponent for both axes with headroom: |∂D| ≤ 2²⁸, |∂n| ≤ 2²⁶
+        // units, so |∂(D·n)| < √3·(2²⁸ + 2²⁶) and the term below < 1.2·2³⁰.
+        let e = (dd.e + 3).max(dn[0].0.e.max(dn[1].0.e) + 5);
+        let sd = e - dd.e;
+        let r: [[i32; 3]; 2] = core::array::from_fn(|axis| {
+            let nn = dn[axis].0;
+            let a = dd.m[axis].map(|x| shr(x, sd));
             // ∂n at 2^(e−2) (|·| ≤ 2²⁸) for its product with D·n, and at 2ᵉ.
             let b4 = nn.m.map(|x| shr(x, e - 2 - nn.e));
             let b = b4.map(|x| x >> 2);
             // 2·∂(D·n) in units of 2ᵉ (|·| < 1.1·2³⁰), one truncation.
             let s2 = ((dot64(a, n) + dot64(d, b)) >> 29) as i32;
-            let r: [i32; 3] = core::array::from_fn(|k| {
+            core::array::from_fn(|k| {
                 // (D·n)·∂n + ∂(D·n)·n = mulhi(c, 4∂n) + mulhi(2∂(D·n), 2n)
                 // in units of 2ᵉ (below 0.6·2³⁰; one `smmul` and one
                 // `smmla`), doubled in the subtraction.
                 let h = mulhi(c, b4[k]).wrapping_add(mulhi(s2, n2[k]));
                 // Wrapping: only non-unit `D`, `n` reach ±2³¹ (no panic).
                 a[k].wrapping_sub(h << 1)
-            });
-            self.set(2 + axis, Bfp3::new(r, e));
-        }
+            })
+        });
+        self.set_pair(1, Bfp3x2::new(r, e));
     }
 
     /// Refraction through the unit shading normal `n` facing the incoming
@@ -583,40 +636,57 @@ impl RayDiff {
         let inv_ct = Scalar::new(recip((ct as u32) << lz) as i32, lz as i32 - 32);
         // c = η − η²·cos θᵢ/cos θₜ.
         let coef = eta_s.sub(eta_s.mul(eta_s).mul(Scalar::new(ci, -30)).mul(inv_ct));
-        for (axis, nn) in dn.iter().enumerate() {
-            let (dd, nn) = (self.get(2 + axis), nn.0);
-            // −∂cos θᵢ = ∂D·n + D·∂n with ∂D and ∂n at one exponent and
-            // one bit of headroom (|·| ≤ 2³⁰, so each dot product is below
-            // √3·2⁶⁰ for unit `D`, `n`), in units of 2^(ea+1) after one
-            // truncation; ∂μ = −c·(∂D·n + D·∂n).
-            let ea = dd.e.max(nn.e) + 1;
-            let a = dd.m.map(|x| shr(x, ea - dd.e));
-            let b = nn.m.map(|x| shr(x, ea - nn.e));
+        let dd = self.pair(1);
+        let nn = [dn[0].0, dn[1].0];
+        // −∂cos θᵢ = ∂D·n + D·∂n with ∂D and ∂n of both axes at one
+        // exponent and one bit of headroom (|·| ≤ 2³⁰, so each dot product
+        // is below √3·2⁶⁰ for unit `D`, `n`), in units of 2^(ea+1) after one
+        // truncation.
+        let ea = dd.e.max(nn[0].e).max(nn[1].e) + 1;
+        let sd = ea - dd.e;
+        let g: [i32; 2] = core::array::from_fn(|axis| {
+            let a = dd.m[axis].map(|x| shr(x, sd));
+            let b = nn[axis].m.map(|x| shr(x, ea - nn[axis].e));
             // Wrapping: only non-unit `D`, `n` reach ±2⁶³ (no panic).
-            let g = (dot64(a, n).wrapping_add(dot64(d, b)) >> 31) as i32;
-            let dmu = coef.mul(Scalar::new(g, ea + 1));
-            // The three terms η·∂D, −∂μ·n (mulhi with n: 2⁻³⁰ units),
-            // μ·∂n at their exponents, each below 2³⁰ before the shift.
-            let e1 = dd.e + eta_s.e + 32;
-            let e2 = dmu.e + 2;
-            let e3 = nn.e + mu.e + 32;
-            let e = e1.max(e2).max(e3) + 1;
-            let r: [i32; 3] = core::array::from_fn(|k| {
+            (dot64(a, n).wrapping_add(dot64(d, b)) >> 31) as i32
+        });
+        // ∂μ = −c·(∂D·n + D·∂n): both axes' g normalised by one shift, one
+        // multiply-high each, the products normalised by one shift (both
+        // zero: EXP_MIN, so that the term never sets the exponent below).
+        let sg = norm_shift2(g[0], g[1]);
+        let p = g.map(|x| mulhi(coef.m, x << sg));
+        let sp = norm_shift2(p[0], p[1]);
+        let dmu = p.map(|x| x << sp);
+        let dmu_e = if (p[0] | p[1]) == 0 {
+            EXP_MIN
+        } else {
+            coef.e + ea + 33 - sg - sp
+        };
+        // The three terms η·∂D, −∂μ·n (mulhi with n: 2⁻³⁰ units), μ·∂n at
+        // their exponents, each below 2³⁰ before the shift, summed at one
+        // exponent for both axes.
+        let e1 = dd.e + eta_s.e + 32;
+        let e2 = dmu_e + 2;
+        let e3 = nn.map(|v| v.e + mu.e + 32);
+        let e = e1.max(e2).max(e3[0].max(e3[1])) + 1;
+        let r: [[i32; 3]; 2] = core::array::from_fn(|axis| {
+            core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // reach ±2³¹ (no panic).
-                shr(mulhi(dd.m[k], eta_s.m), e - e1)
-                    .wrapping_sub(shr(mulhi(dmu.m, n[k]), e - e2))
-                    .wrapping_add(shr(mulhi(nn.m[k], mu.m), e - e3))
-            });
-            self.set(2 + axis, Bfp3::new(r, e));
-        }
+                shr(mulhi(dd.m[axis][k], eta_s.m), e - e1)
+                    .wrapping_sub(shr(mulhi(dmu[axis], n[k]), e - e2))
+                    .wrapping_add(shr(mulhi(nn[axis].m[k], mu.m), e - e3[axis]))
+            })
+        });
+        self.set_pair(1, Bfp3x2::new(r, e));
     }
 }
 
 /// One axis of [`RayDiff::primary`]: `(D·f)·(r − (D·r)·D)` for the unit
-/// direction `d` (I2F30 bits), `df` = `D·f` in 2⁻³⁰ units and the step `r`.
+/// direction `d` (I2F30 bits), `df` = `D·f` in 2⁻³⁰ units and the step `r`,
+/// in units of `2^(e + 3)` (`e` the exponent of `r`), not normalised.
 #[inline(always)]
-fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
+fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> [i32; 3] {
     // (D·r)/2 in the units of r (|·| ≤ √3·2³⁰), one truncation.
     let dr = (dot64(r.m, d) >> 31) as i32;
     // (r − (D·r)·D)/2 in the units of r (|·| ≤ √3·2³⁰ for unit `D`: the
@@ -624,7 +694,7 @@ fn primary_axis(d: [i32; 3], df: i32, r: Bfp3) -> Bfp3 {
     // D·f below keeps its absolute error within the bound.
     let v: [i32; 3] = core::array::from_fn(|k| (r.m[k] >> 1).wrapping_sub(mulhi(dr, d[k]) << 2));
     // (D·f)·v = mulhi(v, df)·2³: df is D·f·2³⁰.
-    Bfp3::new(v.map(|x| mulhi(x, df)), r.e + 3)
+    v.map(|x| mulhi(x, df))
 }
 
 /// A normalised scalar `m·2ᵉ` (`|m| ∈ [2³⁰ − 1, 2³¹]` or zero at
@@ -973,7 +1043,7 @@ pub(crate) mod tests {
             DirDiff::new([1 << 30, 0, 0], -90).to_i2f30()[0],
             I2F30::ZERO
         );
-        assert_eq!(core::mem::size_of::<RayDiff>(), 56);
+        assert_eq!(core::mem::size_of::<RayDiff>(), 52);
     }
 
     proptest! {
@@ -998,38 +1068,43 @@ pub(crate) mod tests {
         /// octaves, t over the whole U32F32 range, |D·n| from 1 down to
         /// below MIN_COS.
         #[test]
-        fn transfer_within_its_bound(o in bfp(-80..40), dd in bfp(-80..0), t in any::<u64>(), ts in 0u32..64,
+        fn transfer_within_its_bound(o in bfp(-80..40), o2 in bfp(-80..40), dd in bfp(-80..0), dd2 in bfp(-80..0),
+                                     t in any::<u64>(), ts in 0u32..64,
                                      d in unit(), side in unit(), lc in -17.0..0.0f64) {
             let du = unit_q(d);
             let df = vu(du);
             let n = unit_q(normal_at(df, lc.exp2(), side));
             let t = PathLength::from_bits(t >> ts);
-            let s = RayDiff::new(PosDiff(o), PosDiff(Bfp3::new([1, -2, 3], o.e - 7)), DirDiff(dd), DirDiff::ZERO);
+            // The y axis its own ∂O and ∂D: the pair's two vectors differ
+            // by up to 2¹²⁰ (∂O) and 2⁸⁰ (∂D).
+            let s = RayDiff::new(PosDiff(o), PosDiff(o2), DirDiff(dd), DirDiff(dd2));
             let mut got = s;
             got.transfer(du, t, n);
             let want = rf::transfer(&state(&s), df, t.to_num(), vu(n));
             let c = dot(df, vu(n)).abs().max(rf::MIN_COS);
-            for (g, w, o, dd) in [(got.dox(), want.dox, s.dox(), s.ddx()), (got.doy(), want.doy, s.doy(), s.ddy())] {
-                let scale = (norm(o.to_f64()) + t.to_num::<f64>() * norm(dd.to_f64())) * (1.0 + 1.0 / c);
+            let scale = (pair_norm(s.dox().to_f64(), s.doy().to_f64()) + t.to_num::<f64>() * pair_norm(s.ddx().to_f64(), s.ddy().to_f64())) * (1.0 + 1.0 / c);
+            for (g, w) in [(got.dox(), want.dox), (got.doy(), want.doy)] {
                 let err = dist(g.to_f64(), w);
                 prop_assert!(err <= TRANSFER_ERROR * scale, "{:e} > {:e}: {:?} vs {:?}", err, TRANSFER_ERROR * scale, g.to_f64(), w);
             }
-            prop_assert_eq!(got.ddx(), s.ddx());
+            prop_assert_eq!((got.ddx(), got.ddy()), (s.ddx(), s.ddy()));
         }
 
         /// The reflection within `REFLECT_ERROR·(|∂D| + 4|∂n|)`.
         #[test]
-        fn reflect_within_its_bound(dd in bfp(-80..0), dn in bfp(-80..0), d in unit(), n in unit()) {
+        fn reflect_within_its_bound(dd in bfp(-80..0), dd2 in bfp(-80..0), dn in bfp(-80..0), dn2 in bfp(-80..0),
+                                    d in unit(), n in unit(), flat_y in any::<bool>()) {
             let (du, nu) = (unit_q(d), unit_q(n));
-            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff(dd));
+            let dn2 = if flat_y { Bfp3::ZERO } else { dn2 };
+            let s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, DirDiff(dd), DirDiff(dd2));
             let mut got = s;
-            got.reflect(du, nu, [DirDiff(dn), DirDiff::ZERO]);
-            let want = rf::reflect(&state(&s), vu(du), vu(nu), val(dn), [0.0; 3]);
-            let sx = norm(val(dd)) + 4.0 * norm(val(dn));
-            let ex = dist(got.ddx().to_f64(), want.ddx);
-            prop_assert!(ex <= REFLECT_ERROR * sx, "{:e}: {:?} vs {:?}", ex / sx, got.ddx().to_f64(), want.ddx);
-            let ey = dist(got.ddy().to_f64(), want.ddy);
-            prop_assert!(ey <= REFLECT_ERROR * norm(val(dd)));
+            got.reflect(du, nu, [DirDiff(dn), DirDiff(dn2)]);
+            let want = rf::reflect(&state(&s), vu(du), vu(nu), val(dn), val(dn2));
+            let sc = pair_norm(s.ddx().to_f64(), s.ddy().to_f64()) + 4.0 * norm(val(dn)).max(norm(val(dn2)));
+            for (g, w) in [(got.ddx(), want.ddx), (got.ddy(), want.ddy)] {
+                let err = dist(g.to_f64(), w);
+                prop_assert!(err <= REFLECT_ERROR * sc, "{:e}: {:?} vs {:?}", err / sc, g.to_f64(), w);
+            }
             prop_assert_eq!(got.dox(), s.dox());
         }
 
@@ -1055,8 +1130,9 @@ pub(crate) mod tests {
             got.refract(du, nu, [DirDiff(dn), DirDiff(dn2)], Eta::from_fixed(eta), ct);
             let ctf = ct.to_num::<f64>().max(rf::MIN_COS);
             let want = rf::refract(&state(&s), df, nq, val(dn), val(dn2), ef, ctf);
-            for (g, w, a, b) in [(got.ddx(), want.ddx, dd, dn), (got.ddy(), want.ddy, dd2, dn2)] {
-                let scale = (1.0 + 2.0 * ef + ef * ef / ctf) * (norm(val(a)) + norm(val(b)));
+            let scale = (1.0 + 2.0 * ef + ef * ef / ctf)
+                * (pair_norm(s.ddx().to_f64(), s.ddy().to_f64()) + norm(val(dn)).max(norm(val(dn2))));
+            for (g, w) in [(got.ddx(), want.ddx), (got.ddy(), want.ddy)] {
                 let err = dist(g.to_f64(), w);
                 prop_assert!(err <= REFRACT_ERROR * scale, "{:e}: {:?} vs {:?}", err / scale, g.to_f64(), w);
             }
@@ -1071,9 +1147,10 @@ pub(crate) mod tests {
             let got = RayDiff::primary(du, fu, DirDiff(r), DirDiff(u));
             let want = rf::primary(vu(du), vu(fu), val(r), val(u));
             let df = dot(vu(du), vu(fu)).abs() + 1.0;
-            for (g, w, a) in [(got.ddx(), want.ddx, r), (got.ddy(), want.ddy, u)] {
+            let sc = df * norm(val(r)).max(norm(val(u)));
+            for (g, w) in [(got.ddx(), want.ddx), (got.ddy(), want.ddy)] {
                 let err = dist(g.to_f64(), w);
-                prop_assert!(err <= PRIMARY_ERROR * df * norm(val(a)), "{:e}", err / (df * norm(val(a))));
+                prop_assert!(err <= PRIMARY_ERROR * sc, "{:e}", err / sc);
             }
         }
     }
@@ -1081,5 +1158,11 @@ pub(crate) mod tests {
     /// f64 value of a block-floating-point vector.
     fn val(v: Bfp3) -> V {
         PosDiff(v).to_f64()
+    }
+
+    /// The larger Euclidean length of a pair (the scale of the pair's one
+    /// exponent).
+    fn pair_norm(a: V, b: V) -> f64 {
+        norm(a).max(norm(b))
     }
 }
