@@ -337,6 +337,56 @@ mod tests {
         assert_eq!(s.stats().fetched, 6 + 8 + 1);
     }
 
+    /// A border tap on one axis only: a one-read mode returns the border
+    /// colour when its draw picks the outside column (or row), whatever
+    /// it picks on the other axis, and the texel when it picks the inside
+    /// one. 2×2 level 0 at u = 0 (columns −1 and 0, fx = ½), v = ½ (rows
+    /// 0 and 1): a column field of 2048 picks the left tap, 2047 the right.
+    #[test]
+    fn border_on_one_axis_picks_the_border_colour() {
+        use crate::texture::address::AnyAxis;
+        use crate::texture::sampler::{Cfg, SamplerDesc, SamplerState};
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let mut buf = vec![0xFF00_0010, 0xFF00_0020, 0xFF00_0030, 0xFF00_0040, 0];
+        generate(&g, &mut buf).unwrap();
+        let border = 0x8070_6050;
+        let (zero, half) = (TexCoord::ZERO, TexCoord::from_num(0.5));
+        let b = StochasticMode::Bilinear;
+        for border_u in [true, false] {
+            let (bu, bv) = if border_u {
+                (AddressMode::ClampToBorder, AddressMode::ClampToEdge)
+            } else {
+                (AddressMode::ClampToEdge, AddressMode::ClampToBorder)
+            };
+            let desc = SamplerDesc {
+                address_u: bu,
+                address_v: bv,
+                border,
+                ..SamplerDesc::default()
+            };
+            let state = SamplerState::new(desc).unwrap();
+            let p = Pyramid::new(g, &buf).unwrap();
+            let mut s = Sampler::<_, Cfg<AnyAxis>>::with_state(p, state).unwrap();
+            let (u, v) = if border_u { (zero, half) } else { (half, zero) };
+            // The outside tap on the border axis, either tap on the other.
+            let field = |outside: bool, other: u32| {
+                let (c, r) = if border_u {
+                    (if outside { 2048 } else { 2047 }, other)
+                } else {
+                    (other, if outside { 2048 } else { 2047 })
+                };
+                c << 8 | r << 20
+            };
+            for other in [2047, 2048] {
+                let out = s.sample_stochastic(u, v, Lod::ZERO, b, field(true, other));
+                assert_eq!(out, border, "border_u {border_u}, other field {other}");
+                let inside = s.sample_stochastic(u, v, Lod::ZERO, b, field(false, other));
+                assert_ne!(inside, border, "border_u {border_u}, other field {other}");
+                assert_eq!(inside >> 24, 0xFF, "a texel of level 0");
+            }
+        }
+    }
+
     /// f64 reference of a single draw: the firmware picks the texel the
     /// reference picks with the same uniform numbers, except where a
     /// uniform lies within the 2⁻¹² weight quantization of a boundary.
