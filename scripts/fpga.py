@@ -139,7 +139,7 @@ def ecp5_table(data):
 
 def ecp5_blocks(a, data):
     intro = (f"ECP5 {data['device']}, the LiteX SoC of `demo/softcore/litex_soc.py` with a {data['ram_bytes'] // 1024} KiB "
-             f"main RAM in block RAM (the simulated 256 KiB exceeds the part), {a.yosys} `synth_ecp5`; "
+             f"main RAM in block RAM (the simulated 512 KiB exceeds the part), {a.yosys} `synth_ecp5`; "
              f"{data.get('nextpnr') or 'nextpnr-ecp5 (not run)'}, `--45k --package CABGA381 --speed 6 "
              f"--seed {data['seed']}` (yowasp, WebAssembly).")
     B = [E_BEGIN, "## The LiteX SoC on an ECP5 (Yosys + nextpnr-ecp5)\n",

@@ -21,7 +21,7 @@ itself: one model per variant serves every firmware image.
 The memory map is LiteX's, with the firmware's fixed addresses
 (demo/softcore/litex/memory.x and demo/firmware/src/console.rs), which this
 script checks against the generated CSR map:
-  0x4000_0000  main RAM (--ram-bytes, default 256 KiB): code, data, stack;
+  0x4000_0000  main RAM (--ram-bytes, default 512 KiB): code, data, stack;
                the CPU's reset address.
   0xf000_0000  CSRs: `uart` (rxtx, txfull, ...) and `sim_exit` (a write of
                the exit code ends the simulation), each at a fixed page.
@@ -136,7 +136,7 @@ class RaymipSoC(SoCCore):
     """VexRiscv + main RAM + UART + exit register on LiteX's simulation
     platform; `cfu` the path of the CFU's Verilog, or None."""
 
-    def __init__(self, cfu=None, ram_bytes=256 * 1024, bursting=False):
+    def __init__(self, cfu=None, ram_bytes=512 * 1024, bursting=False):
         platform = SimPlatform("SIM", _io)
         self.crg = CRG(platform.request("sys_clk"), platform.request("sys_rst"))
         SoCCore.__init__(
@@ -198,7 +198,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", required=True, help="output directory")
     ap.add_argument("--cfu", help="Verilog of the CFU (module Cfu); without: the plain `full` variant")
-    ap.add_argument("--ram-bytes", type=int, default=256 * 1024)
+    ap.add_argument("--ram-bytes", type=int, default=512 * 1024)
     ap.add_argument("--bursting", action="store_true",
                     help="LiteX's bus bursting: cache refills one word a cycle")
     a = ap.parse_args()
