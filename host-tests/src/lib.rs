@@ -15,7 +15,14 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod accuracy;
+#[cfg(feature = "app")]
 pub mod cli;
+/// Without the feature `app`: the `sample` command's parser only (the
+/// fuzz target `sample_lines`).
+#[cfg(not(feature = "app"))]
+pub mod cli {
+    pub mod sample;
+}
 #[cfg(feature = "app")]
 pub mod error;
 #[cfg(feature = "app")]

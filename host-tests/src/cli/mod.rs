@@ -2,44 +2,27 @@
 //! `sample`, `stress`, `memory` and the demo's `gen-data`, as library functions (the binaries
 //! in `src/bin/` only parse arguments and dispatch).
 
-#[cfg(feature = "app")]
 use std::path::{Path, PathBuf};
 
-#[cfg(feature = "app")]
 use crate::output::report::write_option;
 
-#[cfg(feature = "app")]
 pub mod compare;
-#[cfg(feature = "app")]
 pub mod demo_data;
-#[cfg(feature = "app")]
 mod error;
-#[cfg(feature = "app")]
 pub mod instances;
-#[cfg(feature = "app")]
 pub mod memory;
-#[cfg(feature = "app")]
 pub mod pcpi_vectors;
-#[cfg(feature = "app")]
 pub mod render;
 pub mod sample;
-#[cfg(feature = "app")]
 pub mod stress;
-#[cfg(feature = "app")]
 pub mod table1;
-#[cfg(feature = "app")]
 pub mod tradeoff;
 
-#[cfg(feature = "app")]
 pub use compare::cmd_compare;
-#[cfg(feature = "app")]
 pub use error::CommandError;
-#[cfg(feature = "app")]
 pub use render::cmd_render;
-#[cfg(feature = "app")]
 pub use table1::cmd_table1;
 
-#[cfg(feature = "app")]
 /// A bad `--size` value.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum SizeError {
@@ -57,7 +40,6 @@ pub enum SizeError {
     },
 }
 
-#[cfg(feature = "app")]
 impl std::fmt::Display for SizeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -70,14 +52,11 @@ impl std::fmt::Display for SizeError {
     }
 }
 
-#[cfg(feature = "app")]
 impl std::error::Error for SizeError {}
 
-#[cfg(feature = "app")]
 /// Largest width or height `--size` accepts, pixels.
 pub const MAX_SIZE: u32 = 16384;
 
-#[cfg(feature = "app")]
 /// Parses `WxH` (each in `1..=`[`MAX_SIZE`]).
 ///
 /// # Errors
@@ -99,7 +78,6 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), SizeError> {
     Ok((p(w)?, p(h)?))
 }
 
-#[cfg(feature = "app")]
 /// The command line of a measurement example (`cargo run --release -p
 /// raymip-host --example NAME -- [WxH] [N] [--write FILE]`): a `WxH`
 /// size, a whole number (samples, where the example takes one) and the
@@ -116,7 +94,6 @@ pub struct MeasureArgs {
     pub write: Option<PathBuf>,
 }
 
-#[cfg(feature = "app")]
 impl MeasureArgs {
     /// The arguments of this process.
     #[must_use]
@@ -136,7 +113,7 @@ impl MeasureArgs {
     }
 }
 
-#[cfg(all(test, feature = "app"))]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::{SceneError, load_scene};
