@@ -707,6 +707,51 @@ mod tests {
         std::println!("worst {worst}");
     }
 
+    /// In clamp to edge every probe right of the texture reads its last
+    /// column, however far: two probes from a start 2⁻¹² below
+    /// `TexCoord::MAX` whose second step passes it (only a saturating add
+    /// keeps it there; a wrapping one lands at the far left) give the same
+    /// texel as two probes around `u = 40`, and not the first column's.
+    /// The start's low bits are 0, as are a coordinate's near `0` whose
+    /// top two bits agree.
+    #[cfg(feature = "trilinear")]
+    #[test]
+    fn probes_past_the_largest_coordinate_stay_on_the_last_column() {
+        use crate::rng::XorShift64;
+        use crate::texture::address::AnyAxis;
+        use crate::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
+        use crate::texture::{AddressMode, Cfg, SamplerDesc, SamplerState};
+        let (w, h, levels) = (64u32, 32u32, 7u8);
+        let g = Geometry::new(w, h, levels).unwrap();
+        let mut buf = std::vec![0u32; pyramid_len(w, h, levels)];
+        XorShift64(0xC1A3_7ED6_E000_0037).fill_u32(&mut buf[..(w * h) as usize]);
+        generate(&g, &mut buf).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let state = SamplerState::new(SamplerDesc {
+            address_u: AddressMode::ClampToEdge,
+            address_v: AddressMode::ClampToEdge,
+            max_anisotropy: 16,
+            ..SamplerDesc::default()
+        })
+        .unwrap();
+        // Major axis 16 texels along u, minor 9.6 along v: 2 probes,
+        // 2²⁹ (0.125) apart, the first 2²⁸ left of the centre.
+        let fp = Footprint {
+            x: [TexCoord::from_num(0.25), TexCoord::ZERO],
+            y: [TexCoord::ZERO, TexCoord::from_num(0.3)],
+        };
+        assert_eq!(probes(&fp, w, h, 16).count, 2);
+        let v = TexCoord::from_num(0.5);
+        let sample = |u: TexCoord| {
+            let mut s = Sampler::<_, Cfg<AnyAxis>>::with_state(p, state).unwrap();
+            s.sample_aniso(u, v, &fp)
+        };
+        let far = TexCoord::from_bits((TexCoord::MAX.to_bits() - (1 << 20)) & !3);
+        let right = sample(TexCoord::from_num(40));
+        assert_eq!(sample(far), right);
+        assert_ne!(sample(TexCoord::from_num(-40)), right);
+    }
+
     proptest! {
         /// f64 reference (pbrt-style clamp, ceil of the ratio, log2 of the
         /// clamped minor axis); near-ties of the probe count (within 2⁻¹²

@@ -441,6 +441,59 @@ mod tests {
         assert_eq!(TexelFormat::from_index(11), None);
     }
 
+    /// Each format's layout facts from the module docs, written out:
+    /// block compression, bytes per texel (per 4×4 block for BC), an sRGB
+    /// variant; the run-time and marker forms give the same format, and
+    /// a `Format` keeps its parts (an sRGB request without a variant is
+    /// refused, with its message).
+    #[test]
+    fn format_facts_by_hand() {
+        use TexelFormat as T;
+        let facts = [
+            (T::Rgba8, false, 4, true),
+            (T::Rgb565, false, 2, false),
+            (T::Rgba5551, false, 2, false),
+            (T::Rgba4444, false, 2, false),
+            (T::La8, false, 2, true),
+            (T::L8, false, 1, true),
+            (T::A8, false, 1, false),
+            (T::Bc1, true, 8, true),
+            (T::Bc2, true, 16, true),
+            (T::Bc3, true, 16, true),
+            (T::Bc4, true, 8, false),
+        ];
+        assert_eq!(facts.map(|f| f.0), TexelFormat::ALL);
+        for (f, bc, bytes, srgb) in facts {
+            let got = (f.is_block_compressed(), f.unit_bytes(), f.has_srgb());
+            assert_eq!(got, (bc, bytes, srgb), "{f:?}");
+            assert_eq!(AnyFormat(f).texel(), f);
+            let linear = Format::linear(f);
+            assert_eq!((linear.texel(), linear.space()), (f, ColorSpace::Linear));
+            match Format::new(f, ColorSpace::Srgb) {
+                Ok(s) => assert_eq!((s.texel(), s.space(), srgb), (f, ColorSpace::Srgb, true)),
+                Err(e) => assert_eq!((e, srgb), (NoSrgbVariant(f), false)),
+            }
+        }
+        let markers = [
+            Rgba8.texel(),
+            Rgb565.texel(),
+            Rgba5551.texel(),
+            Rgba4444.texel(),
+            La8.texel(),
+            L8.texel(),
+            A8.texel(),
+            Bc1.texel(),
+            Bc2.texel(),
+            Bc3.texel(),
+            Bc4.texel(),
+        ];
+        assert_eq!(markers, TexelFormat::ALL);
+        assert_eq!(
+            std::format!("{}", NoSrgbVariant(T::A8)),
+            "A8 has no sRGB variant (only RGBA8, LA8, L8, BC1-BC3)"
+        );
+    }
+
     /// The split RGB565 table gives the bit-replicated expansion of
     /// every 16-bit value.
     #[test]
