@@ -11,6 +11,16 @@ Usage:
       function whose demangled name is SYMBOL (e.g. `cycles::trilinear`)
   softcore_profile.py --report ELF PROFILE TITLE  prints the profile: per
       function and per instruction, instructions and cycles per call
+  softcore_profile.py --window ELF SYMBOL LOOP  prints the addresses of
+      the two `rdcycle`s around the call of SYMBOL in the timed loop LOOP
+      (`timed_a` or `timed_b` of `counters::series`): the timed window,
+      for the per-call profile
+  softcore_profile.py --calls ELF CALLS TITLE  prints the calls one by
+      one (litex_sim.cpp's LITEX_SIM_PROFILE_CALLS file): the cycles of
+      every call, and the slowest timed call beside the fastest (the
+      warm-up calls of `counters::series` left out), instruction by
+      instruction, with the bus beats in them (the lines refilled and
+      whose symbol they hold)
   softcore_profile.py --self-test
 """
 import re
@@ -54,8 +64,9 @@ def parse_disassembly(text):
     for line in text.splitlines():
         m = SYM_RE.match(line)
         if m:
-            # Local labels (`.L0 `, `.LBB…`) do not start a function.
-            if not m.group(2).startswith(".L"):
+            # Local labels (`.L0 `, `.LBB…`) and the mapping symbols
+            # (`$x`, `$d`) do not start a function.
+            if not m.group(2).startswith((".L", "$")):
                 func = m.group(2)
             continue
         m = INSN_RE.match(line)
@@ -154,6 +165,134 @@ def report(insns, calls, prof, title):
     return L
 
 
+def parse_calls(text):
+    """[(cycles, [(pc, cycles)], [(kind, address)])] of every call in the
+    order of the run; kind `dr`/`dw` a data-bus read/write beat, `f` an
+    instruction-bus beat."""
+    calls, insns, beats = [], [], []
+    for line in text.splitlines():
+        p = line.split()
+        if p[0] == "i":
+            insns.append((int(p[1], 16), int(p[2])))
+        elif p[0] == "d":
+            beats.append(("d" + p[1], int(p[2], 16)))
+        elif p[0] == "f":
+            beats.append(("f", int(p[1], 16)))
+        elif p[0] == "call":
+            calls.append((int(p[3]), insns, beats))
+            insns, beats = [], []
+    if not calls:
+        sys.exit("softcore_profile.py: the per-call profile has no calls")
+    return calls
+
+
+def symbols(elf):
+    """[(address, size, name)] of the image's symbols with a size, by address."""
+    out = subprocess.run(["llvm-nm", "-S", "-C", "--numeric-sort", elf], check=True,
+                         capture_output=True, text=True).stdout
+    syms = []
+    for line in out.splitlines():
+        p = line.split(maxsplit=3)
+        if len(p) == 4:
+            syms.append((int(p[0], 16), int(p[1], 16), p[3]))
+    return syms
+
+
+def line_owner(syms, addr):
+    """The symbols overlapping the 32-byte line of `addr`, or `stack or
+    data` for none."""
+    lo = addr & ~31
+    names = [re.sub(r"::h[0-9a-f]{16}$", "", n) for a, sz, n in syms if a < lo + 32 and a + sz > lo]
+    return ", ".join(names[:3]) if names else "no symbol (stack, data)"
+
+
+def lines_of(beats):
+    """The beats collapsed to (kind, 32-byte line, beats) in order."""
+    out = []
+    for k, a in beats:
+        if out and out[-1][0] == k and out[-1][1] == a & ~31:
+            out[-1] = (k, a & ~31, out[-1][2] + 1)
+        else:
+            out.append((k, a & ~31, 1))
+    return out
+
+
+# The inputs of a series (demo/firmware/src/inputs.rs `N`).
+N = 64
+
+
+def timed_calls(n):
+    """The indices of the timed calls among `n` calls of one timed loop of
+    a series: `timed_a` runs the untimed pass, then the timed pass (2·N
+    calls), `timed_b` one untimed call, then the timed pass (N + 1); all
+    of them for another count."""
+    if n == 2 * N:
+        return list(range(N, 2 * N))
+    if n == N + 1:
+        return list(range(1, N + 1))
+    return list(range(n))
+
+
+def timed_window(insns, symbol, loop):
+    """(first, last): the addresses of the two `rdcycle`s around the call
+    of `symbol` in the timed loop `loop` (`timed_a` or `timed_b`, the two
+    places of `counters::series`) that calls it: the driver's
+    LITEX_SIM_PROFILE_ROOT and _END for the timed window, the harness's
+    instructions around the call included."""
+    target = root_address(insns, symbol)
+    by_func = {}
+    for a, f, t in insns:
+        by_func.setdefault(f, []).append((a, t))
+    for f, body in by_func.items():
+        if not re.sub(r"::h[0-9a-f]{16}$", "", f).endswith(f"counters::{loop}"):
+            continue
+        hi = None
+        for i, (a, t) in enumerate(body):
+            p = t.split()
+            callee = None
+            if p[0] == "auipc":
+                hi = a + (int(p[-1]) << 12)
+                continue
+            if p[0] == "jalr" and hi is not None:
+                m = re.match(r"(-?\d+)\(ra\)$", p[-1])
+                callee = hi + int(m.group(1)) if m else None
+            elif p[0] in ("jal", "call"):
+                callee = int(p[-1], 16) if re.match(r"0x[0-9a-f]+$", p[-1]) else None
+            hi = None
+            if callee == target:
+                before = [b for b, u in body[:i] if u.startswith("rdcycle")]
+                after = [b for b, u in body[i:] if u.startswith("rdcycle")]
+                if before and after:
+                    return before[-1], after[0]
+    sys.exit(f"softcore_profile.py: no {loop} calls {symbol}")
+
+
+def calls_report(insns, syms, calls, title):
+    """The per-call profile as text lines."""
+    where = {a: t for a, _, t in insns}
+    cyc = [c for c, _, _ in calls]
+    timed = timed_calls(len(calls))
+    L = [f"calls {title}: {len(calls)} calls, cycles min {min(cyc)} max {max(cyc)}",
+         "  cycles of every call in the order of the run (16 a line)"]
+    for i in range(0, len(cyc), 16):
+        L.append(f"    {i:4d}: " + " ".join(f"{c:4d}" for c in cyc[i:i + 16]))
+    slow = max(timed, key=lambda i: cyc[i])
+    fast = min(timed, key=lambda i: cyc[i])
+    L.append(f"  the slowest timed call ({slow}, {cyc[slow]} cycles) beside the fastest ({fast}, {cyc[fast]}): "
+             "address, cycles slow / fast, instruction")
+    si, fi = calls[slow][1], calls[fast][1]
+    for n, (pc, c) in enumerate(si):
+        f = fi[n][1] if n < len(fi) and fi[n][0] == pc else None
+        mark = " <" if f is not None and c > f else ""
+        L.append(f"    {pc:08x} {c:4d} / {'-' if f is None else f:>4}  {where.get(pc, '?')}{mark}")
+    for name, i in (("slowest", slow), ("fastest", fast)):
+        L.append(f"  bus beats of the {name} call: kind, 32-byte line, beats, what the line holds")
+        for k, a, n in lines_of(calls[i][2]):
+            kind_ = {"f": "instruction fetch", "dr": "data read", "dw": "data write"}[k]
+            L.append(f"    {kind_:17s} {a:08x} {n}  {line_owner(syms, a)}")
+    return L
+
+
 def self_test():
     dis = """
 40007fa0 <cycles::trilinear::hb6c9bbe5464bdb49>:
@@ -172,6 +311,12 @@ def self_test():
     assert "    40007fa4  1.00   3.00  3.00  tex.sel x12, x10, x11  <cycles::trilinear>" in lines, lines
     assert "        1.0     4.0  load" in lines and "        1.0     2.0  co-processor" in lines, lines
     assert kind("bltu a0, a1, 0x10") == kind("ret") and kind("mulhu a0, a1, a2") == "multiply, divide"
+    calls = parse_calls("i 40007fa0 3\nd r 40001004\nd r 40001008\ni 40007fa4 9\ncall 0 cycles 12\n"
+                        "i 40007fa0 1\ni 40007fa4 3\ncall 1 cycles 4\n")
+    assert [c for c, _, _ in calls] == [12, 4] and lines_of(calls[0][2]) == [("dr", 0x40001000, 2)], calls
+    L = calls_report(insns, [(0x40001000, 8, "cycles::TABLE")], calls, "t")
+    assert "    40007fa4    9 /    3  tex.sel x12, x10, x11 <" in L, L
+    assert "    data read         40001000 2  cycles::TABLE" in L, L
     print("softcore_profile.py: self-test passed")
 
 
@@ -184,6 +329,12 @@ def main():
     elif len(a) == 4 and a[0] == "--report":
         calls, prof = parse_profile(open(a[2]).read())
         print("\n".join(report(disassemble(a[1]), calls, prof, a[3])))
+    elif len(a) == 4 and a[0] == "--window" and a[3] in ("timed_a", "timed_b"):
+        first, last = timed_window(disassemble(a[1]), a[2], a[3])
+        print(f"0x{first:08x} 0x{last:08x}")
+    elif len(a) == 4 and a[0] == "--calls":
+        calls = parse_calls(open(a[2]).read())
+        print("\n".join(calls_report(disassemble(a[1]), symbols(a[1]), calls, a[3])))
     else:
         sys.exit(__doc__)
 

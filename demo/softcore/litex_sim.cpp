@@ -17,6 +17,14 @@
 // miss on its load, a co-processor's latency on its custom instruction,
 // an instruction-cache refill or a taken branch's bubbles on the
 // instruction after them.
+// With LITEX_SIM_PROFILE_CALLS=FILE as well: every call of the root
+// function one by one into FILE, in the order of the run: a line
+// `i pc cycles` per retired instruction (the cycles charged to it, as
+// above), `d r|w addr` per data-bus and `f addr` per instruction-bus
+// beat the SoC acknowledged (byte addresses; a cache refill is eight
+// beats of one 32-byte line), then `call N cycles C` (C the call's
+// cycles): one slow call among fast ones (one input of a series) shows
+// which instruction waited and on which line.
 // Exit status: the firmware's exit code (3 when it trapped: its trap
 // handler prints the cause); 2 usage or ELF errors; 124 MAX_CYCLES reached
 // (default 2e9). A summary line goes to stderr.
@@ -85,7 +93,23 @@ int main(int argc, char** argv) {
         return 2;
     }
     const uint32_t root = root_env ? uint32_t(std::strtoul(root_env, nullptr, 0)) : 0;
+    // LITEX_SIM_PROFILE_END=ADDR: a call ends when the instruction at ADDR
+    // retires instead of at the return address (a window of straight-line
+    // code, e.g. from one counter read to the next around a timed call).
+    const char* end_env = std::getenv("LITEX_SIM_PROFILE_END");
+    const uint32_t end = end_env ? uint32_t(std::strtoul(end_env, nullptr, 0)) : 0;
     std::map<uint32_t, std::pair<uint64_t, uint64_t>> prof;
+    const char* per_call = std::getenv("LITEX_SIM_PROFILE_CALLS");
+    FILE* pc_file = nullptr;
+    if (per_call && profile) {
+        pc_file = std::fopen(per_call, "w");
+        if (!pc_file) {
+            std::perror(per_call);
+            return 2;
+        }
+    }
+    uint64_t call_cycles = 0;
+    const auto* soc = top->rootp->sim;
     uint64_t idle = 0, calls = 0;
     uint32_t ret = 0;
     bool inside = false;
@@ -98,17 +122,30 @@ int main(int argc, char** argv) {
                 if (!inside && pc == root) {
                     // The call's return address: `ra` as the call left it.
                     inside = true;
-                    ret = cpu->RegFilePlugin_regFile[1];
+                    ret = end_env ? end : cpu->RegFilePlugin_regFile[1];
                     ++calls;
+                    call_cycles = 0;
                 } else if (inside && pc == ret) {
                     inside = false;
+                    if (pc_file)
+                        std::fprintf(pc_file, "call %llu cycles %llu\n", (unsigned long long)calls - 1,
+                                     (unsigned long long)call_cycles);
                 }
                 if (inside) {
                     auto& e = prof[pc];
                     e.first += 1;
                     e.second += idle;
+                    call_cycles += idle;
+                    if (pc_file) std::fprintf(pc_file, "i %08x %llu\n", pc, (unsigned long long)idle);
                 }
                 idle = 0;
+            }
+            // The beats acknowledged in this cycle (sampled before the edge).
+            if (pc_file && inside) {
+                if (soc->dbus_cyc && soc->dbus_stb && soc->dbus_ack)
+                    std::fprintf(pc_file, "d %c %08x\n", soc->dbus_we ? 'w' : 'r', soc->dbus_adr << 2);
+                if (soc->ibus_cyc && soc->ibus_stb && soc->ibus_ack)
+                    std::fprintf(pc_file, "f %08x\n", soc->ibus_adr << 2);
             }
         }
         if (cycle == 8) top->sys_rst = 0;
@@ -136,6 +173,7 @@ int main(int argc, char** argv) {
         top->eval();
     }
     top->final();
+    if (pc_file) std::fclose(pc_file);
     if (profile) {
         FILE* f = std::fopen(profile, "w");
         if (!f) {

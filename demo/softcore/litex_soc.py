@@ -240,6 +240,10 @@ def main():
         f.write("`verilator_config\n")
         for name in arrays:
             f.write(f"public_flat_rw -module \"sim\" -var \"{name}\"\n")
+        # The CPU's buses, read by the driver's per-call profile.
+        for bus in ("ibus", "dbus"):
+            for sig in ("adr", "cyc", "stb", "we", "ack"):
+                f.write(f"public_flat_rd -module \"sim\" -var \"{bus}_{sig}\"\n")
     with open(os.path.join(out, "main_ram.h"), "w") as f:
         f.write("// Written by demo/softcore/litex_soc.py: the main RAM's memory arrays.\n"
                 f"#define RAYMIP_RAM_BANKS {len(arrays)}\n")

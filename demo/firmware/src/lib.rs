@@ -9,7 +9,8 @@
 //! (it reads the stack pointer and writes/reads memory below it), the
 //! `#[unsafe(no_mangle)]` attribute of the [`probes`] wrappers (stable
 //! symbol names for the QEMU traces) and, on VexRiscv, the jump over the
-//! alignment padding that places the timed loops of [`counters`].
+//! alignment padding that places the timed loops of [`counters`] and the
+//! byte loads that put a timed call's input in the data cache.
 #![no_std]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]
