@@ -712,8 +712,6 @@ mod tests {
     /// `TexCoord::MAX` whose second step passes it (only a saturating add
     /// keeps it there; a wrapping one lands at the far left) give the same
     /// texel as two probes around `u = 40`, and not the first column's.
-    /// The start's low bits are 0, as are a coordinate's near `0` whose
-    /// top two bits agree.
     #[cfg(feature = "trilinear")]
     #[test]
     fn probes_past_the_largest_coordinate_stay_on_the_last_column() {
