@@ -420,7 +420,16 @@ impl RayDiffFootprint {
         // |a|² of each axis: |u|, |v| < 1.5·2³⁰, so the sum is below 2⁶³.
         let len2 =
             |[u, v]: [i32; 2]| (i64::from(u) * i64::from(u) + i64::from(v) * i64::from(v)) as u64;
-        let l = half_log2_max([len2(self.m[0]), len2(self.m[1])], self.e);
+        let s = [len2(self.m[0]), len2(self.m[1])];
+        // Both axes at one exponent (every footprint of a state's pair):
+        // the larger square is the larger key of `half_log2_max`, which
+        // rises with the square at a fixed exponent, so one key is made
+        // (bit for bit the same value).
+        let l = if self.e[0] == self.e[1] {
+            half_log2_max([s[0].max(s[1]), 0], self.e)
+        } else {
+            half_log2_max(s, self.e)
+        };
         // I16F16 → I8F8, rounded, saturating.
         let r = (l + 0x80) >> 8;
         Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
@@ -595,8 +604,40 @@ mod tests {
         [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64].prop_filter("non-zero", |v| dot(*v, *v) > 1e-4)
     }
 
+    /// Footprint mantissas as the footprint makes them (`|·| < 1.5·2³⁰`),
+    /// zero and small ones as often as large.
+    fn fp_mantissa() -> impl Strategy<Value = i32> {
+        prop_oneof![
+            Just(0),
+            Just(-1),
+            (any::<i32>(), 1u32..32).prop_map(|(m, s)| m >> s)
+        ]
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5_000))]
+
+        /// The lod of any footprint, its axes at one exponent (as every
+        /// state's footprint) or at two, is `log2` of the longer axis in
+        /// f64 within LOD_ROUNDING_ERROR (clamped to the Lod range), and
+        /// `Lod::MIN` for a zero footprint.
+        #[test]
+        fn lod_is_the_longer_axis(m in [fp_mantissa(), fp_mantissa(), fp_mantissa(), fp_mantissa()],
+                                  e in -300i32..300, de in prop_oneof![Just(0), -70i32..70]) {
+            let fp = RayDiffFootprint { m: [[m[0], m[1]], [m[2], m[3]]], e: [e, e + de] };
+            let len = |a: usize| {
+                f64::from(fp.m[a][0]).hypot(f64::from(fp.m[a][1])) * f64::from(fp.e[a]).exp2()
+            };
+            let top = len(0).max(len(1));
+            let got = fp.lod();
+            if top == 0.0 {
+                prop_assert_eq!(got, Lod::MIN);
+            } else {
+                let want = top.log2().clamp(-128.0, 127.99609375);
+                let got = got.to_num::<f64>();
+                prop_assert!((got - want).abs() <= LOD_ROUNDING_ERROR, "{} vs {}", got, want);
+            }
+        }
 
         /// Set-up, footprint and lod against f64 over the documented range:
         /// slivers to 2²⁰:1 (and unit UVs on them: anisotropy 2²⁰), u and v

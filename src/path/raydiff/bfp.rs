@@ -123,8 +123,9 @@ impl Bfp3 {
 #[inline(always)]
 #[must_use]
 pub(crate) fn normalise<const N: usize>(m: [[i32; 3]; N], e: i32) -> ([[i32; 3]; N], i32) {
-    let s = shift_of(m.iter().fold(0, |o, v| o | magnitudes(*v)));
-    let zero = is_zero(m);
+    let o = m.iter().fold(0, |o, v| o | sign_changes(*v));
+    let s = shift_of(o);
+    let zero = o == 0;
     // Bit for bit the same; the cheaper per target (the Cortex-M4
     // subtracts conditionally; on RV32 a pushed exponent costs more).
     #[cfg(target_arch = "arm")]
@@ -139,39 +140,46 @@ pub(crate) fn normalise<const N: usize>(m: [[i32; 3]; N], e: i32) -> ([[i32; 3];
 #[inline(always)]
 #[must_use]
 fn normalise_in_range<const N: usize>(m: [[i32; 3]; N], e: i32) -> ([[i32; 3]; N], i32) {
-    let s = shift_of(m.iter().fold(0, |o, v| o | magnitudes(*v)));
-    let e = if is_zero(m) { EXP_MIN } else { e - s };
+    let o = m.iter().fold(0, |o, v| o | sign_changes(*v));
+    let s = shift_of(o);
+    let e = if o == 0 { EXP_MIN } else { e - s };
     (m.map(|v| v.map(|x| x << s)), e)
 }
 
-/// True when every mantissa is zero.
+/// `x ^ (x << 1)`: bit `i` is set where bits `i` and `i − 1` of `x`
+/// differ, so its leading zeros are one less than the leading sign bits
+/// of `x` (31 for `−1`), and it is zero exactly for `x = 0`.
 #[inline(always)]
-fn is_zero<const N: usize>(m: [[i32; 3]; N]) -> bool {
-    m.iter().fold(0, |z, v| z | v[0] | v[1] | v[2]) == 0
+fn sign_change(x: i32) -> u32 {
+    (x ^ (x << 1)) as u32
 }
 
-/// The OR of the magnitudes of `m` (less one for negatives): its leading
-/// zeros are those of the largest.
+/// The OR of [`sign_change`] over the mantissas `m`: its leading zeros are
+/// one less than the fewest leading sign bits of a non-zero mantissa (the
+/// largest magnitude's), and it is zero exactly when every mantissa is
+/// zero, so one value gives both the shift ([`shift_of`]) and the zero
+/// test.
 #[inline(always)]
-fn magnitudes(m: [i32; 3]) -> i32 {
-    (m[0] ^ (m[0] >> 31)) | (m[1] ^ (m[1] >> 31)) | (m[2] ^ (m[2] >> 31))
+fn sign_changes(m: [i32; 3]) -> u32 {
+    sign_change(m[0]) | sign_change(m[1]) | sign_change(m[2])
 }
 
-/// The left shift that gives the OR of magnitudes `o` one leading zero:
-/// `clz((o << 1) | 1) = clz(o) − 1` ∈ [0, 31] (zero shifts by 31).
+/// The left shift that gives the largest magnitude of mantissas whose
+/// [`sign_changes`] are `o` one leading zero (one sign bit):
+/// `clz(o) ∈ [0, 31]` for any non-zero mantissa, 31 when all are zero
+/// (`| 1`; they stay zero).
 #[inline(always)]
-fn shift_of(o: i32) -> i32 {
-    clz32(((o as u32) << 1) | 1) as i32
+fn shift_of(o: u32) -> i32 {
+    clz32(o | 1) as i32
 }
 
 /// The left shift that normalises the mantissas `m`: the largest
-/// magnitude (less one for negatives) gets one leading zero,
-/// `clz((o << 1) | 1) = clz(o) − 1` ∈ [0, 31] (a zero vector shifts by 31
-/// and stays zero).
+/// magnitude gets one leading zero (`m ^ (m >> 31)` below `2³¹`, at least
+/// `2³⁰`), 31 for a zero vector (which stays zero).
 #[inline(always)]
 #[must_use]
 pub(crate) fn norm_shift(m: [i32; 3]) -> i32 {
-    shift_of(magnitudes(m))
+    shift_of(sign_changes(m))
 }
 
 /// The left shift that normalises the scalars `a`, `b` together (the
@@ -179,7 +187,7 @@ pub(crate) fn norm_shift(m: [i32; 3]) -> i32 {
 #[inline(always)]
 #[must_use]
 pub(crate) fn norm_shift2(a: i32, b: i32) -> i32 {
-    shift_of((a ^ (a >> 31)) | (b ^ (b >> 31)))
+    shift_of(sign_change(a) | sign_change(b))
 }
 
 /// Two block-floating-point 3-vectors with one exponent (the `x` and `y`

@@ -546,19 +546,24 @@ impl RayDiff {
         // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
         // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
         // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
-        // sn ∈ [0, 31]): the shifts 1 + max(0, gap) ≤ 20 and
-        // max(0, −gap) ≤ 31 need no clamp.
+        // sn ∈ [0, 31]): the shift 1 + max(0, gap) ≤ 20 needs no clamp.
+        // The term's shift to er, st = max(0, −gap) ≤ sn, is taken from
+        // qm = qn·2^sn before the product: qm >> st = qn << min(sn, lz)
+        // drops only zero bits, and ⌊⌊x⌋/2^st⌋ = ⌊x/2^st⌋, so
+        // mulhi(qn << min(sn, lz), w) is mulhi(qm, w) >> st bit for bit,
+        // with one shift per axis instead of one per component.
         let gap = lz as i32 - sn;
-        let (sq, st) = (1 + gap.max(0), (-gap).max(0));
+        let sq = 1 + gap.max(0);
+        let sm = sn.min(lz as i32);
         let r: [[i32; 3]; 2] = core::array::from_fn(|a| {
-            let qm = qn[a] << sn;
+            let qm = qn[a] << sm;
             core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // (non-unit `D`, `n`) reach ±2³¹; the result is then
                 // garbage, but no panic.
                 q[a][k]
                     .wrapping_shr(sq as u32)
-                    .wrapping_sub(mulhi(qm, w[k]).wrapping_shr(st as u32))
+                    .wrapping_sub(mulhi(qm, w[k]))
             })
         });
         self.set_pair(0, Bfp3x2::new(r, eq + sq));
@@ -633,9 +638,15 @@ impl RayDiff {
         // 1/cos θₜ: cos θₜ = x·2^(−30−lz), x = ct·2^lz ∈ [2³¹, 2³²), so
         // 1/cos θₜ = recip(x)·2^(lz−32).
         let lz = (ct as u32).leading_zeros();
-        let inv_ct = Scalar::new(recip((ct as u32) << lz) as i32, lz as i32 - 32);
-        // c = η − η²·cos θᵢ/cos θₜ.
-        let coef = eta_s.sub(eta_s.mul(eta_s).mul(Scalar::new(ci, -30)).mul(inv_ct));
+        let inv_ct = Scalar::factor(recip((ct as u32) << lz) as i32, lz as i32 - 32);
+        // c = η − η²·cos θᵢ/cos θₜ (the factors' zero exponents do not
+        // matter: see `Scalar::factor`).
+        let coef = eta_s.sub(
+            eta_s
+                .mul_factor(eta_s)
+                .mul_factor(Scalar::factor(ci, -30))
+                .mul(inv_ct),
+        );
         let dd = self.pair(1);
         let nn = [dn[0].0, dn[1].0];
         // −∂cos θᵢ = ∂D·n + D·∂n with ∂D and ∂n of both axes at one
@@ -716,16 +727,38 @@ impl Scalar {
     /// [`EXP_MIN`], no clamp.
     #[inline(always)]
     fn new(m: i32, e: i32) -> Self {
+        let f = Self::factor(m, e);
+        Self {
+            m: f.m,
+            e: if m == 0 { EXP_MIN } else { f.e },
+        }
+    }
+
+    /// [`Scalar::new`] without the zero case (a zero `m` keeps `e − 31`),
+    /// for a value used only as a factor of [`Scalar::mul`] or
+    /// [`Scalar::mul_factor`]: a zero factor makes a zero product
+    /// whatever its exponent (and two non-zero normalised factors never
+    /// do, `|mulhi| ≥ 2²⁸`), so the product is bit for bit the one of
+    /// [`Scalar::new`]'s factor.
+    #[inline(always)]
+    fn factor(m: i32, e: i32) -> Self {
         let s = norm_shift([m, 0, 0]);
         Self {
             m: m << s,
-            e: if m == 0 { EXP_MIN } else { e - s },
+            e: e - s,
         }
     }
 
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         Self::new(mulhi(self.m, o.m), self.e + o.e + 32)
+    }
+
+    /// [`Scalar::mul`] made as a [`Scalar::factor`]: for a product used
+    /// only as a factor of another.
+    #[inline(always)]
+    fn mul_factor(self, o: Self) -> Self {
+        Self::factor(mulhi(self.m, o.m), self.e + o.e + 32)
     }
 
     #[inline(always)]
@@ -1061,6 +1094,30 @@ pub(crate) mod tests {
                 let b = Bfp3::new([m as i32, 0, 0], e);
                 prop_assert_eq!((a.m, a.e), (b.m[0], b.e));
             }
+        }
+
+        /// A factor's exponent does not matter when it is zero: products
+        /// of factors (`factor`, `mul_factor`) equal those of `new` and
+        /// `mul` bit for bit, zeros (at EXP_MIN) among them, and a factor
+        /// is `new`'s value wherever that is not zero.
+        #[test]
+        fn factors_multiply_as_scalars(a in prop_oneof![Just(0), Just(-1), any::<i32>()],
+                                       b in prop_oneof![Just(0), Just(1), any::<i32>()],
+                                       c in prop_oneof![Just(0), any::<i32>()],
+                                       ea in -200i32..200, eb in -200i32..200, ec in -200i32..200) {
+            let (fa, na) = (Scalar::factor(a, ea), Scalar::new(a, ea));
+            let (fb, nb) = (Scalar::factor(b, eb), Scalar::new(b, eb));
+            let nc = Scalar::new(c, ec);
+            prop_assert_eq!(fa.m, na.m);
+            if a != 0 {
+                prop_assert_eq!(fa.e, na.e);
+            }
+            let want = na.mul(nb).mul(nc);
+            let got = fa.mul_factor(fb).mul(nc);
+            prop_assert_eq!((got.m, got.e), (want.m, want.e));
+            let got = nc.mul(fa.mul_factor(fb));
+            prop_assert_eq!((got.m, got.e), (want.m, want.e));
+            prop_assert_eq!(fa.mul_factor(nb).m, na.mul(nb).m);
         }
 
         /// The transfer within `TRANSFER_ERROR·(|∂O| + t|∂D|)(1 + 1/|D·n|)`
