@@ -495,7 +495,9 @@ mod tests {
     }
 
     /// The split RGB565 table gives the bit-replicated expansion of
-    /// every 16-bit value.
+    /// every 16-bit value, and each part alone that of the texel whose
+    /// other byte is 0 (alpha 255 in both: `Image` reads the expansion of
+    /// 0 past its bytes as `RGB565_SPLIT[0][0]`).
     #[test]
     fn rgb565_split_table_equals_decode() {
         for raw in 0..=u16::MAX {
@@ -506,6 +508,11 @@ mod tests {
                 want,
                 "{raw:#06x}"
             );
+        }
+        for b in 0..=255u32 {
+            let [low, high] = RGB565_SPLIT.map(|t| t[b as usize]);
+            assert_eq!(low, TexelFormat::Rgb565.decode(b), "{b}");
+            assert_eq!(high, TexelFormat::Rgb565.decode(b << 8), "{b}");
         }
     }
 
