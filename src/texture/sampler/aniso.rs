@@ -592,6 +592,26 @@ mod tests {
         assert!(!Sampler::<_, Cfg<AnyAxis>>::new(p).wraps_in_words());
     }
 
+    /// The 64×32 pyramid of 7 levels the sampling tests read: level 0
+    /// random from `r`, the others generated from it. Returns the sides and
+    /// level count, the geometry and the texels.
+    #[cfg(feature = "trilinear")]
+    fn random_pyramid(
+        r: &mut crate::rng::XorShift64,
+    ) -> (
+        (u32, u32, u8),
+        crate::texture::storage::mip::Geometry,
+        std::vec::Vec<u32>,
+    ) {
+        use crate::texture::storage::mip::{Geometry, generate, pyramid_len};
+        let (w, h, levels) = (64u32, 32u32, 7u8);
+        let g = Geometry::new(w, h, levels).unwrap();
+        let mut buf = std::vec![0u32; pyramid_len(w, h, levels)];
+        r.fill_u32(&mut buf[..(w * h) as usize]);
+        generate(&g, &mut buf).unwrap();
+        ((w, h, levels), g, buf)
+    }
+
     /// `sample_aniso` against the f64 reference's anisotropic filter (the
     /// mean of exact trilinear probes by pbrt's rule, over the same
     /// levels): a random 64×32 texture, every cap `1..=16`, footprints of
@@ -608,15 +628,11 @@ mod tests {
     fn sample_aniso_matches_the_f64_reference() {
         use crate::rng::XorShift64;
         use crate::texture::address::AnyAxis;
-        use crate::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
+        use crate::texture::storage::mip::Pyramid;
         use crate::texture::{AddressMode, Cfg, FetchStats, Mode, SamplerDesc, SamplerState};
         use raymip_reference::sampler as reference;
-        let (w, h, levels) = (64u32, 32u32, 7u8);
-        let g = Geometry::new(w, h, levels).unwrap();
-        let mut buf = std::vec![0u32; pyramid_len(w, h, levels)];
         let mut r = XorShift64(0x5A11_A115_0000_0037);
-        r.fill_u32(&mut buf[..(w * h) as usize]);
-        generate(&g, &mut buf).unwrap();
+        let ((w, h, levels), g, buf) = random_pyramid(&mut r);
         let tex = reference::Texture::from_rgba8_levels(w, h, levels, &buf);
         let p = Pyramid::new(g, &buf).unwrap();
         let mode = reference::Mode::from_index(Mode::Trilinear as u8).unwrap();
@@ -717,13 +733,9 @@ mod tests {
     fn probes_past_the_largest_coordinate_stay_on_the_last_column() {
         use crate::rng::XorShift64;
         use crate::texture::address::AnyAxis;
-        use crate::texture::storage::mip::{Geometry, Pyramid, generate, pyramid_len};
+        use crate::texture::storage::mip::Pyramid;
         use crate::texture::{AddressMode, Cfg, SamplerDesc, SamplerState};
-        let (w, h, levels) = (64u32, 32u32, 7u8);
-        let g = Geometry::new(w, h, levels).unwrap();
-        let mut buf = std::vec![0u32; pyramid_len(w, h, levels)];
-        XorShift64(0xC1A3_7ED6_E000_0037).fill_u32(&mut buf[..(w * h) as usize]);
-        generate(&g, &mut buf).unwrap();
+        let ((w, h, _), g, buf) = random_pyramid(&mut XorShift64(0xC1A3_7ED6_E000_0037));
         let p = Pyramid::new(g, &buf).unwrap();
         let state = SamplerState::new(SamplerDesc {
             address_u: AddressMode::ClampToEdge,
