@@ -108,6 +108,7 @@ pub fn descriptor_block(
 mod tests {
     extern crate std;
     use super::*;
+    use crate::texture::storage::level::LevelView;
     use std::vec;
 
     /// The I4F28 operand, read back as a coordinate, selects the same taps
@@ -159,6 +160,117 @@ mod tests {
         assert_eq!(c, 15 | 3 << 4 | 3 << 8 | 1 << 10);
         assert!(!addressable(AddressMode::ClampToBorder));
         assert!(addressable(AddressMode::MirrorOnce));
+    }
+
+    /// `tex.lvl`'s operand as documented: `kx | ky << 4 | mu << 8 | mv <<
+    /// 10`, sides cut to 4 bits (the expected words written out by hand
+    /// from that layout).
+    #[test]
+    fn level_config_words_follow_the_layout() {
+        use AddressMode::{ClampToEdge, Mirror, MirrorOnce, Wrap};
+        // kx 5, ky 9, u clamped to the edge (2), v wrapped (0).
+        assert_eq!(level_config(5, 9, ClampToEdge, Wrap), 0x0000_0295);
+        // kx 0x1A and ky 0x27 cut to 0xA and 0x7; u wrapped, v mirrored.
+        assert_eq!(level_config(0x1A, 0x27, Wrap, Mirror), 0x0000_047A);
+        assert_eq!(level_config(0, 0, Wrap, Wrap), 0);
+        assert_eq!(level_config(15, 15, MirrorOnce, MirrorOnce), 0x0000_0FFF);
+    }
+
+    /// Word 1 as documented: `lo | hi << 12 | mu << 24 | mv << 26`, the
+    /// window's bounds cut to 12 bits (the expected words written out by
+    /// hand from that layout).
+    #[test]
+    fn window_words_follow_the_layout() {
+        use AddressMode::{ClampToEdge, Mirror, MirrorOnce, Wrap};
+        assert_eq!(window_word(0x123, 0xABC, Mirror, MirrorOnce), 0x0DAB_C123);
+        // Bounds above 12 bits keep their low 12.
+        assert_eq!(
+            window_word(0x1_F123, 0x7_0ABC, Mirror, MirrorOnce),
+            0x0DAB_C123
+        );
+        assert_eq!(window_word(0, 3840, Wrap, Wrap), 0x00F0_0000);
+        assert_eq!(window_word(3840, 3840, ClampToEdge, Wrap), 0x02F0_0F00);
+        assert_eq!(window_word(1, 0, Wrap, ClampToEdge), 0x0800_0001);
+        assert_eq!(window_word(0, 0, Wrap, Wrap), 0);
+    }
+
+    /// The wrap operand keeps no integer part (bits 31..28 are 0), however
+    /// far outside `[0, 1)` the coordinate is; the clamping modes keep
+    /// `⌊c⌋` clamped to `[−4, 3]`.
+    #[test]
+    fn i4f28_integer_part_per_mode() {
+        let one = 1i64 << 32;
+        for c in [2 * one + one / 2, -3 * one + one / 4, 7 * one] {
+            let frac = ((c as u32) >> 4) & 0x0FFF_FFFF;
+            let q = coord_i4f28(AddressMode::Wrap, TexCoord::from_bits(c));
+            assert_eq!(q, frac, "{c:#x}");
+        }
+        // 2.5 clamped to the edge: integer part 2, fraction 0.5.
+        let q = coord_i4f28(
+            AddressMode::ClampToEdge,
+            TexCoord::from_bits(2 * one + one / 2),
+        );
+        assert_eq!(q, 0x2800_0000);
+    }
+
+    /// One `w × h` level (every level index reads it) over `texels`.
+    fn one_level(texels: &[u32], w: u32, h: u32) -> Pow2Levels<'_> {
+        Pow2Levels::from_fn(|_| LevelView::new(texels, w, h)).unwrap()
+    }
+
+    /// `None` when either address mode is the border colour or the window
+    /// is out of `0 ≤ lo ≤ hi ≤ 3840`, each alone with the rest valid;
+    /// a block at the window's limits.
+    #[test]
+    fn descriptor_block_rejects_each_invalid_field() {
+        use AddressMode::{ClampToBorder, Wrap};
+        let texels = vec![7u32; 32];
+        let levels = one_level(&texels, 8, 4);
+        let ram = (texels.as_ptr().expose_provenance(), 4 * texels.len());
+        let block = |window, modes| descriptor_block(&levels, 0, window, modes, ram);
+        assert!(block((0, 3840), (Wrap, Wrap)).is_some());
+        assert!(block((3840, 3840), (Wrap, Wrap)).is_some());
+        assert_eq!(block((0, 3840), (Wrap, ClampToBorder)), None);
+        assert_eq!(block((0, 3840), (ClampToBorder, Wrap)), None);
+        assert_eq!(block((-1, 3840), (Wrap, Wrap)), None);
+        assert_eq!(block((257, 256), (Wrap, Wrap)), None);
+        assert_eq!(block((0, 3841), (Wrap, Wrap)), None);
+    }
+
+    /// A level's texels must end inside the RAM: an 8×4 level (128 bytes)
+    /// fits 128 bytes and not 124.
+    #[test]
+    fn descriptor_block_needs_the_whole_level_in_the_ram() {
+        use AddressMode::Wrap;
+        let texels = vec![7u32; 32];
+        let levels = one_level(&texels, 8, 4);
+        let base = texels.as_ptr().expose_provenance();
+        let block = |bytes| descriptor_block(&levels, 0, (0, 0), (Wrap, Wrap), (base, bytes));
+        // Bias 0, window [0, 0] both wrapped, every level at word 0 with
+        // kx 3, ky 2: `0 | 3 << 24 | 2 << 28`.
+        let mut want = [0x2300_0000; BLOCK_WORDS];
+        want[0] = 0;
+        want[1] = 0;
+        assert_eq!(block(128), Some(want));
+        assert_eq!(block(124), None);
+    }
+
+    /// A level's word offset must be below 2²⁴ (the 24 bits of its field):
+    /// a 1×1 level at byte `2²⁶ − 4` of the RAM is word `0xFF_FFFF`, at
+    /// byte `2²⁶` it has no descriptor.
+    #[test]
+    fn descriptor_block_offsets_fit_24_bits() {
+        use AddressMode::Wrap;
+        let texels = vec![7u32; 1];
+        let levels = one_level(&texels, 1, 1);
+        let at = texels.as_ptr().expose_provenance();
+        assert!(at >= 1 << 26);
+        let block = |start: usize| {
+            descriptor_block(&levels, 0, (0, 0), (Wrap, Wrap), (at - start, 1 << 27))
+        };
+        let b = block((1 << 26) - 4).unwrap();
+        assert!(b[2..].iter().all(|&w| w == 0x00FF_FFFF));
+        assert_eq!(block(1 << 26), None);
     }
 
     /// A sampler's block ([`Sampler::texture_unit_block`](crate::texture::Sampler::texture_unit_block))
