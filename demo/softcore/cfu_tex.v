@@ -49,16 +49,19 @@
 //             words, src/texture/coproc.rs writes them):
 //               word 0: the lod bias (I8F8 bits, sign-extended),
 //               word 1: lo[11:0] | hi[23:12] | mode_u[25:24] | mode_v[27:26]
-//                       (the lod window, I8F8 bits in [0, 3840]; modes as
-//                       tex.lvl's),
+//                       | valid[28] (the lod window, I8F8 bits in
+//                       [0, 3840]; modes as tex.lvl's; valid set in every
+//                       block the firmware makes, clear in its empty one),
 //               word 2 + l, l = 0 … 16: level l: the word offset of its
 //                       texel (0, 0) from RAM_BASE [23:0] | kx[27:24] |
 //                       ky[31:28];
 //             rs2 = a lod (I8F8 bits, sign-extended). rd = 1 when the
-//             block lies in the RAM (word-aligned), else 0 (and nothing
-//             else happens; always 0 with HAS_RAM = 0). Then, in the background, the unit reads the
-//             window, computes bits = min(max(lod + bias, lo), hi), and
-//             reads the descriptors of levels bits >> 8 and bits >> 8 + 1.
+//             block lies in the RAM (word-aligned) and word 1's valid bit
+//             is set, else 0 (and nothing is selected; always 0 with
+//             HAS_RAM = 0). The unit answers once it has read words 0 and
+//             1; then, in the background, it computes
+//             bits = min(max(lod + bias, lo), hi), and reads the
+//             descriptors of levels bits >> 8 and bits >> 8 + 1.
 //   funct7 2, funct3 2  tex.tri rd, rs1, rs2
 //             rs1 = u, rs2 = v as for tex.addr. rd = the trilinear sample:
 //             levels bits >> 8 and bits >> 8 + 1, each addressed as
@@ -85,9 +88,11 @@
 //
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
 // Pipelined for the clock (at most one multiply, one add or one index map
-// per stage): tex.lod, tex.bt, tex.lvl, tex.tap, tex.ram and tex.sel
-// answer one cycle later (rsp_valid registered; tex.bt and tex.sel go on
-// in the background), tex.bw and tex.addr five (A1 the shifted
+// per stage): tex.lod, tex.bt, tex.lvl, tex.tap, tex.ram and a tex.sel
+// of a block outside the RAM answer one cycle later (rsp_valid
+// registered; tex.bt goes on in the background), tex.sel of a block in
+// the RAM three (its words 0 and 1 read, plus the cycles mem_hold delays
+// the read; the rest of its reads go on in the background), tex.bw and tex.addr five (A1 the shifted
 // coordinates, A2 the scaled positions and weights, B1 the index maps, B2
 // the addresses and corner weights, then the answer), tex.log2pl five
 // (tex_log2pl.v with PIPE = 1), tex.blend three (the two level products,
@@ -509,14 +514,18 @@ module Cfu #(
         if (c_v && c_tag == AT_TMU) lv_v <= 1'b1;
 
         // tex.sel's reads: 1 the window's words (after the CPU's writes),
-        // 2 their data, 3 the lod clamped below, 4 clamped above, 5 the
-        // two levels' word addresses, 6 their words, 7 their data.
+        // 2 their data and the answer (word 1's valid bit; an invalid
+        // block ends here), 3 the lod clamped below, 4 clamped above, 5
+        // the two levels' word addresses, 6 their words, 7 their data.
         case (sq)
             3'd1: if (sq_go) sq <= 3'd2;
             3'd2: begin
-                swin0 <= dat_a[17:0];
-                swin1 <= dat_b[27:0];
-                sq    <= 3'd3;
+                pend                  <= 1'b0;
+                rsp_valid             <= 1'b1;
+                rsp_payload_outputs_0 <= {31'd0, dat_b[28]};
+                swin0                 <= dat_a[17:0];
+                swin1                 <= dat_b[27:0];
+                sq                    <= dat_b[28] ? 3'd3 : 3'd0;
             end
             3'd3: begin
                 swmax <= wmax;
@@ -650,13 +659,14 @@ module Cfu #(
                 case (funct3)
                     3'd0: rsp_payload_outputs_0 <= HAS_RAM != 0 ? RAM_BASE | RAM_LOG2 : 32'd0;
                     3'd1: begin
-                        rsp_payload_outputs_0 <= {31'd0, blk_ok};
                         if (blk_ok) begin
-                            sp   <= a;
-                            ra   <= a;
-                            rb   <= a + 32'd4;
-                            slod <= b[17:0];
-                            sq   <= 3'd1;
+                            rsp_valid <= 1'b0;
+                            pend      <= 1'b1;
+                            sp        <= a;
+                            ra        <= a;
+                            rb        <= a + 32'd4;
+                            slod      <= b[17:0];
+                            sq        <= 3'd1;
                         end
                     end
                     3'd2, 3'd3: begin

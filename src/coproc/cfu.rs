@@ -158,13 +158,15 @@ pub fn ram() -> (usize, usize) {
     ((r & !31) as usize, 1usize << (r & 31))
 }
 
-/// A sampler's descriptor block for the texture unit, or none (then
-/// [`select`](Self::select) is always `false` and the sampler samples in
-/// software or through the addressing instructions).
+/// A sampler's descriptor block for the texture unit, or none: a block of
+/// zeros, without [`BLOCK_VALID`](super::BLOCK_VALID), which `tex.sel`
+/// refuses (then [`select`](Self::select) is always `false` and the
+/// sampler samples in software or through the addressing instructions).
+/// The unit checks the valid bit while it reads the block, so a sample
+/// loads no flag of the sampler's.
 #[derive(Clone, Copy, Debug)]
 pub struct TextureUnit {
     block: [u32; BLOCK_WORDS],
-    ok: bool,
 }
 
 impl TextureUnit {
@@ -173,24 +175,20 @@ impl TextureUnit {
     #[must_use]
     pub const fn new(block: Option<[u32; BLOCK_WORDS]>) -> Self {
         match block {
-            Some(block) => Self { block, ok: true },
+            Some(block) => Self { block },
             None => Self {
                 block: [0; BLOCK_WORDS],
-                ok: false,
             },
         }
     }
 
     /// `tex.sel`: selects this block and `lod` (I8F8, through the block's
     /// window) for the next [`trilinear`] or [`bilinear`]; `false` (and
-    /// nothing selected) when there is no block or the unit's RAM does not
-    /// hold this one (the sampler is elsewhere).
+    /// nothing selected) when there is no block (no valid bit) or the
+    /// unit's RAM does not hold this one (the sampler is elsewhere).
     #[inline(always)]
     #[must_use]
     pub fn select(&self, lod: Lod) -> bool {
-        if !self.ok {
-            return false;
-        }
         let r: u32;
         // SAFETY: one custom-0 R-type instruction (module docs): the unit
         // reads the block `self.block` (borrowed for this call) and writes

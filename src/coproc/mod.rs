@@ -35,7 +35,7 @@
 //! | `tex.addr` | [`ADDRESSING`] | [`ADDR`] | [`coord_i4f28`](crate::texture::coproc::coord_i4f28) of `u` | of `v` | address of `t00`; latches the weights and the other taps |
 //! | `tex.tap` | [`ADDRESSING`] | [`TAP10`], [`TAP01`], [`TAP11`] | — | — | address of `t10`, `t01`, `t11` |
 //! | `tex.ram` | [`TEXTURE_UNIT`] | [`RAM`] | — | — | the RAM the texture unit reads: its base address `\|` log2 of its bytes |
-//! | `tex.sel` | [`TEXTURE_UNIT`] | [`SEL`] | address of a [`descriptor_block`](crate::texture::coproc::descriptor_block) | a lod (I8F8 bits) | 1 when the block is in that RAM, else 0; reads the block's window and levels |
+//! | `tex.sel` | [`TEXTURE_UNIT`] | [`SEL`] | address of a [`descriptor_block`](crate::texture::coproc::descriptor_block) | a lod (I8F8 bits) | 1 when the block is in that RAM and valid ([`BLOCK_VALID`]), else 0; reads the block's window and levels |
 //! | `tex.tri` | [`TEXTURE_UNIT`] | [`TRI`] | [`coord_i4f28`](crate::texture::coproc::coord_i4f28) of `u` | of `v` | the trilinear sample at the selected lod |
 //! | `tex.bil` | [`TEXTURE_UNIT`] | [`BIL`] | [`coord_i4f28`](crate::texture::coproc::coord_i4f28) of `u` | of `v` | the bilinear sample of the nearest level |
 //!
@@ -52,8 +52,11 @@
 //! block of [`BLOCK_WORDS`] words ([`descriptor_block`](crate::texture::coproc::descriptor_block)) in that RAM, and
 //! a sample is `tex.sel` (the block and the lod) then `tex.tri` or
 //! `tex.bil` (the coordinates). Word 0 is the lod bias, word 1 the lod
-//! window and the address modes ([`window_word`](crate::texture::coproc::window_word)), words `2 + l` the
-//! levels `l = 0 … 16` ([`level_word`]).
+//! window and the address modes ([`window_word`](crate::texture::coproc::window_word)) and the valid bit
+//! [`BLOCK_VALID`], words `2 + l` the levels `l = 0 … 16` ([`level_word`]).
+//! A block without the valid bit (all zeros: a sampler without one) is
+//! refused by `tex.sel` like a block outside the RAM, so the firmware
+//! needs no flag of its own beside the block.
 
 #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
 pub mod cfu;
@@ -99,6 +102,10 @@ pub const TRI: u32 = 2;
 pub const BIL: u32 = 3;
 /// Words of a texture-unit descriptor block.
 pub const BLOCK_WORDS: usize = 19;
+/// Bit 28 of word 1 of a descriptor block: set in every block
+/// [`descriptor_block`](crate::texture::coproc::descriptor_block) makes;
+/// `tex.sel` answers 0 (and selects nothing) for a block without it.
+pub const BLOCK_VALID: u32 = 1 << 28;
 
 /// Word `2 + l` of a descriptor block: a level of `2^kx × 2^ky` texels
 /// (`kx, ky ≤ 15`) whose texel (0, 0) is word `offset < 2²⁴` of the

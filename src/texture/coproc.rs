@@ -6,7 +6,7 @@
 //! in [`crate::coproc`]; these functions are plain integer code, built on
 //! every target (the harness writes the RTL's test vectors with them).
 
-use crate::coproc::{BLOCK_WORDS, level_word};
+use crate::coproc::{BLOCK_VALID, BLOCK_WORDS, level_word};
 use crate::texture::address::AddressMode;
 use crate::texture::storage::level::Pow2Levels;
 use crate::units::TexCoord;
@@ -61,7 +61,8 @@ pub const fn window_word(lo: u32, hi: u32, mu: AddressMode, mv: AddressMode) -> 
     (lo & 0xFFF) | (hi & 0xFFF) << 12 | (mu as u32 & 3) << 24 | (mv as u32 & 3) << 26
 }
 
-/// The descriptor block of a sampler over the power-of-two levels
+/// The descriptor block (valid: word 1 is the [`window_word`] with
+/// [`BLOCK_VALID`]) of a sampler over the power-of-two levels
 /// `levels` (every level index `0 ..= 16`) with lod window `bias` and
 /// `[lo, hi]` (the sampler's I8F8 bits: `lod + bias` clamped to
 /// `0 ≤ lo ≤ hi ≤ 3840`) and address modes `mu`, `mv`, for a texture unit
@@ -85,7 +86,7 @@ pub fn descriptor_block(
     i16::try_from(bias).ok()?;
     let mut block = [0; BLOCK_WORDS];
     block[0] = bias as u32;
-    block[1] = window_word(lo as u32, hi as u32, mu, mv);
+    block[1] = window_word(lo as u32, hi as u32, mu, mv) | BLOCK_VALID;
     for (l, word) in block[2..].iter_mut().enumerate() {
         let view = levels.level(l);
         let (w, h) = (view.width(), view.height());
@@ -246,11 +247,11 @@ mod tests {
         let levels = one_level(&texels, 8, 4);
         let base = texels.as_ptr().expose_provenance();
         let block = |bytes| descriptor_block(&levels, 0, (0, 0), (Wrap, Wrap), (base, bytes));
-        // Bias 0, window [0, 0] both wrapped, every level at word 0 with
-        // kx 3, ky 2: `0 | 3 << 24 | 2 << 28`.
+        // Bias 0; window [0, 0] both wrapped, valid: bit 28; every level
+        // at word 0 with kx 3, ky 2: `0 | 3 << 24 | 2 << 28`.
         let mut want = [0x2300_0000; BLOCK_WORDS];
         want[0] = 0;
-        want[1] = 0;
+        want[1] = 0x1000_0000;
         assert_eq!(block(128), Some(want));
         assert_eq!(block(124), None);
     }
@@ -293,10 +294,8 @@ mod tests {
         // texels; both axes wrap.
         assert_eq!(block[2], level_word(0, 3, 2));
         assert_eq!(block[3], level_word(32, 2, 1));
-        assert_eq!(
-            block[1] >> 24,
-            AddressMode::Wrap as u32 | (AddressMode::Wrap as u32) << 2
-        );
+        // Valid (bit 28), both axes wrapped (mode 0 in bits 24..27).
+        assert_eq!(block[1] >> 24, 0x10);
         let fast = Sampler::<_, Cfg<Wrap, Wrap, Linear, Fast>>::new(p);
         assert_eq!(fast.texture_unit_block(ram), None);
         assert_eq!(Sampler::wrap(p).texture_unit_block((ram.0, 64)), None);

@@ -55,7 +55,8 @@
 //! into the RAM, then
 //! * `10` `tex.ram` (`RD` = the RAM's base `|` log2 of its bytes),
 //! * `11` `tex.sel` (`RS1` = the block's address, `RS2` = a lod, I8F8 bits
-//!   sign-extended; `RD = 1`; and blocks outside the RAM: `RD = 0`),
+//!   sign-extended; `RD = 1`; and blocks outside the RAM or without the
+//!   valid bit [`raymip::coproc::BLOCK_VALID`]: `RD = 0`),
 //! * `12` `tex.tri` / `13` `tex.bil` (`RS1`, `RS2` as for `tex.addr`;
 //!   `RD` = the sampler's `sample_trilinear` / `sample_bilinear`, the
 //!   software path) after each `tex.sel`,
@@ -66,7 +67,7 @@
 use std::fmt::Write as _;
 
 use fixed::types::U32F32;
-use raymip::coproc::BLOCK_WORDS;
+use raymip::coproc::{BLOCK_VALID, BLOCK_WORDS};
 use raymip::lod::table_lod;
 use raymip::log2::log2_u32f32;
 use raymip::rng::Rng;
@@ -459,6 +460,15 @@ fn texture_unit_vectors(out: &mut String) -> usize {
     ] {
         let _ = writeln!(out, "11 {a:08x} 00000000 00000000");
     }
+    // Blocks in the RAM without the valid bit: a sampler's empty block
+    // (zeros) and one whose word 1 has every other bit set.
+    for word1 in [0, !BLOCK_VALID] {
+        for k in 0..BLOCK_WORDS {
+            let b = if k == 1 { word1 } else { 0 };
+            let _ = writeln!(out, "400 {:08x} {b:08x} 00000000", block_at as usize + k);
+        }
+        let _ = writeln!(out, "11 {block_addr:08x} 00000100 00000000");
+    }
     made
 }
 
@@ -581,8 +591,8 @@ mod tests {
             out.lines()
                 .filter(|l| l.starts_with("11 ") && l.ends_with(" 00000000"))
                 .count(),
-            4,
-            "the blocks outside the RAM"
+            6,
+            "the blocks outside the RAM or without the valid bit"
         );
     }
 
