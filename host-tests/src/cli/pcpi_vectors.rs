@@ -460,16 +460,22 @@ fn texture_unit_vectors(out: &mut String) -> usize {
     ] {
         let _ = writeln!(out, "11 {a:08x} 00000000 00000000");
     }
-    // Blocks in the RAM without the valid bit: a sampler's empty block
-    // (zeros) and one whose word 1 has every other bit set.
+    invalid_block_vectors(out, block_at);
+    made
+}
+
+/// Blocks in the RAM at word `block_at` without the valid bit, which
+/// `tex.sel` refuses: a sampler's empty block (zeros) and one whose word 1
+/// has every other bit set.
+fn invalid_block_vectors(out: &mut String, block_at: u32) {
     for word1 in [0, !BLOCK_VALID] {
         for k in 0..BLOCK_WORDS {
             let b = if k == 1 { word1 } else { 0 };
             let _ = writeln!(out, "400 {:08x} {b:08x} 00000000", block_at as usize + k);
         }
-        let _ = writeln!(out, "11 {block_addr:08x} 00000100 00000000");
+        let addr = TB_RAM_BASE + 4 * block_at;
+        let _ = writeln!(out, "11 {addr:08x} 00000100 00000000");
     }
-    made
 }
 
 /// The whole vector file.
