@@ -116,7 +116,8 @@ fn api(u: &mut Unstructured) -> Result<()> {
         &cen,
         [Some(&l), Some(&r), None, Some(&cen)],
         u.arbitrary()?,
-    );
+    )
+    .normal_diffs();
     if let Ok(map) =
         raymip::lod::envmap::EnvMap::new(u.int_in_range(1..=1 << 15)?, u.int_in_range(1..=1 << 15)?)
     {

@@ -178,13 +178,14 @@ pub struct RayDiffTriangle {
 }
 
 /// The footprint of one hit in texel space: axis `a` (`x`, `y`) is
-/// `(w·∂u, h·∂v) = m[a]·2^e[a]` texels per pixel. [`RayDiffFootprint::lod`]
+/// `(w·∂u, h·∂v) = m[a]·2ᵉ` texels per pixel, both axes at one exponent
+/// (that of the state's `∂P` pair). [`RayDiffFootprint::lod`]
 /// takes its larger axis, [`RayDiffFootprint::axes`] gives both in
 /// normalized texture coordinates for anisotropic filtering.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct RayDiffFootprint {
     m: [[i32; 2]; 2],
-    e: [i32; 2],
+    e: i32,
 }
 
 /// A 62-bit soft float for the set-up: `m·2ᵉ`, `|m| ∈ [2⁶¹, 2⁶²)` or `m = 0`.
@@ -381,13 +382,13 @@ impl RayDiffTriangle {
             Kind::Degenerate => {
                 return RayDiffFootprint {
                     m: [[1 << 30, 0], [0, 1 << 30]],
-                    e: [crate::path::raydiff::EXP_MAX; 2],
+                    e: crate::path::raydiff::EXP_MAX,
                 };
             }
             Kind::FlatUv => {
                 return RayDiffFootprint {
                     m: [[0; 2]; 2],
-                    e: [EXP_MIN; 2],
+                    e: EXP_MIN,
                 };
             }
         }
@@ -400,10 +401,9 @@ impl RayDiffTriangle {
             let dot = |r: [i32; 3]| mulhi(r[0], m[0]) + mulhi(r[1], m[1]) + mulhi(r[2], m[2]);
             [dot(g[0]), dot(g[1])]
         };
-        let e = self.e + p.e + 32;
         RayDiffFootprint {
             m: [axis(p.m[0]), axis(p.m[1])],
-            e: [e, e],
+            e: self.e + p.e + 32,
         }
     }
 }
@@ -420,16 +420,8 @@ impl RayDiffFootprint {
         // |a|² of each axis: |u|, |v| < 1.5·2³⁰, so the sum is below 2⁶³.
         let len2 =
             |[u, v]: [i32; 2]| (i64::from(u) * i64::from(u) + i64::from(v) * i64::from(v)) as u64;
-        let s = [len2(self.m[0]), len2(self.m[1])];
-        // Both axes at one exponent (every footprint of a state's pair):
-        // the larger square is the larger key of `half_log2_max`, which
-        // rises with the square at a fixed exponent, so one key is made
-        // (bit for bit the same value).
-        let l = if self.e[0] == self.e[1] {
-            half_log2_max([s[0].max(s[1]), 0], self.e)
-        } else {
-            half_log2_max(s, self.e)
-        };
+        // Both axes at one exponent: the larger square is the longer axis.
+        let l = half_log2(len2(self.m[0]).max(len2(self.m[1])), self.e);
         // I16F16 → I8F8, rounded, saturating.
         let r = (l + 0x80) >> 8;
         Lod::from_bits(r.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16)
@@ -444,7 +436,7 @@ impl RayDiffFootprint {
     pub fn axes(&self, tri: &RayDiffTriangle) -> Footprint {
         let c = |a: usize, k: usize| {
             let (im, ie) = tri.inv[k];
-            texcoord(mulhi(self.m[a][k], im), self.e[a] + ie + 32)
+            texcoord(mulhi(self.m[a][k], im), self.e + ie + 32)
         };
         Footprint {
             x: [c(0, 0), c(0, 1)],
@@ -461,22 +453,32 @@ impl RayDiffFootprint {
 /// ray-differential lod.
 #[inline(always)]
 pub(crate) fn half_log2_max(s: [u64; 2], e: [i32; 2]) -> i32 {
-    // The key orders (log2 integer part, mantissa) as one u64: 2·e
-    // (clamped to [−2048, 2046], one `ssat`) plus the top bit's index,
-    // offset to stay positive, above the normalised mantissa. A zero
-    // square gets key 0 and never wins.
-    let key = |i: usize| -> u64 {
-        let (m, lz) = normalise64(s[i]);
-        let k = (2 * e[i].clamp(-1024, 1023) + 63 - lz as i32 + 4096) as u64;
-        if s[i] == 0 {
-            0
-        } else {
-            (k << 32) | u64::from(m)
-        }
-    };
-    let top = key(0).max(key(1));
+    half_log2_of_key(log_key(s[0], e[0]).max(log_key(s[1], e[1])))
+}
+
+/// [`half_log2_max`] of one length (`½·log2(s·4ᵉ)`, zero: `−2²⁷`): bit for
+/// bit `half_log2_max([s, 0], [e, e])`, as a zero square never wins.
+#[inline(always)]
+fn half_log2(s: u64, e: i32) -> i32 {
+    half_log2_of_key(log_key(s, e))
+}
+
+/// The key that orders squares `s·4ᵉ` (log2 integer part, mantissa) as
+/// one u64: `2·e` (clamped to `[−2048, 2046]`, one `ssat`) plus the top
+/// bit's index, offset to stay positive, above the normalised mantissa. A
+/// zero square gets key 0 and never wins.
+#[inline(always)]
+fn log_key(s: u64, e: i32) -> u64 {
+    let (m, lz) = normalise64(s);
+    let k = (2 * e.clamp(-1024, 1023) + 63 - lz as i32 + 4096) as u64;
+    if s == 0 { 0 } else { (k << 32) | u64::from(m) }
+}
+
+/// `½·log2` of the square whose [`log_key`] is `top`, in I16F16 bits.
+#[inline(always)]
+fn half_log2_of_key(top: u64) -> i32 {
     let (k, m) = ((top >> 32) as i32 - 4096, top as u32);
-    // k ∈ [−4096, 2109] (−4096: both zero): the I16F16 sum fits.
+    // k ∈ [−4096, 2109] (−4096: zero): the I16F16 sum fits.
     ((k << 16) + mantissa_log2(m) as i32) >> 1
 }
 
@@ -614,19 +616,23 @@ mod tests {
         ]
     }
 
+    /// Squares of any size, zero as often as not.
+    fn square() -> impl Strategy<Value = u64> {
+        prop_oneof![Just(0), (any::<u64>(), 0u32..64).prop_map(|(x, k)| x >> k)]
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5_000))]
 
-        /// The lod of any footprint, its axes at one exponent (as every
-        /// state's footprint) or at two, is `log2` of the longer axis in
-        /// f64 within LOD_ROUNDING_ERROR (clamped to the Lod range), and
-        /// `Lod::MIN` for a zero footprint.
+        /// The lod of any footprint (both axes at one exponent) is `log2`
+        /// of the longer axis in f64 within LOD_ROUNDING_ERROR (clamped to
+        /// the Lod range), and `Lod::MIN` for a zero footprint.
         #[test]
         fn lod_is_the_longer_axis(m in [fp_mantissa(), fp_mantissa(), fp_mantissa(), fp_mantissa()],
-                                  e in -300i32..300, de in prop_oneof![Just(0), -70i32..70]) {
-            let fp = RayDiffFootprint { m: [[m[0], m[1]], [m[2], m[3]]], e: [e, e + de] };
+                                  e in -300i32..300) {
+            let fp = RayDiffFootprint { m: [[m[0], m[1]], [m[2], m[3]]], e };
             let len = |a: usize| {
-                f64::from(fp.m[a][0]).hypot(f64::from(fp.m[a][1])) * f64::from(fp.e[a]).exp2()
+                f64::from(fp.m[a][0]).hypot(f64::from(fp.m[a][1])) * f64::from(fp.e).exp2()
             };
             let top = len(0).max(len(1));
             let got = fp.lod();
@@ -636,6 +642,30 @@ mod tests {
                 let want = top.log2().clamp(-128.0, 127.99609375);
                 let got = got.to_num::<f64>();
                 prop_assert!((got - want).abs() <= LOD_ROUNDING_ERROR, "{} vs {}", got, want);
+            }
+        }
+
+        /// `half_log2_max` of two squares at two exponents (the
+        /// environment map's two direction differentials) is half the f64
+        /// log2 of the larger within 2⁻¹⁴ + 2⁻¹⁶ (the table's error halved,
+        /// the truncations and the I16F16 step), `−2048` when both are zero,
+        /// and one length alone gives the same value as the pair with a
+        /// zero square.
+        #[test]
+        fn half_log2_of_the_larger_square(s in [square(), square()],
+                                          e in -300i32..300, de in prop_oneof![Just(0), -70i32..70]) {
+            let e2 = [e, e + de];
+            let got = f64::from(half_log2_max(s, e2)) / 65536.0;
+            let sq = |i: usize| s[i] as f64 * f64::from(2 * e2[i]).exp2();
+            let top = sq(0).max(sq(1));
+            if top == 0.0 {
+                prop_assert_eq!(got, -2048.0);
+            } else {
+                let want = 0.5 * top.log2();
+                prop_assert!((got - want).abs() <= 1.0 / 16_384.0 + 1.0 / 65_536.0, "{} vs {}", got, want);
+            }
+            for i in 0..2 {
+                prop_assert_eq!(half_log2(s[i], e2[i]), half_log2_max([s[i], 0], [e2[i], e2[1 - i]]));
             }
         }
 
@@ -694,7 +724,7 @@ mod tests {
             let rf::Footprint::Axes(want) = tr.footprint(px, py) else { unreachable!() };
             let texel = |a: [f64; 2]| [a[0] * f64::from(w), a[1] * f64::from(h)];
             let (wx, wy) = (texel(want[0]), texel(want[1]));
-            let fa = |a: usize| -> [f64; 2] { fp.m[a].map(|x| f64::from(x) * f64::from(fp.e[a]).exp2()) };
+            let fa = |a: usize| -> [f64; 2] { fp.m[a].map(|x| f64::from(x) * f64::from(fp.e).exp2()) };
             let pmax = norm(px).max(norm(py));
             for (a, wa) in [(0, wx), (1, wy)] {
                 let e = (fa(a)[0] - wa[0]).hypot(fa(a)[1] - wa[1]);

@@ -425,7 +425,7 @@ pub fn sampler_rows<M: Meter>(
 pub mod rd {
     use fixed::types::{I2F30, I4F28};
     use raymip::lod::raydiff::{RayDiffFootprint, RayDiffTriangle};
-    use raymip::path::raydiff::gbuffer::{GSample, first_hit};
+    use raymip::path::raydiff::gbuffer::{GSample, GSides, first_hit};
     use raymip::path::raydiff::{DirDiff, Eta, RayDiff};
     use raymip::units::{Lod, PathLength, UnitVec};
 
@@ -480,8 +480,16 @@ pub mod rd {
     probe! {
         /// G-buffer first-hit set-up from four neighbours (in place; a
         /// buffer at 2⁻²⁴ scene units).
-        fn rm_bench_rd_gbuffer(s: &mut RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> [DirDiff; 2] {
-            first_hit(s, c, nb, -24)
+        fn rm_bench_rd_gbuffer(s: &mut RayDiff, c: &GSample, nb: [Option<&GSample>; 4]) -> () {
+            let _ = first_hit(s, c, nb, -24);
+        }
+    }
+
+    probe! {
+        /// The normal differentials of a G-buffer first hit's chosen sides
+        /// (for a reflection or refraction there).
+        fn rm_bench_rd_gbuffer_normals(sides: &GSides) -> [DirDiff; 2] {
+            sides.normal_diffs()
         }
     }
 }
@@ -564,8 +572,15 @@ pub fn raydiff_rows<M: Meter>(m: &mut M) -> Option<()> {
         (s, cen, [i, i + 1, i + 2, i + 3].map(|j| Some(&g[j])))
     });
     m.row("rd_gbuffer", &gb.each_ref(), |&(mut s, ref cen, nb)| {
-        bb(rd::rm_bench_rd_gbuffer(&mut s, cen, nb));
+        rd::rm_bench_rd_gbuffer(&mut s, cen, nb);
         bb(&mut s);
+        0
+    });
+    let sides = gb.each_ref().map(|(s, cen, nb)| {
+        raymip::path::raydiff::gbuffer::first_hit(&mut s.clone(), cen, *nb, -24)
+    });
+    m.row("rd_gbuffer_normals", &sides.each_ref(), |sd| {
+        bb(rd::rm_bench_rd_gbuffer_normals(sd));
         0
     });
     Some(())

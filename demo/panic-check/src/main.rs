@@ -397,12 +397,7 @@ fn main() -> ! {
                 t: bb(5),
             });
             bb(axis(&g, Some(&g), None, bb(-20)));
-            bb(first_hit(
-                &mut s,
-                &g,
-                [Some(&g), None, Some(&g), None],
-                bb(-20),
-            ));
+            bb(first_hit(&mut s, &g, [Some(&g), None, Some(&g), None], bb(-20)).normal_diffs());
             bb(s);
         }
         // Environment map (feature `envmap`): the lods of a ray that leaves

@@ -130,7 +130,8 @@ impl Frame {
             Self::Fixed(g, scale) => {
                 let (c, nb) = g.stencil(x, y)?;
                 let mut d = *primary;
-                let dn = raymip::path::raydiff::gbuffer::first_hit(&mut d, c, nb, *scale);
+                let dn =
+                    raymip::path::raydiff::gbuffer::first_hit(&mut d, c, nb, *scale).normal_diffs();
                 Some(FirstHit::Fixed(d, dn))
             }
             Self::Float(g) => {

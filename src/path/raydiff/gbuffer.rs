@@ -38,14 +38,15 @@ use super::{Bfp3, Bfp3x2, DirDiff, EXP_MAX, EXP_MIN, PosDiff, RayDiff, UnitVec};
 /// let (left, right) = (GSample { p: q(-0.125, 0.0), n, t }, GSample { p: q(0.125, 0.0), n, t });
 /// let down = GSample { p: q(0.0, -0.125), n, t };
 /// let mut diff = RayDiff::ZERO; // the camera's differentials of the pixel
-/// let [dnx, _] =
+/// let sides =
 ///     first_hit(&mut diff, &centre, [Some(&left), Some(&right), None, Some(&down)], scale);
 /// // ∂P/∂x = P₊ − P = right − centre; in y (rows grow downwards) the
 /// // one side there is, P₊ = down: ∂P/∂y = down − centre.
 /// let v = |(m, e): ([i32; 3], i32)| m.map(|x| f64::from(x) * f64::from(e).exp2());
 /// assert_eq!(v(diff.dox().parts()), [0.125, 0.0, 0.0]);
 /// assert_eq!(v(diff.doy().parts()), [0.0, -0.125, 0.0]);
-/// // One normal everywhere: no normal differentials.
+/// // One normal everywhere: no normal differentials (for a bounce).
+/// let [dnx, _] = sides.normal_diffs();
 /// assert_eq!(v(dnx.parts()), [0.0; 3]);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -122,27 +123,44 @@ fn normal_diff(a: &GSample, b: &GSample) -> Bfp3 {
     Bfp3::new_in_range(dn, -30)
 }
 
+/// The neighbours a first hit's differentials are taken from
+/// ([`first_hit`]): per axis the two samples whose difference is the
+/// differential (`a − b`, see [`axis`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GSides<'a> {
+    x: (&'a GSample, &'a GSample),
+    y: (&'a GSample, &'a GSample),
+}
+
+impl GSides<'_> {
+    /// The normal differentials `[∂n/∂x, ∂n/∂y]` of the first hit (exact,
+    /// as [`axis`]), what [`RayDiff::reflect`] and [`RayDiff::refract`]
+    /// take: needed only for a reflected or refracted continuation, not
+    /// for the hit's footprint. Per bounce; never panics.
+    #[must_use]
+    #[inline]
+    pub fn normal_diffs(&self) -> [DirDiff; 2] {
+        [self.x, self.y].map(|(a, b)| DirDiff(normal_diff(a, b)))
+    }
+}
+
 /// The first hit's differential state from the G-buffer (positions at
 /// `2^scale` scene units), in place: `s` holds the camera's differentials
 /// of the pixel ([`RayDiff::primary`]); its `∂D` is kept and its `∂O` (at
 /// the hit, no transfer needed) set from [`axis`] in x (`left`, `right`)
-/// and y (`up`, `down`). Returns the normal differentials
-/// `[∂n/∂x, ∂n/∂y]` that [`RayDiff::reflect`] and [`RayDiff::refract`]
-/// take. Per first hit; never panics.
+/// and y (`up`, `down`): all a textured hit's footprint needs. Returns
+/// the chosen sides, whose [`GSides::normal_diffs`] a reflection or
+/// refraction at the hit takes. Per first hit; never panics.
 #[inline]
-pub fn first_hit(
+pub fn first_hit<'a>(
     s: &mut RayDiff,
-    c: &GSample,
-    [left, right, up, down]: [Option<&GSample>; 4],
+    c: &'a GSample,
+    [left, right, up, down]: [Option<&'a GSample>; 4],
     scale: i32,
-) -> [DirDiff; 2] {
-    // The two sides chosen first (two pointers each), then each
-    // differential stored as soon as it is made: its temporaries end there.
-    // The normal differentials first (they are returned), then both
-    // position differentials, exact at 2^scale: one normalisation for the
-    // pair.
+) -> GSides<'a> {
+    // Both position differentials exact at 2^scale: one normalisation for
+    // the pair.
     let (x, y) = (pair(c, left, right), pair(c, up, down));
-    let dn = [x, y].map(|(a, b)| DirDiff(normal_diff(a, b)));
     s.set_pair(
         0,
         Bfp3x2::new_in_range(
@@ -150,7 +168,7 @@ pub fn first_hit(
             unit_exponent(scale),
         ),
     );
-    dn
+    GSides { x, y }
 }
 
 #[cfg(test)]
@@ -207,7 +225,8 @@ mod tests {
         // stored in the state (its ∂D kept), normals returned.
         let dd = DirDiff::new([1, 2, 3], -20);
         let mut s = RayDiff::new(PosDiff::ZERO, PosDiff::ZERO, dd, dd);
-        let [nx, ny] = first_hit(&mut s, &c, [Some(&m), Some(&p), Some(&far), Some(&m)], -2);
+        let [nx, ny] =
+            first_hit(&mut s, &c, [Some(&m), Some(&p), Some(&far), Some(&m)], -2).normal_diffs();
         assert_eq!(s.dox(), axis(&c, Some(&m), Some(&p), -2).0);
         assert_eq!(s.doy(), axis(&c, Some(&far), Some(&m), -2).0);
         assert_eq!(value(s.dox().parts().0, s.dox().parts().1), [0.0, 1.5, 0.0]);
@@ -220,7 +239,7 @@ mod tests {
         assert_eq!(ny, axis(&c, Some(&far), Some(&m), 0).1);
         assert_ne!(nx, DirDiff::ZERO);
         // No neighbour in y: no differential there.
-        let [_, ny] = first_hit(&mut s, &c, [None, Some(&p), None, None], -2);
+        let [_, ny] = first_hit(&mut s, &c, [None, Some(&p), None, None], -2).normal_diffs();
         assert_eq!((s.doy(), ny), (PosDiff::ZERO, DirDiff::ZERO));
     }
 

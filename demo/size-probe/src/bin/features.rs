@@ -137,7 +137,7 @@ fn raydiff(g: Geometry, st: raymip::path::raystack::PathState) {
         t: bb(1 << 20),
     };
     let nb = [Some(&g); 4];
-    let [dnx, dny] = first_hit(&mut s, bb(&g), bb(nb), bb(-24));
+    let [dnx, dny] = first_hit(&mut s, bb(&g), bb(nb), bb(-24)).normal_diffs();
     s.transfer(d, st.pl, n);
     s.reflect(d, n, [dnx, dny]);
     s.refract(
