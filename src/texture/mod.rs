@@ -194,3 +194,51 @@ pub fn tex_coord_from_f64(x: f64) -> Result<TexCoord, FilterError> {
     }
     TexCoord::checked_from_num(x).ok_or(FilterError::OutOfRange)
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    /// Each counter adds its own argument, call after call.
+    #[test]
+    fn fetch_stats_add_each_count() {
+        let mut s = FetchStats::default();
+        s.count(3, 1);
+        s.count(2, 5);
+        assert_eq!(
+            s,
+            FetchStats {
+                fetched: 5,
+                skipped: 6
+            }
+        );
+    }
+
+    /// Finite coordinates inside `[−2³¹, 2³¹)` convert (both ends of the
+    /// range exactly), NaN and ±inf are `NonFinite`, finite values outside
+    /// are `OutOfRange`; each error has its own message.
+    #[test]
+    fn float_coordinates_convert_or_fail_by_kind() {
+        let edge = 2_147_483_648.0; // 2³¹
+        assert_eq!(tex_coord_from_f64(0.25), Ok(TexCoord::from_num(0.25)));
+        assert_eq!(tex_coord_from_f64(-1.5), Ok(TexCoord::from_num(-1.5)));
+        assert_eq!(tex_coord_from_f64(-edge), Ok(TexCoord::MIN));
+        assert_eq!(tex_coord_from_f64(0.0), Ok(TexCoord::ZERO));
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(tex_coord_from_f64(x), Err(FilterError::NonFinite), "{x}");
+        }
+        for x in [edge, -edge - 1.0, 3e9, f64::MAX] {
+            assert_eq!(tex_coord_from_f64(x), Err(FilterError::OutOfRange), "{x}");
+        }
+        assert_eq!(
+            FilterError::NonFinite.to_string(),
+            "texture coordinate or lod is NaN or infinite"
+        );
+        assert_eq!(
+            FilterError::OutOfRange.to_string(),
+            "texture coordinate outside [-2^31, 2^31)"
+        );
+    }
+}

@@ -387,6 +387,42 @@ mod tests {
         }
     }
 
+    /// Border taps on both axes (2×2 level 0 at u = v = 0, both axes
+    /// clamp-to-border: column −1 and row −1 outside): a one-read mode
+    /// returns the border colour when its draw picks an outside tap on
+    /// either axis or on both, and the texel (0, 0) only when it picks the
+    /// inside tap on both. A field of 2048 picks the outside tap, 2047 the
+    /// inside one.
+    #[test]
+    fn border_on_both_axes_picks_the_border_colour() {
+        use crate::texture::address::AnyAxis;
+        use crate::texture::sampler::{Cfg, SamplerDesc, SamplerState};
+        let g = Geometry::new(2, 2, 2).unwrap();
+        let mut buf = vec![0xFF00_0010, 0xFF00_0020, 0xFF00_0030, 0xFF00_0040, 0];
+        generate(&g, &mut buf).unwrap();
+        let border = 0x8070_6050;
+        let desc = SamplerDesc {
+            address_u: AddressMode::ClampToBorder,
+            address_v: AddressMode::ClampToBorder,
+            border,
+            ..SamplerDesc::default()
+        };
+        let state = SamplerState::new(desc).unwrap();
+        let p = Pyramid::new(g, &buf).unwrap();
+        let mut s = Sampler::<_, Cfg<AnyAxis>>::with_state(p, state).unwrap();
+        let zero = TexCoord::ZERO;
+        let b = StochasticMode::Bilinear;
+        for (column, row, want) in [
+            (2048u32, 2048u32, border),
+            (2048, 2047, border),
+            (2047, 2048, border),
+            (2047, 2047, 0xFF00_0010),
+        ] {
+            let got = s.sample_stochastic(zero, zero, Lod::ZERO, b, column << 8 | row << 20);
+            assert_eq!(got, want, "column field {column}, row field {row}");
+        }
+    }
+
     /// f64 reference of a single draw: the firmware picks the texel the
     /// reference picks with the same uniform numbers, except where a
     /// uniform lies within the 2⁻¹² weight quantization of a boundary.

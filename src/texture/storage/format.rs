@@ -133,12 +133,15 @@ impl TexelFormat {
     pub fn encode(self, t: Texel) -> u32 {
         let [r, g, b, a] = t.to_le_bytes().map(u32::from);
         let q = |x: u32, bits: u32| (x * ((1 << bits) - 1) + 127) / 255;
+        // Each field is below 2^bits (`q(x, bits) ≤ 2^bits − 1` for
+        // `x ≤ 255`), so the fields share no bit and the sum is the packed
+        // word; `+` rather than `|` makes a wrong operator change the word.
         match self {
             Self::Rgba8 => t,
-            Self::Rgb565 => (q(r, 5) << 11) | (q(g, 6) << 5) | q(b, 5),
-            Self::Rgba5551 => (q(r, 5) << 11) | (q(g, 5) << 6) | (q(b, 5) << 1) | q(a, 1),
-            Self::Rgba4444 => (q(r, 4) << 12) | (q(g, 4) << 8) | (q(b, 4) << 4) | q(a, 4),
-            Self::La8 => r | (a << 8),
+            Self::Rgb565 => (q(r, 5) << 11) + (q(g, 6) << 5) + q(b, 5),
+            Self::Rgba5551 => (q(r, 5) << 11) + (q(g, 5) << 6) + (q(b, 5) << 1) + q(a, 1),
+            Self::Rgba4444 => (q(r, 4) << 12) + (q(g, 4) << 8) + (q(b, 4) << 4) + q(a, 4),
+            Self::La8 => r + (a << 8),
             Self::L8 => r,
             Self::A8 => a,
             Self::Bc1 | Self::Bc2 | Self::Bc3 | Self::Bc4 => 0,

@@ -669,6 +669,74 @@ mod tests {
     #[cfg(feature = "mipgen")]
     use std::vec;
 
+    /// A pyramid's footprint reads the texels of the module docs' layout,
+    /// each index past its level's side clamped to the last column or
+    /// row; and a `&mut` of a source reads as the source: the same
+    /// geometry, texels, footprints and level views (the views keep a
+    /// sampler over a borrowed power-of-two source on its direct path).
+    #[test]
+    fn footprints_clamp_and_a_borrowed_source_reads_as_its_referent() {
+        use crate::texture::storage::format::{ColorSpace, Rgb565, TexelFormat};
+        use crate::texture::storage::image::{Image, Pow2Rgb565, image_len};
+        use crate::texture::storage::pow2::Pow2Pyramid;
+        use std::vec::Vec;
+        let g = Geometry::new(4, 2, 3).unwrap();
+        // Texel i of the buffer is i + 1 in every byte: distinct, non-zero.
+        let texels: Vec<Texel> = (1..=pyramid_len(4, 2, 3) as u32)
+            .map(|i| i * 0x0101_0101)
+            .collect();
+        let mut p = Pyramid::new(g, &texels).unwrap();
+        // Level 0 is 4×2 at 0, level 1 2×1 at 8, level 2 1×1 at 10.
+        let layout = [(4u32, 2u32, 0usize), (2, 1, 8), (1, 1, 10)];
+        for (level, &(w, h, offset)) in (0u8..).zip(&layout) {
+            let at = |x: u32, y: u32| texels[offset + (y.min(h - 1) * w + x.min(w - 1)) as usize];
+            for (x, y) in [
+                ([0, 1], [0, 1]),
+                ([w - 1, w], [h - 1, h + 3]),
+                ([w + 7, 0], [h, 0]),
+            ] {
+                let want = [
+                    at(x[0], y[0]),
+                    at(x[1], y[0]),
+                    at(x[0], y[1]),
+                    at(x[1], y[1]),
+                ];
+                assert_eq!(
+                    p.footprint(level, x, y),
+                    want,
+                    "level {level} x {x:?} y {y:?}"
+                );
+                let mut r = &mut p;
+                assert_eq!(TexelSource::footprint(&mut r, level, x, y), want);
+                assert_eq!(TexelSource::footprint_in_level(&mut r, level, x, y), want);
+                assert_eq!(TexelSource::texel(&mut r, level, x[0], y[0]), want[0]);
+                assert_eq!(TexelSource::geometry(&r), g);
+            }
+        }
+        let mut d = Pow2Pyramid::new(p).unwrap();
+        let views = d.levels().map(|l| core::ptr::from_ref(l).addr());
+        assert!(views.is_some());
+        let r = &mut d;
+        assert_eq!(
+            TexelSource::levels(&r).map(|l| core::ptr::from_ref(l).addr()),
+            views
+        );
+        assert!(TexelSource::rgb565_levels(&r).is_none());
+        let bytes: Vec<u8> = (0..image_len(4, 2, 3, TexelFormat::Rgb565) as u32)
+            .map(|i| i as u8)
+            .collect();
+        let image = Image::<Rgb565>::typed(g, ColorSpace::Linear, &bytes).unwrap();
+        let mut d = Pow2Rgb565::new(image).unwrap();
+        let views = d.rgb565_levels().map(|l| core::ptr::from_ref(l).addr());
+        assert!(views.is_some());
+        let r = &mut d;
+        assert_eq!(
+            TexelSource::rgb565_levels(&r).map(|l| core::ptr::from_ref(l).addr()),
+            views
+        );
+        assert!(TexelSource::levels(&r).is_none());
+    }
+
     #[test]
     fn levels_and_lengths() {
         assert_eq!(full_levels(1, 1), 1);
