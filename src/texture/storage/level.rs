@@ -459,3 +459,265 @@ impl<'a, F: ViewFormat> Pow2Levels<'a, F> {
         v.footprint(x.map(|x| x.min(v.mask_x())), y.map(|y| y.min(v.mask_y())))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec::Vec;
+
+    /// A level whose texels name their position: `0xA500_0000 | y << 12 | x`.
+    fn named(w: u32, h: u32) -> Vec<Texel> {
+        (0..h)
+            .flat_map(|y| (0..w).map(move |x| 0xA500_0000 | y << 12 | x))
+            .collect()
+    }
+
+    /// The texel of `named` at `(x, y)` (the reference of every read).
+    fn name(x: u32, y: u32) -> Texel {
+        0xA500_0000 | y << 12 | x
+    }
+
+    /// The sides the views are tested on (all shapes: square, 1-wide,
+    /// 1-high, wide, tall).
+    const SIDES: [(u32, u32); 6] = [(1, 1), (1, 8), (8, 1), (4, 16), (32, 2), (16, 16)];
+
+    /// `wrap_constant(k, bits)` by its definition, in i64: the exact
+    /// quotient `(2^(31 − bits) − 2³¹)/2^k`, taken mod 2³².
+    fn wrap_constant_ref(k: u32, bits: u32) -> u32 {
+        let num = (1i64 << (31 - bits)) - (1i64 << 31);
+        assert_eq!(num % (1i64 << k), 0);
+        (num / (1i64 << k)).rem_euclid(1 << 32) as u32
+    }
+
+    /// The wrap taps by their definition, in i128: the position
+    /// `x = u·n − ½ + 2^−(bits+1)` texels (`u` the coordinate's 32
+    /// fractional bits) in units of 2⁻³², `i₀ = floor(x) mod n`,
+    /// `i₁ = (i₀ + 1) mod n`, the weight the top `bits` bits of `frac(x)`.
+    fn wrap_taps_ref(coord: TexCoord, n: u32, bits: u32) -> (u32, u32, u32) {
+        let frac = i128::from(coord.to_bits() as u32);
+        let x = frac * i128::from(n) - (1i128 << 31) + (1i128 << (31 - bits));
+        let i0 = x.div_euclid(1 << 32).rem_euclid(i128::from(n)) as u32;
+        let f = (x.rem_euclid(1 << 32) >> (32 - bits)) as u32;
+        (i0, (i0 + 1) % n, f)
+    }
+
+    /// Coordinates: the edges of the fractional word, integer parts that
+    /// must not matter (negative too) and pseudo-random fractions.
+    fn coords() -> impl Iterator<Item = TexCoord> {
+        let mut s = 0x2545_F491_4F6C_DD1Du64;
+        let edges = [
+            0u32,
+            1,
+            0x7FFF_FFFF,
+            0x8000_0000,
+            0x8000_0001,
+            u32::MAX,
+            0x0080_0000,
+        ];
+        let random = (0..if cfg!(miri) { 20 } else { 2000 }).map(move |_| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s as u32
+        });
+        edges.into_iter().chain(random).flat_map(|frac| {
+            [0i64, 1, -1, 7].map(|int| TexCoord::from_bits(int << 32 | i64::from(frac)))
+        })
+    }
+
+    #[test]
+    fn wrap_constant_is_the_exact_quotient() {
+        for bits in [8, 12, 16, 1, 10] {
+            for k in 0..=15 {
+                assert_eq!(
+                    wrap_constant(k, bits),
+                    wrap_constant_ref(k, bits),
+                    "{k} {bits}"
+                );
+            }
+        }
+        // Worked by hand: k = 0, bits = 8: 2²³ − 2³¹ mod 2³² = 0x8080_0000;
+        // k = 3: (2²³ − 2³¹)/8 = −0x0FF0_0000.
+        assert_eq!(wrap_constant(0, 8), 0x8080_0000);
+        assert_eq!(wrap_constant(3, 8), 0xF010_0000);
+    }
+
+    #[test]
+    fn pow2_wrap_taps_match_the_definition() {
+        for k in 0..=15 {
+            let n = 1u32 << k;
+            for bits in [8, 12, 16] {
+                let c = wrap_constant_ref(k, bits);
+                for coord in coords() {
+                    assert_eq!(
+                        pow2_wrap_taps(coord, n, n - 1, c, bits),
+                        wrap_taps_ref(coord, n, bits),
+                        "{n} {bits} {coord:?}"
+                    );
+                }
+            }
+        }
+        // By hand: u = ½ on a side of 4 is x = 1.5 + 2⁻⁹ texels: taps 1, 2,
+        // weight 128 + ½ → 128 at 8 bits; u = 0 is x = −½: taps 3, 0.
+        let half = TexCoord::from_bits(1 << 31);
+        assert_eq!(
+            pow2_wrap_taps(half, 4, 3, wrap_constant(2, 8), 8),
+            (1, 2, 128)
+        );
+        let zero = TexCoord::from_bits(0);
+        assert_eq!(
+            pow2_wrap_taps(zero, 4, 3, wrap_constant(2, 8), 8),
+            (3, 0, 128)
+        );
+    }
+
+    #[test]
+    fn views_are_made_only_of_valid_levels() {
+        let t = named(32, 32);
+        for (w, h) in SIDES {
+            let n = (w * h) as usize;
+            assert!(LevelView::new(&t[..n], w, h).is_some(), "{w} {h}");
+            assert!(LevelView::new(&t[..n - 1], w, h).is_none(), "{w} {h}");
+        }
+        for (w, h) in [(3, 4), (4, 3), (0, 4), (4, 0), (6, 6)] {
+            assert!(LevelView::new(&t, w, h).is_none(), "{w} {h}");
+        }
+        // The largest side on either axis, and one past it.
+        let long = std::vec![0u32; 1 << 16];
+        assert!(LevelView::new(&long[..1 << 15], MAX_SIZE, 1).is_some());
+        assert!(LevelView::new(&long[..1 << 15], 1, MAX_SIZE).is_some());
+        assert!(LevelView::new(&long, 2 * MAX_SIZE, 1).is_none());
+        assert!(LevelView::new(&long, 1, 2 * MAX_SIZE).is_none());
+        // RGB565: two bytes per texel; an odd byte holds no texel.
+        let bytes = [0u8; 33];
+        assert!(LevelView::from_bytes(&bytes[..32], 4, 4).is_some());
+        assert!(LevelView::from_bytes(&bytes[..31], 4, 4).is_none());
+        assert!(LevelView::from_bytes(&bytes, 16, 1).is_some());
+        assert!(LevelView::from_bytes(&bytes, 3, 1).is_none());
+    }
+
+    #[test]
+    fn accessors_are_the_sides() {
+        for (w, h) in SIDES {
+            let t = named(w, h);
+            let v = LevelView::new(&t, w, h).unwrap();
+            assert_eq!((v.width(), v.height()), (w, h));
+            assert_eq!((v.mask_x(), v.mask_y()), (w - 1, h - 1));
+            assert_eq!((v.shift_x(), v.shift_y()), (31 - w.ilog2(), 31 - h.ilog2()));
+            assert_eq!(v.base().as_ptr().cast_const(), t.as_ptr());
+            // Bit log2(w) of an index lands in bit 31.
+            assert_eq!(w << v.shift_x(), 1 << 31);
+            for bits in [8, 12, 16, 10, 4] {
+                let want = [w, h].map(|n| wrap_constant_ref(n.ilog2(), bits));
+                assert_eq!(v.wrap_constants(bits), want, "{w} {h} {bits}");
+            }
+        }
+    }
+
+    #[test]
+    fn reads_are_the_slice_at_the_reduced_indices() {
+        let big = [0, 1, 2, 5, 31, 32, 33, 1000, u32::MAX - 1, u32::MAX];
+        for (w, h) in SIDES {
+            let t = named(w, h);
+            let v = LevelView::new(&t, w, h).unwrap();
+            for y in 0..h {
+                for x in 0..w {
+                    assert_eq!(v.read(x, y), name(x, y));
+                }
+            }
+            for &x0 in &big {
+                for &y0 in &big {
+                    let (x1, y1) = (x0.wrapping_add(1), y0.wrapping_add(1));
+                    // Masked: a wrap beyond the level.
+                    let (mx, my) = (x0 % w, y0 % h);
+                    let (mx1, my1) = (x1 % w, y1 % h);
+                    assert_eq!(
+                        v.footprint([x0, x1], [y0, y1]),
+                        [name(mx, my), name(mx1, my), name(mx, my1), name(mx1, my1)],
+                        "{w} {h} {x0} {y0}"
+                    );
+                    // Clamped: the edge texel beyond the level.
+                    assert_eq!(v.texel(x0, y0), name(x0.min(w - 1), y0.min(h - 1)));
+                    // Inside: only when the whole footprint is.
+                    let inside =
+                        u64::from(x0) + 1 < u64::from(w) && u64::from(y0) + 1 < u64::from(h);
+                    let want =
+                        inside.then(|| [name(x0, y0), name(x1, y0), name(x0, y1), name(x1, y1)]);
+                    assert_eq!(v.inside_footprint(x0, y0), want, "{w} {h} {x0} {y0}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rgb565_reads_step_two_bytes() {
+        // Texel (x, y) of a 4 × 2 level holds the bytes [8y + 2x, 8y + 2x + 1].
+        let bytes: Vec<u8> = (0..16).collect();
+        let v = LevelView::from_bytes(&bytes, 4, 2).unwrap();
+        let expand = |x: u32, y: u32| {
+            let i = (8 * y + 2 * x) as u8;
+            Rgb565::expand([i, i + 1])
+        };
+        for y in 0..2 {
+            for x in 0..4 {
+                assert_eq!(v.texel(x, y), expand(x, y), "{x} {y}");
+            }
+        }
+        assert_eq!(
+            v.inside_footprint(2, 0),
+            Some([expand(2, 0), expand(3, 0), expand(2, 1), expand(3, 1)])
+        );
+        assert_eq!(
+            v.footprint([3, 4], [1, 2]),
+            [expand(3, 1), expand(0, 1), expand(3, 0), expand(0, 0)]
+        );
+    }
+
+    #[test]
+    fn wrap_footprint_reads_the_wrapped_taps() {
+        for (w, h) in SIDES {
+            let t = named(w, h);
+            let v = LevelView::new(&t, w, h).unwrap();
+            for bits in [8, 12, 16] {
+                for (u, v_) in coords().zip(coords().skip(3)) {
+                    let (x0, x1, fx) = wrap_taps_ref(u, w, bits);
+                    let (y0, y1, fy) = wrap_taps_ref(v_, h, bits);
+                    let want = [name(x0, y0), name(x1, y0), name(x0, y1), name(x1, y1)];
+                    assert_eq!(
+                        v.wrap_footprint(u, v_, bits),
+                        (want, fx, fy),
+                        "{w} {h} {bits}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn pow2_levels_index_their_views() {
+        let side = |k: u8| 32u32 >> k.min(5);
+        let data: Vec<Vec<Texel>> = (0..=5).map(|k| named(side(k), side(k))).collect();
+        let t = &data[0];
+        let levels =
+            Pow2Levels::from_fn(|k| LevelView::new(&data[usize::from(k.min(5))], side(k), side(k)))
+                .unwrap();
+        for k in 0..=20usize {
+            let want = side(k.min(16) as u8);
+            assert_eq!(levels.level(k).width(), want, "{k}");
+        }
+        assert_eq!(levels.texel(1, 3, 40), name(3, 15));
+        assert_eq!(levels.texel(5, 3, 0), name(0, 0));
+        assert_eq!(
+            levels.clamped_footprint(2, [6, 9], [7, 8]),
+            [name(6, 7), name(7, 7), name(6, 7), name(7, 7)]
+        );
+        assert!(
+            Pow2Levels::from_fn(|k| LevelView::new(t, side(k), if k == 9 { 3 } else { 1 }))
+                .is_none()
+        );
+        assert!(
+            Pow2Levels::from_fn(|k| LevelView::new(t, if k == 0 { 3 } else { 1 }, 1)).is_none()
+        );
+    }
+}
