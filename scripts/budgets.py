@@ -210,12 +210,12 @@ rd_ceiling            rd_lod                        51    89    73
 rd_ceiling            rd_gbuffer                   150   110    95
 rd_ceiling            rd_gbuffer_normals            56   119    90
 matrix_ceiling        tw_bil                        97   134   132
-matrix_ceiling        tw_bil_f                     103   145   129
+matrix_ceiling        tw_bil_f                      97   145   129
 matrix_ceiling        tw_tri                       216   280   278
 matrix_ceiling        tw_tri_f                     200   269   247
 matrix_ceiling        tw_tri_n                     220   290   288
 matrix_ceiling        ts_bil                       131   168   166
-matrix_ceiling        ts_bil_f                     135   172   159
+matrix_ceiling        ts_bil_f                     130   172   159
 matrix_ceiling        ts_tri                       272   342   340
 matrix_ceiling        ts_tri_f                     250   327   308
 matrix_ceiling        ts_srgb                      416   516   512

@@ -115,6 +115,12 @@ pub const PAIR: u32 = 0xFF00_00FF;
 /// 8.16).
 pub const ROUND_PAIR: u64 = (1 << 23) | (1 << (32 + 15));
 
+/// Bit 7 of channels 1 and 3 of a texel: flipped in the texels before the
+/// signed pair sums of [`bilinear_texel`] on the Cortex-M4 (so that the
+/// high byte of each pair word, read as a signed byte, is `c_hi − 128`)
+/// and in the result after them (which gives back `c_hi`).
+pub const FLIP: u32 = 0x8000_8000;
+
 /// The scaled corner weights `2⁸·[W₀₀, W₁₀, W₀₁, W₁₁]` of the 8-bit
 /// position weights `x, y ≤ 255` (module docs: exact products, sum 2²⁴,
 /// each `≤ 2²⁴`): the ACCURATE weights at `16x, 16y`.
@@ -127,6 +133,13 @@ pub fn corner_weights(x: u32, y: u32) -> [u32; 4] {
 /// Which pair-sum form the kernel uses: the 64-bit accumulator on Arm
 /// (`umlal`), low and high words apart elsewhere (`mul`, `mulhu`).
 const WIDE: bool = cfg!(target_arch = "arm");
+
+/// Whether a bilinear call alone (not in a batch loop) takes the signed
+/// pair sums ([`pair_sum_signed`]): on Arm, where they keep the `smlal`
+/// chain whole (Cortex-M4, bilinear wrap 99 → 93 instructions). A batch
+/// loop keeps the unsigned chain: with the flips its loop values no
+/// longer fit the registers (measured 91 → 99 per hit).
+const SIGNED: bool = cfg!(target_arch = "arm");
 
 /// The pair words of a texel: `[c₀ | c₃<<24, c₂ | c₁<<24]`, with the
 /// mask `m =` [`PAIR`].
@@ -161,6 +174,30 @@ fn pair_sum<const WIDE: bool>(p: [u32; 4], w: [u32; 4], r: u64) -> u64 {
     }
 }
 
+/// [`pair_sum`] in signed 64-bit arithmetic (an `smlal` chain on the
+/// Cortex-M4) for pair words of texels with [`FLIP`] applied. As an
+/// `i32`, such a word is `c_lo + (c_hi − 128)·2²⁴`, and each weight
+/// `wᵢ = 2⁸Wᵢ ≤ 2²⁴` is positive, so each product is
+/// `c_lo·wᵢ + (c_hi − 128)·Wᵢ·2³²`. Summed from `r =` [`ROUND_PAIR`]: the
+/// low word is `2²³ + Σ c_lo·wᵢ < 2³²` (no carry into the high word), the
+/// same as [`pair_sum`]'s, and the high word (two's complement) is
+/// `2¹⁵ + Σ c_hi·Wᵢ − 128·2¹⁶`; since `128·2¹⁶` is a multiple of 2¹⁶,
+/// its bits 16..24 are `pair_sum`'s with bit 23 flipped, i.e. the rounded
+/// `c_hi` with bit 7 flipped. Why signed: LLVM's Arm back end keeps an
+/// `smlal` chain whole but splits every second `umlal` of an unsigned one
+/// into `umull`, `adds` and `adc` (where the accumulator comes from a
+/// `umlal`, its search for a `umaal` gives up on the `umlal` as well):
+/// four extra instructions per sum, against one `eor` per texel and one
+/// for the result.
+#[inline(always)]
+fn pair_sum_signed(p: [u32; 4], w: [u32; 4], r: u64) -> u64 {
+    let mut acc = r as i64;
+    for (&pi, &wi) in p.iter().zip(&w) {
+        acc = acc.wrapping_add(i64::from(pi as i32).wrapping_mul(i64::from(wi as i32)));
+    }
+    acc as u64
+}
+
 /// The two pair sums `[c₀ | c₃, c₂ | c₁]` of the footprint `t` (`t00,
 /// t10, t01, t11`) with scaled weights `w`, started from `r`.
 #[inline(always)]
@@ -185,16 +222,36 @@ fn bilinear_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, m: u32) -> Wid
     ]
 }
 
-/// [`bilinear_texel`] in a sum form (both give the same texel; tested).
+/// [`bilinear_texel`] in a sum form (all give the same texel; tested):
+/// `SIGNED`, the signed sums of the flipped texels ([`pair_sum_signed`],
+/// an `smlal` chain on Arm); else [`pair_sum`]`::<WIDE>`.
 #[inline(always)]
-fn bilinear_texel_with<const WIDE: bool>(t: [Texel; 4], x: u32, y: u32, r: u64, m: u32) -> Texel {
+fn bilinear_texel_with<const WIDE: bool, const SIGNED: bool>(
+    t: [Texel; 4],
+    x: u32,
+    y: u32,
+    r: u64,
+    m: u32,
+) -> Texel {
     debug_assert_eq!(r, ROUND_PAIR);
-    let [a, b] = pair_sums::<WIDE>(t, corner_weights(x, y), r, m);
+    let w = corner_weights(x, y);
+    let (flip, [a, b]) = if SIGNED {
+        let p = t.map(|t| pairs(t ^ FLIP, m));
+        // `b` first: measured on the Cortex-M4, the mirror/border
+        // bilinear call is 4 instructions shorter than with `a` first.
+        let b = pair_sum_signed(p.map(|x| x[1]), w, r);
+        (FLIP, [pair_sum_signed(p.map(|x| x[0]), w, r), b])
+    } else {
+        (0, pair_sums::<WIDE>(t, w, r, m))
+    };
     // Rounded results: the low lane in bits 24..32 of the low word, the
-    // high lane in bits 16..24 of the high word (which is below 2²⁴).
+    // high lane in bits 16..24 of the high word (unsigned, below 2²⁴;
+    // signed, with bit 7 flipped, flipped back by `flip`, and the high
+    // word of `b` negative for `c₁ < 128`, so its lane is masked).
     let (a_lo, a_hi) = (a as u32, (a >> 32) as u32);
     let (b_lo, b_hi) = (b as u32, (b >> 32) as u32);
-    (a_lo >> 24) | ((b_hi >> 16) << 8) | ((b_lo >> 24) << 16) | ((a_hi >> 16) << 24)
+    let b_hi = if SIGNED { b_hi & 0x00FF_FFFF } else { b_hi };
+    ((a_lo >> 24) | ((b_hi >> 16) << 8) | ((b_lo >> 24) << 16) | ((a_hi >> 16) << 24)) ^ flip
 }
 
 /// One level of the footprint `t` (`t00, t10, t01, t11`) at the 8-bit
@@ -222,15 +279,26 @@ pub(crate) fn bilinear_masked(t: [Texel; 4], x: u32, y: u32, m: u32) -> Wide {
 #[inline(always)]
 #[must_use]
 pub fn bilinear_texel(t: [Texel; 4], x: u32, y: u32) -> Texel {
-    bilinear_texel_with::<WIDE>(t, x, y, ROUND_PAIR, PAIR)
+    bilinear_texel_with::<WIDE, SIGNED>(t, x, y, ROUND_PAIR, PAIR)
 }
 
 /// [`bilinear_texel`] with the rounding constants `r =` [`ROUND_PAIR`]
 /// given (the sampler's [`Rounding`](super::Rounding): the sums then start
-/// from registers).
+/// from registers); `ALONE`, for a call alone (the signed sums where
+/// [`SIGNED`]), else for a batch loop (the unsigned ones). The same texel
+/// either way.
 #[inline(always)]
-pub(crate) fn bilinear_texel_rounded(t: [Texel; 4], x: u32, y: u32, r: u64) -> Texel {
-    bilinear_texel_with::<WIDE>(t, x, y, r, PAIR)
+pub(crate) fn bilinear_texel_rounded<const ALONE: bool>(
+    t: [Texel; 4],
+    x: u32,
+    y: u32,
+    r: u64,
+) -> Texel {
+    if ALONE {
+        bilinear_texel_with::<WIDE, SIGNED>(t, x, y, r, PAIR)
+    } else {
+        bilinear_texel_with::<WIDE, false>(t, x, y, r, PAIR)
+    }
 }
 
 #[cfg(test)]
@@ -337,10 +405,30 @@ mod tests {
                 bilinear_with::<true>(t, x, y, PAIR),
                 bilinear_with::<false>(t, x, y, PAIR)
             );
-            assert_eq!(
-                bilinear_texel_with::<true>(t, x, y, ROUND_PAIR, PAIR),
-                bilinear_texel_with::<false>(t, x, y, ROUND_PAIR, PAIR)
-            );
+            let texel_forms = [
+                bilinear_texel_with::<true, false>(t, x, y, ROUND_PAIR, PAIR),
+                bilinear_texel_with::<false, true>(t, x, y, ROUND_PAIR, PAIR),
+                bilinear_texel_with::<true, true>(t, x, y, ROUND_PAIR, PAIR),
+                bilinear_texel_rounded::<true>(t, x, y, ROUND_PAIR),
+                bilinear_texel_rounded::<false>(t, x, y, ROUND_PAIR),
+            ];
+            for form in texel_forms {
+                assert_eq!(
+                    form,
+                    bilinear_texel_with::<false, false>(t, x, y, ROUND_PAIR, PAIR)
+                );
+            }
+            // The signed sums of the flipped words: the unsigned sums'
+            // low words, and their high words less 2²³.
+            for k in 0..2 {
+                let signed = pair_sum_signed(t.map(|v| pairs(v ^ FLIP, PAIR)[k]), w, ROUND_PAIR);
+                let unsigned = pair_sum::<true>(t.map(|v| pairs(v, PAIR)[k]), w, ROUND_PAIR);
+                assert_eq!(
+                    signed,
+                    unsigned.wrapping_sub(1 << (32 + 23)),
+                    "{t:x?} {x} {y} {k}"
+                );
+            }
             let e = exact_weights(u64::from(x), u64::from(y));
             let wide = bilinear(t, x, y);
             let texel = bilinear_texel(t, x, y);

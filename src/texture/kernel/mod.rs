@@ -166,6 +166,14 @@ pub trait Kernel: sealed::Sealed + 'static {
     fn bilinear(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Self::Wide;
     /// [`bilinear`](Self::bilinear) rounded to a result texel.
     fn bilinear_texel(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Texel;
+    /// [`bilinear_texel`](Self::bilinear_texel) for a call alone, not in a
+    /// batch loop: the same texel, in the form that is shorter where the
+    /// registers are free (the FAST kernel's signed pair sums on Arm, module
+    /// `fast`); by default `bilinear_texel` itself.
+    #[inline(always)]
+    fn bilinear_texel_alone(l: [Self::Lanes; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        Self::bilinear_texel(l, fx, fy, k)
+    }
     /// A level value rounded to a result texel.
     fn round(w: Self::Wide) -> Texel;
     /// One level of a trilinear sample: the footprint's filtered value as
@@ -465,7 +473,11 @@ impl Kernel for (Linear, Fast) {
     }
     #[inline(always)]
     fn bilinear_texel(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
-        fast::bilinear_texel_rounded(l, fx, fy, k.pair)
+        fast::bilinear_texel_rounded::<false>(l, fx, fy, k.pair)
+    }
+    #[inline(always)]
+    fn bilinear_texel_alone(l: [Texel; 4], fx: u32, fy: u32, k: Rounding) -> Texel {
+        fast::bilinear_texel_rounded::<true>(l, fx, fy, k.pair)
     }
     // A FAST level value is an exact 8.16 value: rounding, level blend and
     // probes are the ACCURATE kernel's (module docs of `fast`).

@@ -520,14 +520,22 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
     #[inline(always)]
     pub fn sample_bilinear(&mut self, u: TexCoord, v: TexCoord, lod: Lod) -> Texel {
         self.stats.count(4, 0);
-        self.bilinear_uncounted(u, v, lod, self.rounding)
+        self.bilinear_uncounted::<true>(u, v, lod, self.rounding)
     }
 
     /// [`sample_bilinear`](Self::sample_bilinear) without the fetch counter,
     /// with the rounding terms `k` (as for
-    /// [`trilinear_counted`](Self::trilinear_counted)).
+    /// [`trilinear_counted`](Self::trilinear_counted)); `ALONE`: a call
+    /// alone (the kernel's [`Kernel::bilinear_texel_alone`]), else one
+    /// iteration of a batch loop (the same texel).
     #[inline(always)]
-    fn bilinear_uncounted(&mut self, u: TexCoord, v: TexCoord, lod: Lod, k: Rounding) -> Texel {
+    fn bilinear_uncounted<const ALONE: bool>(
+        &mut self,
+        u: TexCoord,
+        v: TexCoord,
+        lod: Lod,
+        k: Rounding,
+    ) -> Texel {
         #[cfg(all(feature = "cfu", target_arch = "riscv32"))]
         if let Some(t) = self.unit_sample(u, v, lod, false) {
             return t;
@@ -538,7 +546,11 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             return Kern::<K>::round_level(a);
         }
         let (t, fx, fy) = self.footprint(u, v, level);
-        Kern::<K>::bilinear_texel(t, fx, fy, k)
+        if ALONE {
+            Kern::<K>::bilinear_texel_alone(t, fx, fy, k)
+        } else {
+            Kern::<K>::bilinear_texel(t, fx, fy, k)
+        }
     }
 
     /// [`Mode::Nearest`]: nearest texel of level `floor(lod + ½)`.
@@ -633,7 +645,7 @@ impl<S: TexelSource, K: Key> Sampler<S, K> {
             }
             Mode::BilinearNearestLevel => {
                 for (o, &(u, v, lod)) in out.iter_mut().zip(hits) {
-                    *o = self.bilinear_uncounted(u, v, lod, k);
+                    *o = self.bilinear_uncounted::<false>(u, v, lod, k);
                 }
                 self.stats.count(texels, 0);
             }
