@@ -471,7 +471,8 @@ fn half_log2(s: u64, e: i32) -> i32 {
 fn log_key(s: u64, e: i32) -> u64 {
     let (m, lz) = normalise64(s);
     let k = (2 * e.clamp(-1024, 1023) + 63 - lz as i32 + 4096) as u64;
-    if s == 0 { 0 } else { (k << 32) | u64::from(m) }
+    // `k << 32` and the 32-bit mantissa share no bit: the sum packs them.
+    if s == 0 { 0 } else { (k << 32) + u64::from(m) }
 }
 
 /// `½·log2` of the square whose [`log_key`] is `top`, in I16F16 bits.

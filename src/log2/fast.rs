@@ -208,7 +208,8 @@ impl NormPl {
         } else {
             e
         };
-        Self((e << 16) | (bits & ((1 << INDEX_BITS) - 1)))
+        // `e << 16` has its low 16 bits clear: the sum packs the index in.
+        Self((e << 16) + (bits & ((1 << INDEX_BITS) - 1)))
     }
 
     /// FAST `log2 Pl` plus the I8F8 rounding offset `0x80`, in I16F16

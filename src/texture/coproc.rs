@@ -38,7 +38,8 @@ pub fn coord_i4f28(mode: AddressMode, c: TexCoord) -> u32 {
         AddressMode::Mirror => hi & 1,
         _ => hi.clamp(-4, 3),
     };
-    ((b as u32) >> 4) | ((int as u32) << 28)
+    // The fields share no bit: their sum is the packed word.
+    ((b as u32) >> 4) + ((int as u32) << 28)
 }
 
 /// The `tex.lvl` operand of a level of `2^kx × 2^ky` texels (`kx, ky ≤
@@ -49,7 +50,8 @@ pub fn coord_i4f28(mode: AddressMode, c: TexCoord) -> u32 {
 #[inline(always)]
 #[must_use]
 pub const fn level_config(kx: u32, ky: u32, mu: AddressMode, mv: AddressMode) -> u32 {
-    (kx & 15) | (ky & 15) << 4 | (mu as u32 & 3) << 8 | (mv as u32 & 3) << 10
+    // The fields share no bit: their sum is the packed word.
+    (kx & 15) + ((ky & 15) << 4) + ((mu as u32 & 3) << 8) + ((mv as u32 & 3) << 10)
 }
 
 /// Word 1 of a descriptor block: the lod window `[lo, hi]` (I8F8 bits,
@@ -58,7 +60,8 @@ pub const fn level_config(kx: u32, ky: u32, mu: AddressMode, mv: AddressMode) ->
 #[inline]
 #[must_use]
 pub const fn window_word(lo: u32, hi: u32, mu: AddressMode, mv: AddressMode) -> u32 {
-    (lo & 0xFFF) | (hi & 0xFFF) << 12 | (mu as u32 & 3) << 24 | (mv as u32 & 3) << 26
+    // The fields share no bit: their sum is the packed word.
+    (lo & 0xFFF) + ((hi & 0xFFF) << 12) + ((mu as u32 & 3) << 24) + ((mv as u32 & 3) << 26)
 }
 
 /// The descriptor block (valid: word 1 is the [`window_word`] with
@@ -86,7 +89,8 @@ pub fn descriptor_block(
     i16::try_from(bias).ok()?;
     let mut block = [0; BLOCK_WORDS];
     block[0] = bias as u32;
-    block[1] = window_word(lo as u32, hi as u32, mu, mv) | BLOCK_VALID;
+    // `window_word` fills bits 0–27 and the valid bit is bit 28.
+    block[1] = window_word(lo as u32, hi as u32, mu, mv) + BLOCK_VALID;
     for (l, word) in block[2..].iter_mut().enumerate() {
         let view = levels.level(l);
         let (w, h) = (view.width(), view.height());

@@ -68,17 +68,19 @@ fn to8(x: u32) -> u32 {
 #[inline(always)]
 #[must_use]
 pub fn encode_output(v: [u32; 4]) -> Texel {
+    // Four 8-bit channels (`to8 ≤ 255`): the sum is the packed word.
     u32::from(srgb::encode(v[0]))
-        | (u32::from(srgb::encode(v[1])) << 8)
-        | (u32::from(srgb::encode(v[2])) << 16)
-        | (to8(v[3]) << 24)
+        + (u32::from(srgb::encode(v[1])) << 8)
+        + (u32::from(srgb::encode(v[2])) << 16)
+        + (to8(v[3]) << 24)
 }
 
 /// Four 16.8 linear channels rounded to 8-bit linear.
 #[inline(always)]
 #[must_use]
 pub fn linear_output(v: [u32; 4]) -> Texel {
-    to8(v[0]) | (to8(v[1]) << 8) | (to8(v[2]) << 16) | (to8(v[3]) << 24)
+    // Four 8-bit channels (`to8 ≤ 255`): the sum is the packed word.
+    to8(v[0]) + (to8(v[1]) << 8) + (to8(v[2]) << 16) + (to8(v[3]) << 24)
 }
 
 /// The 16.8 channels of decoded lanes (exact, for nearest-texel modes).
