@@ -61,6 +61,10 @@ RD_SUM_GOALS = [("footprint + lod", ["rd_footprint", "rd_lod"], 150),
                  ["rd_transfer", "rd_footprint", "rd_lod"], 300),
                 ("G-buffer per first hit (set-up + footprint + lod)",
                  ["rd_gbuffer", "rd_footprint", "rd_lod"], 180)]
+# The sums whose goal is met: CI fails when one rises above its goal again
+# (each row has its own ceiling too, but the rows' ceilings, each its
+# achieved count + 5 %, add up to more than the goal).
+RD_SUMS_AT_GOAL = {label for label, _, _ in RD_SUM_GOALS}
 # Environment map (feature `envmap`, issue 21): (key, label), wrapper
 # `rm_bench_<key>`, 64 calls each.
 ENV_ROWS = [("env_cone", "cone lod, equator texel (no direction)"),
@@ -700,6 +704,9 @@ def render(work, old_text, readme):
         total = sum(rd_max("m4", key) for key in keys)
         (met if total <= goal else missed).append(
             label if total <= goal else f"{label} ({total} > {goal})")
+        # A sum whose goal is met keeps it as a ceiling, as a row does.
+        if label in RD_SUMS_AT_GOAL and total > goal:
+            bad.append(f"m4 {label}: {total} instructions > goal {goal} (met before: a ceiling)")
     w(f"\nGoals met on the Cortex-M4 (max): {', '.join(met) if met else 'none'}. Missed: "
       f"{'; '.join(missed) if missed else 'none'}. Where a goal is missed the ceiling is this")
     w("measurement + 5 %. The x and y differentials of a quantity share one exponent: each")
