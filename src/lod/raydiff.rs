@@ -451,6 +451,7 @@ impl RayDiffFootprint {
 /// and the crate's table logarithm: within `2⁻¹⁴ + 2⁻³¹` of the exact
 /// value (the table's `2⁻¹³` halved). Shared with the environment map's
 /// ray-differential lod.
+#[cfg(any(feature = "envmap", test))]
 #[inline(always)]
 pub(crate) fn half_log2_max(s: [u64; 2], e: [i32; 2]) -> i32 {
     half_log2_of_key(log_key(s[0], e[0]).max(log_key(s[1], e[1])))
