@@ -58,10 +58,14 @@
 //             rs2 = a lod (I8F8 bits, sign-extended). rd = 1 when the
 //             block lies in the RAM (word-aligned) and word 1's valid bit
 //             is set, else 0 (and nothing is selected; always 0 with
-//             HAS_RAM = 0). The unit answers once it has read words 0 and
-//             1; then, in the background, it computes
-//             bits = min(max(lod + bias, lo), hi), and reads the
-//             descriptors of levels bits >> 8 and bits >> 8 + 1.
+//             HAS_RAM = 0). The unit keeps the last block it read in a
+//             cache of its own (its 19 words), which any CPU write into
+//             the block's words drops (mem_wadr, below); it answers from
+//             the cache, or once it has read the whole block into it;
+//             then, in the background, it computes
+//             bits = min(max(lod + bias, lo), hi) and takes the
+//             descriptors of levels bits >> 8 and bits >> 8 + 1 from the
+//             cache.
 //   funct7 2, funct3 2  tex.tri rd, rs1, rs2
 //             rs1 = u, rs2 = v as for tex.addr. rd = the trilinear sample:
 //             levels bits >> 8 and bits >> 8 + 1, each addressed as
@@ -82,27 +86,31 @@
 // texels of a footprint row (x0 and x1 = x0 ± 1 have different parities,
 // or are the same texel) come in one cycle. mem_hold: the CPU has a write
 // on its data bus (the store buffer of VexRiscv's write-through data cache
-// drains after the store retires); tex.sel waits for it to end before its
-// first read, so it reads what the CPU wrote before it. Between tex.sel and
-// its tex.tri/tex.bil the firmware writes neither the block nor texels.
+// drains after the store retires), mem_wadr its word address; tex.sel
+// waits for mem_hold to end before it answers from the cache or reads the
+// block, so it uses what the CPU wrote before it: a write into the cached
+// block's words drops the cache in the cycle it is on the bus. Between
+// tex.sel and its tex.tri/tex.bil the firmware writes neither the block
+// nor texels.
 //
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
-// Pipelined for the clock (at most one multiply, one add or one index map
-// per stage): tex.lod, tex.bt, tex.lvl, tex.tap, tex.ram and a tex.sel
-// of a block outside the RAM answer one cycle later (rsp_valid
-// registered; tex.bt goes on in the background), tex.sel of a block in
-// the RAM three (its words 0 and 1 read, plus the cycles mem_hold delays
-// the read; the rest of its reads go on in the background), tex.bw and tex.addr five (A1 the shifted
-// coordinates, A2 the scaled positions and weights, B1 the index maps, B2
-// the addresses and corner weights, then the answer), tex.log2pl five
-// (tex_log2pl.v with PIPE = 1), tex.blend three (the two level products,
-// their sum), tex.bb five (the row's corner products, their sum, the
-// level's sum, the rounding). tex.sel's background reads take seven cycles
-// (the window's words, the lod clamped below, then above, the levels'
-// addresses, their words); the texture unit then fetches a level's two
-// rows in consecutive cycles and answers tex.tri 15 cycles after the
-// command (11 with t = 0), tex.bil 11 (as tb_cfu_tex.cpp counts: the cycle
-// of the transfer is 1).
+// Pipelined for the clock (the CPU's own execute stage sets the SoC's
+// clock, so a stage may hold a few steps: an index map with its address
+// shift and add, a three-input sum): tex.lod, tex.bt, tex.lvl, tex.tap,
+// tex.ram and a tex.sel of a block outside the RAM answer one cycle later
+// (rsp_valid registered; tex.bt goes on in the background), tex.sel of a
+// cached block two (plus the cycles mem_hold delays it; the lod's window
+// and the levels' words take two more cycles in the background), ten
+// more when it reads the block first; tex.bw and tex.addr four (A1 the
+// shifted coordinates, A2 the scaled positions and weights, B2 the index
+// maps, addresses and corner weights, then the answer), tex.log2pl five
+// (tex_log2pl.v with PIPE = 1), tex.blend three (the lower level's
+// product, then the upper's with the sum), tex.bb three (the row's corner
+// products, then the level's sum and the rounding). The texture unit
+// fetches a level's two rows in consecutive cycles, multiplies each in its
+// data cycle and answers tex.tri 10 cycles after the command (7 with
+// t = 0), tex.bil 7 (as tb_cfu_tex.cpp counts: the cycle of the transfer
+// is 1).
 // The filter runs the four channels in parallel as the corner sum of
 // src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
 // W = [(4096 − fx)(4096 − fy), fx(4096 − fy), (4096 − fx)fy, fx·fy]
@@ -138,7 +146,8 @@ module Cfu #(
     output wire [RAM_AW-1:0] mem_adr_1,                // bank 1 (odd words): word index
     input  wire [      31:0] mem_dat_0,                // bank 0's word, a cycle after
     input  wire [      31:0] mem_dat_1,                // bank 1's word, a cycle after
-    input  wire              mem_hold                  // the CPU has a write on its data bus
+    input  wire              mem_hold,                 // the CPU has a write on its data bus
+    input  wire [      29:0] mem_wadr                  // its word address (byte address >> 2)
 );
     /* verilator lint_on DECLFILENAME */
     localparam [31:0] UNTEXTURED = 32'h8000_0000;
@@ -224,8 +233,7 @@ module Cfu #(
     // windowed lod, the modes and the two levels (texel (0, 0) and sides).
     reg [31:0] sp;                      // the block's byte address
     reg [17:0] slod;                    // the lod operand (I8F8 bits)
-    reg [17:0] swin0;                   // word 0: the lod bias
-    reg [27:0] swin1;                   // word 1: the window and the modes
+    reg [15:0] swin1;                   // word 1 [27:12]: the window's top and the modes
     reg [17:0] swmax;                   // max(lod + bias, lo)
     reg  [7:0] tt;                      // the windowed lod: level fraction t
     reg  [3:0] tlow;                    // and lower level
@@ -275,13 +283,15 @@ module Cfu #(
     reg  [3:0] b_kx;
     reg  [1:0] b_mu, b_mv;
 
-    // Stage B1: index maps and the weights' complements.
-    reg        c_v;
-    reg  [1:0] c_tag, c_lt;
-    reg [15:0] c_x0, c_x1, c_y0, c_y1;
-    reg [12:0] c_wx, c_wy, c_fxc, c_fyc;
-    reg [31:0] c_base;
-    reg  [3:0] c_kx;
+    // Stage B (combinational into B2's registers): index maps and the
+    // weights' complements.
+    wire        c_v = b_v;
+    wire  [1:0] c_tag = b_tag, c_lt = b_lt;
+    wire [15:0] c_x0 = mapi(b_i0x, b_mxx, b_kbx, b_mu), c_x1 = mapi(b_i1x, b_mxx, b_kbx, b_mu);
+    wire [15:0] c_y0 = mapi(b_i0y, b_mxy, b_kby, b_mv), c_y1 = mapi(b_i1y, b_mxy, b_kby, b_mv);
+    wire [12:0] c_wx = b_wx, c_wy = b_wy, c_fxc = 13'd4096 - b_wx, c_fyc = 13'd4096 - b_wy;
+    wire [31:0] c_base = b_base;
+    wire  [3:0] c_kx = b_kx;
 
     // Stage B2: the four texel addresses base + 4·(y·2^kx + x) (x < 2^kx:
     // an OR), the corner weights.
@@ -321,28 +331,46 @@ module Cfu #(
     reg  [1:0] md_lt;
     reg [24:0] md_wa, md_wb;
     wire [31:0] dat_a = da ? mem_dat_1 : mem_dat_0, dat_b = db ? mem_dat_1 : mem_dat_0;
-    wire sq_go = sq == 3'd1 && !mem_hold;
 
     // tex.sel: is the block in the RAM.
     /* verilator lint_off UNUSEDSIGNAL */
     wire [31:0] off = a - RAM_BASE;
     /* verilator lint_on UNUSEDSIGNAL */
     wire blk_ok = HAS_RAM != 0 && a[1:0] == 2'd0 && off <= (32'd1 << RAM_LOG2) - BLOCK_BYTES;
-    // The window: bits = min(max(lod + bias, lo), hi), 18-bit signed sum.
-    /* verilator lint_off UNUSEDSIGNAL */  // the bias and lod are I8F8 bits: 18 bits hold their sum
-    wire [17:0] wsum = slod + swin0;
+    // The block cache: the 19 words of the block at `cp` (and one word
+    // after it) while `cv`, word i in cblk[32i+31:32i]; filled by tex.sel
+    // (ten reads of two words, `cfc`), dropped by any CPU write into the
+    // block's words (`cdt`: one came during the fill).
+    reg          cv, cdt;
+    reg  [31:0]  cp;
+    reg  [ 3:0]  cfc;
+    reg  [639:0] cblk;
+    wire chit = cv && cp == sp;
+    /* verilator lint_off UNUSEDSIGNAL */  // the block's word offset: only < 19 matters
+    wire [29:0] wrel = mem_wadr - cp[31:2];
     /* verilator lint_on UNUSEDSIGNAL */
-    wire [11:0] wlo = swin1[11:0], whi = swin1[23:12];
+    // The selected levels' words (word 2 + tlow and the next).
+    /* verilator lint_off UNUSEDSIGNAL */  // offset bits above the RAM's
+    wire [31:0] lw_a = cblk[64 + 32 * tlow +: 32], lw_b = cblk[96 + 32 * tlow +: 32];
+    /* verilator lint_on UNUSEDSIGNAL */
+    // The window: bits = min(max(lod + bias, lo), hi), 18-bit signed sum,
+    // from the cached words 0 (bias) and 1 (window).
+    /* verilator lint_off UNUSEDSIGNAL */  // the bias and lod are I8F8 bits: 18 bits hold their sum
+    wire [17:0] wsum = slod + cblk[17:0];
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [11:0] wlo = cblk[43:32], whi = swin1[11:0];
     wire [17:0] wmax = $signed(wsum) < $signed({6'd0, wlo}) ? {6'd0, wlo} : wsum;
     /* verilator lint_off UNUSEDSIGNAL */  // wmax ≥ lo ≥ 0: the top bits only compare
     wire [17:0] wbits = swmax > {6'd0, whi} ? {6'd0, whi} : swmax;
     /* verilator lint_on UNUSEDSIGNAL */
 
     // ---- The filter: four channels in parallel ----------------------------
-    // F0: a footprint row (two texels and their weights); F1: the corner
-    // products; F2: the row's sum (the first row's kept in `sum0`); F3: the
-    // level's sum X; F4: X's 8.16 value (w1, the one before moves to w0)
-    // and the rounded texel.
+    // F0: a footprint row of tex.bt / tex.bb (two texels and their
+    // weights; the RAM's rows skip it); F1: the corner products; F2: the first row's sum, kept with the rounding terms in
+    // `sum0w` (+ 2⁷) and `sum0r` (+ 2⁷ + 2²³), or, for the second row, the
+    // level's sum X + 2⁷ = sum0w + the row's products: its 8.16 value
+    // (w1, the one before moves to w0) and the rounded texel
+    // (sum0r + the products) >> 24.
     reg        f0_v, f0_row;
     reg  [1:0] f0_lt;
     reg [31:0] f0_ta, f0_tb;
@@ -350,44 +378,44 @@ module Cfu #(
     reg        f1_v, f1_row;
     reg  [1:0] f1_lt;
     reg [127:0] f1_pa, f1_pb;
-    reg [127:0] sum0;
-    reg        f2_v;
-    reg  [1:0] f2_lt;
-    reg [127:0] f2_r;
-    reg        f3_v;
-    reg  [1:0] f3_lt;
-    reg [127:0] f3_x;
+    reg [127:0] sum0w, sum0r;
     reg [95:0] w0, w1;
-    // The blend: B1 the two products per channel (the first with the
-    // rounding term 2²³), B2 their sum.
-    reg        bl_v, b2_v;
+    // The blend ((256 − t)·w_prev + 2²³ + t·w1) >> 24 in two steps: Q the
+    // first product with the rounding term into `qa` (for tex.tri as soon
+    // as the lower level is done, from w1; for tex.blend from w0), then
+    // the answer qa + t·w1.
+    reg        qa_v, qa_w0, fin_v;
     reg  [8:0] bl_t;
-    reg [127:0] b2_q0, b2_q1;
+    reg [127:0] qa;
 
-    wire [127:0] pa_n, pb_n, r_n, x_n, q0_n, q1_n;
+    wire [127:0] pa_n, pb_n, s0w_n, s0r_n, qa_n;
     wire [95:0] wide_n;
     wire [31:0] round_n, blend_n;
     wire [8:0] bl_tc = 9'd256 - bl_t;
+    wire [95:0] qsrc = qa_w0 ? w0 : w1;
+    // F1's row: the RAM's data in its data cycle, else tex.bt/tex.bb's F0.
+    wire [31:0] ta = md_v ? dat_a : f0_ta, tb = md_v ? dat_b : f0_tb;
+    wire [24:0] wa_ = md_v ? md_wa : f0_wa, wb_ = md_v ? md_wb : f0_wb;
     genvar c;
     generate
         for (c = 0; c < 4; c = c + 1) begin : ch
             /* verilator lint_off UNUSEDSIGNAL */  // every product < 2³², the sums too
-            wire [32:0] pa = {25'd0, f0_ta[8*c+7:8*c]} * {8'd0, f0_wa};
-            wire [32:0] pb = {25'd0, f0_tb[8*c+7:8*c]} * {8'd0, f0_wb};
-            wire [31:0] xw = f3_x[32*c+31:32*c] + 32'd128;
-            wire [31:0] xr = f3_x[32*c+31:32*c] + 32'h0080_0080;
-            wire [32:0] q0 = {9'd0, w0[24*c+23:24*c]} * {24'd0, bl_tc};
+            wire [32:0] pa = {25'd0, ta[8*c+7:8*c]} * {8'd0, wa_};
+            wire [32:0] pb = {25'd0, tb[8*c+7:8*c]} * {8'd0, wb_};
+            wire [31:0] r = f1_pa[32*c+31:32*c] + f1_pb[32*c+31:32*c];
+            wire [31:0] xw = sum0w[32*c+31:32*c] + r;
+            wire [31:0] xr = sum0r[32*c+31:32*c] + r;
+            wire [32:0] q0 = {9'd0, qsrc[24*c+23:24*c]} * {24'd0, bl_tc};
             wire [32:0] q1 = {9'd0, w1[24*c+23:24*c]} * {24'd0, bl_t};
-            wire [31:0] bs = b2_q0[32*c+31:32*c] + b2_q1[32*c+31:32*c];
+            wire [31:0] bs = qa[32*c+31:32*c] + q1[31:0];
             /* verilator lint_on UNUSEDSIGNAL */
             assign pa_n[32*c+31:32*c] = pa[31:0];
             assign pb_n[32*c+31:32*c] = pb[31:0];
-            assign r_n[32*c+31:32*c] = f1_pa[32*c+31:32*c] + f1_pb[32*c+31:32*c];
-            assign x_n[32*c+31:32*c] = sum0[32*c+31:32*c] + f2_r[32*c+31:32*c];
+            assign s0w_n[32*c+31:32*c] = r + 32'd128;
+            assign s0r_n[32*c+31:32*c] = r + 32'h0080_0080;
             assign wide_n[24*c+23:24*c] = xw[31:8];
             assign round_n[8*c+7:8*c] = xr[31:24];
-            assign q0_n[32*c+31:32*c] = q0[31:0] + 32'h0080_0000;
-            assign q1_n[32*c+31:32*c] = q1[31:0];
+            assign qa_n[32*c+31:32*c] = q0[31:0] + 32'h0080_0000;
             assign blend_n[8*c+7:8*c] = bs[31:24];
         end
     endgenerate
@@ -448,21 +476,6 @@ module Cfu #(
         b_mu <= a_mu;
         b_mv <= a_mv;
 
-        // Stage B1.
-        c_v <= b_v;
-        c_tag <= b_tag;
-        c_lt <= b_lt;
-        c_x0 <= mapi(b_i0x, b_mxx, b_kbx, b_mu);
-        c_x1 <= mapi(b_i1x, b_mxx, b_kbx, b_mu);
-        c_y0 <= mapi(b_i0y, b_mxy, b_kby, b_mv);
-        c_y1 <= mapi(b_i1y, b_mxy, b_kby, b_mv);
-        c_wx <= b_wx;
-        c_wy <= b_wy;
-        c_fxc <= 13'd4096 - b_wx;
-        c_fyc <= 13'd4096 - b_wy;
-        c_base <= b_base;
-        c_kx <= b_kx;
-
         // Stage B2: a level of the texture unit, or tex.addr's taps and
         // tex.bw's weights (answered the cycle after).
         d_v <= 1'b0;
@@ -513,88 +526,106 @@ module Cfu #(
         end
         if (c_v && c_tag == AT_TMU) lv_v <= 1'b1;
 
-        // tex.sel's reads: 1 the window's words (after the CPU's writes),
-        // 2 their data and the answer (word 1's valid bit; an invalid
-        // block ends here), 3 the lod clamped below, 4 clamped above, 5
-        // the two levels' word addresses, 6 their words, 7 their data.
+        // tex.sel: 1 waits for the CPU's writes to end (mem_hold), then
+        // answers from the block cache when it holds this block (word 1's
+        // valid bit; an invalid block ends here) and clamps the lod below,
+        // else reads the block into the cache (2, ten pairs of words, then
+        // 1 again); 4 the lod clamped above, 5 the two levels' words from
+        // the cache.
         case (sq)
-            3'd1: if (sq_go) sq <= 3'd2;
-            3'd2: begin
-                pend                  <= 1'b0;
-                rsp_valid             <= 1'b1;
-                rsp_payload_outputs_0 <= {31'd0, dat_b[28]};
-                swin0                 <= dat_a[17:0];
-                swin1                 <= dat_b[27:0];
-                sq                    <= dat_b[28] ? 3'd3 : 3'd0;
+            3'd1:
+            if (!mem_hold) begin
+                if (chit) begin
+                    pend                  <= 1'b0;
+                    rsp_valid             <= 1'b1;
+                    rsp_payload_outputs_0 <= {31'd0, cblk[60]};
+                    swin1                 <= cblk[59:44];
+                    swmax                 <= wmax;
+                    sq                    <= cblk[60] ? 3'd4 : 3'd0;
+                end else begin
+                    cv  <= 1'b0;
+                    cp  <= sp;
+                    cdt <= 1'b0;
+                    cfc <= 4'd0;
+                    ra  <= ra + 32'd8;
+                    rb  <= rb + 32'd8;
+                    sq  <= 3'd2;
+                end
             end
-            3'd3: begin
-                swmax <= wmax;
-                sq    <= 3'd4;
+            3'd2: begin
+                cblk <= {dat_b, dat_a, cblk[639:64]};
+                ra   <= ra + 32'd8;
+                rb   <= rb + 32'd8;
+                cfc  <= cfc + 4'd1;
+                if (cfc == 4'd9) begin
+                    cv <= !cdt;
+                    ra <= sp;
+                    rb <= sp + 32'd4;
+                    sq <= 3'd1;
+                end
             end
             3'd4: begin
                 tt   <= wbits[7:0];
                 tlow <= wbits[11:8];
-                tmu  <= swin1[25:24];
-                tmv  <= swin1[27:26];
+                tmu  <= swin1[13:12];
+                tmv  <= swin1[15:14];
                 sq   <= 3'd5;
             end
             3'd5: begin
-                ra <= sp + 32'd8 + {26'd0, tlow, 2'd0};
-                rb <= sp + 32'd12 + {26'd0, tlow, 2'd0};
-                sq <= 3'd6;
-            end
-            3'd6: sq <= 3'd7;
-            3'd7: begin
-                tb0  <= {RAM_BASE[31:RAM_LOG2], dat_a[RAM_LOG2-3:0], 2'd0};
-                tkx0 <= dat_a[27:24];
-                tky0 <= dat_a[31:28];
-                tb1  <= {RAM_BASE[31:RAM_LOG2], dat_b[RAM_LOG2-3:0], 2'd0};
-                tkx1 <= dat_b[27:24];
-                tky1 <= dat_b[31:28];
+                tb0  <= {RAM_BASE[31:RAM_LOG2], lw_a[RAM_LOG2-3:0], 2'd0};
+                tkx0 <= lw_a[27:24];
+                tky0 <= lw_a[31:28];
+                tb1  <= {RAM_BASE[31:RAM_LOG2], lw_b[RAM_LOG2-3:0], 2'd0};
+                tkx1 <= lw_b[27:24];
+                tky1 <= lw_b[31:28];
                 sq   <= 3'd0;
             end
             default: ;
         endcase
-
-        // F0: a row from the RAM (or from tex.bt / tex.bb below).
-        f0_v <= md_v;
-        if (md_v) begin
-            f0_row <= md_row;
-            f0_lt  <= md_lt;
-            f0_ta  <= dat_a;
-            f0_tb  <= dat_b;
-            f0_wa  <= md_wa;
-            f0_wb  <= md_wb;
+        // A CPU write into the cached block's words drops the cache (and
+        // a fill under way keeps it dropped).
+        if (mem_hold && wrel < 30'd19) begin
+            cv  <= 1'b0;
+            cdt <= 1'b1;
         end
-        // F1 … F4.
-        f1_v   <= f0_v;
-        f1_row <= f0_row;
-        f1_lt  <= f0_lt;
+
+        // F0: a row of tex.bt / tex.bb (set below); the RAM's rows go to
+        // F1 in their data cycle.
+        f0_v <= 1'b0;
+        // F1, F2.
+        f1_v   <= f0_v || md_v;
+        f1_row <= md_v ? md_row : f0_row;
+        f1_lt  <= md_v ? md_lt : f0_lt;
         f1_pa  <= pa_n;
         f1_pb  <= pb_n;
-        f2_v   <= f1_v && f1_row;
-        f2_lt  <= f1_lt;
-        f2_r   <= r_n;
-        if (f1_v && !f1_row) sum0 <= r_n;
-        f3_v  <= f2_v;
-        f3_lt <= f2_lt;
-        f3_x  <= x_n;
-        if (f3_v) begin
+        if (f1_v && !f1_row) begin
+            sum0w <= s0w_n;
+            sum0r <= s0r_n;
+        end
+        qa_v <= 1'b0;
+        fin_v <= 1'b0;
+        if (f1_v && f1_row) begin
             w0 <= w1;
             w1 <= wide_n;
-            if (f3_lt == LT_ROUND) begin
+            if (f1_lt == LT_ROUND) begin
                 pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
                 rsp_payload_outputs_0 <= round_n;
             end
+            // The lower level of tex.tri: its blend product next.
+            if (f1_lt == LT_QUIET) begin
+                qa_v  <= 1'b1;
+                qa_w0 <= 1'b0;
+                bl_t  <= {1'b0, tt};
+            end
+            fin_v <= f1_lt == LT_BLEND;
         end
         // The blend (after the upper level, or tex.blend below).
-        bl_v <= f3_v && f3_lt == LT_BLEND;
-        if (f3_v && f3_lt == LT_BLEND) bl_t <= {1'b0, tt};
-        b2_v  <= bl_v;
-        b2_q0 <= q0_n;
-        b2_q1 <= q1_n;
-        if (b2_v) begin
+        if (qa_v) begin
+            qa    <= qa_n;
+            fin_v <= qa_w0;
+        end
+        if (fin_v) begin
             pend                  <= 1'b0;
             rsp_valid             <= 1'b1;
             rsp_payload_outputs_0 <= blend_n;
@@ -632,7 +663,8 @@ module Cfu #(
                     3'd5: begin
                         rsp_valid <= 1'b0;
                         pend      <= 1'b1;
-                        bl_v      <= 1'b1;
+                        qa_v      <= 1'b1;
+                        qa_w0     <= 1'b1;
                         bl_t      <= a[8:0] > 9'd256 ? 9'd256 : a[8:0];
                     end
                     default: ;
@@ -687,20 +719,18 @@ module Cfu #(
             pend      <= 1'b0;
             lbusy     <= 1'b0;
             sq        <= 3'd0;
+            cv        <= 1'b0;
             l1cnt     <= 2'd0;
             a_v       <= 1'b0;
             b_v       <= 1'b0;
-            c_v       <= 1'b0;
             d_v       <= 1'b0;
             lv_v      <= 1'b0;
             lrow      <= 1'b0;
             md_v      <= 1'b0;
             f0_v      <= 1'b0;
             f1_v      <= 1'b0;
-            f2_v      <= 1'b0;
-            f3_v      <= 1'b0;
-            bl_v      <= 1'b0;
-            b2_v      <= 1'b0;
+            qa_v      <= 1'b0;
+            fin_v     <= 1'b0;
         end
     end
 endmodule

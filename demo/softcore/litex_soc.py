@@ -170,9 +170,10 @@ class RaymipSoC(SoCCore):
     def add_cfu_ram_port(self, ram_bytes):
         """The texture unit's read port on the main RAM (cfu_tex.v's
         `mem_*` ports): the second port of each bank of BankedRAM, bank 0
-        the even and bank 1 the odd words, and `mem_hold` while the CPU's
+        the even and bank 1 the odd words, `mem_hold` while the CPU's
         data bus has a write in flight (the unit's first read of a tex.sel
-        waits for it)."""
+        waits for it) and `mem_wadr` its word address (a write into the
+        block the unit caches drops that cache)."""
         words = ram_bytes // 4
         aw = words.bit_length() - 2  # words per bank 2^aw
         ports = self.main_ram.cfu_ports
@@ -191,6 +192,7 @@ class RaymipSoC(SoCCore):
             i_mem_dat_0=ports[0].dat_r,
             i_mem_dat_1=ports[1].dat_r,
             i_mem_hold=hold,
+            i_mem_wadr=dbus.adr,
         )
 
 

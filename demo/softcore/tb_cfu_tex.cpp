@@ -14,8 +14,11 @@
 // command is presented with cmd_valid until cmd_ready (the transfer at the
 // rising edge where both are high; within 32 cycles); the answer must come
 // with rsp_valid within 32 cycles and equal RD in all 32 bits. mem_hold
-// (a CPU write on the bus) is high two cycles in every seven: the unit's
-// reads of a tex.sel wait for it to fall. Every fifth answer is held off with rsp_ready low for a few
+// (a CPU write on the bus) is high two cycles in every seven, with an
+// address outside the RAM: the unit's reads of a tex.sel wait for it to
+// fall; every RAM word of the file is written as a CPU write (mem_hold and
+// mem_wadr for a cycle), which drops the unit's block cache when it falls
+// in the cached block. Every fifth answer is held off with rsp_ready low for a few
 // cycles, during which rsp_valid and the data must stay and no command may
 // be taken. After every vector a function id the unit does not define is
 // sent: it must answer 0 and change no state (the next vector would
@@ -37,6 +40,11 @@ namespace {
 constexpr int kRamAw = 15;
 // The pseudo-op of a RAM word.
 constexpr unsigned kRamWord = 0x400;
+// The RAM's word address on the CPU's bus (cfu_tex.v's default RAM_BASE
+// 0x4000_0000 >> 2), and one outside it (the writes of the periodic
+// mem_hold, which touch no block).
+constexpr uint32_t kRamWordBase = 0x1000'0000;
+constexpr uint32_t kOutside = 0;
 
 struct Tb {
     std::unique_ptr<VerilatedContext> ctx = std::make_unique<VerilatedContext>();
@@ -52,9 +60,17 @@ struct Tb {
         top->mem_dat_0 = ram[size_t(a0) << 1];
         top->mem_dat_1 = ram[(size_t(a1) << 1) | 1];
         top->mem_hold = ++cycle % 7 < 2;
+        top->mem_wadr = kOutside;
         top->eval();
         top->clk = 0;
         top->eval();
+    }
+    // One cycle with a CPU write at word address `wadr` on the bus.
+    void write(uint32_t wadr) {
+        top->mem_hold = 1;
+        top->mem_wadr = wadr;
+        top->eval();
+        tick();
     }
     void fail(const char* what, unsigned op, uint32_t rs1, uint32_t rs2, uint32_t got,
               uint32_t want) {
@@ -141,6 +157,8 @@ int main(int argc, char** argv) {
                 return 2;
             }
             tb.ram[rs1] = rs2;
+            // The write on the CPU's bus, as the unit's snoop sees it.
+            tb.write(kRamWordBase + rs1);
             continue;
         }
         int k = -1;
