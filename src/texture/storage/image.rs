@@ -28,7 +28,7 @@ use crate::texture::storage::format::{
     AnyFormat, ColorSpace, Format, NoSrgbVariant, PixelFormat, RGB565_SPLIT, Rgb565, TexelFormat,
 };
 use crate::texture::storage::level::{LevelView, ViewFormat};
-use crate::texture::storage::mip::{Geometry, MAX_LEVELS, MipError, Texel, TexelSource};
+use crate::texture::storage::mip::{Geometry, MAX_LEVELS, MipError, Texel, TexelSource, clamp_to};
 use crate::texture::storage::pow2::Pow2Source;
 
 /// Bytes of level `k` of a `width × height` texture in `format`.
@@ -52,18 +52,13 @@ const fn level_bytes(width: u32, height: u32, k: u8, format: TexelFormat) -> u64
 #[must_use]
 pub const fn image_len(width: u32, height: u32, levels: u8, format: TexelFormat) -> usize {
     let full = crate::texture::storage::mip::full_levels(width, height);
-    let n = if levels < full { levels } else { full };
     let mut total = 0u64;
     let mut k = 0;
-    while k < n {
+    while k < levels && k < full {
         total = total.saturating_add(level_bytes(width, height, k, format));
         k += 1;
     }
-    if total > usize::MAX as u64 {
-        usize::MAX
-    } else {
-        total as usize
-    }
+    clamp_to(total, usize::MAX as u64)
 }
 
 /// The byte slice is shorter than the image needs. Example: [`Image`].
@@ -314,7 +309,8 @@ impl<'a, F: PixelFormat> Image<'a, F> {
                 .iter()
                 .take(4)
                 .rev()
-                .fold(0, |v, &x| (v << 8) | u32::from(x)),
+                // `v << 8` has its low byte clear: `+` adds the byte.
+                .fold(0, |v, &x| (v << 8) + u32::from(x)),
             None => 0,
         }
     }
@@ -462,10 +458,18 @@ mod tests {
     use crate::texture::storage::format::ColorSpace;
     use std::vec::Vec;
 
+    // `image_len` is a `const fn` (storage can be a `static`).
+    const _: () = assert!(image_len(9, 5, 4, TexelFormat::Bc3) == 16 * 9);
+
     #[test]
     fn lengths() {
         assert_eq!(image_len(4, 4, 3, TexelFormat::Rgba8), 4 * 21);
         assert_eq!(image_len(4, 4, 3, TexelFormat::Rgb565), 2 * 21);
+        // Levels past the full pyramid add nothing; fewer levels, fewer bytes.
+        assert_eq!(image_len(4, 4, 9, TexelFormat::Rgb565), 2 * 21);
+        assert_eq!(image_len(4, 4, 2, TexelFormat::Rgb565), 2 * 20);
+        assert_eq!(image_len(4, 4, 0, TexelFormat::Rgb565), 0);
+        assert_eq!(image_len(0, 4, 3, TexelFormat::Rgb565), 0);
         // BC1: 1 block + 1 + 1 (2×2 and 1×1 still take a whole block).
         assert_eq!(image_len(4, 4, 3, TexelFormat::Bc1), 24);
         assert_eq!(

@@ -76,9 +76,10 @@ pub const fn pyramid_len(width: u32, height: u32, levels: u8) -> usize {
 }
 
 /// `total` as a `usize`, clamped to `max` (`usize::MAX` as `u64` in
-/// [`pyramid_len`]: `u32::MAX` on the 32-bit targets; a parameter so that
+/// [`pyramid_len`] and [`image_len`](crate::texture::storage::image::image_len):
+/// `u32::MAX` on the 32-bit targets; a parameter so that
 /// the host tests check that clamp too).
-const fn clamp_to(total: u64, max: u64) -> usize {
+pub(crate) const fn clamp_to(total: u64, max: u64) -> usize {
     if total > max {
         max as usize
     } else {
