@@ -488,6 +488,22 @@ mod tests {
         assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
     }
 
+    /// The errors say what is wrong, in numbers or by the format's name.
+    #[test]
+    fn errors_name_the_problem() {
+        use std::string::ToString;
+        let short = ImageTooShort {
+            needed: 42,
+            got: 41,
+        };
+        let msg = "image data holds 41 bytes, the levels need 42";
+        assert_eq!(short.to_string(), msg);
+        assert_eq!(ImageError::TooShort(short).to_string(), msg);
+        let no_srgb = ImageError::NoSrgb(NoSrgbVariant(TexelFormat::Rgb565));
+        let msg = "Rgb565 has no sRGB variant (only RGBA8, LA8, L8, BC1-BC3)";
+        assert_eq!(no_srgb.to_string(), msg);
+    }
+
     /// Like `mip::pyramid_len`: sides near 2³² must
     /// saturate, not overflow the 64-bit byte count.
     #[test]
