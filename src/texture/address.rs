@@ -368,7 +368,8 @@ impl AddressMode {
 pub(crate) fn pow2_mirror_tap(coord: TexCoord, n: u32, bits: u32) -> (u32, u32) {
     let b = coord.to_bits();
     let h = (b >> 32) as u32;
-    let start = (u64::from(u32::MAX) << 32) | u64::from((1u32 << 31) | (1 << (31 - bits)));
+    // The three terms share no bit (`1 ≤ bits ≤ 31`): `+` packs them.
+    let start = (u64::from(u32::MAX) << 32) + u64::from((1u32 << 31) + (1 << (31 - bits)));
     let p = u64::from(b as u32)
         .wrapping_mul(u64::from(n))
         .wrapping_add(start);

@@ -486,6 +486,11 @@ mod tests {
             }
         );
         assert!(Format::new(TexelFormat::L8, ColorSpace::Srgb).is_ok());
+        // A typed image keeps its colour space.
+        let srgb =
+            Image::<crate::texture::storage::format::Rgba8>::typed(g, ColorSpace::Srgb, &[0; 84]);
+        let want = Format::new(TexelFormat::Rgba8, ColorSpace::Srgb).unwrap();
+        assert_eq!(srgb.unwrap().format(), want);
     }
 
     /// The errors say what is wrong, in numbers or by the format's name.
@@ -567,6 +572,7 @@ mod tests {
             for f in TexelFormat::ALL {
                 let bytes = pattern(image_len(w, h, levels, f), 9);
                 let img = Image::new(g, Format::linear(f), &bytes).unwrap();
+                assert_eq!((img.format(), img.bytes()), (Format::linear(f), &bytes[..]));
                 for level in 0..=20u8 {
                     for y in (0..h + 2).chain([u32::MAX]) {
                         for x in (0..w + 2).chain([u32::MAX]) {
