@@ -629,6 +629,36 @@ mod tests {
         }
     }
 
+    /// A BC block index past the level's block grid reads the last block
+    /// of its row or column (the cache asks for blocks beyond the edge).
+    #[test]
+    fn blocks_past_the_grid_read_the_edge_block() {
+        let g = Geometry::new(9, 6, 4).unwrap();
+        for f in TexelFormat::ALL
+            .into_iter()
+            .filter(|f| f.is_block_compressed())
+        {
+            let bytes = pattern(image_len(9, 6, 4, f), 5);
+            let mut img = Image::new(g, Format::linear(f), &bytes).unwrap();
+            for level in 0..4u8 {
+                let (w, h) = g.level_size(level);
+                let (lbx, lby) = ((w - 1) / BLOCK, (h - 1) / BLOCK);
+                for (bx, by) in [
+                    (lbx + 1, 0),
+                    (0, lby + 1),
+                    (lbx + 3, lby + 2),
+                    (u32::MAX, 1),
+                ] {
+                    let mut got = [0; BLOCK_TEXELS];
+                    let mut want = [0; BLOCK_TEXELS];
+                    img.read_block(level, bx, by, &mut got);
+                    img.read_block(level, bx.min(lbx), by.min(lby), &mut want);
+                    assert_eq!(got, want, "{f:?} {level} {bx} {by}");
+                }
+            }
+        }
+    }
+
     /// Indices whose bytes lie past the image's data read the expansion
     /// of 0 (never a panic), in every uncompressed format.
     #[test]
