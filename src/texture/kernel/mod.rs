@@ -364,9 +364,50 @@ macro_rules! linear_8_16 {
         wide_probes!();
         #[inline(always)]
         fn probe_mean(sum: [u32; 4], n: u32) -> Texel {
-            accurate::round_wide_in_range(mean(sum, n))
+            round_mean(sum, n)
         }
     };
+}
+
+/// `ceil(2²⁸/n)` for `n = 1 … 16` (entry `n − 1`): the reciprocals of
+/// [`round_mean`] (`2²⁸ / n` rounded up fits 29 bits for every `n`).
+const RECIP_16N: [u32; 16] = {
+    let mut r = [0u32; 16];
+    let mut n = 1u32;
+    while n <= 16 {
+        r[(n - 1) as usize] = (1u32 << 28).div_ceil(n);
+        n += 1;
+    }
+    r
+};
+
+/// [`round_wide_in_range`](accurate::round_wide_in_range) of [`mean`]
+/// without a division, bit for bit for channel sums `s < 2³¹` (16 probes
+/// of at most `255·2¹⁶` are below `2²⁸`) and `n ∈ [1, 16]` (other `n`
+/// read entry `(n − 1) mod 16`):
+///
+/// * the two roundings are one: `floor((floor((s + n/2)/n) + 2¹⁵)/2¹⁶)
+///   = floor(x/(n·2¹⁶))` with `x = s + n/2 + n·2¹⁵` (a floor of an
+///   integer quotient divided again is the floor of the product divisor);
+/// * `floor(x/(n·2¹⁶)) = floor(y/(16n))` with `y = x >> 12 < 2²⁰`, and
+///   that is the high word of `y·R`, `R = ceil(2³²/(16n)) =` [`RECIP_16N`]:
+///   `R·16n = 2³² + e` with `e < 16n ≤ 256`, so `y·R/2³²` exceeds
+///   `y/(16n)` by `y·e/(16n·2³²) < 1/(16n)`, less than the distance from
+///   `y/(16n)` to the next integer above it (at least `1/(16n)`).
+///
+/// One multiply per channel (`umull` on the Cortex-M4) instead of a
+/// division (tested against the divisions over all `n` and sums at and
+/// around every rounding boundary).
+#[inline(always)]
+fn round_mean(sum: [u32; 4], n: u32) -> Texel {
+    let r = u64::from(RECIP_16N[(n.wrapping_sub(1) & 15) as usize]);
+    let bias = (n << 15) + (n >> 1);
+    let mut out = 0u32;
+    for (c, &s) in sum.iter().enumerate() {
+        let y = u64::from(s.wrapping_add(bias) >> 12);
+        out += (((y * r) >> 32) as u32 & 0xFF) << (8 * c);
+    }
+    out
 }
 
 /// `(Σ + n/2) / n` per channel: the rounded mean of `n ≥ 1` probe values.
@@ -578,6 +619,44 @@ pub(crate) fn footprint(x: u64, n: u32) -> [u32; 4] {
 mod tests {
     use super::*;
     use crate::rng::XorShift64;
+
+    /// The reciprocal mean rounds as the two divisions do (the rounded
+    /// mean, then the rounded 8-bit channel), for every `n ∈ [1, 16]`:
+    /// each channel at and one either side of every multiple of `n·2¹⁶`
+    /// shifted by the rounding offsets (where a result changes), over
+    /// every result value, and pseudo-random sums up to `2³¹`.
+    #[test]
+    fn round_mean_equals_the_divisions() {
+        let old = |sum: [u32; 4], n: u32| accurate::round_wide_in_range(mean(sum, n));
+        let mut rng = XorShift64(0x3EA2_0000_0000_0032);
+        for n in 1..=16u32 {
+            for q in 0..=256u32 {
+                // The smallest sum whose rounded mean reaches `q·2¹⁶ − 2¹⁵`.
+                let edge = ((q * n) << 16).saturating_sub((n << 15) + n / 2);
+                for d in 0..3u32 {
+                    let s = (edge + d).saturating_sub(1);
+                    let sum = [s, s.saturating_sub(n), s / 2, edge];
+                    assert_eq!(round_mean(sum, n), old(sum, n), "{n} {sum:?}");
+                }
+            }
+            for _ in 0..if cfg!(miri) { 10 } else { 20_000 } {
+                let r = rng.next_u64();
+                let sum = [
+                    r as u32,
+                    (r >> 32) as u32,
+                    (r >> 16) as u32,
+                    (r >> 5) as u32,
+                ]
+                .map(|x| x >> 1 >> (r % 4 * 3));
+                assert_eq!(round_mean(sum, n), old(sum, n), "{n} {sum:?}");
+            }
+        }
+        // The table is `ceil(2²⁸/n)`, checked in 64-bit arithmetic.
+        for (i, &r) in RECIP_16N.iter().enumerate() {
+            let n = i as u64 + 1;
+            assert!(u64::from(r) * n >= 1 << 28 && (u64::from(r) - 1) * n < 1 << 28);
+        }
+    }
 
     /// Every kernel's trilinear levels: a first level started with `t` and
     /// a second level give [`Kernel::blend`] of their bilinear values, a

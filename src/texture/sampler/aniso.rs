@@ -182,9 +182,18 @@ fn small(c: [i64; 4], width: u32, height: u32) -> bool {
 /// clamp applies) and each square one signed 32×32→64-bit multiply
 /// (`smull`/`smlal` on the Cortex-M4). The values of
 /// [`lengths_general`] (tested over both sides of each bound).
+///
+/// With `c = hi·2³² + lo` (`hi ∈ {−1, 0}`, `lo` the low word) and
+/// `s = size·2¹⁶ < 2³¹`, `(c·size) >> 16 = hi·s + floor(lo·s / 2³²)`
+/// exactly (`hi·size·2³²` is a multiple of `2¹⁶`): the high word of one
+/// 32×32-bit product plus one 32-bit multiply-add (`umull`, `mla`).
 #[inline(always)]
 fn lengths(c: [i64; 4], width: u32, height: u32) -> (u64, u64) {
-    let t = |c: i64, size: u32| i64::from((c.wrapping_mul(i64::from(size)) >> 16) as i32);
+    let t = |c: i64, size: u32| {
+        let s = size << 16;
+        let lo = ((u64::from(c as u32) * u64::from(s)) >> 32) as u32;
+        i64::from(lo.wrapping_add(((c >> 32) as u32).wrapping_mul(s)) as i32)
+    };
     let sq = |x: i64, y: i64| (x * x + y * y) as u64;
     (
         sq(t(c[0], width), t(c[1], height)),
@@ -216,15 +225,25 @@ struct Rule {
 /// The probe rule (module docs) of the footprint `fp` on a `width ×
 /// height` level 0 with at most `max ∈ 1 ..= 16` probes (any other value
 /// reads entry `(max − 1) mod 16` of [`LOG2_K`]; no panic): [`lengths`]
-/// when they apply ([`small`]), else [`rule_general`]. Not inlined: one
-/// copy serves every sampler key (code size).
-#[inline(never)]
+/// when they apply ([`small`]), else [`rule_general`]. Inlined: the
+/// common path keeps its results in registers (no call frame, no result
+/// written to memory and read back); the general path stays one
+/// out-of-line copy.
+#[inline(always)]
 fn rule(fp: &Footprint, width: u32, height: u32, max: u8) -> Rule {
     let c = components(fp);
-    if small(c, width, height) {
-        rule_of(c, lengths(c, width, height), max)
-    } else {
-        rule_general(c, width, height, max)
+    if !small(c, width, height) {
+        return rule_general(fp, width, height, max);
+    }
+    let (count, lod, y) = rule_of(lengths(c, width, height), max);
+    // The components are within `±2³²` here (`small`): the clamp to
+    // `±2⁴⁷` is the identity, and the major axis is read from `fp` again
+    // (not kept in registers through the logarithms).
+    let major = if y { fp.y } else { fp.x };
+    Rule {
+        count,
+        lod,
+        major: major.map(TexCoord::to_bits),
     }
 }
 
@@ -232,25 +251,27 @@ fn rule(fp: &Footprint, width: u32, height: u32, max: u8) -> Rule {
 /// lengths by [`lengths_general`].
 #[cold]
 #[inline(never)]
-fn rule_general(c: [i64; 4], width: u32, height: u32, max: u8) -> Rule {
-    let c = c.map(|x| x.clamp(-AXIS_LIMIT, AXIS_LIMIT));
-    rule_of(c, lengths_general(c, width, height), max)
+fn rule_general(fp: &Footprint, width: u32, height: u32, max: u8) -> Rule {
+    let c = components(fp).map(|x| x.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+    let (count, lod, y) = rule_of(lengths_general(c, width, height), max);
+    Rule {
+        count,
+        lod,
+        major: if y { [c[2], c[3]] } else { [c[0], c[1]] },
+    }
 }
 
-/// The probe rule from the axis components `c` (within `±2⁴⁷`) and the
-/// axes' squared lengths `(lx, ly)`: their two logarithms, the minor
-/// axis's clamp, the count from the ratio's bucket ([`entries_below`];
-/// at most `max`, as the clamped ratio is at most `log2 max`) and the
-/// lod, the clamped minor axis's log2 to 8 fractional bits (rounded
-/// down, as `Lod::saturating_from_num` rounds; no value in `[−16, 16)`
-/// saturates).
+/// The probe rule from the axes' squared lengths `(lx, ly)`: their two
+/// logarithms, the minor axis's clamp, the count from the ratio's bucket
+/// ([`entries_below`]; at most `max`, as the clamped ratio is at most
+/// `log2 max`) and the lod, the clamped minor axis's log2 to 8
+/// fractional bits (rounded down, as `Lod::saturating_from_num` rounds;
+/// no value in `[−16, 16)` saturates). Returns the count, the lod and
+/// whether the second axis (`y`) is the major one (`ly > lx`).
 #[inline(always)]
-fn rule_of(c: [i64; 4], (lx, ly): (u64, u64), max: u8) -> Rule {
-    let (major, l_major, l_minor) = if lx >= ly {
-        ([c[0], c[1]], lx, ly)
-    } else {
-        ([c[2], c[3]], ly, lx)
-    };
+fn rule_of((lx, ly): (u64, u64), max: u8) -> (u8, i16, bool) {
+    let y = lx < ly;
+    let (l_major, l_minor) = if y { (ly, lx) } else { (lx, ly) };
     // log2 of the lengths: half the log2 of the squares (I16F16 bits, in
     // `[−16, 16)`).
     let log_major = log2_bits(l_major, 32).to_bits() >> 1;
@@ -260,11 +281,7 @@ fn rule_of(c: [i64; 4], (lx, ly): (u64, u64), max: u8) -> Rule {
     // `0 ≤ ratio ≤ log2 max`: the first k with ratio ≤ log2 k is one more
     // than the number of table entries below the ratio, at most `max`.
     let ratio = log_major - log_minor;
-    Rule {
-        count: entries_below(ratio) + 1,
-        lod: (log_minor >> 8) as i16,
-        major,
-    }
+    (entries_below(ratio) + 1, (log_minor >> 8) as i16, y)
 }
 
 /// Probe count, lod and probe positions of the footprint `fp` on a
