@@ -53,17 +53,23 @@ pub(crate) fn shr(x: i32, s: i32) -> i32 {
 
 /// `≈ 2⁶²/x` for `x ∈ [2³¹, 2³²)`, in `[2³⁰, 2³¹)`, within `3·2⁻³⁰`
 /// relative: one 32/16-bit division (`udiv` / `divu`, relative error
-/// `< 2⁻¹⁵`) and one Newton step, which squares that error (`< 2⁻³⁰`), two
-/// truncations and the clamp below `2³¹` (at `x = 2³¹`).
+/// `< 2⁻¹⁵`) and one Newton step, which squares that error (`< 2⁻³⁰`), and
+/// two truncations.
+///
+/// Below `2³¹` without a clamp: the exact Newton step `y(2 − x·y/2⁶²)`
+/// never exceeds `2⁶²/x` whatever the start `y` (the difference is
+/// `x·(2⁶²/x − y)²/2⁶²`), the truncated `p` raises it by at most
+/// `q/2³⁰ < 2`, and `2⁶²/x + 2 < 2³¹` for `x > 2³¹ + 2`; the three smaller
+/// `x` give `2³¹ − 1` (tested).
 #[inline(always)]
 #[must_use]
 pub(crate) fn recip(x: u32) -> u32 {
     // x >> 16 ∈ [2¹⁵, 2¹⁶); the `| 0x8000` (no change) shows the divisor
     // is not zero, so no check remains.
     let q = (u32::MAX / ((x >> 16) | 0x8000)) << 14;
-    // q ≤ 2⁶²/x: p = x·q/2³² ≤ 2³⁰, 2³¹ − p ∈ [2³⁰, 2³¹).
+    // q < 2⁶²/x·(1 + 2⁻¹⁵): p = x·q/2³² ≤ 2³⁰, 2³¹ − p ∈ [2³⁰, 2³¹).
     let p = mulhi_u(x, q);
-    mulhi_u(q << 1, (0x8000_0000 - p) << 1).min(0x7FFF_FFFF)
+    mulhi_u(q << 1, (0x8000_0000 - p) << 1)
 }
 
 /// A normalised block-floating-point 3-vector (see the [module docs](self)).
@@ -321,7 +327,13 @@ mod tests {
 
     #[test]
     fn reciprocal_bound_at_the_ends_and_powers_of_two() {
-        let mut xs: std::vec::Vec<u32> = std::vec![1 << 31, u32::MAX, (1 << 31) + 1];
+        let mut xs: std::vec::Vec<u32> = std::vec![1 << 31, u32::MAX, (1 << 31) + 1, (1 << 31) + 2];
+        // The three below 2³¹ + 3, where the documented argument does not
+        // hold, give 2³¹ − 1 (hand-run Newton step at x = 2³¹:
+        // q = (2¹⁷ − 1)·2¹⁴, p = 2³⁰ − 2¹³, y = ⌊(2⁶³ − 2²⁹)/2³²⌋).
+        for x in [1 << 31, (1 << 31) + 1, (1 << 31) + 2] {
+            assert_eq!(recip(x), 0x7FFF_FFFF, "{x}");
+        }
         for k in 0..31 {
             xs.push((1u32 << 31) | (1 << k));
             xs.push(u32::MAX - (1 << k));

@@ -93,17 +93,21 @@
 //!   the unit of `r` (`< 8u|r|∞`), the smaller axis aligned to the
 //!   larger's unit (`< 8u|r|`), then normalised (exact):
 //!   `12u·|D·f||r| + 17u|r| ≤ 32u·(|D·f| + 1)|r|`.
-//! * **Transfer.** `t` to 31 bits (`< u·t`); `t·∂D` by one multiply-high
-//!   of two 31-bit mantissas (at least 29 bits: `< 4u·t|∂D|`); the sum at
-//!   the larger exponent (two truncations, `< 8u·S`, `S = |∂O| + t|∂D|`):
-//!   `|δq| < 13u·S`. `D·n` exact in 64 bits, clamped, its 32-bit mantissa
-//!   (`< u/2`), `1/|D·n|` by one 32/16-bit division and a Newton step (`≤ 3u`), `w = D/(D·n)` by one
-//!   multiply-high (`< 4u/|D·n|`). `q·n` exact, truncated once (`< 8u·S`)
-//!   and normalised with the other axis's (one shift for both: the
-//!   larger of the two has 31 bits); the term `(q·n)·w` by one multiply-high (`< 16u·S/|D·n|`,
-//!   `w` has at least 27 bits); the difference at the larger exponent
-//!   (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|w| ≤ 1/|D·n|` and
-//!   `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 + 1/|D·n|)`.
+//! * **Transfer.** `t` to 31 bits (`< u·t`), shifted to the unit `2^eq`
+//!   of `q` (`2^eq ≤ 2u|∂O| + 4u·t|∂D| ≤ 4u·S`, `S = |∂O| + t|∂D|`) and
+//!   multiplied by `∂D` (one multiply-high, `|∂D| ≤ 2³¹` units: the
+//!   shift's truncation `< ½` unit of `q`, the product's `< 1`), added to
+//!   `∂O` shifted to `2^eq` (`< 1`): `|δq| < 11u·S`. `D·n` exact in 64
+//!   bits, clamped, its 32-bit mantissa (`< u/2`), `1/|D·n|` by one
+//!   32/16-bit division and a Newton step (`≤ 3u`). `q·n` exact,
+//!   truncated once (`< 8u·S`) and normalised with the other axis's (one
+//!   shift for both: the larger of the two has 31 bits); per axis
+//!   `s = (q·n)/(D·n)` by one multiply-high (`< ¼` unit of the term, `≤
+//!   4u·S/|D·n|`) and the term `s·D` by one multiply-high per component
+//!   (`< 16u·S/|D·n|`: the term's unit); the difference at the larger
+//!   exponent (`< 16u·S + 32u·S/|D·n|`). With `|q·n| ≤ S`, `|s·D| ≤
+//!   S/|D·n|` and `|δq·n| ≤ √3|δq|∞`: `29u·S + 86u·S/|D·n| ≤ 128u·S·(1 +
+//!   1/|D·n|)`.
 //! * **Reflection.** `∂D` and `∂n` of both axes at one exponent with 3
 //!   and 5 bits of headroom (`2ᵉ ≤ 8u|∂D| + 32u|∂n|`, one truncation
 //!   each, `< 2ᵉ`), `∂n`
@@ -519,51 +523,52 @@ impl RayDiff {
         let lz = hi.leading_zeros();
         // |D·n| = cm·2^(−28−lz), cm ∈ [2³¹, 2³²) (one truncation).
         let cm = (hi << lz) | ((lo >> 1) >> (31 - lz));
-        // 1/|D·n| = y·2^(lz−34), so w = D/(D·n) = mulhi(D, ±y)·2^(lz−32),
-        // |w| < 2²⁹ with at least 27 significant bits in its largest
-        // component (|D|∞ ≥ 1/√3, y ≥ 2³⁰): not normalised.
+        // −1/(D·n) = y·2^(lz−34), y ∈ ±[2³⁰, 2³¹): the sign that makes
+        // the term below one multiply-accumulate (`smmla`).
         let y = recip(cm) as i32;
-        let y = if c < 0 { -y } else { y };
-        let w = d.map(|x| mulhi(x, y));
+        let y = if c < 0 { y } else { -y };
         // t = tm·2^et, tm ∈ [2³⁰, 2³¹) (zero: tm = 0 at EXP_MIN).
         let (tn, tz) = normalise64(t.to_bits());
         let tm = (tn >> 1) as i32;
         let et = if tm == 0 { EXP_MIN } else { 1 - tz as i32 };
         let (o, dd) = (self.pair(0), self.pair(1));
-        // q = ∂O + t·∂D at 2^eq for both axes, |qₖ| < 2³¹ (∂O shifted by
+        // q = ∂O + t·∂D at 2^eq for both axes, |qₖ| ≤ 2³¹ (∂O shifted by
         // at least 1, t·∂D = mulhi(tm, ∂D)·2^(et+e+32) with |mulhi| ≤ 2³⁰).
+        // t is shifted to 2^eq before the product (`tm >> sp`, below half a
+        // unit of q in the product, `|∂D| ≤ 2³¹`), so each component is
+        // one shift and one multiply-accumulate (`smmla`).
         let ep = et + dd.e + 32;
         let eq = (o.e + 1).max(ep);
-        let (so, sp) = (eq - o.e, eq - ep);
+        let (so, ts) = (eq - o.e, shr(tm, eq - ep));
         let q: [[i32; 3]; 2] = core::array::from_fn(|a| {
-            core::array::from_fn(|k| shr(o.m[a][k], so) + shr(mulhi(tm, dd.m[a][k]), sp))
+            core::array::from_fn(|k| shr(o.m[a][k], so) + mulhi(ts, dd.m[a][k]))
         });
         // q·n = qn·2^(eq+1) per axis (exact dot, one truncation,
         // |qn| < √3·2³⁰), both normalised by one shift to qm·2^(eq+1−sn).
         let qn = q.map(|q| (dot64(q, n) >> 31) as i32);
         let sn = norm_shift2(qn[0], qn[1]);
-        // ∂P = q − (q·n)·w: the term mulhi(qm, w)·2^(eq+1−sn+lz),
-        // |mulhi| ≤ 2²⁸, and q shifted by at least one: |rₖ| < 2³¹.
+        // ∂P = q − s·D with s = (q·n)/(D·n) per axis: the scalar
+        // −s = mulhi(qm, y)·2^(eq−1−sn+lz), |·| ≤ 2³⁰, the term
+        // mulhi(−s, D)·2^(eq+1−sn+lz), |mulhi| ≤ 2²⁸, and q shifted by at
+        // least one: |rₖ| < 2³¹.
         // Both at er = max(eq + 1, eq + 1 − sn + lz) = eq + 1 + max(0, gap),
         // gap = lz − sn ∈ [−31, 19] (lz ∈ [0, 19] for any `D`, `n`,
         // sn ∈ [0, 31]): the shift 1 + max(0, gap) ≤ 20 needs no clamp.
         // The term's shift to er, st = max(0, −gap) ≤ sn, is taken from
-        // qm = qn·2^sn before the product: qm >> st = qn << min(sn, lz)
-        // drops only zero bits, and ⌊⌊x⌋/2^st⌋ = ⌊x/2^st⌋, so
-        // mulhi(qn << min(sn, lz), w) is mulhi(qm, w) >> st bit for bit,
-        // with one shift per axis instead of one per component.
+        // qm = qn·2^sn before the products: qm >> st = qn << min(sn, lz)
+        // drops only zero bits (one shift per axis instead of one per
+        // component); the scalar's truncation is then below ¼ unit of er
+        // (|D| ≤ 2³⁰ units).
         let gap = lz as i32 - sn;
         let sq = 1 + gap.max(0);
         let sm = sn.min(lz as i32);
         let r: [[i32; 3]; 2] = core::array::from_fn(|a| {
-            let qm = qn[a] << sm;
+            let s = mulhi(qn[a] << sm, y);
             core::array::from_fn(|k| {
                 // Wrapping: only inputs outside every documented range
                 // (non-unit `D`, `n`) reach ±2³¹; the result is then
                 // garbage, but no panic.
-                q[a][k]
-                    .wrapping_shr(sq as u32)
-                    .wrapping_sub(mulhi(qm, w[k]))
+                q[a][k].wrapping_shr(sq as u32).wrapping_add(mulhi(s, d[k]))
             })
         });
         self.set_pair(0, Bfp3x2::new(r, eq + sq));
