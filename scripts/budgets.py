@@ -206,7 +206,7 @@ batch_goal            lod_fast                      12    20     -
 batch_goal            trilinear                    120     -     -
 batch_ceiling         lod_fast                      12    20    20
 rd_ceiling            rd_primary                   150   205   190
-rd_ceiling            rd_transfer                  218   348   270
+rd_ceiling            rd_transfer                  190   340   253
 rd_ceiling            rd_reflect                   151   261   235
 rd_ceiling            rd_refract                   300   502   362
 rd_ceiling            rd_footprint                  37    64    63
