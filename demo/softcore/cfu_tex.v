@@ -21,9 +21,10 @@
 //             once (the firmware's AddressMode numbers; border colour is
 //             not handled here). rd = 0.
 //   funct7 1, funct3 1  tex.addr rd, rs1, rs2
-//             rs1 = u, rs2 = v in I4F28 (the coordinate's 28 top fractional
-//             bits; the integer part: ignored for wrap, `hi mod 2` for
-//             mirror, the integer part clamped to [−4, 3] for the clamping
+//             rs1 = u, rs2 = v: on a wrapped axis the coordinate's 32
+//             fractional bits (the unit uses the top 28), else I4F28 (the
+//             coordinate's 28 top fractional bits; the integer part:
+//             `hi mod 2` for mirror, clamped to [−4, 3] for the clamping
 //             modes, as the firmware's `AddressMode::scaled` reduces it).
 //             Per axis with n = 2^k: x = (frac·n << 4) + 2¹⁹ − 2³¹ (the
 //             firmware's `taps` for 12 weight bits in 2⁻³² texel units:
@@ -96,20 +97,21 @@
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
 // Pipelined for the clock (the CPU's own execute stage sets the SoC's
 // clock, so a stage may hold a few steps: an index map with its address
-// shift and add, a three-input sum): tex.lod, tex.bt, tex.lvl, tex.tap,
+// shift and add, the coordinate's shift with the 64-bit sums, a
+// three-input sum): tex.lod, tex.bt, tex.lvl, tex.tap,
 // tex.ram and a tex.sel of a block outside the RAM answer one cycle later
 // (rsp_valid registered; tex.bt goes on in the background), tex.sel of a
 // cached block two (plus the cycles mem_hold delays it; the lod's window
 // and the levels' words take two more cycles in the background), ten
-// more when it reads the block first; tex.bw and tex.addr four (A1 the
-// shifted coordinates, A2 the scaled positions and weights, B2 the index
-// maps, addresses and corner weights, then the answer), tex.log2pl five
+// more when it reads the block first; tex.bw and tex.addr three (A2 the
+// shifted coordinates' scaled positions and weights, B2 the index maps,
+// addresses and corner weights, then the answer), tex.log2pl four
 // (tex_log2pl.v with PIPE = 1), tex.blend three (the lower level's
 // product, then the upper's with the sum), tex.bb three (the row's corner
 // products, then the level's sum and the rounding). The texture unit
 // fetches a level's two rows in consecutive cycles, multiplies each in its
-// data cycle and answers tex.tri 10 cycles after the command (7 with
-// t = 0), tex.bil 7 (as tb_cfu_tex.cpp counts: the cycle of the transfer
+// data cycle and answers tex.tri 9 cycles after the command (6 with
+// t = 0), tex.bil 6 (as tb_cfu_tex.cpp counts: the cycle of the transfer
 // is 1).
 // The filter runs the four channels in parallel as the corner sum of
 // src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
@@ -207,21 +209,24 @@ module Cfu #(
         end
     endfunction
 
-    // One axis of coordinate `q` (I4F28) on 2^k texels: the scaled
-    // position p = (q[27:0] << (k + 4)) + 2¹⁹ − 2³¹ plus the integer part
+    // One axis of coordinate `q` on 2^k texels, fraction fr (q[31:4] for
+    // wrap, else q[27:0] of I4F28): the scaled
+    // position p = (fr << (k + 4)) + 2¹⁹ − 2³¹ plus the integer part
     // `hi << k` (hi as the mode reduces q's integer bits) in its top word
-    // is one 64-bit sum s + {h, 2³¹ + 2¹⁹}: s = q[27:0] << (k + 4) and
+    // is one 64-bit sum s + {h, 2³¹ + 2¹⁹}: s = fr << (k + 4) and
     // h = (hi << k) − 1 = ((hi − 1) << k) | (2^k − 1) for the first tap's
     // index, h = hi << k for the second's (index + 1). Returns
     // {s[47:4], h − 1 part, h part}.
     function [107:0] shifted(input [31:0] q, input [3:0] k, input [1:0] mode);
         reg [4:0] hi, him1;
+        reg [27:0] fr;
         reg [31:0] mx;
         begin
             hi = mode == 2'd0 ? 5'd0 : mode == 2'd1 ? {4'd0, q[28]} : {q[31], q[31:28]};
+            fr = mode == 2'd0 ? q[31:4] : q[27:0];
             him1 = hi - 5'd1;
             mx = (32'd1 << k) - 32'd1;
-            shifted = {{16'd0, q[27:0]} << k, ({{27{him1[4]}}, him1} << k) | mx, {{27{hi[4]}}, hi} << k};
+            shifted = {{16'd0, fr} << k, ({{27{him1[4]}}, him1} << k) | mx, {{27{hi[4]}}, hi} << k};
         end
     endfunction
 
@@ -245,9 +250,10 @@ module Cfu #(
     // The upper level enters the addressing two cycles after the lower.
     reg  [1:0] l1cnt;
 
-    // Stage A1: the shifted coordinates. Sources: tex.addr (the tex.lvl
-    // level), tex.bw (the weights alone), tex.tri/tex.bil (the lower or
-    // nearest level), the upper level of tex.tri.
+    // Stage A (combinational into A2's registers): the shifted
+    // coordinates. Sources: tex.addr (the tex.lvl level), tex.bw (the
+    // weights alone), tex.tri/tex.bil (the lower or nearest level), the
+    // upper level of tex.tri.
     wire inj_addr = op1 && funct3 == 3'd1;
     wire inj_bw = op0 && funct3 == 3'd2;
     wire inj_tri = op2 && funct3 == 3'd2;
@@ -255,18 +261,25 @@ module Cfu #(
     wire inj_up = l1cnt == 2'd1;
     wire near_up = tt[7];  // tex.bil: the nearest level is the upper one
     wire [31:0] in_u = inj_up ? tu : a, in_v = inj_up ? tv : b;
-    wire [31:0] in_base = inj_addr ? lbase : (inj_up || (inj_bil && near_up)) ? tb1 : tb0;
-    wire [3:0] in_kx = inj_addr ? lkx : (inj_up || (inj_bil && near_up)) ? tkx1 : tkx0;
-    wire [3:0] in_ky = inj_addr ? lky : (inj_up || (inj_bil && near_up)) ? tky1 : tky0;
-    wire [1:0] in_mu = inj_addr ? lmu : tmu, in_mv = inj_addr ? lmv : tmv;
+    // The level and modes come from the command's function id (not from
+    // the handshake: the sums below start from them in the same cycle;
+    // without a transfer the stage's result is not used).
+    wire is_addr = !inj_up && funct7 == 7'd1;
+    wire is_upper = inj_up || (funct3 == 3'd3 && near_up);
+    wire [31:0] in_base = is_addr ? lbase : is_upper ? tb1 : tb0;
+    wire [3:0] in_kx = is_addr ? lkx : is_upper ? tkx1 : tkx0;
+    wire [3:0] in_ky = is_addr ? lky : is_upper ? tky1 : tky0;
+    wire [1:0] in_mu = is_addr ? lmu : tmu, in_mv = is_addr ? lmv : tmv;
     wire [107:0] shx = shifted(in_u, in_kx, in_mu), shy = shifted(in_v, in_ky, in_mv);
-    reg        a_v, a_bw;
-    reg  [1:0] a_tag, a_lt;
-    reg [43:0] a_sx, a_sy;
-    reg [31:0] a_hmx, a_hpx, a_hmy, a_hpy, a_base;
-    reg [12:0] a_bwx, a_bwy;
-    reg  [3:0] a_kx, a_ky;
-    reg  [1:0] a_mu, a_mv;
+    wire        a_v = inj_addr || inj_bw || inj_tri || inj_bil || inj_up, a_bw = inj_bw;
+    wire  [1:0] a_tag = inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
+    wire  [1:0] a_lt = inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
+    wire [43:0] a_sx = shx[107:64], a_sy = shy[107:64];
+    wire [31:0] a_hmx = shx[63:32], a_hpx = shx[31:0], a_hmy = shy[63:32], a_hpy = shy[31:0];
+    wire [31:0] a_base = in_base;
+    wire [12:0] a_bwx = a[12:0], a_bwy = b[12:0];
+    wire  [3:0] a_kx = in_kx, a_ky = in_ky;
+    wire  [1:0] a_mu = in_mu, a_mv = in_mv;
 
     // Stage A2: the two sums per axis: the taps' indices and the weights.
     /* verilator lint_off UNUSEDSIGNAL */  // below the weight; the second sum's low word is the first's
@@ -427,7 +440,7 @@ module Cfu #(
         // tex.log2pl.
         if (lbusy) begin
             lcnt <= lcnt + 2'd1;
-            if (lcnt == 2'd3) begin
+            if (lcnt == 2'd2) begin
                 lbusy                 <= 1'b0;
                 pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
@@ -437,25 +450,6 @@ module Cfu #(
 
         // The upper level of tex.tri.
         if (l1cnt != 2'd0) l1cnt <= l1cnt - 2'd1;
-
-        // Stage A1.
-        a_v <= inj_addr || inj_bw || inj_tri || inj_bil || inj_up;
-        a_bw <= inj_bw;
-        a_tag <= inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
-        a_lt <= inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
-        a_sx <= shx[107:64];
-        a_hmx <= shx[63:32];
-        a_hpx <= shx[31:0];
-        a_sy <= shy[107:64];
-        a_hmy <= shy[63:32];
-        a_hpy <= shy[31:0];
-        a_bwx <= a[12:0];
-        a_bwy <= b[12:0];
-        a_base <= in_base;
-        a_kx <= in_kx;
-        a_ky <= in_ky;
-        a_mu <= in_mu;
-        a_mv <= in_mv;
 
         // Stage A2.
         b_v <= a_v;
@@ -721,7 +715,6 @@ module Cfu #(
             sq        <= 3'd0;
             cv        <= 1'b0;
             l1cnt     <= 2'd0;
-            a_v       <= 1'b0;
             b_v       <= 1'b0;
             d_v       <= 1'b0;
             lv_v      <= 1'b0;

@@ -19,22 +19,24 @@ pub const fn addressable(mode: AddressMode) -> bool {
     !matches!(mode, AddressMode::ClampToBorder)
 }
 
-/// The `tex.addr` operand of a coordinate on an axis addressed in `mode`:
-/// I4F28, the 28 top fractional bits of `c` and in bits 31..28 the integer
-/// part the mode's reduction keeps (none for wrap, `⌊c⌋ mod 2` for
-/// mirror, `⌊c⌋` clamped to `[−4, 3]` for the clamping modes, as the
-/// sampler's `AddressMode::taps` reduces it). The 4 fractional bits
-/// dropped change no tap or 12-bit weight of a side up to 2¹⁵ texels:
-/// `frac·2^k` moves by less than `2^(k+4−32) ≤ 2⁻¹³` texel, and the weight
-/// `⌊frac(x + 2⁻¹³)·2¹²⌋` depends on `x` only down to that bit (tested for
-/// every mode, side and class of coordinate).
+/// The `tex.addr` operand of a coordinate on an axis addressed in `mode`.
+/// Wrap: the 32 fractional bits of `c` (wrap keeps no integer part; the
+/// unit uses the top 28). The other modes: I4F28, the 28 top fractional
+/// bits of `c` and in bits 31..28 the integer part the mode's reduction
+/// keeps (`⌊c⌋ mod 2` for mirror, `⌊c⌋` clamped to `[−4, 3]` for the
+/// clamping modes, as the sampler's `AddressMode::taps` reduces it). The 4
+/// fractional bits either drops change no tap or 12-bit weight of a side
+/// up to 2¹⁵ texels: `frac·2^k` moves by less than `2^(k+4−32) ≤ 2⁻¹³`
+/// texel, and the weight `⌊frac(x + 2⁻¹³)·2¹²⌋` depends on `x` only down
+/// to that bit (tested for every mode, side and class of coordinate).
 #[inline(always)]
 #[must_use]
 pub fn coord_i4f28(mode: AddressMode, c: TexCoord) -> u32 {
     let b = c.to_bits();
     let hi = (b >> 32) as i32;
     let int = match mode {
-        AddressMode::Wrap => 0,
+        // The fraction as it is: no shift on the wrap path.
+        AddressMode::Wrap => return b as u32,
         AddressMode::Mirror => hi & 1,
         _ => hi.clamp(-4, 3),
     };
@@ -146,8 +148,13 @@ mod tests {
                 }
                 for c in cs {
                     let q = coord_i4f28(mode, TexCoord::from_bits(c));
-                    let back =
-                        (i64::from(q as i32 >> 28) << 32) | i64::from((q & 0x0FFF_FFFF) << 4);
+                    // What the unit reads: the top 28 fractional bits, and
+                    // for the other modes than wrap the integer part.
+                    let back = if mode == AddressMode::Wrap {
+                        i64::from(q & !15)
+                    } else {
+                        (i64::from(q as i32 >> 28) << 32) | i64::from((q & 0x0FFF_FFFF) << 4)
+                    };
                     let size = 1 << k;
                     assert_eq!(
                         mode.linear(TexCoord::from_bits(back), size),
@@ -199,14 +206,17 @@ mod tests {
         assert_eq!(window_word(0, 0, Wrap, Wrap), 0);
     }
 
-    /// The wrap operand keeps no integer part (bits 31..28 are 0), however
+    /// The wrap operand is the coordinate's fraction, all 32 bits, however
     /// far outside `[0, 1)` the coordinate is; the clamping modes keep
-    /// `⌊c⌋` clamped to `[−4, 3]`.
+    /// `⌊c⌋` clamped to `[−4, 3]` above the top 28 fractional bits.
     #[test]
     fn i4f28_integer_part_per_mode() {
         let one = 1i64 << 32;
-        for c in [2 * one + one / 2, -3 * one + one / 4, 7 * one] {
-            let frac = ((c as u32) >> 4) & 0x0FFF_FFFF;
+        for (c, frac) in [
+            (2 * one + one / 2 + 5, 0x8000_0005),
+            (-3 * one + one / 4, 0x4000_0000),
+            (7 * one + 15, 15),
+        ] {
             let q = coord_i4f28(AddressMode::Wrap, TexCoord::from_bits(c));
             assert_eq!(q, frac, "{c:#x}");
         }
@@ -216,6 +226,11 @@ mod tests {
             TexCoord::from_bits(2 * one + one / 2),
         );
         assert_eq!(q, 0x2800_0000);
+        // ⌊−5.25⌋ = −6 clamped to −4 (0xC in bits 31..28), fraction 0.75;
+        // mirror keeps −6 mod 2 = 0.
+        let c = TexCoord::from_bits(-5 * one - one / 4);
+        assert_eq!(coord_i4f28(AddressMode::MirrorOnce, c), 0xCC00_0000);
+        assert_eq!(coord_i4f28(AddressMode::Mirror, c), 0x0C00_0000);
     }
 
     /// One `w × h` level (every level index reads it) over `texels`.
