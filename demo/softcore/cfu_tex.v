@@ -95,24 +95,21 @@
 // nor texels.
 //
 // Timing: every instruction is taken in the cycle cmd_valid && cmd_ready.
-// Pipelined for the clock (the CPU's own execute stage sets the SoC's
-// clock, so a stage may hold a few steps: an index map with its address
-// shift and add, the coordinate's shift with the 64-bit sums, a
-// three-input sum): tex.lod, tex.bt, tex.lvl, tex.tap,
-// tex.ram and a tex.sel of a block outside the RAM answer one cycle later
-// (rsp_valid registered; tex.bt goes on in the background), tex.sel of a
-// cached block two (plus the cycles mem_hold delays it; the lod's window
-// and the levels' words take two more cycles in the background), ten
-// more when it reads the block first; tex.bw and tex.addr three (A2 the
-// shifted coordinates' scaled positions and weights, B2 the index maps,
-// addresses and corner weights, then the answer), tex.log2pl four
-// (tex_log2pl.v with PIPE = 1), tex.blend three (the lower level's
-// product, then the upper's with the sum), tex.bb three (the row's corner
-// products, then the level's sum and the rounding). The texture unit
-// fetches a level's two rows in consecutive cycles, multiplies each in its
-// data cycle and answers tex.tri 9 cycles after the command (6 with
-// t = 0), tex.bil 6 (as tb_cfu_tex.cpp counts: the cycle of the transfer
-// is 1).
+// Pipelined for the clock (at most one multiply, one add or one index map
+// per stage): tex.lod, tex.bt, tex.lvl, tex.tap, tex.ram and a tex.sel
+// of a block outside the RAM answer one cycle later (rsp_valid
+// registered; tex.bt goes on in the background), tex.sel of a cached block
+// two (plus the cycles mem_hold delays it; the lod's window and the
+// levels' words take two more cycles in the background), ten more when it
+// reads the block first; tex.bw and tex.addr five (A1 the shifted
+// coordinates, A2 the scaled positions and weights, B1 the index maps, B2
+// the addresses and corner weights, then the answer), tex.log2pl five
+// (tex_log2pl.v with PIPE = 1), tex.blend three (the two level products,
+// their sum), tex.bb five (the row's corner products, their sum, the
+// level's sum, the rounding). The texture unit fetches a level's two
+// rows in consecutive cycles and answers tex.tri 15 cycles after the
+// command (11 with t = 0), tex.bil 11 (as tb_cfu_tex.cpp counts: the cycle
+// of the transfer is 1).
 // The filter runs the four channels in parallel as the corner sum of
 // src/texture/kernel/accurate.rs: X = Σ t_ij·W_ij with
 // W = [(4096 − fx)(4096 − fy), fx(4096 − fy), (4096 − fx)fy, fx·fy]
@@ -250,10 +247,9 @@ module Cfu #(
     // The upper level enters the addressing two cycles after the lower.
     reg  [1:0] l1cnt;
 
-    // Stage A (combinational into A2's registers): the shifted
-    // coordinates. Sources: tex.addr (the tex.lvl level), tex.bw (the
-    // weights alone), tex.tri/tex.bil (the lower or nearest level), the
-    // upper level of tex.tri.
+    // Stage A1: the shifted coordinates. Sources: tex.addr (the tex.lvl
+    // level), tex.bw (the weights alone), tex.tri/tex.bil (the lower or
+    // nearest level), the upper level of tex.tri.
     wire inj_addr = op1 && funct3 == 3'd1;
     wire inj_bw = op0 && funct3 == 3'd2;
     wire inj_tri = op2 && funct3 == 3'd2;
@@ -261,25 +257,18 @@ module Cfu #(
     wire inj_up = l1cnt == 2'd1;
     wire near_up = tt[7];  // tex.bil: the nearest level is the upper one
     wire [31:0] in_u = inj_up ? tu : a, in_v = inj_up ? tv : b;
-    // The level and modes come from the command's function id (not from
-    // the handshake: the sums below start from them in the same cycle;
-    // without a transfer the stage's result is not used).
-    wire is_addr = !inj_up && funct7 == 7'd1;
-    wire is_upper = inj_up || (funct3 == 3'd3 && near_up);
-    wire [31:0] in_base = is_addr ? lbase : is_upper ? tb1 : tb0;
-    wire [3:0] in_kx = is_addr ? lkx : is_upper ? tkx1 : tkx0;
-    wire [3:0] in_ky = is_addr ? lky : is_upper ? tky1 : tky0;
-    wire [1:0] in_mu = is_addr ? lmu : tmu, in_mv = is_addr ? lmv : tmv;
+    wire [31:0] in_base = inj_addr ? lbase : (inj_up || (inj_bil && near_up)) ? tb1 : tb0;
+    wire [3:0] in_kx = inj_addr ? lkx : (inj_up || (inj_bil && near_up)) ? tkx1 : tkx0;
+    wire [3:0] in_ky = inj_addr ? lky : (inj_up || (inj_bil && near_up)) ? tky1 : tky0;
+    wire [1:0] in_mu = inj_addr ? lmu : tmu, in_mv = inj_addr ? lmv : tmv;
     wire [107:0] shx = shifted(in_u, in_kx, in_mu), shy = shifted(in_v, in_ky, in_mv);
-    wire        a_v = inj_addr || inj_bw || inj_tri || inj_bil || inj_up, a_bw = inj_bw;
-    wire  [1:0] a_tag = inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
-    wire  [1:0] a_lt = inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
-    wire [43:0] a_sx = shx[107:64], a_sy = shy[107:64];
-    wire [31:0] a_hmx = shx[63:32], a_hpx = shx[31:0], a_hmy = shy[63:32], a_hpy = shy[31:0];
-    wire [31:0] a_base = in_base;
-    wire [12:0] a_bwx = a[12:0], a_bwy = b[12:0];
-    wire  [3:0] a_kx = in_kx, a_ky = in_ky;
-    wire  [1:0] a_mu = in_mu, a_mv = in_mv;
+    reg        a_v, a_bw;
+    reg  [1:0] a_tag, a_lt;
+    reg [43:0] a_sx, a_sy;
+    reg [31:0] a_hmx, a_hpx, a_hmy, a_hpy, a_base;
+    reg [12:0] a_bwx, a_bwy;
+    reg  [3:0] a_kx, a_ky;
+    reg  [1:0] a_mu, a_mv;
 
     // Stage A2: the two sums per axis: the taps' indices and the weights.
     /* verilator lint_off UNUSEDSIGNAL */  // below the weight; the second sum's low word is the first's
@@ -296,15 +285,13 @@ module Cfu #(
     reg  [3:0] b_kx;
     reg  [1:0] b_mu, b_mv;
 
-    // Stage B (combinational into B2's registers): index maps and the
-    // weights' complements.
-    wire        c_v = b_v;
-    wire  [1:0] c_tag = b_tag, c_lt = b_lt;
-    wire [15:0] c_x0 = mapi(b_i0x, b_mxx, b_kbx, b_mu), c_x1 = mapi(b_i1x, b_mxx, b_kbx, b_mu);
-    wire [15:0] c_y0 = mapi(b_i0y, b_mxy, b_kby, b_mv), c_y1 = mapi(b_i1y, b_mxy, b_kby, b_mv);
-    wire [12:0] c_wx = b_wx, c_wy = b_wy, c_fxc = 13'd4096 - b_wx, c_fyc = 13'd4096 - b_wy;
-    wire [31:0] c_base = b_base;
-    wire  [3:0] c_kx = b_kx;
+    // Stage B1: index maps and the weights' complements.
+    reg        c_v;
+    reg  [1:0] c_tag, c_lt;
+    reg [15:0] c_x0, c_x1, c_y0, c_y1;
+    reg [12:0] c_wx, c_wy, c_fxc, c_fyc;
+    reg [31:0] c_base;
+    reg  [3:0] c_kx;
 
     // Stage B2: the four texel addresses base + 4·(y·2^kx + x) (x < 2^kx:
     // an OR), the corner weights.
@@ -378,12 +365,10 @@ module Cfu #(
     /* verilator lint_on UNUSEDSIGNAL */
 
     // ---- The filter: four channels in parallel ----------------------------
-    // F0: a footprint row of tex.bt / tex.bb (two texels and their
-    // weights; the RAM's rows skip it); F1: the corner products; F2: the first row's sum, kept with the rounding terms in
-    // `sum0w` (+ 2⁷) and `sum0r` (+ 2⁷ + 2²³), or, for the second row, the
-    // level's sum X + 2⁷ = sum0w + the row's products: its 8.16 value
-    // (w1, the one before moves to w0) and the rounded texel
-    // (sum0r + the products) >> 24.
+    // F0: a footprint row (two texels and their weights); F1: the corner
+    // products; F2: the row's sum (the first row's kept in `sum0`); F3: the
+    // level's sum X; F4: X's 8.16 value (w1, the one before moves to w0)
+    // and the rounded texel.
     reg        f0_v, f0_row;
     reg  [1:0] f0_lt;
     reg [31:0] f0_ta, f0_tb;
@@ -391,44 +376,44 @@ module Cfu #(
     reg        f1_v, f1_row;
     reg  [1:0] f1_lt;
     reg [127:0] f1_pa, f1_pb;
-    reg [127:0] sum0w, sum0r;
+    reg [127:0] sum0;
+    reg        f2_v;
+    reg  [1:0] f2_lt;
+    reg [127:0] f2_r;
+    reg        f3_v;
+    reg  [1:0] f3_lt;
+    reg [127:0] f3_x;
     reg [95:0] w0, w1;
-    // The blend ((256 − t)·w_prev + 2²³ + t·w1) >> 24 in two steps: Q the
-    // first product with the rounding term into `qa` (for tex.tri as soon
-    // as the lower level is done, from w1; for tex.blend from w0), then
-    // the answer qa + t·w1.
-    reg        qa_v, qa_w0, fin_v;
+    // The blend: B1 the two products per channel (the first with the
+    // rounding term 2²³), B2 their sum.
+    reg        bl_v, b2_v;
     reg  [8:0] bl_t;
-    reg [127:0] qa;
+    reg [127:0] b2_q0, b2_q1;
 
-    wire [127:0] pa_n, pb_n, s0w_n, s0r_n, qa_n;
+    wire [127:0] pa_n, pb_n, r_n, x_n, q0_n, q1_n;
     wire [95:0] wide_n;
     wire [31:0] round_n, blend_n;
     wire [8:0] bl_tc = 9'd256 - bl_t;
-    wire [95:0] qsrc = qa_w0 ? w0 : w1;
-    // F1's row: the RAM's data in its data cycle, else tex.bt/tex.bb's F0.
-    wire [31:0] ta = md_v ? dat_a : f0_ta, tb = md_v ? dat_b : f0_tb;
-    wire [24:0] wa_ = md_v ? md_wa : f0_wa, wb_ = md_v ? md_wb : f0_wb;
     genvar c;
     generate
         for (c = 0; c < 4; c = c + 1) begin : ch
             /* verilator lint_off UNUSEDSIGNAL */  // every product < 2³², the sums too
-            wire [32:0] pa = {25'd0, ta[8*c+7:8*c]} * {8'd0, wa_};
-            wire [32:0] pb = {25'd0, tb[8*c+7:8*c]} * {8'd0, wb_};
-            wire [31:0] r = f1_pa[32*c+31:32*c] + f1_pb[32*c+31:32*c];
-            wire [31:0] xw = sum0w[32*c+31:32*c] + r;
-            wire [31:0] xr = sum0r[32*c+31:32*c] + r;
-            wire [32:0] q0 = {9'd0, qsrc[24*c+23:24*c]} * {24'd0, bl_tc};
+            wire [32:0] pa = {25'd0, f0_ta[8*c+7:8*c]} * {8'd0, f0_wa};
+            wire [32:0] pb = {25'd0, f0_tb[8*c+7:8*c]} * {8'd0, f0_wb};
+            wire [31:0] xw = f3_x[32*c+31:32*c] + 32'd128;
+            wire [31:0] xr = f3_x[32*c+31:32*c] + 32'h0080_0080;
+            wire [32:0] q0 = {9'd0, w0[24*c+23:24*c]} * {24'd0, bl_tc};
             wire [32:0] q1 = {9'd0, w1[24*c+23:24*c]} * {24'd0, bl_t};
-            wire [31:0] bs = qa[32*c+31:32*c] + q1[31:0];
+            wire [31:0] bs = b2_q0[32*c+31:32*c] + b2_q1[32*c+31:32*c];
             /* verilator lint_on UNUSEDSIGNAL */
             assign pa_n[32*c+31:32*c] = pa[31:0];
             assign pb_n[32*c+31:32*c] = pb[31:0];
-            assign s0w_n[32*c+31:32*c] = r + 32'd128;
-            assign s0r_n[32*c+31:32*c] = r + 32'h0080_0080;
+            assign r_n[32*c+31:32*c] = f1_pa[32*c+31:32*c] + f1_pb[32*c+31:32*c];
+            assign x_n[32*c+31:32*c] = sum0[32*c+31:32*c] + f2_r[32*c+31:32*c];
             assign wide_n[24*c+23:24*c] = xw[31:8];
             assign round_n[8*c+7:8*c] = xr[31:24];
-            assign qa_n[32*c+31:32*c] = q0[31:0] + 32'h0080_0000;
+            assign q0_n[32*c+31:32*c] = q0[31:0] + 32'h0080_0000;
+            assign q1_n[32*c+31:32*c] = q1[31:0];
             assign blend_n[8*c+7:8*c] = bs[31:24];
         end
     endgenerate
@@ -440,7 +425,7 @@ module Cfu #(
         // tex.log2pl.
         if (lbusy) begin
             lcnt <= lcnt + 2'd1;
-            if (lcnt == 2'd2) begin
+            if (lcnt == 2'd3) begin
                 lbusy                 <= 1'b0;
                 pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
@@ -450,6 +435,25 @@ module Cfu #(
 
         // The upper level of tex.tri.
         if (l1cnt != 2'd0) l1cnt <= l1cnt - 2'd1;
+
+        // Stage A1.
+        a_v <= inj_addr || inj_bw || inj_tri || inj_bil || inj_up;
+        a_bw <= inj_bw;
+        a_tag <= inj_addr ? AT_ADDR : inj_bw ? AT_BW : AT_TMU;
+        a_lt <= inj_up ? LT_BLEND : (inj_tri && tt != 8'd0) ? LT_QUIET : LT_ROUND;
+        a_sx <= shx[107:64];
+        a_hmx <= shx[63:32];
+        a_hpx <= shx[31:0];
+        a_sy <= shy[107:64];
+        a_hmy <= shy[63:32];
+        a_hpy <= shy[31:0];
+        a_bwx <= a[12:0];
+        a_bwy <= b[12:0];
+        a_base <= in_base;
+        a_kx <= in_kx;
+        a_ky <= in_ky;
+        a_mu <= in_mu;
+        a_mv <= in_mv;
 
         // Stage A2.
         b_v <= a_v;
@@ -469,6 +473,21 @@ module Cfu #(
         b_kx <= a_kx;
         b_mu <= a_mu;
         b_mv <= a_mv;
+
+        // Stage B1.
+        c_v <= b_v;
+        c_tag <= b_tag;
+        c_lt <= b_lt;
+        c_x0 <= mapi(b_i0x, b_mxx, b_kbx, b_mu);
+        c_x1 <= mapi(b_i1x, b_mxx, b_kbx, b_mu);
+        c_y0 <= mapi(b_i0y, b_mxy, b_kby, b_mv);
+        c_y1 <= mapi(b_i1y, b_mxy, b_kby, b_mv);
+        c_wx <= b_wx;
+        c_wy <= b_wy;
+        c_fxc <= 13'd4096 - b_wx;
+        c_fyc <= 13'd4096 - b_wy;
+        c_base <= b_base;
+        c_kx <= b_kx;
 
         // Stage B2: a level of the texture unit, or tex.addr's taps and
         // tex.bw's weights (answered the cycle after).
@@ -583,43 +602,45 @@ module Cfu #(
             cdt <= 1'b1;
         end
 
-        // F0: a row of tex.bt / tex.bb (set below); the RAM's rows go to
-        // F1 in their data cycle.
-        f0_v <= 1'b0;
-        // F1, F2.
-        f1_v   <= f0_v || md_v;
-        f1_row <= md_v ? md_row : f0_row;
-        f1_lt  <= md_v ? md_lt : f0_lt;
+        // F0: a row from the RAM (or from tex.bt / tex.bb below).
+        f0_v <= md_v;
+        if (md_v) begin
+            f0_row <= md_row;
+            f0_lt  <= md_lt;
+            f0_ta  <= dat_a;
+            f0_tb  <= dat_b;
+            f0_wa  <= md_wa;
+            f0_wb  <= md_wb;
+        end
+        // F1 … F4.
+        f1_v   <= f0_v;
+        f1_row <= f0_row;
+        f1_lt  <= f0_lt;
         f1_pa  <= pa_n;
         f1_pb  <= pb_n;
-        if (f1_v && !f1_row) begin
-            sum0w <= s0w_n;
-            sum0r <= s0r_n;
-        end
-        qa_v <= 1'b0;
-        fin_v <= 1'b0;
-        if (f1_v && f1_row) begin
+        f2_v   <= f1_v && f1_row;
+        f2_lt  <= f1_lt;
+        f2_r   <= r_n;
+        if (f1_v && !f1_row) sum0 <= r_n;
+        f3_v  <= f2_v;
+        f3_lt <= f2_lt;
+        f3_x  <= x_n;
+        if (f3_v) begin
             w0 <= w1;
             w1 <= wide_n;
-            if (f1_lt == LT_ROUND) begin
+            if (f3_lt == LT_ROUND) begin
                 pend                  <= 1'b0;
                 rsp_valid             <= 1'b1;
                 rsp_payload_outputs_0 <= round_n;
             end
-            // The lower level of tex.tri: its blend product next.
-            if (f1_lt == LT_QUIET) begin
-                qa_v  <= 1'b1;
-                qa_w0 <= 1'b0;
-                bl_t  <= {1'b0, tt};
-            end
-            fin_v <= f1_lt == LT_BLEND;
         end
         // The blend (after the upper level, or tex.blend below).
-        if (qa_v) begin
-            qa    <= qa_n;
-            fin_v <= qa_w0;
-        end
-        if (fin_v) begin
+        bl_v <= f3_v && f3_lt == LT_BLEND;
+        if (f3_v && f3_lt == LT_BLEND) bl_t <= {1'b0, tt};
+        b2_v  <= bl_v;
+        b2_q0 <= q0_n;
+        b2_q1 <= q1_n;
+        if (b2_v) begin
             pend                  <= 1'b0;
             rsp_valid             <= 1'b1;
             rsp_payload_outputs_0 <= blend_n;
@@ -657,8 +678,7 @@ module Cfu #(
                     3'd5: begin
                         rsp_valid <= 1'b0;
                         pend      <= 1'b1;
-                        qa_v      <= 1'b1;
-                        qa_w0     <= 1'b1;
+                        bl_v      <= 1'b1;
                         bl_t      <= a[8:0] > 9'd256 ? 9'd256 : a[8:0];
                     end
                     default: ;
@@ -715,15 +735,19 @@ module Cfu #(
             sq        <= 3'd0;
             cv        <= 1'b0;
             l1cnt     <= 2'd0;
+            a_v       <= 1'b0;
             b_v       <= 1'b0;
+            c_v       <= 1'b0;
             d_v       <= 1'b0;
             lv_v      <= 1'b0;
             lrow      <= 1'b0;
             md_v      <= 1'b0;
             f0_v      <= 1'b0;
             f1_v      <= 1'b0;
-            qa_v      <= 1'b0;
-            fin_v     <= 1'b0;
+            f2_v      <= 1'b0;
+            f3_v      <= 1'b0;
+            bl_v      <= 1'b0;
+            b2_v      <= 1'b0;
         end
     end
 endmodule

@@ -7,16 +7,15 @@
 // A free-running pipeline: `x` presented in cycle t is normalised in two
 // registered steps (the coarse shifts 32/16/8 at the end of t, the fine
 // shifts 4/2/1 at the end of t+1), and `log2pl` (table, one 11×16-bit
-// multiply, adds) is valid combinationally in cycle t+2 (t+3 with
+// multiply, adds) is valid combinationally in cycle t+2 (t+4 with
 // PIPE = 1), as long as `x` was held in cycle t. The instances sample
 // `log2pl` at that cycle.
 `timescale 1 ns / 1 ps
 `default_nettype none
 
 module tex_log2pl #(
-    // 1: one more register for the clock (the table's outputs; the
-    // multiply and the sums after it): `log2pl` is valid in cycle t+3
-    // instead of t+2.
+    // 1: two more registers for the clock (the table's outputs, then the
+    // rounded product): `log2pl` is valid in cycle t+4 instead of t+2.
     parameter integer PIPE = 0
 ) (
     input  wire        clk,
@@ -148,17 +147,19 @@ module tex_log2pl #(
             reg [10:0] slope1;
             reg [15:0] mlo1;
             reg  [5:0] lz1;
+            reg [31:0] sum2;
+            /* verilator lint_off UNUSEDSIGNAL */  // rounded away
+            reg [26:0] rnd2;
+            /* verilator lint_on UNUSEDSIGNAL */
             always @(posedge clk) begin
                 base1  <= base;
                 slope1 <= slope;
                 mlo1   <= m[24:9];
                 lz1    <= lz;
+                sum2   <= LOD_BIAS + {15'd0, base1} - {10'd0, lz1, 16'd0};
+                rnd2   <= slope1 * mlo1 + 27'h8000;  // ≤ 1466·65535 + 2¹⁵ < 2²⁷
             end
-            wire [26:0] prod1 = slope1 * mlo1;  // ≤ 1466·65535 < 2²⁷
-            /* verilator lint_off UNUSEDSIGNAL */  // rounded away
-            wire [26:0] rnd1 = prod1 + 27'h8000;
-            /* verilator lint_on UNUSEDSIGNAL */
-            assign log2pl = LOD_BIAS + {15'd0, base1} + {21'd0, rnd1[26:16]} - {10'd0, lz1, 16'd0};
+            assign log2pl = sum2 + {21'd0, rnd2[26:16]};
         end else begin : comb
             wire [26:0] prod = slope * m[24:9];  // ≤ 1466·65535 < 2²⁷
             /* verilator lint_off UNUSEDSIGNAL */  // rounded away
