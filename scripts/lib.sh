@@ -12,8 +12,6 @@
 #   demo_target       cargo target dir of the demo/ workspace ($DEMO_TARGET_DIR or
 #                     target/demo: its own, so RUSTFLAGS never rebuild the host)
 #   demo_rustflags    RUSTFLAGS of every demo build (see demo_cargo)
-#   ARM_RUSTFLAGS     what demo_cargo adds for $ARM: code scheduled for the
-#                     Cortex-M4 (.cargo/config.toml and the templates set the same)
 #   QARM QRV QCOMMON  QEMU command lines: Cortex-M4 on mps2-an386, RV32 on virt,
 #                     and the options both share (semihosting carries output and exit code)
 #   QTIMEOUT          seconds before a hung guest is killed (120, or $QEMU_TIMEOUT)
@@ -44,9 +42,6 @@ demo_target=${DEMO_TARGET_DIR:-$host_target/demo}
 # fixed name makes the images, and so BUDGETS.md, independent of where the
 # repository is cloned. Only for demo builds (RUSTFLAGS would rebuild the host).
 demo_rustflags="--remap-path-prefix=$root=/raymip"
-# RUSTFLAGS replaces the per-target rustflags of .cargo/config.toml, so the
-# Cortex-M4 schedule is added here for builds that name $ARM (see demo_cargo).
-ARM_RUSTFLAGS="-C target-cpu=cortex-m4"
 
 QARM=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4)
 QRV=(qemu-system-riscv32 -machine virt -bios none)
@@ -222,7 +217,10 @@ ensure_targets() {
 
 # demo_cargo [+TOOLCHAIN] [--dir DIR] [--rustflags FLAGS] CARGO-ARGS...:
 # cargo in demo/ with the demo target dir (or DIR) and demo_rustflags (plus
-# FLAGS, plus ARM_RUSTFLAGS when CARGO-ARGS name `--target $ARM`), and
+# FLAGS) as each bare-metal target's rustflags (CARGO_TARGET_<TRIPLE>_RUSTFLAGS,
+# so one invocation may name several `--target`s and build them side by
+# side; cargo puts them after the checkout's .cargo/config.toml flags for
+# that target: the Cortex-M4 schedule for $ARM), and
 # scripts/rustc-metadata as RUSTC_WRAPPER: cargo's -C metadata of raymip
 # (outside demo/) hashes the checkout path, and with it the images' function
 # layout would depend on where the repository is cloned. The flag `--cfg
@@ -231,7 +229,7 @@ ensure_targets() {
 # wrapper is rebuilt, never mixed with it. Runs in a subshell: the caller's
 # directory is unchanged.
 demo_cargo() {
-    local tc=() dir=$demo_target flags="$demo_rustflags --cfg raymip_rustc_metadata" a prev=
+    local tc=() dir=$demo_target flags="$demo_rustflags --cfg raymip_rustc_metadata" t
     while [ $# -gt 0 ]; do
         case "$1" in
             +*) tc=("$1"); shift ;;
@@ -240,14 +238,15 @@ demo_cargo() {
             *) break ;;
         esac
     done
-    for a in "$@"; do
-        if [ "$a" = "--target=$ARM" ] || { [ "$prev" = --target ] && [ "$a" = "$ARM" ]; }; then
-            flags="$flags $ARM_RUSTFLAGS"
-        fi
-        prev=$a
-    done
-    (cd "$root/demo" && CARGO_TARGET_DIR=$dir RUSTFLAGS=$flags RUSTC_WRAPPER=$root/scripts/rustc-metadata \
-        RAYMIP_ROOT=$root cargo "${tc[@]}" "$@")
+    (
+        cd "$root/demo"
+        unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS
+        for t in "$ARM" "$RV" "$RVC" "$RVIM"; do
+            t=${t^^}
+            export "CARGO_TARGET_${t//-/_}_RUSTFLAGS=$flags"
+        done
+        CARGO_TARGET_DIR=$dir RUSTC_WRAPPER=$root/scripts/rustc-metadata RAYMIP_ROOT=$root cargo "${tc[@]}" "$@"
+    )
 }
 
 # qemu_arm ELF [QEMU-ARGS...] / qemu_rv ELF [QEMU-ARGS...]: run a bare-metal

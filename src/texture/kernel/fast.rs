@@ -33,8 +33,8 @@
 //! one channel in the low byte and one in the high byte:
 //! `t & 0xFF0000FF` (`c₀`, `c₃`) and `rotr(t, 16) & 0xFF0000FF`
 //! (`c₂`, `c₁`). (Rotating by 8 both ways instead puts the rounded
-//! results next to their bytes, but measured on the Cortex-M4 it costs
-//! more: bilinear 106 → 107, trilinear 209 → 214 instructions.) For `p = c_lo + c_hi·2²⁴` and a weight `W' = 2⁸W`, the
+//! results next to their bytes, but on the Cortex-M4 that costs more
+//! instructions in both the bilinear and the trilinear call.) For `p = c_lo + c_hi·2²⁴` and a weight `W' = 2⁸W`, the
 //! 64-bit product is
 //!
 //! ```text
@@ -136,9 +136,9 @@ const WIDE: bool = cfg!(target_arch = "arm");
 
 /// Whether a bilinear call alone (not in a batch loop) takes the signed
 /// pair sums ([`pair_sum_signed`]): on Arm, where they keep the `smlal`
-/// chain whole (Cortex-M4, bilinear wrap 99 → 93 instructions). A batch
-/// loop keeps the unsigned chain: with the flips its loop values no
-/// longer fit the registers (measured 91 → 99 per hit).
+/// chain whole (a shorter Cortex-M4 bilinear call). A batch loop keeps
+/// the unsigned chain: with the flips its loop values no longer fit the
+/// registers, and the loop costs more per hit.
 const SIGNED: bool = cfg!(target_arch = "arm");
 
 /// The pair words of a texel: `[c₀ | c₃<<24, c₂ | c₁<<24]`, with the
@@ -237,8 +237,8 @@ fn bilinear_texel_with<const WIDE: bool, const SIGNED: bool>(
     let w = corner_weights(x, y);
     let (flip, [a, b]) = if SIGNED {
         let p = t.map(|t| pairs(t ^ FLIP, m));
-        // `b` first: measured on the Cortex-M4, the mirror/border
-        // bilinear call is 4 instructions shorter than with `a` first.
+        // `b` first: on the Cortex-M4 the mirror/border bilinear call
+        // is shorter than with `a` first (register allocation).
         let b = pair_sum_signed(p.map(|x| x[1]), w, r);
         (FLIP, [pair_sum_signed(p.map(|x| x[0]), w, r), b])
     } else {
