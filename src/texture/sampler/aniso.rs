@@ -565,9 +565,12 @@ mod tests {
     /// Reference vectors on a 256×256 texture.
     #[test]
     fn reference_vectors() {
-        // Isotropic 1-texel footprint: one probe, lod 0.
+        // Isotropic 1-texel footprint: one probe, lod 0. The lengths tie,
+        // and on a tie the first axis is the major one (`|a| ≥ |b|`): the
+        // step is the x axis.
         let p = probes(&fp(1.0 / 256.0, 0.0, 0.0, 1.0 / 256.0), 256, 256, 16);
         assert_eq!((p.count, p.lod), (1, Lod::ZERO));
+        assert_eq!(p.step, [TexCoord::from_num(1.0 / 256.0), TexCoord::ZERO]);
         // 8:1 along u, minor 2 texels: 8 probes at lod 1.
         let p = probes(&fp(16.0 / 256.0, 0.0, 0.0, 2.0 / 256.0), 256, 256, 16);
         assert_eq!((p.count, p.lod), (8, Lod::ONE));
